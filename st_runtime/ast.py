@@ -1,0 +1,421 @@
+"""Abstract syntax tree of IEC 61131-3 Structured Text.
+
+Every node is a small frozen dataclass.  Positions (`pos`) are kept for
+diagnostics but excluded from equality, so two parses of the same program
+compare equal even when their layout differs (the printer round trip relies
+on it).  Identifiers keep the spelling of the source; ST is case-insensitive,
+so consumers compare them through `key()` (upper case).
+
+Tuples, never lists, hold children so that every node is hashable.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Union
+
+
+@dataclass(frozen=True, slots=True)
+class Pos:
+    """A place in a source file: 1-based line and column."""
+
+    file: str
+    line: int
+    col: int
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}:{self.col}"
+
+
+NOWHERE = Pos("<builtin>", 0, 0)
+
+
+def key(name: str) -> str:
+    """The case-insensitive identity of an ST identifier."""
+    return name.upper()
+
+
+@dataclass(frozen=True, slots=True)
+class Node:
+    pos: Pos = field(default=NOWHERE, compare=False, repr=False, kw_only=True)
+
+
+# --------------------------------------------------------------------- types
+# Type references as written in declarations; the checker resolves them.
+
+
+@dataclass(frozen=True, slots=True)
+class NamedType(Node):
+    """An elementary type (`LREAL`), a user type, or an FB type, by name."""
+
+    name: str
+
+
+@dataclass(frozen=True, slots=True)
+class StringType(Node):
+    """`STRING` or `STRING[n]` (`length` None means the default, 80)."""
+
+    length: Expr | None = None
+    wide: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class Subrange(Node):
+    lo: Expr
+    hi: Expr
+
+
+@dataclass(frozen=True, slots=True)
+class ArrayType(Node):
+    """`ARRAY[lo..hi, ...] OF element` (up to three dimensions)."""
+
+    ranges: tuple[Subrange, ...]
+    element: TypeRef
+
+
+@dataclass(frozen=True, slots=True)
+class StructType(Node):
+    """`STRUCT ... END_STRUCT`, only inside a TYPE declaration."""
+
+    members: tuple[VarDecl, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class EnumValue(Node):
+    name: str
+    value: Expr | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class EnumType(Node):
+    """`(Red, Green := 5, Blue)`, only inside a TYPE declaration."""
+
+    values: tuple[EnumValue, ...]
+
+
+TypeRef = Union[NamedType, StringType, ArrayType]
+TypeSpec = Union[NamedType, StringType, ArrayType, StructType, EnumType]
+
+
+# --------------------------------------------------------------- expressions
+
+
+@dataclass(frozen=True, slots=True)
+class IntLiteral(Node):
+    """An integer literal; `type_prefix` is e.g. `INT` for `INT#-5`."""
+
+    value: int
+    type_prefix: str | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class RealLiteral(Node):
+    value: float
+    type_prefix: str | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class BoolLiteral(Node):
+    value: bool
+    type_prefix: str | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class StringLiteral(Node):
+    """The decoded text (`$N` already a newline); `wide` for `"..."`."""
+
+    value: str
+    wide: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class TimeLiteral(Node):
+    """A duration in integer nanoseconds (`T#1s500ms`, `TIME#-2.5s`)."""
+
+    nanoseconds: int
+
+
+@dataclass(frozen=True, slots=True)
+class DateTimeLiteral(Node):
+    """DATE, TIME_OF_DAY or DATE_AND_TIME; `value` in ns since epoch/midnight."""
+
+    kind: str  # "DATE" | "TOD" | "DT"
+    nanoseconds: int
+
+
+@dataclass(frozen=True, slots=True)
+class EnumLiteral(Node):
+    """`Color#Red`: an enumeration value qualified by its type."""
+
+    type_name: str
+    value_name: str
+
+
+@dataclass(frozen=True, slots=True)
+class Name(Node):
+    """A variable, constant, or unqualified enumeration value."""
+
+    name: str
+
+
+@dataclass(frozen=True, slots=True)
+class Member(Node):
+    """`base.name`: a struct member or FB instance variable."""
+
+    base: Expr
+    name: str
+
+
+@dataclass(frozen=True, slots=True)
+class Index(Node):
+    """`base[i, j]`."""
+
+    base: Expr
+    indices: tuple[Expr, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Unary(Node):
+    op: str  # "-" | "+" | "NOT"
+    operand: Expr
+
+
+@dataclass(frozen=True, slots=True)
+class Binary(Node):
+    """op is one of: ** * / MOD + - < > <= >= = <> AND XOR OR  (& is AND)."""
+
+    op: str
+    left: Expr
+    right: Expr
+
+
+@dataclass(frozen=True, slots=True)
+class Arg(Node):
+    """One argument of a call.
+
+    Positional: `name` is None.  Formal input `In := x`: direction "in".
+    Formal output `Out => y`: direction "out" (value is the target);
+    `NOT Out => y` sets `negated`.
+    """
+
+    name: str | None
+    value: Expr | None
+    direction: str = "in"  # "in" | "out"
+    negated: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class Call(Node):
+    """A function call, or (as a statement) an FB instance call.
+
+    `callee` is a Name for functions and simple instances, or a Member/Index
+    for `inst.sub(...)`, `fbs[i](...)`.
+    """
+
+    callee: Expr
+    args: tuple[Arg, ...]
+
+
+Expr = Union[
+    IntLiteral, RealLiteral, BoolLiteral, StringLiteral, TimeLiteral,
+    DateTimeLiteral, EnumLiteral, Name, Member, Index, Unary, Binary, Call,
+]
+
+
+# ---------------------------------------------------------------- statements
+
+
+@dataclass(frozen=True, slots=True)
+class Assign(Node):
+    target: Expr
+    value: Expr
+
+
+@dataclass(frozen=True, slots=True)
+class CallStmt(Node):
+    call: Call
+
+
+@dataclass(frozen=True, slots=True)
+class IfBranch(Node):
+    condition: Expr
+    body: tuple[Stmt, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class If(Node):
+    """`branches[0]` is the IF, the rest the ELSIFs; `else_body` None = none."""
+
+    branches: tuple[IfBranch, ...]
+    else_body: tuple[Stmt, ...] | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class CaseRange(Node):
+    lo: Expr
+    hi: Expr
+
+
+@dataclass(frozen=True, slots=True)
+class CaseClause(Node):
+    """`labels` are expressions (constants, enum values) or CaseRanges."""
+
+    labels: tuple[Expr | CaseRange, ...]
+    body: tuple[Stmt, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Case(Node):
+    selector: Expr
+    clauses: tuple[CaseClause, ...]
+    else_body: tuple[Stmt, ...] | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class For(Node):
+    variable: str
+    start: Expr
+    end: Expr
+    step: Expr | None
+    body: tuple[Stmt, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class While(Node):
+    condition: Expr
+    body: tuple[Stmt, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Repeat(Node):
+    body: tuple[Stmt, ...]
+    condition: Expr
+
+
+@dataclass(frozen=True, slots=True)
+class Exit(Node):
+    pass
+
+
+@dataclass(frozen=True, slots=True)
+class Continue(Node):
+    pass
+
+
+@dataclass(frozen=True, slots=True)
+class Return(Node):
+    pass
+
+
+@dataclass(frozen=True, slots=True)
+class Empty(Node):
+    """A lone `;`."""
+
+
+Stmt = Union[Assign, CallStmt, If, Case, For, While, Repeat, Exit, Continue, Return, Empty]
+
+
+# -------------------------------------------------------------- declarations
+
+
+@dataclass(frozen=True, slots=True)
+class ArrayInitItem(Node):
+    """`value` or `count(value)`; `count(())` is written `count()`: value None."""
+
+    value: Initializer | None
+    count: Expr | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class ArrayInit(Node):
+    items: tuple[ArrayInitItem, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class FieldInit(Node):
+    name: str
+    value: Initializer
+
+
+@dataclass(frozen=True, slots=True)
+class StructInit(Node):
+    fields: tuple[FieldInit, ...]
+
+
+Initializer = Union[Expr, ArrayInit, StructInit]
+
+
+@dataclass(frozen=True, slots=True)
+class VarDecl(Node):
+    """One variable (`a, b : INT` yields two VarDecls); pos is the name's."""
+
+    name: str
+    type: TypeRef
+    init: Initializer | None = None
+
+
+VAR_KINDS = (
+    "VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_TEMP",
+    "VAR_GLOBAL", "VAR_EXTERNAL",
+)
+
+
+@dataclass(frozen=True, slots=True)
+class VarBlock(Node):
+    kind: str  # one of VAR_KINDS
+    decls: tuple[VarDecl, ...]
+    constant: bool = False
+    retain: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class TypeDecl(Node):
+    """One entry of a TYPE ... END_TYPE block."""
+
+    name: str
+    spec: TypeSpec
+    init: Initializer | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Pou(Node):
+    kind: str  # "PROGRAM" | "FUNCTION" | "FUNCTION_BLOCK"
+    name: str
+    var_blocks: tuple[VarBlock, ...]
+    body: tuple[Stmt, ...]
+    return_type: TypeRef | None = None  # FUNCTION only
+
+
+@dataclass(frozen=True, slots=True)
+class TaskDecl(Node):
+    name: str
+    interval: Expr | None
+    priority: Expr | None
+
+
+@dataclass(frozen=True, slots=True)
+class ProgramInstance(Node):
+    name: str
+    task: str | None
+    program_type: str
+
+
+@dataclass(frozen=True, slots=True)
+class Configuration(Node):
+    """CONFIGURATION/RESOURCE/TASK: accepted, flattened to its contents."""
+
+    name: str
+    globals: tuple[VarBlock, ...]
+    tasks: tuple[TaskDecl, ...]
+    programs: tuple[ProgramInstance, ...]
+
+
+Item = Union[Pou, TypeDecl, VarBlock, Configuration]
+
+
+@dataclass(frozen=True, slots=True)
+class SourceFile(Node):
+    """A parsed file: POUs, type declarations, VAR_GLOBAL blocks in order."""
+
+    path: str
+    items: tuple[Item, ...]

@@ -1,0 +1,95 @@
+"""Diagnostics: findings of the parser, the checker and the runtime.
+
+A diagnostic has a stable code (`E-PARSE-001`, `E-TYPE-004`, `W-NJ-001`, ...),
+a severity, a message that says what was expected and what was found, and a
+position.  It renders gcc-style:
+
+    file.st:12:5: error[E-TYPE-004]: cannot assign LREAL to INT ...
+        x := y * 2.0;
+        ^
+
+The catalogue of codes with one-line explanations lives in `CODES`; every
+code used anywhere must be registered there (a test enforces it).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from .ast import Pos
+
+ERROR = "error"
+WARNING = "warning"
+FAULT = "fault"
+
+
+@dataclass(frozen=True, slots=True)
+class Diagnostic:
+    code: str
+    message: str
+    pos: Pos
+    severity: str = ERROR
+
+    @property
+    def is_error(self) -> bool:
+        return self.severity != WARNING
+
+    def header(self) -> str:
+        return f"{self.pos}: {self.severity}[{self.code}]: {self.message}"
+
+    def render(self, source: str | None = None) -> str:
+        """The header line, then the source line and a caret when known."""
+        text = self.header()
+        if source is None or self.pos.line <= 0:
+            return text
+        lines = source.splitlines()
+        if self.pos.line > len(lines):
+            return text
+        line = lines[self.pos.line - 1]
+        caret_col = max(self.pos.col, 1)
+        # Keep tabs in the caret line so the caret lines up with the source.
+        prefix = "".join(ch if ch == "\t" else " " for ch in line[: caret_col - 1])
+        return f"{text}\n    {line}\n    {prefix}^"
+
+
+class DiagnosticError(Exception):
+    """Raised to abandon a stage that cannot go on; carries its findings."""
+
+    def __init__(self, diagnostics: list[Diagnostic]):
+        super().__init__("\n".join(d.header() for d in diagnostics))
+        self.diagnostics = diagnostics
+
+
+@dataclass
+class DiagnosticSink:
+    """Collects diagnostics of one run, in order, without duplicates."""
+
+    items: list[Diagnostic] = field(default_factory=list)
+
+    def add(self, code: str, message: str, pos: Pos, severity: str = ERROR) -> None:
+        diag = Diagnostic(code, message, pos, severity)
+        if diag not in self.items:
+            self.items.append(diag)
+
+    def error(self, code: str, message: str, pos: Pos) -> None:
+        self.add(code, message, pos, ERROR)
+
+    def warning(self, code: str, message: str, pos: Pos) -> None:
+        self.add(code, message, pos, WARNING)
+
+    @property
+    def has_errors(self) -> bool:
+        return any(d.is_error for d in self.items)
+
+
+# Code catalogue: code -> one-line explanation.  Stages register their codes
+# here (one dict per stage keeps merge conflicts away); `all_codes()` joins them.
+CODES: dict[str, str] = {}
+
+
+def register(codes: dict[str, str]) -> dict[str, str]:
+    for code, text in codes.items():
+        if code in CODES and CODES[code] != text:
+            raise ValueError(f"diagnostic code {code} registered twice")
+        CODES[code] = text
+    return codes

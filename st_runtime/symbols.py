@@ -1,0 +1,90 @@
+"""The checked program: what the checker hands to the compiler.
+
+The checker fills these tables once; the compiler and the runtime only read
+them.  Expression types are kept in a side table keyed by `id(node)` (the AST
+is immutable and lives as long as the CheckedProgram, so ids are stable).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from . import ast
+from .types import Type
+
+
+@dataclass(eq=False, slots=True)
+class Symbol:
+    """A declared variable of a POU, a global, or a struct member."""
+
+    name: str              # as declared
+    type: Type
+    kind: str              # one of ast.VAR_KINDS, or "RETURN" for a function's result
+    decl: ast.VarDecl | None = None
+    constant: bool = False
+    retain: bool = False
+    init: ast.Initializer | None = None
+
+
+@dataclass(eq=False, slots=True)
+class PouInfo:
+    """A POU with its resolved variables in declaration order."""
+
+    name: str
+    kind: str                                   # PROGRAM | FUNCTION | FUNCTION_BLOCK
+    node: ast.Pou | None                        # None for native POUs
+    variables: dict[str, Symbol] = field(default_factory=dict)   # upper-case name ->
+    return_type: Type | None = None
+    file: str = "<builtin>"
+    native: object = None                       # Python class/function for native POUs
+
+    def of_kind(self, *kinds: str) -> list[Symbol]:
+        return [s for s in self.variables.values() if s.kind in kinds]
+
+    @property
+    def inputs(self) -> list[Symbol]:
+        return self.of_kind("VAR_INPUT")
+
+    @property
+    def outputs(self) -> list[Symbol]:
+        return self.of_kind("VAR_OUTPUT")
+
+    @property
+    def in_outs(self) -> list[Symbol]:
+        return self.of_kind("VAR_IN_OUT")
+
+
+@dataclass(frozen=True, slots=True)
+class CallTarget:
+    """How a Call node was resolved.
+
+    kind: "function" (user or standard function: `name` is its upper-case
+    name), "fb" (an FB instance call: `fb_type` is the FBType), or
+    "conversion" (`A_TO_B`).  `generic_type` is the type a generic standard
+    function was instantiated at (e.g. LREAL for MAX on LREAL operands).
+    """
+
+    kind: str
+    name: str
+    pou: PouInfo | None = None
+    generic_type: Type | None = None
+
+
+@dataclass(eq=False)
+class CheckedProgram:
+    """Everything the compiler needs, resolved and typed."""
+
+    files: list[ast.SourceFile]
+    types: dict[str, Type] = field(default_factory=dict)           # upper-case name ->
+    pous: dict[str, PouInfo] = field(default_factory=dict)         # upper-case name ->
+    globals: dict[str, Symbol] = field(default_factory=dict)       # upper-case name ->
+    expr_types: dict[int, Type] = field(default_factory=dict)      # id(expr) ->
+    call_targets: dict[int, CallTarget] = field(default_factory=dict)  # id(Call) ->
+    # id(Name) -> the Symbol it refers to, or an int for an enum value.
+    name_refs: dict[int, object] = field(default_factory=dict)
+    # id(expr) -> value, for expressions the checker folded to a constant.
+    constants: dict[int, object] = field(default_factory=dict)
+    sources: dict[str, str] = field(default_factory=dict)          # path -> text
+
+    def type_of(self, expr: ast.Node) -> Type:
+        return self.expr_types[id(expr)]

@@ -1,0 +1,67 @@
+"""The `stgen` command line: one subcommand per job.
+
+Each subcommand lives in `stgen/commands/<name>.py` and provides
+`add_arguments(parser)` and `run(args) -> int`.  Exit codes: 0 success,
+1 diagnostics, faults or failed checks, 2 usage errors.  No input ever
+yields a Python traceback: unexpected errors are reported as internal errors.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+COMMANDS = {
+    "check": "parse and check Structured Text files",
+    "run": "run a PROGRAM scan by scan in the simulated controller",
+    "call": "call a FUNCTION or FB and print its outputs as JSON",
+    "generate": "render the platform's POUs as Structured Text",
+    "verify": "hold the generated ST against the NumPy reference",
+    "demo": "generate, run the study's scenarios, write traces and figures",
+}
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="stgen",
+        description="Stewart-platform kinematics as IEC 61131-3 ST, proven in a simulated NJ501.",
+    )
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub.required = True
+    for name, help_text in COMMANDS.items():
+        command_parser = sub.add_parser(name, help=help_text, description=help_text)
+        module = _command_module(name)
+        if module is not None:
+            module.add_arguments(command_parser)
+            command_parser.set_defaults(handler=module.run)
+    return parser
+
+
+def _command_module(name: str):
+    try:
+        return importlib.import_module(f"stgen.commands.{name}")
+    except ModuleNotFoundError as exc:
+        if exc.name == f"stgen.commands.{name}":
+            return None  # not built yet
+        raise
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)  # exits 2 on usage errors
+    handler = getattr(args, "handler", None)
+    if handler is None:
+        parser.error(f"the '{args.command}' command is not available in this build")
+    try:
+        return handler(args)
+    except KeyboardInterrupt:
+        print("stgen: interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:  # the promise: never a traceback
+        print(f"stgen: internal error: {type(exc).__name__}: {exc}", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
