@@ -1,4 +1,4 @@
-"""Registry of native POUs: FBs and types written in Python, declared in ST.
+"""Native POUs: FBs and types written in Python, declared in ST.
 
 A native FB is a Python class whose interface is declared as ST text
 (`DECLARATION`: a FUNCTION_BLOCK with its VAR blocks and an empty body).  The
@@ -7,13 +7,40 @@ FB presents exactly the same interface to the checker and the compiler as an FB
 written in ST.  Native data types (e.g. the axis reference) are registered the
 same way as ST `TYPE` text.
 
-The runtime owns how instances are created and called (see compiler/runtime).
+The contract between a native FB and the compiled code (`NativeFB`):
+
+* Every declared variable is an instance attribute named `mangle(name)`
+  (`PT` -> `v_PT`).  Values: BOOL as bool, integers/enums as int, REAL and
+  LREAL as float, TIME/DATE/TOD/DT as int nanoseconds, STRING as str, arrays
+  as flat Python lists (row-major, index 0 is the lower bound of every
+  dimension), structs and FB instances as objects with `v_` attributes.
+* `__init__(self)` gives every variable its declared initial value (the base
+  class does it from the checked declaration); VAR_IN_OUT variables start as
+  None.
+* `execute(self, ctx)` runs one call.  Before it, the compiled caller stores
+  the inputs given in the call (inputs not given keep their previous value);
+  after it, the caller reads the outputs.  VAR_IN_OUT variables hold the
+  caller's object itself for arrays, structs and FB instances, and a `Ref`
+  (`.get()`, `.set(value)`) for elementary values.
+* `ctx` gives at least `ctx.now_ns` (simulated clock, int ns), `ctx.scan`
+  (scan number, 1 for the first scan) and `ctx.period_ns` (period of the task
+  that runs the caller).  A native FB that detects an instruction error raises
+  `st_runtime.faults.STFault(code, message)`; the caller records it.
 """
 
 from __future__ import annotations
 
 NATIVE_FBS: dict[str, type] = {}       # upper-case FB name -> Python class
 NATIVE_TYPE_SOURCES: list[str] = []    # ST TYPE ... END_TYPE texts
+
+
+def mangle(name: str) -> str:
+    """The Python attribute/local name of an ST identifier (case-insensitive).
+
+    Every ST identifier becomes `v_` + its upper-case spelling, so no ST name
+    can collide with a Python keyword, builtin or a name of the runtime.
+    """
+    return "v_" + name.upper()
 
 
 def native_fb(cls: type) -> type:
@@ -33,3 +60,42 @@ def prelude_source() -> str:
     parts = list(NATIVE_TYPE_SOURCES)
     parts.extend(cls.DECLARATION for cls in NATIVE_FBS.values())
     return "\n".join(parts)
+
+
+class NativeFB:
+    """Base class of FBs written in Python (see the module docstring).
+
+    Subclasses set `NAME` and `DECLARATION` and implement `execute(self, ctx)`.
+    The initial values come from the checked declaration; the compiler installs
+    them when it compiles a program (`set_initializers`), and a class used on
+    its own (in a unit test) checks its declaration on first instantiation.
+    """
+
+    NAME: str = ""
+    DECLARATION: str = ""
+
+    def __init__(self) -> None:
+        init = type(self).__dict__.get("_st_initializers")
+        if init is None:
+            init = _initializers_from_declaration(type(self))
+        for attr, make in init:
+            setattr(self, attr, make())
+
+    def execute(self, ctx) -> None:  # pragma: no cover - abstract
+        raise NotImplementedError(f"native FB {self.NAME} has no execute()")
+
+    @classmethod
+    def set_initializers(cls, initializers: list[tuple[str, object]]) -> None:
+        """Install (attribute, zero-argument factory) pairs for `__init__`."""
+        cls._st_initializers = tuple(initializers)
+
+
+def _initializers_from_declaration(cls: type) -> tuple:
+    """Check the native prelude once and install every native FB's layout."""
+    from .objects import install_native_layouts  # late: objects needs the checker
+
+    install_native_layouts()
+    init = cls.__dict__.get("_st_initializers")
+    if init is None:
+        raise RuntimeError(f"native FB {cls.__name__} is not registered with @native_fb")
+    return init
