@@ -92,8 +92,9 @@ class NewtonRaphsonSolver:
         """One Newton–Raphson iteration (steps 1–5 of the module docstring). Returns :attr:`done`."""
         if self.done:
             return True
-        values = residual(self.geometry, self._estimate, self._positions)
-        matrix = jacobian(self.geometry, self._estimate)
+        with np.errstate(invalid="ignore", over="ignore"):  # non-finite values are reported, not warned
+            values = residual(self.geometry, self._estimate, self._positions)
+            matrix = jacobian(self.geometry, self._estimate)
         if not (np.all(np.isfinite(values)) and np.all(np.isfinite(matrix))):
             return self._finish(ErrorCode.NON_FINITE)
         determinant = leibniz_det(matrix)
