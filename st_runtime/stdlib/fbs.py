@@ -1,0 +1,348 @@
+"""Standard function blocks of IEC 61131-3 as native FBs.
+
+Timers (TON, TOF, TP) read the simulated clock `ctx.now_ns` only, never the
+wall clock: the elapsed time ET of a call is `now - start`, where `start` is
+the clock value of the call that started the timing.  With a 1 ms task a
+TON with PT = T#5ms started at the call of time t sees ET = 0, 1, 2, 3, 4,
+5 ms on its first six calls, so Q turns TRUE on the sixth call, exactly PT
+after the call that saw IN rise.
+
+Edge detectors, counters and bistables follow the bodies given in IEC
+61131-3 (3rd ed., tables 43-46); counters count on the rising edge of CU/CD
+and saturate at the limits of INT (PVmax = 32767, PVmin = -32768).
+F_TRIG's memory starts TRUE as in the 3rd edition, so a CLK that is FALSE
+from the first call gives no edge.
+"""
+
+from __future__ import annotations
+
+from ..native import NativeFB, native_fb
+
+INT_MAX = 32767
+INT_MIN = -32768
+
+
+@native_fb
+class TON(NativeFB):
+    """On-delay: Q rises once IN has been TRUE for PT; IN FALSE resets."""
+
+    NAME = "TON"
+    DECLARATION = """
+FUNCTION_BLOCK TON
+VAR_INPUT
+    IN : BOOL;
+    PT : TIME;
+END_VAR
+VAR_OUTPUT
+    Q : BOOL;
+    ET : TIME;
+END_VAR
+VAR
+    StartTime : TIME;
+    Running : BOOL;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+
+    def execute(self, ctx) -> None:
+        if not self.v_IN:
+            self.v_RUNNING = False
+            self.v_Q = False
+            self.v_ET = 0
+            return
+        now = ctx.now_ns
+        if not self.v_RUNNING:
+            self.v_RUNNING = True
+            self.v_STARTTIME = now
+        pt = self.v_PT
+        elapsed = now - self.v_STARTTIME
+        if elapsed >= pt:
+            self.v_ET = pt
+            self.v_Q = True
+        else:
+            self.v_ET = elapsed
+            self.v_Q = False
+
+
+@native_fb
+class TOF(NativeFB):
+    """Off-delay: Q follows IN up, and falls PT after IN fell."""
+
+    NAME = "TOF"
+    DECLARATION = """
+FUNCTION_BLOCK TOF
+VAR_INPUT
+    IN : BOOL;
+    PT : TIME;
+END_VAR
+VAR_OUTPUT
+    Q : BOOL;
+    ET : TIME;
+END_VAR
+VAR
+    StartTime : TIME;
+    Running : BOOL;
+    PrevIN : BOOL;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+
+    def execute(self, ctx) -> None:
+        now = ctx.now_ns
+        if self.v_IN:
+            self.v_Q = True
+            self.v_ET = 0
+            self.v_RUNNING = False
+        else:
+            if self.v_PREVIN:               # falling edge of IN: start timing
+                self.v_RUNNING = True
+                self.v_STARTTIME = now
+            if self.v_RUNNING:
+                pt = self.v_PT
+                elapsed = now - self.v_STARTTIME
+                if elapsed >= pt:
+                    self.v_ET = pt
+                    self.v_Q = False
+                    self.v_RUNNING = False
+                else:
+                    self.v_ET = elapsed
+        self.v_PREVIN = self.v_IN
+
+
+@native_fb
+class TP(NativeFB):
+    """Pulse: a rising edge of IN gives Q for exactly PT; not retriggerable.
+
+    After the pulse ET holds PT while IN stays TRUE and returns to 0 once IN
+    is FALSE.
+    """
+
+    NAME = "TP"
+    DECLARATION = """
+FUNCTION_BLOCK TP
+VAR_INPUT
+    IN : BOOL;
+    PT : TIME;
+END_VAR
+VAR_OUTPUT
+    Q : BOOL;
+    ET : TIME;
+END_VAR
+VAR
+    StartTime : TIME;
+    PrevIN : BOOL;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+
+    def execute(self, ctx) -> None:
+        now = ctx.now_ns
+        inp = self.v_IN
+        if not self.v_Q:
+            if inp and not self.v_PREVIN:      # rising edge starts a pulse
+                self.v_Q = True
+                self.v_STARTTIME = now
+            elif not inp:
+                self.v_ET = 0
+        if self.v_Q:
+            pt = self.v_PT
+            elapsed = now - self.v_STARTTIME
+            if elapsed >= pt:
+                self.v_ET = pt
+                self.v_Q = False
+            else:
+                self.v_ET = elapsed
+        self.v_PREVIN = inp
+
+
+@native_fb
+class R_TRIG(NativeFB):
+    NAME = "R_TRIG"
+    DECLARATION = """
+FUNCTION_BLOCK R_TRIG
+VAR_INPUT
+    CLK : BOOL;
+END_VAR
+VAR_OUTPUT
+    Q : BOOL;
+END_VAR
+VAR
+    M : BOOL;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+
+    def execute(self, ctx) -> None:
+        clk = self.v_CLK
+        self.v_Q = clk and not self.v_M
+        self.v_M = clk
+
+
+@native_fb
+class F_TRIG(NativeFB):
+    NAME = "F_TRIG"
+    DECLARATION = """
+FUNCTION_BLOCK F_TRIG
+VAR_INPUT
+    CLK : BOOL;
+END_VAR
+VAR_OUTPUT
+    Q : BOOL;
+END_VAR
+VAR
+    M : BOOL := TRUE;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+
+    def execute(self, ctx) -> None:
+        low = not self.v_CLK
+        self.v_Q = low and not self.v_M
+        self.v_M = low
+
+
+@native_fb
+class CTU(NativeFB):
+    NAME = "CTU"
+    DECLARATION = """
+FUNCTION_BLOCK CTU
+VAR_INPUT
+    CU : BOOL;
+    R : BOOL;
+    PV : INT;
+END_VAR
+VAR_OUTPUT
+    Q : BOOL;
+    CV : INT;
+END_VAR
+VAR
+    CUMemory : BOOL;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+
+    def execute(self, ctx) -> None:
+        edge = self.v_CU and not self.v_CUMEMORY
+        self.v_CUMEMORY = self.v_CU
+        if self.v_R:
+            self.v_CV = 0
+        elif edge and self.v_CV < INT_MAX:
+            self.v_CV += 1
+        self.v_Q = self.v_CV >= self.v_PV
+
+
+@native_fb
+class CTD(NativeFB):
+    NAME = "CTD"
+    DECLARATION = """
+FUNCTION_BLOCK CTD
+VAR_INPUT
+    CD : BOOL;
+    LD : BOOL;
+    PV : INT;
+END_VAR
+VAR_OUTPUT
+    Q : BOOL;
+    CV : INT;
+END_VAR
+VAR
+    CDMemory : BOOL;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+
+    def execute(self, ctx) -> None:
+        edge = self.v_CD and not self.v_CDMEMORY
+        self.v_CDMEMORY = self.v_CD
+        if self.v_LD:
+            self.v_CV = self.v_PV
+        elif edge and self.v_CV > INT_MIN:
+            self.v_CV -= 1
+        self.v_Q = self.v_CV <= 0
+
+
+@native_fb
+class CTUD(NativeFB):
+    NAME = "CTUD"
+    DECLARATION = """
+FUNCTION_BLOCK CTUD
+VAR_INPUT
+    CU : BOOL;
+    CD : BOOL;
+    R : BOOL;
+    LD : BOOL;
+    PV : INT;
+END_VAR
+VAR_OUTPUT
+    QU : BOOL;
+    QD : BOOL;
+    CV : INT;
+END_VAR
+VAR
+    CUMemory : BOOL;
+    CDMemory : BOOL;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+
+    def execute(self, ctx) -> None:
+        up = self.v_CU and not self.v_CUMEMORY
+        down = self.v_CD and not self.v_CDMEMORY
+        self.v_CUMEMORY = self.v_CU
+        self.v_CDMEMORY = self.v_CD
+        if self.v_R:
+            self.v_CV = 0
+        elif self.v_LD:
+            self.v_CV = self.v_PV
+        elif not (up and down):
+            if up and self.v_CV < INT_MAX:
+                self.v_CV += 1
+            elif down and self.v_CV > INT_MIN:
+                self.v_CV -= 1
+        self.v_QU = self.v_CV >= self.v_PV
+        self.v_QD = self.v_CV <= 0
+
+
+@native_fb
+class SR(NativeFB):
+    """Set-dominant bistable: Q1 := S1 OR (NOT R AND Q1)."""
+
+    NAME = "SR"
+    DECLARATION = """
+FUNCTION_BLOCK SR
+VAR_INPUT
+    S1 : BOOL;
+    R : BOOL;
+END_VAR
+VAR_OUTPUT
+    Q1 : BOOL;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+
+    def execute(self, ctx) -> None:
+        self.v_Q1 = bool(self.v_S1 or (not self.v_R and self.v_Q1))
+
+
+@native_fb
+class RS(NativeFB):
+    """Reset-dominant bistable: Q1 := NOT R1 AND (S OR Q1)."""
+
+    NAME = "RS"
+    DECLARATION = """
+FUNCTION_BLOCK RS
+VAR_INPUT
+    S : BOOL;
+    R1 : BOOL;
+END_VAR
+VAR_OUTPUT
+    Q1 : BOOL;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+
+    def execute(self, ctx) -> None:
+        self.v_Q1 = bool(not self.v_R1 and (self.v_S or self.v_Q1))
+
+
+STANDARD_FBS = (TON, TOF, TP, R_TRIG, F_TRIG, CTU, CTD, CTUD, SR, RS)

@@ -1,0 +1,251 @@
+"""Standard FBs driven directly from Python on a simulated 1 ms clock.
+
+Expected values are worked out by hand from the IEC definitions; each test
+states the reasoning.
+"""
+
+import re
+from types import SimpleNamespace
+
+import pytest
+
+from st_runtime.native import NATIVE_FBS, NativeFB
+from st_runtime.stdlib import fbs
+
+MS = 1_000_000
+
+
+def make(cls):
+    """An instance with its declared initial values.
+
+    Uses the real constructor when the checker/compiler are available; until
+    then (they are written in parallel) the defaults are read from the
+    declaration with a regex: BOOL FALSE unless `:= TRUE`, numbers 0.
+    """
+    try:
+        return cls()
+    except ImportError:
+        inst = cls.__new__(cls)
+        for name, type_, init in re.findall(r"(\w+)\s*:\s*(\w+)\s*(?::=\s*(\w+))?;", cls.DECLARATION):
+            value = (init == "TRUE") if type_ == "BOOL" else 0
+            setattr(inst, "v_" + name.upper(), value)
+        return inst
+
+
+class Clock:
+    """A 1 ms task: every `step` is one scan at the next millisecond."""
+
+    def __init__(self, period_ns=MS):
+        self.ctx = SimpleNamespace(now_ns=0, scan=0, period_ns=period_ns)
+
+    def step(self, fb, **inputs):
+        self.ctx.scan += 1
+        for name, value in inputs.items():
+            setattr(fb, "v_" + name.upper(), value)
+        fb.execute(self.ctx)
+        self.ctx.now_ns += self.ctx.period_ns
+        return fb
+
+
+def test_all_standard_fbs_are_registered_native_fbs():
+    for name in ("TON", "TOF", "TP", "R_TRIG", "F_TRIG", "CTU", "CTD", "CTUD", "SR", "RS"):
+        cls = NATIVE_FBS[name]
+        assert issubclass(cls, NativeFB) and cls.NAME == name
+        assert f"FUNCTION_BLOCK {name}" in cls.DECLARATION
+        assert "END_FUNCTION_BLOCK" in cls.DECLARATION
+
+
+# --- timers -----------------------------------------------------------------
+
+def test_ton_q_after_pt_of_simulated_time():
+    # IN rises on call 1 at t = 0 ms; ET = t - 0 on calls at t = 0..5 ms, so
+    # ET reaches PT = 5 ms on the 6th call, when Q turns TRUE.
+    clock, ton = Clock(), make(fbs.TON)
+    qs, ets = [], []
+    for _ in range(8):
+        clock.step(ton, IN=True, PT=5 * MS)
+        qs.append(ton.v_Q)
+        ets.append(ton.v_ET // MS)
+    assert ets == [0, 1, 2, 3, 4, 5, 5, 5]          # ET stops at PT
+    assert qs == [False] * 5 + [True] * 3
+    clock.step(ton, IN=False)                        # IN FALSE resets at once
+    assert (ton.v_Q, ton.v_ET) == (False, 0)
+
+
+def test_ton_restarts_after_interruption():
+    # IN TRUE for 3 calls (ET 0,1,2), FALSE once, TRUE again: timing restarts
+    # from 0, so Q needs another 6 calls with PT = 5 ms.
+    clock, ton = Clock(), make(fbs.TON)
+    for _ in range(3):
+        clock.step(ton, IN=True, PT=5 * MS)
+    clock.step(ton, IN=False)
+    qs = [clock.step(ton, IN=True).v_Q for _ in range(6)]
+    assert qs == [False] * 5 + [True]
+
+
+def test_ton_with_period_of_two_ms():
+    # 2 ms scans, PT = 5 ms: ET = 0, 2, 4, 5(capped at PT) -> Q on call 4.
+    clock, ton = Clock(period_ns=2 * MS), make(fbs.TON)
+    qs = [clock.step(ton, IN=True, PT=5 * MS).v_Q for _ in range(4)]
+    assert qs == [False, False, False, True]
+    assert ton.v_ET == 5 * MS
+
+
+def test_ton_with_zero_pt_is_immediate():
+    clock, ton = Clock(), make(fbs.TON)
+    assert clock.step(ton, IN=True, PT=0).v_Q is True
+
+
+def test_tof_holds_q_for_pt_after_in_falls():
+    # IN TRUE for 2 calls: Q TRUE at once. IN falls at t = 2 ms (call 3):
+    # ET = 0,1,2 on calls 3..5 keeps Q TRUE; on call 6 (t = 5 ms) ET = 3 = PT
+    # and Q falls.
+    clock, tof = Clock(), make(fbs.TOF)
+    assert clock.step(tof, IN=False, PT=3 * MS).v_Q is False     # never on yet
+    qs = [clock.step(tof, IN=True).v_Q for _ in range(2)]
+    assert qs == [True, True]
+    qs, ets = [], []
+    for _ in range(5):
+        clock.step(tof, IN=False)
+        qs.append(tof.v_Q)
+        ets.append(tof.v_ET // MS)
+    assert qs == [True, True, True, False, False]
+    assert ets == [0, 1, 2, 3, 3]
+
+
+def test_tof_in_again_during_timing_cancels():
+    clock, tof = Clock(), make(fbs.TOF)
+    clock.step(tof, IN=True, PT=3 * MS)
+    clock.step(tof, IN=False)
+    clock.step(tof, IN=False)              # ET = 1 ms
+    clock.step(tof, IN=True)               # back on: Q stays, ET reset
+    assert (tof.v_Q, tof.v_ET) == (True, 0)
+    qs = [clock.step(tof, IN=False).v_Q for _ in range(4)]
+    assert qs == [True, True, True, False]  # full PT again from the new fall
+
+
+def test_tp_pulse_is_pt_long_and_not_retriggerable():
+    # Rising edge on call 1 (t = 0): Q TRUE while ET = 0,1,2; on call 4
+    # (t = 3 ms) ET = PT and Q falls.  IN toggling during the pulse (calls 2
+    # and 3) changes nothing.  ET holds PT while IN stays TRUE (call 5) and
+    # returns to 0 on the first call with IN FALSE after the pulse (call 6).
+    clock, tp = Clock(), make(fbs.TP)
+    ins = [True, False, True, True, True, False, True]
+    qs, ets = [], []
+    for value in ins:
+        clock.step(tp, IN=value, PT=3 * MS)
+        qs.append(tp.v_Q)
+        ets.append(tp.v_ET // MS)
+    assert qs == [True, True, True, False, False, False, True]
+    assert ets == [0, 1, 2, 3, 3, 0, 0]
+
+
+def test_tp_held_input_does_not_start_a_second_pulse():
+    clock, tp = Clock(), make(fbs.TP)
+    qs = [clock.step(tp, IN=True, PT=2 * MS).v_Q for _ in range(6)]
+    assert qs == [True, True, False, False, False, False]
+
+
+# --- edges ------------------------------------------------------------------
+
+def test_r_trig_single_scan_pulse_on_rising_edges():
+    clock, trig = Clock(), make(fbs.R_TRIG)
+    clk = [False, True, True, False, True, False]
+    assert [clock.step(trig, CLK=c).v_Q for c in clk] == [False, True, False, False, True, False]
+
+
+def test_r_trig_input_true_from_the_start_is_an_edge():
+    clock, trig = Clock(), make(fbs.R_TRIG)
+    assert clock.step(trig, CLK=True).v_Q is True
+
+
+def test_f_trig_single_scan_pulse_on_falling_edges():
+    # 3rd edition: M starts TRUE, so CLK FALSE on the first call is no edge.
+    clock, trig = Clock(), make(fbs.F_TRIG)
+    clk = [False, True, False, False, True, True, False]
+    assert [clock.step(trig, CLK=c).v_Q for c in clk] == [False, False, True, False, False, False, True]
+
+
+# --- counters ---------------------------------------------------------------
+
+def test_ctu_counts_rising_edges_and_resets():
+    # CU = 1,0,1,1,1: rising edges only on calls 1 and 3 (calls 3-5 are one
+    # held level) -> CV 1,1,2,2,2; Q needs CV >= PV = 3.
+    clock, ctu = Clock(), make(fbs.CTU)
+    cu = [True, False, True, True, True]
+    cvs, qs = [], []
+    for c in cu:
+        clock.step(ctu, CU=c, PV=3)
+        cvs.append(ctu.v_CV)
+        qs.append(ctu.v_Q)
+    assert cvs == [1, 1, 2, 2, 2]
+    assert qs == [False] * 5
+    clock.step(ctu, CU=False)
+    clock.step(ctu, CU=True)
+    assert (ctu.v_CV, ctu.v_Q) == (3, True)
+    clock.step(ctu, CU=False, R=True)      # R wins
+    assert (ctu.v_CV, ctu.v_Q) == (0, False)
+
+
+def test_ctu_saturates_at_int_max():
+    clock, ctu = Clock(), make(fbs.CTU)
+    ctu.v_CV = 32767
+    clock.step(ctu, CU=True, PV=1)
+    assert ctu.v_CV == 32767
+
+
+def test_ctd_counts_down_from_loaded_pv():
+    # LD loads PV = 2; edges of CD then give 1, 0 (Q TRUE at CV <= 0), -1.
+    clock, ctd = Clock(), make(fbs.CTD)
+    clock.step(ctd, LD=True, PV=2)
+    assert (ctd.v_CV, ctd.v_Q) == (2, False)
+    ctd.v_LD = False
+    cvs = []
+    for c in [True, False, True, False, True]:
+        clock.step(ctd, CD=c)
+        cvs.append((ctd.v_CV, ctd.v_Q))
+    assert cvs == [(1, False), (1, False), (0, True), (0, True), (-1, True)]
+
+
+def test_ctud_up_down_and_simultaneous_edges():
+    clock, c = Clock(), make(fbs.CTUD)
+    clock.step(c, CU=True, PV=2)                  # up edge: 1
+    clock.step(c, CU=False)
+    clock.step(c, CU=True)                        # 2 -> QU
+    assert (c.v_CV, c.v_QU, c.v_QD) == (2, True, False)
+    clock.step(c, CU=False, CD=True)              # down edge: 1
+    assert c.v_CV == 1
+    clock.step(c, CU=True, CD=False)
+    clock.step(c, CU=False, CD=False)
+    clock.step(c, CU=True, CD=True)               # both edges together: no count
+    assert c.v_CV == 2
+    clock.step(c, LD=True, PV=5)                  # load
+    assert (c.v_CV, c.v_QU) == (5, True)
+    clock.step(c, LD=True, R=True)                # R has priority over LD
+    assert (c.v_CV, c.v_QU, c.v_QD) == (0, False, True)
+
+
+# --- bistables --------------------------------------------------------------
+
+@pytest.mark.parametrize("s1, r, before, after", [
+    (False, False, False, False), (False, False, True, True),
+    (True, False, False, True), (False, True, True, False),
+    (True, True, False, True), (True, True, True, True),    # set dominates
+])
+def test_sr_truth_table(s1, r, before, after):
+    sr = make(fbs.SR)
+    sr.v_Q1 = before
+    Clock().step(sr, S1=s1, R=r)
+    assert sr.v_Q1 is after
+
+
+@pytest.mark.parametrize("s, r1, before, after", [
+    (False, False, False, False), (False, False, True, True),
+    (True, False, False, True), (False, True, True, False),
+    (True, True, False, False), (True, True, True, False),  # reset dominates
+])
+def test_rs_truth_table(s, r1, before, after):
+    rs = make(fbs.RS)
+    rs.v_Q1 = before
+    Clock().step(rs, S=s, R1=r1)
+    assert rs.v_Q1 is after
