@@ -1,0 +1,403 @@
+"""Builds the AST while Lark's LALR parser reduces (no parse tree is built).
+
+Each method is named after a grammar rule (or its `-> alias`) and receives the
+rule's kept children inline.  Positions: a node's `pos` is its first token,
+except `Binary`, whose pos is its operator (so a caret points at the `+`
+whose operands do not fit), and `VarDecl`, whose pos is the variable's name.
+
+Literal texts that the lexer accepts but that have no valid value (`2#102`,
+`T#5x`) are reported through `errors` instead of raising, so one bad literal
+does not stop the parse.
+"""
+
+from __future__ import annotations
+
+from lark import Transformer, v_args
+
+from . import ast
+from .diagnostics import Diagnostic
+from .literals import (
+    BOOL_TYPES,
+    REAL_TYPES,
+    LiteralError,
+    decode_based,
+    decode_date,
+    decode_date_and_time,
+    decode_duration,
+    decode_int,
+    decode_number,
+    decode_real,
+    decode_string,
+    decode_time_of_day,
+)
+
+BAD_LITERAL = "E-PARSE-009"
+MISPLACED_CASE_STATEMENT = "E-PARSE-010"
+TOP_LEVEL_VAR = "E-PARSE-011"
+BAD_TASK_PARAMETER = "E-PARSE-012"
+
+_OPERATORS = {
+    "OR": "OR", "XOR": "XOR", "AND": "AND", "AMP": "AND", "EQ": "=", "NE": "<>",
+    "LT": "<", "GT": ">", "LE": "<=", "GE": ">=", "PLUS": "+", "MINUS": "-",
+    "STAR": "*", "SLASH": "/", "MOD": "MOD", "POW": "**", "NOT": "NOT",
+}
+_STRUCTURED = (ast.If, ast.Case, ast.For, ast.While, ast.Repeat)
+
+
+class _Labels(tuple):
+    """The labels of one CASE clause, before the clause is assembled."""
+
+    pos: ast.Pos
+
+
+class _Resource(list):
+    """The elements of a RESOURCE, flattened into its CONFIGURATION."""
+
+
+def _statements(items) -> tuple:
+    """Statements in order, without the `;` that customarily follows END_IF etc."""
+    out = []
+    previous = None
+    for stmt in items:
+        if type(stmt) is ast.Empty and isinstance(previous, _STRUCTURED):
+            previous = None  # only the first `;` after END_xxx belongs to it
+            continue
+        out.append(stmt)
+        previous = stmt
+    return tuple(out)
+
+
+@v_args(inline=True)
+class AstBuilder(Transformer):
+    def __init__(self) -> None:
+        super().__init__()
+        self.path = "<input>"
+        self.errors: list[Diagnostic] = []
+
+    def reset(self, path: str) -> None:
+        self.path = path
+        self.errors = []
+
+    def _pos(self, token) -> ast.Pos:
+        return ast.Pos(self.path, token.line, token.column)
+
+    def _error(self, code: str, message: str, pos: ast.Pos) -> None:
+        self.errors.append(Diagnostic(code, message, pos))
+
+    # ------------------------------------------------------------ file, POUs
+
+    def start(self, *items):
+        flat = []
+        for item in items:
+            if isinstance(item, list):
+                flat.extend(item)
+            else:
+                if type(item) is ast.VarBlock and item.kind != "VAR_GLOBAL":
+                    self._error(TOP_LEVEL_VAR, f"{item.kind} block outside a POU: only "
+                                "VAR_GLOBAL may stand at the top level", item.pos)
+                flat.append(item)
+        return ast.SourceFile(self.path, tuple(flat), pos=ast.Pos(self.path, 1, 1))
+
+    def program_decl(self, kw, name, *rest):
+        return ast.Pou("PROGRAM", str(name), tuple(rest[:-1]), rest[-1], pos=self._pos(kw))
+
+    def function_decl(self, kw, name, return_type, *rest):
+        return ast.Pou("FUNCTION", str(name), tuple(rest[:-1]), rest[-1],
+                       return_type, pos=self._pos(kw))
+
+    def fb_decl(self, kw, name, *rest):
+        return ast.Pou("FUNCTION_BLOCK", str(name), tuple(rest[:-1]), rest[-1],
+                       pos=self._pos(kw))
+
+    # ---------------------------------------------------------- declarations
+
+    def var_block(self, kind, *rest):
+        decls = []
+        constant = retain = False
+        for item in rest:
+            if isinstance(item, str):
+                if item == "CONSTANT":
+                    constant = True
+                elif item in ("RETAIN", "PERSISTENT"):
+                    retain = True
+            else:
+                decls.extend(item)
+        return ast.VarBlock(kind.type, tuple(decls), constant, retain, pos=self._pos(kind))
+
+    def var_qualifier(self, token):
+        return token.type
+
+    def var_decl(self, *args):
+        type_ref, init = args[-2], args[-1]
+        return [ast.VarDecl(str(tok), type_ref, init, pos=self._pos(tok)) for tok in args[:-2]]
+
+    def bare_array_init(self, *items):
+        items = tuple(i if type(i) is ast.ArrayInitItem else ast.ArrayInitItem(i, pos=i.pos)
+                      for i in items)
+        return ast.ArrayInit(items, pos=items[0].pos)
+
+    def array_init(self, *items):
+        return ast.ArrayInit(items, pos=items[0].pos)
+
+    def init_item(self, value):
+        if type(value) is ast.ArrayInitItem:
+            return value
+        return ast.ArrayInitItem(value, pos=value.pos)
+
+    def repeat_item(self, count, value):
+        count_node = self.int_literal(count)
+        return ast.ArrayInitItem(value, count_node, pos=count_node.pos)
+
+    def struct_init(self, *fields):
+        return ast.StructInit(fields, pos=fields[0].pos)
+
+    def field_init(self, name, value):
+        return ast.FieldInit(str(name), value, pos=self._pos(name))
+
+    def named_type(self, name):
+        return ast.NamedType(str(name), pos=self._pos(name))
+
+    def string_type(self, kw, length):
+        return ast.StringType(length, False, pos=self._pos(kw))
+
+    def wstring_type(self, kw, length):
+        return ast.StringType(length, True, pos=self._pos(kw))
+
+    def string_length(self, expr):
+        return expr
+
+    def array_type(self, kw, *rest):
+        return ast.ArrayType(tuple(rest[:-1]), rest[-1], pos=self._pos(kw))
+
+    def subrange(self, lo, hi):
+        return ast.Subrange(lo, hi, pos=lo.pos)
+
+    def type_block(self, *decls):
+        return list(decls)
+
+    def type_decl(self, name, spec, init):
+        return ast.TypeDecl(str(name), spec, init, pos=self._pos(name))
+
+    def struct_type(self, kw, *decls):
+        members = []
+        for group in decls:
+            members.extend(group)
+        return ast.StructType(tuple(members), pos=self._pos(kw))
+
+    def enum_type(self, *args):
+        values = args[:-1]  # the last child is the optional base type (ignored)
+        return ast.EnumType(tuple(values), pos=values[0].pos)
+
+    def enum_value(self, name, value):
+        return ast.EnumValue(str(name), value, pos=self._pos(name))
+
+    # --------------------------------------------------------- configuration
+
+    def configuration(self, kw, name, *elements):
+        globals_, tasks, programs = [], [], []
+        stack = list(elements)
+        while stack:
+            element = stack.pop(0)
+            if isinstance(element, _Resource):
+                stack[0:0] = element
+            elif type(element) is ast.VarBlock:
+                globals_.append(element)
+            elif type(element) is ast.TaskDecl:
+                tasks.append(element)
+            else:
+                programs.append(element)
+        return ast.Configuration(str(name), tuple(globals_), tuple(tasks), tuple(programs),
+                                 pos=self._pos(kw))
+
+    def resource(self, kw, name, processor, *elements):
+        return _Resource(elements)
+
+    def task_decl(self, kw, name, *params):
+        values = {"INTERVAL": None, "PRIORITY": None}
+        for param in params:
+            if param is None:
+                continue
+            key, value = param
+            if key.upper() in values:
+                values[key.upper()] = value
+            elif key.upper() != "SINGLE":
+                self._error(BAD_TASK_PARAMETER, f"unknown TASK parameter '{key}': expected "
+                            "INTERVAL, PRIORITY or SINGLE", value.pos)
+        return ast.TaskDecl(str(name), values["INTERVAL"], values["PRIORITY"], pos=self._pos(kw))
+
+    def task_param(self, name, value):
+        return (str(name), value)
+
+    def program_config(self, kw, name, task, program_type):
+        return ast.ProgramInstance(str(name), str(task) if task is not None else None,
+                                   str(program_type), pos=self._pos(kw))
+
+    # ------------------------------------------------------------ statements
+
+    def stmt_list(self, *stmts):
+        return _statements(stmts)
+
+    def assign_stmt(self, target, value):
+        return ast.Assign(target, value, pos=target.pos)
+
+    def call_stmt(self, callee, args):
+        call = ast.Call(callee, args or (), pos=callee.pos)
+        return ast.CallStmt(call, pos=callee.pos)
+
+    def if_stmt(self, kw, condition, body, *rest):
+        pos = self._pos(kw)
+        branches = [ast.IfBranch(condition, body, pos=pos)]
+        branches.extend(rest[:-1])
+        return ast.If(tuple(branches), rest[-1], pos=pos)
+
+    def elsif_branch(self, kw, condition, body):
+        return ast.IfBranch(condition, body, pos=self._pos(kw))
+
+    def else_part(self, body):
+        return body
+
+    def case_stmt(self, kw, selector, *parts):
+        clauses = []
+        labels = None
+        body: list = []
+        for part in parts[:-1]:
+            if type(part) is _Labels:
+                if labels is not None:
+                    clauses.append(ast.CaseClause(tuple(labels), _statements(body), pos=labels.pos))
+                labels, body = part, []
+            elif labels is None:
+                self._error(MISPLACED_CASE_STATEMENT, "expected a CASE label (e.g. '1:') "
+                            "before the first statement of the CASE", part.pos)
+            else:
+                body.append(part)
+        if labels is not None:
+            clauses.append(ast.CaseClause(tuple(labels), _statements(body), pos=labels.pos))
+        return ast.Case(selector, tuple(clauses), parts[-1], pos=self._pos(kw))
+
+    def case_labels(self, *labels):
+        result = _Labels(labels)
+        result.pos = labels[0].pos
+        return result
+
+    def case_range(self, lo, hi):
+        return ast.CaseRange(lo, hi, pos=lo.pos)
+
+    def for_stmt(self, kw, variable, start, end, step, body):
+        return ast.For(str(variable), start, end, step, body, pos=self._pos(kw))
+
+    def while_stmt(self, kw, condition, body):
+        return ast.While(condition, body, pos=self._pos(kw))
+
+    def repeat_stmt(self, kw, body, condition):
+        return ast.Repeat(body, condition, pos=self._pos(kw))
+
+    def exit_stmt(self, kw):
+        return ast.Exit(pos=self._pos(kw))
+
+    def continue_stmt(self, kw):
+        return ast.Continue(pos=self._pos(kw))
+
+    def return_stmt(self, kw):
+        return ast.Return(pos=self._pos(kw))
+
+    def empty_stmt(self, semi):
+        return ast.Empty(pos=self._pos(semi))
+
+    # ----------------------------------------------------------- expressions
+
+    def binary(self, left, op, right):
+        return ast.Binary(_OPERATORS[op.type], left, right, pos=self._pos(op))
+
+    def unary(self, op, operand):
+        return ast.Unary(_OPERATORS[op.type], operand, pos=self._pos(op))
+
+    def call(self, callee, args):
+        return ast.Call(callee, args or (), pos=callee.pos)
+
+    def name(self, token):
+        return ast.Name(str(token), pos=self._pos(token))
+
+    def member(self, base, name):
+        return ast.Member(base, str(name), pos=base.pos)
+
+    def index(self, base, *indices):
+        return ast.Index(base, indices, pos=base.pos)
+
+    def arg_list(self, *args):
+        return args
+
+    def positional_arg(self, value):
+        return ast.Arg(None, value, pos=value.pos)
+
+    def input_arg(self, name, value):
+        return ast.Arg(str(name), value, "in", pos=self._pos(name))
+
+    def output_arg(self, name, target):
+        return ast.Arg(str(name), target, "out", pos=self._pos(name))
+
+    def negated_output_arg(self, kw, name, target):
+        return ast.Arg(str(name), target, "out", True, pos=self._pos(kw))
+
+    # -------------------------------------------------------------- literals
+
+    def _decode(self, decoder, token, fallback):
+        try:
+            return decoder(str(token))
+        except (LiteralError, ValueError, OverflowError) as exc:
+            self._error(BAD_LITERAL, f"invalid literal '{token}': {exc}", self._pos(token))
+            return fallback
+
+    def int_literal(self, token):
+        return ast.IntLiteral(self._decode(decode_int, token, 0), pos=self._pos(token))
+
+    def based_literal(self, token):
+        return ast.IntLiteral(self._decode(decode_based, token, 0), pos=self._pos(token))
+
+    def real_literal(self, token):
+        return ast.RealLiteral(self._decode(decode_real, token, 0.0), pos=self._pos(token))
+
+    def time_literal(self, token):
+        return ast.TimeLiteral(self._decode(decode_duration, token, 0), pos=self._pos(token))
+
+    def date_literal(self, token):
+        return ast.DateTimeLiteral("DATE", self._decode(decode_date, token, 0),
+                                   pos=self._pos(token))
+
+    def tod_literal(self, token):
+        return ast.DateTimeLiteral("TOD", self._decode(decode_time_of_day, token, 0),
+                                   pos=self._pos(token))
+
+    def dt_literal(self, token):
+        return ast.DateTimeLiteral("DT", self._decode(decode_date_and_time, token, 0),
+                                   pos=self._pos(token))
+
+    def string_literal(self, token):
+        return ast.StringLiteral(self._decode(decode_string, token, ""), pos=self._pos(token))
+
+    def wstring_literal(self, token):
+        return ast.StringLiteral(self._decode(decode_string, token, ""), True,
+                                 pos=self._pos(token))
+
+    def bool_literal(self, token):
+        return ast.BoolLiteral(token.type == "TRUE", pos=self._pos(token))
+
+    def typed_literal(self, token):
+        pos = self._pos(token)
+        prefix, _, body = str(token).partition("#")
+        type_name = prefix.upper()
+        if body[:1].isalpha() or body[:1] == "_":
+            if type_name in BOOL_TYPES and body.upper() in ("TRUE", "FALSE"):
+                return ast.BoolLiteral(body.upper() == "TRUE", type_name, pos=pos)
+            return ast.EnumLiteral(prefix, body, pos=pos)
+        value = self._decode(decode_number, body, 0)
+        if type_name in REAL_TYPES:
+            return ast.RealLiteral(float(value), type_name, pos=pos)
+        if isinstance(value, float):
+            self._error(BAD_LITERAL, f"invalid literal '{token}': {type_name} needs an "
+                        "integer value", pos)
+            value = 0
+        if type_name in BOOL_TYPES:
+            if value not in (0, 1):
+                self._error(BAD_LITERAL, f"invalid literal '{token}': BOOL# takes 0 or 1", pos)
+            return ast.BoolLiteral(bool(value), type_name, pos=pos)
+        return ast.IntLiteral(value, type_name, pos=pos)

@@ -1,0 +1,146 @@
+"""Parse Structured Text into the AST, or into diagnostics worth reading.
+
+    file, diagnostics = parse(text, "motion.st")
+
+`parse` never raises.  The fast path is Lark's LALR parser with the contextual
+lexer and the AST builder as its in-parser transformer (no parse tree).  Only
+when that fails does `recovery.py` re-read the text token by token to report
+each fault once, with what was expected and what was found.
+
+Keywords are reserved everywhere: the lexer turns an identifier that spells a
+keyword (in any case) into the keyword, so `VAR if : INT;` is a syntax error
+rather than a variable named `if`.  The lexer also offers an identifier in
+every parser state, so that `IFX` is one identifier, never `IF` + `X`.
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+
+from lark import Lark
+from lark.lark import PostLex
+
+from . import ast
+from .ast_builder import AstBuilder
+from .diagnostics import Diagnostic, register
+
+GRAMMAR_PATH = os.path.join(os.path.dirname(__file__), "grammar.lark")
+
+CODES = register({
+    "E-PARSE-001": "syntax error: the token found cannot continue the program here",
+    "E-PARSE-002": "missing ';' at the end of a statement or declaration",
+    "E-PARSE-003": "a block (IF, CASE, FOR, WHILE, REPEAT, VAR, POU, ...) is not closed",
+    "E-PARSE-004": "an expression was expected",
+    "E-PARSE-005": "unterminated comment",
+    "E-PARSE-006": "unterminated string literal",
+    "E-PARSE-007": "a character that cannot appear in Structured Text",
+    "E-PARSE-008": "the file ends in the middle of a declaration or statement",
+    "E-PARSE-009": "a literal with no valid value (digits, units or escapes)",
+    "E-PARSE-010": "a statement in a CASE before its first label",
+    "E-PARSE-011": "a VAR block other than VAR_GLOBAL outside a POU",
+    "E-PARSE-012": "an unknown TASK parameter",
+    "E-PARSE-013": "too many syntax errors: the rest of the file was not read",
+    "E-PARSE-099": "internal parser error (a bug: please report it)",
+})
+
+
+class _Postlex(PostLex):
+    """Lets the contextual lexer see identifiers in every state (see module doc)."""
+
+    always_accept = ("IDENT",)
+
+    def process(self, stream):
+        return stream
+
+
+class _Grammar:
+    """The Lark parser and its builder, built once per process."""
+
+    def __init__(self) -> None:
+        with open(GRAMMAR_PATH, encoding="utf-8") as handle:
+            grammar = handle.read()
+        self.builder = AstBuilder()
+        self.keywords = _keyword_terminals(grammar)
+        keywords = self.keywords
+
+        def reserve_keywords(token):
+            kind = keywords.get(token.value.upper())
+            if kind is not None:
+                token.type = kind
+            return token
+
+        self.lark = Lark(
+            grammar,
+            parser="lalr",
+            lexer="contextual",
+            transformer=self.builder,
+            postlex=_Postlex(),
+            lexer_callbacks={"IDENT": reserve_keywords},
+            maybe_placeholders=True,
+            cache=_cache_path(),
+        )
+
+
+def _keyword_terminals(grammar: str) -> dict[str, str]:
+    """Upper-case keyword -> terminal name, from lines `NAME: "WORD"i`."""
+    result = {}
+    for line in grammar.splitlines():
+        name, sep, rest = line.partition(":")
+        rest = rest.strip()
+        if sep and rest.endswith('"i') and rest.startswith('"'):
+            word = rest[1:-2]
+            if word.replace("_", "").isalpha():
+                result[word.upper()] = name.strip()
+    return result
+
+
+def _cache_path() -> str | bool:
+    directory = os.environ.get("ST_PARSER_CACHE_DIR")
+    if directory:
+        return os.path.join(directory, "st_grammar.lark_cache")
+    return True
+
+
+_grammar: _Grammar | None = None
+_lock = threading.RLock()
+
+
+def grammar() -> _Grammar:
+    global _grammar
+    if _grammar is None:
+        with _lock:
+            if _grammar is None:
+                _grammar = _Grammar()
+    return _grammar
+
+
+def parse(text: str, path: str) -> tuple[ast.SourceFile | None, list[Diagnostic]]:
+    """Parse one file.  Returns (AST, []) or (None, diagnostics); never raises."""
+    try:
+        if not isinstance(text, str):
+            raise TypeError(f"parse() needs str, not {type(text).__name__}")
+        with _lock:
+            return _parse(text, path)
+    except Exception as exc:  # the promise: no traceback for any input
+        return None, [Diagnostic("E-PARSE-099", f"internal parser error: "
+                                 f"{type(exc).__name__}: {exc}", ast.Pos(path, 1, 1))]
+
+
+def _parse(text: str, path: str):
+    g = grammar()
+    g.builder.reset(path)
+    try:
+        tree = g.lark.parse(text)
+    except RecursionError:
+        raise
+    except Exception:
+        from .recovery import diagnose
+
+        diagnostics = diagnose(g, text, path)
+        if not diagnostics:  # should not happen: keep the promise of a diagnostic
+            diagnostics = [Diagnostic("E-PARSE-001", "syntax error", ast.Pos(path, 1, 1))]
+        return None, diagnostics
+    if g.builder.errors:
+        return None, list(g.builder.errors)
+    return tree, []
