@@ -1,0 +1,374 @@
+"""PLCopen / OMRON NJ motion FBs as native FBs on the simulated axes.
+
+Interfaces follow the NJ motion control instructions (W508): `Axis` is a
+VAR_IN_OUT AXIS_REF, `ErrorID` a WORD (codes in `error_ids`).  The FB finds
+its simulated axis through `Axis.Cfg.AxNo` in the controller's motion task
+(`ctx.motion`); an AXIS_REF that is not bound to a configured axis gives
+`Error` with AXIS_NOT_ASSIGNED.
+
+Execute-type FBs follow the PLCopen output rules:
+* a rising edge of `Execute` starts the command (a new rising edge while Busy
+  restarts it with the new inputs);
+* `Busy` is TRUE while the command runs; exactly one of `Done`, `Error`,
+  `CommandAborted` (or MC_Reset's `Failure`) ends it;
+* that final output is held while `Execute` stays TRUE and is reset when it
+  falls; if `Execute` fell before the end, it is TRUE for one call only;
+* the command goes on after `Execute` falls (MC_SyncMoveAbsolute keeps
+  taking `Position` every call until it is aborted).
+
+An axis error (ErrorStop) during a command ends it with `CommandAborted`; the
+cause is on the axis (`MFaultLvl.Code`).  Inputs that the simulation does not
+model are accepted and ignored: `Jerk` (profiles are trapezoidal) and
+`Direction` (linear axes).  `BufferMode` must be `_mcAborting`.
+"""
+
+from __future__ import annotations
+
+from ..native import NativeFB, native_fb
+from . import types as _types  # noqa: F401  (registers AXIS_REF before the FBs)
+from .axis import Axis, MotionCommand, MotionRefused
+from .error_ids import ErrorID
+from .types import BUFFER_MODE_ABORTING
+
+
+def resolve_axis(ref, ctx) -> Axis | None:
+    """The simulated axis an AXIS_REF value stands for, or None if unbound."""
+    motion = getattr(ctx, "motion", None)
+    if ref is None or motion is None or not ref.v_CFG.v_AXENABLE:
+        return None
+    return motion.axis_by_number(ref.v_CFG.v_AXNO)
+
+
+class _ExecuteFB(NativeFB):
+    """Edge handling and exclusive final outputs shared by Execute-type FBs.
+
+    Subclasses implement `_begin(axis)` (raise MotionRefused to fail) and
+    `_poll(axis)` (return "done", "aborted" or None while running).
+    """
+
+    FINAL_OUTPUTS = ("v_DONE", "v_COMMANDABORTED", "v_ERROR")
+    ACTIVE_OUTPUT = True  # the FB has an `Active` output
+
+    def __init__(self) -> None:
+        super().__init__()
+        self._previous_execute = False
+        self._command: MotionCommand | None = None
+
+    def execute(self, ctx) -> None:
+        execute = bool(self.v_EXECUTE)
+        if not execute and not self.v_BUSY:
+            self._clear_outputs()  # a held (or one-call) final output ends
+        axis = resolve_axis(self.v_AXIS, ctx)
+        if execute and not self._previous_execute:
+            self._clear_outputs()
+            self._start(axis)
+        elif self.v_BUSY:
+            self._follow(axis)
+        self._previous_execute = execute
+        self._after_call(axis, execute)
+
+    def _start(self, axis: Axis | None) -> None:
+        if axis is None:
+            self._fail(ErrorID.AXIS_NOT_ASSIGNED)
+            return
+        try:
+            self._command = self._begin(axis)
+        except MotionRefused as refused:
+            self._fail(refused.code)
+            return
+        self.v_BUSY = True
+        if self.ACTIVE_OUTPUT:
+            self.v_ACTIVE = True
+        self._follow(axis, first_call=True)
+
+    def _follow(self, axis: Axis | None, first_call: bool = False) -> None:
+        command = self._command
+        if axis is None or command is None or command.aborted:
+            self._end("v_COMMANDABORTED")
+        elif command.done:
+            self._end("v_DONE")
+        else:
+            self._poll(axis, command, first_call)
+
+    def _end(self, output: str) -> None:
+        self.v_BUSY = False
+        if self.ACTIVE_OUTPUT:
+            self.v_ACTIVE = False
+        setattr(self, output, True)
+
+    def _fail(self, code: ErrorID) -> None:
+        self._end("v_ERROR")
+        self.v_ERRORID = int(code)
+
+    def _clear_outputs(self) -> None:
+        for output in self.FINAL_OUTPUTS:
+            setattr(self, output, False)
+        self.v_ERRORID = 0
+
+    # hooks
+    def _begin(self, axis: Axis) -> MotionCommand:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def _poll(self, axis: Axis, command: MotionCommand, first_call: bool) -> None:
+        pass
+
+    def _after_call(self, axis: Axis | None, execute: bool) -> None:
+        pass
+
+
+def _check_buffer_mode(mode: int) -> None:
+    if mode != BUFFER_MODE_ABORTING:
+        raise MotionRefused(ErrorID.BUFFER_MODE_NOT_SUPPORTED)
+
+
+@native_fb
+class MC_Power(NativeFB):
+    """Servo on while `Enable` is TRUE; `Status` once the axis is powered.
+
+    The servo switches at the motion processing after the call, so `Status`
+    follows `Enable` one scan later; `Busy` is TRUE during that transition.
+    """
+
+    NAME = "MC_Power"
+    DECLARATION = """
+FUNCTION_BLOCK MC_Power
+VAR_IN_OUT
+    Axis : AXIS_REF;
+END_VAR
+VAR_INPUT
+    Enable : BOOL;
+END_VAR
+VAR_OUTPUT
+    Status : BOOL;
+    Busy : BOOL;
+    Error : BOOL;
+    ErrorID : WORD;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+
+    def execute(self, ctx) -> None:
+        axis = resolve_axis(self.v_AXIS, ctx)
+        if axis is None:
+            self.v_STATUS = self.v_BUSY = False
+            self.v_ERROR = bool(self.v_ENABLE)
+            self.v_ERRORID = int(ErrorID.AXIS_NOT_ASSIGNED) if self.v_ENABLE else 0
+            return
+        enable = bool(self.v_ENABLE)
+        axis.request_power(enable)
+        self.v_STATUS = axis.powered
+        self.v_BUSY = enable != axis.powered
+        self.v_ERROR = False
+        self.v_ERRORID = 0
+
+
+@native_fb
+class MC_Reset(_ExecuteFB):
+    """Clear the axis error (ErrorStop -> Standstill if powered, else Disabled).
+
+    Completes in the call of the rising edge.  If the cause persists (the
+    following error is still above its limit) `Failure` is TRUE and `ErrorID`
+    says RESET_FAILED.  Resetting an axis without error is simply Done.
+    """
+
+    NAME = "MC_Reset"
+    DECLARATION = """
+FUNCTION_BLOCK MC_Reset
+VAR_IN_OUT
+    Axis : AXIS_REF;
+END_VAR
+VAR_INPUT
+    Execute : BOOL;
+END_VAR
+VAR_OUTPUT
+    Done : BOOL;
+    Busy : BOOL;
+    Failure : BOOL;
+    Error : BOOL;
+    ErrorID : WORD;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+    FINAL_OUTPUTS = ("v_DONE", "v_FAILURE", "v_ERROR")
+    ACTIVE_OUTPUT = False
+
+    def _start(self, axis: Axis | None) -> None:
+        if axis is None:
+            self._fail(ErrorID.AXIS_NOT_ASSIGNED)
+        elif axis.reset():
+            self._end("v_DONE")
+        else:
+            self._end("v_FAILURE")
+            self.v_ERRORID = int(ErrorID.RESET_FAILED)
+
+
+@native_fb
+class MC_Home(_ExecuteFB):
+    """Define home for an absolute encoder: no motion; Details.Homed TRUE.
+
+    Done on the call after the motion processing that homed the axis.
+    """
+
+    NAME = "MC_Home"
+    DECLARATION = """
+FUNCTION_BLOCK MC_Home
+VAR_IN_OUT
+    Axis : AXIS_REF;
+END_VAR
+VAR_INPUT
+    Execute : BOOL;
+END_VAR
+VAR_OUTPUT
+    Done : BOOL;
+    Busy : BOOL;
+    CommandAborted : BOOL;
+    Error : BOOL;
+    ErrorID : WORD;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+    ACTIVE_OUTPUT = False
+
+    def _begin(self, axis: Axis) -> MotionCommand:
+        return axis.start_home()
+
+
+@native_fb
+class MC_Stop(_ExecuteFB):
+    """Decelerate to a stop and hold the axis in Stopping while Execute is TRUE.
+
+    Aborts whatever moves the axis (that FB ends with CommandAborted).  `Done`
+    once the command velocity is zero; when `Execute` is FALSE (and the axis
+    has stopped) the axis goes to Standstill.  Deceleration 0 uses the axis's
+    maximum acceleration, or stops the command at once if none is configured.
+    """
+
+    NAME = "MC_Stop"
+    DECLARATION = """
+FUNCTION_BLOCK MC_Stop
+VAR_IN_OUT
+    Axis : AXIS_REF;
+END_VAR
+VAR_INPUT
+    Execute : BOOL;
+    Deceleration : LREAL;
+    Jerk : LREAL;
+    BufferMode : _eMC_BUFFER_MODE;
+END_VAR
+VAR_OUTPUT
+    Done : BOOL;
+    Busy : BOOL;
+    Active : BOOL;
+    CommandAborted : BOOL;
+    Error : BOOL;
+    ErrorID : WORD;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+
+    def _begin(self, axis: Axis) -> MotionCommand:
+        _check_buffer_mode(self.v_BUFFERMODE)
+        return axis.start_stop(float(self.v_DECELERATION))
+
+    def _after_call(self, axis: Axis | None, execute: bool) -> None:
+        if not execute and self._command is not None and axis is not None:
+            axis.release_stop(self._command)
+            if self._command.done or self._command.aborted:
+                self._command = None
+
+
+@native_fb
+class MC_MoveAbsolute(_ExecuteFB):
+    """Trapezoidal positioning to `Position` at `Velocity` (> 0, <= axis max).
+
+    Acceleration/Deceleration 0 use the axis's maximum acceleration (a
+    velocity step if none is configured).  A Position outside the software
+    limits is an Error (TARGET_BEYOND_SOFT_LIMIT) and puts the axis in
+    ErrorStop.  Done once the command is at the target and the actual
+    position is within the in-position range.
+    """
+
+    NAME = "MC_MoveAbsolute"
+    DECLARATION = """
+FUNCTION_BLOCK MC_MoveAbsolute
+VAR_IN_OUT
+    Axis : AXIS_REF;
+END_VAR
+VAR_INPUT
+    Execute : BOOL;
+    Position : LREAL;
+    Velocity : LREAL;
+    Acceleration : LREAL;
+    Deceleration : LREAL;
+    Jerk : LREAL;
+    Direction : _eMC_DIRECTION;
+    BufferMode : _eMC_BUFFER_MODE;
+END_VAR
+VAR_OUTPUT
+    Done : BOOL;
+    Busy : BOOL;
+    Active : BOOL;
+    CommandAborted : BOOL;
+    Error : BOOL;
+    ErrorID : WORD;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+
+    def _begin(self, axis: Axis) -> MotionCommand:
+        _check_buffer_mode(self.v_BUFFERMODE)
+        return axis.start_move_absolute(
+            float(self.v_POSITION), float(self.v_VELOCITY),
+            float(self.v_ACCELERATION), float(self.v_DECELERATION),
+        )
+
+
+@native_fb
+class MC_SyncMoveAbsolute(_ExecuteFB):
+    """Cyclic synchronous absolute positioning: `Position` is the axis command
+    of every scan in which the FB is called, from the rising edge of Execute
+    until another command (e.g. MC_Stop) or an axis error aborts it.
+
+    The Position given in scan k is applied by the motion processing of scan k
+    (after the programs), where the software limits, the velocity limit
+    (|dPos| / period) and, if configured, the acceleration limit are checked.
+    `InPosition`: the actual position is within the in-position range of the
+    Position applied in the previous motion processing.  Never `Done`.
+    """
+
+    NAME = "MC_SyncMoveAbsolute"
+    DECLARATION = """
+FUNCTION_BLOCK MC_SyncMoveAbsolute
+VAR_IN_OUT
+    Axis : AXIS_REF;
+END_VAR
+VAR_INPUT
+    Execute : BOOL;
+    Position : LREAL;
+    Direction : _eMC_DIRECTION;
+    BufferMode : _eMC_BUFFER_MODE;
+END_VAR
+VAR_OUTPUT
+    InPosition : BOOL;
+    Busy : BOOL;
+    Active : BOOL;
+    CommandAborted : BOOL;
+    Error : BOOL;
+    ErrorID : WORD;
+END_VAR
+END_FUNCTION_BLOCK
+"""
+    FINAL_OUTPUTS = ("v_COMMANDABORTED", "v_ERROR")
+
+    def _begin(self, axis: Axis) -> MotionCommand:
+        _check_buffer_mode(self.v_BUFFERMODE)
+        return axis.start_sync()
+
+    def _poll(self, axis: Axis, command: MotionCommand, first_call: bool) -> None:
+        applied = command.target  # what the last motion processing commanded
+        self.v_INPOSITION = (not first_call) and abs(axis.act_pos - applied) <= axis.config.in_position_range
+        command.target = float(self.v_POSITION)
+
+    def _end(self, output: str) -> None:
+        super()._end(output)
+        self.v_INPOSITION = False

@@ -1,0 +1,80 @@
+"""The motion task: the controller's axes, as on the NJ.
+
+Every primary period, around the user programs:
+
+1. `feedback_in()` (before the programs) copies each axis's simulation state
+   into its global AXIS_REF variable, so the programs read this period's
+   Cmd/Act/Status;
+2. the programs run; motion FBs start commands and hand over positions;
+3. `process(dt)` (after the programs) advances every axis by one period
+   (command, limit checks, servo lag, following error) and publishes the new
+   state into the AXIS_REF variables again, so a trace or a JSON dump taken
+   at the end of scan k shows the command of scan k.
+
+The axes are declared from the configuration: `globals_source()` gives the ST
+text `VAR_GLOBAL <name> : AXIS_REF; ... END_VAR` to load with the user's
+files, and `bind(lookup)` ties each global variable to its simulation.
+Native motion FBs reach the task through `ctx.motion`.
+"""
+
+from __future__ import annotations
+
+from typing import Callable, Iterable, Mapping
+
+from .axis import Axis
+from .axis_config import AxisConfig, axis_configs_from_tables
+from .types import bind_axis_ref, publish
+
+
+class MotionTask:
+    def __init__(self, configs: Iterable[AxisConfig]):
+        self.axes: list[Axis] = [Axis(config, number) for number, config in enumerate(configs)]
+        self._by_name = {axis.name.upper(): axis for axis in self.axes}
+        if len(self._by_name) != len(self.axes):
+            raise ValueError("axis names must be unique (case-insensitive)")
+        self._refs: list[object | None] = [None] * len(self.axes)
+
+    @classmethod
+    def from_tables(cls, tables: Iterable[Mapping]) -> "MotionTask":
+        """From axis tables as in a TOML `[[axis]]` list (validated)."""
+        return cls(axis_configs_from_tables(tables))
+
+    # ---------------------------------------------------------------- lookup
+    def axis(self, name: str) -> Axis:
+        """The axis of a configured name (case-insensitive); KeyError if none."""
+        return self._by_name[name.upper()]
+
+    def axis_by_number(self, number: int) -> Axis | None:
+        if 0 <= number < len(self.axes):
+            return self.axes[number]
+        return None
+
+    # ----------------------------------------------------------- declaration
+    def globals_source(self) -> str:
+        """ST text declaring one global AXIS_REF per configured axis."""
+        lines = ["VAR_GLOBAL"]
+        for axis in self.axes:
+            lines.append(f"    {axis.name} : AXIS_REF; (* axis {axis.axis_no} *)")
+        lines.append("END_VAR")
+        return "\n".join(lines) + "\n"
+
+    def bind(self, lookup: Callable[[str], object]) -> None:
+        """Tie each axis to its global AXIS_REF value; `lookup(name)` finds it."""
+        for axis in self.axes:
+            ref = lookup(axis.name)
+            bind_axis_ref(ref, axis)
+            self._refs[axis.axis_no] = ref
+
+    # ---------------------------------------------------------------- cycle
+    def feedback_in(self) -> None:
+        """Before the programs: the axis variables show the simulation state."""
+        for axis, ref in zip(self.axes, self._refs):
+            if ref is not None:
+                publish(axis, ref)
+
+    def process(self, dt: float) -> None:
+        """After the programs: every axis advances one period of `dt` seconds."""
+        for axis, ref in zip(self.axes, self._refs):
+            axis.step(dt)
+            if ref is not None:
+                publish(axis, ref)
