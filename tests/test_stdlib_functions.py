@@ -246,22 +246,34 @@ def test_string_parse_errors_are_faults(name, text):
     assert err.value.code == "F-CONVERT"
 
 
-def test_every_numeric_and_bit_pair_is_defined():
-    numeric = [n for n in TYPE_NAMES if T.ELEMENTARY.get(n) is not None
-               and T.ELEMENTARY[n].kind in ("bool", "int", "bits", "real")]
-    for src in numeric + ["STRING", "TIME"]:
-        for dst in numeric + ["STRING", "TIME"]:
-            if src != dst and not (src == "BOOL" and dst == "TIME") \
-                    and not (src == "TIME" and dst == "BOOL"):
+def test_every_pair_of_distinct_types_is_defined():
+    names = list(TYPE_NAMES) + ["TIME_OF_DAY", "DATE_AND_TIME"]
+    for src in names:
+        for dst in names:
+            if T.ELEMENTARY.get(src, src) != T.ELEMENTARY.get(dst, dst):
                 assert f"{src}_TO_{dst}" in CONVERSIONS, (src, dst)
-
-
-def test_undefined_conversions_are_refused():
-    with pytest.raises(KeyError):
-        conversion("TIME", "DATE")
-    with pytest.raises(KeyError):
-        conversion("LREAL", "DT")
     assert "INT_TO_INT" not in CONVERSIONS
+    with pytest.raises(KeyError):
+        conversion("INT", "FOO")
+
+
+def test_names_agree_with_the_checker():
+    builtins = pytest.importorskip("st_runtime.checker.builtins")
+    for name in builtins.STANDARD_FUNCTIONS:
+        assert name in FUNCTIONS, name
+    for src in builtins.CONVERTIBLE:
+        for dst in builtins.CONVERTIBLE:
+            name = f"{src}_TO_{dst}"
+            assert (builtins.conversion(name) is not None) == (name in CONVERSIONS), name
+
+
+def test_time_family_conversions_normalise_the_destination():
+    day = 86_400 * S
+    assert CONVERSIONS["TIME_TO_TOD"](day + 5 * S) == 5 * S
+    assert CONVERSIONS["TIME_TO_DATE"](day + 5 * S) == day
+    assert CONVERSIONS["TOD_TO_DATE"](5 * S) == 0
+    assert CONVERSIONS["LREAL_TO_DT"](1e9) == S
+    assert CONVERSIONS["BOOL_TO_TIME"](True) == 1
 
 
 def test_split_conversion_name():

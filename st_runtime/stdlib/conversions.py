@@ -21,19 +21,20 @@ Rules (IEC 61131-3 3rd ed. table 22 and the OMRON NJ where IEC is silent):
 * integer -> REAL: one rounding to float32, ties to even; -> LREAL likewise.
 * anything -> BOOL: FALSE for 0 (0.0, T#0s, ''), TRUE otherwise; STRING is
   parsed ('TRUE'/'FALSE'/'1'/'0').  BOOL -> number: 0 or 1.
-* TIME and the date types store nanoseconds; TIME <-> integers and reals
-  convert that count of nanoseconds (the NJ's TIME unit, cf. its
-  TimeToNanoSec/NanoSecToTime).  Integer -> DATE drops the time of day,
-  integer -> TOD keeps the time within the day.  DT_TO_DATE, DT_TO_TOD,
-  DATE_TO_DT as IEC.
+* TIME and the date types store nanoseconds; conversions to, from and
+  between them carry that count of nanoseconds (the NJ's TIME unit, cf. its
+  TimeToNanoSec/NanoSecToTime): REAL_TO_TIME(2.5) = 2 ns (ties to even),
+  TIME_TO_LINT(T#1s) = 1000000000.  A DATE destination drops the time of
+  day, a TOD destination keeps the time within the day; so DT_TO_DATE,
+  DT_TO_TOD and DATE_TO_DT behave as IEC defines them.
 * -> STRING: decimal for numbers and bit strings, shortest round-trip text
   for reals, IEC literals for TIME/DATE/TOD/DT, 'TRUE'/'FALSE' for BOOL.
   STRING -> X parses that text (integers also as `16#FF`/`2#1010`/`8#17`,
   underscores allowed) and raises F-CONVERT on anything else or on a value
   out of range.  Truncation to STRING[n] happens on store, not here.
 
-Pairs without a meaning (BOOL -> TIME/dates, REAL <-> DATE/TOD/DT,
-TIME <-> DATE/DT, TIME -> TOD, TOD -> DATE/DT, DATE -> TOD) are not defined: `conversion` raises `KeyError` for them.
+Every ordered pair of distinct types is defined (the checker accepts every
+`<A>_TO_<B>` name); `conversion` raises `KeyError` only for unknown names.
 """
 
 from __future__ import annotations
@@ -198,7 +199,7 @@ def _nonzero(v) -> bool:
     return v != 0
 
 
-def _build(src: str, dst: str) -> Callable | None:
+def _build(src: str, dst: str) -> Callable:
     sk, dk = _kind(src), _kind(dst)
     if dk == "string":
         return _to_text(src)
@@ -215,39 +216,26 @@ def _build(src: str, dst: str) -> Callable | None:
             return _real_to_integer(src, d_t)
         return lambda v: wrap(int(v))        # bool, integers, bit strings, time
     if dk == "real":
-        if sk in ("date", "tod", "dt"):
-            return None      # a date has no meaning as a real number
         if d_t.bits == 32:
             if sk == "real":
                 return to_real32
             return lambda v: int_to_real32(int(v))
         return float
-    # destination is TIME, DATE, TOD or DT
-    if sk == "bool":
-        return None
-    wrap64 = int_wrapper(d_t)
-    to_ns = _real_to_integer(src, ELEMENTARY["LINT"]) if sk == "real" else None
-    if sk in ("time", "date", "tod", "dt"):
-        if sk == dk:
-            return int
-        if (sk, dk) == ("dt", "date"):
-            return lambda v: v - v % NS_PER_DAY
-        if (sk, dk) == ("dt", "tod"):
-            return lambda v: v % NS_PER_DAY
-        if (sk, dk) == ("date", "dt"):
-            return int
-        if (sk, dk) == ("tod", "time"):
-            return int
-        return None
-    if dk == "time":
-        return to_ns if to_ns else (lambda v: wrap64(int(v)))
+    # destination is TIME, DATE, TOD or DT: through the nanosecond count
     if sk == "real":
-        return None          # reals have no meaning as a date
+        to_ns = _real_to_integer(src, ELEMENTARY["LINT"])
+    else:
+        wrap64 = int_wrapper(ELEMENTARY["LINT"])
+        to_ns = (lambda v: wrap64(int(v)))
     if dk == "date":
-        return lambda v: (lambda ns: ns - ns % NS_PER_DAY)(wrap64(int(v)))
+        return lambda v: _drop_time_of_day(to_ns(v))
     if dk == "tod":
-        return lambda v: wrap64(int(v)) % NS_PER_DAY
-    return lambda v: wrap64(int(v))          # DT
+        return lambda v: to_ns(v) % NS_PER_DAY
+    return to_ns
+
+
+def _drop_time_of_day(ns: int) -> int:
+    return ns - ns % NS_PER_DAY
 
 
 def _table() -> dict[str, Callable]:
@@ -257,8 +245,6 @@ def _table() -> dict[str, Callable]:
             if src == dst:
                 continue
             fn = _build(src, dst)
-            if fn is None:
-                continue
             for s in (src, LONG_NAMES.get(src, src)):
                 for d in (dst, LONG_NAMES.get(dst, dst)):
                     table[f"{s}_TO_{d}"] = fn
@@ -274,7 +260,7 @@ def canonical(name: str) -> str:
 
 
 def conversion(src: str, dst: str) -> Callable:
-    """The function of `<src>_TO_<dst>`; `KeyError` when IEC/NJ define none."""
+    """The function of `<src>_TO_<dst>` (any spelling of the type names)."""
     key = f"{canonical(src)}_TO_{canonical(dst)}"
     fn = CONVERSIONS.get(key)
     if fn is None:
