@@ -23,7 +23,7 @@ from typing import Callable, Iterable, Mapping
 
 from .axis import Axis
 from .axis_config import AxisConfig, axis_configs_from_tables
-from .types import bind_axis_ref, publish
+from .types import AxisRefWriter, bind_axis_ref
 
 
 class MotionTask:
@@ -32,7 +32,7 @@ class MotionTask:
         self._by_name = {axis.name.upper(): axis for axis in self.axes}
         if len(self._by_name) != len(self.axes):
             raise ValueError("axis names must be unique (case-insensitive)")
-        self._refs: list[object | None] = [None] * len(self.axes)
+        self._writers: list[AxisRefWriter] = []
 
     @classmethod
     def from_tables(cls, tables: Iterable[Mapping]) -> "MotionTask":
@@ -60,21 +60,17 @@ class MotionTask:
 
     def bind(self, lookup: Callable[[str], object]) -> None:
         """Tie each axis to its global AXIS_REF value; `lookup(name)` finds it."""
-        for axis in self.axes:
-            ref = lookup(axis.name)
-            bind_axis_ref(ref, axis)
-            self._refs[axis.axis_no] = ref
+        self._writers = [bind_axis_ref(lookup(axis.name), axis) for axis in self.axes]
 
     # ---------------------------------------------------------------- cycle
     def feedback_in(self) -> None:
         """Before the programs: the axis variables show the simulation state."""
-        for axis, ref in zip(self.axes, self._refs):
-            if ref is not None:
-                publish(axis, ref)
+        for writer in self._writers:
+            writer.write()
 
     def process(self, dt: float) -> None:
         """After the programs: every axis advances one period of `dt` seconds."""
-        for axis, ref in zip(self.axes, self._refs):
+        for axis in self.axes:
             axis.step(dt)
-            if ref is not None:
-                publish(axis, ref)
+        for writer in self._writers:
+            writer.write()

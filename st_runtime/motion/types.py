@@ -90,25 +90,46 @@ _STATUS_ATTR = {
 }
 
 
-def bind_axis_ref(ref, axis: Axis) -> None:
+def bind_axis_ref(ref, axis: Axis) -> "AxisRefWriter":
     """Mark an AXIS_REF struct value as the variable of `axis` and fill it."""
     ref.v_CFG.v_AXNO = axis.axis_no
     ref.v_CFG.v_AXENABLE = True
-    publish(axis, ref)
+    writer = AxisRefWriter(axis, ref)
+    writer.write()
+    return writer
 
 
-def publish(axis: Axis, ref) -> None:
-    """Copy the simulation state of `axis` into its AXIS_REF struct value."""
-    cmd, act = ref.v_CMD, ref.v_ACT
-    cmd.v_POS = axis.cmd_pos
-    cmd.v_VEL = axis.cmd_vel
-    act.v_POS = axis.act_pos
-    act.v_VEL = axis.act_vel
-    ref.v_DEV.v_POS = axis.cmd_pos - axis.act_pos
-    status = ref.v_STATUS
-    for state, attr in _STATUS_ATTR.items():
-        setattr(status, attr, state == axis.state)
-    ref.v_DETAILS.v_HOMED = axis.homed
-    fault = ref.v_MFAULTLVL
-    fault.v_ACTIVE = axis.state == AxisState.ERRORSTOP
-    fault.v_CODE = int(axis.fault_code)
+class AxisRefWriter:
+    """Copies the simulation state of one axis into its AXIS_REF value.
+
+    Runs twice per scan for every axis, so it keeps the member structs at hand
+    (struct identities never change) and rewrites the Status, Details and
+    MFaultLvl members only when the state, homing or fault code changed.
+    """
+
+    __slots__ = ("axis", "ref", "_cmd", "_act", "_dev", "_status", "_details", "_fault", "_shown")
+
+    def __init__(self, axis: Axis, ref):
+        self.axis = axis
+        self.ref = ref
+        self._cmd, self._act, self._dev = ref.v_CMD, ref.v_ACT, ref.v_DEV
+        self._status, self._details, self._fault = ref.v_STATUS, ref.v_DETAILS, ref.v_MFAULTLVL
+        self._shown = None  # (state, homed, fault code) last written
+
+    def write(self) -> None:
+        axis = self.axis
+        cmd, act = self._cmd, self._act
+        cmd.v_POS = axis.cmd_pos
+        cmd.v_VEL = axis.cmd_vel
+        act.v_POS = axis.act_pos
+        act.v_VEL = axis.act_vel
+        self._dev.v_POS = axis.cmd_pos - axis.act_pos
+        shown = (axis.state, axis.homed, axis.fault_code)
+        if shown != self._shown:
+            self._shown = shown
+            status = self._status
+            for state, attr in _STATUS_ATTR.items():
+                setattr(status, attr, state == axis.state)
+            self._details.v_HOMED = axis.homed
+            self._fault.v_ACTIVE = axis.state == AxisState.ERRORSTOP
+            self._fault.v_CODE = int(axis.fault_code)
