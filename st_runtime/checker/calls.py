@@ -1,0 +1,381 @@
+"""Calls: user functions, function block instances, standard functions and
+`A_TO_B` conversions.  Arguments are bound to parameters (pins) and checked:
+unknown pin, pin given twice, wrong direction, too many or too few, and
+VAR_IN_OUT arguments that must be variables of exactly the parameter's type.
+"""
+
+from __future__ import annotations
+
+from .. import ast
+from .. import types as T
+from ..ast import key
+from ..symbols import CallTarget, PouInfo
+from . import builtins as B
+from . import typesys as ts
+from .expressions import is_untyped_constant
+from .stores import check_store, is_variable_path, root_name
+
+_PIN_KINDS = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
+
+
+class CallChecker:
+    def __init__(self, ex):
+        self.ex = ex
+        self.ctx = ex.ctx
+        self.program = ex.program
+
+    # ------------------------------------------------------------ dispatch
+    def check_call(self, call: ast.Call, expected=None, statement: bool = False):
+        callee = call.callee
+        if isinstance(callee, ast.Name) and self._not_a_variable(callee):
+            k = key(callee.name)
+            pou = self.program.pous.get(k)
+            if pou is not None:
+                if pou.kind == "FUNCTION":
+                    return self._user_function(call, pou, statement)
+                if pou.kind == "FUNCTION_BLOCK":
+                    msg = (f"'{callee.name}' is a FUNCTION_BLOCK type: declare an instance "
+                           f"(inst : {pou.name};) and call the instance")
+                else:
+                    msg = f"'{callee.name}' is a PROGRAM: programs are run by tasks, not called"
+                self.ctx.error("E-CALL-001", msg, callee.pos)
+                return self._give_up(call)
+            if k in B.STANDARD_FUNCTIONS:
+                return self._standard(call, B.STANDARD_FUNCTIONS[k], expected)
+            conv = B.conversion(k)
+            if conv is not None:
+                return self._conversion(call, k, *conv)
+            if k in self.program.types or k in T.ELEMENTARY:
+                self.ctx.error("E-CALL-001", f"'{callee.name}' is a type, not a function", callee.pos)
+            else:
+                self.ctx.error("E-DECL-001", f"undeclared function '{callee.name}'", callee.pos)
+            return self._give_up(call)
+        t = self.ex.infer(callee)
+        if t is ts.ERROR:
+            return self._give_up(call)
+        if not isinstance(t, T.FBType):
+            self.ctx.error("E-CALL-001", f"call: expected a function or a function block "
+                           f"instance, found a variable of type {t}", callee.pos)
+            return self._give_up(call)
+        return self._fb_call(call, t, statement)
+
+    def _not_a_variable(self, name: ast.Name) -> bool:
+        sym = self.ex.scope.lookup(name.name)
+        # Inside a FUNCTION its own name is its result variable; a call of it
+        # is a (recursive) call of the function.
+        return sym is None or sym.kind == "RETURN"
+
+    def _give_up(self, call):
+        """Type the arguments (so every node has a type) and yield ERROR."""
+        for arg in call.args:
+            if arg.value is not None:
+                self.ex.infer(arg.value)
+        return self.ex.record(call, ts.ERROR)
+
+    # ------------------------------------------------------ user POUs
+    def _user_function(self, call, pou: PouInfo, statement: bool):
+        self.program.call_targets[id(call)] = CallTarget("function", key(pou.name), pou)
+        self.ctx.add_call_edge(self.ex.scope.pou_key, key(pou.name), call.pos)
+        self._bind(call, pou, is_function=True)
+        if pou.return_type is None:
+            if not statement:
+                self.ctx.error("E-TYPE-016", f"function {pou.name} returns no value and cannot "
+                               f"be used in an expression", call.pos)
+                return self.ex.record(call, ts.ERROR)
+            return ts.ERROR
+        return self.ex.record(call, pou.return_type)
+
+    def _fb_call(self, call, fb: T.FBType, statement: bool):
+        pou = self.program.pous.get(key(fb.name))
+        self.program.call_targets[id(call)] = CallTarget("fb", key(fb.name), pou)
+        self.ctx.add_call_edge(self.ex.scope.pou_key, key(fb.name), call.pos)
+        if not statement:
+            self.ctx.error("E-CALL-010", f"function block instance of {fb.name} called inside an "
+                           f"expression: call it as a statement, then read its outputs", call.pos)
+            return self._give_up(call)
+        if pou is not None:
+            self._bind(call, pou, is_function=False)
+        return ts.ERROR
+
+    def _bind(self, call, pou: PouInfo, is_function: bool) -> None:
+        positional = [s for s in pou.variables.values() if s.kind in ("VAR_INPUT", "VAR_IN_OUT")]
+        seen: set[str] = set()
+        formal_seen = False
+        n_positional = 0
+        for arg in call.args:
+            if arg.name is None:
+                if formal_seen:
+                    self.ctx.error("E-CALL-008", f"call of {pou.name}: positional argument after "
+                                   f"a formal (name := value) argument", arg.pos)
+                    self._infer_arg(arg)
+                    continue
+                if n_positional >= len(positional):
+                    self.ctx.error("E-CALL-006", f"call of {pou.name}: expected at most "
+                                   f"{len(positional)} positional argument(s), found "
+                                   f"{sum(1 for a in call.args if a.name is None)}", arg.pos)
+                    self._infer_arg(arg)
+                    n_positional += 1
+                    continue
+                sym = positional[n_positional]
+                n_positional += 1
+            else:
+                formal_seen = True
+                sym = pou.variables.get(key(arg.name))
+                if sym is None or sym.kind not in _PIN_KINDS:
+                    pins = ", ".join(s.name for s in pou.variables.values() if s.kind in _PIN_KINDS)
+                    self.ctx.error("E-CALL-002", f"{pou.name} has no parameter '{arg.name}' "
+                                   f"(parameters: {pins or 'none'})", arg.pos)
+                    self._infer_arg(arg)
+                    continue
+            k = key(sym.name)
+            if k in seen:
+                self.ctx.error("E-CALL-003", f"call of {pou.name}: parameter '{sym.name}' is "
+                               f"given twice", arg.pos)
+                self._infer_arg(arg)
+                continue
+            seen.add(k)
+            self._pass(call, pou, arg, sym)
+        for sym in pou.in_outs:
+            if key(sym.name) not in seen:
+                self.ctx.error("E-CALL-004", f"call of {pou.name}: VAR_IN_OUT '{sym.name}' "
+                               f"({sym.type}) is missing; in-out parameters are required at "
+                               f"every call", call.pos)
+        if is_function and n_positional and not formal_seen and n_positional < len(positional):
+            self.ctx.error("E-CALL-009", f"call of {pou.name}: expected {len(positional)} "
+                           f"argument(s), found {n_positional}", call.pos)
+
+    def _pass(self, call, pou, arg, sym) -> None:
+        if arg.value is None:
+            return
+        what = f"argument '{sym.name}' of {pou.name}"
+        if arg.direction == "out":
+            if sym.kind != "VAR_OUTPUT":
+                self.ctx.error("E-CALL-005", f"'{sym.name}' is a {sym.kind} of {pou.name}: pass "
+                               f"it with :=, not =>", arg.pos)
+                self._infer_arg(arg)
+                return
+            target = check_store(self.ex, arg.value, f"output '{sym.name}' of {pou.name}")
+            if target is not ts.ERROR and arg.negated and not ts.is_bool(sym.type):
+                self.ctx.error("E-TYPE-001", f"NOT on output '{sym.name}': expected BOOL, found "
+                               f"{sym.type}", arg.pos)
+                return
+            self.ex.require_assignable(sym.type, target, arg.value.pos,
+                                       f"output '{sym.name}' of {pou.name}")
+            return
+        if sym.kind == "VAR_OUTPUT":
+            self.ctx.error("E-CALL-005", f"'{sym.name}' is an output of {pou.name}: read it "
+                           f"with =>, not :=", arg.pos)
+            self._infer_arg(arg)
+            return
+        if sym.kind == "VAR_IN_OUT":
+            self._in_out(pou, arg.value, sym)
+            return
+        self.ex.check_value(arg.value, sym.type, what)
+
+    def _in_out(self, pou, value, sym) -> None:
+        if not is_variable_path(value):
+            self.ex.infer(value)
+            self.ctx.error("E-CALL-007", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
+                           f"variable, found an expression", value.pos)
+            return
+        t = self.ex.infer(value)
+        if t is ts.ERROR:
+            return
+        ref = self.program.name_refs.get(id(root_name(value)))
+        if not hasattr(ref, "kind"):
+            self.ctx.error("E-CALL-007", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
+                           f"variable, found an enumeration value", value.pos)
+            return
+        if ref.constant:
+            self.ctx.error("E-CALL-007", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
+                           f"writable variable, found CONSTANT '{ref.name}'", value.pos)
+            return
+        if not (ts.same_type(t, sym.type) or t is sym.type):
+            self.ctx.error("E-CALL-011", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
+                           f"variable of type {sym.type}, found {t} (in-out parameters are passed "
+                           f"by reference, without conversion)", value.pos)
+
+    def _infer_arg(self, arg) -> None:
+        if arg.value is not None:
+            self.ex.infer(arg.value)
+
+    # ------------------------------------------------- standard functions
+    def _standard(self, call, fn: B.Builtin, expected):
+        bound: list[tuple[B.Param, ast.Arg]] = []
+        seen: set[str] = set()
+        formal_seen = False
+        ok = True
+        for i, arg in enumerate(call.args):
+            if arg.direction == "out":
+                self.ctx.error("E-CALL-005", f"{fn.name} has no outputs: '{arg.name}' cannot be "
+                               f"read with =>", arg.pos)
+                self._infer_arg(arg)
+                ok = False
+                continue
+            if arg.name is None:
+                if formal_seen:
+                    self.ctx.error("E-CALL-008", f"call of {fn.name}: positional argument after "
+                                   f"a formal argument", arg.pos)
+                    self._infer_arg(arg)
+                    ok = False
+                    continue
+                if i >= len(fn.params) and not fn.extensible:
+                    self.ctx.error("E-CALL-006", f"{fn.name}: expected {len(fn.params)} "
+                                   f"argument(s), found {len(call.args)}", arg.pos)
+                    self._infer_arg(arg)
+                    ok = False
+                    continue
+                param = B.extra_param(fn, i)
+            else:
+                formal_seen = True
+                param = self._standard_param(fn, arg.name)
+                if param is None:
+                    pins = ", ".join(p.name for p in fn.params)
+                    self.ctx.error("E-CALL-002", f"{fn.name} has no parameter '{arg.name}' "
+                                   f"(parameters: {pins}{', ...' if fn.extensible else ''})", arg.pos)
+                    self._infer_arg(arg)
+                    ok = False
+                    continue
+            if param.name in seen:
+                self.ctx.error("E-CALL-003", f"call of {fn.name}: parameter '{param.name}' is "
+                               f"given twice", arg.pos)
+                self._infer_arg(arg)
+                ok = False
+                continue
+            seen.add(param.name)
+            bound.append((param, arg))
+        if ok and len(bound) < fn.min_args:
+            self.ctx.error("E-CALL-009", f"{fn.name}: expected {'at least ' if fn.extensible else ''}"
+                           f"{fn.min_args} argument(s), found {len(bound)}", call.pos)
+            ok = False
+        generic_t = self._instantiate(fn, bound, expected)
+        for param, arg in bound:
+            if not param.generic:
+                ok &= self._standard_fixed(fn, param, arg)
+        if generic_t is ts.ERROR or not ok:
+            for param, arg in bound:
+                if id(arg.value) not in self.program.expr_types and arg.value is not None:
+                    self.ex.infer(arg.value)
+            return self.ex.record(call, ts.ERROR)
+        result = self._standard_result(fn, generic_t, bound, expected)
+        self.program.call_targets[id(call)] = CallTarget("function", fn.name, None, generic_t)
+        return self.ex.record(call, result)
+
+    @staticmethod
+    def _standard_param(fn: B.Builtin, name: str):
+        k = key(name)
+        for p in fn.params:
+            if p.name == k:
+                return p
+        if fn.extensible and k.startswith("IN") and k[2:].isdigit():
+            n = int(k[2:])
+            index = n + 1 if fn.name == "MUX" else n - 1
+            if index >= len(fn.params):
+                return B.extra_param(fn, index)
+        return None
+
+    def _instantiate(self, fn, bound, expected):
+        """The type T of the generic parameters, or None if there are none."""
+        generic = [(p, a) for p, a in bound if p.generic and a.value is not None]
+        if not generic:
+            return None
+        category = generic[0][0].category
+        typed = [(p, a) for p, a in generic if not is_untyped_constant(a.value)]
+        untyped = [(p, a) for p, a in generic if is_untyped_constant(a.value)]
+        t = None
+        for p, a in typed:
+            at = self.ex.infer(a.value, expected)
+            if at is ts.ERROR:
+                t = ts.ERROR
+                continue
+            if t is None:
+                t = at
+            elif t is not ts.ERROR:
+                c = ts.common_type(t, at) if not (ts.is_string(t) and ts.is_string(at)) else t
+                if c is None and isinstance(t, T.EnumType) and at is t:
+                    c = t
+                if c is None:
+                    self.ctx.error("E-TYPE-002", f"{fn.name}: arguments of types {t} and {at} "
+                                   f"have no common type", a.value.pos)
+                    t = ts.ERROR
+                else:
+                    t = c
+        hint = t if t is not None else (expected if B.in_category(expected, category) else None)
+        if hint is None and category == "ANY_REAL":
+            hint = T.LREAL
+        for p, a in untyped:
+            at = self.ex.infer(a.value, hint)
+            if category in ("ANY_BITS", "ANY_BIT") and hint is None and ts.is_int(at):
+                value = self.ex.constant(a.value)
+                bits = ts.smallest_bits_type(value) if isinstance(value, int) else None
+                if bits is not None:
+                    at = self.ex.record(a.value, bits, value)
+            if t is None:
+                t = at
+            elif t is not ts.ERROR and at is not ts.ERROR:
+                t = ts.common_type(t, at) or t
+        if t is ts.ERROR or t is None:
+            return ts.ERROR if t is ts.ERROR else None
+        if not B.in_category(t, category):
+            self.ctx.error("E-TYPE-004", f"{fn.name}: expected {category} argument(s), found {t}"
+                           + (ts.conversion_hint(t, T.LREAL) if category == "ANY_REAL" else ""),
+                           generic[0][1].value.pos)
+            return ts.ERROR
+        return t
+
+    def _standard_fixed(self, fn, param, arg) -> bool:
+        if arg.value is None:
+            return True
+        category = param.category
+        hint = {"BOOL": T.BOOL, "ANY_INT": T.DINT, "STRING": T.StringType(),
+                "ANY_NUM": None}.get(category)
+        t = self.ex.infer(arg.value, hint, strict=category == "BOOL")
+        if t is ts.ERROR:
+            return False
+        if not B.in_category(t, category):
+            self.ctx.error("E-TYPE-004", f"{fn.name}: argument {param.name} expected {category}, "
+                           f"found {t}", arg.value.pos)
+            return False
+        return True
+
+    def _standard_result(self, fn, generic_t, bound, expected):
+        if fn.result == "T":
+            return generic_t
+        if fn.result == "INT":
+            return T.INT
+        if fn.result == "STRING":
+            return T.StringType()
+        if fn.result == "ANY_INT":
+            return expected if ts.is_int(expected) else T.DINT
+        return ts.ERROR
+
+    # --------------------------------------------------------- conversions
+    def _conversion(self, call, name, src, dst):
+        canonical = f"{_short(src)}_TO_{_short(dst)}"
+        args = list(call.args)
+        bad = [a for a in args if a.direction == "out" or (a.name is not None and key(a.name) != "IN")]
+        if bad or len(args) != 1:
+            for a in bad:
+                self.ctx.error("E-CALL-002", f"{canonical} has one input, IN; found "
+                               f"'{a.name}'", a.pos)
+            if not bad:
+                self.ctx.error("E-CALL-009" if not args else "E-CALL-006",
+                               f"{canonical}: expected 1 argument, found {len(args)}", call.pos)
+            return self._give_up(call)
+        value = args[0].value
+        t = self.ex.infer(value, src, strict=True)
+        if t is ts.ERROR:
+            return self.ex.record(call, ts.ERROR)
+        if not ts.implicitly_converts(t, src):
+            self.ctx.error("E-TYPE-004", f"argument of {canonical}: expected {src}, found {t}"
+                           + (f"; use {_short(t)}_TO_{_short(dst)}" if isinstance(t, T.ElementaryType)
+                              else ""), value.pos)
+            return self.ex.record(call, ts.ERROR)
+        self.program.call_targets[id(call)] = CallTarget("conversion", canonical, None, dst)
+        return self.ex.record(call, dst)
+
+
+def _short(t) -> str:
+    if isinstance(t, T.StringType):
+        return "STRING"
+    return ts.short_name(t)

@@ -1,0 +1,73 @@
+"""Diagnostic codes of the loader and the checker, with one-line explanations."""
+
+from __future__ import annotations
+
+from ..diagnostics import register
+
+CHECKER_CODES = register({
+    # loading files
+    "E-LOAD-001": "a file or directory given on the command line does not exist",
+    "E-LOAD-002": "a file cannot be read (permissions, I/O error, not a regular file)",
+    "E-LOAD-003": "a file is not valid UTF-8 text",
+    "W-LOAD-004": "a directory holds no .st file",
+    # declarations
+    "E-DECL-001": "a name is used but not declared",
+    "E-DECL-002": "a variable, member or enumeration value is declared twice in the same scope",
+    "E-DECL-003": "a POU or data type name is declared twice or redefines a standard function",
+    "E-DECL-004": "a type name does not denote a declared type",
+    "E-DECL-005": "a data type is defined in terms of itself",
+    "E-DECL-006": "array bounds or a string length are not valid constant integers",
+    "E-DECL-007": "an initial value does not fit the declared variable (too many elements, unknown member)",
+    "E-DECL-008": "an initial value is not a constant expression",
+    "E-DECL-009": "a FUNCTION declares a function block instance (functions keep no state)",
+    "E-DECL-010": "a VAR_EXTERNAL has no matching VAR_GLOBAL of the same type",
+    "E-DECL-011": "a CONSTANT variable has no initial value",
+    # types
+    "E-TYPE-001": "an operator is applied to an operand type it does not accept",
+    "E-TYPE-002": "the operands of an operator have types with no common implicit conversion",
+    "E-TYPE-003": "a condition (IF, ELSIF, WHILE, UNTIL) is not BOOL",
+    "E-TYPE-004": "a value of one type is assigned or passed where another type is needed and no implicit conversion exists",
+    "E-TYPE-005": "a literal or constant value does not fit its type's range",
+    "E-TYPE-006": "indexing something that is not an array, or with the wrong number of indices",
+    "E-TYPE-007": "an array index is not an integer",
+    "E-TYPE-008": "a constant array index lies outside the array's bounds",
+    "E-TYPE-009": "a member does not exist in the struct or function block, or is not accessible",
+    "E-TYPE-010": "a FOR control variable or bound is not an integer",
+    "E-TYPE-011": "a CASE selector is neither an integer nor an enumeration",
+    "E-TYPE-012": "a CASE label is not a constant of the selector's type",
+    "E-TYPE-013": "a CASE label value appears more than once",
+    "E-TYPE-014": "the left side of an assignment or an output target is not a variable",
+    "E-TYPE-015": "an enumeration value does not belong to the named enumeration type",
+    "E-TYPE-016": "a name that is not a value (a POU, a type, an FB instance) is used as a value",
+    "E-TYPE-017": "division by zero in a constant expression",
+    # assignments
+    "E-ASSIGN-001": "assignment to a CONSTANT variable",
+    "E-ASSIGN-002": "assignment to a VAR_INPUT inside its own POU (inputs are read-only)",
+    "E-ASSIGN-003": "assignment to a FOR control variable inside its loop",
+    "E-ASSIGN-004": "assignment to an output or internal variable of a function block instance from outside",
+    # calls
+    "E-CALL-001": "a call of something that is not a function or function block instance",
+    "E-CALL-002": "a call names a parameter (pin) the callee does not have",
+    "E-CALL-003": "a call gives the same parameter twice",
+    "E-CALL-004": "a call omits a VAR_IN_OUT parameter (required at every call)",
+    "E-CALL-005": "a parameter is passed in the wrong direction (:= on an output, => on an input)",
+    "E-CALL-006": "a call has more positional arguments than the callee has inputs",
+    "E-CALL-007": "a VAR_IN_OUT argument is not a variable",
+    "E-CALL-008": "a positional argument follows a formal (named) argument",
+    "E-CALL-009": "a call has fewer arguments than the callee requires",
+    "E-CALL-010": "a function block instance is called inside an expression (FB calls are statements)",
+    "E-CALL-011": "a VAR_IN_OUT argument's type differs from the parameter's type",
+    # control flow, recursion
+    "E-FLOW-001": "EXIT outside a loop",
+    "E-FLOW-002": "CONTINUE outside a loop",
+    "E-REC-001": "recursion: a POU calls itself directly or through other POUs (IEC and OMRON forbid it)",
+    # OMRON NJ identifier rules (errors under --dialect nj, warnings otherwise)
+    "E-NJ-001": "identifier longer than 127 bytes (UTF-8), the NJ limit",
+    "E-NJ-002": "identifier starts or ends with an underscore, not allowed on the NJ",
+    "E-NJ-003": "identifier contains two consecutive underscores, not allowed on the NJ",
+    "E-NJ-004": "identifier equals an NJ instruction name",
+    "W-NJ-001": "identifier longer than 127 bytes (UTF-8): rejected by an OMRON NJ",
+    "W-NJ-002": "identifier starts or ends with an underscore: rejected by an OMRON NJ",
+    "W-NJ-003": "identifier contains two consecutive underscores: rejected by an OMRON NJ",
+    "W-NJ-004": "identifier equals an NJ instruction name: rejected by an OMRON NJ",
+})

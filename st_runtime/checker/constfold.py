@@ -1,0 +1,93 @@
+"""Exact folding of constant expressions (IEC semantics on Python values).
+
+Values are Python `bool`, `int` (integers, bit strings, TIME nanoseconds) and
+`float`.  Integer `/` truncates toward zero and `MOD` takes the sign of the
+dividend, as on the controller.  A fold that cannot be done (a division by
+zero, an operator on unsuitable values) yields `NOT_CONSTANT`, and the
+caller reports what it must.
+"""
+
+from __future__ import annotations
+
+import math
+
+
+class _NotConstant:
+    def __repr__(self) -> str:
+        return "NOT_CONSTANT"
+
+
+NOT_CONSTANT = _NotConstant()
+
+
+class DivisionByZero(Exception):
+    pass
+
+
+def int_div(a: int, b: int) -> int:
+    if b == 0:
+        raise DivisionByZero()
+    q = abs(a) // abs(b)
+    return q if (a >= 0) == (b >= 0) else -q
+
+
+def int_mod(a: int, b: int) -> int:
+    if b == 0:
+        raise DivisionByZero()
+    return a - int_div(a, b) * b
+
+
+def _is_number(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+
+def apply_unary(op: str, v):
+    """`-`, `+` on numbers; `NOT` on BOOL (bit strings are handled by the caller)."""
+    if op == "-" and _is_number(v):
+        return -v
+    if op == "+" and _is_number(v):
+        return v
+    if op == "NOT" and isinstance(v, bool):
+        return not v
+    return NOT_CONSTANT
+
+
+def apply_binary(op: str, a, b):
+    """Fold `a op b`; raises DivisionByZero for an integer division by zero."""
+    if a is NOT_CONSTANT or b is NOT_CONSTANT:
+        return NOT_CONSTANT
+    if op in ("AND", "&", "OR", "XOR"):
+        if isinstance(a, bool) and isinstance(b, bool):
+            return {"AND": a and b, "&": a and b, "OR": a or b, "XOR": a != b}[op]
+        if isinstance(a, int) and isinstance(b, int):
+            return {"AND": a & b, "&": a & b, "OR": a | b, "XOR": a ^ b}[op]
+        return NOT_CONSTANT
+    if op in ("=", "<>", "<", ">", "<=", ">="):
+        if isinstance(a, str) != isinstance(b, str):
+            return NOT_CONSTANT
+        return {
+            "=": a == b, "<>": a != b, "<": a < b,
+            ">": a > b, "<=": a <= b, ">=": a >= b,
+        }[op]
+    if not (_is_number(a) and _is_number(b)):
+        return NOT_CONSTANT
+    both_int = isinstance(a, int) and isinstance(b, int)
+    try:
+        if op == "+":
+            return a + b
+        if op == "-":
+            return a - b
+        if op == "*":
+            return a * b
+        if op == "/":
+            if both_int:
+                return int_div(a, b)
+            return a / b if b != 0 else NOT_CONSTANT
+        if op == "MOD":
+            return int_mod(a, b) if both_int else NOT_CONSTANT
+        if op == "**":
+            result = float(a) ** float(b)
+            return result if isinstance(result, float) and math.isfinite(result) else NOT_CONSTANT
+    except (OverflowError, ZeroDivisionError, ValueError):
+        return NOT_CONSTANT
+    return NOT_CONSTANT

@@ -1,0 +1,62 @@
+"""State shared by the checker's passes: the program being built, the
+diagnostics, and the name scopes."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from .. import ast
+from ..ast import key
+from ..diagnostics import DiagnosticSink
+from ..symbols import CheckedProgram, PouInfo, Symbol
+
+BUILTIN_FILE = "<builtin>"
+
+
+@dataclass(eq=False)
+class Context:
+    program: CheckedProgram
+    sink: DiagnosticSink
+    dialect: str = "iec"
+    # upper-case name -> declaration, for lazy type resolution
+    type_decls: dict[str, ast.TypeDecl] = field(default_factory=dict)
+    pou_decls: dict[str, ast.Pou] = field(default_factory=dict)
+    # upper-case enumeration value -> enum types declaring it
+    enum_values: dict[str, list] = field(default_factory=dict)
+    # id(Symbol) -> folded value of a CONSTANT variable
+    symbol_values: dict[int, object] = field(default_factory=dict)
+    # call graph for the recursion check: caller -> [(callee, pos)]
+    calls: dict[str, list[tuple[str, ast.Pos]]] = field(default_factory=dict)
+
+    def error(self, code: str, message: str, pos: ast.Pos) -> None:
+        self.sink.error(code, message, pos)
+
+    def warning(self, code: str, message: str, pos: ast.Pos) -> None:
+        self.sink.warning(code, message, pos)
+
+    def add_call_edge(self, caller: str | None, callee: str, pos: ast.Pos) -> None:
+        if caller is not None:
+            self.calls.setdefault(caller, []).append((callee, pos))
+
+
+class Scope:
+    """Name lookup inside one POU (or at global level when `pou` is None)."""
+
+    def __init__(self, ctx: Context, pou: PouInfo | None = None):
+        self.ctx = ctx
+        self.pou = pou
+
+    @property
+    def pou_key(self) -> str | None:
+        return key(self.pou.name) if self.pou is not None else None
+
+    def lookup(self, name: str) -> Symbol | None:
+        k = key(name)
+        if self.pou is not None:
+            sym = self.pou.variables.get(k)
+            if sym is not None:
+                return sym
+        return self.ctx.program.globals.get(k)
+
+    def is_local(self, sym: Symbol) -> bool:
+        return self.pou is not None and self.pou.variables.get(key(sym.name)) is sym

@@ -1,0 +1,357 @@
+"""Declarations: data types, POUs and their variables, global variables.
+
+Fills `CheckedProgram.types`, `.pous`, `.globals`.  Types are resolved lazily
+(a TYPE may use another declared later) with cycle detection; every type in
+the CheckedProgram is resolved: an alias maps to its target type (no
+AliasType), a FUNCTION_BLOCK name maps to its FBType.
+"""
+
+from __future__ import annotations
+
+import difflib
+
+from .. import ast
+from .. import native
+from .. import types as T
+from ..ast import key
+from ..symbols import PouInfo, Symbol
+from . import builtins as B
+from . import typesys as ts
+from .constfold import NOT_CONSTANT
+from .context import BUILTIN_FILE, Context, Scope
+from .expressions import ExprChecker
+
+_INSTANCE_KINDS = ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP")
+
+
+def fb_type_of(t):
+    """The FBType of an instance variable (or of an array's elements), else None."""
+    while isinstance(t, T.ArrayType):
+        t = t.element
+    return t if isinstance(t, T.FBType) else None
+
+
+class Declarations:
+    def __init__(self, ctx: Context):
+        self.ctx = ctx
+        self.program = ctx.program
+        self.global_scope = Scope(ctx, None)
+        self.global_ex = ExprChecker(ctx, self.global_scope)
+        self.global_blocks: list[ast.VarBlock] = []
+        self._resolving: set[str] = set()
+        self._names: dict[str, ast.Pos] = {}
+
+    # ------------------------------------------------------------- driver
+    def run(self, files: list[ast.SourceFile]) -> None:
+        for f in files:
+            for item in f.items:
+                self._collect(item)
+        self._create_pous()
+        for k in list(self.ctx.type_decls):
+            self.type_named(k)
+        for block in self.global_blocks:
+            for decl in block.decls:
+                self.declare(decl, block, self.program.globals, self.global_ex, None)
+        for k, node in self.ctx.pou_decls.items():
+            self._interface(self.program.pous[k], node)
+
+    def _collect(self, item) -> None:
+        if isinstance(item, ast.TypeDecl):
+            if self._declare_name(item.name, item.pos):
+                self.ctx.type_decls[key(item.name)] = item
+        elif isinstance(item, ast.Pou):
+            if self._declare_name(item.name, item.pos):
+                self.ctx.pou_decls[key(item.name)] = item
+        elif isinstance(item, ast.VarBlock):
+            self.global_blocks.append(item)
+        elif isinstance(item, ast.Configuration):
+            self.global_blocks.extend(item.globals)
+
+    def _declare_name(self, name: str, pos: ast.Pos) -> bool:
+        k = key(name)
+        if k in T.ELEMENTARY or k in ("STRING", "WSTRING"):
+            self.ctx.error("E-DECL-003", f"'{name}' is an elementary type name and cannot be "
+                           f"declared again", pos)
+        elif B.is_standard_name(k):
+            self.ctx.error("E-DECL-003", f"'{name}' would redefine the standard function "
+                           f"{k}", pos)
+        elif k in self._names:
+            first = self._names[k]
+            self.ctx.error("E-DECL-003", f"duplicate declaration of '{name}': already declared "
+                           f"at {first}", pos)
+        else:
+            self._names[k] = pos
+            return True
+        return False
+
+    def _create_pous(self) -> None:
+        for k, node in self.ctx.pou_decls.items():
+            info = PouInfo(node.name, node.kind, node, file=node.pos.file)
+            if node.kind == "FUNCTION_BLOCK":
+                fb = T.FBType(node.name)
+                fb.variables = info.variables
+                if node.pos.file == BUILTIN_FILE and k in native.NATIVE_FBS:
+                    fb.native = info.native = native.NATIVE_FBS[k]
+                self.program.types[k] = fb
+            self.program.pous[k] = info
+
+    # --------------------------------------------------------------- types
+    def type_named(self, k: str):
+        """The resolved type declared as `k` (upper case), ERROR on a cycle, None if unknown."""
+        t = self.program.types.get(k)
+        if t is not None:
+            return t
+        decl = self.ctx.type_decls.get(k)
+        if decl is None:
+            return None
+        if k in self._resolving:
+            self.ctx.error("E-DECL-005", f"type {decl.name} is defined in terms of itself", decl.pos)
+            return ts.ERROR
+        self._resolving.add(k)
+        try:
+            t = self._type_spec(decl)
+        finally:
+            self._resolving.discard(k)
+        self.program.types[k] = t
+        if decl.init is not None and t is not ts.ERROR:
+            self.initializer(decl.init, t, self.global_ex, f"initial value of type {decl.name}")
+        return t
+
+    def _type_spec(self, decl: ast.TypeDecl):
+        spec = decl.spec
+        if isinstance(spec, ast.StructType):
+            fields: dict[str, tuple[str, object]] = {}
+            for member in spec.members:
+                mk = key(member.name)
+                mt = self.resolve(member.type, self.global_ex)
+                if mk in fields:
+                    self.ctx.error("E-DECL-002", f"duplicate member '{member.name}' in struct "
+                                   f"{decl.name}", member.pos)
+                    continue
+                if member.init is not None and mt is not ts.ERROR:
+                    self.initializer(member.init, mt, self.global_ex,
+                                     f"initial value of member '{member.name}'")
+                fields[mk] = (member.name, mt)
+            return T.StructType(decl.name, fields)
+        if isinstance(spec, ast.EnumType):
+            return self._enum(decl, spec)
+        return self.resolve(spec, self.global_ex)
+
+    def _enum(self, decl, spec: ast.EnumType):
+        enum = T.EnumType(decl.name)
+        next_value = 0
+        for ev in spec.values:
+            ek = key(ev.name)
+            value = next_value
+            if ev.value is not None:
+                self.global_ex.infer(ev.value, T.DINT, strict=True)
+                folded = self.global_ex.constant(ev.value)
+                if isinstance(folded, int) and not isinstance(folded, bool):
+                    value = folded
+                elif id(ev.value) in self.program.expr_types and \
+                        self.program.expr_types[id(ev.value)] is not ts.ERROR:
+                    self.ctx.error("E-DECL-008", f"value of '{ev.name}': expected a constant "
+                                   f"integer", ev.value.pos)
+            if ek in enum.values:
+                self.ctx.error("E-DECL-002", f"duplicate value '{ev.name}' in enumeration "
+                               f"{decl.name}", ev.pos)
+                continue
+            enum.values[ek] = (ev.name, value)
+            next_value = value + 1
+            self.ctx.enum_values.setdefault(ek, []).append(enum)
+        return enum
+
+    def resolve(self, ref, ex: ExprChecker):
+        """A declared type reference as a semantic type (ERROR after a report)."""
+        if isinstance(ref, ast.NamedType):
+            k = key(ref.name)
+            if k == "STRING":
+                return T.StringType()
+            if k == "WSTRING":
+                return T.StringType(wide=True)
+            if k in T.ELEMENTARY:
+                return T.ELEMENTARY[k]
+            t = self.type_named(k)
+            if t is not None:
+                return t
+            pou = self.ctx.pou_decls.get(k)
+            if pou is not None:
+                self.ctx.error("E-DECL-004", f"'{ref.name}' is a {pou.kind}, not a type", ref.pos)
+            else:
+                known = list(self.ctx.type_decls) + list(T.ELEMENTARY) + \
+                    [n for n, p in self.ctx.pou_decls.items() if p.kind == "FUNCTION_BLOCK"]
+                close = difflib.get_close_matches(k, known, n=1, cutoff=0.8)
+                hint = f" (did you mean {close[0]}?)" if close else ""
+                self.ctx.error("E-DECL-004", f"unknown type '{ref.name}'{hint}", ref.pos)
+            return ts.ERROR
+        if isinstance(ref, ast.StringType):
+            if ref.length is None:
+                return T.StringType(wide=ref.wide)
+            n = self._const_int(ref.length, ex, "string length")
+            if n is None:
+                return ts.ERROR
+            if n < 1:
+                self.ctx.error("E-DECL-006", f"string length: expected a positive integer, found {n}",
+                               ref.length.pos)
+                return ts.ERROR
+            return T.StringType(n, ref.wide)
+        if isinstance(ref, ast.ArrayType):
+            dims = []
+            ok = True
+            for sub in ref.ranges:
+                lo = self._const_int(sub.lo, ex, "array lower bound")
+                hi = self._const_int(sub.hi, ex, "array upper bound")
+                if lo is None or hi is None:
+                    ok = False
+                    continue
+                if lo > hi:
+                    self.ctx.error("E-DECL-006", f"array bounds {lo}..{hi}: expected the lower "
+                                   f"bound not above the upper bound", sub.pos)
+                    ok = False
+                    continue
+                dims.append((lo, hi))
+            element = self.resolve(ref.element, ex)
+            if not ok or element is ts.ERROR:
+                return ts.ERROR
+            return T.ArrayType(tuple(dims), element)
+        return ts.ERROR
+
+    def _const_int(self, e, ex: ExprChecker, what: str):
+        t = ex.infer(e, T.DINT)
+        if t is ts.ERROR:
+            return None
+        value = ex.constant(e)
+        if not ts.is_int(t) or value is NOT_CONSTANT or isinstance(value, bool):
+            self.ctx.error("E-DECL-006", f"{what}: expected a constant integer, found "
+                           + ("a non-constant expression" if value is NOT_CONSTANT else f"{t}"), e.pos)
+            return None
+        return value
+
+    # ---------------------------------------------------------- variables
+    def declare(self, decl: ast.VarDecl, block: ast.VarBlock, table: dict, ex: ExprChecker,
+                pou: PouInfo | None, kind: str | None = None) -> Symbol | None:
+        kind = kind or block.kind
+        k = key(decl.name)
+        t = self.resolve(decl.type, ex)
+        if k in table:
+            first = table[k].decl.pos if table[k].decl is not None else None
+            where = f" (first declared at {first})" if first is not None else ""
+            scope = f"POU {pou.name}" if pou is not None else "the global variables"
+            self.ctx.error("E-DECL-002", f"duplicate declaration of '{decl.name}' in {scope}{where}",
+                           decl.pos)
+            return None
+        if pou is not None and pou.kind == "FUNCTION" and kind != "VAR_IN_OUT" and fb_type_of(t):
+            self.ctx.error("E-DECL-009", f"FUNCTION {pou.name} declares '{decl.name}' of function "
+                           f"block type {fb_type_of(t).name}: functions keep no state; use a "
+                           f"FUNCTION_BLOCK", decl.pos)
+        constant = block.constant
+        if kind == "VAR_EXTERNAL":
+            glob = self.program.globals.get(k)
+            if glob is None:
+                self.ctx.error("E-DECL-010", f"VAR_EXTERNAL '{decl.name}': expected a VAR_GLOBAL of "
+                               f"that name, found none", decl.pos)
+            elif t is not ts.ERROR and glob.type is not ts.ERROR and not (
+                    ts.same_type(t, glob.type) or t is glob.type):
+                self.ctx.error("E-DECL-010", f"VAR_EXTERNAL '{decl.name}': declared {t} here, but "
+                               f"the VAR_GLOBAL is {glob.type}", decl.pos)
+            else:
+                constant = constant or glob.constant
+        init = decl.init if decl.init is not None else self._default_init(decl.type)
+        sym = Symbol(decl.name, t, kind, decl, constant=constant, retain=block.retain, init=init)
+        if decl.init is not None and t is not ts.ERROR:
+            self.initializer(decl.init, t, ex, f"initial value of '{decl.name}'")
+            if constant:
+                value = ex.constant(decl.init)
+                if value is not NOT_CONSTANT:
+                    self.ctx.symbol_values[id(sym)] = value
+        elif kind == "VAR_EXTERNAL":
+            glob = self.program.globals.get(k)
+            if glob is not None and id(glob) in self.ctx.symbol_values:
+                self.ctx.symbol_values[id(sym)] = self.ctx.symbol_values[id(glob)]
+        elif block.constant and decl.init is None and t is not ts.ERROR \
+                and not isinstance(t, T.FBType):
+            self.ctx.error("E-DECL-011", f"CONSTANT '{decl.name}': expected an initial value, "
+                           f"found none", decl.pos)
+        table[k] = sym
+        return sym
+
+    def _default_init(self, ref):
+        if isinstance(ref, ast.NamedType):
+            decl = self.ctx.type_decls.get(key(ref.name))
+            if decl is not None:
+                return decl.init
+        return None
+
+    def initializer(self, init, t, ex: ExprChecker, what: str) -> None:
+        """Check an initial value (expression, array or struct initializer) against `t`."""
+        if isinstance(init, ast.ArrayInit):
+            if not isinstance(t, T.ArrayType):
+                self.ctx.error("E-DECL-007", f"{what}: expected a value of type {t}, found an "
+                               f"array initializer", init.pos)
+                return
+            count = 0
+            for item in init.items:
+                n = 1
+                if item.count is not None:
+                    n = self._const_int(item.count, ex, "repetition count")
+                    if n is None:
+                        continue
+                    if n < 0:
+                        self.ctx.error("E-DECL-006", f"repetition count: expected a non-negative "
+                                       f"integer, found {n}", item.count.pos)
+                        continue
+                if item.value is not None:
+                    self.initializer(item.value, t.element, ex, what)
+                count += n
+            if count > t.size:
+                self.ctx.error("E-DECL-007", f"{what}: expected at most {t.size} element(s) for "
+                               f"{t}, found {count}", init.pos)
+            return
+        if isinstance(init, ast.StructInit):
+            if isinstance(t, T.StructType):
+                members = {k: mt for k, (_, mt) in t.fields.items()}
+            elif isinstance(t, T.FBType):
+                members = {k: s.type for k, s in t.variables.items() if s.kind == "VAR_INPUT"}
+            else:
+                self.ctx.error("E-DECL-007", f"{what}: expected a value of type {t}, found a "
+                               f"struct initializer", init.pos)
+                return
+            seen: set[str] = set()
+            for f in init.fields:
+                fk = key(f.name)
+                if fk not in members:
+                    self.ctx.error("E-DECL-007", f"{what}: {t} has no "
+                                   f"{'input' if isinstance(t, T.FBType) else 'member'} "
+                                   f"'{f.name}'", f.pos)
+                    continue
+                if fk in seen:
+                    self.ctx.error("E-DECL-007", f"{what}: member '{f.name}' is initialised twice",
+                                   f.pos)
+                    continue
+                seen.add(fk)
+                self.initializer(f.value, members[fk], ex, what)
+            return
+        src = ex.check_value(init, t, what)
+        if src is not ts.ERROR and ex.constant(init) is NOT_CONSTANT \
+                and self.program.expr_types.get(id(init)) is not ts.ERROR:
+            self.ctx.error("E-DECL-008", f"{what}: expected a constant expression, found an "
+                           f"expression that depends on variables", init.pos)
+
+    # --------------------------------------------------------------- POUs
+    def _interface(self, info: PouInfo, node: ast.Pou) -> None:
+        scope = Scope(self.ctx, info)
+        ex = ExprChecker(self.ctx, scope)
+        if node.kind == "FUNCTION" and node.return_type is not None:
+            rt = self.resolve(node.return_type, ex)
+            info.return_type = rt
+            if fb_type_of(rt):
+                self.ctx.error("E-DECL-009", f"FUNCTION {node.name} returns function block type "
+                               f"{fb_type_of(rt).name}: expected a data type", node.return_type.pos)
+            info.variables[key(node.name)] = Symbol(node.name, rt, "RETURN", None)
+        for block in node.var_blocks:
+            if block.kind == "VAR_GLOBAL":
+                for decl in block.decls:
+                    self.declare(decl, block, self.program.globals, self.global_ex, None)
+                continue
+            for decl in block.decls:
+                self.declare(decl, block, info.variables, ex, info)

@@ -1,0 +1,510 @@
+"""Typing of expressions.
+
+Every expression node gets a type in `CheckedProgram.expr_types`; constant
+subexpressions also get their value in `CheckedProgram.constants`.
+
+Literal typing rule (the compiler relies on it):
+
+* A typed literal (`INT#5`, `LREAL#1`) has its prefix type; its value must fit.
+* An *untyped constant expression* is an untyped integer or real literal, or
+  `+ - * / MOD` and unary `+ -` applied only to such literals.  It is folded
+  exactly (integer `/` truncates toward zero) and then typed:
+  - if it contains a real literal: the context's type when that is REAL or
+    LREAL, else LREAL;
+  - integer-valued: the context's integer or bit-string type when the value
+    fits (in an assignment, initial value or input argument a value that does
+    not fit is an error, E-TYPE-005); a lone integer literal in a REAL/LREAL
+    context takes that real type (`r * 2`: 2 is LREAL); otherwise the smallest
+    of SINT, INT, DINT, LINT (then ULINT) holding every intermediate value.
+  Inside, every node carries its folded value in `constants`: the compiler
+  should emit that constant rather than recompute the subexpression.
+* In a binary operation the context of an untyped operand is the other
+  operand's type (`i + 1`: 1 takes i's type if it fits).
+* The result of a typed binary operation is the narrowest type both operands
+  implicitly convert to (INT + DINT -> DINT, DINT + REAL -> LREAL).
+"""
+
+from __future__ import annotations
+
+import difflib
+
+from .. import ast
+from .. import types as T
+from ..ast import key
+from . import typesys as ts
+from .constfold import NOT_CONSTANT, DivisionByZero, apply_binary, apply_unary
+from .context import Context, Scope
+
+ARITHMETIC = ("+", "-", "*", "/", "MOD")
+LOGIC = ("AND", "&", "OR", "XOR")
+COMPARISON = ("=", "<>", "<", ">", "<=", ">=")
+
+
+def is_untyped_constant(e) -> bool:
+    if isinstance(e, (ast.IntLiteral, ast.RealLiteral)):
+        return e.type_prefix is None
+    if isinstance(e, ast.Unary) and e.op in ("-", "+"):
+        return is_untyped_constant(e.operand)
+    if isinstance(e, ast.Binary) and e.op in ARITHMETIC:
+        return is_untyped_constant(e.left) and is_untyped_constant(e.right)
+    return False
+
+
+def _is_plain_literal(e) -> bool:
+    while isinstance(e, ast.Unary) and e.op in ("-", "+"):
+        e = e.operand
+    return isinstance(e, ast.IntLiteral)
+
+
+def _range(t) -> str:
+    return f"{t.min}..{t.max}" if isinstance(t, T.ElementaryType) else "?"
+
+
+class ExprChecker:
+    """Types expressions inside one scope."""
+
+    def __init__(self, ctx: Context, scope: Scope):
+        self.ctx = ctx
+        self.scope = scope
+        self.program = ctx.program
+        self.loop_vars: list = []  # Symbols of the enclosing FOR loops
+        from .calls import CallChecker  # calls needs ExprChecker; import late
+        self.calls = CallChecker(self)
+
+    # ------------------------------------------------------------ recording
+    def record(self, e, t, value=NOT_CONSTANT):
+        self.program.expr_types[id(e)] = t
+        if value is not NOT_CONSTANT and value is not None and t is not ts.ERROR:
+            self.program.constants[id(e)] = ts.coerce_constant(value, t)
+        return t
+
+    def constant(self, e):
+        return self.program.constants.get(id(e), NOT_CONSTANT)
+
+    # ------------------------------------------------------------- entries
+    def infer(self, e, expected=None, strict: bool = False):
+        """The type of `e`; `expected` is the context's type (a hint for
+        untyped literals and enumeration values); `strict` makes an untyped
+        constant that does not fit `expected` an error."""
+        if e is None:
+            return ts.ERROR
+        if is_untyped_constant(e):
+            settled = self.settle(e, expected, strict)
+            if settled is not None:
+                return settled
+        method = getattr(self, "_" + type(e).__name__, None)
+        if method is None:
+            return self.record(e, ts.ERROR)
+        return method(e, expected)
+
+    def check_value(self, e, dst, what: str):
+        """Type `e` for storing into type `dst`; report when it cannot be."""
+        src = self.infer(e, dst, strict=True)
+        self.require_assignable(src, dst, e.pos, what)
+        return src
+
+    def require_assignable(self, src, dst, pos, what: str) -> bool:
+        if src is ts.ERROR or dst is ts.ERROR:
+            return True
+        if isinstance(src, T.FBType) or isinstance(dst, T.FBType):
+            self.ctx.error("E-TYPE-016", f"{what}: function block instances cannot be copied "
+                           f"(found {src}, expected {dst})", pos)
+            return False
+        if ts.implicitly_converts(src, dst):
+            return True
+        self.ctx.error("E-TYPE-004", f"{what}: expected {dst}, found {src}"
+                       f"{ts.conversion_hint(src, dst)}", pos)
+        return False
+
+    # --------------------------------------------- untyped constant folding
+    def _fold_exact(self, e, values: dict):
+        """Exact value of an untyped constant expression; fills `values`."""
+        if isinstance(e, ast.IntLiteral):
+            v = e.value
+        elif isinstance(e, ast.RealLiteral):
+            v = float(e.value)
+        elif isinstance(e, ast.Unary):
+            v = apply_unary(e.op, self._fold_exact(e.operand, values))
+        else:
+            v = apply_binary(e.op, self._fold_exact(e.left, values), self._fold_exact(e.right, values))
+        values[id(e)] = v
+        if v is NOT_CONSTANT:
+            raise _Unfoldable()
+        return v
+
+    def settle(self, e, expected, strict: bool):
+        """Type an untyped constant expression (see the module docstring).
+
+        Returns None when it cannot be folded (e.g. `1.5 MOD 2`): the caller
+        then types it operator by operator and reports what is wrong.
+        """
+        values: dict[int, object] = {}
+        try:
+            value = self._fold_exact(e, values)
+        except DivisionByZero:
+            self.ctx.error("E-TYPE-017", "division by zero in a constant expression", e.pos)
+            self._record_tree(e, lambda n: ts.ERROR, {})
+            return ts.ERROR
+        except _Unfoldable:
+            return None
+        if isinstance(value, float):
+            t = expected if ts.is_real(expected) else T.LREAL
+            self._record_tree(e, lambda n: t, values)
+            return t
+        ints = [v for v in values.values() if isinstance(v, int)]
+        if ts.is_real(expected) and _is_plain_literal(e):
+            t = expected
+        elif isinstance(expected, T.ElementaryType) and expected.kind in ("int", "bits"):
+            if ts.fits(value, expected):
+                t = expected
+            elif strict:
+                self.ctx.error("E-TYPE-005", f"constant {value} does not fit {expected} "
+                               f"(range {_range(expected)})", e.pos)
+                self._record_tree(e, lambda n: ts.ERROR, {})
+                return ts.ERROR
+            else:
+                t = ts.smallest_int_type(*ints)
+        else:
+            t = ts.smallest_int_type(*ints)
+        if t is None:
+            self.ctx.error("E-TYPE-005", f"integer constant {value} is larger than any integer "
+                           f"type (ULINT holds up to {T.ULINT.max})", e.pos)
+            self._record_tree(e, lambda n: ts.ERROR, {})
+            return ts.ERROR
+
+        def node_type(n):
+            v = values.get(id(n))
+            if not isinstance(v, int) or ts.is_real(t) or ts.fits(v, t):
+                return t
+            own = ts.smallest_int_type(v) or T.ULINT
+            return ts.common_type(t, own) or own
+
+        self._record_tree(e, node_type, values)
+        return t
+
+    def _record_tree(self, e, type_for, values):
+        self.record(e, type_for(e), values.get(id(e), NOT_CONSTANT))
+        if isinstance(e, ast.Unary):
+            self._record_tree(e.operand, type_for, values)
+        elif isinstance(e, ast.Binary):
+            self._record_tree(e.left, type_for, values)
+            self._record_tree(e.right, type_for, values)
+
+    # ------------------------------------------------------------ literals
+    def _IntLiteral(self, e, expected):
+        t = T.ELEMENTARY.get(key(e.type_prefix or "DINT"))
+        if t is None:
+            self.ctx.error("E-DECL-004", f"unknown type prefix {e.type_prefix}# on a literal", e.pos)
+            return self.record(e, ts.ERROR)
+        if t.kind in ("int", "bits", "bool"):
+            if not ts.fits(e.value, t):
+                self.ctx.error("E-TYPE-005", f"literal {e.value} does not fit {t} (range {_range(t)})", e.pos)
+                return self.record(e, ts.ERROR)
+            value = bool(e.value) if t is T.BOOL else e.value
+            return self.record(e, t, value)
+        if t.kind == "real":
+            return self.record(e, t, float(e.value))
+        self.ctx.error("E-TYPE-004", f"integer literal with prefix {t}#: expected a numeric "
+                       f"or bit-string type, found {t}", e.pos)
+        return self.record(e, ts.ERROR)
+
+    def _RealLiteral(self, e, expected):
+        t = T.ELEMENTARY.get(key(e.type_prefix or "LREAL"))
+        if t is None or t.kind != "real":
+            found = t if t is not None else e.type_prefix
+            self.ctx.error("E-TYPE-004", f"real literal {e.value}: expected a REAL or LREAL "
+                           f"prefix, found {found}#", e.pos)
+            return self.record(e, ts.ERROR)
+        return self.record(e, t, float(e.value))
+
+    def _BoolLiteral(self, e, expected):
+        return self.record(e, T.BOOL, bool(e.value))
+
+    def _StringLiteral(self, e, expected):
+        return self.record(e, T.StringType(max(len(e.value), 1), e.wide), e.value)
+
+    def _TimeLiteral(self, e, expected):
+        return self.record(e, T.TIME, e.nanoseconds)
+
+    def _DateTimeLiteral(self, e, expected):
+        t = {"DATE": T.DATE, "TOD": T.TOD, "DT": T.DT}.get(e.kind, T.DT)
+        return self.record(e, t, e.nanoseconds)
+
+    def _EnumLiteral(self, e, expected):
+        t = self.program.types.get(key(e.type_name))
+        if not isinstance(t, T.EnumType):
+            if t is None:
+                self.ctx.error("E-DECL-004", f"unknown enumeration type '{e.type_name}'", e.pos)
+            else:
+                self.ctx.error("E-TYPE-015", f"'{e.type_name}#{e.value_name}': expected an "
+                               f"enumeration type before '#', found {t}", e.pos)
+            return self.record(e, ts.ERROR)
+        entry = t.values.get(key(e.value_name))
+        if entry is None:
+            names = ", ".join(n for n, _ in t.values.values())
+            self.ctx.error("E-TYPE-015", f"'{e.value_name}' is not a value of {t.name} "
+                           f"(values: {names})", e.pos)
+            return self.record(e, ts.ERROR)
+        return self.record(e, t, entry[1])
+
+    # ------------------------------------------------------------- names
+    def _Name(self, e, expected):
+        sym = self.scope.lookup(e.name)
+        if sym is not None:
+            self.program.name_refs[id(e)] = sym
+            return self.record(e, sym.type, self.ctx.symbol_values.get(id(sym), NOT_CONSTANT))
+        enums = self.ctx.enum_values.get(key(e.name))
+        if enums:
+            if expected in enums:
+                enum = expected
+            elif len(enums) == 1:
+                enum = enums[0]
+            else:
+                names = " or ".join(f"{t.name}#{e.name}" for t in enums)
+                self.ctx.error("E-TYPE-015", f"enumeration value '{e.name}' is ambiguous: "
+                               f"write {names}", e.pos)
+                return self.record(e, ts.ERROR)
+            value = enum.values[key(e.name)][1]
+            self.program.name_refs[id(e)] = value
+            return self.record(e, enum, value)
+        self.report_not_a_value(e)
+        return self.record(e, ts.ERROR)
+
+    def report_not_a_value(self, e: ast.Name) -> None:
+        k = key(e.name)
+        pou = self.program.pous.get(k)
+        if pou is not None:
+            self.ctx.error("E-TYPE-016", f"'{e.name}' is a {pou.kind}, not a variable"
+                           + (f"; call it as {e.name}(...)" if pou.kind == "FUNCTION" else ""), e.pos)
+            return
+        if k in self.program.types or k in T.ELEMENTARY:
+            self.ctx.error("E-TYPE-016", f"'{e.name}' is a type, not a variable", e.pos)
+            return
+        hint = self._suggest(e.name)
+        self.ctx.error("E-DECL-001", f"undeclared name '{e.name}'{hint}", e.pos)
+
+    def _suggest(self, name: str) -> str:
+        candidates = {}
+        if self.scope.pou is not None:
+            candidates.update({k: s.name for k, s in self.scope.pou.variables.items()})
+        candidates.update({k: s.name for k, s in self.program.globals.items()})
+        close = difflib.get_close_matches(key(name), list(candidates), n=1, cutoff=0.8)
+        return f" (did you mean '{candidates[close[0]]}'?)" if close else ""
+
+    def _Member(self, e, expected):
+        base = self.infer(e.base)
+        if base is ts.ERROR:
+            return self.record(e, ts.ERROR)
+        k = key(e.name)
+        if isinstance(base, T.StructType):
+            entry = base.fields.get(k)
+            if entry is None:
+                names = ", ".join(n for n, _ in base.fields.values())
+                self.ctx.error("E-TYPE-009", f"struct {base.name} has no member '{e.name}' "
+                               f"(members: {names})", e.pos)
+                return self.record(e, ts.ERROR)
+            return self.record(e, entry[1])
+        if isinstance(base, T.FBType):
+            sym = base.variables.get(k)
+            if sym is None:
+                self.ctx.error("E-TYPE-009", f"function block {base.name} has no variable "
+                               f"'{e.name}'", e.pos)
+                return self.record(e, ts.ERROR)
+            if sym.kind not in ("VAR_INPUT", "VAR_OUTPUT"):
+                self.ctx.error("E-TYPE-009", f"'{e.name}' is a {sym.kind} of {base.name}: only "
+                               f"inputs and outputs are visible outside the instance", e.pos)
+                return self.record(e, ts.ERROR)
+            return self.record(e, sym.type)
+        self.ctx.error("E-TYPE-009", f"'.{e.name}': expected a struct or function block "
+                       f"instance, found {base}", e.pos)
+        return self.record(e, ts.ERROR)
+
+    def _Index(self, e, expected):
+        base = self.infer(e.base)
+        index_types = [self.infer(i, T.DINT) for i in e.indices]
+        if base is ts.ERROR:
+            return self.record(e, ts.ERROR)
+        if not isinstance(base, T.ArrayType):
+            self.ctx.error("E-TYPE-006", f"indexing: expected an array, found {base}", e.pos)
+            return self.record(e, ts.ERROR)
+        if len(e.indices) != len(base.dims):
+            self.ctx.error("E-TYPE-006", f"{base} has {len(base.dims)} dimension(s), "
+                           f"found {len(e.indices)} index(es)", e.pos)
+            return self.record(e, ts.ERROR)
+        for n, (index, t, (lo, hi)) in enumerate(zip(e.indices, index_types, base.dims), 1):
+            if t is ts.ERROR:
+                continue
+            if not ts.is_int(t):
+                self.ctx.error("E-TYPE-007", f"array index: expected an integer, found {t}", index.pos)
+                continue
+            value = self.constant(index)
+            if isinstance(value, int) and not lo <= value <= hi:
+                where = f" of dimension {n}" if len(base.dims) > 1 else ""
+                self.ctx.error("E-TYPE-008", f"index {value} is out of bounds {lo}..{hi}{where}", index.pos)
+        return self.record(e, base.element)
+
+    # --------------------------------------------------------- operators
+    def _Unary(self, e, expected):
+        t = self.infer(e.operand, expected)
+        if t is ts.ERROR:
+            return self.record(e, ts.ERROR)
+        value = self.constant(e.operand)
+        if e.op == "NOT":
+            if not (ts.is_bool(t) or ts.is_bits(t)):
+                self.ctx.error("E-TYPE-001", f"NOT: expected BOOL or a bit string, found {t}", e.pos)
+                return self.record(e, ts.ERROR)
+            if isinstance(value, bool):
+                return self.record(e, t, not value)
+            if isinstance(value, int):
+                return self.record(e, t, ~value & t.max)
+            return self.record(e, t)
+        if not (ts.is_num(t) or t is T.TIME):
+            self.ctx.error("E-TYPE-001", f"unary {e.op}: expected a number or TIME, found {t}", e.pos)
+            return self.record(e, ts.ERROR)
+        return self.record(e, t, apply_unary(e.op, value))
+
+    def _Binary(self, e, expected):
+        op = e.op
+        left_untyped = is_untyped_constant(e.left)
+        right_untyped = is_untyped_constant(e.right)
+        if left_untyped and not right_untyped:
+            rt = self.infer(e.right)
+            lt = self.infer(e.left, self._hint(op, rt, expected, left=True))
+        else:
+            lt = self.infer(e.left)
+            rt = self.infer(e.right, self._hint(op, lt, expected, left=False))
+        t = self._binary_type(e, lt, rt)
+        if t is ts.ERROR:
+            return self.record(e, ts.ERROR)
+        value = NOT_CONSTANT
+        try:
+            value = apply_binary(op, self.constant(e.left), self.constant(e.right))
+        except DivisionByZero:
+            self.ctx.error("E-TYPE-017", "division by zero in a constant expression", e.pos)
+            return self.record(e, ts.ERROR)
+        if op in ("/", "MOD") and ts.is_int(rt) and self.constant(e.right) == 0:
+            self.ctx.error("E-TYPE-017", "division by zero in a constant expression", e.right.pos)
+            return self.record(e, ts.ERROR)
+        return self.record(e, t, value)
+
+    def _hint(self, op, other, expected, left: bool):
+        """The context type for an operand, given the other operand's type."""
+        if op == "**":
+            if left:
+                return expected if ts.is_real(expected) else T.LREAL
+            return None
+        if other is ts.ERROR or other is T.TIME:
+            return None
+        if isinstance(other, (T.ElementaryType, T.EnumType)):
+            return other
+        return None
+
+    def _binary_type(self, e, lt, rt):
+        op = e.op
+        if lt is ts.ERROR or rt is ts.ERROR:
+            return ts.ERROR
+        shown = "AND" if op == "&" else op
+        if op in LOGIC:
+            for t in (lt, rt):
+                if not (ts.is_bool(t) or ts.is_bits(t)):
+                    self.ctx.error("E-TYPE-001", f"{shown}: expected BOOL or bit-string operands, "
+                                   f"found {t}", e.pos)
+                    return ts.ERROR
+            return self._common(e, lt, rt)
+        if op in COMPARISON:
+            return self._comparison(e, lt, rt)
+        time_result = self._time_arithmetic(op, lt, rt)
+        if time_result is not None:
+            return time_result
+        if op == "**":
+            if not ts.is_real(lt):
+                self.ctx.error("E-TYPE-001", f"**: expected a REAL or LREAL base, found {lt}"
+                               f"{ts.conversion_hint(lt, T.LREAL)}", e.pos)
+                return ts.ERROR
+            if not ts.is_num(rt):
+                self.ctx.error("E-TYPE-001", f"**: expected a numeric exponent, found {rt}", e.pos)
+                return ts.ERROR
+            return lt
+        if op == "MOD":
+            for t in (lt, rt):
+                if not ts.is_int(t):
+                    self.ctx.error("E-TYPE-001", f"MOD: expected integer operands, found {t}", e.pos)
+                    return ts.ERROR
+            return self._common(e, lt, rt)
+        for t in (lt, rt):
+            if not ts.is_num(t):
+                self.ctx.error("E-TYPE-001", f"{op}: expected numeric operands (ANY_NUM), found {t}"
+                               + self._time_hint(op, lt, rt), e.pos)
+                return ts.ERROR
+        return self._common(e, lt, rt)
+
+    @staticmethod
+    def _time_hint(op, lt, rt) -> str:
+        if T.TIME in (lt, rt):
+            return "; TIME allows TIME + TIME, TIME - TIME, TIME * number, TIME / number"
+        return ""
+
+    @staticmethod
+    def _time_arithmetic(op, lt, rt):
+        """Result of IEC time arithmetic, or None if this is not one."""
+        if op == "+":
+            table = {("TIME", "TIME"): T.TIME, ("TIME_OF_DAY", "TIME"): T.TOD,
+                     ("DATE_AND_TIME", "TIME"): T.DT}
+        elif op == "-":
+            table = {("TIME", "TIME"): T.TIME, ("TIME_OF_DAY", "TIME"): T.TOD,
+                     ("DATE_AND_TIME", "TIME"): T.DT, ("DATE", "DATE"): T.TIME,
+                     ("TIME_OF_DAY", "TIME_OF_DAY"): T.TIME,
+                     ("DATE_AND_TIME", "DATE_AND_TIME"): T.TIME}
+        elif op in ("*", "/"):
+            if lt is T.TIME and ts.is_num(rt):
+                return T.TIME
+            if op == "*" and rt is T.TIME and ts.is_num(lt):
+                return T.TIME
+            return None
+        else:
+            return None
+        names = (getattr(lt, "name", None), getattr(rt, "name", None))
+        return table.get(names)
+
+    def _common(self, e, lt, rt):
+        c = ts.common_type(lt, rt)
+        if c is None:
+            self.ctx.error("E-TYPE-002", f"{e.op}: operands {lt} and {rt} have no common type; "
+                           f"convert one explicitly (e.g. {ts.short_name(lt)}_TO_{ts.short_name(rt)})"
+                           if isinstance(lt, T.ElementaryType) and isinstance(rt, T.ElementaryType)
+                           else f"{e.op}: operands {lt} and {rt} have no common type", e.pos)
+            return ts.ERROR
+        return c
+
+    def _comparison(self, e, lt, rt):
+        def comparable(t):
+            return isinstance(t, (T.ElementaryType, T.StringType, T.EnumType))
+
+        for t in (lt, rt):
+            if not comparable(t):
+                self.ctx.error("E-TYPE-001", f"{e.op}: expected elementary, string or enumeration "
+                               f"operands, found {t}", e.pos)
+                return ts.ERROR
+        if isinstance(lt, T.EnumType) or isinstance(rt, T.EnumType):
+            if lt is not rt:
+                self.ctx.error("E-TYPE-002", f"{e.op}: cannot compare {lt} with {rt}", e.pos)
+                return ts.ERROR
+            return T.BOOL
+        if ts.is_string(lt) and ts.is_string(rt) and lt.wide == rt.wide:
+            return T.BOOL
+        c = ts.common_type(lt, rt)
+        if c is None:
+            self.ctx.error("E-TYPE-002", f"{e.op}: cannot compare {lt} with {rt}"
+                           + (f"; convert one explicitly (e.g. {ts.short_name(lt)}_TO_{ts.short_name(rt)})"
+                              if isinstance(lt, T.ElementaryType) and isinstance(rt, T.ElementaryType)
+                              else ""), e.pos)
+            return ts.ERROR
+        return T.BOOL
+
+    # ---------------------------------------------------------------- calls
+    def _Call(self, e, expected):
+        return self.calls.check_call(e, expected, statement=False)
+
+
+class _Unfoldable(Exception):
+    pass

@@ -1,0 +1,98 @@
+"""OMRON NJ identifier rules (Sysmac Studio variable and POU names).
+
+* at most 127 bytes in UTF-8;
+* no leading or trailing underscore, no two consecutive underscores;
+* not equal (case-insensitively) to an instruction name.
+
+Errors (`E-NJ-...`) under `--dialect nj`, warnings (`W-NJ-...`) otherwise.
+The built-in prelude (native FB declarations) is exempt.
+
+The instruction table holds the NJ instructions a generated or hand-written
+ST program is most likely to collide with: the IEC standard functions and
+FBs, their conversions, and the common NJ math, string, bit, timer, counter
+and motion instructions.  It is not the complete NJ instruction list.
+"""
+
+from __future__ import annotations
+
+from .. import ast
+from ..ast import key
+from . import builtins as B
+from .context import BUILTIN_FILE, Context
+
+MAX_IDENTIFIER_BYTES = 127
+
+NJ_INSTRUCTIONS: frozenset[str] = frozenset(key(n) for n in """
+    ABS ACOS ASIN ATAN COS SIN TAN EXP EXPT LN LOG SQRT
+    ADD SUB MUL DIV MOD EQ NE LT LE GT GE
+    MIN MAX LIMIT SEL MUX MOVE TRUNC ROUND RoundUp RoundDown Fraction
+    SHL SHR ROL ROR NOT AND OR XOR Inc Dec Swap Set Reset
+    LEN CONCAT LEFT RIGHT MID FIND INSERT DELETE REPLACE
+    TON TOF TP TONR Timer TimerOn TimerOff AccumulationTimer
+    R_TRIG F_TRIG CTU CTD CTUD SR RS Up Down
+    Clear Copy Exchange AryMove AryExchg ArySearch AryMax AryMin AryMean AryShiftReg
+    Band Zone Scale ScaleTrans Cycle PID Lead Lag
+    MC_Power MC_Reset MC_Home MC_Stop MC_ImmediateStop MC_MoveAbsolute MC_MoveRelative
+    MC_MoveVelocity MC_MoveJog MC_SyncMoveAbsolute MC_SyncMoveVelocity MC_GearIn MC_GearOut
+    MC_CamIn MC_CamOut MC_SetPosition MC_ReadAxisParameter MC_Phasing MC_TorqueControl
+    GetTime DtToSec SecToDt ResetCJBError
+""".split())
+
+
+def is_instruction(name: str) -> bool:
+    k = key(name)
+    return k in NJ_INSTRUCTIONS or B.conversion(k) is not None
+
+
+def identifier_problems(name: str) -> list[tuple[str, str]]:
+    """(rule number, message) for every NJ rule the identifier breaks."""
+    problems = []
+    size = len(name.encode("utf-8"))
+    if size > MAX_IDENTIFIER_BYTES:
+        problems.append(("001", f"identifier '{name[:32]}...' is {size} bytes long: expected at "
+                                f"most {MAX_IDENTIFIER_BYTES} bytes (UTF-8) on an OMRON NJ"))
+    if name.startswith("_") or name.endswith("_"):
+        problems.append(("002", f"identifier '{name}' starts or ends with '_': not allowed on an "
+                                f"OMRON NJ"))
+    if "__" in name:
+        problems.append(("003", f"identifier '{name}' contains '__': not allowed on an OMRON NJ"))
+    if is_instruction(name):
+        problems.append(("004", f"identifier '{name}' is the name of an NJ instruction: choose "
+                                f"another name"))
+    return problems
+
+
+def _declared_names(files):
+    """(name, pos) of every identifier a user declares (POUs, types, members, variables)."""
+    def var_blocks(blocks):
+        for block in blocks:
+            for decl in block.decls:
+                yield decl.name, decl.pos
+
+    for f in files:
+        for item in f.items:
+            if item.pos.file == BUILTIN_FILE or f.path == BUILTIN_FILE:
+                continue
+            if isinstance(item, ast.Pou):
+                yield item.name, item.pos
+                yield from var_blocks(item.var_blocks)
+            elif isinstance(item, ast.TypeDecl):
+                yield item.name, item.pos
+                if isinstance(item.spec, ast.StructType):
+                    for m in item.spec.members:
+                        yield m.name, m.pos
+                elif isinstance(item.spec, ast.EnumType):
+                    for v in item.spec.values:
+                        yield v.name, v.pos
+            elif isinstance(item, ast.VarBlock):
+                yield from var_blocks([item])
+            elif isinstance(item, ast.Configuration):
+                yield from var_blocks(item.globals)
+
+
+def check_identifiers(ctx: Context, files) -> None:
+    prefix = "E-NJ-" if ctx.dialect == "nj" else "W-NJ-"
+    report = ctx.error if ctx.dialect == "nj" else ctx.warning
+    for name, pos in _declared_names(files):
+        for rule, message in identifier_problems(name):
+            report(prefix + rule, message, pos)

@@ -1,0 +1,123 @@
+"""Recursion: cycles in the graph of calls and FB instance declarations.
+
+IEC 61131-3 and OMRON NJ forbid recursion.  The graph has an edge A -> B when
+POU A calls function B, calls an instance of FB type B, or declares an
+instance of FB type B (an FB that contains itself, directly or through other
+FBs, would be infinitely large).  Each cycle is reported once.
+"""
+
+from __future__ import annotations
+
+from ..ast import key
+from .context import Context
+from .declarations import _INSTANCE_KINDS, fb_type_of
+
+
+def _edges(ctx: Context) -> dict[str, list[tuple[str, object, str]]]:
+    graph: dict[str, list[tuple[str, object, str]]] = {k: [] for k in ctx.program.pous}
+    for k, info in ctx.program.pous.items():
+        for sym in info.variables.values():
+            fb = fb_type_of(sym.type)
+            if fb is not None and sym.kind in _INSTANCE_KINDS and sym.decl is not None:
+                graph[k].append((key(fb.name), sym.decl.pos, "declares an instance of"))
+    for caller, calls in ctx.calls.items():
+        for callee, pos in calls:
+            if caller in graph and callee in graph:
+                graph[caller].append((callee, pos, "calls"))
+    return graph
+
+
+def _components(graph) -> list[list[str]]:
+    """Strongly connected components (Tarjan, iterative)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    on_stack: set[str] = set()
+    stack: list[str] = []
+    result: list[list[str]] = []
+    counter = 0
+    for root in graph:
+        if root in index:
+            continue
+        work = [(root, 0)]
+        while work:
+            node, i = work.pop()
+            if i == 0:
+                index[node] = low[node] = counter
+                counter += 1
+                stack.append(node)
+                on_stack.add(node)
+            recurse = False
+            edges = graph[node]
+            while i < len(edges):
+                succ = edges[i][0]
+                i += 1
+                if succ not in index:
+                    work.append((node, i))
+                    work.append((succ, 0))
+                    recurse = True
+                    break
+                if succ in on_stack:
+                    low[node] = min(low[node], index[succ])
+            if recurse:
+                continue
+            if low[node] == index[node]:
+                comp = []
+                while True:
+                    w = stack.pop()
+                    on_stack.discard(w)
+                    comp.append(w)
+                    if w == node:
+                        break
+                result.append(comp)
+            if work:
+                parent = work[-1][0]
+                low[parent] = min(low[parent], low[node])
+    return result
+
+
+def _cycle(graph, members: set[str], start: str):
+    """A path of edges start -> ... -> start inside one component (BFS)."""
+    previous: dict[str, tuple[str, tuple]] = {}
+    frontier = [start]
+    while frontier:
+        nxt = []
+        for node in frontier:
+            for edge in graph[node]:
+                succ = edge[0]
+                if succ not in members:
+                    continue
+                if succ == start:
+                    path = [(node, edge)]
+                    while node != start:
+                        node, e = previous[node]
+                        path.append((node, e))
+                    return list(reversed(path))
+                if succ not in previous:
+                    previous[succ] = (node, edge)
+                    nxt.append(succ)
+        frontier = nxt
+    return []
+
+
+def check_recursion(ctx: Context) -> None:
+    graph = _edges(ctx)
+    pous = ctx.program.pous
+    for comp in _components(graph):
+        members = set(comp)
+        if len(comp) == 1 and not any(e[0] == comp[0] for e in graph[comp[0]]):
+            continue
+        start = min(comp, key=lambda k: _order(pous[k]))
+        path = _cycle(graph, members, start)
+        if not path:
+            continue
+        steps = ", ".join(f"{pous[a].name} {how} {pous[b].name}" for a, (b, _, how) in path)
+        first_pos = path[0][1][1]
+        ctx.error("E-REC-001", f"recursion: {steps}; IEC 61131-3 and OMRON NJ forbid recursion",
+                  first_pos)
+
+
+def _order(info):
+    node = info.node
+    if node is None:
+        return ("", 0, 0)
+    return (node.pos.file, node.pos.line, node.pos.col)

@@ -1,0 +1,169 @@
+"""Statements: assignments, calls, IF/CASE/FOR/WHILE/REPEAT, EXIT/CONTINUE."""
+
+from __future__ import annotations
+
+from .. import ast
+from .. import types as T
+from ..ast import key
+from . import typesys as ts
+from .constfold import NOT_CONSTANT
+from .expressions import ExprChecker
+from .stores import check_store
+
+
+class StatementChecker:
+    def __init__(self, ex: ExprChecker):
+        self.ex = ex
+        self.ctx = ex.ctx
+        self.program = ex.program
+        self.loop_depth = 0
+
+    def block(self, stmts) -> None:
+        for stmt in stmts or ():
+            self.statement(stmt)
+
+    def statement(self, s) -> None:
+        method = getattr(self, "_" + type(s).__name__, None)
+        if method is not None:
+            method(s)
+
+    # ------------------------------------------------------------ simple
+    def _Assign(self, s: ast.Assign) -> None:
+        target = check_store(self.ex, s.target)
+        if target is ts.ERROR:
+            if s.value is not None:
+                self.ex.infer(s.value)
+            return
+        self.ex.check_value(s.value, target, "assignment")
+
+    def _CallStmt(self, s: ast.CallStmt) -> None:
+        self.ex.calls.check_call(s.call, None, statement=True)
+
+    def _Exit(self, s) -> None:
+        if self.loop_depth == 0:
+            self.ctx.error("E-FLOW-001", "EXIT outside a loop: expected inside FOR, WHILE or REPEAT", s.pos)
+
+    def _Continue(self, s) -> None:
+        if self.loop_depth == 0:
+            self.ctx.error("E-FLOW-002", "CONTINUE outside a loop: expected inside FOR, WHILE or "
+                           "REPEAT", s.pos)
+
+    # ------------------------------------------------------------ control
+    def condition(self, e, what: str) -> None:
+        t = self.ex.infer(e, T.BOOL)
+        if t is not ts.ERROR and t is not T.BOOL:
+            self.ctx.error("E-TYPE-003", f"{what} condition: expected BOOL, found {t}", e.pos)
+
+    def _If(self, s: ast.If) -> None:
+        for n, branch in enumerate(s.branches):
+            self.condition(branch.condition, "IF" if n == 0 else "ELSIF")
+            self.block(branch.body)
+        self.block(s.else_body)
+
+    def _While(self, s: ast.While) -> None:
+        self.condition(s.condition, "WHILE")
+        self._loop_body(s.body)
+
+    def _Repeat(self, s: ast.Repeat) -> None:
+        self._loop_body(s.body)
+        self.condition(s.condition, "UNTIL")
+
+    def _loop_body(self, body) -> None:
+        self.loop_depth += 1
+        try:
+            self.block(body)
+        finally:
+            self.loop_depth -= 1
+
+    def _For(self, s: ast.For) -> None:
+        sym = self.ex.scope.lookup(s.variable)
+        var_t = ts.ERROR
+        if sym is None:
+            self.ctx.error("E-DECL-001", f"undeclared FOR control variable '{s.variable}'", s.pos)
+        elif not ts.is_int(sym.type):
+            self.ctx.error("E-TYPE-010", f"FOR control variable '{sym.name}': expected an integer "
+                           f"variable, found {sym.type}", s.pos)
+        elif sym.constant:
+            self.ctx.error("E-ASSIGN-001", f"FOR control variable '{sym.name}' is CONSTANT", s.pos)
+        elif sym.kind == "VAR_INPUT" and self.ex.scope.is_local(sym):
+            self.ctx.error("E-ASSIGN-002", f"FOR control variable '{sym.name}' is a VAR_INPUT and "
+                           f"read-only", s.pos)
+        else:
+            var_t = sym.type
+            self.program.for_vars[id(s)] = sym
+        for part, what in ((s.start, "start"), (s.end, "end"), (s.step, "BY")):
+            if part is None:
+                continue
+            t = self.ex.infer(part, var_t if var_t is not ts.ERROR else T.DINT, strict=var_t is not ts.ERROR)
+            if t is ts.ERROR or var_t is ts.ERROR:
+                continue
+            if not ts.is_int(t):
+                self.ctx.error("E-TYPE-010", f"FOR {what} value: expected an integer, found {t}", part.pos)
+            else:
+                self.ex.require_assignable(t, var_t, part.pos, f"FOR {what} value")
+        if s.step is not None and self.ex.constant(s.step) == 0 and var_t is not ts.ERROR:
+            self.ctx.error("E-TYPE-010", "FOR ... BY 0: the step must not be zero", s.step.pos)
+        pushed = sym is not None and var_t is not ts.ERROR
+        if pushed:
+            self.ex.loop_vars.append(sym)
+        self.loop_depth += 1
+        try:
+            self.block(s.body)
+        finally:
+            self.loop_depth -= 1
+            if pushed:
+                self.ex.loop_vars.pop()
+
+    def _Case(self, s: ast.Case) -> None:
+        sel = self.ex.infer(s.selector)
+        if sel is not ts.ERROR and not (ts.is_int(sel) or isinstance(sel, T.EnumType)):
+            self.ctx.error("E-TYPE-011", f"CASE selector: expected an integer or enumeration, "
+                           f"found {sel}", s.selector.pos)
+            sel = ts.ERROR
+        seen: list[tuple[int, int, ast.Pos]] = []
+        for clause in s.clauses:
+            for label in clause.labels:
+                if isinstance(label, ast.CaseRange):
+                    lo = self._label(label.lo, sel)
+                    hi = self._label(label.hi, sel)
+                    if lo is None or hi is None:
+                        continue
+                    if lo > hi:
+                        self.ctx.error("E-TYPE-012", f"CASE range {lo}..{hi}: expected the lower "
+                                       f"bound first", label.pos)
+                        continue
+                    self._unique(seen, lo, hi, label.pos)
+                else:
+                    v = self._label(label, sel)
+                    if v is not None:
+                        self._unique(seen, v, v, label.pos)
+            self.block(clause.body)
+        self.block(s.else_body)
+
+    def _label(self, label, sel):
+        t = self.ex.infer(label, None if sel is ts.ERROR else sel, strict=sel is not ts.ERROR)
+        if t is ts.ERROR or sel is ts.ERROR:
+            return None
+        value = self.ex.constant(label)
+        if value is NOT_CONSTANT or isinstance(value, (bool, float, str)):
+            self.ctx.error("E-TYPE-012", f"CASE label: expected a constant of type {sel}, found "
+                           f"a non-constant expression" if value is NOT_CONSTANT
+                           else f"CASE label: expected a constant of type {sel}, found {t}", label.pos)
+            return None
+        if isinstance(sel, T.EnumType) and t is not sel:
+            self.ctx.error("E-TYPE-012", f"CASE label: expected a value of {sel}, found {t}", label.pos)
+            return None
+        if not isinstance(sel, T.EnumType) and not ts.implicitly_converts(t, sel):
+            self.ctx.error("E-TYPE-012", f"CASE label: expected a constant of type {sel}, found {t}",
+                           label.pos)
+            return None
+        return value
+
+    def _unique(self, seen, lo, hi, pos) -> None:
+        for a, b, first in seen:
+            if lo <= b and a <= hi:
+                what = f"{lo}" if lo == hi else f"{lo}..{hi}"
+                self.ctx.error("E-TYPE-013", f"CASE label {what} overlaps a label at line "
+                               f"{first.line}", pos)
+                return
+        seen.append((lo, hi, pos))

@@ -1,0 +1,83 @@
+"""What may be written: assignment targets, output (`=>`) targets and
+VAR_IN_OUT arguments."""
+
+from __future__ import annotations
+
+from .. import ast
+from .. import types as T
+from . import typesys as ts
+
+
+def root_name(e) -> ast.Name | None:
+    """The variable at the root of `a.b[i].c`, or None if `e` is no variable path."""
+    while isinstance(e, (ast.Member, ast.Index)):
+        e = e.base
+    return e if isinstance(e, ast.Name) else None
+
+
+def is_variable_path(e) -> bool:
+    return isinstance(e, (ast.Name, ast.Member, ast.Index)) and root_name(e) is not None
+
+
+def check_store(ex, target, what: str = "assignment"):
+    """Type `target` as something written to; report when it may not be.
+
+    Returns the target's type (ERROR after a report, so that the value is not
+    also reported).
+    """
+    if not is_variable_path(target):
+        ex.infer(target)
+        ex.ctx.error("E-TYPE-014", f"{what}: expected a variable on the left, found "
+                     f"{_describe(target)}", target.pos)
+        return ts.ERROR
+    t = ex.infer(target)
+    if t is ts.ERROR:
+        return ts.ERROR
+    root = root_name(target)
+    sym = ex.program.name_refs.get(id(root))
+    if not hasattr(sym, "kind"):  # an enumeration value
+        ex.ctx.error("E-TYPE-014", f"{what}: '{root.name}' is an enumeration value, not a variable",
+                     target.pos)
+        return ts.ERROR
+    if sym.constant:
+        ex.ctx.error("E-ASSIGN-001", f"{what}: '{sym.name}' is CONSTANT and cannot be written",
+                     target.pos)
+        return ts.ERROR
+    if sym.kind == "VAR_INPUT" and ex.scope.is_local(sym):
+        ex.ctx.error("E-ASSIGN-002", f"{what}: '{sym.name}' is a VAR_INPUT of "
+                     f"{ex.scope.pou.name} and is read-only inside it", target.pos)
+        return ts.ERROR
+    if any(sym is loop_var for loop_var in ex.loop_vars):
+        ex.ctx.error("E-ASSIGN-003", f"{what}: '{sym.name}' is the control variable of an "
+                     f"enclosing FOR loop", target.pos)
+        return ts.ERROR
+    member = _fb_member(ex, target)
+    if member is not None:
+        fb, var = member
+        ex.ctx.error("E-ASSIGN-004", f"{what}: '{var.name}' is a {var.kind} of function block "
+                     f"{fb.name}; only its inputs may be written from outside", target.pos)
+        return ts.ERROR
+    return t
+
+
+def _fb_member(ex, target):
+    """(FBType, Symbol) when the path writes a non-input variable of an FB instance."""
+    e = target
+    while isinstance(e, (ast.Member, ast.Index)):
+        if isinstance(e, ast.Member):
+            base_t = ex.program.expr_types.get(id(e.base))
+            if isinstance(base_t, T.FBType):
+                var = base_t.variables.get(ast.key(e.name))
+                if var is not None and var.kind != "VAR_INPUT":
+                    return base_t, var
+        e = e.base
+    return None
+
+
+def _describe(e) -> str:
+    if isinstance(e, (ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral, ast.StringLiteral,
+                      ast.TimeLiteral, ast.DateTimeLiteral, ast.EnumLiteral)):
+        return "a literal"
+    if isinstance(e, ast.Call):
+        return "a call"
+    return "an expression"
