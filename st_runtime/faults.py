@@ -1,9 +1,16 @@
 """Runtime faults: what an NJ controller reports as an instruction error.
 
-Library code raises `STFault(code, message)`; the controller catches it,
-abandons the faulting statement, records a `FaultRecord` with the POU, file,
-line and scan number, and goes on scanning (unless told to stop at the first
-fault).  Codes are stable strings registered in `FAULT_CODES`.
+Library code raises `STFault(code, message)`; the compiled code catches it
+around every statement, abandons that statement (the rest of the POU goes on,
+as an NJ goes on after an instruction error), and the controller records a
+`FaultRecord` with the POU, file, line and scan number, then keeps scanning
+unless told to stop at the first fault (`StopRun`).
+
+Two conditions are not instruction errors and end the whole scan instead:
+`ScanOverrun` (the scan used up its budget of loop iterations: "task period
+exceeded") and `StopRun` (stop_on_fault).  Neither derives from `STFault`, so
+the per-statement handlers let them through.  Codes are stable strings
+registered in `FAULT_CODES`.
 """
 
 from __future__ import annotations
@@ -16,17 +23,35 @@ FAULT_CODES: dict[str, str] = {
     "F-PERIOD": "task period exceeded (scan budget of loop iterations used up)",
     "F-MATH": "math error in a standard function (e.g. SQRT of a negative value)",
     "F-CONVERT": "value cannot be converted (out of range or not finite)",
+    "F-NULL-REF": "VAR_IN_OUT used before the caller passed a variable",
 }
 
 
 class STFault(Exception):
-    """Raised by compiled code or library code; caught by the controller."""
+    """Raised by compiled code or library code; caught by the compiled code."""
 
-    def __init__(self, code: str, message: str, line: int | None = None):
+    def __init__(self, code: str, message: str, line: int | None = None, col: int | None = None):
         super().__init__(message)
         self.code = code
         self.message = message
-        self.line = line  # filled in by the compiled code's fault handler when known
+        self.line = line  # where the fault happened, when more precise than the statement
+        self.col = col
+
+
+class ScanOverrun(Exception):
+    """The scan's budget of loop iterations is used up: F-PERIOD, scan ends."""
+
+    def __init__(self, where: tuple):
+        super().__init__("task period exceeded")
+        self.where = where  # (pou, file, line, col) of the loop that ran out
+
+
+class StopRun(Exception):
+    """A fault was recorded with stop_on_fault set: the run ends now."""
+
+    def __init__(self, record: "FaultRecord"):
+        super().__init__(record.render())
+        self.record = record
 
 
 @dataclass(frozen=True, slots=True)

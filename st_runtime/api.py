@@ -1,0 +1,341 @@
+"""The Python API: what `stgen run` and `stgen call` do, for Python callers.
+
+    from st_runtime import load
+
+    project = load(["plc/"])                  # parse, check, compile (raises LoadError)
+    plc = project.controller(period="1ms")    # a simulated controller
+    main = plc.add_program("Main")            # a PROGRAM instance on the primary task
+    main["Setpoint"] = 12.5                   # set a variable (JSON-like values)
+    trace = plc.trace(["Count", "Timer.ET"], program="Main")
+    plc.run(1000)                             # 1000 scans of 1 ms
+    print(main["Count"], main.to_json())      # read one variable or all of them
+    print(plc.faults)                         # runtime faults (FaultRecord)
+
+    project.call("Clamp", {"X": 5})           # a FUNCTION: {"return": ..., outputs...}
+    project.call("Debounce", {"In": True}, until="Q", max_cycles=100)   # an FB, scan by scan
+
+Values go in and come out as JSON-like Python values (see `values.to_json`):
+BOOL as bool, integers as int, REAL/LREAL as float, TIME as "T#1s500ms",
+arrays as nested lists, structs and FB instances as dicts.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+
+from .controller import DEFAULT_BUDGET, Controller
+from .diagnostics import Diagnostic
+from .faults import FaultRecord
+from .native import mangle
+from .objects import STObject, assign_list, is_aggregate
+from .types import ArrayType, FBType, StructType, resolve_alias
+
+
+class LoadError(Exception):
+    """The files do not parse or check: `diagnostics` says why."""
+
+    def __init__(self, diagnostics: list[Diagnostic], sources: dict[str, str]):
+        self.diagnostics = diagnostics
+        self.sources = sources
+        super().__init__("\n".join(d.header() for d in diagnostics if d.is_error))
+
+    def render(self) -> str:
+        return "\n".join(d.render(self.sources.get(d.pos.file)) for d in self.diagnostics)
+
+
+# ------------------------------------------------------------------ loading
+
+
+def _import_natives() -> None:
+    """Register the native FBs shipped with the runtime (standard FBs, motion)."""
+    from importlib import import_module
+
+    for module in ("st_runtime.stdlib.fbs", "st_runtime.motion.fbs"):
+        try:
+            import_module(module)
+        except ModuleNotFoundError as exc:
+            if exc.name != module:
+                raise
+
+
+def collect_files(paths) -> list[str]:
+    """Files named, and every `.st` file (sorted) in directories named."""
+    out: list[str] = []
+    for p in paths:
+        p = os.fspath(p)
+        if os.path.isdir(p):
+            for root, dirs, files in os.walk(p):
+                dirs.sort()
+                out.extend(os.path.join(root, f) for f in sorted(files) if f.lower().endswith(".st"))
+        else:
+            out.append(p)
+    return out
+
+
+def check_sources(sources: dict[str, str], dialect: str = "iec"):
+    """Parse and check texts (path -> text) with the native prelude.
+
+    Returns (CheckedProgram, diagnostics).
+    """
+    from .checker import check
+    from .checker.context import BUILTIN_FILE
+    from .native import prelude_source
+    from .parser import parse
+
+    _import_natives()
+    files = []
+    diagnostics: list[Diagnostic] = []
+    prelude, diags = parse(prelude_source(), BUILTIN_FILE)
+    diagnostics.extend(diags)
+    files.append(prelude)
+    for path, text in sources.items():
+        sf, diags = parse(text, path)
+        diagnostics.extend(diags)
+        if sf is not None:
+            files.append(sf)
+    program, diags = check(files, dialect)
+    diagnostics.extend(diags)
+    program.sources.update(sources)
+    return program, diagnostics
+
+
+def load(paths, dialect: str = "iec") -> "Project":
+    """Load ST files and directories as one program: parse, check, compile."""
+    sources: dict[str, str] = {}
+    errors: list[Diagnostic] = []
+    from .ast import Pos
+
+    for path in collect_files(paths):
+        try:
+            with open(path, encoding="utf-8") as f:
+                sources[path] = f.read()
+        except (OSError, UnicodeDecodeError) as exc:
+            errors.append(Diagnostic("E-IO-001", f"cannot read {path}: {exc}", Pos(path, 0, 0)))
+    if errors:
+        raise LoadError(errors, sources)
+    if not sources:
+        raise LoadError([Diagnostic("E-IO-001", "no .st files given", Pos("<args>", 0, 0))], sources)
+    return load_sources(sources, dialect)
+
+
+def load_text(text: str, path: str = "<text>", dialect: str = "iec") -> "Project":
+    """Load one ST text (tests, notebooks)."""
+    return load_sources({path: text}, dialect)
+
+
+def load_sources(sources: dict[str, str], dialect: str = "iec") -> "Project":
+    from .compiler import CompileError, compile_program
+
+    program, diagnostics = check_sources(sources, dialect)
+    if any(d.is_error for d in diagnostics):
+        raise LoadError(diagnostics, sources)
+    try:
+        compiled = compile_program(program)
+    except CompileError as exc:
+        raise LoadError(diagnostics + [Diagnostic("E-COMPILE-001", exc.message, exc.pos)], sources) from None
+    return Project(compiled, diagnostics, sources)
+
+
+# ------------------------------------------------------------------ project
+
+
+@dataclass
+class Project:
+    compiled: object
+    diagnostics: list          # warnings of a successful load
+    sources: dict = field(default_factory=dict)
+
+    @property
+    def program(self):
+        return self.compiled.checked
+
+    def pou(self, name: str):
+        pou = self.program.pous.get(name.upper())
+        if pou is None:
+            raise KeyError(f"no POU named {name}")
+        return pou
+
+    def controller(self, period="1ms", budget: int = DEFAULT_BUDGET, stop_on_fault: bool = False) -> "Plc":
+        return Plc(Controller(self.compiled, parse_period(period), budget, stop_on_fault))
+
+    def call(self, name: str, inputs: dict | None = None, until: str | None = None,
+             max_cycles: int = 1000, period="1ms") -> dict:
+        """Call a FUNCTION once, or an FB instance once per scan until `until`.
+
+        Returns the outputs by declared name (for a FUNCTION also "return"),
+        "cycles", and "faults" (FaultRecords) -- JSON-like values.
+        """
+        from .calling import call_pou
+
+        return call_pou(self, name, inputs or {}, until, max_cycles, parse_period(period))
+
+
+def parse_period(period) -> int:
+    """`"1ms"`, `"T#2ms"`, or an int of nanoseconds."""
+    if isinstance(period, int):
+        return period
+    from .values import parse_time
+
+    text = str(period).strip()
+    if "#" not in text:
+        text = "T#" + text
+    return parse_time(text)
+
+
+# ------------------------------------------------------------ instances
+
+
+class Instance:
+    """A PROGRAM/FB instance (or struct) seen through declared names."""
+
+    def __init__(self, obj):
+        object.__setattr__(self, "obj", obj)
+
+    @property
+    def layout(self) -> dict:
+        return type(self.obj)._st_vars
+
+    def _locate(self, path: str):
+        """(container, attribute-or-index, type) of a dotted path."""
+        from .trace import parse_path
+
+        steps = parse_path(path)
+        obj = self.obj
+        container, slot, t = None, None, None
+        for kind, value in steps:
+            if kind == "name":
+                if t is not None:
+                    obj = _read(container, slot)
+                layout = type(obj)._st_vars if not isinstance(obj, dict) else {}
+                entry = layout.get(value.upper())
+                if entry is None:
+                    raise KeyError(f"{path}: no variable '{value}'")
+                container, slot, t = obj, mangle(value), entry[1]
+            else:
+                arr = resolve_alias(t)
+                if not isinstance(arr, ArrayType) or len(value) != len(arr.dims):
+                    raise KeyError(f"{path}: wrong indexing")
+                seq = _read(container, slot)
+                offset, stride = 0, 1
+                for i, (lo, hi) in reversed(list(zip(value, arr.dims))):
+                    if not lo <= i <= hi:
+                        raise KeyError(f"{path}: index {i} out of bounds {lo}..{hi}")
+                    offset += (i - lo) * stride
+                    stride *= hi - lo + 1
+                container, slot, t = seq, offset, arr.element
+        return container, slot, t
+
+    def __getitem__(self, path: str):
+        from .values import to_json
+
+        container, slot, t = self._locate(path)
+        return to_json(_read(container, slot), t)
+
+    def raw(self, path: str):
+        """The stored Python value (objects and lists themselves)."""
+        container, slot, _ = self._locate(path)
+        return _read(container, slot)
+
+    def __setitem__(self, path: str, value) -> None:
+        from .values import from_json
+
+        container, slot, t = self._locate(path)
+        stored = from_json(value, t, path)
+        _store(container, slot, t, stored)
+
+    def to_json(self) -> dict:
+        """Every variable (not VAR_IN_OUT/VAR_EXTERNAL) by declared name."""
+        from .values import to_json
+
+        out = {}
+        for key, (name, t) in self.layout.items():
+            attr = mangle(name)
+            value = getattr(self.obj, attr, None)
+            if value is None or _hidden(self.obj, key):
+                continue
+            out[name] = to_json(value, t)
+        return out
+
+
+def _hidden(obj, key: str) -> bool:
+    pou_vars = getattr(type(obj), "_st_kinds", None)
+    return bool(pou_vars) and pou_vars.get(key) in ("VAR_IN_OUT", "VAR_EXTERNAL")
+
+
+def _read(container, slot):
+    if isinstance(slot, int):
+        return container[slot]
+    return getattr(container, slot)
+
+
+def _store(container, slot, t, stored) -> None:
+    """Store a value made by `values.from_json` (plain data) into an object."""
+    t = resolve_alias(t)
+    if isinstance(t, ArrayType):
+        target = _read(container, slot)
+        if is_aggregate(t.element):
+            for i, item in enumerate(stored):
+                _store(target, i, t.element, item)
+        else:
+            target[:] = stored
+    elif isinstance(t, (StructType, FBType)):
+        target = _read(container, slot)
+        layout = type(target)._st_vars
+        for k, item in stored.items():
+            name, ft = layout[k.upper()]
+            _store(target, mangle(name), ft, item)
+    elif isinstance(slot, int):
+        container[slot] = stored
+    else:
+        setattr(container, slot, stored)
+
+
+class Plc:
+    """A controller with name-based access (what `stgen run` drives)."""
+
+    def __init__(self, controller: Controller):
+        self.controller = controller
+
+    def add_program(self, name: str, task: str | None = None) -> Instance:
+        return Instance(self.controller.add_program(name, task))
+
+    def add_task(self, name: str, period) -> None:
+        self.controller.add_task(name, parse_period(period))
+
+    def add_io_hook(self, before=None, after=None) -> None:
+        self.controller.add_io_hook(before, after)
+
+    def program(self, name: str) -> Instance:
+        for key, obj in self.controller.instances.items():
+            if key.upper() == name.upper():
+                return Instance(obj)
+        raise KeyError(f"no program instance {name}")
+
+    @property
+    def globals(self) -> Instance:
+        return Instance(self.controller.globals)
+
+    def run(self, cycles: int = 1) -> int:
+        return self.controller.run(cycles)
+
+    def scan(self) -> bool:
+        return self.controller.scan()
+
+    @property
+    def faults(self) -> list[FaultRecord]:
+        return self.controller.faults
+
+    @property
+    def now_ns(self) -> int:
+        return self.controller.now_ns
+
+    def trace(self, paths: list[str], program: str | None = None):
+        """Record `paths` (in `program`, else in the globals) after every scan."""
+        from .trace import Trace
+
+        roots = [self.program(program).obj] if program else []
+        roots.append(self.controller.globals)
+        trace = Trace.for_objects(paths, roots)
+        self.controller.add_observer(lambda c: trace.sample(c.now_ns, c.scan_count))
+        return trace

@@ -1,0 +1,215 @@
+"""Compile a checked program to Python: one function per POU body.
+
+`compile_program(checked)` returns a `CompiledProgram`: a class per STRUCT,
+FUNCTION_BLOCK and PROGRAM (instances are objects with `__slots__`, see
+`objects.py`), a Python function per FUNCTION, and the instance of the
+global variables.  Each POU body is written as Python source (kept in
+`python_sources` for reading), `compile()`d once, and executed into one
+namespace shared by the whole program.  The rules of the translation live
+in `exprs.py`, `statements.py`, `calls.py` and `scope.py`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from .. import ast
+from ..faults import STFault
+from ..native import NATIVE_FBS, mangle
+from ..objects import AttrRef, ItemRef, STObject, assign_list, native_initializers
+from ..types import FBType, StructType, resolve_alias
+from . import support
+from .calls import Calls
+from .initial import CompileError, InitialValues
+from .pysrc import Emitter, pyliteral, safe_name
+from .statements import BodyCompiler
+
+__all__ = ["compile_program", "CompiledProgram", "CompileError"]
+
+_FAULTS = (STFault, ArithmeticError, ValueError)
+
+
+@dataclass
+class CompiledProgram:
+    checked: object
+    classes: dict[str, type] = field(default_factory=dict)       # STRUCT/FB/PROGRAM upper name ->
+    functions: dict[str, object] = field(default_factory=dict)   # FUNCTION upper name -> callable
+    globals: object = None
+    python_sources: dict[str, str] = field(default_factory=dict)  # POU upper name -> source
+    namespace: dict = field(default_factory=dict)
+
+    def pou(self, name: str):
+        return self.checked.pous[name.upper()]
+
+    def new(self, name: str):
+        """A fresh instance of a PROGRAM, FB or STRUCT type."""
+        return self.classes[name.upper()]()
+
+
+class CompileUnit:
+    """The shared state of one compilation: namespace, makers, bindings."""
+
+    def __init__(self, program):
+        self.program = program
+        self.classes: dict[str, type] = {}
+        self.namespace: dict = {
+            "__builtins__": {"len": len, "range": range, "float": float, "int": int,
+                             "abs": abs, "min": min, "max": max},
+            "_f32": support.f32, "_idiv": support.idiv, "_imod": support.imod,
+            "_rdiv": support.rdiv, "_expt": support.expt, "_time_scale": support.time_scale,
+            "_index_fault": support.index_fault, "_index_fault_n": support.index_fault_n,
+            "_overrun": support.overrun, "_for_range": support.for_range,
+            "_truncate": support.truncate_string, "_AttrRef": AttrRef, "_ItemRef": ItemRef,
+            "_setattr": setattr, "_assign_list": assign_list, "_FAULTS": _FAULTS,
+            "_INF": math.inf, "_NAN": math.nan,
+        }
+        self.makers = 0
+        self.initial = InitialValues(program, self.classes)
+        self.calls = Calls(self)
+        self.sources: dict[str, str] = {}
+
+    def register_maker(self, maker) -> str:
+        self.makers += 1
+        name = f"_mk{self.makers}"
+        self.namespace[name] = maker
+        return name
+
+    def bind_function(self, name: str, pos) -> str:
+        from ..stdlib.functions import FUNCTIONS
+
+        fn = FUNCTIONS.get(name)
+        if fn is None:
+            raise CompileError(f"standard function {name} is not implemented", pos)
+        pyname = safe_name("_sf_" + name)
+        self.namespace[pyname] = fn
+        return pyname
+
+    def bind_conversion(self, name: str, pos) -> str:
+        from ..stdlib.conversions import CONVERSIONS
+
+        fn = CONVERSIONS.get(name.upper())
+        if fn is None:
+            raise CompileError(f"conversion {name} is not implemented", pos)
+        pyname = safe_name("_cv_" + name.upper())
+        self.namespace[pyname] = fn
+        return pyname
+
+    def run_source(self, key: str, source: str) -> None:
+        self.sources[key] = self.sources.get(key, "") + source
+        code = compile(source, f"<st:{key}>", "exec")
+        exec(code, self.namespace)  # the source is generated; ST text only as repr literals
+
+
+def compile_program(program) -> CompiledProgram:
+    """Translate a CheckedProgram; raises CompileError on unsupported input."""
+    unit = CompileUnit(program)
+    _make_classes(unit)
+    _make_initializers(unit)
+    globals_obj = unit.classes["<GLOBALS>"]()
+    unit.namespace["_G"] = globals_obj
+    functions = {}
+    for key, pou in program.pous.items():
+        if pou.node is None or pou.native is not None:
+            continue
+        if pou.kind == "FUNCTION":
+            pyname = safe_name("_fn_" + key)
+            unit.run_source(key, BodyCompiler(program, pou, unit, method=False).function_source(pyname))
+            functions[key] = unit.namespace[pyname]
+        else:
+            pyname = safe_name("_body_" + key)
+            unit.run_source(key, BodyCompiler(program, pou, unit, method=True).function_source(pyname))
+            unit.classes[key].execute = unit.namespace[pyname]
+    classes = {k: v for k, v in unit.classes.items() if k != "<GLOBALS>"}
+    return CompiledProgram(program, classes, functions, globals_obj, unit.sources, unit.namespace)
+
+
+# ------------------------------------------------------------------ classes
+
+
+def _instance_variables(pou) -> list:
+    """The variables an FB/PROGRAM instance stores (not TEMP, not EXTERNAL)."""
+    return [s for s in pou.variables.values() if s.kind not in ("VAR_TEMP", "VAR_EXTERNAL", "VAR_GLOBAL")]
+
+
+def _make_classes(unit: CompileUnit) -> None:
+    program = unit.program
+    for key, t in program.types.items():
+        t = resolve_alias(t)
+        if isinstance(t, StructType) and t.name.upper() == key:
+            slots = tuple(mangle(name) for name, _ in t.fields.values())
+            layout = {k: (name, ft) for k, (name, ft) in t.fields.items()}
+            unit.classes[key] = _new_class(t.name, slots, layout)
+    for key, pou in program.pous.items():
+        if pou.kind == "FUNCTION":
+            continue
+        if pou.node is None or pou.native is not None:
+            native = pou.native or NATIVE_FBS.get(key)
+            if native is None:
+                raise CompileError(f"native FB {pou.name} has no Python class", ast.NOWHERE)
+            native._st_vars = {k: (s.name, s.type) for k, s in pou.variables.items()}
+            native._st_name = pou.name
+            unit.classes[key] = native
+            continue
+        variables = _instance_variables(pou)
+        slots = tuple(mangle(s.name) for s in variables)
+        layout = {s.name.upper(): (s.name, s.type) for s in variables}
+        unit.classes[key] = _new_class(pou.name, slots, layout, pou.kind)
+        unit.classes[key]._st_kinds = {s.name.upper(): s.kind for s in variables}
+    gl = [s for s in program.globals.values()]
+    unit.classes["<GLOBALS>"] = _new_class(
+        "Globals", tuple(mangle(s.name) for s in gl), {s.name.upper(): (s.name, s.type) for s in gl})
+
+
+def _new_class(name: str, slots: tuple, layout: dict, kind: str = "STRUCT") -> type:
+    cls = type(safe_name("ST_" + name.upper()), (STObject,), {
+        "__slots__": slots, "_st_name": name, "_st_vars": layout, "_st_kind": kind,
+    })
+    return cls
+
+
+def _make_initializers(unit: CompileUnit) -> None:
+    program = unit.program
+    initial = unit.initial
+    for key, t in program.types.items():
+        t = resolve_alias(t)
+        if isinstance(t, StructType) and t.name.upper() == key:
+            inits = initial.member_inits.get(key, {})
+            members = [(mangle(name), initial.of(ft, inits.get(fkey), ast.NOWHERE))
+                       for fkey, (name, ft) in t.fields.items()]
+            _install_init(unit, key, members)
+    for key, pou in program.pous.items():
+        if pou.kind == "FUNCTION":
+            continue
+        if pou.node is None or pou.native is not None:
+            cls = unit.classes[key]
+            pairs = native_initializers(pou, lambda s: _maker_of(initial.of_symbol(s)))
+            cls.set_initializers(pairs)
+            continue
+        members = [(mangle(s.name), initial.of_symbol(s)) for s in _instance_variables(pou)]
+        _install_init(unit, key, members)
+    members = [(mangle(s.name), initial.of_symbol(s)) for s in program.globals.values()]
+    _install_init(unit, "<GLOBALS>", members)
+
+
+def _maker_of(value):
+    if value.is_const:
+        const = value.const
+        return lambda: const
+    return value.maker
+
+
+def _install_init(unit: CompileUnit, key: str, members: list) -> None:
+    out = Emitter()
+    pyname = "_init_" + str(len(unit.sources))
+    out.line(f"def {pyname}(self):")
+    out.indent()
+    mark = out.mark()
+    for attr, value in members:
+        if value.is_const:
+            out.line(f"self.{attr} = {pyliteral(value.const)}")
+        else:
+            out.line(f"self.{attr} = {unit.register_maker(value.maker)}()")
+    out.ensure_body(mark)
+    unit.run_source("init:" + key, out.source())
+    unit.classes[key].__init__ = unit.namespace[pyname]

@@ -1,0 +1,249 @@
+"""Calls: user functions, standard functions, conversions and FB instances.
+
+Conventions of the generated code:
+
+* A user FUNCTION `F` becomes `_fn_F(_ctx, <inputs and in-outs in declaration
+  order>)`.  It returns its result, or the tuple (result, outputs...) when it
+  has VAR_OUTPUT variables (OMRON NJ allows them).  Inputs a call leaves out
+  take their declared initial value.
+* A standard function is the library's Python callable bound as `_sf_NAME`
+  (`stdlib.functions.FUNCTIONS`), arguments in IEC order; SHL/SHR/ROL/ROR/NOT
+  get the bit width of IN as a trailing argument.  `A_TO_B` is `_cv_A_TO_B`.
+* An FB call stores the given inputs into the instance (`inst.v_IN = ...`),
+  connects VAR_IN_OUTs (the aggregate itself, or a `Ref`), calls
+  `inst.execute(_ctx)` and then copies the `=>` outputs.
+"""
+
+from __future__ import annotations
+
+from .. import ast
+from ..native import mangle
+from ..objects import is_aggregate
+from ..types import ArrayType, ElementaryType, FBType, StructType, resolve_alias
+from .exprs import elementary, is_real
+from .initial import CompileError
+from .pysrc import pyliteral, safe_name
+
+# Standard functions that map to a Python builtin or to their argument.
+_INLINE = {"ABS": "abs"}
+
+
+class Calls:
+    def __init__(self, unit):
+        self.unit = unit
+
+    # ------------------------------------------------------------ params
+
+    def target(self, ec, call):
+        target = ec.program.call_targets.get(id(call))
+        if target is None:
+            raise CompileError("call was not resolved by the checker", call.pos)
+        return target
+
+    def user_params(self, pou) -> list:
+        """Positional parameters of a user POU: inputs and in-outs, in order."""
+        return [s for s in pou.variables.values() if s.kind in ("VAR_INPUT", "VAR_IN_OUT")]
+
+    def fb_variables(self, ec, call, target) -> dict:
+        if target.pou is not None:
+            return target.pou.variables
+        t = ec.ty(call.callee)
+        if isinstance(t, FBType):
+            return t.variables
+        raise CompileError("cannot find the FB type of this call", call.pos)
+
+    def bind(self, call, params: list, variables: dict):
+        """Match the arguments of `call` to parameters.
+
+        Returns (inputs: {KEY: Arg}, outputs: [(symbol, Arg)]).
+        """
+        inputs: dict = {}
+        outputs: list = []
+        position = 0
+        for arg in call.args:
+            if arg.direction == "out":
+                symbol = variables.get(arg.name.upper())
+                if symbol is None:
+                    raise CompileError(f"no output '{arg.name}'", arg.pos)
+                outputs.append((symbol, arg))
+            elif arg.name is not None:
+                inputs[arg.name.upper()] = arg
+            else:
+                if position >= len(params):
+                    raise CompileError("too many arguments", arg.pos)
+                inputs[params[position].name.upper()] = arg
+                position += 1
+        return inputs, outputs
+
+    # ------------------------------------------------------------- values
+
+    def argument(self, ec, symbol, arg) -> str:
+        """Python source passing `arg` to parameter `symbol`."""
+        if symbol.kind == "VAR_IN_OUT":
+            if is_aggregate(symbol.type):
+                return ec.aggregate(arg.value)
+            return ec.lvalue(arg.value).ref()
+        code = ec.expr(arg.value)
+        return ec.convert(code, ec.ty(arg.value), symbol.type, arg.value)
+
+    def default_argument(self, ec, symbol) -> str:
+        initial = self.unit.initial.of_symbol(symbol)
+        if initial.is_const:
+            return ec.literal(initial.const, symbol.type)
+        return self.unit.register_maker(initial.maker) + "()"
+
+    def store_output(self, ec, source: str, symbol, arg) -> str:
+        """A statement copying output `source` of `symbol` into the `=>` target."""
+        target = ec.lvalue(arg.value)
+        if is_aggregate(symbol.type):
+            return copy_statement(target.read(), source, symbol.type)
+        value = f"(not {source})" if arg.negated else source
+        return target.store(ec.convert(value, symbol.type, target.type))
+
+    # -------------------------------------------------------- statements
+
+    def call_statement(self, ec, call) -> list[str]:
+        """Python statements for a call used as a statement."""
+        target = self.target(ec, call)
+        if target.kind == "fb":
+            return self.fb_call(ec, call, target)
+        if target.kind == "function" and target.pou is not None and target.pou.outputs:
+            return self.user_call_with_outputs(ec, call, target)
+        return [self.call_expr(ec, call)]
+
+    def fb_call(self, ec, call, target) -> list[str]:
+        variables = self.fb_variables(ec, call, target)
+        params = [s for s in variables.values() if s.kind in ("VAR_INPUT", "VAR_IN_OUT")]
+        inputs, outputs = self.bind(call, params, variables)
+        instance = ec.aggregate(call.callee)
+        lines = []
+        if not instance.isidentifier():
+            tmp = ec.temp()
+            lines.append(f"{tmp} = {instance}")
+            instance = tmp
+        for key, arg in inputs.items():
+            symbol = variables.get(key)
+            if symbol is None:
+                raise CompileError(f"no input '{arg.name}'", arg.pos)
+            attr = f"{instance}.{mangle(symbol.name)}"
+            if symbol.kind != "VAR_IN_OUT" and is_aggregate(symbol.type):
+                lines.append(copy_statement(attr, ec.aggregate(arg.value), symbol.type))
+            else:
+                lines.append(f"{attr} = {self.argument(ec, symbol, arg)}")
+        lines.append(f"{instance}.execute(_ctx)")
+        for symbol, arg in outputs:
+            lines.append(self.store_output(ec, f"{instance}.{mangle(symbol.name)}", symbol, arg))
+        return lines
+
+    def user_call_with_outputs(self, ec, call, target) -> list[str]:
+        tmp = ec.temp()
+        code, outputs = self.user_call(ec, call, target)
+        lines = [f"{tmp} = {code}"]
+        out_syms = target.pou.outputs
+        for symbol, arg in outputs:
+            i = 1 + [s.name.upper() for s in out_syms].index(symbol.name.upper())
+            lines.append(self.store_output(ec, f"{tmp}[{i}]", symbol, arg))
+        return lines
+
+    # ------------------------------------------------------- expressions
+
+    def call_expr(self, ec, call) -> str:
+        target = self.target(ec, call)
+        if target.kind == "conversion":
+            return self.conversion(ec, call, target)
+        if target.kind == "function" and target.pou is not None and target.pou.node is not None:
+            code, outputs = self.user_call(ec, call, target)
+            if not target.pou.outputs:
+                return code
+            if not outputs:
+                return f"{code}[0]"
+            tmp = ec.temp()
+            out_syms = [s.name.upper() for s in target.pou.outputs]
+            stores = []
+            for symbol, arg in outputs:
+                i = 1 + out_syms.index(symbol.name.upper())
+                place = ec.lvalue(arg.value)
+                value = f"{tmp}[{i}]"
+                if arg.negated:
+                    value = f"(not {value})"
+                stores.append(place.store_expr(ec.convert(value, symbol.type, place.type)))
+            return f"({tmp} := {code}, {', '.join(stores)}, {tmp}[0])[-1]"
+        if target.kind == "function":
+            return self.standard(ec, call, target)
+        raise CompileError("an FB instance call is a statement, not a value", call.pos)
+
+    def user_call(self, ec, call, target):
+        pou = target.pou
+        params = self.user_params(pou)
+        inputs, outputs = self.bind(call, params, pou.variables)
+        args = ["_ctx"]
+        for symbol in params:
+            arg = inputs.get(symbol.name.upper())
+            if arg is None:
+                if symbol.kind == "VAR_IN_OUT":
+                    raise CompileError(f"VAR_IN_OUT '{symbol.name}' needs a variable", call.pos)
+                args.append(self.default_argument(ec, symbol))
+            else:
+                args.append(self.argument(ec, symbol, arg))
+        name = safe_name("_fn_" + pou.name.upper())
+        return f"{name}({', '.join(args)})", outputs
+
+    def conversion(self, ec, call, target) -> str:
+        if len(call.args) != 1 or call.args[0].direction == "out":
+            raise CompileError(f"{target.name} takes one input", call.pos)
+        fn = self.unit.bind_conversion(target.name, call.pos)
+        return f"{fn}({ec.expr(call.args[0].value)})"
+
+    def standard(self, ec, call, target) -> str:
+        from ..checker.builtins import STANDARD_FUNCTIONS, extra_param
+
+        name = target.name.upper()
+        spec = STANDARD_FUNCTIONS.get(name)
+        if spec is None:
+            raise CompileError(f"unknown standard function {name}", call.pos)
+        ordered: list = []
+        named = {}
+        for i, arg in enumerate(call.args):
+            if arg.direction == "out":
+                raise CompileError(f"{name} has no outputs", arg.pos)
+            if arg.name is None:
+                ordered.append(arg)
+            else:
+                named[arg.name.upper()] = arg
+        if named:
+            count = max(len(spec.params), len(ordered) + len(named))
+            params = [extra_param(spec, i) for i in range(count)]
+            for i, p in enumerate(params):
+                if i >= len(ordered) and p.name.upper() in named:
+                    ordered.append(named.pop(p.name.upper()))
+            if named:
+                raise CompileError(f"{name} has no input '{next(iter(named))}'", call.pos)
+        codes = []
+        generic = resolve_alias(target.generic_type) if target.generic_type is not None else None
+        for i, arg in enumerate(ordered):
+            code = ec.expr(arg.value)
+            p = extra_param(spec, i)
+            if p.generic and is_real(generic) and not is_real(ec.ty(arg.value)):
+                code = f"float({code})"
+            codes.append(code)
+        if name in _INLINE:
+            return f"{_INLINE[name]}({', '.join(codes)})"
+        if name == "MOVE" and len(codes) == 1:
+            return codes[0]
+        if name in ("SHL", "SHR", "ROL", "ROR", "NOT"):
+            t = elementary(ec.ty(ordered[0].value)) or generic
+            codes.append(pyliteral(t.bits if isinstance(t, ElementaryType) else 64))
+        fn = self.unit.bind_function(name, call.pos)
+        return f"{fn}({', '.join(codes)})"
+
+
+def copy_statement(target: str, source: str, t) -> str:
+    """`target := source` for an aggregate: copy in place."""
+    t = resolve_alias(t)
+    if isinstance(t, ArrayType):
+        if is_aggregate(t.element):
+            return f"_assign_list({target}, {source})"
+        return f"{target}[:] = {source}"
+    if isinstance(t, (StructType, FBType)):
+        return f"{target}._assign({source})"
+    raise AssertionError(f"not an aggregate: {t}")

@@ -1,0 +1,436 @@
+"""Expressions: ST expressions to Python expressions, with IEC semantics.
+
+Each method returns Python source text.  The rules that keep it fast:
+variables are Python locals where the body allows it (see `scope.py`);
+array bounds are checked by an inline chained comparison, skipped when a
+static range proves the index inside; integer wrapping and float32
+rounding happen on stores (`convert`), and only when the value may need it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .. import ast
+from ..native import mangle
+from ..objects import is_aggregate
+from ..types import (
+    ArrayType,
+    ElementaryType,
+    EnumType,
+    FBType,
+    StringType,
+    StructType,
+    Type,
+    resolve_alias,
+)
+from .initial import CompileError
+from .pysrc import pyliteral
+
+# Python source of the comparison/arithmetic operators that map one to one.
+_PLAIN_OPS = {"+": "+", "-": "-", "*": "*", "<": "<", ">": ">", "<=": "<=", ">=": ">=",
+              "=": "==", "<>": "!="}
+_BIT_OPS = {"AND": "&", "&": "&", "OR": "|", "XOR": "^"}
+
+
+@dataclass
+class LValue:
+    """A place a value can be stored.
+
+    kind "local": a Python local `name`; "attr": `obj.attr`; "item":
+    `obj[key]`; "ref": a `Ref` held in local `name` (elementary VAR_IN_OUT).
+    """
+
+    kind: str
+    type: Type
+    name: str = ""
+    obj: str = ""
+    key: str = ""
+
+    @property
+    def target(self) -> str:
+        if self.kind == "local":
+            return self.name
+        if self.kind == "attr":
+            return f"{self.obj}.{self.key}"
+        if self.kind == "item":
+            return f"{self.obj}[{self.key}]"
+        raise AssertionError("a ref has no Python target")
+
+    def read(self) -> str:
+        if self.kind == "ref":
+            return f"{self.name}.get()"
+        return self.target
+
+    def store(self, value: str) -> str:
+        if self.kind == "ref":
+            return f"{self.name}.set({value})"
+        return f"{self.target} = {value}"
+
+    def store_expr(self, value: str) -> str:
+        """An expression that stores `value` (inside a larger expression)."""
+        if self.kind == "local":
+            return f"({self.name} := {value})"
+        if self.kind == "attr":
+            return f"_setattr({self.obj}, {self.key!r}, {value})"
+        if self.kind == "item":
+            return f"{self.obj}.__setitem__({self.key}, {value})"
+        return f"{self.name}.set({value})"
+
+    def ref(self) -> str:
+        """An expression for a reference to this place (VAR_IN_OUT)."""
+        if self.kind == "attr":
+            return f"_AttrRef({self.obj}, {self.key!r})"
+        if self.kind == "item":
+            return f"_ItemRef({self.obj}, {self.key})"
+        if self.kind == "ref":
+            return self.name
+        raise AssertionError("a plain local cannot be referenced; the scope makes it a cell")
+
+
+def elementary(t) -> ElementaryType | None:
+    t = resolve_alias(t) if t is not None else None
+    return t if isinstance(t, ElementaryType) else None
+
+
+def is_int_like(t) -> bool:
+    e = elementary(t)
+    return e is not None and e.kind in ("int", "bits", "time", "date", "tod", "dt")
+
+
+def is_real(t) -> bool:
+    e = elementary(t)
+    return e is not None and e.kind == "real"
+
+
+def int_bounds(t) -> tuple[int, int] | None:
+    """The stored range of an integer-like type, None for others."""
+    e = elementary(t)
+    if e is None:
+        t = resolve_alias(t) if t is not None else None
+        if isinstance(t, EnumType):
+            return None
+        return None
+    if e.kind in ("int", "bits"):
+        return e.min, e.max
+    if e.kind in ("time", "date", "tod", "dt"):
+        return -(1 << 63), (1 << 63) - 1
+    if e.kind == "bool":
+        return 0, 1
+    return None
+
+
+class ExprCompiler:
+    """Compiles expressions of one POU body; `scope` says where names live."""
+
+    def __init__(self, program, pou, scope, unit):
+        self.program = program
+        self.pou = pou
+        self.scope = scope
+        self.unit = unit              # the CompileUnit: namespace, functions, classes
+        self.temp_count = 0
+        self.known_ranges: dict[str, tuple[int, int]] = {}   # upper var name -> range
+
+    # ------------------------------------------------------------ helpers
+
+    def temp(self) -> str:
+        self.temp_count += 1
+        return f"_t{self.temp_count}"
+
+    def ty(self, expr) -> Type | None:
+        t = self.program.expr_types.get(id(expr))
+        return resolve_alias(t) if t is not None else None
+
+    def where(self, node) -> str:
+        """A constant tuple naming the position of `node` for fault records."""
+        pos = node.pos
+        return pyliteral((self.pou.name, pos.file, pos.line, pos.col))
+
+    def fail(self, message: str, node):
+        raise CompileError(message, node.pos)
+
+    # --------------------------------------------------------- constants
+
+    def constant_of(self, expr):
+        """The folded value of `expr`, or None when it is not constant."""
+        value = self.program.constants.get(id(expr))
+        if value is not None:
+            return value
+        if isinstance(expr, (ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral, ast.StringLiteral)):
+            return expr.value
+        if isinstance(expr, (ast.TimeLiteral, ast.DateTimeLiteral)):
+            return expr.nanoseconds
+        if isinstance(expr, ast.Unary) and expr.op == "-" and isinstance(expr.operand, (ast.IntLiteral, ast.RealLiteral)):
+            return -expr.operand.value
+        return None
+
+    def literal(self, value, t) -> str:
+        """A constant as Python source, in the representation of type `t`."""
+        e = elementary(t)
+        if e is not None:
+            if e.kind == "real":
+                value = float(value)
+                if e.bits == 32:
+                    from .support import f32
+                    value = f32(value)
+            elif e.kind == "bool":
+                value = bool(value)
+            elif isinstance(value, float) and value.is_integer():
+                value = int(value)
+        return pyliteral(value)
+
+    def static_range(self, expr) -> tuple[int, int] | None:
+        """A range that contains every value `expr` can take, when known."""
+        value = self.constant_of(expr)
+        if isinstance(value, int) and not isinstance(value, bool):
+            return value, value
+        if isinstance(expr, ast.Name):
+            return self.known_ranges.get(expr.name.upper())
+        if isinstance(expr, ast.Binary) and expr.op in ("+", "-"):
+            a = self.static_range(expr.left)
+            b = self.static_range(expr.right)
+            if a and b:
+                if expr.op == "+":
+                    return a[0] + b[0], a[1] + b[1]
+                return a[0] - b[1], a[1] - b[0]
+        return None
+
+    # ------------------------------------------------------- expressions
+
+    def expr(self, e) -> str:
+        value = self.program.constants.get(id(e))
+        if value is not None and not isinstance(e, ast.Call):
+            return self.literal(value, self.ty(e))
+        method = getattr(self, "x_" + type(e).__name__, None)
+        if method is None:
+            self.fail(f"expression {type(e).__name__} is not supported by the runtime", e)
+        return method(e)
+
+    def x_IntLiteral(self, e):
+        return self.literal(e.value, self.ty(e))
+
+    def x_RealLiteral(self, e):
+        t = self.ty(e)
+        return self.literal(e.value, t if t is not None else None)
+
+    def x_BoolLiteral(self, e):
+        return pyliteral(bool(e.value))
+
+    def x_StringLiteral(self, e):
+        return pyliteral(e.value)
+
+    def x_TimeLiteral(self, e):
+        return pyliteral(e.nanoseconds)
+
+    def x_DateTimeLiteral(self, e):
+        return pyliteral(e.nanoseconds)
+
+    def x_EnumLiteral(self, e):
+        return pyliteral(self.unit.initial.enum_value(e.type_name, e.value_name, e.pos))
+
+    def x_Name(self, e):
+        ref = self.program.name_refs.get(id(e))
+        if isinstance(ref, int) and not isinstance(ref, bool):
+            return pyliteral(ref)      # an enumeration value
+        if ref is not None and getattr(ref, "constant", False) and ref.init is not None \
+                and not is_aggregate(ref.type):
+            try:
+                return self.literal(self.unit.initial.const(ref.init), ref.type)
+            except CompileError:
+                pass
+        return self.lvalue(e).read()
+
+    def x_Member(self, e):
+        return self.lvalue(e).read()
+
+    def x_Index(self, e):
+        return self.lvalue(e).read()
+
+    def x_Unary(self, e):
+        operand = self.expr(e.operand)
+        if e.op == "-":
+            return f"(-{operand})"
+        if e.op == "+":
+            return operand
+        t = elementary(self.ty(e.operand))
+        if t is None or t.kind == "bool":
+            return f"(not {operand})"
+        return f"({operand} ^ {(1 << t.bits) - 1})"
+
+    def x_Binary(self, e):
+        op = e.op
+        lt, rt, t = self.ty(e.left), self.ty(e.right), self.ty(e)
+        left, right = self.expr(e.left), self.expr(e.right)
+        if op in _BIT_OPS:
+            return f"({left} {_BIT_OPS[op]} {right})"
+        if op in ("*",) and elementary(t) is not None and elementary(t).kind == "time" \
+                and (is_real(lt) or is_real(rt)):
+            return f"_time_scale({left}, {right})" if elementary(lt).kind == "time" \
+                else f"_time_scale({right}, {left})"
+        if op in _PLAIN_OPS:
+            return f"({left} {_PLAIN_OPS[op]} {right})"
+        if op == "/":
+            if is_int_like(t):
+                if is_real(rt):   # TIME / REAL
+                    return f"int(_rdiv({left}, {right}))"
+                return f"_idiv({left}, {right}, {self.where(e)})"
+            divisor = self.constant_of(e.right)
+            if isinstance(divisor, (int, float)) and not isinstance(divisor, bool) and divisor != 0:
+                return f"({left} / {right})"
+            return f"_rdiv({left}, {right})"
+        if op == "MOD":
+            return f"_imod({left}, {right}, {self.where(e)})"
+        if op == "**":
+            return f"_expt({left}, {right})"
+        self.fail(f"operator {op} is not supported by the runtime", e)
+
+    def x_Call(self, e):
+        return self.unit.calls.call_expr(self, e)
+
+    # ----------------------------------------------------------- places
+
+    def lvalue(self, e) -> LValue:
+        """Where a Name/Member/Index expression lives."""
+        if isinstance(e, ast.Name):
+            return self.scope.lvalue_of_name(self, e)
+        if isinstance(e, ast.Member):
+            base_t = self.ty(e.base)
+            base = self.aggregate(e.base)
+            t = self.member_type(base_t, e.name, e)
+            return LValue("attr", t, obj=base, key=mangle(e.name))
+        if isinstance(e, ast.Index):
+            return self.index_lvalue(e)
+        self.fail("this expression cannot be assigned or referenced", e)
+
+    def aggregate(self, e) -> str:
+        """Python source that evaluates to the object/list of an aggregate."""
+        if isinstance(e, (ast.Name, ast.Member, ast.Index)):
+            place = self.lvalue(e)
+            return place.read()
+        return self.expr(e)
+
+    def member_type(self, base_t, name: str, node) -> Type:
+        base_t = resolve_alias(base_t) if base_t is not None else None
+        key = name.upper()
+        if isinstance(base_t, StructType) and key in base_t.fields:
+            return base_t.fields[key][1]
+        if isinstance(base_t, FBType) and key in base_t.variables:
+            return base_t.variables[key].type
+        t = self.program.expr_types.get(id(node))
+        if t is not None:
+            return t
+        self.fail(f"unknown member '{name}'", node)
+
+    def index_lvalue(self, e) -> LValue:
+        arr_t = self.ty(e.base)
+        if not isinstance(arr_t, ArrayType):
+            self.fail("indexing needs an array", e)
+        if len(e.indices) != len(arr_t.dims):
+            self.fail(f"{len(arr_t.dims)} indices expected, found {len(e.indices)}", e)
+        base = self.aggregate(e.base)
+        name = _describe(e.base)
+        checks: list[str] = []
+        terms: list[str] = []
+        values: list[str] = []
+        offset = 0
+        stride = 1
+        strides = []
+        for lo, hi in reversed(arr_t.dims):
+            strides.append(stride)
+            stride *= hi - lo + 1
+        strides.reverse()
+        for index, (lo, hi), k in zip(e.indices, arr_t.dims, strides):
+            offset -= lo * k
+            const = self.constant_of(index)
+            if isinstance(const, int) and not isinstance(const, bool) and lo <= const <= hi:
+                offset += const * k
+                values.append(pyliteral(const))
+                continue
+            known = self.static_range(index)
+            code = self.expr(index)
+            if known is not None and lo <= known[0] and known[1] <= hi:
+                terms.append(code if k == 1 else f"{code} * {k}")
+                values.append(code)
+                continue
+            if not _is_simple(code):
+                tmp = self.temp()
+                checks.append(f"{lo} <= ({tmp} := {code}) <= {hi}")
+                code = tmp
+            else:
+                checks.append(f"{lo} <= {code} <= {hi}")
+            terms.append(code if k == 1 else f"{code} * {k}")
+            values.append(code)
+        key = " + ".join(terms) if terms else ""
+        if offset:
+            key = f"{key} - {-offset}" if key and offset < 0 else (f"{key} + {offset}" if key else str(offset))
+        if not key:
+            key = "0"
+        if checks:
+            if len(arr_t.dims) == 1:
+                fault = f"_index_fault({values[0]}, {arr_t.dims[0][0]}, {arr_t.dims[0][1]}, {name!r}, {self.where(e)})"
+            else:
+                fault = (f"_index_fault_n(({', '.join(values)},), {pyliteral(tuple(arr_t.dims))}, "
+                         f"{name!r}, {self.where(e)})")
+            key = f"({key}) if {' and '.join(checks)} else {fault}"
+        return LValue("item", arr_t.element, obj=base, key=key)
+
+    # ------------------------------------------------------------ stores
+
+    def convert(self, value: str, src, dst, node=None) -> str:
+        """`value` (of type `src`) as stored in a variable of type `dst`."""
+        dst_r = resolve_alias(dst) if dst is not None else None
+        src_r = resolve_alias(src) if src is not None else None
+        e = elementary(dst_r)
+        plain_read = node is not None and isinstance(node, (ast.Name, ast.Member, ast.Index))
+        if e is not None:
+            if e.kind == "bool":
+                return value
+            if e.kind == "real":
+                s = elementary(src_r)
+                if e.bits == 64:
+                    return f"float({value})" if s is not None and s.kind != "real" else value
+                if s is not None and s.kind == "real" and s.bits == 32 and plain_read:
+                    return value
+                if node is not None and self.constant_of(node) is not None:
+                    return value      # literals are rounded when written
+                return f"_f32({value})"
+            bounds = int_bounds(e)
+            if node is not None:
+                known = self.static_range(node)
+                if known is not None and bounds[0] <= known[0] and known[1] <= bounds[1]:
+                    return value
+                if plain_read:
+                    sb = int_bounds(src_r)
+                    if sb is not None and bounds[0] <= sb[0] and sb[1] <= bounds[1]:
+                        return value
+            bits = 64 if e.kind in ("time", "date", "tod", "dt") else e.bits
+            signed = e.signed or e.kind in ("time", "date", "tod", "dt")
+            mask = (1 << bits) - 1
+            if signed:
+                half = 1 << (bits - 1)
+                return f"((({value}) + {half} & {mask}) - {half})"
+            return f"(({value}) & {mask})"
+        if isinstance(dst_r, StringType):
+            if node is not None and isinstance(self.constant_of(node), str) \
+                    and len(self.constant_of(node)) <= dst_r.length:
+                return value
+            if plain_read and isinstance(src_r, StringType) and src_r.length <= dst_r.length:
+                return value
+            return f"_truncate({value}, {dst_r.length})"
+        return value
+
+
+def _is_simple(code: str) -> bool:
+    """A Python name or literal: cheap to evaluate twice, no side effects."""
+    return code.isidentifier() or code.lstrip("-").isdigit()
+
+
+def _describe(e) -> str:
+    """A short ST rendering of an array expression for fault messages."""
+    if isinstance(e, ast.Name):
+        return e.name
+    if isinstance(e, ast.Member):
+        return f"{_describe(e.base)}.{e.name}"
+    if isinstance(e, ast.Index):
+        return f"{_describe(e.base)}[...]"
+    return "array"

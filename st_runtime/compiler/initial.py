@@ -1,0 +1,217 @@
+"""Initial values: constant initializers evaluated once, at compile time.
+
+An initial value is either a constant (an immutable Python value the
+generated `__init__` writes as a literal) or a maker (a zero-argument
+callable that builds a fresh array, struct or FB instance).  Initializers
+are constant expressions (the checker enforces it); the checker's folded
+values are used where it recorded them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+from .. import ast
+from ..native import mangle
+from ..objects import default_value, is_aggregate, store_value
+from ..types import ArrayType, EnumType, FBType, StructType, Type, resolve_alias
+from .support import idiv, imod
+
+
+class CompileError(Exception):
+    """A construct the compiler cannot translate; carries the position."""
+
+    def __init__(self, message: str, pos: ast.Pos):
+        super().__init__(message)
+        self.message = message
+        self.pos = pos
+
+
+@dataclass(frozen=True)
+class Initial:
+    """`const` is set for an elementary value, `maker` for an aggregate."""
+
+    const: object = None
+    maker: Callable | None = None
+
+    @property
+    def is_const(self) -> bool:
+        return self.maker is None
+
+
+class InitialValues:
+    """Evaluates initializers of one checked program."""
+
+    def __init__(self, program, classes: dict[str, type]):
+        self.program = program
+        self.classes = classes
+        self.member_inits = _member_initializers(program)   # STRUCT/FB name -> {MEMBER: init}
+        self.type_inits = _type_initializers(program)       # TYPE name -> init
+
+    # ---------------------------------------------------------- constants
+
+    def const(self, expr):
+        """The value of a constant expression (Python bool/int/float/str)."""
+        folded = self.program.constants.get(id(expr))
+        if folded is not None:
+            return folded
+        if isinstance(expr, (ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral, ast.StringLiteral)):
+            return expr.value
+        if isinstance(expr, ast.TimeLiteral):
+            return expr.nanoseconds
+        if isinstance(expr, ast.DateTimeLiteral):
+            return expr.nanoseconds
+        if isinstance(expr, ast.EnumLiteral):
+            return self.enum_value(expr.type_name, expr.value_name, expr.pos)
+        if isinstance(expr, ast.Name):
+            ref = self.program.name_refs.get(id(expr))
+            if isinstance(ref, int) and not isinstance(ref, bool):
+                return ref
+            if ref is not None and getattr(ref, "init", None) is not None and ref.constant:
+                return self.const(ref.init)
+            raise CompileError(f"'{expr.name}' is not a constant", expr.pos)
+        if isinstance(expr, ast.Unary):
+            v = self.const(expr.operand)
+            if expr.op == "-":
+                return -v
+            if expr.op == "+":
+                return v
+            return not v if isinstance(v, bool) else ~v
+        if isinstance(expr, ast.Binary):
+            return _fold_binary(expr.op, self.const(expr.left), self.const(expr.right), expr.pos)
+        raise CompileError("initial value is not a constant expression", expr.pos)
+
+    def enum_value(self, type_name: str, value_name: str, pos) -> int:
+        t = resolve_alias(self.program.types.get(type_name.upper()))
+        if isinstance(t, EnumType) and value_name.upper() in t.values:
+            return t.values[value_name.upper()][1]
+        raise CompileError(f"unknown enumeration value {type_name}#{value_name}", pos)
+
+    # ------------------------------------------------------------ values
+
+    def of_symbol(self, symbol) -> Initial:
+        return self.of(symbol.type, symbol.init, symbol.decl.pos if symbol.decl else ast.NOWHERE)
+
+    def of(self, t: Type, init, pos) -> Initial:
+        """The initial value of a variable of type `t` with initializer `init`."""
+        raw = t
+        t = resolve_alias(t)
+        if init is None:
+            init = self.type_inits.get(getattr(raw, "name", None) or "")
+        if not is_aggregate(t):
+            if init is None:
+                return Initial(const=default_value(t, self.classes)())
+            return Initial(const=store_value(t, self.const(init)))
+        if isinstance(t, ArrayType):
+            return Initial(maker=self._array_maker(t, init, pos))
+        return Initial(maker=self._object_maker(t, init, pos))
+
+    def _array_maker(self, t: ArrayType, init, pos) -> Callable:
+        if init is None:
+            return default_value(t, self.classes)
+        if not isinstance(init, ast.ArrayInit):
+            raise CompileError("an array needs an array initializer [...]", getattr(init, "pos", pos))
+        items = self._flatten(init, t.element)
+        if len(items) > t.size:
+            raise CompileError(f"{len(items)} initial values for {t.size} elements", init.pos)
+        items += [self.of(t.element, None, pos)] * (t.size - len(items))
+        if all(item.is_const for item in items):
+            proto = [item.const for item in items]
+            return proto.copy
+        makers = [item.maker if not item.is_const else _constant(item.const) for item in items]
+        return lambda: [make() for make in makers]
+
+    def _flatten(self, init: ast.ArrayInit, element: Type) -> list[Initial]:
+        out: list[Initial] = []
+        for item in init.items:
+            count = 1 if item.count is None else self.const(item.count)
+            if isinstance(item.value, ast.ArrayInit) and not isinstance(resolve_alias(element), ArrayType):
+                one = self._flatten(item.value, element)   # nested brackets of a multi-dim array
+                out.extend(one * count)
+            else:
+                out.extend([self.of(element, item.value, item.pos)] * count)
+        return out
+
+    def _object_maker(self, t: StructType | FBType, init, pos) -> Callable:
+        cls = self.classes[t.name.upper()]
+        if init is None:
+            return cls
+        if not isinstance(init, ast.StructInit):
+            raise CompileError(f"{t.name} needs a structure initializer (...)", getattr(init, "pos", pos))
+        members = _members(t)
+        overrides = []
+        for field in init.fields:
+            member_type = members.get(field.name.upper())
+            if member_type is None:
+                raise CompileError(f"{t.name} has no member '{field.name}'", field.pos)
+            value = self.of(member_type, field.value, field.pos)
+            overrides.append((mangle(field.name), value))
+
+        def make():
+            obj = cls()
+            for attr, value in overrides:
+                setattr(obj, attr, value.const if value.is_const else value.maker())
+            return obj
+
+        return make
+
+
+def _constant(value) -> Callable:
+    return lambda: value
+
+
+def _members(t) -> dict[str, Type]:
+    if isinstance(t, StructType):
+        return {key: ft for key, (_, ft) in t.fields.items()}
+    return {key: sym.type for key, sym in t.variables.items()}
+
+
+def _member_initializers(program) -> dict[str, dict]:
+    out: dict[str, dict] = {}
+    for sf in program.files:
+        for item in sf.items:
+            if isinstance(item, ast.TypeDecl) and isinstance(item.spec, ast.StructType):
+                out[item.name.upper()] = {m.name.upper(): m.init for m in item.spec.members}
+    return out
+
+
+def _type_initializers(program) -> dict[str, object]:
+    out: dict[str, object] = {}
+    for sf in program.files:
+        for item in sf.items:
+            if isinstance(item, ast.TypeDecl) and item.init is not None:
+                out[item.name.upper()] = item.init
+            elif isinstance(item, ast.TypeDecl) and isinstance(item.spec, ast.NamedType):
+                pass
+    return out
+
+
+def _fold_binary(op: str, a, b, pos):
+    try:
+        if op == "+":
+            return a + b
+        if op == "-":
+            return a - b
+        if op == "*":
+            return a * b
+        if op == "/":
+            if isinstance(a, int) and isinstance(b, int) and not isinstance(a, bool):
+                return idiv(a, b, ("", "", pos.line, pos.col))
+            return a / b
+        if op == "MOD":
+            return imod(a, b, ("", "", pos.line, pos.col))
+        if op == "**":
+            return float(a) ** b
+        if op in ("AND", "&"):
+            return a & b
+        if op == "OR":
+            return a | b
+        if op == "XOR":
+            return a ^ b
+        comparisons = {"<": a < b, ">": a > b, "<=": a <= b, ">=": a >= b, "=": a == b, "<>": a != b}
+        if op in comparisons:
+            return comparisons[op]
+    except Exception:
+        pass
+    raise CompileError(f"cannot evaluate constant expression with '{op}'", pos)

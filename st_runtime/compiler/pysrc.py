@@ -1,0 +1,70 @@
+"""Writing Python source safely: literals through `repr`, indented lines.
+
+No text of an ST program reaches the generated Python except through
+`pyliteral` (values) and `mangle` (identifiers, `v_` + upper case, which the
+checker has already restricted to letters, digits and `_`).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+_IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+
+
+def pyliteral(value) -> str:
+    """Python source for a constant value (bool, int, float, str)."""
+    if isinstance(value, bool):
+        return "True" if value else "False"
+    if isinstance(value, int):
+        return repr(int(value))
+    if isinstance(value, float):
+        if math.isnan(value):
+            return "_NAN"
+        if math.isinf(value):
+            return "_INF" if value > 0 else "(-_INF)"
+        return repr(value)
+    if isinstance(value, str):
+        return repr(value)
+    if isinstance(value, tuple):
+        inner = ", ".join(pyliteral(v) for v in value)
+        return f"({inner},)" if len(value) == 1 else f"({inner})"
+    if value is None:
+        return "None"
+    raise TypeError(f"no Python literal for {type(value).__name__}")
+
+
+def safe_name(name: str) -> str:
+    """Assert that a generated Python identifier is a plain identifier."""
+    if not _IDENT.match(name):
+        raise ValueError(f"not a safe Python identifier: {name!r}")
+    return name
+
+
+class Emitter:
+    """Collects indented lines of Python source."""
+
+    def __init__(self) -> None:
+        self.lines: list[str] = []
+        self.depth = 0
+
+    def line(self, text: str) -> None:
+        self.lines.append("    " * self.depth + text)
+
+    def indent(self) -> None:
+        self.depth += 1
+
+    def dedent(self) -> None:
+        self.depth -= 1
+
+    def mark(self) -> int:
+        return len(self.lines)
+
+    def ensure_body(self, mark: int) -> None:
+        """Emit `pass` when nothing was emitted since `mark` (empty block)."""
+        if len(self.lines) == mark:
+            self.line("pass")
+
+    def source(self) -> str:
+        return "\n".join(self.lines) + "\n"

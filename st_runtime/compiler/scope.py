@@ -1,0 +1,200 @@
+"""Where each variable of a POU body lives in the generated Python.
+
+Method bodies (PROGRAM, FUNCTION_BLOCK: `execute(self, _ctx)`):
+
+* elementary VAR/VAR_INPUT/VAR_OUTPUT are copied into Python locals at
+  entry and written back at exit (in a `finally`, so a scan overrun or a
+  RETURN keeps them) -- unless the body passes them to a VAR_IN_OUT, then
+  they stay `self.v_X` so a reference to them sees every store;
+* arrays, structs and FB instances are aliased by a local (their identity
+  never changes: assignment copies into them);
+* VAR_TEMP is a local initialised on every call;
+* elementary VAR_IN_OUT hold a `Ref` (`.get()`/`.set()`), aggregates the
+  caller's object;
+* globals (VAR_GLOBAL, VAR_EXTERNAL) are attributes of `_G`.
+
+Function bodies (`_fn_F(_ctx, inputs...)`): every variable is a Python
+local, initialised on every call; elementary variables passed to a
+VAR_IN_OUT live in a one-element list (a cell) so a reference can reach
+them; aggregate inputs the body modifies are copied at entry (by value).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .. import ast
+from ..native import mangle
+from ..objects import is_aggregate
+from .exprs import LValue
+from .initial import CompileError
+
+
+@dataclass
+class VarPlace:
+    symbol: object
+    how: str          # "local" | "cell" | "self" | "ref" | "alias" | "global"
+    name: str         # Python local name (v_X) or attribute name
+
+
+def walk(node):
+    """Every AST node under `node` (tuples and dataclass fields), preorder."""
+    stack = [node]
+    while stack:
+        n = stack.pop()
+        if isinstance(n, tuple):
+            stack.extend(reversed(n))
+            continue
+        if not isinstance(n, ast.Node):
+            continue
+        yield n
+        for name in n.__dataclass_fields__:
+            if name == "pos":
+                continue
+            value = getattr(n, name)
+            if isinstance(value, (ast.Node, tuple)):
+                stack.append(value)
+
+
+def root_name(e) -> str | None:
+    while isinstance(e, (ast.Member, ast.Index)):
+        e = e.base
+    return e.name.upper() if isinstance(e, ast.Name) else None
+
+
+class Usage:
+    """Which variables a body reads, assigns, and passes by reference."""
+
+    def __init__(self, program, body, calls) -> None:
+        self.used: set[str] = set()
+        self.assigned: set[str] = set()      # direct stores to the variable (root)
+        self.referenced: set[str] = set()    # passed whole to a VAR_IN_OUT
+        for node in walk(body):
+            if isinstance(node, ast.Name):
+                self.used.add(node.name.upper())
+            elif isinstance(node, ast.Assign):
+                self._store(node.target)
+            elif isinstance(node, ast.For):
+                self.used.add(node.variable.upper())
+                self.assigned.add(node.variable.upper())
+            elif isinstance(node, ast.Call):
+                self._call(program, node, calls)
+
+    def _store(self, target) -> None:
+        name = root_name(target)
+        if name:
+            self.assigned.add(name)
+
+    def _call(self, program, call, calls) -> None:
+        target = program.call_targets.get(id(call))
+        variables = {}
+        if target is not None and target.pou is not None:
+            variables = target.pou.variables
+        elif target is not None and target.kind == "fb":
+            t = program.expr_types.get(id(call.callee))
+            variables = getattr(t, "variables", {}) or {}
+        params = [s for s in variables.values() if s.kind in ("VAR_INPUT", "VAR_IN_OUT")]
+        position = 0
+        for arg in call.args:
+            if arg.direction == "out":
+                self._store(arg.value)
+                continue
+            if arg.name is None:
+                symbol = params[position] if position < len(params) else None
+                position += 1
+            else:
+                symbol = variables.get(arg.name.upper())
+            if symbol is not None and symbol.kind == "VAR_IN_OUT":
+                name = root_name(arg.value)
+                if name:
+                    self.assigned.add(name)
+                    if isinstance(arg.value, ast.Name):
+                        self.referenced.add(name)
+
+
+class Scope:
+    def __init__(self, program, pou, method: bool, usage: Usage, globals_name: str = "_G"):
+        self.program = program
+        self.pou = pou
+        self.method = method
+        self.usage = usage
+        self.places: dict[str, VarPlace] = {}
+        self.prologue: list[str] = []
+        self.epilogue: list[str] = []
+        self.params: list[str] = []
+        self._plan()
+
+    # ------------------------------------------------------------ layout
+
+    def _plan(self) -> None:
+        u = self.usage
+        for key, symbol in self.pou.variables.items():
+            name = mangle(symbol.name)
+            aggregate = is_aggregate(symbol.type)
+            kind = symbol.kind
+            if kind == "VAR_EXTERNAL" or kind == "VAR_GLOBAL":
+                self.places[key] = VarPlace(symbol, "global", name)
+                continue
+            if kind == "VAR_IN_OUT":
+                self.places[key] = VarPlace(symbol, "alias" if aggregate else "ref", name)
+                if self.method:
+                    if key in u.used:
+                        self.prologue.append(f"{name} = self.{name}")
+                else:
+                    self.params.append(name)
+                continue
+            referenced = key in u.referenced
+            if self.method and kind != "VAR_TEMP":
+                if aggregate:
+                    self.places[key] = VarPlace(symbol, "alias", name)
+                    if key in u.used:
+                        self.prologue.append(f"{name} = self.{name}")
+                elif referenced:
+                    self.places[key] = VarPlace(symbol, "self", name)
+                else:
+                    self.places[key] = VarPlace(symbol, "local", name)
+                    if key in u.used:
+                        self.prologue.append(f"{name} = self.{name}")
+                    if key in u.assigned:
+                        self.epilogue.append(f"self.{name} = {name}")
+                continue
+            # Function variables and VAR_TEMP: Python locals.
+            how = "alias" if aggregate else ("cell" if referenced else "local")
+            self.places[key] = VarPlace(symbol, how, name)
+            if not self.method and kind == "VAR_INPUT":
+                self.params.append(name)
+                if aggregate and key in u.assigned:
+                    self.prologue.append(("copy", symbol, name))
+                elif how == "cell":
+                    self.prologue.append(f"{name} = [{name}]")
+                continue
+            if key in u.used or kind in ("VAR_OUTPUT", "RETURN"):
+                self.prologue.append(("init", symbol, name, how))
+
+    # ----------------------------------------------------------- lookups
+
+    def place_of(self, e) -> VarPlace:
+        key = e.name.upper()
+        place = self.places.get(key)
+        if place is not None:
+            return place
+        symbol = self.program.globals.get(key)
+        if symbol is not None:
+            place = VarPlace(symbol, "global", mangle(symbol.name))
+            self.places[key] = place
+            return place
+        raise CompileError(f"'{e.name}' is not a variable here", e.pos)
+
+    def lvalue_of_name(self, ec, e) -> LValue:
+        place = self.place_of(e)
+        t = place.symbol.type
+        how = place.how
+        if how in ("local", "alias"):
+            return LValue("local", t, name=place.name)
+        if how == "cell":
+            return LValue("item", t, obj=place.name, key="0")
+        if how == "self":
+            return LValue("attr", t, obj="self", key=place.name)
+        if how == "ref":
+            return LValue("ref", t, name=place.name)
+        return LValue("attr", t, obj="_G", key=place.name)

@@ -1,0 +1,325 @@
+"""Statements and whole POU bodies.
+
+Runtime faults.  Every statement, at every nesting level, is wrapped in
+`try: ... except _FAULTS as _e: _ctx.fault(_e, <where>)`: a faulting
+statement is abandoned (as an NJ abandons a faulting instruction and sets its
+error flag) and execution goes on with the next statement.  In CPython 3.11+
+a `try` costs nothing until something is raised (zero-cost exception
+tables), so this is free on the normal path.  A fault in an IF condition
+abandons the whole IF; in a FOR bound, the whole loop.
+
+Scan budget.  A FOR loop charges its iteration count to `_ctx.budget` once,
+before it starts (its bounds are evaluated once, so the count is known);
+WHILE, REPEAT and FOR loops that may leave early (EXIT, RETURN) charge one
+unit per iteration.  When the budget goes negative the scan ends with
+`ScanOverrun` (F-PERIOD), which the per-statement handlers let through.
+"""
+
+from __future__ import annotations
+
+from .. import ast
+from ..native import mangle
+from ..objects import is_aggregate
+from ..types import ArrayType, resolve_alias
+from .calls import copy_statement
+from .exprs import ExprCompiler, elementary
+from .initial import CompileError
+from .pysrc import Emitter, pyliteral
+from .scope import Scope, Usage, walk
+
+
+class BodyCompiler(ExprCompiler):
+    def __init__(self, program, pou, unit, method: bool):
+        body = pou.node.body if pou.node is not None else ()
+        usage = Usage(program, body, unit.calls)
+        scope = Scope(program, pou, method, usage)
+        super().__init__(program, pou, scope, unit)
+        self.method = method
+        self.body = body
+        self.out = Emitter()
+        if not method:
+            self._add_return_variable()
+
+    def _add_return_variable(self) -> None:
+        key = self.pou.name.upper()
+        if key not in self.scope.places and self.pou.return_type is not None:
+            from ..symbols import Symbol
+            from .scope import VarPlace
+
+            symbol = Symbol(self.pou.name, self.pou.return_type, "RETURN")
+            how = "cell" if key in self.scope.usage.referenced else ("alias" if is_aggregate(symbol.type) else "local")
+            self.scope.places[key] = VarPlace(symbol, how, mangle(self.pou.name))
+            self.scope.prologue.append(("init", symbol, mangle(self.pou.name), how))
+
+    # -------------------------------------------------------------- units
+
+    def function_source(self, pyname: str) -> str:
+        """`def pyname(self, _ctx)` or `def pyname(_ctx, inputs...)`."""
+        o = self.out
+        params = ["self", "_ctx"] if self.method else ["_ctx"] + self.scope.params
+        o.line(f"def {pyname}({', '.join(params)}):")
+        o.indent()
+        for item in self.scope.prologue:
+            o.line(self._prologue_line(item))
+        if self.method and self.scope.epilogue:
+            o.line("try:")
+            o.indent()
+            mark = o.mark()
+            self.statements(self.body)
+            o.ensure_body(mark)
+            o.dedent()
+            o.line("finally:")
+            o.indent()
+            for line in self.scope.epilogue:
+                o.line(line)
+            o.dedent()
+        else:
+            mark = o.mark()
+            self.statements(self.body)
+            o.ensure_body(mark)
+            if not self.method:
+                o.line(self._return_statement())
+        o.dedent()
+        return o.source()
+
+    def _prologue_line(self, item) -> str:
+        if isinstance(item, str):
+            return item
+        if item[0] == "copy":     # an aggregate input the body modifies: by value
+            _, symbol, name = item
+            maker = self.unit.register_maker(self.unit.initial.of(symbol.type, None, ast.NOWHERE).maker)
+            held = "_in" + name
+            return f"{held} = {name}; {name} = {maker}(); {copy_statement(name, held, symbol.type)}"
+        _, symbol, name, how = item
+        initial = self.unit.initial.of_symbol(symbol) if symbol.kind != "RETURN" \
+            else self.unit.initial.of(symbol.type, None, ast.NOWHERE)
+        value = self.literal(initial.const, symbol.type) if initial.is_const \
+            else self.unit.register_maker(initial.maker) + "()"
+        return f"{name} = [{value}]" if how == "cell" else f"{name} = {value}"
+
+    def _return_statement(self) -> str:
+        result = self.scope.lvalue_of_name(self, ast.Name(self.pou.name)).read() \
+            if self.pou.return_type is not None else "None"
+        outputs = [s for s in self.pou.variables.values() if s.kind == "VAR_OUTPUT"]
+        if not outputs:
+            return f"return {result}"
+        reads = [self.scope.lvalue_of_name(self, ast.Name(s.name)).read() for s in outputs]
+        return f"return ({result}, {', '.join(reads)})"
+
+    # --------------------------------------------------------- statements
+
+    def statements(self, body) -> None:
+        for stmt in body:
+            self.statement(stmt)
+
+    def statement(self, stmt) -> None:
+        if isinstance(stmt, ast.Empty):
+            return
+        if isinstance(stmt, (ast.Exit, ast.Continue, ast.Return)):
+            getattr(self, "s_" + type(stmt).__name__)(stmt)
+            return
+        method = getattr(self, "s_" + type(stmt).__name__, None)
+        if method is None:
+            raise CompileError(f"statement {type(stmt).__name__} is not supported by the runtime", stmt.pos)
+        o = self.out
+        o.line("try:")
+        o.indent()
+        mark = o.mark()
+        method(stmt)
+        o.ensure_body(mark)
+        o.dedent()
+        o.line("except _FAULTS as _e:")
+        o.indent()
+        o.line(f"_ctx.fault(_e, {self.where(stmt)})")
+        o.dedent()
+
+    def block(self, body) -> None:
+        self.out.indent()
+        mark = self.out.mark()
+        self.statements(body or ())
+        self.out.ensure_body(mark)
+        self.out.dedent()
+
+    def s_Assign(self, s):
+        target = self.lvalue(s.target)
+        t = resolve_alias(target.type)
+        if is_aggregate(t):
+            self.out.line(copy_statement(target.read(), self.aggregate(s.value), t))
+            return
+        value = self.convert(self.expr(s.value), self.ty(s.value), t, s.value)
+        self.out.line(target.store(value))
+
+    def s_CallStmt(self, s):
+        for line in self.unit.calls.call_statement(self, s.call):
+            self.out.line(line)
+
+    def s_If(self, s):
+        for i, branch in enumerate(s.branches):
+            keyword = "if" if i == 0 else "elif"
+            self.out.line(f"{keyword} {self.expr(branch.condition)}:")
+            self.block(branch.body)
+        if s.else_body:
+            self.out.line("else:")
+            self.block(s.else_body)
+
+    def s_Case(self, s):
+        selector = self.temp()
+        self.out.line(f"{selector} = {self.expr(s.selector)}")
+        t = self.ty(s.selector)
+        first = True
+        for clause in s.clauses:
+            singles: list[str] = []
+            tests: list[str] = []
+            for label in clause.labels:
+                if isinstance(label, ast.CaseRange):
+                    lo = self.literal(self._label(label.lo), t)
+                    hi = self.literal(self._label(label.hi), t)
+                    tests.append(f"{lo} <= {selector} <= {hi}")
+                else:
+                    singles.append(self.literal(self._label(label), t))
+            if len(singles) == 1:
+                tests.insert(0, f"{selector} == {singles[0]}")
+            elif singles:
+                tests.insert(0, f"{selector} in ({', '.join(singles)},)")
+            self.out.line(f"{'if' if first else 'elif'} {' or '.join(tests) or 'False'}:")
+            first = False
+            self.block(clause.body)
+        if s.else_body:
+            if first:
+                self.out.line("if True:")
+            else:
+                self.out.line("else:")
+            self.block(s.else_body)
+
+    def _label(self, label):
+        value = self.constant_of(label)
+        if value is None and isinstance(label, ast.Name):
+            ref = self.program.name_refs.get(id(label))
+            if isinstance(ref, int):
+                return ref
+        if value is None and isinstance(label, ast.EnumLiteral):
+            return self.unit.initial.enum_value(label.type_name, label.value_name, label.pos)
+        if value is None:
+            value = self.unit.initial.const(label)
+        return value
+
+    def s_For(self, s):
+        o = self.out
+        var = ast.Name(s.variable, pos=s.pos)
+        place = self.scope.place_of(var)
+        target = self.scope.lvalue_of_name(self, var)
+        var_t = place.symbol.type
+        start = self.expr(s.start)
+        end = self.expr(s.end)
+        step_value = 1 if s.step is None else self.constant_of(s.step)
+        rng = self.temp()
+        where = self.where(s)
+        if isinstance(step_value, int) and not isinstance(step_value, bool):
+            if step_value == 0:
+                o.line(f"_overrun({where})")
+                return
+            edge = f"{end} + 1" if step_value > 0 else f"{end} - 1"
+            end_const = self.constant_of(s.end)
+            if isinstance(end_const, int) and not isinstance(end_const, bool):
+                edge = pyliteral(end_const + (1 if step_value > 0 else -1))
+            o.line(f"{rng} = range({start}, {edge}, {step_value})")
+            step_code = pyliteral(step_value)
+        else:
+            step_code = self.temp()
+            o.line(f"{step_code} = {self.expr(s.step)}")
+            o.line(f"{rng} = _for_range({start}, {end}, {step_code}, {where})")
+        early = _leaves_early(s.body)
+        if not early:
+            o.line(f"_ctx.budget -= len({rng})")
+            o.line(f"if _ctx.budget < 0: _overrun({where})")
+        key = s.variable.upper()
+        saved = self.known_ranges.get(key)
+        lo_r, hi_r = self.static_range(s.start), self.static_range(s.end)
+        if lo_r and hi_r and isinstance(step_value, int) and key not in Usage(self.program, s.body, None).assigned:
+            lo, hi = (lo_r[0], hi_r[1]) if step_value > 0 else (hi_r[0], lo_r[1])
+            self.known_ranges[key] = (lo, hi)
+        else:
+            self.known_ranges.pop(key, None)
+        if target.kind == "ref":
+            loop_var = self.temp()
+            o.line(f"for {loop_var} in {rng}:")
+            o.indent()
+            o.line(target.store(loop_var))
+            o.dedent()
+        else:
+            o.line(f"for {target.target} in {rng}:")
+        o.indent()
+        if early:
+            o.line("_ctx.budget -= 1")
+            o.line(f"if _ctx.budget < 0: _overrun({where})")
+        mark = o.mark()
+        self.statements(s.body)
+        o.ensure_body(mark)
+        o.dedent()
+        if saved is None:
+            self.known_ranges.pop(key, None)
+        else:
+            self.known_ranges[key] = saved
+        # After a normal end the variable holds the first value that failed
+        # the test (IEC: FOR is a WHILE loop that increments by BY).
+        o.line("else:")
+        o.indent()
+        final = f"{rng}.start + len({rng}) * {rng}.step"
+        o.line(target.store(self.convert(final, None, var_t)))
+        o.dedent()
+
+    def s_While(self, s):
+        o = self.out
+        o.line(f"while {self.expr(s.condition)}:")
+        o.indent()
+        self._charge(s)
+        self.statements(s.body)
+        o.dedent()
+
+    def s_Repeat(self, s):
+        o = self.out
+        first = self.temp()
+        o.line(f"{first} = True")
+        o.line(f"while {first} or not {self.expr(s.condition)}:")
+        o.indent()
+        o.line(f"{first} = False")
+        self._charge(s)
+        self.statements(s.body)
+        o.dedent()
+
+    def _charge(self, s) -> None:
+        self.out.line("_ctx.budget -= 1")
+        self.out.line(f"if _ctx.budget < 0: _overrun({self.where(s)})")
+
+    def s_Exit(self, s):
+        self.out.line("break")
+
+    def s_Continue(self, s):
+        self.out.line("continue")
+
+    def s_Return(self, s):
+        if self.method:
+            self.out.line("return")
+        else:
+            self.out.line(self._return_statement())
+
+
+def _leaves_early(body) -> bool:
+    """Whether a loop body may leave its loop before the count runs out."""
+    for node in walk(body):
+        if isinstance(node, ast.Return):
+            return True
+    return _has_own_exit(body)
+
+
+def _has_own_exit(body) -> bool:
+    for stmt in body:
+        if isinstance(stmt, ast.Exit):
+            return True
+        if isinstance(stmt, ast.If):
+            if any(_has_own_exit(b.body) for b in stmt.branches) or _has_own_exit(stmt.else_body or ()):
+                return True
+        elif isinstance(stmt, ast.Case):
+            if any(_has_own_exit(c.body) for c in stmt.clauses) or _has_own_exit(stmt.else_body or ()):
+                return True
+    return False

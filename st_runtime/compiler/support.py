@@ -1,0 +1,118 @@
+"""Helpers the generated Python code calls: the operations that need more
+than one Python operator (IEC integer division, MOD, float32 rounding, EXPT)
+and the raisers of runtime faults.
+
+Everything here is bound into the namespace of the generated code under a
+name starting with `_` (ST names are mangled to `v_...`, so they never meet).
+"""
+
+from __future__ import annotations
+
+import array
+import math
+
+from ..faults import STFault, ScanOverrun
+
+_F32 = array.array("f", [0.0])
+
+
+def f32(x) -> float:
+    """Round to the nearest float32 (IEC REAL); overflow gives +-inf.
+
+    An `array('f')` store is the fastest float32 rounding measured here
+    (40 ns against 57 ns for struct pack/unpack and 210 ns for numpy).
+    """
+    _F32[0] = x
+    return _F32[0]
+
+
+def wrap_int(v: int, bits: int, signed: bool) -> int:
+    """Keep the low `bits` bits, two's complement when `signed`."""
+    mask = (1 << bits) - 1
+    if signed:
+        half = 1 << (bits - 1)
+        return ((v + half) & mask) - half
+    return v & mask
+
+
+def idiv(a: int, b: int, where: tuple) -> int:
+    """Integer `/`: truncates toward zero; division by zero is F-DIV-ZERO."""
+    if b == 0:
+        raise STFault("F-DIV-ZERO", "integer division by zero", where[2], where[3])
+    q = a // b
+    if q < 0 and q * b != a:
+        q += 1
+    return q
+
+
+def imod(a: int, b: int, where: tuple) -> int:
+    """MOD: the remainder takes the sign of the dividend (a = b*(a/b) + a MOD b)."""
+    if b == 0:
+        raise STFault("F-DIV-ZERO", "MOD by zero", where[2], where[3])
+    r = abs(a) % abs(b)
+    return -r if a < 0 else r
+
+
+def rdiv(a: float, b: float) -> float:
+    """Real `/` with IEEE 754 results for a zero divisor (inf, -inf, nan)."""
+    try:
+        return a / b
+    except ZeroDivisionError:
+        if a == 0 or a != a:
+            return math.nan
+        return math.copysign(math.inf, a) * math.copysign(1.0, b)
+
+
+def expt(a, b) -> float:
+    """`a ** b` on reals; a math error (negative base, 0 ** -1) is F-MATH."""
+    try:
+        r = float(a) ** b
+    except ZeroDivisionError:
+        raise STFault("F-MATH", f"EXPT({a}, {b}): zero to a negative power") from None
+    except OverflowError:
+        return math.inf
+    if isinstance(r, complex):
+        raise STFault("F-MATH", f"EXPT({a}, {b}): negative base with a non-integer exponent")
+    return r
+
+
+def time_scale(t: int, factor) -> int:
+    """TIME * number and TIME / number, truncated to whole nanoseconds."""
+    return int(t * factor)
+
+
+def index_fault(value: int, lo: int, hi: int, name: str, where: tuple):
+    raise STFault(
+        "F-INDEX",
+        f"index {value} of '{name}' out of bounds {lo}..{hi}",
+        where[2], where[3],
+    )
+
+
+def index_fault_n(values: tuple, dims: tuple, name: str, where: tuple):
+    """A multi-dimensional index out of range: name the first bad one."""
+    for n, (value, (lo, hi)) in enumerate(zip(values, dims), start=1):
+        if not lo <= value <= hi:
+            raise STFault(
+                "F-INDEX",
+                f"index {value} (dimension {n}) of '{name}' out of bounds {lo}..{hi}",
+                where[2], where[3],
+            )
+    raise AssertionError("index_fault_n called with indices in range")
+
+
+def overrun(where: tuple):
+    raise ScanOverrun(where)
+
+
+def for_range(start: int, end: int, step: int, where: tuple) -> range:
+    """The iterations of FOR with a step known only at run time."""
+    if step > 0:
+        return range(start, end + 1, step)
+    if step < 0:
+        return range(start, end - 1, step)
+    raise ScanOverrun(where)  # BY 0 loops forever on a PLC: period exceeded
+
+
+def truncate_string(s: str, n: int) -> str:
+    return s if len(s) <= n else s[:n]

@@ -1,0 +1,250 @@
+"""The runtime object model: how ST values live in Python.
+
+* Elementary values are Python values (see `values.py`): bool, int (integers,
+  bit strings, enums, TIME/DATE/TOD/DT as nanoseconds), float, str.
+* An ARRAY is a flat Python `list`, row-major, offset 0 at the lower bound of
+  every dimension; the bounds live in its `ArrayType`, and the compiled code
+  checks them inline.  Assignment of an array copies it into the target list,
+  so a list's identity never changes and a VAR_IN_OUT can hold the list.
+* A STRUCT value, an FB instance and a PROGRAM instance are objects of
+  generated classes with `__slots__` named by `mangle()` (`v_<NAME>`).  Each
+  class knows its ST variables (`_st_vars`: upper-case name -> (declared name,
+  Type)) so tools can walk it (JSON, trace, dotted paths).
+* A VAR_IN_OUT of an elementary type holds a `Ref` to the caller's variable
+  (`AttrRef` for a variable or member, `ItemRef` for an array element);
+  aggregates are passed as the object itself.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+from .faults import STFault
+from .native import NativeFB, mangle
+from .types import (
+    AliasType,
+    ArrayType,
+    ElementaryType,
+    EnumType,
+    FBType,
+    StringType,
+    StructType,
+    Type,
+    resolve_alias,
+)
+
+Maker = Callable[[], object]
+
+
+# --------------------------------------------------------------- references
+
+
+class AttrRef:
+    """A reference to an attribute of an object (a variable or member)."""
+
+    __slots__ = ("obj", "attr")
+
+    def __init__(self, obj, attr: str):
+        self.obj = obj
+        self.attr = attr
+
+    def get(self):
+        return getattr(self.obj, self.attr)
+
+    def set(self, value) -> None:
+        setattr(self.obj, self.attr, value)
+
+
+class ItemRef:
+    """A reference to an element of an array (a list and a flat offset)."""
+
+    __slots__ = ("seq", "index")
+
+    def __init__(self, seq: list, index: int):
+        self.seq = seq
+        self.index = index
+
+    def get(self):
+        return self.seq[self.index]
+
+    def set(self, value) -> None:
+        self.seq[self.index] = value
+
+
+class NullRef:
+    """What an unconnected elementary VAR_IN_OUT holds: any use is a fault."""
+
+    __slots__ = ("name",)
+
+    def __init__(self, name: str):
+        self.name = name
+
+    def get(self):
+        raise STFault("F-NULL-REF", f"VAR_IN_OUT '{self.name}' was not passed a variable")
+
+    set = get
+
+
+# ------------------------------------------------------------- aggregates
+
+
+class STObject:
+    """Base of struct values, ST FB instances and PROGRAM instances."""
+
+    __slots__ = ()
+    _st_name: str = ""
+    _st_vars: dict = {}            # upper-case name -> (declared name, Type)
+
+    def _assign(self, other: "STObject") -> None:
+        """`self := other`: copy every member, deep, keeping identities."""
+        for attr in self.__slots__:
+            mine = getattr(self, attr)
+            theirs = getattr(other, attr)
+            if isinstance(mine, STObject):
+                mine._assign(theirs)
+            elif isinstance(mine, list):
+                assign_list(mine, theirs)
+            else:
+                setattr(self, attr, theirs)
+
+    def __repr__(self) -> str:
+        inner = ", ".join(f"{name}={getattr(self, mangle(name))!r}" for name, _ in self._st_vars.values())
+        return f"{self._st_name}({inner})"
+
+
+def assign_list(target: list, source: list) -> None:
+    """Array assignment: copy `source` into `target` element by element."""
+    if target and isinstance(target[0], STObject):
+        for mine, theirs in zip(target, source):
+            mine._assign(theirs)
+    elif target and isinstance(target[0], list):  # pragma: no cover - flat arrays only
+        for mine, theirs in zip(target, source):
+            assign_list(mine, theirs)
+    else:
+        target[:] = source
+
+
+def st_vars_of(obj) -> dict:
+    """The ST variables of a struct value, FB instance or PROGRAM instance."""
+    layout = getattr(type(obj), "_st_vars", None)
+    if layout is None:
+        raise TypeError(f"{type(obj).__name__} is not an ST object")
+    return layout
+
+
+# ------------------------------------------------------- initial values
+
+
+def default_value(t: Type, classes: dict[str, type]) -> Maker:
+    """A maker of the default initial value of type `t` (no initializer)."""
+    t = resolve_alias(t)
+    if isinstance(t, ElementaryType):
+        value = _ELEMENTARY_DEFAULTS[t.kind]
+        return lambda: value
+    if isinstance(t, StringType):
+        return lambda: ""
+    if isinstance(t, EnumType):
+        first = next(iter(t.values.values()))[1] if t.values else 0
+        return lambda: first
+    if isinstance(t, ArrayType):
+        element = default_value(t.element, classes)
+        size = t.size
+        if _is_aggregate(t.element):
+            return lambda: [element() for _ in range(size)]
+        proto = [element()] * size
+        return proto.copy
+    if isinstance(t, (StructType, FBType)):
+        return classes[t.name.upper()]
+    raise TypeError(f"no default value for {t}")
+
+
+_ELEMENTARY_DEFAULTS = {
+    "bool": False, "int": 0, "bits": 0, "real": 0.0,
+    "time": 0, "date": 0, "tod": 0, "dt": 0,
+}
+
+
+def _is_aggregate(t: Type) -> bool:
+    return isinstance(resolve_alias(t), (ArrayType, StructType, FBType))
+
+
+def is_aggregate(t: Type) -> bool:
+    """Arrays, structs and FB instances: stored as mutable objects."""
+    return _is_aggregate(t)
+
+
+def store_value(t: Type, value):
+    """Convert a Python value to what a variable of type `t` stores.
+
+    Used for initial values and values coming from outside (API, JSON): wraps
+    integers, rounds REAL to float32, truncates strings.
+    """
+    from .compiler.support import f32, wrap_int  # the compiled code's own rules
+
+    t = resolve_alias(t)
+    if isinstance(t, ElementaryType):
+        if t.kind == "bool":
+            return bool(value)
+        if t.kind == "real":
+            return f32(float(value)) if t.bits == 32 else float(value)
+        if isinstance(value, bool) or not isinstance(value, int):
+            if isinstance(value, float) and value.is_integer():
+                value = int(value)
+            else:
+                raise TypeError(f"{t.name} needs an integer, got {value!r}")
+        bits = 64 if t.kind in ("time", "date", "tod", "dt") else t.bits
+        return wrap_int(value, bits, t.signed or t.kind in ("time", "date", "tod", "dt"))
+    if isinstance(t, StringType):
+        return str(value)[: t.length]
+    if isinstance(t, EnumType):
+        return int(value)
+    raise TypeError(f"{t} is not an elementary type")
+
+
+# ---------------------------------------------------------- native layouts
+
+
+def native_initializers(pou, make_initial) -> list[tuple[str, Maker]]:
+    """(attribute, maker) pairs of a native FB's variables, declaration order.
+
+    `make_initial(symbol)` gives the maker of a symbol's initial value (the
+    compiler's, so native and ST FBs follow the same rules).
+    """
+    pairs = []
+    for symbol in pou.variables.values():
+        if symbol.kind == "VAR_IN_OUT":
+            pairs.append((mangle(symbol.name), _none))
+        else:
+            pairs.append((mangle(symbol.name), make_initial(symbol)))
+    return pairs
+
+
+def _none():
+    return None
+
+
+_native_layouts_installed = False
+
+
+def install_native_layouts() -> None:
+    """Check the native prelude on its own and install every native layout.
+
+    Needed only when a native FB is instantiated outside a compiled program
+    (unit tests of the library); compiling a program installs them too.
+    """
+    global _native_layouts_installed
+    if _native_layouts_installed:
+        return
+    from .compiler import compile_program  # late import: compiler needs objects
+    from .checker import check
+    from .checker.context import BUILTIN_FILE
+    from .native import prelude_source
+    from .parser import parse
+
+    prelude, diagnostics = parse(prelude_source(), BUILTIN_FILE)
+    program, more = check([prelude], "iec")
+    errors = [d for d in diagnostics + more if d.is_error]
+    if errors:
+        raise RuntimeError("native prelude does not check: " + "; ".join(d.header() for d in errors))
+    compile_program(program)
+    _native_layouts_installed = True
