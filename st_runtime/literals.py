@@ -192,14 +192,14 @@ def encode_string(value: str, wide: bool = False) -> str:
             out.append("$T")
         elif ch == "\f":
             out.append("$P")
-        elif ch.isprintable() and (ord(ch) < 256 or wide):
+        elif ch.isprintable():
             out.append(ch)
-        elif ord(ch) < 256 and not wide:
+        elif ord(ch) < 256:
             out.append(f"${ord(ch):02X}")
-        elif ord(ch) < 0x10000:
+        elif wide and ord(ch) < 0x10000:
             out.append(f"${ord(ch):04X}")
         else:
-            raise LiteralError(f"character U+{ord(ch):X} cannot be written in ST")
+            out.append(ch)  # no escape exists for it: keep the character itself
     out.append(quote)
     return "".join(out)
 
