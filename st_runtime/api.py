@@ -59,64 +59,12 @@ def _import_natives() -> None:
                 raise
 
 
-def collect_files(paths) -> list[str]:
-    """Files named, and every `.st` file (sorted) in directories named."""
-    out: list[str] = []
-    for p in paths:
-        p = os.fspath(p)
-        if os.path.isdir(p):
-            for root, dirs, files in os.walk(p):
-                dirs.sort()
-                out.extend(os.path.join(root, f) for f in sorted(files) if f.lower().endswith(".st"))
-        else:
-            out.append(p)
-    return out
-
-
-def check_sources(sources: dict[str, str], dialect: str = "iec"):
-    """Parse and check texts (path -> text) with the native prelude.
-
-    Returns (CheckedProgram, diagnostics).
-    """
-    from .checker import check
-    from .checker.context import BUILTIN_FILE
-    from .native import prelude_source
-    from .parser import parse
-
-    _import_natives()
-    files = []
-    diagnostics: list[Diagnostic] = []
-    prelude, diags = parse(prelude_source(), BUILTIN_FILE)
-    diagnostics.extend(diags)
-    files.append(prelude)
-    for path, text in sources.items():
-        sf, diags = parse(text, path)
-        diagnostics.extend(diags)
-        if sf is not None:
-            files.append(sf)
-    program, diags = check(files, dialect)
-    diagnostics.extend(diags)
-    program.sources.update(sources)
-    return program, diagnostics
-
-
 def load(paths, dialect: str = "iec") -> "Project":
     """Load ST files and directories as one program: parse, check, compile."""
-    sources: dict[str, str] = {}
-    errors: list[Diagnostic] = []
-    from .ast import Pos
+    from . import loader
 
-    for path in collect_files(paths):
-        try:
-            with open(path, encoding="utf-8") as f:
-                sources[path] = f.read()
-        except (OSError, UnicodeDecodeError) as exc:
-            errors.append(Diagnostic("E-IO-001", f"cannot read {path}: {exc}", Pos(path, 0, 0)))
-    if errors:
-        raise LoadError(errors, sources)
-    if not sources:
-        raise LoadError([Diagnostic("E-IO-001", "no .st files given", Pos("<args>", 0, 0))], sources)
-    return load_sources(sources, dialect)
+    _import_natives()
+    return _compiled(loader.load([os.fspath(p) for p in paths], dialect))
 
 
 def load_text(text: str, path: str = "<text>", dialect: str = "iec") -> "Project":
@@ -125,16 +73,24 @@ def load_text(text: str, path: str = "<text>", dialect: str = "iec") -> "Project
 
 
 def load_sources(sources: dict[str, str], dialect: str = "iec") -> "Project":
+    """Load in-memory ST texts (path -> text) as one program."""
+    from . import loader
+
+    _import_natives()
+    return _compiled(loader.load_texts(dict(sources), dialect))
+
+
+def _compiled(result) -> "Project":
     from .compiler import CompileError, compile_program
 
-    program, diagnostics = check_sources(sources, dialect)
-    if any(d.is_error for d in diagnostics):
-        raise LoadError(diagnostics, sources)
+    if result.program is None:
+        raise LoadError(result.diagnostics, result.sources)
     try:
-        compiled = compile_program(program)
+        compiled = compile_program(result.program)
     except CompileError as exc:
-        raise LoadError(diagnostics + [Diagnostic("E-COMPILE-001", exc.message, exc.pos)], sources) from None
-    return Project(compiled, diagnostics, sources)
+        diagnostic = Diagnostic("E-COMPILE-001", exc.message, exc.pos)
+        raise LoadError(result.diagnostics + [diagnostic], result.sources) from None
+    return Project(compiled, result.diagnostics, result.sources)
 
 
 # ------------------------------------------------------------------ project
@@ -163,11 +119,10 @@ class Project:
              max_cycles: int = 1000, period="1ms") -> dict:
         """Call a FUNCTION once, or an FB instance once per scan until `until`.
 
-        Returns the outputs by declared name (for a FUNCTION also "return"),
-        "cycles", and "faults" (FaultRecords) -- JSON-like values.
+        Returns {"outputs": {declared name: JSON-like value, ..., "return"
+        (FUNCTION), "cycles"}, "faults": [FaultRecord], "reached": bool
+        (whether `until` became TRUE)}.
         """
-        from .calling import call_pou
-
         return call_pou(self, name, inputs or {}, until, max_cycles, parse_period(period))
 
 
@@ -337,5 +292,156 @@ class Plc:
         roots = [self.program(program).obj] if program else []
         roots.append(self.controller.globals)
         trace = Trace.for_objects(paths, roots)
-        self.controller.add_observer(lambda c: trace.sample(c.now_ns, c.scan_count))
+        self.controller.add_observer(lambda c: trace.sample(c.ctx.now_ns, c.ctx.scan))
         return trace
+
+
+# ------------------------------------------------------------------ calls
+
+
+class CallError(Exception):
+    """A call that cannot be made as asked (unknown POU, input, output)."""
+
+
+class _FunctionJob:
+    """Adapts a FUNCTION call to the controller's `execute(ctx)` interface."""
+
+    def __init__(self, fn, args):
+        self.fn = fn
+        self.args = args
+        self.result = None
+
+    def execute(self, ctx):
+        self.result = self.fn(ctx, *self.args)
+
+
+def call_pou(project: Project, name: str, inputs: dict, until: str | None,
+             max_cycles: int, period_ns: int) -> dict:
+    """See `Project.call`."""
+    from .values import JsonValueError, from_json, to_json
+
+    pou = project.program.pous.get(name.upper())
+    if pou is None or pou.kind not in ("FUNCTION", "FUNCTION_BLOCK"):
+        raise CallError(f"no FUNCTION or FUNCTION_BLOCK named {name}")
+    params = {k: s for k, s in pou.variables.items() if s.kind in ("VAR_INPUT", "VAR_IN_OUT")}
+    for key in inputs:
+        if key.upper() not in params:
+            raise CallError(f"{pou.name} has no input named {key} "
+                            f"(inputs: {', '.join(s.name for s in params.values()) or 'none'})")
+    controller = Controller(project.compiled, period_ns)
+    given = {k.upper(): v for k, v in inputs.items()}
+    in_outs = {}
+    for key, symbol in params.items():
+        if symbol.kind == "VAR_IN_OUT":
+            cell = _Cell(project.compiled, symbol)
+            if key in given:
+                cell.set_json(given[key], symbol.name)
+            in_outs[key] = cell
+    if pou.kind == "FUNCTION":
+        if until:
+            raise CallError("--until applies to FB outputs; a FUNCTION is called once")
+        fn = project.compiled.functions[pou.name.upper()]
+        initial = project.compiled.namespace  # noqa: F841 - makers live there
+        args = []
+        for key, symbol in params.items():
+            if symbol.kind == "VAR_IN_OUT":
+                args.append(in_outs[key].arg())
+            elif key in given:
+                args.append(_plain_value(project.compiled, symbol, from_json(given[key], symbol.type, symbol.name)))
+            else:
+                args.append(_initial(project.compiled, symbol))
+        job = _FunctionJob(fn, args)
+        controller.tasks[0].programs.append((pou.name, job))
+        controller.run(1)
+        out = {}
+        outputs = pou.outputs
+        result = job.result
+        if outputs:
+            values = list(result) if result is not None else [None] * (1 + len(outputs))
+            result = values[0]
+            for symbol, value in zip(outputs, values[1:]):
+                if value is not None:
+                    out[symbol.name] = to_json(value, symbol.type)
+        for key, cell in in_outs.items():
+            out[params[key].name] = cell.to_json()
+        if pou.return_type is not None and result is not None:
+            out["return"] = to_json(result, pou.return_type)
+        out["cycles"] = 1
+        return {"outputs": out, "faults": controller.faults}
+    instance = project.compiled.new(pou.name)
+    view = Instance(instance)
+    for key, symbol in params.items():
+        if symbol.kind == "VAR_IN_OUT":
+            setattr(instance, mangle(symbol.name), in_outs[key].arg())
+        elif key in given:
+            view[symbol.name] = given[key]
+    flag = None
+    if until:
+        flag = pou.variables.get(until.upper())
+        if flag is None or flag.kind != "VAR_OUTPUT" or resolve_alias(flag.type).__str__() != "BOOL":
+            raise CallError(f"--until needs a BOOL output of {pou.name}; '{until}' is not one")
+    controller.tasks[0].programs.append((pou.name, instance))
+    cycles = 0
+    limit = max_cycles if flag is not None else 1
+    attr = mangle(flag.name) if flag is not None else None
+    reached = flag is None
+    while cycles < limit:
+        cycles += 1
+        if not controller.scan():
+            break
+        if attr is not None and getattr(instance, attr):
+            reached = True
+            break
+    out = {}
+    for symbol in pou.outputs:
+        out[symbol.name] = to_json(getattr(instance, mangle(symbol.name)), symbol.type)
+    for key, cell in in_outs.items():
+        out[params[key].name] = cell.to_json()
+    out["cycles"] = cycles
+    return {"outputs": out, "faults": controller.faults, "reached": reached}
+
+
+class _Cell:
+    """A variable owned by the caller, passed to a VAR_IN_OUT."""
+
+    def __init__(self, compiled, symbol):
+        self.symbol = symbol
+        self.value = _initial(compiled, symbol)
+
+    def set_json(self, data, name: str) -> None:
+        from .values import from_json
+
+        stored = from_json(data, self.symbol.type, name)
+        holder = [self.value]
+        _store(holder, 0, self.symbol.type, stored)
+        self.value = holder[0]
+
+    def arg(self):
+        from .objects import ItemRef
+
+        if is_aggregate(self.symbol.type):
+            return self.value
+        self.holder = [self.value]
+        return ItemRef(self.holder, 0)
+
+    def to_json(self):
+        from .values import to_json
+
+        value = self.holder[0] if hasattr(self, "holder") else self.value
+        return to_json(value, self.symbol.type)
+
+
+def _initial(compiled, symbol):
+    from .compiler.initial import InitialValues
+
+    initial = InitialValues(compiled.checked, compiled.classes).of_symbol(symbol)
+    return initial.const if initial.is_const else initial.maker()
+
+
+def _plain_value(compiled, symbol, stored):
+    """A `from_json` result as the compiled code stores it (objects for structs)."""
+    if not is_aggregate(symbol.type):
+        return stored
+    holder = [_initial(compiled, symbol)]
+    _store(holder, 0, symbol.type, stored)
+    return holder[0]

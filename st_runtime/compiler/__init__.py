@@ -15,6 +15,7 @@ import math
 from dataclasses import dataclass, field
 
 from .. import ast
+from ..diagnostics import register
 from ..faults import STFault
 from ..native import NATIVE_FBS, mangle
 from ..objects import AttrRef, ItemRef, STObject, assign_list, native_initializers
@@ -26,6 +27,8 @@ from .pysrc import Emitter, pyliteral, safe_name
 from .statements import BodyCompiler
 
 __all__ = ["compile_program", "CompiledProgram", "CompileError"]
+
+register({"E-COMPILE-001": "a construct the checker accepted but the runtime cannot execute"})
 
 _FAULTS = (STFault, ArithmeticError, ValueError)
 
