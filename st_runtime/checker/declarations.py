@@ -171,6 +171,8 @@ class Declarations:
                 return T.StringType(wide=True)
             if k in T.ELEMENTARY:
                 return T.ELEMENTARY[k]
+            if k == "LTIME":  # IEC 3rd ed.: TIME here is already 64-bit nanoseconds
+                return T.TIME
             t = self.type_named(k)
             if t is not None:
                 return t
@@ -289,20 +291,7 @@ class Declarations:
                 self.ctx.error("E-DECL-007", f"{what}: expected a value of type {t}, found an "
                                f"array initializer", init.pos)
                 return
-            count = 0
-            for item in init.items:
-                n = 1
-                if item.count is not None:
-                    n = self._const_int(item.count, ex, "repetition count")
-                    if n is None:
-                        continue
-                    if n < 0:
-                        self.ctx.error("E-DECL-006", f"repetition count: expected a non-negative "
-                                       f"integer, found {n}", item.count.pos)
-                        continue
-                if item.value is not None:
-                    self.initializer(item.value, t.element, ex, what)
-                count += n
+            count = self._array_items(init, t.element, ex, what)
             if count > t.size:
                 self.ctx.error("E-DECL-007", f"{what}: expected at most {t.size} element(s) for "
                                f"{t}, found {count}", init.pos)
@@ -336,6 +325,31 @@ class Declarations:
                 and self.program.expr_types.get(id(init)) is not ts.ERROR:
             self.ctx.error("E-DECL-008", f"{what}: expected a constant expression, found an "
                            f"expression that depends on variables", init.pos)
+
+    def _array_items(self, init: ast.ArrayInit, element, ex: ExprChecker, what: str) -> int:
+        """Check the items of an array initializer; return how many elements they give.
+
+        Nested brackets for a multi-dimensional array (`[[1, 2], [3, 4]]`)
+        are flattened row by row, as the compiler does.
+        """
+        count = 0
+        for item in init.items:
+            n = 1
+            if item.count is not None:
+                n = self._const_int(item.count, ex, "repetition count")
+                if n is None:
+                    continue
+                if n < 0:
+                    self.ctx.error("E-DECL-006", f"repetition count: expected a non-negative "
+                                   f"integer, found {n}", item.count.pos)
+                    continue
+            if isinstance(item.value, ast.ArrayInit) and not isinstance(element, T.ArrayType):
+                count += n * self._array_items(item.value, element, ex, what)
+                continue
+            if item.value is not None:
+                self.initializer(item.value, element, ex, what)
+            count += n
+        return count
 
     # --------------------------------------------------------------- POUs
     def _interface(self, info: PouInfo, node: ast.Pou) -> None:

@@ -116,9 +116,12 @@ class StatementChecker:
 
     def _Case(self, s: ast.Case) -> None:
         sel = self.ex.infer(s.selector)
-        if sel is not ts.ERROR and not (ts.is_int(sel) or isinstance(sel, T.EnumType)):
-            self.ctx.error("E-TYPE-011", f"CASE selector: expected an integer or enumeration, "
-                           f"found {sel}", s.selector.pos)
+        # IEC asks for ANY_INT or an enumeration; bit strings are accepted as
+        # CODESYS and the NJ do (CASE w OF 16#01: ...).
+        if sel is not ts.ERROR and not (ts.is_int(sel) or ts.is_bits(sel)
+                                        or isinstance(sel, T.EnumType)):
+            self.ctx.error("E-TYPE-011", f"CASE selector: expected an integer, bit string or "
+                           f"enumeration, found {sel}", s.selector.pos)
             sel = ts.ERROR
         seen: list[tuple[int, int, ast.Pos]] = []
         for clause in s.clauses:

@@ -145,8 +145,12 @@ def common_type(a, b):
     if implicitly_converts(b, a):
         return a
     if isinstance(a, ElementaryType) and isinstance(b, ElementaryType):
+        # Two integers never meet in a REAL: ULINT + LINT has no common type.
+        same_kind = a.kind if a.kind == b.kind else None
         for name in _COMMON_ORDER:
             target = T.ELEMENTARY[name]
+            if same_kind is not None and target.kind != same_kind:
+                continue
             if implicitly_converts(a, target) and implicitly_converts(b, target):
                 return target
     return None
