@@ -71,11 +71,19 @@ class CompileUnit:
         self.initial = InitialValues(program, self.classes)
         self.calls = Calls(self)
         self.sources: dict[str, str] = {}
+        self.constant_ranges: dict[int, tuple | None] = {}   # id(Symbol) -> element range
 
     def register_maker(self, maker) -> str:
         self.makers += 1
         name = f"_mk{self.makers}"
         self.namespace[name] = maker
+        return name
+
+    def register_constant(self, value) -> str:
+        """Bind a Python value (a constant range, a shared constant array) by name."""
+        self.makers += 1
+        name = f"_k{self.makers}"
+        self.namespace[name] = value
         return name
 
     def bind_function(self, name: str, pos) -> str:

@@ -130,6 +130,7 @@ class ExprCompiler:
         self.unit = unit              # the CompileUnit: namespace, functions, classes
         self.temp_count = 0
         self.known_ranges: dict[str, tuple[int, int]] = {}   # upper var name -> range
+        self.loops: list = []      # FOR loops being compiled, innermost last (hoisting)
 
     # ------------------------------------------------------------ helpers
 
@@ -186,6 +187,8 @@ class ExprCompiler:
             return value, value
         if isinstance(expr, ast.Name):
             return self.known_ranges.get(expr.name.upper())
+        if isinstance(expr, ast.Index) and isinstance(expr.base, ast.Name):
+            return self.constant_array_range(expr.base)
         if isinstance(expr, ast.Binary) and expr.op in ("+", "-"):
             a = self.static_range(expr.left)
             b = self.static_range(expr.right)
@@ -194,6 +197,24 @@ class ExprCompiler:
                     return a[0] + b[0], a[1] + b[1]
                 return a[0] - b[1], a[1] - b[0]
         return None
+
+    def constant_array_range(self, name) -> tuple[int, int] | None:
+        """(min, max) of the elements of a CONSTANT integer array, else None."""
+        try:
+            place = self.scope.place_of(name)
+        except CompileError:
+            return None
+        symbol = place.symbol
+        if symbol.kind == "VAR_EXTERNAL":       # the global's declaration holds the values
+            symbol = self.program.globals.get(name.name.upper(), symbol)
+        t = resolve_alias(symbol.type)
+        if symbol.init is None or not symbol.constant or not isinstance(t, ArrayType) or int_bounds(t.element) is None:
+            return None
+        cache = self.unit.constant_ranges
+        if id(symbol) not in cache:
+            values = self.unit.initial.of_symbol(symbol).maker()
+            cache[id(symbol)] = (min(values), max(values)) if values else None
+        return cache[id(symbol)]
 
     # ------------------------------------------------------- expressions
 
@@ -277,7 +298,11 @@ class ExprCompiler:
             divisor = self.constant_of(e.right)
             if isinstance(divisor, (int, float)) and not isinstance(divisor, bool) and divisor != 0:
                 return f"({left} / {right})"
-            return f"_rdiv({left}, {right})"
+            # IEEE 754 on a zero divisor (inf, nan) instead of ZeroDivisionError.
+            if right.isidentifier():
+                return f"({left} / {right} if {right} else _rdiv({left}, {right}))"
+            tmp = self.temp()
+            return f"({left} / {tmp} if ({tmp} := {right}) else _rdiv({left}, {tmp}))"
         if op == "MOD":
             return f"_imod({left}, {right}, {self.where(e)})"
         if op == "**":
@@ -339,6 +364,7 @@ class ExprCompiler:
             strides.append(stride)
             stride *= hi - lo + 1
         strides.reverse()
+        self._invariant_terms = []
         for index, (lo, hi), k in zip(e.indices, arr_t.dims, strides):
             offset -= lo * k
             const = self.constant_of(index)
@@ -348,6 +374,8 @@ class ExprCompiler:
                 continue
             known = self.static_range(index)
             code = self.expr(index)
+            if k != 1 and self.is_loop_invariant(index):
+                self._invariant_terms.append(f"{code} * {k}")
             if known is not None and lo <= known[0] and known[1] <= hi:
                 terms.append(code if k == 1 else f"{code} * {k}")
                 values.append(code)
@@ -360,6 +388,7 @@ class ExprCompiler:
                 checks.append(f"{lo} <= {code} <= {hi}")
             terms.append(code if k == 1 else f"{code} * {k}")
             values.append(code)
+        terms, offset = self.hoist_invariant(e, terms, offset)
         key = " + ".join(terms) if terms else ""
         if offset:
             key = f"{key} - {-offset}" if key and offset < 0 else (f"{key} + {offset}" if key else str(offset))
@@ -373,6 +402,37 @@ class ExprCompiler:
                          f"{name!r}, {self.where(e)})")
             key = f"({key}) if {' and '.join(checks)} else {fault}"
         return LValue("item", arr_t.element, obj=base, key=key)
+
+    def is_loop_invariant(self, index) -> bool:
+        """A Python local the innermost FOR body never assigns."""
+        if not self.loops or not isinstance(index, ast.Name):
+            return False
+        key = index.name.upper()
+        loop = self.loops[-1]
+        if key == loop.variable or key in loop.assigned:
+            return False
+        place = self.scope.places.get(key)
+        return place is not None and place.how == "local"
+
+    def hoist_invariant(self, e, terms: list[str], offset: int):
+        """Compute the loop-invariant part of a flat index once, before the loop.
+
+        `m[k, j]` inside `FOR j` becomes `m[_h + j]` with `_h = k * 6 - 7`
+        computed before the loop (k is not assigned in its body).
+        """
+        invariant = [t for t in self._invariant_terms if t in terms]
+        if not invariant or len(invariant) == len(terms) and not offset and len(invariant) == 1:
+            return terms, offset
+        code = " + ".join(invariant)
+        if offset:
+            code = f"{code} - {-offset}" if offset < 0 else f"{code} + {offset}"
+        loop = self.loops[-1]
+        name = loop.hoisted.get(code)
+        if name is None:
+            name = self.temp()
+            loop.hoisted[code] = name
+        rest = [t for t in terms if t not in invariant]
+        return [name] + rest, 0
 
     # ------------------------------------------------------------ stores
 

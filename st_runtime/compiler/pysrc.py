@@ -61,6 +61,11 @@ class Emitter:
     def mark(self) -> int:
         return len(self.lines)
 
+    def insert(self, mark: int, lines: list[str]) -> None:
+        """Insert lines at `mark` with the current indentation."""
+        pad = "    " * self.depth
+        self.lines[mark:mark] = [pad + line for line in lines]
+
     def ensure_body(self, mark: int) -> None:
         """Emit `pass` when nothing was emitted since `mark` (empty block)."""
         if len(self.lines) == mark:

@@ -123,6 +123,7 @@ class Scope:
         self.epilogue: list[str] = []
         self.params: list[str] = []
         self._plan()
+        self.alias_globals()
 
     # ------------------------------------------------------------ layout
 
@@ -169,6 +170,8 @@ class Scope:
                     self.prologue.append(f"{name} = [{name}]")
                 continue
             if key in u.used or kind in ("VAR_OUTPUT", "RETURN"):
+                if symbol.constant and aggregate:
+                    how = "shared"      # a CONSTANT array/struct: one instance for every call
                 self.prologue.append(("init", symbol, name, how))
 
     # ----------------------------------------------------------- lookups
@@ -184,6 +187,22 @@ class Scope:
             self.places[key] = place
             return place
         raise CompileError(f"'{e.name}' is not a variable here", e.pos)
+
+    def alias_globals(self) -> None:
+        """Alias the global arrays/structs the body uses in locals (identity is stable)."""
+        for key in sorted(self.usage.used):
+            if key in self.places:
+                place = self.places[key]
+                if place.how != "global":
+                    continue
+            else:
+                symbol = self.program.globals.get(key)
+                if symbol is None:
+                    continue
+                place = VarPlace(symbol, "global", mangle(symbol.name))
+            if is_aggregate(place.symbol.type):
+                self.places[key] = VarPlace(place.symbol, "alias", place.name)
+                self.prologue.append(f"{place.name} = _G.{place.name}")
 
     def lvalue_of_name(self, ec, e) -> LValue:
         place = self.place_of(e)

@@ -22,7 +22,7 @@ from ..native import mangle
 from ..objects import is_aggregate
 from ..types import ArrayType, resolve_alias
 from .calls import copy_statement
-from .exprs import ExprCompiler, elementary
+from .exprs import ExprCompiler, elementary, int_bounds
 from .initial import CompileError
 from .pysrc import Emitter, pyliteral
 from .scope import Scope, Usage, walk
@@ -95,6 +95,9 @@ class BodyCompiler(ExprCompiler):
             else self.unit.initial.of(symbol.type, None, ast.NOWHERE)
         value = self.literal(initial.const, symbol.type) if initial.is_const \
             else self.unit.register_maker(initial.maker) + "()"
+        if how == "shared":
+            shared = self.unit.register_constant(initial.maker())
+            return f"{name} = {shared}"
         return f"{name} = [{value}]" if how == "cell" else f"{name} = {value}"
 
     def _return_statement(self) -> str:
@@ -209,37 +212,67 @@ class BodyCompiler(ExprCompiler):
         place = self.scope.place_of(var)
         target = self.scope.lvalue_of_name(self, var)
         var_t = place.symbol.type
-        start = self.expr(s.start)
-        end = self.expr(s.end)
         step_value = 1 if s.step is None else self.constant_of(s.step)
-        rng = self.temp()
         where = self.where(s)
-        if isinstance(step_value, int) and not isinstance(step_value, bool):
-            if step_value == 0:
-                o.line(f"_overrun({where})")
-                return
-            edge = f"{end} + 1" if step_value > 0 else f"{end} - 1"
-            end_const = self.constant_of(s.end)
-            if isinstance(end_const, int) and not isinstance(end_const, bool):
-                edge = pyliteral(end_const + (1 if step_value > 0 else -1))
-            o.line(f"{rng} = range({start}, {edge}, {step_value})")
-            step_code = pyliteral(step_value)
+        const_step = isinstance(step_value, int) and not isinstance(step_value, bool)
+        if const_step and step_value == 0:
+            o.line(f"_overrun({where})")     # BY 0 never ends: the period is exceeded
+            return
+        start_c, end_c = self.constant_of(s.start), self.constant_of(s.end)
+        rng = self.temp()
+        final = None          # Python source of the value after a normal end
+        count = None          # the iteration count when known now
+        if const_step and _is_int(start_c) and _is_int(end_c):
+            r = range(start_c, end_c + (1 if step_value > 0 else -1), step_value)
+            rng = self.unit.register_constant(r)
+            count = len(r)
+            final = pyliteral(start_c + count * step_value)
+        elif const_step:
+            start, end = self.expr(s.start), self.expr(s.end)
+            if not _is_int(start_c):          # bounds are evaluated once, before the loop
+                tmp = self.temp()
+                o.line(f"{tmp} = {start}")
+                start = tmp
+            if not _is_int(end_c):
+                tmp = self.temp()
+                o.line(f"{tmp} = {end}")
+                end = tmp
+            edge = pyliteral(end_c + (1 if step_value > 0 else -1)) if _is_int(end_c) \
+                else (f"{end} + 1" if step_value > 0 else f"{end} - 1")
+            o.line(f"{rng} = range({start}, {edge}, {step_value})" if step_value != 1
+                   else f"{rng} = range({start}, {edge})")
+            if step_value == 1:
+                final = f"({edge} if {start} <= {end} else {start})"
+            elif step_value == -1:
+                final = f"({edge} if {start} >= {end} else {start})"
+            else:
+                final = f"{start} + len({rng}) * {step_value}"
         else:
             step_code = self.temp()
             o.line(f"{step_code} = {self.expr(s.step)}")
-            o.line(f"{rng} = _for_range({start}, {end}, {step_code}, {where})")
+            o.line(f"{rng} = _for_range({self.expr(s.start)}, {self.expr(s.end)}, {step_code}, {where})")
+            final = f"{rng}.start + len({rng}) * {step_code}"
         early = _leaves_early(s.body)
         if not early:
-            o.line(f"_ctx.budget -= len({rng})")
-            o.line(f"if _ctx.budget < 0: _overrun({where})")
+            if count is not None:
+                if count:
+                    o.line(f"_ctx.budget -= {count}")
+                    o.line(f"if _ctx.budget < 0: _overrun({where})")
+            else:
+                o.line(f"_ctx.budget -= len({rng})")
+                o.line(f"if _ctx.budget < 0: _overrun({where})")
         key = s.variable.upper()
+        assigned = Usage(self.program, s.body, None).assigned
         saved = self.known_ranges.get(key)
         lo_r, hi_r = self.static_range(s.start), self.static_range(s.end)
-        if lo_r and hi_r and isinstance(step_value, int) and key not in Usage(self.program, s.body, None).assigned:
-            lo, hi = (lo_r[0], hi_r[1]) if step_value > 0 else (hi_r[0], lo_r[1])
-            self.known_ranges[key] = (lo, hi)
+        known = None
+        if lo_r and hi_r and const_step and key not in assigned:
+            known = (lo_r[0], hi_r[1]) if step_value > 0 else (hi_r[0], lo_r[1])
+            self.known_ranges[key] = known
         else:
             self.known_ranges.pop(key, None)
+        self.loops.append(_Loop(key, assigned))
+        mark = o.mark()
         if target.kind == "ref":
             loop_var = self.temp()
             o.line(f"for {loop_var} in {rng}:")
@@ -252,10 +285,13 @@ class BodyCompiler(ExprCompiler):
         if early:
             o.line("_ctx.budget -= 1")
             o.line(f"if _ctx.budget < 0: _overrun({where})")
-        mark = o.mark()
+        body_mark = o.mark()
         self.statements(s.body)
-        o.ensure_body(mark)
+        o.ensure_body(body_mark)
         o.dedent()
+        loop = self.loops.pop()
+        if loop.hoisted:
+            o.insert(mark, [f"{name} = {code}" for code, name in loop.hoisted.items()])
         if saved is None:
             self.known_ranges.pop(key, None)
         else:
@@ -264,8 +300,15 @@ class BodyCompiler(ExprCompiler):
         # the test (IEC: FOR is a WHILE loop that increments by BY).
         o.line("else:")
         o.indent()
-        final = f"{rng}.start + len({rng}) * {rng}.step"
-        o.line(target.store(self.convert(final, None, var_t)))
+        bounds = int_bounds(var_t)
+        final_range = None
+        if lo_r and hi_r and const_step:
+            ends = (lo_r[0], lo_r[1], hi_r[0] + step_value, hi_r[1] + step_value)
+            final_range = (min(ends), max(ends))
+        if final_range and bounds and bounds[0] <= final_range[0] and final_range[1] <= bounds[1]:
+            o.line(target.store(final))
+        else:
+            o.line(target.store(self.convert(final, None, var_t)))
         o.dedent()
 
     def s_While(self, s):
@@ -302,6 +345,19 @@ class BodyCompiler(ExprCompiler):
             self.out.line("return")
         else:
             self.out.line(self._return_statement())
+
+
+class _Loop:
+    """A FOR loop being compiled: what its body leaves unchanged, what was hoisted."""
+
+    def __init__(self, variable: str, assigned: set[str]):
+        self.variable = variable
+        self.assigned = assigned
+        self.hoisted: dict[str, str] = {}     # Python expression -> temp computed before the loop
+
+
+def _is_int(value) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool)
 
 
 def _leaves_early(body) -> bool:
