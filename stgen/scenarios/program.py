@@ -1,0 +1,96 @@
+"""The whole controller as ST: the kinematics POUs plus the trajectory FBs and
+SP_Controller, rendered for a platform and loaded into ``st_runtime``.
+
+The controller's POUs are listed in :data:`CONTROLLER_TEMPLATES`. When
+``stgen.render.POU_TEMPLATES`` already holds them (``stgen generate`` renders
+them), :func:`render_controller_program` is just ``render_program``; until then
+it renders them here, after the kinematics POUs they call.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from stgen import render
+from stgen.config import PlatformConfig
+
+#: Templates of the trajectory FBs and the controller, in dependency order.
+CONTROLLER_TEMPLATES = (
+    "trajectory/TRJ_Constants",
+    "trajectory/TRJ_Cycloidal",
+    "trajectory/TRJ_OceanWave",
+    "controller/SP_ControllerConstants",
+    "controller/SP_ControllerGlobals",
+    "controller/SP_Controller",
+)
+
+#: The PROGRAM the primary task runs.
+CONTROLLER_PROGRAM = "SP_Controller"
+
+#: The axis variables SP_Controller uses (st_templates/controller/_controller.st.j2): axis i drives cylinder i.
+AXIS_NAMES = tuple(f"MC_Axis{index:03d}" for index in range(6))
+
+
+def pou_name(template: str) -> str:
+    """``controller/SP_Controller`` -> ``SP_Controller``."""
+    return template.rsplit("/", 1)[-1]
+
+
+def _environment():
+    env = render.make_environment()
+    # Declaration helpers for non-constant globals and externals, if render.py has none yet.
+    env.globals.setdefault("global_variable", render._declare(render.GLOBAL))
+    env.globals.setdefault("external_variable", render._declare(render.EXTERNAL))
+    return env
+
+
+def render_controller_program(
+    config: PlatformConfig | None = None, options: render.RenderOptions | None = None
+) -> render.RenderedProgram:
+    """Every POU the controller needs, in dependency order."""
+    config = config if config is not None else PlatformConfig.default()
+    options = options if options is not None else render.RenderOptions()
+    if all(template in render.POU_TEMPLATES for template in CONTROLLER_TEMPLATES):
+        return render.render_program(config, options)
+    base = render.render_program(config, options)
+    env = _environment()
+    context = render.template_context(config, options)
+    mine = []
+    for template in CONTROLLER_TEMPLATES:
+        pou = render.render_pou(env, template, context)
+        mine.append(dataclasses.replace(pou, name=pou_name(template)))
+    return render.RenderedProgram(base.pous + tuple(mine))
+
+
+def iec_sources(program: render.RenderedProgram) -> dict[str, str]:
+    """``{"<POU>.st": IEC text}`` for every POU, as ``stgen generate --target iec`` writes them."""
+    from stgen.exports.iec import pou_text
+
+    return {f"{pou.name}.st": pou_text(pou) for pou in program.pous}
+
+
+def codes_of(program: render.RenderedProgram, pou: str) -> dict[str, int]:
+    """The integer global constants of a VAR_GLOBAL POU (``16#1201`` -> 0x1201), by name."""
+    values = {}
+    for variable in program.pou(pou).variables:
+        if variable.initial is None or variable.type not in ("INT", "WORD", "DINT", "UINT"):
+            continue
+        text = variable.initial.strip()
+        values[variable.name] = int(text[3:], 16) if text.startswith("16#") else int(text)
+    return values
+
+
+def load_controller(config: PlatformConfig | None = None, axis_globals: str = ""):
+    """Parse, check and compile the controller program.
+
+    Not cached: the compiled program holds the global variables, so every
+    simulation loads its own.
+
+    ``axis_globals`` is the ST text declaring the axis variables
+    (``MotionTask.globals_source()``).
+    """
+    from st_runtime import api
+
+    sources = iec_sources(render_controller_program(config))
+    sources["AxisVariables.st"] = axis_globals
+    return api.load_sources(sources)

@@ -1,0 +1,139 @@
+"""SP_Controller running in the simulated NJ: one primary task, six simulated axes.
+
+Scan order as on the NJ (``st_runtime.motion.motion_task``): axis feedback in,
+SP_Controller, motion processing. The axes are the six cylinders: software
+limits = the stroke, maximum velocity = the actuator's, ideal servo (the
+actual position equals the command), starting where the IK of the start pose
+puts them.
+
+The acceleration of the synchronised command is not checked by the axes
+(``max_acceleration = 0``): starting the wave clock after the lead-in is a
+velocity step, as in the study (the lead-in ends at rest, the wave does not
+start at rest). The controller itself checks stroke and per-scan step.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from stgen.config import PlatformConfig
+from stgen.reference.kinematics import inverse_kinematics
+from stgen.scenarios.program import AXIS_NAMES, CONTROLLER_PROGRAM, load_controller
+
+#: Following-error limit of the simulated cylinders, mm (an ideal servo never reaches it).
+FOLLOWING_ERROR_LIMIT_MM = 1.0
+#: In-position range of the simulated cylinders, mm.
+IN_POSITION_RANGE_MM = 0.01
+
+
+def axis_tables(config: PlatformConfig, start_pose) -> list[dict]:
+    """The six ``[[axis]]`` tables: cylinder i starts at q_i of ``start_pose``."""
+    ik = inverse_kinematics(config.geometry, np.asarray(start_pose, dtype=float), config.stroke)
+    if not bool(np.all(ik.in_stroke)):
+        raise ValueError(f"start pose {tuple(start_pose)} puts a cylinder outside the stroke")
+    return [
+        {
+            "name": name,
+            "soft_limit_min": config.stroke.min,
+            "soft_limit_max": config.stroke.max,
+            "max_velocity": config.actuator.max_velocity,
+            "max_acceleration": 0.0,
+            "in_position_range": IN_POSITION_RANGE_MM,
+            "following_error_limit": FOLLOWING_ERROR_LIMIT_MM,
+            "servo_lag": 0.0,
+            "initial_position": float(position),
+        }
+        for name, position in zip(AXIS_NAMES, ik.positions)
+    ]
+
+
+def _attach_motion(controller, motion) -> None:
+    """Give the native motion FBs the axes (``ctx.motion``) and run feedback/processing around the programs."""
+    from st_runtime.controller import ScanContext
+
+    if "motion" not in getattr(ScanContext, "__slots__", ()) and not hasattr(controller.ctx, "motion"):
+
+        class MotionScanContext(ScanContext):
+            __slots__ = ("motion",)
+
+        controller.ctx = MotionScanContext(controller)
+    controller.ctx.motion = motion
+    period_s = controller.period_ns * 1e-9
+    controller.add_io_hook(before=lambda ctx: motion.feedback_in(), after=lambda ctx: motion.process(period_s))
+
+
+class ControllerSimulation:
+    """SP_Controller with its six axes, scan by scan.
+
+    ``globals`` reads and writes the command/status variables by name
+    (``sim.globals["SpPowerOn"] = True``); ``axes`` are the simulated axes
+    (``st_runtime.motion.axis.Axis``), in cylinder order.
+    """
+
+    def __init__(self, config: PlatformConfig | None = None, start_pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0)):
+        from st_runtime.motion.motion_task import MotionTask
+
+        self.config = config if config is not None else PlatformConfig.default()
+        self.motion = MotionTask.from_tables(axis_tables(self.config, start_pose))
+        project = load_controller(self.config, self.motion.globals_source())
+        period_ns = round(self.config.task.period_s * 1e9)
+        self.plc = project.controller(period=period_ns)
+        self.program = self.plc.add_program(CONTROLLER_PROGRAM)
+        self.motion.bind(self.plc.globals.raw)
+        _attach_motion(self.plc.controller, self.motion)
+        self.axes = self.motion.axes
+        self.globals = self.plc.globals
+        self.codes = _global_codes(self.globals)
+
+    @property
+    def scan_count(self) -> int:
+        return self.plc.controller.scan_count
+
+    @property
+    def runtime_faults(self) -> list:
+        return self.plc.faults
+
+    def run(self, scans: int) -> None:
+        self.plc.run(scans)
+
+    def run_until(self, condition, max_scans: int) -> int:
+        """Scan until ``condition()`` holds after a scan; returns the scans run; TimeoutError past ``max_scans``."""
+        scan = self.plc.controller.scan
+        for count in range(1, max_scans + 1):
+            scan()
+            if condition():
+                return count
+        raise TimeoutError(f"condition not met within {max_scans} scans (state {self.state_name})")
+
+    @property
+    def state(self) -> int:
+        return self.globals["SpState"]
+
+    @property
+    def state_name(self) -> str:
+        state = self.state
+        for name, value in self.codes.items():
+            if name.startswith("SP_STATE_") and value == state:
+                return name
+        return str(state)
+
+    def command_positions(self) -> np.ndarray:
+        """The six axes' command positions (mm), cylinder order."""
+        return np.array([axis.cmd_pos for axis in self.axes])
+
+    def power_on(self, max_scans: int = 200) -> int:
+        """SpPowerOn := TRUE and scan until STANDBY; returns the scans it took."""
+        self.globals["SpPowerOn"] = True
+        return self.run_until(lambda: self.globals["SpReady"], max_scans)
+
+    def set_pose(self, name: str, pose) -> None:
+        self.globals[name] = [float(v) for v in pose]
+
+
+def _global_codes(globals_) -> dict[str, int]:
+    """SP_STATE_xxx, SP_FAULT_xxx and SP_REFUSED_xxx as the loaded program holds them."""
+    codes = {}
+    for key, (name, _type) in globals_.layout.items():
+        if key.startswith(("SP_STATE_", "SP_FAULT_", "SP_REFUSED_")):
+            codes[name] = globals_[name]
+    return codes
