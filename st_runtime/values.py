@@ -142,6 +142,21 @@ def to_real32(x: float) -> float:
     return buf[0]
 
 
+def shortest_real32(x: float) -> float:
+    """The float with the fewest decimal digits that rounds to the same REAL.
+
+    JSON and CSV show a REAL holding 0.1f as 0.1 rather than as its exact
+    double value 0.10000000149011612; reading it back gives the same REAL.
+    """
+    if not math.isfinite(x):
+        return x
+    for digits in range(1, 10):
+        candidate = float(f"{x:.{digits}g}")
+        if to_real32(candidate) == x:
+            return candidate
+    return x
+
+
 _EXACT_IN_FLOAT64 = 1 << 53
 
 
@@ -439,8 +454,10 @@ def _nest(flat: list, dims: tuple[tuple[int, int], ...]) -> list:
 def to_json(value, t):
     """A stored value of type `t` as a JSON-able Python value.
 
-    BOOL -> bool, integers -> int, REAL/LREAL -> float (non-finite values stay
-    float: Python's json writes them as NaN/Infinity), STRING -> str, TIME and
+    BOOL -> bool, integers -> int, REAL/LREAL -> float (a REAL in its shortest
+    form that reads back to the same float32, 0.1 rather than
+    0.10000000149011612; non-finite values stay float: Python's json writes
+    them as NaN/Infinity), STRING -> str, TIME and
     the date types -> IEC literal strings, enums -> the value's name, arrays ->
     nested lists (one level per dimension), structs and FB instances -> objects
     keyed by declared name.
@@ -453,7 +470,7 @@ def to_json(value, t):
         if kind in ("int", "bits"):
             return int(value)
         if kind == "real":
-            return float(value)
+            return shortest_real32(value) if t.bits == 32 else float(value)
         return FORMATTERS[kind](int(value))
     if isinstance(t, StringType):
         return str(value)
@@ -538,7 +555,8 @@ def from_json(data, t, path: str = "value"):
         if not isinstance(data, str):
             fail(f"{t} string")
         if len(data.encode("utf-8")) > t.length:
-            raise JsonValueError(f"{path}: string of {len(data)} characters exceeds {t}")
+            raise JsonValueError(
+                f"{path}: string of {len(data.encode('utf-8'))} bytes exceeds {t}")
         return data
     if isinstance(t, EnumType):
         if isinstance(data, str):

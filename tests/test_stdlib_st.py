@@ -140,6 +140,10 @@ VAR
     Edges : INT;
     Latch : SR;
     Veto : RS;
+    Fall : F_TRIG;
+    Falls : INT;
+    Quiet : F_TRIG;
+    Spurious : INT;
 END_VAR
 Toggle := NOT Toggle;
 Counter(CU := Toggle, R := FALSE, PV := 3);
@@ -149,12 +153,25 @@ IF Edge.Q THEN
 END_IF;
 Latch(S1 := Counter.Q, R := TRUE);
 Veto(S := TRUE, R1 := TRUE);
+Fall(CLK := Toggle);
+IF Fall.Q THEN
+    Falls := Falls + 1;
+END_IF;
+Quiet(CLK := FALSE);
+IF Quiet.Q THEN
+    Spurious := Spurious + 1;
+END_IF;
 END_PROGRAM
 """, scans=8)
     assert main["Counter.CV"] == 4 and main["Counter.Q"] is True
     assert main["Edges"] == 4
     assert main["Latch.Q1"] is True         # set dominates
     assert main["Veto.Q1"] is False         # reset dominates
+    # Toggle is TRUE on odd scans: falling edges on scans 2, 4, 6, 8.  F_TRIG's
+    # memory starts TRUE (3rd edition), so a CLK FALSE from the first call is
+    # no edge (with the 2nd edition's FALSE, Quiet.Q would pulse on scan 1).
+    assert main["Falls"] == 4
+    assert main["Spurious"] == 0
 
 
 def test_call_ton_until_q():

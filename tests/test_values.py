@@ -224,6 +224,9 @@ def test_to_json_elementary_types():
     assert to_json(True, T.BOOL) is True
     assert to_json(-5, T.INT) == -5
     assert to_json(0.5, T.REAL) == 0.5
+    assert to_json(to_real32(0.1), T.REAL) == 0.1          # shortest form of 0.1f
+    assert from_json(to_json(to_real32(0.1), T.REAL), T.REAL) == to_real32(0.1)
+    assert to_json(0.1, T.LREAL) == 0.1
     assert to_json(1_500_000_000, T.TIME) == "T#1s500ms"
     assert to_json(0, T.DATE) == "D#1970-01-01"
     assert to_json("abc", T.StringType(10)) == "abc"

@@ -53,6 +53,7 @@ from ..values import (
     int_to_real32,
     int_wrapper,
     round_half_even,
+    shortest_real32,
     to_real32,
 )
 
@@ -85,15 +86,7 @@ def real_to_text(x: float, bits: int) -> str:
         return "NaN"
     if math.isinf(x):
         return "Inf" if x > 0 else "-Inf"
-    if bits == 64:
-        text = repr(x)
-    else:
-        for digits in range(1, 10):
-            text = f"{x:.{digits}g}"
-            if to_real32(float(text)) == x:
-                break
-    if "e" not in text and "." not in text and "inf" not in text:
-        text += ".0"
+    text = repr(shortest_real32(x) if bits == 32 else x)
     return text
 
 
