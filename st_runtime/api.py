@@ -182,10 +182,8 @@ class Instance:
         return container, slot, t
 
     def __getitem__(self, path: str):
-        from .values import to_json
-
         container, slot, t = self._locate(path)
-        return to_json(_read(container, slot), t)
+        return value_to_json(_read(container, slot), t)
 
     def raw(self, path: str):
         """The stored Python value (objects and lists themselves)."""
@@ -200,22 +198,45 @@ class Instance:
         _store(container, slot, t, stored)
 
     def to_json(self) -> dict:
-        """Every variable (not VAR_IN_OUT/VAR_EXTERNAL) by declared name."""
-        from .values import to_json
-
-        out = {}
-        for key, (name, t) in self.layout.items():
-            attr = mangle(name)
-            value = getattr(self.obj, attr, None)
-            if value is None or _hidden(self.obj, key):
-                continue
-            out[name] = to_json(value, t)
-        return out
+        """Every variable (not VAR_IN_OUT/VAR_EXTERNAL/VAR_TEMP) by declared name."""
+        return object_to_json(self.obj)
 
 
-def _hidden(obj, key: str) -> bool:
-    pou_vars = getattr(type(obj), "_st_kinds", None)
-    return bool(pou_vars) and pou_vars.get(key) in ("VAR_IN_OUT", "VAR_EXTERNAL")
+_HIDDEN_KINDS = ("VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP", "VAR_GLOBAL")
+
+
+def object_to_json(obj) -> dict:
+    """A struct value, FB or PROGRAM instance as a dict by declared name."""
+    kinds = getattr(type(obj), "_st_kinds", None) or {}
+    out = {}
+    for key, (name, t) in type(obj)._st_vars.items():
+        if kinds.get(key) in _HIDDEN_KINDS:
+            continue
+        value = getattr(obj, mangle(name), None)
+        if value is None:
+            continue
+        out[name] = value_to_json(value, t)
+    return out
+
+
+def value_to_json(value, t):
+    """A stored value as JSON-like data (objects walked by their own layout)."""
+    from .values import to_json
+
+    r = resolve_alias(t)
+    if isinstance(r, (StructType, FBType)):
+        return object_to_json(value)
+    if isinstance(r, ArrayType) and is_aggregate(r.element):
+        flat = [value_to_json(v, r.element) for v in value]
+        return _nest(flat, r.dims)
+    return to_json(value, t)
+
+
+def _nest(flat: list, dims) -> list:
+    if len(dims) == 1:
+        return flat
+    inner = len(flat) // (dims[0][1] - dims[0][0] + 1)
+    return [_nest(flat[i:i + inner], dims[1:]) for i in range(0, len(flat), inner)]
 
 
 def _read(container, slot):
@@ -361,11 +382,11 @@ def call_pou(project: Project, name: str, inputs: dict, until: str | None,
             result = values[0]
             for symbol, value in zip(outputs, values[1:]):
                 if value is not None:
-                    out[symbol.name] = to_json(value, symbol.type)
+                    out[symbol.name] = value_to_json(value, symbol.type)
         for key, cell in in_outs.items():
             out[params[key].name] = cell.to_json()
         if pou.return_type is not None and result is not None:
-            out["return"] = to_json(result, pou.return_type)
+            out["return"] = value_to_json(result, pou.return_type)
         out["cycles"] = 1
         return {"outputs": out, "faults": controller.faults}
     instance = project.compiled.new(pou.name)
@@ -394,7 +415,7 @@ def call_pou(project: Project, name: str, inputs: dict, until: str | None,
             break
     out = {}
     for symbol in pou.outputs:
-        out[symbol.name] = to_json(getattr(instance, mangle(symbol.name)), symbol.type)
+        out[symbol.name] = value_to_json(getattr(instance, mangle(symbol.name)), symbol.type)
     for key, cell in in_outs.items():
         out[params[key].name] = cell.to_json()
     out["cycles"] = cycles
@@ -428,7 +449,7 @@ class _Cell:
         from .values import to_json
 
         value = self.holder[0] if hasattr(self, "holder") else self.value
-        return to_json(value, self.symbol.type)
+        return value_to_json(value, self.symbol.type)
 
 
 def _initial(compiled, symbol):

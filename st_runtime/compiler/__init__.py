@@ -158,7 +158,9 @@ def _make_classes(unit: CompileUnit) -> None:
             native = pou.native or NATIVE_FBS.get(key)
             if native is None:
                 raise CompileError(f"native FB {pou.name} has no Python class", ast.NOWHERE)
-            native._st_vars = {k: (s.name, s.type) for k, s in pou.variables.items()}
+            native._st_vars = {k: (s.name, s.type) for k, s in pou.variables.items()
+                               if s.kind not in ("VAR_TEMP", "VAR_EXTERNAL")}
+            native._st_kinds = {k: s.kind for k, s in pou.variables.items()}
             native._st_name = pou.name
             unit.classes[key] = native
             continue

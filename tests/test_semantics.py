@@ -1,0 +1,375 @@
+"""IEC 61131-3 semantics of the compiled code, one behaviour per test.
+
+Expected values are worked out by hand (or by NumPy's float32 for REAL).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from st_runtime.api import load_text
+
+
+def run(body: str, decls: str, cycles: int = 1, extra: str = ""):
+    """Run `PROGRAM Main` with the given declarations and body; (instance, plc)."""
+    src = f"{extra}\nPROGRAM Main\nVAR\n{decls}\nEND_VAR\n{body}\nEND_PROGRAM\n"
+    plc = load_text(src, "main.st").controller()
+    main = plc.add_program("Main")
+    plc.run(cycles)
+    return main, plc
+
+
+def faults(plc):
+    return [(f.code, f.line) for f in plc.faults]
+
+
+# ------------------------------------------------------------------ integers
+
+
+@pytest.mark.parametrize("decl, expr, expected", [
+    ("x : INT := 32767;", "x := x + 1;", -32768),
+    ("x : INT := -32768;", "x := x - 1;", 32767),
+    ("x : SINT := 100;", "x := x * 2;", -56),          # 200 - 256
+    ("x : USINT := 250;", "x := x + 10;", 4),           # 260 mod 256
+    ("x : UINT := 0;", "x := x - 1;", 65535),
+    ("x : DINT := 2147483647;", "x := x + 2;", -2147483647),
+    ("x : UDINT := 4294967295;", "x := x + 1;", 0),
+    ("x : LINT := 9223372036854775807;", "x := x + 1;", -9223372036854775808),
+    ("x : WORD := 16#00F0;", "x := NOT x;", 0xFF0F),
+])
+def test_integers_wrap_on_every_store(decl, expr, expected):
+    main, _ = run(expr, decl)
+    assert main["x"] == expected
+
+
+def test_intermediate_results_are_not_wrapped():
+    # (30000 + 30000) / 2 = 30000: the sum is not wrapped before the division.
+    main, _ = run("x := (a + a) / 2;", "a : INT := 30000; x : INT;")
+    assert main["x"] == 30000
+
+
+@pytest.mark.parametrize("a, b, quotient, remainder", [
+    (7, 2, 3, 1), (-7, 2, -3, -1), (7, -2, -3, 1), (-7, -2, 3, -1), (6, 3, 2, 0), (-1, 5, 0, -1),
+])
+def test_division_truncates_toward_zero_and_mod_takes_sign_of_dividend(a, b, quotient, remainder):
+    main, _ = run("q := a / b; r := a MOD b;", f"a : DINT := {a}; b : DINT := {b}; q, r : DINT;")
+    assert (main["q"], main["r"]) == (quotient, remainder)
+    assert quotient * b + remainder == a
+
+
+def test_integer_division_by_zero_is_a_fault_and_the_statement_is_abandoned():
+    main, plc = run("q := 5;\nq := a / b;\nr := a MOD b;\ndone := TRUE;",
+                    "a : INT := 7; b : INT; q, r : INT; done : BOOL;")
+    assert faults(plc) == [("F-DIV-ZERO", 7), ("F-DIV-ZERO", 8)]
+    assert main["q"] == 5          # the faulting store did not happen
+    assert main["done"] is True    # the statements after it ran
+    assert plc.faults[0].pou == "Main" and plc.faults[0].file == "main.st" and plc.faults[0].scan == 1
+
+
+def test_shift_and_bit_operations_use_the_width():
+    main, _ = run("a := SHL(a, 4); b := ROL(b, 1); c := c AND BYTE#16#0F; d := d XOR c; e := NOT e;",
+                  "a : BYTE := 16#F1; b : BYTE := 16#81; c : BYTE := 16#FF; d : BYTE := 16#F0; e : BOOL;")
+    assert main["a"] == 0x10          # high bits shifted out of the byte
+    assert main["b"] == 0x03          # the top bit comes round
+    assert main["c"] == 0x0F and main["d"] == 0xFF and main["e"] is True
+
+
+# ----------------------------------------------------------------------- reals
+
+
+def test_real_is_float32_rounded_on_every_store():
+    main, _ = run("FOR i := 1 TO 10 DO x := x + 0.1; END_FOR; y := 16777216.0; y := y + 1.0;",
+                  "x : REAL; y : REAL; i : INT;")
+    acc = np.float32(0.0)
+    for _ in range(10):
+        acc = np.float32(acc + np.float32(0.1))
+    assert main.raw("x") == float(acc)
+    assert main["y"] == 16777216.0      # 2**24 + 1 is not a float32
+
+
+def test_lreal_is_float64():
+    main, _ = run("FOR i := 1 TO 10 DO x := x + 0.1; END_FOR;", "x : LREAL; i : INT;")
+    acc = 0.0
+    for _ in range(10):
+        acc += 0.1
+    assert main["x"] == acc
+
+
+def test_integer_to_lreal_store_is_a_float():
+    main, _ = run("x := i; y := i / 2;", "x, y : LREAL; i : INT := 7;")
+    assert main["x"] == 7.0 and isinstance(main.raw("x"), float)
+    assert main["y"] == 3.0          # INT / INT truncates, then converts
+
+
+def test_real_division_by_zero_follows_ieee():
+    main, plc = run("a := 1.0 / z; b := -1.0 / z; c := z / z;", "a, b, c, z : LREAL;")
+    assert main.raw("a") == float("inf") and main.raw("b") == float("-inf")
+    assert main.raw("c") != main.raw("c")     # NaN
+    assert plc.faults == []
+
+
+def test_real_overflow_to_float32_gives_infinity():
+    main, _ = run("x := LREAL_TO_REAL(y * y); z := z * z;", "x : REAL; y : LREAL := 1.0E30; z : REAL := 1.0E30;")
+    assert main.raw("z") == float("inf")
+    assert main.raw("x") == float("inf")
+
+
+# ------------------------------------------------------------------------ time
+
+
+def test_time_arithmetic_in_nanoseconds():
+    main, _ = run("t := T#1s500ms + T#250ms; u := t * 2; v := t / 4; w := T#1s - T#3s;",
+                  "t, u, v, w : TIME;")
+    assert main.raw("t") == 1_750_000_000
+    assert main["t"] == "T#1s750ms"
+    assert main.raw("u") == 3_500_000_000
+    assert main.raw("v") == 437_500_000
+    assert main.raw("w") == -2_000_000_000
+
+
+# ---------------------------------------------------------------------- arrays
+
+
+def test_arrays_with_any_lower_bounds():
+    main, _ = run("a[-2] := 1; a[0] := 3; a[2] := 5; m[0, 10] := 7; m[1, 11] := 9;",
+                  "a : ARRAY[-2..2] OF INT; m : ARRAY[0..1, 10..11] OF INT;")
+    assert main["a"] == [1, 0, 3, 0, 5]
+    assert main["m"] == [[7, 0], [0, 9]]
+
+
+def test_index_out_of_bounds_is_a_fault_naming_index_and_bounds():
+    main, plc = run("i := 6;\na[i] := 1;\nx := a[i - 10];\nm[1, i] := 2;\nok := TRUE;",
+                    "a : ARRAY[1..5] OF INT; m : ARRAY[1..2, 1..3] OF INT; i : INT; x : INT; ok : BOOL;")
+    assert [f.code for f in plc.faults] == ["F-INDEX"] * 3
+    assert [f.line for f in plc.faults] == [7, 8, 9]
+    assert "index 6" in plc.faults[0].message and "1..5" in plc.faults[0].message
+    assert "'a'" in plc.faults[0].message
+    assert "index -4" in plc.faults[1].message
+    assert "index 6" in plc.faults[2].message and "1..3" in plc.faults[2].message
+    assert main["a"] == [0] * 5 and main["ok"] is True
+
+
+def test_array_assignment_copies():
+    main, _ = run("b := a; b[1] := 99;", "a : ARRAY[1..3] OF INT := [1, 2, 3]; b : ARRAY[1..3] OF INT;")
+    assert main["a"] == [1, 2, 3] and main["b"] == [99, 2, 3]
+
+
+def test_array_initializer_with_repetition():
+    main, _ = run("", "a : ARRAY[1..6] OF INT := [1, 2(5), 2(7)];")
+    assert main["a"] == [1, 5, 5, 7, 7, 0]
+
+
+# --------------------------------------------------------------------- structs
+
+POINT = "TYPE Point : STRUCT x : LREAL := 1.5; y : INT; END_STRUCT; END_TYPE"
+
+
+def test_struct_assignment_copies_and_initial_values():
+    main, _ = run("q := p; q.y := 5; r[2] := q;", "p, q : Point; r : ARRAY[1..2] OF Point;", extra=POINT)
+    assert main["p"] == {"x": 1.5, "y": 0}
+    assert main["q"] == {"x": 1.5, "y": 5}
+    assert main["r"] == [{"x": 1.5, "y": 0}, {"x": 1.5, "y": 5}]
+
+
+# ---------------------------------------------------------------- VAR_IN_OUT
+
+INOUT = """
+TYPE Point : STRUCT x : LREAL; y : INT; END_STRUCT; END_TYPE
+FUNCTION Bump : BOOL
+VAR_IN_OUT v : INT; END_VAR
+v := v + 1; Bump := TRUE;
+END_FUNCTION
+FUNCTION Fill : BOOL
+VAR_IN_OUT a : ARRAY[1..3] OF INT; p : Point; END_VAR
+a[2] := 42; p.y := 7; Fill := TRUE;
+END_FUNCTION
+FUNCTION_BLOCK Counter
+VAR_OUTPUT n : INT; END_VAR
+n := n + 1;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Driver
+VAR_IN_OUT c : Counter; END_VAR
+c();
+END_FUNCTION_BLOCK
+"""
+
+
+def test_var_in_out_is_by_reference():
+    main, _ = run("Bump(x); Bump(a[3]); Bump(p.y); Fill(a, p); d(c := cnt); d(c := cnt);",
+                  "x : INT; a : ARRAY[1..3] OF INT; p : Point; cnt : Counter; d : Driver;",
+                  extra=INOUT)
+    assert main["x"] == 1
+    assert main["a"] == [0, 42, 1]
+    assert main["p"] == {"x": 0.0, "y": 7}
+    assert main["cnt"] == {"n": 2}
+
+
+def test_var_in_out_of_a_function_local_and_of_an_fb_variable():
+    src = INOUT + """
+    FUNCTION Twice : INT
+    VAR k : INT := 3; END_VAR
+    Bump(k); Bump(k); Twice := k;
+    END_FUNCTION
+    FUNCTION_BLOCK Holder
+    VAR_OUTPUT h : INT; END_VAR
+    Bump(h);
+    END_FUNCTION_BLOCK
+    """
+    main, _ = run("y := Twice(); hold(); hold();", "y : INT; hold : Holder;", cycles=2, extra=src)
+    assert main["y"] == 5
+    assert main["hold"] == {"h": 4}
+
+
+# ------------------------------------------------------------- persistence
+
+
+def test_fb_instances_keep_every_variable_and_program_variables_persist():
+    src = """
+    FUNCTION_BLOCK Acc
+    VAR_INPUT inc : INT; END_VAR
+    VAR_OUTPUT total : INT; END_VAR
+    VAR calls : INT; END_VAR
+    VAR_TEMP t : INT; END_VAR
+    t := t + 1; calls := calls + t; total := total + inc;
+    END_FUNCTION_BLOCK
+    """
+    main, _ = run("a(inc := 2); IF first THEN b(inc := 5); first := FALSE; END_IF; b(); n := n + 1;",
+                  "a, b : Acc; n : INT := 10; first : BOOL := TRUE;", cycles=3, extra=src)
+    assert main["a"] == {"inc": 2, "total": 6, "calls": 3}     # VAR_TEMP restarts at 0: t = 1 each call
+    assert main["b"] == {"inc": 5, "total": 20, "calls": 4}    # inputs not given keep their value
+    assert main["n"] == 13                                     # initial value applied once
+
+
+def test_var_temp_of_a_program_is_reset_every_scan():
+    src = "PROGRAM Main\nVAR n : INT; END_VAR\nVAR_TEMP t : INT := 4; END_VAR\nt := t + 1; n := n + t;\nEND_PROGRAM\n"
+    plc = load_text(src).controller()
+    main = plc.add_program("Main")
+    plc.run(3)
+    assert main["n"] == 15
+
+
+def test_function_variables_start_fresh_every_call():
+    src = """
+    FUNCTION Inc : INT
+    VAR k : INT := 10; END_VAR
+    k := k + 1; Inc := k;
+    END_FUNCTION
+    """
+    main, _ = run("a := Inc(); b := Inc();", "a, b : INT;", extra=src)
+    assert (main["a"], main["b"]) == (11, 11)
+
+
+def test_function_with_var_output():
+    src = """
+    FUNCTION DivMod : DINT
+    VAR_INPUT n, d : DINT; END_VAR
+    VAR_OUTPUT r : DINT; neg : BOOL; END_VAR
+    DivMod := n / d; r := n MOD d; neg := n < 0;
+    END_FUNCTION
+    """
+    main, _ = run("q := DivMod(-17, 5, r => r, neg => s);\nDivMod(n := 9, d := 4, r => r2);",
+                  "q, r, r2 : DINT; s : BOOL;", extra=src)
+    assert (main["q"], main["r"], main["s"], main["r2"]) == (-3, -2, True, 1)
+
+
+# ---------------------------------------------------------------- loops
+
+
+def test_for_evaluates_bounds_once_and_leaves_the_variable_past_the_end():
+    main, _ = run("n := 3; FOR i := 1 TO n DO n := n + 1; count := count + 1; END_FOR;",
+                  "i, n, count : INT;")
+    assert main["count"] == 3 and main["n"] == 6 and main["i"] == 4
+
+
+def test_for_with_negative_step_and_empty_ranges():
+    main, _ = run("FOR i := 10 TO 1 BY -3 DO s := s * 10 + i; END_FOR;\n"
+                  "FOR j := 5 TO 4 DO e := e + 1; END_FOR;\n"
+                  "FOR k := 1 TO 0 BY 1 DO e := e + 1; END_FOR;\n"
+                  "FOR m := 0 TO 10 BY step DO c := c + 1; END_FOR;",
+                  "i, j, k, m, e, c : INT; s : DINT; step : INT := 4;")
+    assert main["s"] == 10741          # 10, 7, 4, 1
+    assert main["i"] == -2
+    assert main["e"] == 0 and main["j"] == 5 and main["k"] == 1
+    assert main["c"] == 3 and main["m"] == 12     # 0, 4, 8
+
+
+def test_exit_and_continue_act_on_the_innermost_loop():
+    main, _ = run("""
+    FOR i := 1 TO 3 DO
+      FOR j := 1 TO 10 DO
+        IF j = 3 THEN EXIT; END_IF;
+        IF j = 1 THEN CONTINUE; END_IF;
+        n := n + 1;
+      END_FOR;
+      outer := outer + 1;
+    END_FOR;
+    k := 0;
+    WHILE k < 10 DO k := k + 1; IF k MOD 2 = 0 THEN CONTINUE; END_IF; odd := odd + 1; END_WHILE;
+    REPEAT r := r + 1; IF r < 4 THEN CONTINUE; END_IF; EXIT; UNTIL FALSE END_REPEAT;
+    """, "i, j, n, outer, k, odd, r : INT;")
+    assert main["n"] == 3 and main["outer"] == 3 and main["j"] == 3
+    assert main["odd"] == 5
+    assert main["r"] == 4
+
+
+def test_repeat_runs_at_least_once_and_while_may_not_run():
+    main, _ = run("REPEAT a := a + 1; UNTIL TRUE END_REPEAT; WHILE FALSE DO b := 1; END_WHILE;",
+                  "a, b : INT;")
+    assert (main["a"], main["b"]) == (1, 0)
+
+
+def test_return_leaves_the_pou():
+    src = """
+    FUNCTION Sign : INT
+    VAR_INPUT x : INT; END_VAR
+    Sign := 0;
+    IF x > 0 THEN Sign := 1; RETURN; END_IF;
+    IF x < 0 THEN Sign := -1; RETURN; END_IF;
+    Sign := 100;
+    END_FUNCTION
+    FUNCTION_BLOCK Early
+    VAR_OUTPUT a, b : INT; END_VAR
+    a := a + 1;
+    FOR a := a TO 100 DO IF a > 2 THEN RETURN; END_IF; END_FOR;
+    b := 1;
+    END_FUNCTION_BLOCK
+    """
+    main, _ = run("p := Sign(5); m := Sign(-5); z := Sign(0); e(); n := n + 1;",
+                  "p, m, z, n : INT; e : Early;", extra=src)
+    assert (main["p"], main["m"], main["z"], main["n"]) == (1, -1, 100, 1)
+    assert main["e"] == {"a": 3, "b": 0}
+
+
+def test_case_with_values_lists_ranges_and_else():
+    main, _ = run("""
+    FOR i := 0 TO 9 DO
+      CASE i OF
+        1, 3: out := out + 1;
+        5..7: out := out + 10;
+      ELSE
+        out := out + 100;
+      END_CASE;
+    END_FOR;""", "i, out : INT;")
+    assert main["out"] == 2 * 1 + 3 * 10 + 5 * 100
+
+
+def test_enumerations():
+    src = "TYPE Mode : (Idle, Run := 5, Stop); END_TYPE"
+    main, _ = run("IF m = Idle THEN m := Mode#Run; END_IF; CASE m OF Run: x := 1; Stop: x := 2; END_CASE;",
+                  "m : Mode; x : INT;", extra=src)
+    assert main["x"] == 1
+    assert main.raw("m") == 5
+
+
+def test_strings_truncate_to_their_length():
+    main, _ = run("s := CONCAT(s, 'defgh'); t := 'it$'s $N';", "s : STRING[5] := 'abc'; t : STRING;")
+    assert main["s"] == "abcde"
+    assert main["t"] == "it's \n"
+
+
+def test_standard_fbs_run_on_the_simulated_clock():
+    main, _ = run("t(IN := TRUE, PT := T#5ms); q := t.Q; IF q AND at = 0 THEN at := n; END_IF; n := n + 1;",
+                  "t : TON; q : BOOL; n, at : INT;", cycles=10)
+    # Scan k runs at (k-1) ms: ET reaches 5 ms in scan 6 (n = 5 before its increment).
+    assert main["at"] == 5
