@@ -3,7 +3,7 @@
 Interfaces follow the NJ motion control instructions (W508): `Axis` is a
 VAR_IN_OUT AXIS_REF, `ErrorID` a WORD (codes in `error_ids`).  The FB finds
 its simulated axis through `Axis.Cfg.AxNo` in the controller's motion task
-(`ctx.motion`); an AXIS_REF that is not bound to a configured axis gives
+(`motion_task.motion_of(ctx)`); an AXIS_REF that is not bound to a configured axis gives
 `Error` with AXIS_NOT_ASSIGNED.
 
 Execute-type FBs follow the PLCopen output rules:
@@ -28,12 +28,13 @@ from ..native import NativeFB, native_fb
 from . import types as _types  # noqa: F401  (registers AXIS_REF before the FBs)
 from .axis import Axis, MotionCommand, MotionRefused
 from .error_ids import ErrorID
+from .motion_task import motion_of
 from .types import BUFFER_MODE_ABORTING
 
 
 def resolve_axis(ref, ctx) -> Axis | None:
     """The simulated axis an AXIS_REF value stands for, or None if unbound."""
-    motion = getattr(ctx, "motion", None)
+    motion = motion_of(ctx)
     if ref is None or motion is None or not ref.v_CFG.v_AXENABLE:
         return None
     return motion.axis_by_number(ref.v_CFG.v_AXNO)

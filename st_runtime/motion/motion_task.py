@@ -14,7 +14,9 @@ Every primary period, around the user programs:
 The axes are declared from the configuration: `globals_source()` gives the ST
 text `VAR_GLOBAL <name> : AXIS_REF; ... END_VAR` to load with the user's
 files, and `bind(lookup)` ties each global variable to its simulation.
-Native motion FBs reach the task through `ctx.motion`.
+`install(controller)` does the binding and hooks the two stages into the
+controller's scan; native motion FBs then reach the task through the scan
+context (`motion_of(ctx)`: `ctx.controller.motion`).
 """
 
 from __future__ import annotations
@@ -23,7 +25,20 @@ from typing import Callable, Iterable, Mapping
 
 from .axis import Axis
 from .axis_config import AxisConfig, axis_configs_from_tables
+from ..native import mangle
 from .types import AxisRefWriter, bind_axis_ref
+
+
+def motion_of(ctx) -> "MotionTask | None":
+    """The motion task of the controller running `ctx` (None if it has none).
+
+    A context may carry the task itself (`ctx.motion`, e.g. a test bench) or
+    reach it through its controller (`ctx.controller.motion`).
+    """
+    motion = getattr(ctx, "motion", None)
+    if motion is None:
+        motion = getattr(getattr(ctx, "controller", None), "motion", None)
+    return motion
 
 
 class MotionTask:
@@ -61,6 +76,26 @@ class MotionTask:
     def bind(self, lookup: Callable[[str], object]) -> None:
         """Tie each axis to its global AXIS_REF value; `lookup(name)` finds it."""
         self._writers = [bind_axis_ref(lookup(axis.name), axis) for axis in self.axes]
+
+    def install(self, controller) -> None:
+        """Bind to `controller`'s global axis variables and run in its scans.
+
+        The globals must have been declared with `globals_source()` in the
+        loaded program.  Feedback in becomes a `before` hook, motion processing
+        an `after` hook; the controller gets a `motion` attribute for the FBs.
+        """
+        if getattr(controller, "motion", None) is not None:
+            raise ValueError("this controller already has a motion task")
+        globals_object = controller.globals
+        self.bind(lambda name: getattr(globals_object, mangle(name)))
+        controller.motion = self
+        controller.add_io_hook(before=self._before_programs, after=self._after_programs)
+
+    def _before_programs(self, ctx) -> None:
+        self.feedback_in()
+
+    def _after_programs(self, ctx) -> None:
+        self.process(ctx.period_ns * 1e-9)
 
     # ---------------------------------------------------------------- cycle
     def feedback_in(self) -> None:
