@@ -290,3 +290,38 @@ def test_function_names_are_upper_case_and_complete():
                 "LEN", "CONCAT", "LEFT", "RIGHT", "MID"}
     assert required <= set(FUNCTIONS)
     assert all(name == name.upper() for name in FUNCTIONS)
+
+
+# --- properties (seeded, bounded) -------------------------------------------
+
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+
+@settings(max_examples=300, deadline=None, derandomize=True)
+@given(st.floats(-2.1e9, 2.1e9, allow_nan=False) | st.integers(-2**31, 2**31 - 1).map(lambda n: n + 0.5))
+def test_lreal_to_dint_agrees_with_numpy_rint(x):
+    # numpy.rint rounds half to even, the NJ's rule
+    expected = int(np.rint(x))
+    if -2**31 <= expected < 2**31:
+        assert conversion("LREAL", "DINT")(x) == expected
+
+
+@settings(max_examples=300, deadline=None, derandomize=True)
+@given(st.integers(0, 255), st.integers(0, 20))
+def test_byte_rotations_invert_and_shifts_match_python(value, n):
+    assert F["ROR"](F["ROL"](value, n, 8), n, 8) == value
+    assert F["SHL"](value, n, 8) == (value << n) & 0xFF
+    assert F["SHR"](value, n, 8) == value >> n
+    assert F["NOT"](F["NOT"](value, 8), 8) == value
+
+
+@settings(max_examples=200, deadline=None, derandomize=True)
+@given(st.integers(-2**63, 2**63 - 1))
+def test_lint_string_round_trip(n):
+    assert CONVERSIONS["STRING_TO_LINT"](CONVERSIONS["LINT_TO_STRING"](n)) == n
+
+
+@settings(max_examples=200, deadline=None, derandomize=True)
+@given(st.floats(width=32, allow_nan=False, allow_infinity=False))
+def test_real_string_round_trip(x):
+    assert CONVERSIONS["STRING_TO_REAL"](CONVERSIONS["REAL_TO_STRING"](x)) == x

@@ -308,3 +308,34 @@ def test_default_values():
     assert default_value(T.TIME) == 0
     assert default_value(T.ArrayType(((0, 2),), T.INT)) == [0, 0, 0]
     assert default_value(T.StringType(5)) == ""
+
+
+# --- properties (seeded, bounded) -------------------------------------------
+
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+NUMPY_INT = {"SINT": np.int8, "INT": np.int16, "DINT": np.int32, "LINT": np.int64,
+             "USINT": np.uint8, "UINT": np.uint16, "UDINT": np.uint32, "ULINT": np.uint64,
+             "BYTE": np.uint8, "WORD": np.uint16, "DWORD": np.uint32, "LWORD": np.uint64}
+
+
+@settings(max_examples=300, deadline=None, derandomize=True)
+@given(st.sampled_from(sorted(NUMPY_INT)), st.integers(-2**63, 2**63 - 1))
+def test_wrap_agrees_with_numpy_casting(name, value):
+    # NumPy's integer casts keep the low bits (two's complement), as IEC stores do.
+    expected = int(np.array([value], dtype=np.int64).astype(NUMPY_INT[name])[0])
+    assert wrap(value, T.ELEMENTARY[name]) == expected
+
+
+@settings(max_examples=300, deadline=None, derandomize=True)
+@given(st.integers(-2**63, 2**63 - 1))
+def test_time_literal_round_trip(ns):
+    assert parse_time(format_time(ns)) == ns
+
+
+@settings(max_examples=200, deadline=None, derandomize=True)
+@given(st.integers(0, 4_000_000_000 * S))      # 1970 .. 2096
+def test_dt_literal_round_trip(ns):
+    assert parse_dt(format_dt(ns)) == ns
+    assert parse_tod(format_tod(ns)) == ns % (86_400 * S)
+    assert parse_date(format_date(ns)) == ns - ns % (86_400 * S)
