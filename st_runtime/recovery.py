@@ -29,6 +29,7 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedToken
 from lark.lexer import LexerState
 
 from . import ast
+from .ast_builder import AstBuilder
 from .diagnostics import Diagnostic
 
 try:  # Lark >= 1.2 wraps the text in a TextSlice
@@ -58,6 +59,11 @@ _REPLACEMENTS = ("_ASSIGN", "_THEN", "_DO", "_OF", "_COLON", "_TO", "_SEMI", "_R
                  "_RSQB", "_COMMA", "IDENT")
 _INSERTIONS = ("IDENT", "_THEN", "_DO", "_OF", "_TO", "_ASSIGN", "_COLON", "_LPAR")
 _SYNC_KEYWORDS = frozenset(_CLOSERS[:-2]) | {"_ELSE", "ELSIF", "_UNTIL"}
+_STATEMENT_STARTS = frozenset({"IF", "CASE", "FOR", "WHILE", "REPEAT", "EXIT", "CONTINUE",
+                               "RETURN", "IDENT"})
+_BINARY_OPERATORS = frozenset({"AMP", "AND", "OR", "XOR", "EQ", "NE", "LT", "GT", "LE", "GE",
+                               "PLUS", "MINUS", "STAR", "SLASH", "MOD", "POW"})
+_AFTER_STATEMENT_NAME = {"_ASSIGN", "_LPAR", "_DOT", "_LSQB"}
 _EXPRESSION_STARTS = frozenset({
     "IDENT", "INT", "BASED_INT", "REAL_NUMBER", "TIME_LIT", "DATE_LIT", "TOD_LIT",
     "DT_LIT", "TYPED_LIT", "SSTRING", "DSTRING", "TRUE", "FALSE", "MINUS", "PLUS", "NOT",
@@ -82,13 +88,35 @@ class _Lexed:
 def diagnose(grammar, text: str, path: str) -> list[Diagnostic]:
     """The diagnostics for a text that the fast parse rejected."""
     lexed = _lex(grammar, text, path)
+    literal_errors = _literal_errors(lexed.tokens, path)
     recovery = _Recovery(grammar, lexed.tokens, text, path)
     recovery.silent = lexed.after_bad
     syntax = recovery.run(report_eof=not lexed.truncated)
-    merged = sorted(lexed.diagnostics + syntax, key=lambda d: (d.pos.line, d.pos.col))
-    if len(merged) > MAX_ERRORS:
-        merged = merged[:MAX_ERRORS]
+    merged = sorted(lexed.diagnostics + literal_errors + syntax, key=lambda d: (d.pos.line, d.pos.col))
+    if len(merged) > MAX_ERRORS + 1:
+        merged = merged[:MAX_ERRORS] + [Diagnostic(
+            "E-PARSE-013", "too many syntax errors; the rest of the file was not checked",
+            merged[MAX_ERRORS].pos)]
     return merged
+
+
+_LITERAL_RULES = {
+    "INT": "int_literal", "BASED_INT": "based_literal", "REAL_NUMBER": "real_literal",
+    "TIME_LIT": "time_literal", "DATE_LIT": "date_literal", "TOD_LIT": "tod_literal",
+    "DT_LIT": "dt_literal", "TYPED_LIT": "typed_literal", "SSTRING": "string_literal",
+    "DSTRING": "wstring_literal",
+}
+
+
+def _literal_errors(tokens, path: str) -> list[Diagnostic]:
+    """Invalid literals: the AST builder's checks, run on the tokens alone."""
+    builder = AstBuilder()
+    builder.reset(path)
+    for token in tokens:
+        rule = _LITERAL_RULES.get(token.type)
+        if rule is not None:
+            getattr(builder, rule)(token)
+    return builder.errors
 
 
 # ------------------------------------------------------------------- lexing
@@ -154,9 +182,14 @@ class _Recovery:
         self.diagnostics: list[Diagnostic] = []
         self.silent: set[int] = set()
         self.report_eof = True
+        self.consumed = -1
         lines = text.count("\n") + 1
         last_newline = text.rfind("\n")
-        self.eof = Token("$END", "", len(text), lines, len(text) - last_newline)
+        if tokens:  # point just past the last token, on a line that exists
+            last = tokens[-1]
+            self.eof = Token("$END", "", last.end_pos, last.end_line, last.end_column)
+        else:
+            self.eof = Token("$END", "", len(text), lines, len(text) - last_newline)
 
     def _token(self, i: int) -> Token:
         return self.tokens[i] if i < len(self.tokens) else self.eof
@@ -189,17 +222,20 @@ class _Recovery:
     def _feed(state, token: Token):
         return state.feed_token(token, token.type == "$END")
 
-    def _accepts_run(self, state, inserted: list[Token], start: int):
-        """Feed `inserted` then LOOKAHEAD tokens from `start` into a copy.
+    def _accepts_run(self, state, inserted: list[Token], start: int, limit: int = LOOKAHEAD):
+        """Feed `inserted` then up to `limit` tokens from `start` into a copy.
 
-        Returns (new state, next index, finished) or None if the parser rejects.
+        Returns (new state, next index, finished), or None if the parser
+        rejects; `self.consumed` tells how many tokens it read before that.
         """
         trial = state.copy(deepcopy_values=False)
+        self.consumed = -1
         try:
             for token in inserted:
                 self._feed(trial, token)
+            self.consumed = 0
             i = start
-            for _ in range(LOOKAHEAD):
+            for _ in range(limit):
                 token = self._token(i)
                 if token.type == "$END" and not self.report_eof:
                     return trial, i, False   # the text was cut short by a lexical fault
@@ -207,6 +243,7 @@ class _Recovery:
                 if token.type == "$END":
                     return trial, i, True
                 i += 1
+                self.consumed += 1
                 if token.type == "_SEMI":
                     break   # a whole statement fits: the next one may have its own fault
             return trial, i, False
@@ -230,18 +267,23 @@ class _Recovery:
         while steps < limit:
             steps += 1
             token = self._token(i)
+            # LALR may reduce before it notices a fault; keep the state from
+            # before this token so that expectations and repairs start there.
+            before = state.copy(deepcopy_values=False)
             try:
                 self._feed(state, token)
-            except UnexpectedToken as exc:
-                expected = self._expected(state, exc.expected)
+            except UnexpectedToken:
+                state = before
+                table = state.parse_conf.states[state.position]
+                expected = self._expected(state, [k for k in table if k.isupper()])
                 if token.type == "$END" and not report_eof:
                     break
                 repaired = self._repair(state, i, expected)
                 if repaired is None:
-                    break
-                kind, inserted, state, next_i, finished = repaired
+                    repaired = ("none", [], state, i, True)
+                kind, inserted, repaired_state, next_i, finished = repaired
                 if (i >= quiet_until or not self.diagnostics) and i not in self.silent:
-                    self._report(kind, token, inserted, expected, exc.state)
+                    self._report(kind, token, inserted, expected, state)
                     if len(self.diagnostics) >= MAX_ERRORS:
                         self.diagnostics.append(Diagnostic(
                             "E-PARSE-013", "too many syntax errors; the rest of the file "
@@ -250,7 +292,7 @@ class _Recovery:
                 # A repair checked on the next tokens needs no quiet time; a token
                 # dropped blindly does (what follows is likely debris).
                 quiet_until = next_i + (QUIET if kind == "drop" else 0)
-                i = next_i
+                state, i = repaired_state, next_i
                 if finished:
                     break
                 continue
@@ -278,6 +320,8 @@ class _Recovery:
         for closer in _CLOSERS:
             if closer in expected:
                 candidates.append(("close", [self._make(closer, token)], i))
+                candidates.append(("close", [self._make(closer, token),
+                                             self._make("_SEMI", token)], i))
         if not at_end:
             candidates.append(("delete", [], i + 1))
             for kind in _REPLACEMENTS:
@@ -286,10 +330,18 @@ class _Recovery:
         for kind in _INSERTIONS:
             if kind in expected:
                 candidates.append(("insert", [self._make(kind, token)], i))
+        best = None   # the repair that read most tokens before the next fault
         for kind, inserted, start in candidates:
             result = attempt(kind, inserted, start)
             if result is not None:
                 return result
+            if self.consumed >= 2 and (best is None or self.consumed > best[0]):
+                best = (self.consumed, kind, inserted, start)
+        if best is not None:
+            # A second fault follows closely: take this repair up to it.
+            consumed, kind, inserted, start = best
+            trial, nxt, finished = self._accepts_run(state, inserted, start, consumed)
+            return kind, inserted, trial, nxt, finished
         return self._panic(state, i)
 
     def _panic(self, state, i: int):
@@ -338,11 +390,23 @@ class _Recovery:
 
     def _expected_list(self, expected: set[str]) -> str:
         kinds = set(expected)
-        words = []
+        first = []
+        if "_SEMI" in kinds:
+            kinds.discard("_SEMI")
+            first.append("';'")
+        if len(kinds & _STATEMENT_STARTS) > 4:
+            kinds -= _STATEMENT_STARTS
+            first.append("statement")
+        if {"ARRAY", "STRING", "IDENT"} <= kinds:
+            kinds -= {"ARRAY", "STRING", "WSTRING", "IDENT"}
+            first.append("type")
         if len(kinds & _EXPRESSION_STARTS) > 3:
-            kinds -= _EXPRESSION_STARTS
-            words.append("expression")
-        words.extend(sorted(self._describe_kind(k) for k in kinds))
+            kinds -= _EXPRESSION_STARTS | {"_LPAR"}
+            first.append("expression")
+        if len(kinds & _BINARY_OPERATORS) > 4:
+            kinds -= _BINARY_OPERATORS
+            first.append("operator")
+        words = first + sorted(self._describe_kind(k) for k in kinds)
         if len(words) > 6:
             words = words[:6] + ["..."]
         if len(words) == 1:
@@ -352,12 +416,16 @@ class _Recovery:
     def _opener_line(self, lark_state, closer: str) -> str:
         openers = _OPENERS.get(closer, ())
         for value in reversed(lark_state.value_stack if lark_state else []):
+            if isinstance(value, list) and len(value) == 1:
+                value = value[0]
             if isinstance(value, Token) and value.type in openers:
                 return f" to close the {value.type} at line {value.line}"
         return ""
 
     def _in_declaration(self, lark_state) -> bool:
         for value in reversed(lark_state.value_stack if lark_state else []):
+            if isinstance(value, list) and len(value) == 1:
+                value = value[0]   # an inlined rule such as _var_kind
             if isinstance(value, Token) and value.type in _OPENERS["_END_VAR"] + ("STRUCT",):
                 return True
             if isinstance(value, Token) and value.type in ("PROGRAM", "FUNCTION",
@@ -379,6 +447,19 @@ class _Recovery:
             code = "E-PARSE-003"
             message = (f"expected {closer}{self._opener_line(lark_state, inserted[0].type)}, "
                        f"found {found}")
+        elif kind == "insert" and inserted[0].type != "IDENT":
+            code = "E-PARSE-001"
+            message = f"expected {self._describe_kind(inserted[0].type)}, found {found}"
+            previous = self._previous_token(token)
+            if previous is not None:
+                pos = ast.Pos(self.path, previous.end_line, previous.end_column)
+        elif (expected == _AFTER_STATEMENT_NAME and kind in ("panic", "drop", "none")
+              and self._previous_token(token) is not None):
+            name = self._previous_token(token)
+            code = "E-PARSE-001"
+            message = (f"expected ':=' or '(' after '{name.value}' (an assignment or a call), "
+                       f"found {found}")
+            pos = ast.Pos(self.path, name.line, name.column)
         elif kind == "close":
             code = "E-PARSE-001"
             message = f"expected {self._describe_kind(inserted[0].type)}, found {found}"
