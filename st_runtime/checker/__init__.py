@@ -24,7 +24,10 @@ from .statements import StatementChecker
 
 DIALECTS = ("iec", "nj")
 
-register({"E-LIMIT-001": "the program is nested too deeply to be checked"})
+register({
+    "E-LIMIT-001": "the program is nested too deeply to be checked",
+    "E-CHECK-999": "internal checker error (a bug: please report it)",
+})
 
 
 def check(files: list[ast.SourceFile], dialect: str = "iec") -> tuple[CheckedProgram, list[Diagnostic]]:
@@ -42,7 +45,16 @@ def check(files: list[ast.SourceFile], dialect: str = "iec") -> tuple[CheckedPro
         check_recursion(ctx)
         check_identifiers(ctx, files)
     except RecursionError:
-        where = files[0].pos if files else ast.NOWHERE
         ctx.error("E-LIMIT-001", "the program is nested too deeply to be checked "
-                  "(expressions or statements nested hundreds of levels)", where)
+                  "(expressions or statements nested hundreds of levels)", _where(files))
+    except Exception as exc:  # the promise: diagnostics, never a traceback
+        ctx.error("E-CHECK-999", f"internal checker error: {type(exc).__name__}: {exc}",
+                  _where(files))
     return program, list(ctx.sink.items)
+
+
+def _where(files) -> ast.Pos:
+    for f in files:
+        if f.path != "<builtin>":
+            return ast.Pos(f.path, 1, 1)
+    return ast.NOWHERE

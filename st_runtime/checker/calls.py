@@ -12,7 +12,7 @@ from ..ast import key
 from ..symbols import CallTarget, PouInfo
 from . import builtins as B
 from . import typesys as ts
-from .expressions import is_untyped_constant
+from .expressions import is_untyped_constant, start_pos
 from .stores import check_store, is_variable_path, root_name
 
 _PIN_KINDS = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
@@ -159,7 +159,7 @@ class CallChecker:
                 self.ctx.error("E-TYPE-001", f"NOT on output '{sym.name}': expected BOOL, found "
                                f"{sym.type}", arg.pos)
                 return
-            self.ex.require_assignable(sym.type, target, arg.value.pos,
+            self.ex.require_assignable(sym.type, target, start_pos(arg.value),
                                        f"output '{sym.name}' of {pou.name}")
             return
         if sym.kind == "VAR_OUTPUT":
@@ -176,7 +176,7 @@ class CallChecker:
         if not is_variable_path(value):
             self.ex.infer(value)
             self.ctx.error("E-CALL-007", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
-                           f"variable, found an expression", value.pos)
+                           f"variable, found an expression", start_pos(value))
             return
         t = self.ex.infer(value)
         if t is ts.ERROR:
@@ -184,16 +184,16 @@ class CallChecker:
         ref = self.program.name_refs.get(id(root_name(value)))
         if not hasattr(ref, "kind"):
             self.ctx.error("E-CALL-007", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
-                           f"variable, found an enumeration value", value.pos)
+                           f"variable, found an enumeration value", start_pos(value))
             return
         if ref.constant:
             self.ctx.error("E-CALL-007", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
-                           f"writable variable, found CONSTANT '{ref.name}'", value.pos)
+                           f"writable variable, found CONSTANT '{ref.name}'", start_pos(value))
             return
         if not (ts.same_type(t, sym.type) or t is sym.type):
             self.ctx.error("E-CALL-011", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
                            f"variable of type {sym.type}, found {t} (in-out parameters are passed "
-                           f"by reference, without conversion)", value.pos)
+                           f"by reference, without conversion)", start_pos(value))
 
     def _infer_arg(self, arg) -> None:
         if arg.value is not None:
@@ -296,7 +296,7 @@ class CallChecker:
                     c = t
                 if c is None:
                     self.ctx.error("E-TYPE-002", f"{fn.name}: arguments of types {t} and {at} "
-                                   f"have no common type", a.value.pos)
+                                   f"have no common type", start_pos(a.value))
                     t = ts.ERROR
                 else:
                     t = c
@@ -319,7 +319,7 @@ class CallChecker:
         if not B.in_category(t, category):
             self.ctx.error("E-TYPE-004", f"{fn.name}: expected {category} argument(s), found {t}"
                            + (ts.conversion_hint(t, T.LREAL) if category == "ANY_REAL" else ""),
-                           generic[0][1].value.pos)
+                           start_pos(generic[0][1].value))
             return ts.ERROR
         return t
 
@@ -334,7 +334,7 @@ class CallChecker:
             return False
         if not B.in_category(t, category):
             self.ctx.error("E-TYPE-004", f"{fn.name}: argument {param.name} expected {category}, "
-                           f"found {t}", arg.value.pos)
+                           f"found {t}", start_pos(arg.value))
             return False
         return True
 
@@ -369,7 +369,7 @@ class CallChecker:
         if not ts.implicitly_converts(t, src):
             self.ctx.error("E-TYPE-004", f"argument of {canonical}: expected {src}, found {t}"
                            + (f"; use {_short(t)}_TO_{_short(dst)}" if isinstance(t, T.ElementaryType)
-                              else ""), value.pos)
+                              else ""), start_pos(value))
             return self.ex.record(call, ts.ERROR)
         self.program.call_targets[id(call)] = CallTarget("conversion", canonical, None, dst)
         return self.ex.record(call, dst)

@@ -50,6 +50,19 @@ def is_untyped_constant(e) -> bool:
     return False
 
 
+def start_pos(e) -> ast.Pos:
+    """Where an expression starts in the source (a Binary's own pos is its operator)."""
+    while True:
+        if isinstance(e, ast.Binary):
+            e = e.left
+        elif isinstance(e, (ast.Member, ast.Index)):
+            e = e.base
+        elif isinstance(e, ast.Call):
+            e = e.callee
+        else:
+            return getattr(e, "pos", ast.NOWHERE)
+
+
 def _is_plain_literal(e) -> bool:
     while isinstance(e, ast.Unary) and e.op in ("-", "+"):
         e = e.operand
@@ -100,7 +113,7 @@ class ExprChecker:
     def check_value(self, e, dst, what: str):
         """Type `e` for storing into type `dst`; report when it cannot be."""
         src = self.infer(e, dst, strict=True)
-        self.require_assignable(src, dst, e.pos, what)
+        self.require_assignable(src, dst, start_pos(e), what)
         return src
 
     def require_assignable(self, src, dst, pos, what: str) -> bool:

@@ -26,16 +26,15 @@ NJ_INSTRUCTIONS: frozenset[str] = frozenset(key(n) for n in """
     ABS ACOS ASIN ATAN COS SIN TAN EXP EXPT LN LOG SQRT
     ADD SUB MUL DIV MOD EQ NE LT LE GT GE
     MIN MAX LIMIT SEL MUX MOVE TRUNC ROUND RoundUp RoundDown Fraction
-    SHL SHR ROL ROR NOT AND OR XOR Inc Dec Swap Set Reset
+    SHL SHR ROL ROR NOT AND OR XOR Inc Dec
     LEN CONCAT LEFT RIGHT MID FIND INSERT DELETE REPLACE
-    TON TOF TP TONR Timer TimerOn TimerOff AccumulationTimer
-    R_TRIG F_TRIG CTU CTD CTUD SR RS Up Down
-    Clear Copy Exchange AryMove AryExchg ArySearch AryMax AryMin AryMean AryShiftReg
-    Band Zone Scale ScaleTrans Cycle PID Lead Lag
+    TON TOF TP AccumulationTimer
+    R_TRIG F_TRIG CTU CTD CTUD SR RS
+    Clear Exchange AryMove AryExchg ArySearch AryMax AryMin AryMean AryShiftReg ScaleTrans
     MC_Power MC_Reset MC_Home MC_Stop MC_ImmediateStop MC_MoveAbsolute MC_MoveRelative
     MC_MoveVelocity MC_MoveJog MC_SyncMoveAbsolute MC_SyncMoveVelocity MC_GearIn MC_GearOut
     MC_CamIn MC_CamOut MC_SetPosition MC_ReadAxisParameter MC_Phasing MC_TorqueControl
-    GetTime DtToSec SecToDt ResetCJBError
+    GetTime DtToSec SecToDt
 """.split())
 
 

@@ -7,7 +7,7 @@ from .. import types as T
 from ..ast import key
 from . import typesys as ts
 from .constfold import NOT_CONSTANT
-from .expressions import ExprChecker
+from .expressions import ExprChecker, start_pos
 from .stores import check_store
 
 
@@ -52,7 +52,7 @@ class StatementChecker:
     def condition(self, e, what: str) -> None:
         t = self.ex.infer(e, T.BOOL)
         if t is not ts.ERROR and t is not T.BOOL:
-            self.ctx.error("E-TYPE-003", f"{what} condition: expected BOOL, found {t}", e.pos)
+            self.ctx.error("E-TYPE-003", f"{what} condition: expected BOOL, found {t}", start_pos(e))
 
     def _If(self, s: ast.If) -> None:
         for n, branch in enumerate(s.branches):
@@ -98,11 +98,11 @@ class StatementChecker:
             if t is ts.ERROR or var_t is ts.ERROR:
                 continue
             if not ts.is_int(t):
-                self.ctx.error("E-TYPE-010", f"FOR {what} value: expected an integer, found {t}", part.pos)
+                self.ctx.error("E-TYPE-010", f"FOR {what} value: expected an integer, found {t}", start_pos(part))
             else:
-                self.ex.require_assignable(t, var_t, part.pos, f"FOR {what} value")
+                self.ex.require_assignable(t, var_t, start_pos(part), f"FOR {what} value")
         if s.step is not None and self.ex.constant(s.step) == 0 and var_t is not ts.ERROR:
-            self.ctx.error("E-TYPE-010", "FOR ... BY 0: the step must not be zero", s.step.pos)
+            self.ctx.error("E-TYPE-010", "FOR ... BY 0: the step must not be zero", start_pos(s.step))
         pushed = sym is not None and var_t is not ts.ERROR
         if pushed:
             self.ex.loop_vars.append(sym)
@@ -121,7 +121,7 @@ class StatementChecker:
         if sel is not ts.ERROR and not (ts.is_int(sel) or ts.is_bits(sel)
                                         or isinstance(sel, T.EnumType)):
             self.ctx.error("E-TYPE-011", f"CASE selector: expected an integer, bit string or "
-                           f"enumeration, found {sel}", s.selector.pos)
+                           f"enumeration, found {sel}", start_pos(s.selector))
             sel = ts.ERROR
         seen: list[tuple[int, int, ast.Pos]] = []
         for clause in s.clauses:
@@ -133,13 +133,13 @@ class StatementChecker:
                         continue
                     if lo > hi:
                         self.ctx.error("E-TYPE-012", f"CASE range {lo}..{hi}: expected the lower "
-                                       f"bound first", label.pos)
+                                       f"bound first", start_pos(label))
                         continue
-                    self._unique(seen, lo, hi, label.pos)
+                    self._unique(seen, lo, hi, start_pos(label))
                 else:
                     v = self._label(label, sel)
                     if v is not None:
-                        self._unique(seen, v, v, label.pos)
+                        self._unique(seen, v, v, start_pos(label))
             self.block(clause.body)
         self.block(s.else_body)
 
@@ -151,14 +151,14 @@ class StatementChecker:
         if value is NOT_CONSTANT or isinstance(value, (bool, float, str)):
             self.ctx.error("E-TYPE-012", f"CASE label: expected a constant of type {sel}, found "
                            f"a non-constant expression" if value is NOT_CONSTANT
-                           else f"CASE label: expected a constant of type {sel}, found {t}", label.pos)
+                           else f"CASE label: expected a constant of type {sel}, found {t}", start_pos(label))
             return None
         if isinstance(sel, T.EnumType) and t is not sel:
-            self.ctx.error("E-TYPE-012", f"CASE label: expected a value of {sel}, found {t}", label.pos)
+            self.ctx.error("E-TYPE-012", f"CASE label: expected a value of {sel}, found {t}", start_pos(label))
             return None
         if not isinstance(sel, T.EnumType) and not ts.implicitly_converts(t, sel):
             self.ctx.error("E-TYPE-012", f"CASE label: expected a constant of type {sel}, found {t}",
-                           label.pos)
+                           start_pos(label))
             return None
         return value
 
