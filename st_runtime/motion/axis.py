@@ -112,7 +112,12 @@ class Axis:
         self.act_vel = 0.0
         self.fault_code = ErrorID.NONE
         self.command: MotionCommand | None = None
-        self._lag_dt = -1.0
+        # Per-period constants of the checks and the servo (see _set_period).
+        self._soft_min = config.soft_limit_min
+        self._soft_max = config.soft_limit_max
+        self._following_limit = config.following_error_limit
+        self._dt = 0.0
+        self._max_step = self._max_dv = 0.0
         self._lag_gain = 1.0
 
     # ------------------------------------------------------------ queries
@@ -206,28 +211,64 @@ class Axis:
 
     # --------------------------------------------------- motion processing
     def step(self, dt: float) -> None:
-        """Advance one period of `dt` seconds: command, servo, checks."""
-        self._apply_power()
-        old_cmd, old_act = self.cmd_pos, self.act_pos
+        """Advance one period of `dt` seconds: command, servo, checks.
+
+        Runs for every axis every scan, so the common case (a command within
+        all limits) takes a short path; any doubt goes to `_check_command`.
+        """
+        if self.power_requested != self.powered:
+            self._apply_power()
         if not self.powered:
             # Servo off: nothing drives the axis; the command follows the actual position.
             self.cmd_pos = self.act_pos
             self.cmd_vel = self.act_vel = 0.0
             return
-        new_cmd = self._next_command_position(dt)
-        if new_cmd != old_cmd or self.state == AxisState.SYNCHRONIZED:
-            refusal = self._check_command(new_cmd, old_cmd, dt)
-            if refusal is not None:
-                self.fault(refusal)
-                new_cmd = old_cmd
+        if dt != self._dt:
+            self._set_period(dt)
+        old_cmd, old_act = self.cmd_pos, self.act_pos
+        command = self.command
+        if command is None:
+            new_cmd = old_cmd
+        elif command.kind == "sync":
+            new_cmd = command.target
+            delta = new_cmd - old_cmd
+            max_step = self._max_step
+            if not (self._soft_min <= new_cmd <= self._soft_max and -max_step <= delta <= max_step
+                    and (self._max_dv == 0 or abs(delta / dt - self.cmd_vel) <= self._max_dv)):
+                new_cmd = self._checked(new_cmd, old_cmd, dt)
+        else:
+            new_cmd = self._next_command_position(dt)
+            if new_cmd != old_cmd:
+                new_cmd = self._checked(new_cmd, old_cmd, dt)
         self.cmd_pos = new_cmd
         self.cmd_vel = (new_cmd - old_cmd) / dt
-        self._servo(dt)
+        if self._lag_gain == 1.0:
+            self.act_pos = new_cmd  # ideal axis: exactly the command
+        else:
+            self.act_pos = old_act + (new_cmd - old_act) * self._lag_gain
         self.act_vel = (self.act_pos - old_act) / dt
-        limit = self.config.following_error_limit
-        if limit > 0 and abs(self.following_error) > limit:
+        limit = self._following_limit
+        if limit > 0 and abs(new_cmd - self.act_pos) > limit:
             self.fault(ErrorID.FOLLOWING_ERROR_EXCEEDED)
-        self._complete_commands()
+        if self.command is not None and self.command.reached:
+            self._complete_commands()
+
+    def _checked(self, new_cmd: float, old_cmd: float, dt: float) -> float:
+        """`new_cmd` if it passes every check, else fault and hold `old_cmd`."""
+        refusal = self._check_command(new_cmd, old_cmd, dt)
+        if refusal is None:
+            return new_cmd
+        self.fault(refusal)
+        return old_cmd
+
+    def _set_period(self, dt: float) -> None:
+        """Cache what the checks and the servo need for periods of `dt`."""
+        cfg = self.config
+        self._dt = dt
+        self._max_step = cfg.max_velocity * dt * (1 + _LIMIT_SLACK)
+        self._max_dv = cfg.max_acceleration * dt * (1 + _LIMIT_SLACK)
+        tau = cfg.servo_lag
+        self._lag_gain = 1.0 if tau == 0 else 1.0 - math.exp(-dt / tau)
 
     # ------------------------------------------------------------ internals
     def _check_can_move(self) -> None:
@@ -325,16 +366,6 @@ class Axis:
             if abs(new_vel - self.cmd_vel) > cfg.max_acceleration * dt * (1 + _LIMIT_SLACK):
                 return ErrorID.ACCELERATION_LIMIT_EXCEEDED
         return None
-
-    def _servo(self, dt: float) -> None:
-        tau = self.config.servo_lag
-        if tau == 0:
-            self.act_pos = self.cmd_pos  # ideal axis: exactly the command
-            return
-        if dt != self._lag_dt:
-            self._lag_dt = dt
-            self._lag_gain = 1.0 - math.exp(-dt / tau)
-        self.act_pos += (self.cmd_pos - self.act_pos) * self._lag_gain
 
     def _complete_commands(self) -> None:
         c = self.command

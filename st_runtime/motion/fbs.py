@@ -40,11 +40,32 @@ def resolve_axis(ref, ctx) -> Axis | None:
     return motion.axis_by_number(ref.v_CFG.v_AXNO)
 
 
-class _ExecuteFB(NativeFB):
+class _AxisFB(NativeFB):
+    """A native FB with an `Axis` in-out; remembers which axis it resolved."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self._bound: tuple | None = None  # (AXIS_REF value, Axis) last resolved
+
+    def _axis(self, ctx) -> Axis | None:
+        ref = self.v_AXIS
+        bound = self._bound
+        if bound is not None and bound[0] is ref:
+            cfg = ref.v_CFG
+            if cfg.v_AXENABLE and cfg.v_AXNO == bound[1].axis_no:
+                return bound[1]
+        axis = resolve_axis(ref, ctx)
+        self._bound = (ref, axis) if axis is not None else None
+        return axis
+
+
+class _ExecuteFB(_AxisFB):
     """Edge handling and exclusive final outputs shared by Execute-type FBs.
 
-    Subclasses implement `_begin(axis)` (raise MotionRefused to fail) and
-    `_poll(axis)` (return "done", "aborted" or None while running).
+    Subclasses implement `_begin(axis)` (start the command and return it;
+    raise MotionRefused to fail) and may implement `_poll(axis, command,
+    first_call)` (called every call while the command runs) and
+    `_after_call(axis, execute)`.
     """
 
     FINAL_OUTPUTS = ("v_DONE", "v_COMMANDABORTED", "v_ERROR")
@@ -59,7 +80,7 @@ class _ExecuteFB(NativeFB):
         execute = bool(self.v_EXECUTE)
         if not execute and not self.v_BUSY:
             self._clear_outputs()  # a held (or one-call) final output ends
-        axis = resolve_axis(self.v_AXIS, ctx)
+        axis = self._axis(ctx)
         if execute and not self._previous_execute:
             self._clear_outputs()
             self._start(axis)
@@ -123,7 +144,7 @@ def _check_buffer_mode(mode: int) -> None:
 
 
 @native_fb
-class MC_Power(NativeFB):
+class MC_Power(_AxisFB):
     """Servo on while `Enable` is TRUE; `Status` once the axis is powered.
 
     The servo switches at the motion processing after the call, so `Status`
@@ -149,7 +170,7 @@ END_FUNCTION_BLOCK
 """
 
     def execute(self, ctx) -> None:
-        axis = resolve_axis(self.v_AXIS, ctx)
+        axis = self._axis(ctx)
         if axis is None:
             self.v_STATUS = self.v_BUSY = False
             self.v_ERROR = bool(self.v_ENABLE)
@@ -364,6 +385,20 @@ END_FUNCTION_BLOCK
     def _begin(self, axis: Axis) -> MotionCommand:
         _check_buffer_mode(self.v_BUFFERMODE)
         return axis.start_sync()
+
+    def execute(self, ctx) -> None:
+        # Short path for the call of every scan while synchronized (no edge,
+        # command alive); everything else goes through the general rules.
+        command = self._command
+        execute = bool(self.v_EXECUTE)
+        if (self.v_BUSY and command is not None and not command.aborted
+                and (self._previous_execute or not execute)):
+            axis = self._axis(ctx)
+            if axis is not None:
+                self._previous_execute = execute
+                self._poll(axis, command, False)
+                return
+        super().execute(ctx)
 
     def _poll(self, axis: Axis, command: MotionCommand, first_call: bool) -> None:
         applied = command.target  # what the last motion processing commanded
