@@ -1,0 +1,178 @@
+"""`stgen run` and `stgen call`: the fixed command-line contracts."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from stgen.cli import main
+
+COUNTER = """
+TYPE Pair : STRUCT a : INT; b : LREAL; END_STRUCT; END_TYPE
+PROGRAM Main
+VAR
+  count : INT;
+  enable : BOOL := TRUE;
+  level : REAL := 0.5;
+  total : LREAL;
+  name : STRING[8] := 'pump';
+  wait : TIME := T#1s500ms;
+  grid : ARRAY[1..2, 0..1] OF INT := [1, 2, 3, 4];
+  p : Pair;
+  t : TON;
+END_VAR
+count := count + 1;
+total := total + 0.25;
+p.a := count;
+t(IN := enable, PT := T#2ms);
+END_PROGRAM
+"""
+
+FAULTY = """
+PROGRAM Bad
+VAR a : ARRAY[1..3] OF INT; i : INT := 9; END_VAR
+a[i] := 1;
+END_PROGRAM
+"""
+
+LIB = """
+FUNCTION Clamp : LREAL
+VAR_INPUT x, lo, hi : LREAL; END_VAR
+VAR_OUTPUT clipped : BOOL; END_VAR
+Clamp := LIMIT(lo, x, hi); clipped := Clamp <> x;
+END_FUNCTION
+FUNCTION Sum6 : LREAL
+VAR_INPUT v : ARRAY[1..6] OF LREAL; END_VAR
+VAR i : INT; END_VAR
+FOR i := 1 TO 6 DO Sum6 := Sum6 + v[i]; END_FOR;
+END_FUNCTION
+FUNCTION_BLOCK Delay
+VAR_INPUT start : BOOL; pt : TIME; END_VAR
+VAR_OUTPUT done : BOOL; elapsed : TIME; END_VAR
+VAR t : TON; END_VAR
+t(IN := start, PT := pt); done := t.Q; elapsed := t.ET;
+END_FUNCTION_BLOCK
+FUNCTION DivBy : INT
+VAR_INPUT a, b : INT; END_VAR
+DivBy := a / b;
+END_FUNCTION
+"""
+
+
+@pytest.fixture
+def files(tmp_path):
+    (tmp_path / "counter.st").write_text(COUNTER)
+    (tmp_path / "bad.st").write_text(FAULTY)
+    (tmp_path / "lib.st").write_text(LIB)
+    return tmp_path
+
+
+def stgen(capsys, *argv):
+    code = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_run_json_renders_every_variable(files, capsys):
+    code, out, err = stgen(capsys, "run", files / "counter.st", "--program", "Main", "--cycles", "3", "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data == {
+        "count": 3, "enable": True, "level": 0.5, "total": 0.75, "name": "pump", "wait": "T#1s500ms",
+        "grid": [[1, 2], [3, 4]], "p": {"a": 3, "b": 0.0},
+        "t": data["t"],
+    }
+    assert data["t"]["Q"] is True and data["t"]["ET"] == "T#2ms" and data["t"]["PT"] == "T#2ms"
+
+
+def test_run_a_directory_defaults_to_one_cycle(files, capsys):
+    code, out, _ = stgen(capsys, "run", files, "--program", "main", "--json")
+    assert code == 0 and json.loads(out)["count"] == 1
+
+
+def test_run_faults_go_to_stderr_and_exit_1(files, capsys):
+    code, out, err = stgen(capsys, "run", files / "bad.st", "--program", "Bad", "--cycles", "2", "--json")
+    assert code == 1
+    assert json.loads(out)["i"] == 9
+    lines = err.strip().splitlines()
+    assert lines[0].startswith(f"{files / 'bad.st'}:4:")
+    assert "fault[F-INDEX]" in lines[0] and lines[0].endswith("(scan 1)")
+    assert lines[1].endswith("(scan 2)")
+
+
+def test_run_trace_writes_csv(files, capsys, tmp_path):
+    out_csv = tmp_path / "out.csv"
+    code, _, err = stgen(capsys, "run", files / "counter.st", "--program", "Main", "--cycles", "4",
+                         "--period", "2ms", "--trace", out_csv, "--watch", "count", "p.a", "t.Q")
+    assert code == 0, err
+    rows = out_csv.read_text().splitlines()
+    assert rows[0] == "time,scan,count,p.a,t.Q"
+    assert rows[1].split(",")[1:] == ["1", "1", "1", "FALSE"]
+    assert rows[4].split(",")[1:] == ["4", "4", "4", "TRUE"]
+
+
+@pytest.mark.parametrize("argv", [
+    ["run", "{dir}/counter.st", "--program", "Nope"],
+    ["run", "{dir}/missing.st", "--program", "Main"],
+    ["run", "{dir}/counter.st", "--program", "Main", "--period", "fast"],
+    ["run", "{dir}/counter.st", "--program", "Main", "--trace", "x.csv"],
+    ["call", "{dir}/lib.st", "--pou", "Clamp", "--set", "x=oops"],
+    ["call", "{dir}/lib.st", "--pou", "Clamp", "--set", "nope=1"],
+    ["call", "{dir}/lib.st", "--pou", "Missing"],
+    ["call", "{dir}/lib.st", "--pou", "Delay", "--until", "elapsed"],
+])
+def test_usage_errors_exit_2(files, capsys, argv):
+    code, _, err = stgen(capsys, *[a.format(dir=files) for a in argv])
+    assert code == 2
+    assert "error" in err and "Traceback" not in err
+
+
+def test_run_with_check_errors_exits_1(tmp_path, capsys):
+    (tmp_path / "broken.st").write_text("PROGRAM Main\nVAR x : INT; END_VAR\nx := y;\nEND_PROGRAM\n")
+    code, out, err = stgen(capsys, "run", tmp_path / "broken.st", "--program", "Main")
+    assert code == 1 and out == ""
+    assert "broken.st:3:6: error[" in err
+
+
+def test_call_function_prints_outputs_and_return(files, capsys):
+    code, out, err = stgen(capsys, "call", files / "lib.st", "--pou", "Clamp",
+                           "--set", "x=5", "--set", "hi=2.5", "--json")
+    assert code == 0, err
+    assert json.loads(out) == {"clipped": True, "return": 2.5, "cycles": 1}
+
+
+def test_call_function_with_array_input(files, capsys):
+    code, out, _ = stgen(capsys, "call", files / "lib.st", "--pou", "Sum6", "--set", "v=[1,2,3,4,5,6.5]")
+    assert code == 0 and json.loads(out) == {"return": 21.5, "cycles": 1}
+
+
+def test_call_fb_until_output(files, capsys):
+    code, out, err = stgen(capsys, "call", files / "lib.st", "--pou", "Delay", "--set", "start=true",
+                           "--set", 'pt="T#5ms"', "--until", "done", "--json")
+    assert code == 0, err
+    # Scan k runs at (k - 1) ms: ET = 5 ms in scan 6.
+    assert json.loads(out) == {"done": True, "elapsed": "T#5ms", "cycles": 6}
+
+
+def test_call_fb_max_cycles(files, capsys):
+    code, out, err = stgen(capsys, "call", files / "lib.st", "--pou", "Delay", "--set", "start=false",
+                           "--until", "done", "--max-cycles", "7")
+    assert code == 0 and json.loads(out)["cycles"] == 7
+    assert "did not become TRUE" in err
+
+
+def test_call_fault_exits_1(files, capsys):
+    code, out, err = stgen(capsys, "call", files / "lib.st", "--pou", "DivBy", "--set", "a=1", "--set", "b=0")
+    assert code == 1
+    assert json.loads(out) == {"return": 0, "cycles": 1}
+    assert "fault[F-DIV-ZERO]" in err and "(scan 1)" in err
+
+
+def test_console_script_never_shows_a_traceback(files):
+    result = subprocess.run([sys.executable, "-m", "stgen.cli", "call", str(files / "lib.st"),
+                             "--pou", "Sum6", "--set", "v=[1,2]"], capture_output=True, text=True)
+    assert result.returncode == 2
+    assert "Traceback" not in result.stderr and "v" in result.stderr
