@@ -85,3 +85,16 @@ def test_every_error_id_is_distinct_and_documented():
         line = describe(member)
         assert line.startswith(f"16#{int(member):04X} {member.name}: ") and len(line) > 20
     assert describe(0x1234) == "16#1234: unknown ErrorID"
+
+
+def test_axis_configs_from_toml_text():
+    from st_runtime.motion import MotionTask, axis_configs_from_toml
+
+    configs = axis_configs_from_toml('[[axis]]\nname = "A1"\nmax_velocity = 5\n')
+    assert configs == [AxisConfig(name="A1", max_velocity=5.0)]
+    task = MotionTask.from_toml('[[axis]]\nname = "A1"\nmax_velocity = 5\n[[axis]]\nname = "A2"\nmax_velocity = 6\n')
+    assert [a.name for a in task.axes] == ["A1", "A2"] and task.axis("a2").axis_no == 1
+    with pytest.raises(AxisConfigError, match="not valid TOML"):
+        axis_configs_from_toml("[[axis]\n")
+    with pytest.raises(AxisConfigError, match=r"at least one \[\[axis\]\] table"):
+        axis_configs_from_toml("[axes]\nname = 1\n")

@@ -275,3 +275,15 @@ def test_globals_source_and_install_once():
     plc, main, task = make_plc(SYNC_RAMP)
     with pytest.raises(ValueError, match="already has a motion task"):
         MotionTask.from_tables([AXIS]).install(plc.controller)
+
+
+@pytest.mark.parametrize("declaration, message", [
+    ("", "is not declared"),
+    ("VAR_GLOBAL\n    Cyl1 : LREAL;\nEND_VAR\n", "is declared as LREAL"),
+])
+def test_install_needs_the_axis_globals(declaration, message):
+    task = MotionTask.from_tables([AXIS])
+    program = declaration + "PROGRAM Main\nVAR\n    x : INT;\nEND_VAR\nx := 1;\nEND_PROGRAM\n"
+    plc = load_sources({"main.st": program}).controller()
+    with pytest.raises(ValueError, match=message):
+        task.install(plc.controller)

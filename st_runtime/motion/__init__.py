@@ -11,11 +11,13 @@
 
 from . import fbs  # noqa: F401  (registers AXIS_REF and the motion FBs)
 from .axis import Axis, AxisState, MotionRefused
-from .axis_config import AxisConfig, AxisConfigError, axis_config_from_dict, axis_configs_from_tables
+from .axis_config import (
+    AxisConfig, AxisConfigError, axis_config_from_dict, axis_configs_from_tables, axis_configs_from_toml,
+)
 from .error_ids import ErrorID
 from .motion_task import MotionTask
 
 __all__ = [
     "Axis", "AxisConfig", "AxisConfigError", "AxisState", "ErrorID", "MotionRefused",
-    "MotionTask", "axis_config_from_dict", "axis_configs_from_tables",
+    "MotionTask", "axis_config_from_dict", "axis_configs_from_tables", "axis_configs_from_toml",
 ]

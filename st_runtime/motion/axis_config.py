@@ -102,6 +102,20 @@ def axis_configs_from_tables(tables: Iterable[Mapping[str, Any]]) -> list[AxisCo
     return configs
 
 
+def axis_configs_from_toml(text: str) -> list[AxisConfig]:
+    """The `[[axis]]` tables of a TOML text, validated."""
+    import tomllib
+
+    try:
+        document = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise AxisConfigError(f"axis configuration is not valid TOML: {exc}") from None
+    tables = document.get("axis")
+    if not isinstance(tables, list) or not tables:
+        raise AxisConfigError("axis configuration: expected at least one [[axis]] table")
+    return axis_configs_from_tables(tables)
+
+
 def _is_valid_name(name: str) -> bool:
     return (
         bool(_IDENTIFIER.match(name))

@@ -24,7 +24,7 @@ from __future__ import annotations
 from typing import Callable, Iterable, Mapping
 
 from .axis import Axis
-from .axis_config import AxisConfig, axis_configs_from_tables
+from .axis_config import AxisConfig, axis_configs_from_tables, axis_configs_from_toml
 from ..native import mangle
 from .types import AxisRefWriter, bind_axis_ref
 
@@ -53,6 +53,11 @@ class MotionTask:
     def from_tables(cls, tables: Iterable[Mapping]) -> "MotionTask":
         """From axis tables as in a TOML `[[axis]]` list (validated)."""
         return cls(axis_configs_from_tables(tables))
+
+    @classmethod
+    def from_toml(cls, text: str) -> "MotionTask":
+        """From TOML text with one `[[axis]]` table per axis (AxisConfigError if invalid)."""
+        return cls(axis_configs_from_toml(text))
 
     # ---------------------------------------------------------------- lookup
     def axis(self, name: str) -> Axis:
@@ -87,6 +92,15 @@ class MotionTask:
         if getattr(controller, "motion", None) is not None:
             raise ValueError("this controller already has a motion task")
         globals_object = controller.globals
+        layout = getattr(type(globals_object), "_st_vars", {})
+        for axis in self.axes:
+            declared = layout.get(axis.name.upper())
+            if declared is None or str(declared[1]).upper() != "AXIS_REF":
+                found = "is not declared" if declared is None else f"is declared as {declared[1]}"
+                raise ValueError(
+                    f"axis {axis.name}: the global variable {axis.name} {found}; load"
+                    " MotionTask.globals_source() with the program to declare it as AXIS_REF"
+                )
         self.bind(lambda name: getattr(globals_object, mangle(name)))
         controller.motion = self
         controller.add_io_hook(before=self._before_programs, after=self._after_programs)
