@@ -10,6 +10,7 @@ it renders them here, after the kinematics POUs they call.
 from __future__ import annotations
 
 import dataclasses
+from functools import lru_cache
 
 from stgen import render
 from stgen.config import PlatformConfig
@@ -80,6 +81,12 @@ def codes_of(program: render.RenderedProgram, pou: str) -> dict[str, int]:
     return values
 
 
+@lru_cache(maxsize=4)
+def controller_sources(config: PlatformConfig | None = None) -> tuple[tuple[str, str], ...]:
+    """The IEC texts of :func:`render_controller_program` (cached: rendering is pure)."""
+    return tuple(iec_sources(render_controller_program(config)).items())
+
+
 def load_controller(config: PlatformConfig | None = None, axis_globals: str = ""):
     """Parse, check and compile the controller program.
 
@@ -91,6 +98,6 @@ def load_controller(config: PlatformConfig | None = None, axis_globals: str = ""
     """
     from st_runtime import api
 
-    sources = iec_sources(render_controller_program(config))
+    sources = dict(controller_sources(config))
     sources["AxisVariables.st"] = axis_globals
     return api.load_sources(sources)
