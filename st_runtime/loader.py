@@ -15,7 +15,10 @@ import os
 from dataclasses import dataclass, field
 
 from . import ast, native
-from . import stdlib as _stdlib  # noqa: F401  (registers the standard FBs: TON, R_TRIG, ...)
+# Register every native FB before the prelude is read: the standard FBs
+# (TON, R_TRIG, ...) and the PLCopen motion FBs (MC_Power, ...) with AXIS_REF.
+from . import motion as _motion  # noqa: F401
+from . import stdlib as _stdlib  # noqa: F401
 from .checker import check
 from .checker import codes as _codes  # noqa: F401  (registers E-LOAD-*)
 from .diagnostics import Diagnostic, ERROR, WARNING

@@ -1,6 +1,7 @@
 """Every registered diagnostic code is exercised by at least one test.
 
-A code counts as tested when a reject-corpus header expects it, or when its
+A code counts as tested when a corpus header (`(* expect: CODE ...`) expects
+it, or when its
 text appears in a test module (other than this one).  The catalogue is read
 in a fresh interpreter that imports every stage registering codes, so the
 answer does not depend on which test modules ran first.
@@ -45,7 +46,7 @@ def registered_codes() -> dict[str, str]:
 def tested_codes() -> set[str]:
     found: set[str] = set()
     header = re.compile(r"\(\* expect: ([EW]-[A-Z]+-\d{3})")
-    for path in (TESTS / "corpus" / "reject").glob("*.st"):
+    for path in (TESTS / "corpus").rglob("*.st"):
         m = header.match(path.read_text(encoding="utf-8"))
         if m:
             found.add(m.group(1))
