@@ -47,21 +47,6 @@ def axis_tables(config: PlatformConfig, start_pose) -> list[dict]:
     ]
 
 
-def _attach_motion(controller, motion) -> None:
-    """Give the native motion FBs the axes (``ctx.motion``) and run feedback/processing around the programs."""
-    from st_runtime.controller import ScanContext
-
-    if "motion" not in getattr(ScanContext, "__slots__", ()) and not hasattr(controller.ctx, "motion"):
-
-        class MotionScanContext(ScanContext):
-            __slots__ = ("motion",)
-
-        controller.ctx = MotionScanContext(controller)
-    controller.ctx.motion = motion
-    period_s = controller.period_ns * 1e-9
-    controller.add_io_hook(before=lambda ctx: motion.feedback_in(), after=lambda ctx: motion.process(period_s))
-
-
 class ControllerSimulation:
     """SP_Controller with its six axes, scan by scan.
 
@@ -79,8 +64,7 @@ class ControllerSimulation:
         period_ns = round(self.config.task.period_s * 1e9)
         self.plc = project.controller(period=period_ns)
         self.program = self.plc.add_program(CONTROLLER_PROGRAM)
-        self.motion.bind(self.plc.globals.raw)
-        _attach_motion(self.plc.controller, self.motion)
+        self.motion.install(self.plc.controller)
         self.axes = self.motion.axes
         self.globals = self.plc.globals
         self.codes = _global_codes(self.globals)
