@@ -233,3 +233,26 @@ def test_power_off_aborts_motion():
     rig.scan(lambda: (rig.call(power, Enable=False), rig.call(sync, Execute=True, Position=0.1)))
     rig.scan(lambda: rig.call(sync, Execute=True, Position=0.1))
     assert sync.v_COMMANDABORTED and rig.ref().v_STATUS.v_DISABLED
+
+
+def test_new_rising_edge_while_busy_restarts_with_new_inputs():
+    rig, power = powered_rig()
+    move = make_fb(fbs.MC_MoveAbsolute)
+    rig.scan(lambda: rig.call(move, Execute=True, Position=5.0, Velocity=100.0))
+    rig.scan(lambda: rig.call(move, Execute=False))
+    rig.scan(lambda: rig.call(move, Execute=True, Position=-0.1, Velocity=100.0))
+    assert move.v_BUSY and not move.v_COMMANDABORTED  # its own restart is no abort
+    for _ in range(10):
+        rig.scan(lambda: rig.call(move, Execute=True))
+    assert move.v_DONE and rig.task.axis("Ax").cmd_pos == -0.1
+
+
+def test_second_sync_instance_takes_the_axis_and_aborts_the_first():
+    rig, power = powered_rig()
+    first, second = make_fb(fbs.MC_SyncMoveAbsolute), make_fb(fbs.MC_SyncMoveAbsolute)
+    rig.scan(lambda: rig.call(first, Execute=True, Position=0.05))
+    rig.scan(lambda: (rig.call(first, Execute=True, Position=0.1), rig.call(second, Execute=True, Position=0.12)))
+    assert rig.task.axis("Ax").cmd_pos == 0.12  # the later call in the scan owns the axis
+    rig.scan(lambda: (rig.call(first, Execute=True, Position=0.3), rig.call(second, Execute=True, Position=0.14)))
+    assert first.v_COMMANDABORTED and not first.v_BUSY
+    assert second.v_BUSY and rig.task.axis("Ax").cmd_pos == 0.14
