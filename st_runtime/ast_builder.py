@@ -178,6 +178,9 @@ class AstBuilder(Transformer):
     def type_decl(self, name, spec, init):
         return ast.TypeDecl(str(name), spec, init, pos=self._pos(name))
 
+    def struct_decl(self, name, spec):
+        return ast.TypeDecl(str(name), spec, None, pos=self._pos(name))
+
     def struct_type(self, kw, *decls):
         members = []
         for group in decls:
@@ -389,7 +392,11 @@ class AstBuilder(Transformer):
             if type_name in BOOL_TYPES and body.upper() in ("TRUE", "FALSE"):
                 return ast.BoolLiteral(body.upper() == "TRUE", type_name, pos=pos)
             return ast.EnumLiteral(prefix, body, pos=pos)
-        value = self._decode(decode_number, body, 0)
+        try:
+            value = decode_number(body)
+        except (LiteralError, ValueError, OverflowError) as exc:
+            self._error(BAD_LITERAL, f"invalid literal '{token}': {exc}", pos)
+            value = 0
         if type_name in REAL_TYPES:
             return ast.RealLiteral(float(value), type_name, pos=pos)
         if isinstance(value, float):

@@ -3,11 +3,13 @@
 Random text, random bytes, token soups drawn from the grammar's vocabulary and
 small mutations of the accept corpus must only ever give (AST, []) or
 (None, diagnostics) — never an exception, never the internal-error code.
-Bounded: about 200 examples per property, a few seconds each.
+Bounded: 200 examples per property, a few seconds each; a long sweep sets
+ST_FUZZ_EXAMPLES (e.g. `ST_FUZZ_EXAMPLES=5000 pytest tests/test_fuzz_parser.py`).
 """
 
 from __future__ import annotations
 
+import os
 import re
 from pathlib import Path
 
@@ -34,7 +36,7 @@ ATOMS = ["x", "Speed", "INT", "LREAL", "TON", "0", "1", "16#FF", "2#102", "1.5E-
          "T#1s", "T#5x", "INT#-5", "Color#Red", "'it$'s'", "'$Q'", "D#2024-02-30",
          "TOD#25:00:00", "\"w\""]
 
-SETTINGS = settings(max_examples=200, deadline=None,
+SETTINGS = settings(max_examples=int(os.environ.get("ST_FUZZ_EXAMPLES", "200")), deadline=None,
                     suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 
 
