@@ -68,6 +68,7 @@ class CompileUnit:
             "_INF": math.inf, "_NAN": math.nan,
         }
         self.makers = 0
+        self.guard_statements = True
         self.initial = InitialValues(program, self.classes)
         self.calls = Calls(self)
         self.sources: dict[str, str] = {}
@@ -112,9 +113,15 @@ class CompileUnit:
         exec(code, self.namespace)  # the source is generated; ST text only as repr literals
 
 
-def compile_program(program) -> CompiledProgram:
-    """Translate a CheckedProgram; raises CompileError on unsupported input."""
+def compile_program(program, guard_statements: bool = True) -> CompiledProgram:
+    """Translate a CheckedProgram; raises CompileError on unsupported input.
+
+    `guard_statements=False` leaves out the per-statement fault handlers (a
+    fault then abandons the whole scan); only the benchmark uses it, to show
+    what the handlers cost.
+    """
     unit = CompileUnit(program)
+    unit.guard_statements = guard_statements
     _make_classes(unit)
     _make_initializers(unit)
     globals_obj = unit.classes["<GLOBALS>"]()

@@ -377,7 +377,7 @@ class ExprCompiler:
             if k != 1 and self.is_loop_invariant(index):
                 self._invariant_terms.append(f"{code} * {k}")
             if known is not None and lo <= known[0] and known[1] <= hi:
-                terms.append(code if k == 1 else f"{code} * {k}")
+                terms.append(code if k == 1 else self.scaled_loop_term(index, code, k))
                 values.append(code)
                 continue
             if not _is_simple(code):
@@ -386,7 +386,7 @@ class ExprCompiler:
                 code = tmp
             else:
                 checks.append(f"{lo} <= {code} <= {hi}")
-            terms.append(code if k == 1 else f"{code} * {k}")
+            terms.append(code if k == 1 else self.scaled_loop_term(index, code, k))
             values.append(code)
         terms, offset = self.hoist_invariant(e, terms, offset)
         key = " + ".join(terms) if terms else ""
@@ -413,6 +413,21 @@ class ExprCompiler:
             return False
         place = self.scope.places.get(key)
         return place is not None and place.how == "local"
+
+    def scaled_loop_term(self, index, code: str, k: int) -> str:
+        """`i * k` for the innermost FOR variable `i`: computed once per iteration.
+
+        Returns a placeholder the FOR compiler replaces by a temp set at the
+        top of the body (when used twice or more) or by the product itself.
+        """
+        text = f"{code} * {k}"
+        if not self.loops or not isinstance(index, ast.Name) or index.name.upper() != self.loops[-1].variable:
+            return text
+        entry = self.loops[-1].scaled.get(text)
+        if entry is None:
+            entry = self.loops[-1].scaled[text] = [f"\x00{self.temp()}\x00", 0]
+        entry[1] += 1
+        return entry[0]
 
     def hoist_invariant(self, e, terms: list[str], offset: int):
         """Compute the loop-invariant part of a flat index once, before the loop.

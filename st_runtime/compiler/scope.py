@@ -30,6 +30,12 @@ from .exprs import LValue
 from .initial import CompileError
 
 
+# An instance variable is copied into a Python local when it occurs this often
+# (an occurrence inside a loop counts 10): the load at entry and the store at
+# exit then cost less than `self.v_X` at every occurrence.
+CACHE_THRESHOLD = 4
+
+
 @dataclass
 class VarPlace:
     symbol: object
@@ -69,9 +75,14 @@ class Usage:
         self.used: set[str] = set()
         self.assigned: set[str] = set()      # direct stores to the variable (root)
         self.referenced: set[str] = set()    # passed whole to a VAR_IN_OUT
+        self.count: dict[str, int] = {}      # occurrences; inside a loop they count 10
+        in_loops = {id(n) for loop in walk(body) if isinstance(loop, (ast.For, ast.While, ast.Repeat))
+                    for n in walk((loop,))}
         for node in walk(body):
             if isinstance(node, ast.Name):
-                self.used.add(node.name.upper())
+                key = node.name.upper()
+                self.used.add(key)
+                self.count[key] = self.count.get(key, 0) + (10 if id(node) in in_loops else 1)
             elif isinstance(node, ast.Assign):
                 self._store(node.target)
             elif isinstance(node, ast.For):
@@ -150,7 +161,8 @@ class Scope:
                     self.places[key] = VarPlace(symbol, "alias", name)
                     if key in u.used:
                         self.prologue.append(f"{name} = self.{name}")
-                elif referenced:
+                elif referenced or u.count.get(key, 0) < CACHE_THRESHOLD:
+                    # Passed by reference, or used too rarely to repay a load and a store.
                     self.places[key] = VarPlace(symbol, "self", name)
                 else:
                     self.places[key] = VarPlace(symbol, "local", name)

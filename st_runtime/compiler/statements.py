@@ -125,6 +125,9 @@ class BodyCompiler(ExprCompiler):
         if method is None:
             raise CompileError(f"statement {type(stmt).__name__} is not supported by the runtime", stmt.pos)
         o = self.out
+        if not self.unit.guard_statements:
+            method(stmt)
+            return
         o.line("try:")
         o.indent()
         mark = o.mark()
@@ -290,6 +293,17 @@ class BodyCompiler(ExprCompiler):
         o.ensure_body(body_mark)
         o.dedent()
         loop = self.loops.pop()
+        if loop.scaled:
+            per_iteration = []
+            for text, (placeholder, uses) in loop.scaled.items():
+                value = text
+                if uses >= 2:
+                    value = placeholder.strip("\x00")
+                    per_iteration.append(f"{value} = {text}")
+                o.lines[body_mark:] = [line.replace(placeholder, value) for line in o.lines[body_mark:]]
+            o.indent()
+            o.insert(body_mark, per_iteration)
+            o.dedent()
         if loop.hoisted:
             o.insert(mark, [f"{name} = {code}" for code, name in loop.hoisted.items()])
         if saved is None:
@@ -354,6 +368,7 @@ class _Loop:
         self.variable = variable
         self.assigned = assigned
         self.hoisted: dict[str, str] = {}     # Python expression -> temp computed before the loop
+        self.scaled: dict[str, list] = {}     # `i * k` -> [placeholder, uses]: once per iteration
 
 
 def _is_int(value) -> bool:
