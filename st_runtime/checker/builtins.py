@@ -84,6 +84,23 @@ def extra_param(fn: Builtin, index: int) -> Param:
     return Param(f"IN{index + 1}", last.category, last.generic)
 
 
+CATEGORY_TEXT = {
+    "ANY_NUM": "a number (ANY_NUM)",
+    "ANY_REAL": "REAL or LREAL (ANY_REAL)",
+    "ANY_INT": "an integer (ANY_INT)",
+    "ANY_BITS": "a bit string BYTE, WORD, DWORD or LWORD",
+    "ANY_BIT": "BOOL or a bit string (ANY_BIT)",
+    "ANY_ELEMENTARY": "an elementary value (ANY_ELEMENTARY)",
+    "ANY": "a value",
+    "STRING": "a STRING",
+    "BOOL": "BOOL",
+}
+
+
+def describe(category: str) -> str:
+    return CATEGORY_TEXT.get(category, category)
+
+
 def in_category(t, category: str) -> bool:
     """Whether type `t` belongs to a generic category (or is the named type)."""
     if t is ts.ERROR:

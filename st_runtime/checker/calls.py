@@ -317,8 +317,9 @@ class CallChecker:
         if t is ts.ERROR or t is None:
             return ts.ERROR if t is ts.ERROR else None
         if not B.in_category(t, category):
-            self.ctx.error("E-TYPE-004", f"{fn.name}: expected {category} argument(s), found {t}"
-                           + (ts.conversion_hint(t, T.LREAL) if category == "ANY_REAL" else ""),
+            suggestion = {"ANY_REAL": T.LREAL, "ANY_BITS": _bits_for(t)}.get(category)
+            self.ctx.error("E-TYPE-004", f"{fn.name}: expected {B.describe(category)}, found {t}"
+                           + (ts.conversion_hint(t, suggestion) if suggestion is not None else ""),
                            start_pos(generic[0][1].value))
             return ts.ERROR
         return t
@@ -333,8 +334,8 @@ class CallChecker:
         if t is ts.ERROR:
             return False
         if not B.in_category(t, category):
-            self.ctx.error("E-TYPE-004", f"{fn.name}: argument {param.name} expected {category}, "
-                           f"found {t}", start_pos(arg.value))
+            self.ctx.error("E-TYPE-004", f"{fn.name}: argument {param.name}: expected "
+                           f"{B.describe(category)}, found {t}", start_pos(arg.value))
             return False
         return True
 
@@ -379,3 +380,10 @@ def _short(t) -> str:
     if isinstance(t, T.StringType):
         return "STRING"
     return ts.short_name(t)
+
+
+def _bits_for(t):
+    """The bit string of the same width as an integer type (for a hint), else None."""
+    if ts.is_int(t):
+        return {8: T.BYTE, 16: T.WORD, 32: T.DWORD, 64: T.LWORD}.get(t.bits)
+    return None
