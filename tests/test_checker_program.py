@@ -150,3 +150,12 @@ def test_array_initializers_with_repetition_and_nesting():
                 " m : ARRAY[1..2, 1..2] OF INT := [[1, 2], [3, 4]];\n"
                 " s : ARRAY[0..2] OF STRING[4] := ['a', 'b'];\nEND_VAR\nEND_PROGRAM\n")
     assert p.pous["MAIN"].variables["M"].type.dims == ((1, 2), (1, 2))
+
+
+def test_bare_enum_value_shared_by_two_enums_is_resolved_by_its_context():
+    p = checked("TYPE Mode : (Idle, Run); END_TYPE\nTYPE Pump : (Idle, Pumping); END_TYPE\n"
+                "PROGRAM Main\nVAR m : Mode; q : Pump; b : BOOL; END_VAR\n"
+                "m := Idle;\nq := Idle;\nb := q = Idle;\nEND_PROGRAM\n")
+    assert p.expr_types[id(statement(p, 0).value)] is p.types["MODE"]
+    assert p.expr_types[id(statement(p, 1).value)] is p.types["PUMP"]
+    assert p.expr_types[id(statement(p, 2).value.right)] is p.types["PUMP"]

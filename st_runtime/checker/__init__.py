@@ -7,6 +7,29 @@ Passes, each in its own module: `declarations` (types, POUs, globals),
 checker never raises on any AST: every problem is a `Diagnostic`, and an
 expression that already produced one has the type `typesys.ERROR`, which is
 compatible with everything (one root cause, one diagnostic).
+
+What the CheckedProgram holds (the compiler's contract):
+
+* `types`: every TYPE by upper-case name, resolved (an alias maps to its
+  target type, never an AliasType), plus every FUNCTION_BLOCK as its FBType.
+* `pous`: PouInfo per POU; `variables` in declaration order, a FUNCTION's
+  result first as kind "RETURN" (named like the function).  FBType.variables
+  is the same dict.  Native FBs from the prelude carry `native`.
+* `globals`: VAR_GLOBAL symbols.  A VAR_EXTERNAL is a local Symbol of kind
+  "VAR_EXTERNAL" with the global's type; a global used without VAR_EXTERNAL
+  refers to the global Symbol directly.
+* `expr_types`: every expression node, with two exceptions: the callee Name
+  of a function call (see `call_targets`) and an FB call statement's Call.
+  The literal typing rule is in `expressions.py`.
+* `name_refs`: every Name used as a value or target -> Symbol; an enumeration
+  value -> its int.  FB instance callees are included (Symbol of the instance).
+* `call_targets`: every Call that checked; kinds "function" (user: `pou` set;
+  standard: `generic_type` is the instantiation type, or None), "fb",
+  "conversion" (`name` like "INT_TO_REAL", `generic_type` the target type).
+* `constants`: folded values of constant expressions (literals, CONSTANT
+  variables, enumeration values, operators on them), stored as the runtime
+  stores them in the node's type (integers wrapped, REAL rounded to float32).
+* `for_vars`: id(For) -> Symbol of its control variable.
 """
 
 from __future__ import annotations
