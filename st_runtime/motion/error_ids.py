@@ -104,7 +104,3 @@ def _member_docs() -> dict[ErrorID, str]:
 
 _DOCS = _member_docs()
 
-
-if __name__ == "__main__":  # `python -m st_runtime.motion.error_ids` prints the table
-    for _member in ErrorID:
-        print(describe(_member))
