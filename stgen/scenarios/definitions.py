@@ -76,14 +76,14 @@ POINT_TO_POINT = Scenario(
 
 AIRY_WAVE = Scenario(
     name="airy_wave",
-    title="Airy wave: A = 3 mm, Tw = 10 s, L = 100 m, phase 10 deg; 60 s",
+    title="Airy wave: A = 3 mm, Tw = 10 s, L = 100 m, phase 10 deg",
     start_pose=STUDY_START_POSE,
     motion=WaveMotion(wave=AIRY, centre_pose=STUDY_START_POSE, wave_seconds=60.0),
 )
 
 RANDOM_WAVE = Scenario(
     name="random_wave",
-    title="Random wave of five components (SPEC 4); 60 s",
+    title="Random wave of five components (SPEC 4)",
     start_pose=STUDY_START_POSE,
     motion=WaveMotion(wave=RANDOM_5, centre_pose=STUDY_START_POSE, wave_seconds=60.0),
 )
