@@ -170,3 +170,10 @@ def test_internal_errors_become_a_diagnostic():
     sf = ast.SourceFile("h.st", (ast.Pou("PROGRAM", "Main", None, (), pos=P0),), pos=P0)
     program, diagnostics = check([sf])
     assert [(d.code, d.pos.file) for d in diagnostics] == [("E-CHECK-999", "h.st")]
+
+
+def test_long_string_literal_is_a_truncation_warning():
+    result, program = load("PROGRAM Main\nVAR s : STRING[4]; END_VAR\ns := 'abcdef';\ns := 'abcd';\nEND_PROGRAM\n")
+    assert program is not None
+    assert [(d.code, d.pos.line) for d in result.diagnostics] == [("W-TYPE-001", 3)]
+    assert "6 characters" in result.diagnostics[0].message and "STRING[4]" in result.diagnostics[0].message

@@ -22,6 +22,7 @@ CHECKER_CODES = register({
     "E-DECL-009": "a FUNCTION declares a function block instance (functions keep no state)",
     "E-DECL-010": "a VAR_EXTERNAL has no matching VAR_GLOBAL of the same type",
     "E-DECL-011": "a CONSTANT variable has no initial value",
+    "E-DECL-012": "a VAR_IN_OUT or VAR_EXTERNAL has an initial value (it refers to another variable)",
     # types
     "E-TYPE-001": "an operator is applied to an operand type it does not accept",
     "E-TYPE-002": "the operands of an operator have types with no common implicit conversion",
@@ -40,6 +41,7 @@ CHECKER_CODES = register({
     "E-TYPE-015": "an enumeration value does not belong to the named enumeration type",
     "E-TYPE-016": "a name that is not a value (a POU, a type, an FB instance) is used as a value",
     "E-TYPE-017": "division by zero in a constant expression",
+    "W-TYPE-001": "a string literal is longer than the STRING it is stored in and will be truncated",
     # assignments
     "E-ASSIGN-001": "assignment to a CONSTANT variable",
     "E-ASSIGN-002": "assignment to a VAR_INPUT inside its own POU (inputs are read-only)",

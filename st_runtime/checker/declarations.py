@@ -258,6 +258,11 @@ class Declarations:
                                f"the VAR_GLOBAL is {glob.type}", decl.pos)
             else:
                 constant = constant or glob.constant
+        if decl.init is not None and kind in ("VAR_IN_OUT", "VAR_EXTERNAL"):
+            self.ctx.error("E-DECL-012", f"{kind} '{decl.name}' refers to a variable declared "
+                           f"elsewhere: expected no initial value, found one", decl.init.pos
+                           if hasattr(decl.init, "pos") else decl.pos)
+            decl = ast.VarDecl(decl.name, decl.type, None, pos=decl.pos)
         init = decl.init if decl.init is not None else self._default_init(decl.type)
         sym = Symbol(decl.name, t, kind, decl, constant=constant, retain=block.retain, init=init)
         if decl.init is not None and t is not ts.ERROR:

@@ -113,7 +113,10 @@ class ExprChecker:
     def check_value(self, e, dst, what: str):
         """Type `e` for storing into type `dst`; report when it cannot be."""
         src = self.infer(e, dst, strict=True)
-        self.require_assignable(src, dst, start_pos(e), what)
+        if self.require_assignable(src, dst, start_pos(e), what) and isinstance(e, ast.StringLiteral) \
+                and isinstance(dst, T.StringType) and len(e.value) > dst.length:
+            self.ctx.warning("W-TYPE-001", f"{what}: string of {len(e.value)} characters is "
+                             f"truncated to {dst}", e.pos)
         return src
 
     def require_assignable(self, src, dst, pos, what: str) -> bool:
