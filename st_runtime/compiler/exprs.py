@@ -405,7 +405,7 @@ class ExprCompiler:
 
     def is_loop_invariant(self, index) -> bool:
         """A Python local the innermost FOR body never assigns."""
-        if not self.loops or not isinstance(index, ast.Name):
+        if not self.loops or not self.loops[-1].hoistable or not isinstance(index, ast.Name):
             return False
         key = index.name.upper()
         loop = self.loops[-1]
@@ -421,7 +421,8 @@ class ExprCompiler:
         top of the body (when used twice or more) or by the product itself.
         """
         text = f"{code} * {k}"
-        if not self.loops or not isinstance(index, ast.Name) or index.name.upper() != self.loops[-1].variable:
+        if not self.loops or not self.loops[-1].hoistable or not isinstance(index, ast.Name) \
+                or index.name.upper() != self.loops[-1].variable:
             return text
         entry = self.loops[-1].scaled.get(text)
         if entry is None:

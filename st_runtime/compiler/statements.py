@@ -222,6 +222,10 @@ class BodyCompiler(ExprCompiler):
             o.line(f"_overrun({where})")     # BY 0 never ends: the period is exceeded
             return
         start_c, end_c = self.constant_of(s.start), self.constant_of(s.end)
+        assigned = Usage(self.program, s.body, None).assigned
+        if s.variable.upper() in assigned:
+            self._for_as_while(s, target, var_t, step_value if const_step else None, assigned)
+            return
         rng = self.temp()
         final = None          # Python source of the value after a normal end
         count = None          # the iteration count when known now
@@ -265,7 +269,6 @@ class BodyCompiler(ExprCompiler):
                 o.line(f"_ctx.budget -= len({rng})")
                 o.line(f"if _ctx.budget < 0: _overrun({where})")
         key = s.variable.upper()
-        assigned = Usage(self.program, s.body, None).assigned
         saved = self.known_ranges.get(key)
         lo_r, hi_r = self.static_range(s.start), self.static_range(s.end)
         known = None
@@ -274,7 +277,7 @@ class BodyCompiler(ExprCompiler):
             self.known_ranges[key] = known
         else:
             self.known_ranges.pop(key, None)
-        self.loops.append(_Loop(key, assigned))
+        self.loops.append(_Loop(key, assigned, "FOR"))
         mark = o.mark()
         if target.kind == "ref":
             loop_var = self.temp()
@@ -325,12 +328,41 @@ class BodyCompiler(ExprCompiler):
             o.line(target.store(self.convert(final, None, var_t)))
         o.dedent()
 
+    def _for_as_while(self, s, target, var_t, step, assigned) -> None:
+        """FOR whose body changes its variable: a loop that tests it, as on a PLC."""
+        o = self.out
+        key = s.variable.upper()
+        self.known_ranges.pop(key, None)
+        start = self.expr(s.start)
+        end = self.expr(s.end)
+        end_tmp = self.temp()
+        o.line(f"{end_tmp} = {end}")
+        o.line(target.store(self.convert(start, self.ty(s.start), var_t, s.start)))
+        if step is None:
+            step_code = self.temp()
+            o.line(f"{step_code} = {self.expr(s.step)}")
+            test = f"({target.read()} <= {end_tmp} if {step_code} > 0 else {target.read()} >= {end_tmp})"
+        else:
+            step_code = pyliteral(step)
+            test = f"{target.read()} {'<=' if step > 0 else '>='} {end_tmp}"
+        increment = target.store(self.convert(f"{target.read()} + {step_code}", None, var_t))
+        o.line(f"while {test}:")
+        o.indent()
+        self._charge(s)
+        self.loops.append(_Loop(key, assigned, "WHILE", [increment]))
+        self.statements(s.body)
+        self.loops.pop()
+        o.line(increment)
+        o.dedent()
+
     def s_While(self, s):
         o = self.out
         o.line(f"while {self.expr(s.condition)}:")
         o.indent()
         self._charge(s)
+        self.loops.append(_Loop("", set(), "WHILE"))
         self.statements(s.body)
+        self.loops.pop()
         o.dedent()
 
     def s_Repeat(self, s):
@@ -341,7 +373,9 @@ class BodyCompiler(ExprCompiler):
         o.indent()
         o.line(f"{first} = False")
         self._charge(s)
+        self.loops.append(_Loop("", set(), "WHILE"))
         self.statements(s.body)
+        self.loops.pop()
         o.dedent()
 
     def _charge(self, s) -> None:
@@ -352,6 +386,9 @@ class BodyCompiler(ExprCompiler):
         self.out.line("break")
 
     def s_Continue(self, s):
+        if self.loops:
+            for line in self.loops[-1].on_continue:
+                self.out.line(line)
         self.out.line("continue")
 
     def s_Return(self, s):
@@ -362,11 +399,13 @@ class BodyCompiler(ExprCompiler):
 
 
 class _Loop:
-    """A FOR loop being compiled: what its body leaves unchanged, what was hoisted."""
+    """A loop being compiled: what its body leaves unchanged, what was hoisted."""
 
-    def __init__(self, variable: str, assigned: set[str]):
+    def __init__(self, variable: str, assigned: set[str], kind: str, on_continue: list[str] = ()):
         self.variable = variable
         self.assigned = assigned
+        self.hoistable = kind == "FOR"           # a range-based FOR: code may move before it
+        self.on_continue = list(on_continue)     # statements CONTINUE runs first (an increment)
         self.hoisted: dict[str, str] = {}     # Python expression -> temp computed before the loop
         self.scaled: dict[str, list] = {}     # `i * k` -> [placeholder, uses]: once per iteration
 

@@ -1,0 +1,192 @@
+"""The compiler's own promises: code kept and compiled once, optimizations
+that never change a result (bounds checks skipped only where proven, loop
+hoisting, variables cached in locals), and clear errors."""
+
+from __future__ import annotations
+
+import pytest
+
+from st_runtime.api import LoadError, _compiled, load_text
+from st_runtime.compiler import compile_program
+
+
+def run(src: str, cycles: int = 1, program: str = "Main"):
+    plc = load_text(src, "t.st").controller()
+    inst = plc.add_program(program)
+    plc.run(cycles)
+    return inst, plc
+
+
+def test_each_pou_is_compiled_once_and_its_source_kept():
+    src = """
+    FUNCTION_BLOCK Inc
+    VAR_OUTPUT n : INT; END_VAR
+    n := n + 1;
+    END_FUNCTION_BLOCK
+    PROGRAM Main
+    VAR a, b : Inc; END_VAR
+    a(); b(); b();
+    END_PROGRAM
+    """
+    project = load_text(src)
+    sources = project.compiled.python_sources
+    assert "def _body_INC(self, _ctx):" in sources["INC"]
+    assert "def _body_MAIN(self, _ctx):" in sources["MAIN"]
+    a, b = project.compiled.new("Inc"), project.compiled.new("Inc")
+    assert a.execute.__func__ is b.execute.__func__      # one code object for every instance
+    plc = project.controller()
+    main = plc.add_program("Main")
+    plc.run(2)
+    assert main["a"] == {"n": 2} and main["b"] == {"n": 4}
+
+
+def test_index_checks_stay_where_the_loop_range_is_outside_the_bounds():
+    main, plc = run("""PROGRAM Main
+    VAR a : ARRAY[1..5] OF INT; i : INT; END_VAR
+    FOR i := 1 TO 5 DO a[i + 3] := i; END_FOR;
+    END_PROGRAM""")
+    assert main["a"] == [0, 0, 0, 1, 2]
+    assert [f.code for f in plc.faults] == ["F-INDEX"] * 3
+
+
+def test_index_checks_stay_when_loop_bounds_are_variables():
+    main, plc = run("""PROGRAM Main
+    VAR m : ARRAY[0..2, -1..1] OF INT; i, j, hi : INT := 3; END_VAR
+    FOR i := 0 TO hi DO FOR j := -1 TO 1 DO m[i, j] := m[i, j] + i * 10 + j; END_FOR; END_FOR;
+    END_PROGRAM""")
+    assert main["m"] == [[-1, 0, 1], [9, 10, 11], [19, 20, 21]]
+    assert [f.code for f in plc.faults] == ["F-INDEX"] * 3          # i = 3, three times
+    assert "index 3 (dimension 1)" in plc.faults[0].message
+
+
+def test_loop_variable_changed_in_the_body_keeps_its_checks():
+    src = """
+    FUNCTION Bump : BOOL
+    VAR_IN_OUT v : INT; END_VAR
+    v := v + 10; Bump := TRUE;
+    END_FUNCTION
+    PROGRAM Main
+    VAR a : ARRAY[1..5] OF INT; i : INT; END_VAR
+    FOR i := 1 TO 5 DO Bump(i); a[i] := 1; END_FOR;
+    END_PROGRAM"""
+    main, plc = run(src)
+    # As on a PLC, FOR is a loop that tests the variable: i = 11 after the
+    # first Bump is caught by the bounds check, then 11 + 1 > 5 ends the loop.
+    assert [f.code for f in plc.faults] == ["F-INDEX"]
+    assert main["a"] == [0] * 5 and main["i"] == 12
+
+
+def test_hoisted_row_offsets_follow_the_outer_loop():
+    main, _ = run("""PROGRAM Main
+    VAR m, t : ARRAY[1..3, 1..4] OF INT; tt : ARRAY[1..4, 1..3] OF INT; i, j, k : INT; END_VAR
+    FOR i := 1 TO 3 DO FOR j := 1 TO 4 DO m[i, j] := i * 10 + j; END_FOR; END_FOR;
+    k := 2;
+    FOR j := 1 TO 4 DO t[k, j] := m[k, j] * 2; END_FOR;
+    FOR i := 1 TO 3 DO FOR j := 1 TO 4 DO tt[j, i] := m[i, j]; END_FOR; END_FOR;
+    END_PROGRAM""")
+    assert main["m"] == [[11, 12, 13, 14], [21, 22, 23, 24], [31, 32, 33, 34]]
+    assert main["t"][1] == [42, 44, 46, 48] and main["t"][0] == [0] * 4
+    assert main["tt"] == [[11, 21, 31], [12, 22, 32], [13, 23, 33], [14, 24, 34]]
+
+
+def test_constant_tables_skip_checks_but_variable_tables_do_not():
+    src = """PROGRAM Main
+    VAR CONSTANT perm : ARRAY[1..3] OF INT := [3, 1, 2]; END_VAR
+    VAR table : ARRAY[1..3] OF INT := [3, 1, 7]; v : ARRAY[1..3] OF INT := [10, 20, 30];
+        a, b : ARRAY[1..3] OF INT; i : INT; END_VAR
+    FOR i := 1 TO 3 DO a[i] := v[perm[i]]; b[i] := v[table[i]]; END_FOR;
+    END_PROGRAM"""
+    project = load_text(src)
+    source = project.compiled.python_sources["MAIN"]
+    assert source.count("_index_fault") == 1                   # only v[table[i]] is checked
+    plc = project.controller()
+    main = plc.add_program("Main")
+    plc.run(1)
+    assert main["a"] == [30, 10, 20]
+    assert main["b"] == [30, 10, 0]
+    assert [f.code for f in plc.faults] == ["F-INDEX"]
+
+
+def test_for_to_the_type_maximum_ends_and_wraps_the_variable():
+    main, _ = run("""PROGRAM Main
+    VAR i : INT; n : INT; END_VAR
+    FOR i := 32765 TO 32767 DO n := n + 1; END_FOR;
+    END_PROGRAM""")
+    # A PLC would loop forever here (i wraps before the test); the runtime
+    # runs the three iterations the range holds and wraps the final value.
+    assert main["n"] == 3 and main["i"] == -32768
+
+
+def test_aggregate_inputs_are_copied_into_the_instance():
+    src = """
+    FUNCTION_BLOCK Keep
+    VAR_INPUT v : ARRAY[1..3] OF LREAL; END_VAR
+    VAR_OUTPUT first : LREAL; END_VAR
+    first := v[1];
+    END_FUNCTION_BLOCK
+    PROGRAM Main
+    VAR a : ARRAY[1..3] OF LREAL := [1.0, 2.0, 3.0]; k : Keep; END_VAR
+    k(v := a); a[1] := 99.0;
+    END_PROGRAM"""
+    main, _ = run(src)
+    assert main["k"] == {"v": [1.0, 2.0, 3.0], "first": 1.0}
+    assert main["a"] == [99.0, 2.0, 3.0]
+
+
+def test_function_outputs_inside_a_condition():
+    src = """
+    FUNCTION Split : BOOL
+    VAR_INPUT x : DINT; END_VAR
+    VAR_OUTPUT hi, lo : DINT; END_VAR
+    hi := x / 100; lo := x MOD 100; Split := lo = 0;
+    END_FUNCTION
+    PROGRAM Main
+    VAR h, l, n : DINT; END_VAR
+    IF Split(1234, hi => h, lo => l) OR h > 0 THEN n := 1; END_IF;
+    END_PROGRAM"""
+    main, _ = run(src)
+    assert (main["h"], main["l"], main["n"]) == (12, 34, 1)
+
+
+def test_arrays_of_fb_instances_and_fb_initializers():
+    src = """PROGRAM Main
+    VAR t : ARRAY[1..3] OF TON; slow : TON := (PT := T#3ms); i : INT; q : ARRAY[1..3] OF BOOL; END_VAR
+    FOR i := 1 TO 3 DO t[i](IN := TRUE, PT := INT_TO_TIME(i) * 1000000); q[i] := t[i].Q; END_FOR;
+    slow(IN := TRUE);
+    END_PROGRAM"""
+    main, _ = run(src, cycles=3)
+    # Third scan at t = 2 ms: timers of 1 ms and 2 ms are done, 3 ms is not.
+    assert main["q"] == [True, True, False]
+    assert main["slow"]["PT"] == "T#3ms" and main["slow"]["Q"] is False
+
+
+def test_unguarded_compilation_gives_the_same_results():
+    src = """PROGRAM Main
+    VAR s : LREAL; i : INT; END_VAR
+    FOR i := 1 TO 10 DO s := s + i / 2; END_FOR;
+    END_PROGRAM"""
+    project = load_text(src)
+    for compiled in (project.compiled, compile_program(project.program, guard_statements=False)):
+        main = compiled.new("Main")
+        ctx = project.controller().controller.ctx
+        main.execute(ctx)
+        assert main.v_S == 25.0           # 0+1+1+2+2+3+3+4+4+5: INT / INT truncates
+    assert "except _FAULTS" not in compile_program(project.program, guard_statements=False).python_sources["MAIN"]
+
+
+def test_native_fb_works_outside_a_compiled_program():
+    from st_runtime.stdlib.fbs import TON
+
+    t = TON()
+    assert t.v_IN is False and t.v_PT == 0 and t.v_Q is False
+
+
+def test_compile_errors_become_diagnostics():
+    from st_runtime import loader
+
+    result = loader.load_texts({"x.st": "PROGRAM Main\nVAR x : INT; END_VAR\nx := ABS(x);\nEND_PROGRAM\n"})
+    result.program.call_targets.clear()        # a call the checker left unresolved
+    with pytest.raises(LoadError) as info:
+        _compiled(result)
+    assert info.value.diagnostics[-1].code == "E-COMPILE-001"
+    assert "x.st:3:6: error[E-COMPILE-001]" in info.value.render()
