@@ -63,7 +63,6 @@ def rendered():
 @pytest.fixture(scope="module")
 def project(rendered):
     sources = iec_sources(rendered)
-    sources["axes.st"] = "VAR_GLOBAL\n" + "".join(f"    MC_Axis{i:03d} : AXIS_REF;\n" for i in range(6)) + "END_VAR\n"
     sources["harness.st"] = HARNESS
     return api.load_sources(sources)
 

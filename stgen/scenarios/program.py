@@ -22,6 +22,7 @@ CONTROLLER_TEMPLATES = (
     "trajectory/TRJ_OceanWave",
     "controller/SP_ControllerConstants",
     "controller/SP_ControllerGlobals",
+    "controller/SP_Axes",
     "controller/SP_Controller",
 )
 
@@ -87,17 +88,13 @@ def controller_sources(config: PlatformConfig | None = None) -> tuple[tuple[str,
     return tuple(iec_sources(render_controller_program(config)).items())
 
 
-def load_controller(config: PlatformConfig | None = None, axis_globals: str = ""):
-    """Parse, check and compile the controller program.
+def load_controller(config: PlatformConfig | None = None):
+    """Parse, check and compile the controller program (the axis variables are
+    declared by SP_Axes, named as the simulated axes must be: :data:`AXIS_NAMES`).
 
     Not cached: the compiled program holds the global variables, so every
     simulation loads its own.
-
-    ``axis_globals`` is the ST text declaring the axis variables
-    (``MotionTask.globals_source()``).
     """
     from st_runtime import api
 
-    sources = dict(controller_sources(config))
-    sources["AxisVariables.st"] = axis_globals
-    return api.load_sources(sources)
+    return api.load_sources(dict(controller_sources(config)))

@@ -60,7 +60,7 @@ class ControllerSimulation:
 
         self.config = config if config is not None else PlatformConfig.default()
         self.motion = MotionTask.from_tables(axis_tables(self.config, start_pose))
-        project = load_controller(self.config, self.motion.globals_source())
+        project = load_controller(self.config)
         period_ns = round(self.config.task.period_s * 1e9)
         self.plc = project.controller(period=period_ns)
         self.program = self.plc.add_program(CONTROLLER_PROGRAM)
