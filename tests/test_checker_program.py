@@ -159,3 +159,11 @@ def test_bare_enum_value_shared_by_two_enums_is_resolved_by_its_context():
     assert p.expr_types[id(statement(p, 0).value)] is p.types["MODE"]
     assert p.expr_types[id(statement(p, 1).value)] is p.types["PUMP"]
     assert p.expr_types[id(statement(p, 2).value.right)] is p.types["PUMP"]
+
+
+def test_types_may_use_global_constants_declared_anywhere():
+    p = checked("VAR_GLOBAL gLegs : Legs; END_VAR\n"
+                "TYPE Legs : ARRAY[1..N_LEGS] OF LREAL; END_TYPE\n"
+                "VAR_GLOBAL CONSTANT N_LEGS : INT := 6; END_VAR\n")
+    assert p.types["LEGS"].dims == ((1, 6),)
+    assert p.globals["GLEGS"].type is p.types["LEGS"]

@@ -47,11 +47,13 @@ class Declarations:
             for item in f.items:
                 self._collect(item)
         self._create_pous()
-        for k in list(self.ctx.type_decls):
-            self.type_named(k)
-        for block in self.global_blocks:
+        # Global constants first: types may use them (ARRAY[1..N_LEGS]); types
+        # are resolved on demand while globals are declared, the rest after.
+        for block in sorted(self.global_blocks, key=lambda b: not b.constant):
             for decl in block.decls:
                 self.declare(decl, block, self.program.globals, self.global_ex, None)
+        for k in list(self.ctx.type_decls):
+            self.type_named(k)
         for k, node in self.ctx.pou_decls.items():
             self._interface(self.program.pous[k], node)
 
