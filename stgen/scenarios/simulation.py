@@ -9,7 +9,10 @@ puts them.
 The acceleration of the synchronised command is not checked by the axes
 (``max_acceleration = 0``): starting the wave clock after the lead-in is a
 velocity step, as in the study (the lead-in ends at rest, the wave does not
-start at rest). The controller itself checks stroke and per-scan step.
+start at rest). Measured at the default platform: the Airy wave's start
+changes a leg's speed by 0.59 mm/s in one scan, the random wave's by
+8.5 mm/s (8,500 mm/s² over 1 ms, above the actuator's 2,500 mm/s²). The
+controller itself checks stroke and per-scan step.
 """
 
 from __future__ import annotations
