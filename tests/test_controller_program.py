@@ -172,3 +172,35 @@ def test_wave_with_invalid_parameters_is_refused(sim):
     assert sim.globals["SpRefusalID"] == sim.codes["SP_REFUSED_INVALID"]
     assert sim.state == _state(sim, "STANDBY")
     assert isinstance(AIRY_WAVE.motion, WaveMotion) and AIRY_WAVE.motion.wave is AIRY
+
+
+def test_stop_mid_wave_then_a_new_wave_starts_from_its_lead_in(sim):
+    command_scenario(sim, AIRY_WAVE)
+    sim.run(1500)
+    assert sim.state == _state(sim, "WAVE")
+    sim.globals["SpWaveStart"] = False
+    sim.globals["SpStop"] = True
+    sim.run_until(lambda: sim.globals["SpReady"], 200)
+    sim.globals["SpStop"] = False
+    sim.globals["SpWaveStart"] = True
+    sim.run(2)
+    assert sim.state == _state(sim, "WAVE_LEAD_IN")
+    sim.run_until(lambda: sim.state == _state(sim, "WAVE"), 2000)
+    sim.run(2)
+    # The wave clock restarted from zero: one scan after the lead-in is t = 1 ms.
+    assert sim.globals["SpWaveTime"] == pytest.approx(0.001, abs=1e-12)
+
+
+def test_a_fault_survives_a_power_cycle_until_reset(sim):
+    sim.axes[0].fault(ErrorID.FOLLOWING_ERROR_EXCEEDED)
+    sim.run_until(lambda: sim.state == _state(sim, "FAULT"), 100)
+    sim.globals["SpPowerOn"] = False
+    sim.run(3)
+    assert sim.state == _state(sim, "DISABLED")
+    sim.globals["SpPowerOn"] = True
+    sim.run(10)
+    assert sim.state == _state(sim, "FAULT")
+    assert sim.globals["SpFaultID"] == sim.codes["SP_FAULT_AXIS"] and sim.globals["SpFaultAxis"] == 1
+    sim.globals["SpReset"] = True
+    sim.run_until(lambda: sim.globals["SpReady"], 100)
+    assert sim.globals["SpFaultID"] == 0

@@ -55,10 +55,23 @@ def run(args: argparse.Namespace) -> int:
 
     from stgen.scenarios.definitions import SCENARIOS
 
+    from st_runtime.api import LoadError
+
     scenarios = [s.with_wave_seconds(QUICK_WAVE_SECONDS) if args.quick else s for s in SCENARIOS]
-    results = _run_all(scenarios, config, console)
-    for result in results:
-        _write_outputs(result, out)
+    try:
+        results = _run_all(scenarios, config, console)
+    except LoadError as error:
+        print(f"stgen demo: error: the generated controller does not load:\n{error.render()}", file=sys.stderr)
+        return 1
+    except (TimeoutError, ValueError) as error:  # no STANDBY after power-on; a start pose outside the stroke
+        print(f"stgen demo: error: {error}", file=sys.stderr)
+        return 1
+    try:
+        for result in results:
+            _write_outputs(result, out)
+    except OSError as error:
+        print(f"stgen demo: error: cannot write {error.filename or out}: {error.strerror}", file=sys.stderr)
+        return 1
     console.print(_summary(results, config))
     console.print(f"Traces and figures in {out}/")
     failed = [r.scenario.name for r in results if not r.passed]
