@@ -74,6 +74,7 @@ class Controller:
         self.fault_count = 0
         self.stopped: FaultRecord | None = None
         self.scan_count = 0
+        self.motion = None               # set by a motion task (st_runtime.motion) when installed
         self.ctx = ScanContext(self)
 
     # ------------------------------------------------------------ setup

@@ -72,17 +72,22 @@ class ItemRef:
 
 
 class NullRef:
-    """What an unconnected elementary VAR_IN_OUT holds: any use is a fault."""
+    """What an unconnected VAR_IN_OUT of an ST FB holds: any use is a fault."""
 
     __slots__ = ("name",)
 
     def __init__(self, name: str):
         self.name = name
 
-    def get(self):
+    def _fault(self, *args):
         raise STFault("F-NULL-REF", f"VAR_IN_OUT '{self.name}' was not passed a variable")
 
-    set = get
+    get = set = __getitem__ = __setitem__ = _assign = execute = _fault
+
+    def __getattr__(self, attr):
+        if attr.startswith("v_"):
+            self._fault()
+        raise AttributeError(attr)
 
 
 # ------------------------------------------------------------- aggregates

@@ -175,3 +175,24 @@ def test_empty_controller_and_run_zero_cycles():
     controller = Controller(project.compiled)
     assert controller.run(0) == 0 and controller.scan_count == 0
     assert controller.run(2) == 2 and controller.now_ns == 2_000_000
+
+
+def test_unconnected_var_in_out_is_a_fault_not_a_crash():
+    src = """FUNCTION_BLOCK UsesRef
+    VAR_IN_OUT x : INT; a : ARRAY[1..2] OF INT; END_VAR
+    VAR_OUTPUT done : BOOL; END_VAR
+    x := x + 1;
+    a[1] := 5;
+    done := TRUE;
+    END_FUNCTION_BLOCK
+    PROGRAM Main
+    VAR n : INT; END_VAR
+    n := 1;
+    END_PROGRAM"""
+    project = load_text(src)
+    plc = project.controller()
+    fb = project.compiled.new("UsesRef")
+    plc.controller.tasks[0].programs.append(("UsesRef", fb))
+    plc.run(1)
+    assert [f.code for f in plc.faults] == ["F-NULL-REF", "F-NULL-REF"]
+    assert fb.v_DONE is True

@@ -115,6 +115,14 @@ def test_real_overflow_to_float32_gives_infinity():
     assert main.raw("x") == float("inf")
 
 
+def test_power_operator_follows_ieee_like_expt():
+    main, plc = run("a := 2.0 ** 10.0; b := (-8.0) ** 0.5; c := 0.0 ** -1.0; d := EXPT(2.0, 3);",
+                    "a, b, c, d : LREAL;")
+    assert main.raw("a") == 1024.0 and main.raw("d") == 8.0
+    assert main.raw("b") != main.raw("b") and main.raw("c") == float("inf")
+    assert plc.faults == []
+
+
 # ------------------------------------------------------------------------ time
 
 

@@ -18,11 +18,11 @@ from .. import ast
 from ..diagnostics import register
 from ..faults import STFault
 from ..native import NATIVE_FBS, mangle
-from ..objects import AttrRef, ItemRef, STObject, assign_list, native_initializers
+from ..objects import AttrRef, ItemRef, NullRef, STObject, assign_list, native_initializers
 from ..types import FBType, StructType, resolve_alias
 from . import support
 from .calls import Calls
-from .initial import CompileError, InitialValues
+from .initial import CompileError, Initial, InitialValues
 from .pysrc import Emitter, pyliteral, safe_name
 from .statements import BodyCompiler
 
@@ -60,7 +60,7 @@ class CompileUnit:
             "__builtins__": {"len": len, "range": range, "float": float, "int": int,
                              "abs": abs, "min": min, "max": max},
             "_f32": support.f32, "_idiv": support.idiv, "_imod": support.imod,
-            "_rdiv": support.rdiv, "_expt": support.expt, "_time_scale": support.time_scale,
+            "_rdiv": support.rdiv, "_time_scale": support.time_scale,
             "_index_fault": support.index_fault, "_index_fault_n": support.index_fault_n,
             "_overrun": support.overrun, "_for_range": support.for_range,
             "_truncate": support.truncate_string, "_AttrRef": AttrRef, "_ItemRef": ItemRef,
@@ -206,10 +206,17 @@ def _make_initializers(unit: CompileUnit) -> None:
             pairs = native_initializers(pou, lambda s: _maker_of(initial.of_symbol(s)))
             cls.set_initializers(pairs)
             continue
-        members = [(mangle(s.name), initial.of_symbol(s)) for s in _instance_variables(pou)]
+        members = [(mangle(s.name), _unconnected(s) if s.kind == "VAR_IN_OUT" else initial.of_symbol(s))
+                   for s in _instance_variables(pou)]
         _install_init(unit, key, members)
     members = [(mangle(s.name), initial.of_symbol(s)) for s in program.globals.values()]
     _install_init(unit, "<GLOBALS>", members)
+
+
+def _unconnected(symbol) -> Initial:
+    """A VAR_IN_OUT before its first call: a NullRef, so a use is F-NULL-REF."""
+    null = NullRef(symbol.name)
+    return Initial(maker=lambda: null)
 
 
 def _maker_of(value):

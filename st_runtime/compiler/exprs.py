@@ -305,8 +305,8 @@ class ExprCompiler:
             return f"({left} / {tmp} if ({tmp} := {right}) else _rdiv({left}, {tmp}))"
         if op == "MOD":
             return f"_imod({left}, {right}, {self.where(e)})"
-        if op == "**":
-            return f"_expt({left}, {right})"
+        if op == "**":     # as the standard function EXPT (IEEE results, no fault)
+            return f"{self.unit.bind_function('EXPT', e.pos)}(float({left}), {right})"
         self.fail(f"operator {op} is not supported by the runtime", e)
 
     def x_Call(self, e):

@@ -1,6 +1,6 @@
 """Helpers the generated Python code calls: the operations that need more
-than one Python operator (IEC integer division, MOD, float32 rounding, EXPT)
-and the raisers of runtime faults.
+than one Python operator (IEC integer division, MOD, float32 rounding)
+and the raisers of runtime faults.  (`**` is the library's EXPT.)
 
 Everything here is bound into the namespace of the generated code under a
 name starting with `_` (ST names are mangled to `v_...`, so they never meet).
@@ -61,19 +61,6 @@ def rdiv(a: float, b: float) -> float:
         if a == 0 or a != a:
             return math.nan
         return math.copysign(math.inf, a) * math.copysign(1.0, b)
-
-
-def expt(a, b) -> float:
-    """`a ** b` on reals; a math error (negative base, 0 ** -1) is F-MATH."""
-    try:
-        r = float(a) ** b
-    except ZeroDivisionError:
-        raise STFault("F-MATH", f"EXPT({a}, {b}): zero to a negative power") from None
-    except OverflowError:
-        return math.inf
-    if isinstance(r, complex):
-        raise STFault("F-MATH", f"EXPT({a}, {b}): negative base with a non-integer exponent")
-    return r
 
 
 def time_scale(t: int, factor) -> int:
