@@ -143,8 +143,7 @@ class Controller:
         ctx.budget = self.budget
         ctx.period_ns = self.period_ns
         try:
-            for hook in self.before_hooks:
-                hook(ctx)
+            self._hooks(self.before_hooks, ctx)
             try:
                 for task in self.tasks:
                     if index % task.every:
@@ -157,8 +156,7 @@ class Controller:
                                          f"of {self.budget} loop iterations", *_place(overrun.where),
                                          ctx.scan))
             ctx.period_ns = self.period_ns
-            for hook in self.after_hooks:
-                hook(ctx)
+            self._hooks(self.after_hooks, ctx)
         except StopRun as stop:
             self.stopped = stop.record
         self.scan_count += 1
@@ -177,6 +175,15 @@ class Controller:
             if not scan():
                 break
         return done
+
+    def _hooks(self, hooks: list, ctx) -> None:
+        """Run I/O hooks; a fault they raise is recorded against the hook."""
+        for hook in hooks:
+            try:
+                hook(ctx)
+            except STFault as fault:
+                name = getattr(hook, "__qualname__", type(hook).__name__)
+                self.record_fault(fault, (name, "<io>", fault.line or 0, fault.col or 0))
 
     # ----------------------------------------------------------- faults
 

@@ -196,3 +196,18 @@ def test_unconnected_var_in_out_is_a_fault_not_a_crash():
     plc.run(1)
     assert [f.code for f in plc.faults] == ["F-NULL-REF", "F-NULL-REF"]
     assert fb.v_DONE is True
+
+
+def test_a_fault_raised_by_an_io_hook_is_recorded():
+    from st_runtime.faults import STFault
+
+    plc = load_text(PROGRAMS).controller()
+    fast = plc.add_program("Fast")
+
+    def failing(ctx):
+        raise STFault("F-MATH", "axis feedback lost")
+
+    plc.add_io_hook(before=failing)
+    assert plc.run(2) == 2
+    assert fast["n"] == 2
+    assert [(f.code, f.file, f.scan) for f in plc.faults] == [("F-MATH", "<io>", 1), ("F-MATH", "<io>", 2)]
