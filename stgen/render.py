@@ -1,0 +1,259 @@
+"""Render the platform's POUs from the Jinja2 templates in ``st_templates/``.
+
+Each POU template (``st_templates/<POU>.st.j2``) is one POU. Rendered as a
+Jinja2 *module*, it exports
+
+* ``kind``: ``FUNCTION``, ``FUNCTION_BLOCK`` or ``VAR_GLOBAL`` (a global list);
+* ``return_type``: the FUNCTION's result type (``none`` otherwise);
+* ``header``: the POU's header comment, a complete ST ``(* ... *)`` block;
+* ``variables``: its declarations, built with the ``input()``, ``output()``,
+  ``in_out()``, ``internal()``, ``constant()``, ``external()`` and
+  ``global_constant()`` helpers below;
+
+and its rendered text is the POU body (ST statements only). Keeping the
+declarations as data lets every export lay them out its own way: IEC
+``VAR_INPUT`` blocks for CODESYS/TwinCAT, a variable table for Sysmac Studio.
+
+Numbers reach the ST only through :func:`lreal_literal` (``repr`` of the
+float, so the ST holds exactly the configuration's double) and comments only
+through :func:`comment_text` (which refuses text that could close a comment).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import jinja2
+
+from stgen.config import PlatformConfig
+from stgen.error_codes import ErrorCode
+from stgen.reference.geometry import LEG_COUNT, base_joints, platform_joints
+from stgen.reference.linalg import permutation_table
+
+TEMPLATE_DIR = Path(__file__).resolve().parent.parent / "st_templates"
+
+#: The POU templates, in dependency order (a POU only calls POUs listed before it).
+POU_TEMPLATES = (
+    "SP_Constants",
+    "SP_Atan2",
+    "SP_LuSolve",
+    "SP_LeibnizDeterminant",
+    "SP_Jacobian",
+    "SP_InverseKinematics",
+    "SP_ForwardKinematics",
+)
+
+#: How the FK obtains det J (SPEC 3, step 1), a generator option.
+DETERMINANT_METHODS = ("table", "unrolled", "lu")
+
+# Variable usages, named as in Sysmac Studio's variable tables.
+INPUT, OUTPUT, IN_OUT, INTERNAL, EXTERNAL, GLOBAL = "Input", "Output", "InOut", "Internal", "External", "Global"
+
+
+class RenderError(ValueError):
+    """A template or a value that cannot become valid ST."""
+
+
+@dataclass(frozen=True)
+class Variable:
+    """One declaration: ``Name : Type := Initial; (* comment *)``.
+
+    ``initial`` is ST text (may span lines; exports that need one line
+    collapse its whitespace) or ``None``.
+    """
+
+    usage: str
+    name: str
+    type: str
+    initial: str | None = None
+    comment: str = ""
+    constant: bool = False
+    retain: bool = False
+
+
+@dataclass(frozen=True)
+class Pou:
+    """A rendered POU (or a global variable list when ``kind`` is ``VAR_GLOBAL``)."""
+
+    name: str
+    kind: str
+    return_type: str | None
+    header: str
+    variables: tuple[Variable, ...]
+    body: str
+
+    def variables_of(self, usage: str, constant: bool | None = None) -> list[Variable]:
+        return [
+            v for v in self.variables if v.usage == usage and (constant is None or v.constant == constant)
+        ]
+
+
+@dataclass(frozen=True)
+class RenderOptions:
+    """Generator options.
+
+    ``determinant``: ``table`` (Leibniz with a constant permutation/sign table
+    and a loop), ``unrolled`` (Leibniz written out term by term) or ``lu``
+    (the FK takes det J from the LU diagonal; the Leibniz POU is still
+    rendered, as a table).
+    """
+
+    determinant: str = "table"
+
+    def __post_init__(self) -> None:
+        if self.determinant not in DETERMINANT_METHODS:
+            raise RenderError(
+                f"determinant must be one of {', '.join(DETERMINANT_METHODS)}, got {self.determinant!r}"
+            )
+
+
+@dataclass(frozen=True)
+class RenderedProgram:
+    """Everything ``stgen generate`` writes: the global constants first, then the POUs."""
+
+    pous: tuple[Pou, ...] = field(default_factory=tuple)
+
+    def pou(self, name: str) -> Pou:
+        for pou in self.pous:
+            if pou.name == name:
+                return pou
+        raise KeyError(name)
+
+
+# --------------------------------------------------------------------------- literals and comments
+
+
+def lreal_literal(value: float) -> str:
+    """An IEC LREAL literal holding exactly ``value`` (``repr`` digits, always with a decimal point)."""
+    number = float(value)
+    if not math.isfinite(number):
+        raise RenderError(f"cannot render the non-finite value {number!r} as an LREAL literal")
+    text = repr(number)
+    mantissa, _, exponent = text.partition("e")
+    if "." not in mantissa:
+        mantissa += ".0"
+    return f"{mantissa}E{int(exponent)}" if exponent else mantissa
+
+
+def word_literal(value: int) -> str:
+    if not 0 <= value <= 0xFFFF:
+        raise RenderError(f"{value} does not fit a WORD")
+    return f"16#{value:04X}"
+
+
+def comment_text(text: Any) -> str:
+    """Text safe inside an ST ``(* ... *)`` comment (no nested comment delimiters)."""
+    text = str(text)
+    if "(*" in text or "*)" in text:
+        raise RenderError(f"comment text must not contain '(*' or '*)': {text!r}")
+    return text
+
+
+def array_initializer(values, per_line: int, indent: str = "    ") -> str:
+    """``[a, b, ...]`` with ``per_line`` items a line (continuation lines indented)."""
+    items = [str(v) for v in values]
+    lines = [", ".join(items[start : start + per_line]) for start in range(0, len(items), per_line)]
+    return "[" + (",\n" + indent).join(lines) + "]"
+
+
+# --------------------------------------------------------------------------- declaration helpers
+
+
+def _declare(usage: str, constant: bool = False):
+    def helper(name: str, type_: str, comment: str = "", initial: Any = None) -> Variable:
+        return Variable(
+            usage=usage,
+            name=name,
+            type=type_,
+            initial=None if initial is None else str(initial),
+            comment=comment_text(comment),
+            constant=constant,
+        )
+
+    return helper
+
+
+_DECLARATION_HELPERS = {
+    "input": _declare(INPUT),
+    "output": _declare(OUTPUT),
+    "in_out": _declare(IN_OUT),
+    "internal": _declare(INTERNAL),
+    "constant": _declare(INTERNAL, constant=True),
+    "external": _declare(EXTERNAL, constant=True),
+    "global_constant": _declare(GLOBAL, constant=True),
+}
+
+
+# --------------------------------------------------------------------------- rendering
+
+
+def make_environment() -> jinja2.Environment:
+    env = jinja2.Environment(
+        loader=jinja2.FileSystemLoader(str(TEMPLATE_DIR)),
+        undefined=jinja2.StrictUndefined,
+        trim_blocks=True,
+        lstrip_blocks=True,
+        keep_trailing_newline=True,
+        autoescape=False,
+    )
+    env.filters["lreal"] = lreal_literal
+    env.filters["word"] = word_literal
+    env.filters["comment"] = comment_text
+    env.globals.update(_DECLARATION_HELPERS)
+    env.globals["array_initializer"] = array_initializer
+    return env
+
+
+def template_context(config: PlatformConfig, options: RenderOptions) -> dict[str, Any]:
+    """What the templates may use: the configuration and values derived from it."""
+    perms, signs = permutation_table(LEG_COUNT)
+    return {
+        "config": config,
+        "geometry": config.geometry,
+        "solver": config.solver,
+        "stroke": config.stroke,
+        "options": options,
+        "leg_count": LEG_COUNT,
+        "base_joints": base_joints(config.geometry).tolist(),
+        "platform_joints": platform_joints(config.geometry).tolist(),
+        "error_codes": list(ErrorCode),
+        # Leibniz table, 1-based column indices, same rows in the same order as the reference.
+        "permutations": [[int(c) + 1 for c in row] for row in perms],
+        "permutation_signs": [int(s) for s in signs],
+        "rad_per_deg": math.pi / 180.0,
+        "deg_per_rad": 180.0 / math.pi,
+        "lreal_max": 1.7976931348623157e308,
+        "pi": math.pi,
+    }
+
+
+def render_pou(env: jinja2.Environment, name: str, context: dict[str, Any]) -> Pou:
+    try:
+        module = env.get_template(f"{name}.st.j2").make_module(context)
+    except jinja2.TemplateError as error:
+        raise RenderError(f"{name}.st.j2: {error}") from error
+    exported = module.__dict__
+    for key in ("kind", "header", "variables"):
+        if key not in exported:
+            raise RenderError(f"{name}.st.j2 does not set '{key}'")
+    body = str(module).strip("\n")
+    return Pou(
+        name=name,
+        kind=exported["kind"],
+        return_type=exported.get("return_type"),
+        header=str(exported["header"]).strip("\n"),
+        variables=tuple(exported["variables"]),
+        body=body + "\n" if body else "",
+    )
+
+
+def render_program(config: PlatformConfig | None = None, options: RenderOptions | None = None) -> RenderedProgram:
+    """Render every POU of :data:`POU_TEMPLATES` for ``config`` (default: the study's platform)."""
+    config = config if config is not None else PlatformConfig.default()
+    options = options if options is not None else RenderOptions()
+    env = make_environment()
+    context = template_context(config, options)
+    return RenderedProgram(tuple(render_pou(env, name, context) for name in POU_TEMPLATES))
