@@ -25,6 +25,7 @@ import os
 from dataclasses import dataclass, field
 
 from .controller import DEFAULT_BUDGET, Controller
+from .ast import Pos
 from .diagnostics import Diagnostic
 from .faults import FaultRecord
 from .native import mangle
@@ -89,6 +90,13 @@ def _compiled(result) -> "Project":
         compiled = compile_program(result.program)
     except CompileError as exc:
         diagnostic = Diagnostic("E-COMPILE-001", exc.message, exc.pos)
+        raise LoadError(result.diagnostics + [diagnostic], result.sources) from None
+    except (RecursionError, MemoryError):
+        raise
+    except Exception as exc:  # a compiler bug must still read as a diagnostic
+        first = next((p for p in result.sources if p != "<builtin>"), "<input>")
+        diagnostic = Diagnostic("E-COMPILE-001", f"internal compiler error: {type(exc).__name__}: {exc}",
+                                Pos(first, 0, 0))
         raise LoadError(result.diagnostics + [diagnostic], result.sources) from None
     return Project(compiled, result.diagnostics, result.sources)
 

@@ -61,6 +61,8 @@ class Calls:
         outputs: list = []
         position = 0
         for arg in call.args:
+            if arg.direction == "out" and arg.value is None:
+                continue          # `Q =>`: the output is left unconnected
             if arg.direction == "out":
                 symbol = variables.get(arg.name.upper())
                 if symbol is None:
