@@ -134,7 +134,7 @@ def test_hand_built_odd_asts_give_diagnostics_not_exceptions():
 
 def test_deeply_nested_expression_reports_a_limit_instead_of_crashing():
     expr = ast.IntLiteral(1)
-    for _ in range(20000):
+    for _ in range(100_000):
         expr = ast.Binary("+", expr, ast.Name("x"))
     blocks = [ast.VarBlock("VAR", (ast.VarDecl("x", ast.NamedType("INT")),))]
     program, diagnostics = check([_program(ast.Assign(ast.Name("x"), expr), var_blocks=blocks)])
@@ -177,3 +177,20 @@ def test_long_string_literal_is_a_truncation_warning():
     assert program is not None
     assert [(d.code, d.pos.line) for d in result.diagnostics] == [("W-TYPE-001", 3)]
     assert "6 characters" in result.diagnostics[0].message and "STRING[4]" in result.diagnostics[0].message
+
+
+def test_unrolled_leibniz_sum_of_720_products_is_checked():
+    import itertools
+
+    terms = []
+    for perm in itertools.permutations(range(1, 7)):
+        inversions = sum(1 for i in range(6) for j in range(i + 1, 6) if perm[i] > perm[j])
+        product = " * ".join(f"m[{i + 1}, {perm[i]}]" for i in range(6))
+        terms.append(("- " if inversions % 2 else "+ ") + product)
+    text = ("FUNCTION Det : LREAL\nVAR_INPUT m : ARRAY[1..6, 1..6] OF LREAL; END_VAR\nDet := 0.0\n"
+            + "\n".join(terms) + ";\nEND_FUNCTION\n")
+    result, program = load(text)
+    assert program is not None, result.render()[:500]
+    assign = program.pous["DET"].node.body[0]
+    from st_runtime import types as T
+    assert program.expr_types[id(assign.value)] is T.LREAL

@@ -34,6 +34,8 @@ What the CheckedProgram holds (the compiler's contract):
 
 from __future__ import annotations
 
+import sys
+
 from .. import ast
 from ..diagnostics import Diagnostic, DiagnosticSink, register
 from ..symbols import CheckedProgram
@@ -46,6 +48,7 @@ from .recursion import check_recursion
 from .statements import StatementChecker
 
 DIALECTS = ("iec", "nj")
+RECURSION_LIMIT = 30_000
 
 register({
     "E-LIMIT-001": "the program is nested too deeply to be checked",
@@ -56,6 +59,17 @@ register({
 def check(files: list[ast.SourceFile], dialect: str = "iec") -> tuple[CheckedProgram, list[Diagnostic]]:
     """Check parsed files as one program; `dialect` is "iec" or "nj"."""
     files = [f for f in files if f is not None]
+    # The checker walks expressions recursively; a generated sum of 720
+    # products (an unrolled Leibniz determinant) is 720 levels deep.
+    old_limit = sys.getrecursionlimit()
+    sys.setrecursionlimit(max(old_limit, RECURSION_LIMIT))
+    try:
+        return _check(files, dialect)
+    finally:
+        sys.setrecursionlimit(old_limit)
+
+
+def _check(files, dialect):
     program = CheckedProgram(files=list(files))
     ctx = Context(program, DiagnosticSink(), dialect if dialect in DIALECTS else "iec")
     try:

@@ -12,7 +12,7 @@ from ..ast import key
 from ..symbols import CallTarget, PouInfo
 from . import builtins as B
 from . import typesys as ts
-from .expressions import is_untyped_constant, start_pos
+from .expressions import start_pos
 from .stores import check_store, is_variable_path, root_name
 
 _PIN_KINDS = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
@@ -280,8 +280,8 @@ class CallChecker:
         if not generic:
             return None
         category = generic[0][0].category
-        typed = [(p, a) for p, a in generic if not is_untyped_constant(a.value)]
-        untyped = [(p, a) for p, a in generic if is_untyped_constant(a.value)]
+        typed = [(p, a) for p, a in generic if not self.ex.untyped(a.value)]
+        untyped = [(p, a) for p, a in generic if self.ex.untyped(a.value)]
         t = None
         for p, a in typed:
             at = self.ex.infer(a.value, expected)

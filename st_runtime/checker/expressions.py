@@ -40,14 +40,24 @@ LOGIC = ("AND", "&", "OR", "XOR")
 COMPARISON = ("=", "<>", "<", ">", "<=", ">=")
 
 
-def is_untyped_constant(e) -> bool:
+def is_untyped_constant(e, memo: dict | None = None) -> bool:
+    """Whether `e` is made only of untyped literals and + - * / MOD (see above)."""
+    if memo is not None:
+        known = memo.get(id(e))
+        if known is not None:
+            return known
     if isinstance(e, (ast.IntLiteral, ast.RealLiteral)):
-        return e.type_prefix is None
-    if isinstance(e, ast.Unary) and e.op in ("-", "+"):
-        return is_untyped_constant(e.operand)
-    if isinstance(e, ast.Binary) and e.op in ARITHMETIC:
-        return is_untyped_constant(e.left) and is_untyped_constant(e.right)
-    return False
+        result = e.type_prefix is None
+    elif isinstance(e, ast.Unary) and e.op in ("-", "+"):
+        result = is_untyped_constant(e.operand, memo)
+    elif isinstance(e, ast.Binary) and e.op in ARITHMETIC:
+        # Right first: in a long left-deep sum `a + b + c ...` it fails at once.
+        result = is_untyped_constant(e.right, memo) and is_untyped_constant(e.left, memo)
+    else:
+        result = False
+    if memo is not None:
+        memo[id(e)] = result
+    return result
 
 
 def start_pos(e) -> ast.Pos:
@@ -81,8 +91,12 @@ class ExprChecker:
         self.scope = scope
         self.program = ctx.program
         self.loop_vars: list = []  # Symbols of the enclosing FOR loops
+        self._untyped_memo: dict[int, bool] = {}
         from .calls import CallChecker  # calls needs ExprChecker; import late
         self.calls = CallChecker(self)
+
+    def untyped(self, e) -> bool:
+        return is_untyped_constant(e, self._untyped_memo)
 
     # ------------------------------------------------------------ recording
     def record(self, e, t, value=NOT_CONSTANT):
@@ -101,7 +115,7 @@ class ExprChecker:
         constant that does not fit `expected` an error."""
         if e is None:
             return ts.ERROR
-        if is_untyped_constant(e):
+        if self.untyped(e):
             settled = self.settle(e, expected, strict)
             if settled is not None:
                 return settled
@@ -381,8 +395,8 @@ class ExprChecker:
 
     def _Binary(self, e, expected):
         op = e.op
-        left_untyped = is_untyped_constant(e.left)
-        right_untyped = is_untyped_constant(e.right)
+        left_untyped = self.untyped(e.left)
+        right_untyped = self.untyped(e.right)
         if left_untyped and not right_untyped:
             rt = self.infer(e.right)
             lt = self.infer(e.left, self._hint(op, rt, expected, left=True))
