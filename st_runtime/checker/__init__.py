@@ -37,10 +37,10 @@ from __future__ import annotations
 import sys
 
 from .. import ast
-from ..diagnostics import Diagnostic, DiagnosticSink, register
+from ..diagnostics import Diagnostic, register
 from ..symbols import CheckedProgram
 from . import codes  # noqa: F401  (registers the codes)
-from .context import Context, Scope
+from .context import Context, FastSink, Scope
 from .declarations import Declarations
 from .expressions import ExprChecker
 from .nj_rules import check_identifiers
@@ -71,7 +71,7 @@ def check(files: list[ast.SourceFile], dialect: str = "iec") -> tuple[CheckedPro
 
 def _check(files, dialect):
     program = CheckedProgram(files=list(files))
-    ctx = Context(program, DiagnosticSink(), dialect if dialect in DIALECTS else "iec")
+    ctx = Context(program, FastSink(), dialect if dialect in DIALECTS else "iec")
     try:
         Declarations(ctx).run(files)
         for info in program.pous.values():

@@ -7,10 +7,24 @@ from dataclasses import dataclass, field
 
 from .. import ast
 from ..ast import key
-from ..diagnostics import DiagnosticSink
+from ..diagnostics import ERROR, Diagnostic, DiagnosticSink
 from ..symbols import CheckedProgram, PouInfo, Symbol
 
 BUILTIN_FILE = "<builtin>"
+
+
+@dataclass
+class FastSink(DiagnosticSink):
+    """A DiagnosticSink whose duplicate test is a set lookup, not a list scan
+    (a file with thousands of faulty lines stays fast)."""
+
+    seen: set = field(default_factory=set)
+
+    def add(self, code: str, message: str, pos: ast.Pos, severity: str = ERROR) -> None:
+        diag = Diagnostic(code, message, pos, severity)
+        if diag not in self.seen:
+            self.seen.add(diag)
+            self.items.append(diag)
 
 
 @dataclass(eq=False)
