@@ -178,14 +178,26 @@ def is_aggregate(t: Type) -> bool:
     return _is_aggregate(t)
 
 
+_RULES: tuple = ()
+
+
+def _store_rules() -> tuple:
+    """(f32, wrap_int) of the compiled code, imported once (late: no cycle)."""
+    global _RULES
+    if not _RULES:
+        from .compiler.support import f32, wrap_int
+
+        _RULES = (f32, wrap_int)
+    return _RULES
+
+
 def store_value(t: Type, value):
     """Convert a Python value to what a variable of type `t` stores.
 
     Used for initial values and values coming from outside (API, JSON): wraps
     integers, rounds REAL to float32, truncates strings.
     """
-    from .compiler.support import f32, wrap_int  # the compiled code's own rules
-
+    f32, wrap_int = _store_rules()
     t = resolve_alias(t)
     if isinstance(t, ElementaryType):
         if t.kind == "bool":
