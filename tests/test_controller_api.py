@@ -1,0 +1,98 @@
+"""The Python API: load, instantiate, set, scan, read, call (mirrors the CLI)."""
+
+from __future__ import annotations
+
+import pytest
+
+import st_runtime
+from st_runtime import LoadError, load, load_text
+
+SOURCE = """
+TYPE Limits : STRUCT lo : LREAL := -1.0; hi : LREAL := 1.0; END_STRUCT; END_TYPE
+VAR_GLOBAL Gain : LREAL := 2.0; END_VAR
+PROGRAM Main
+VAR
+  input : ARRAY[1..3] OF LREAL;
+  output : ARRAY[1..3] OF LREAL;
+  lim : Limits;
+  hold : TIME;
+  i : INT;
+END_VAR
+VAR_EXTERNAL Gain : LREAL; END_VAR
+FOR i := 1 TO 3 DO
+  output[i] := LIMIT(lim.lo, input[i] * Gain, lim.hi);
+END_FOR;
+hold := hold + T#1ms;
+END_PROGRAM
+FUNCTION_BLOCK Ramp
+VAR_INPUT target : LREAL; step : LREAL := 0.5; END_VAR
+VAR_OUTPUT value : LREAL; done : BOOL; END_VAR
+IF value < target THEN value := MIN(value + step, target); END_IF;
+done := value >= target;
+END_FUNCTION_BLOCK
+FUNCTION Hyp : LREAL
+VAR_INPUT a, b : LREAL; END_VAR
+Hyp := SQRT(a * a + b * b);
+END_FUNCTION
+"""
+
+
+def test_set_scan_read_with_json_values():
+    plc = load_text(SOURCE).controller(period="1ms")
+    main = plc.add_program("Main")
+    main["input"] = [0.25, -3, 1]
+    main["lim"] = {"hi": 0.75}
+    main["lim.lo"] = -2.5
+    main["hold"] = "T#1s"
+    plc.globals["Gain"] = 4.0
+    assert plc.run(2) == 2
+    assert main["output"] == [0.75, -2.5, 0.75]
+    assert main["lim"] == {"lo": -2.5, "hi": 0.75}
+    assert main["hold"] == "T#1s2ms"
+    assert main["input[2]"] == -3.0
+    assert main.raw("hold") == 1_002_000_000
+    assert plc.now_ns == 2_000_000
+    assert set(main.to_json()) == {"input", "output", "lim", "hold", "i"}
+
+
+def test_bad_paths_and_values_raise_clear_errors():
+    plc = load_text(SOURCE).controller()
+    main = plc.add_program("Main")
+    with pytest.raises(KeyError, match="no variable"):
+        main["nothing"]
+    with pytest.raises(KeyError, match="out of bounds"):
+        main["input[4]"]
+    with pytest.raises(ValueError):
+        main["input"] = [1, 2]
+    with pytest.raises(KeyError):
+        plc.add_program("Ramp")
+
+
+def test_project_call_function_and_fb():
+    project = load_text(SOURCE)
+    result = project.call("Hyp", {"a": 3, "b": 4})
+    assert result["outputs"] == {"return": 5.0, "cycles": 1} and result["faults"] == []
+    result = project.call("Ramp", {"target": 2.0}, until="done")
+    assert result["outputs"] == {"value": 2.0, "done": True, "cycles": 4}
+    assert result["reached"] is True
+
+
+def test_load_reports_diagnostics(tmp_path):
+    (tmp_path / "a.st").write_text("PROGRAM P\nVAR x : INT; END_VAR\nx := 1.5;\nEND_PROGRAM\n")
+    with pytest.raises(LoadError) as info:
+        load([tmp_path])
+    assert any(d.is_error for d in info.value.diagnostics)
+    assert "a.st:3:" in info.value.render()
+
+
+def test_load_directory_and_run(tmp_path):
+    (tmp_path / "main.st").write_text(SOURCE)
+    plc = load([tmp_path]).controller()
+    main = plc.add_program("Main")
+    plc.run(1)
+    assert main["hold"] == "T#1ms"
+
+
+def test_package_exports_the_api():
+    assert st_runtime.load is load and st_runtime.load_text is load_text
+    assert {"Controller", "FaultRecord", "STFault", "Project", "Plc"} <= set(st_runtime.__all__)
