@@ -204,3 +204,10 @@ def test_a_fault_survives_a_power_cycle_until_reset(sim):
     sim.globals["SpReset"] = True
     sim.run_until(lambda: sim.globals["SpReady"], 100)
     assert sim.globals["SpFaultID"] == 0
+
+
+def test_simulated_axes_are_named_as_the_generated_axis_variables():
+    from stgen.scenarios.program import AXIS_NAMES, render_controller_program
+
+    declared = [v.name for v in render_controller_program(CONFIG).pou("SP_Axes").variables]
+    assert declared == list(AXIS_NAMES)

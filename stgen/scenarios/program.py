@@ -1,15 +1,10 @@
 """The whole controller as ST: the kinematics POUs plus the trajectory FBs and
-SP_Controller, rendered for a platform and loaded into ``st_runtime``.
-
-The controller's POUs are listed in :data:`CONTROLLER_TEMPLATES`. When
-``stgen.render.POU_TEMPLATES`` already holds them (``stgen generate`` renders
-them), :func:`render_controller_program` is just ``render_program``; until then
-it renders them here, after the kinematics POUs they call.
+SP_Controller (:data:`CONTROLLER_TEMPLATES`, part of ``stgen generate``'s
+``POU_TEMPLATES``), rendered for a platform and loaded into ``st_runtime``.
 """
 
 from __future__ import annotations
 
-import dataclasses
 from functools import lru_cache
 
 from stgen import render
@@ -33,35 +28,14 @@ CONTROLLER_PROGRAM = "SP_Controller"
 AXIS_NAMES = tuple(f"MC_Axis{index:03d}" for index in range(6))
 
 
-def pou_name(template: str) -> str:
-    """``controller/SP_Controller`` -> ``SP_Controller``."""
-    return template.rsplit("/", 1)[-1]
-
-
-def _environment():
-    env = render.make_environment()
-    # Declaration helpers for non-constant globals and externals, if render.py has none yet.
-    env.globals.setdefault("global_variable", render._declare(render.GLOBAL))
-    env.globals.setdefault("external_variable", render._declare(render.EXTERNAL))
-    return env
-
-
 def render_controller_program(
     config: PlatformConfig | None = None, options: render.RenderOptions | None = None
 ) -> render.RenderedProgram:
-    """Every POU the controller needs, in dependency order."""
-    config = config if config is not None else PlatformConfig.default()
-    options = options if options is not None else render.RenderOptions()
-    if all(template in render.POU_TEMPLATES for template in CONTROLLER_TEMPLATES):
-        return render.render_program(config, options)
-    base = render.render_program(config, options)
-    env = _environment()
-    context = render.template_context(config, options)
-    mine = []
-    for template in CONTROLLER_TEMPLATES:
-        pou = render.render_pou(env, template, context)
-        mine.append(dataclasses.replace(pou, name=pou_name(template)))
-    return render.RenderedProgram(base.pous + tuple(mine))
+    """Every POU the controller needs, in dependency order: what ``stgen generate`` writes."""
+    missing = [t for t in CONTROLLER_TEMPLATES if t not in render.POU_TEMPLATES]
+    if missing:  # a guard for whoever edits the POU list
+        raise render.RenderError(f"stgen.render.POU_TEMPLATES lacks the controller's templates {missing}")
+    return render.render_program(config, options)
 
 
 def iec_sources(program: render.RenderedProgram) -> dict[str, str]:
