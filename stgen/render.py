@@ -35,8 +35,11 @@ from stgen.reference.linalg import permutation_table
 
 TEMPLATE_DIR = Path(__file__).resolve().parent.parent / "st_templates"
 
-#: The POU templates, in dependency order (a POU only calls POUs listed before it).
+#: The POU templates (paths below ``st_templates/`` without ``.st.j2``), in
+#: dependency order: a POU only calls POUs listed before it. The POU's name is
+#: the last path component.
 POU_TEMPLATES = (
+    # kinematics (SPEC 1-3)
     "SP_Constants",
     "SP_Atan2",
     "SP_LuSolve",
@@ -44,6 +47,14 @@ POU_TEMPLATES = (
     "SP_Jacobian",
     "SP_InverseKinematics",
     "SP_ForwardKinematics",
+    # trajectories (SPEC 4) and the controller program (SPEC 5)
+    "trajectory/TRJ_Constants",
+    "trajectory/TRJ_Cycloidal",
+    "trajectory/TRJ_OceanWave",
+    "controller/SP_ControllerConstants",
+    "controller/SP_ControllerGlobals",
+    "controller/SP_Axes",
+    "controller/SP_Controller",
 )
 
 #: How the FK obtains det J (SPEC 3, step 1), a generator option.
@@ -184,6 +195,8 @@ _DECLARATION_HELPERS = {
     "constant": _declare(INTERNAL, constant=True),
     "external": _declare(EXTERNAL, constant=True),
     "global_constant": _declare(GLOBAL, constant=True),
+    "global_variable": _declare(GLOBAL),
+    "external_variable": _declare(EXTERNAL),
 }
 
 
@@ -230,15 +243,17 @@ def template_context(config: PlatformConfig, options: RenderOptions) -> dict[str
     }
 
 
-def render_pou(env: jinja2.Environment, name: str, context: dict[str, Any]) -> Pou:
+def render_pou(env: jinja2.Environment, template: str, context: dict[str, Any]) -> Pou:
+    """Render ``st_templates/<template>.st.j2``; the POU is named after the template's file name."""
+    name = template.rsplit("/", 1)[-1]
     try:
-        module = env.get_template(f"{name}.st.j2").make_module(context)
+        module = env.get_template(f"{template}.st.j2").make_module(context)
     except jinja2.TemplateError as error:
-        raise RenderError(f"{name}.st.j2: {error}") from error
+        raise RenderError(f"{template}.st.j2: {error}") from error
     exported = module.__dict__
     for key in ("kind", "header", "variables"):
         if key not in exported:
-            raise RenderError(f"{name}.st.j2 does not set '{key}'")
+            raise RenderError(f"{template}.st.j2 does not set '{key}'")
     body = str(module).strip("\n")
     return Pou(
         name=name,
@@ -256,4 +271,4 @@ def render_program(config: PlatformConfig | None = None, options: RenderOptions 
     options = options if options is not None else RenderOptions()
     env = make_environment()
     context = template_context(config, options)
-    return RenderedProgram(tuple(render_pou(env, name, context) for name in POU_TEMPLATES))
+    return RenderedProgram(tuple(render_pou(env, template, context) for template in POU_TEMPLATES))

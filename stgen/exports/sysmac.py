@@ -32,6 +32,16 @@ USAGE_NAMES = {INPUT: "Input", OUTPUT: "Output", IN_OUT: "In-Out", EXTERNAL: "Ex
 
 GLOBAL_TABLE = "GlobalVariables.tsv"
 
+#: IEC type names and what Sysmac Studio calls them.
+SYSMAC_TYPE_NAMES = {"AXIS_REF": "_sAXIS_REF"}
+
+#: Global variables of these types are created by Sysmac Studio itself (the
+#: axis variables, by the Motion Control Setup): left out of the global table.
+SYSTEM_CREATED_TYPES = ("AXIS_REF",)
+
+#: Sysmac Studio's names for the POU kinds.
+KIND_NAMES = {"FUNCTION": "Function", "FUNCTION_BLOCK": "Function Block", "PROGRAM": "Program"}
+
 
 def cell(text: object) -> str:
     """One TSV cell: whitespace runs (newlines, tabs) collapsed to one space."""
@@ -59,17 +69,28 @@ def pou_table(pou: Pou) -> str:
 
 def _pou_row(variable: Variable, usage_word: str) -> tuple:
     initial = "" if variable.initial is None else variable.initial
-    return (variable.name, usage_word, variable.type, initial, _flag(variable.retain), _flag(variable.constant), variable.comment)
+    return (variable.name, usage_word, sysmac_type(variable.type), initial, _flag(variable.retain), _flag(variable.constant), variable.comment)
+
+
+def sysmac_type(type_name: str) -> str:
+    return SYSMAC_TYPE_NAMES.get(type_name, type_name)
+
+
+def system_created(pous: list[Pou]) -> list[Variable]:
+    """The global variables Sysmac Studio creates itself (see :data:`SYSTEM_CREATED_TYPES`)."""
+    return [v for pou in pous for v in pou.variables_of(GLOBAL) if v.type in SYSTEM_CREATED_TYPES]
 
 
 def global_table(pous: list[Pou]) -> str:
     rows = [_row(GLOBAL_COLUMNS)]
     for pou in pous:
         for variable in pou.variables_of(GLOBAL):
+            if variable.type in SYSTEM_CREATED_TYPES:
+                continue
             initial = "" if variable.initial is None else variable.initial
             rows.append(
                 _row(
-                    (variable.name, variable.type, initial, "", _flag(variable.retain), _flag(variable.constant),
+                    (variable.name, sysmac_type(variable.type), initial, "", _flag(variable.retain), _flag(variable.constant),
                      "Do not publish", variable.comment)
                 )
             )
@@ -97,20 +118,26 @@ the header comment) and `<POU>.variables.tsv` its variables, tab-separated.
 
 1. **Global variables.** Open *Programming > Data > Global Variables*. Open
    `{global_table}` in a spreadsheet, copy the rows below the header and paste
-   them into the global variable table (columns: {global_columns}). All of
-   them are constants (*Constant* ticked), none is published to the network.
+   them into the global variable table (columns: {global_columns}). The
+   kinematics' constants have *Constant* ticked; the controller's command and
+   status variables do not. None is published to the network.
+   The axis variables ({axes}) are not in the table: Sysmac Studio creates
+   them (type `_sAXIS_REF`) when the six axes are added under *Configurations
+   and Setup > Motion Control Setup*, in that order, axis i driving cylinder i.
 2. **POUs**, in the order of the table above (a POU only calls POUs listed
-   before it). For each: add a *Function* or *Function Block* in ST with the
-   POU's name under *Programming > POUs*; for a function set the return type
-   given in the first *Output* row of its table (the row named like the
-   function).
+   before it). For each: add a *Function*, *Function Block* or *Program* in ST
+   with the POU's name under *Programming > POUs*; for a function set the
+   return type given in the first *Output* row of its table (the row named
+   like the function).
    - Variables: the table has the columns {pou_columns}. Sysmac Studio lists
      the variables of one usage at a time (Inputs, Outputs, In-Outs,
      Externals, Internals): filter the spreadsheet on *Usage* and paste the
      rows of each usage without the *Usage* column. *External* rows are the
      global constants the POU reads; declare them with *Constant* ticked.
    - Algorithm: paste the whole of `<POU>.st` into the ST editor.
-3. *Project > Check All Programs* and *Build*.
+3. Assign the program `SP_Controller` to the primary periodic task
+   (*Configurations and Setup > Task Settings*, period as configured).
+4. *Project > Check All Programs* and *Build*.
 
 The column order is the one of the variable tables as this generator knows
 them; if your Sysmac Studio version orders them differently, reorder the
@@ -143,12 +170,13 @@ def write(program: RenderedProgram, out_dir: str | Path) -> list[Path]:
         body.write_text(body_text(pou), encoding="utf-8")
         table.write_text(pou_table(pou), encoding="utf-8")
         written += [body, table]
-        kind = "Function" if pou.kind == "FUNCTION" else "Function Block"
-        listing.append(f"| `{body.name}`, `{table.name}` | {kind} `{pou.name}` |")
+        listing.append(f"| `{body.name}`, `{table.name}` | {KIND_NAMES[pou.kind]} `{pou.name}` |")
     readme = out / "README.md"
+    axes = system_created(globals_)
     readme.write_text(
         README.format(
             listing="\n".join(listing),
+            axes=", ".join(f"`{v.name}`" for v in axes) or "none",
             global_table=GLOBAL_TABLE,
             global_columns=", ".join(GLOBAL_COLUMNS),
             pou_columns=", ".join(POU_COLUMNS),
