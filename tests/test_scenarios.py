@@ -79,3 +79,12 @@ def test_calls_until_done_by_hand():
 def test_random_wave_scenario_uses_spec_components():
     amplitudes = [c.amplitude_mm for c in RANDOM_WAVE.motion.wave.components]
     assert amplitudes == [3.0, 2.3, -3.5, 0.7, 5.4]
+
+
+def test_never_a_jump(result):
+    # Every scan's step of every cylinder stays below the actuator's per-scan limit
+    # (250 mm/s * 1 ms); the command's first scan repeats the held position.
+    steps = np.abs(np.diff(result.commanded, axis=0))
+    assert steps.max() < CONFIG.actuator.max_velocity * CONFIG.task.period_s
+    edge = result.command_scan - 1  # row of the command scan
+    assert np.max(np.abs(result.commanded[edge] - result.commanded[edge - 1])) <= 1e-9
