@@ -37,9 +37,11 @@ try:  # Lark >= 1.2 wraps the text in a TextSlice
 except ImportError:  # pragma: no cover
     TextSlice = None
 
-LOOKAHEAD = 4          # tokens a repair must let the parser read
+LOOKAHEAD = 4          # tokens a resynchronisation must let the parser read
+SCORE_LOOKAHEAD = 10    # tokens over which candidate repairs are compared
 QUIET = 3              # tokens after a repair during which faults are not reported
 MAX_ERRORS = 25
+PANIC_REACH = 400      # tokens panic mode may skip before it gives up on a fault
 
 _CLOSERS = (
     "_END_IF", "_END_CASE", "_END_FOR", "_END_WHILE", "_END_REPEAT", "_END_VAR",
@@ -57,6 +59,9 @@ _OPENERS = {
 }
 _REPLACEMENTS = ("_ASSIGN", "_THEN", "_DO", "_OF", "_COLON", "_TO", "_SEMI", "_RPAR",
                  "_RSQB", "_COMMA", "IDENT")
+_POU_OPENERS = {"_END_PROGRAM": "PROGRAM", "_END_FUNCTION_BLOCK": "FUNCTION_BLOCK",
+                "_END_FUNCTION": "FUNCTION"}
+_RETREAT_INSERTIONS = ("_END_VAR", "VAR")
 _INSERTIONS = ("IDENT", "_THEN", "_DO", "_OF", "_TO", "_ASSIGN", "_COLON", "_LPAR")
 _SYNC_KEYWORDS = frozenset(_CLOSERS[:-2]) | {"_ELSE", "ELSIF", "_UNTIL"}
 _STATEMENT_STARTS = frozenset({"IF", "CASE", "FOR", "WHILE", "REPEAT", "EXIT", "CONTINUE",
@@ -183,6 +188,7 @@ class _Recovery:
         self.silent: set[int] = set()
         self.report_eof = True
         self.consumed = -1
+        self.retreat_token = None
         lines = text.count("\n") + 1
         last_newline = text.rfind("\n")
         if tokens:  # point just past the last token, on a line that exists
@@ -222,7 +228,8 @@ class _Recovery:
     def _feed(state, token: Token):
         return state.feed_token(token, token.type == "$END")
 
-    def _accepts_run(self, state, inserted: list[Token], start: int, limit: int = LOOKAHEAD):
+    def _accepts_run(self, state, inserted: list[Token], start: int, limit: int = LOOKAHEAD,
+                     early_stop: bool = True):
         """Feed `inserted` then up to `limit` tokens from `start` into a copy.
 
         Returns (new state, next index, finished), or None if the parser
@@ -244,7 +251,7 @@ class _Recovery:
                     return trial, i, True
                 i += 1
                 self.consumed += 1
-                if token.type == "_SEMI":
+                if early_stop and token.type == "_SEMI" and self.consumed + len(inserted) >= 2:
                     break   # a whole statement fits: the next one may have its own fault
             return trial, i, False
         except UnexpectedToken:
@@ -270,6 +277,8 @@ class _Recovery:
             # LALR may reduce before it notices a fault; keep the state from
             # before this token so that expectations and repairs start there.
             before = state.copy(deepcopy_values=False)
+            if steps == 1:
+                previous = None
             try:
                 self._feed(state, token)
             except UnexpectedToken:
@@ -278,7 +287,8 @@ class _Recovery:
                 expected = self._expected(state, [k for k in table if k.isupper()])
                 if token.type == "$END" and not report_eof:
                     break
-                repaired = self._repair(state, i, expected)
+                repaired = self._repair(state, i, expected, previous)
+                previous = None
                 if repaired is None:
                     repaired = ("none", [], state, i, True)
                 kind, inserted, repaired_state, next_i, finished = repaired
@@ -289,6 +299,7 @@ class _Recovery:
                             "E-PARSE-013", "too many syntax errors; the rest of the file "
                             "was not checked", ast.Pos(self.path, token.line, token.column)))
                         break
+                self.retreat_token = None
                 # A repair checked on the next tokens needs no quiet time; a token
                 # dropped blindly does (what follows is likely debris).
                 quiet_until = next_i + (QUIET if kind == "drop" else 0)
@@ -298,73 +309,112 @@ class _Recovery:
                 continue
             if token.type == "$END":
                 break
+            previous = (i, before)
             i += 1
         return self.diagnostics
 
     # --------------------------------------------------------------- repairs
 
-    def _repair(self, state, i: int, expected: set[str]):
+    def _repair(self, state, i: int, expected: set[str], previous=None):
+        """Choose the repair that lets the parser read furthest.
+
+        Each candidate is tried on a copy over the next SCORE_LOOKAHEAD
+        tokens; the one that reads most wins (earlier candidates on ties).
+        A candidate stopped by a second fault is taken up to that fault, so
+        that fault is reported in its turn.
+        """
         token = self._token(i)
-        at_end = token.type == "$END"
-
-        def attempt(kind, inserted, start):
-            outcome = self._accepts_run(state, inserted, start)
-            if outcome is None:
-                return None
-            trial, nxt, finished = outcome
-            return kind, inserted, trial, nxt, finished
-
-        candidates = []
+        candidates = []   # (kind, inserted tokens, base state, resume index)
         if "_SEMI" in expected:
-            candidates.append(("semi", [self._make("_SEMI", token)], i))
+            candidates.append(("semi", [self._make("_SEMI", token)], state, i))
         for closer in _CLOSERS:
             if closer in expected:
-                candidates.append(("close", [self._make(closer, token)], i))
+                candidates.append(("close", [self._make(closer, token)], state, i))
                 candidates.append(("close", [self._make(closer, token),
-                                             self._make("_SEMI", token)], i))
-        if not at_end:
-            candidates.append(("delete", [], i + 1))
+                                             self._make("_SEMI", token)], state, i))
+        if token.type != "$END":
+            candidates.append(("delete", [], state, i + 1))
             for kind in _REPLACEMENTS:
                 if kind in expected:
-                    candidates.append(("replace", [self._make(kind, token)], i + 1))
+                    candidates.append(("replace", [self._make(kind, token)], state, i + 1))
         for kind in _INSERTIONS:
             if kind in expected:
-                candidates.append(("insert", [self._make(kind, token)], i))
-        best = None   # the repair that read most tokens before the next fault
-        for kind, inserted, start in candidates:
-            result = attempt(kind, inserted, start)
-            if result is not None:
-                return result
-            if self.consumed >= 2 and (best is None or self.consumed > best[0]):
-                best = (self.consumed, kind, inserted, start)
-        if best is not None:
-            # A second fault follows closely: take this repair up to it.
-            consumed, kind, inserted, start = best
-            trial, nxt, finished = self._accepts_run(state, inserted, start, consumed)
-            return kind, inserted, trial, nxt, finished
-        return self._panic(state, i)
+                candidates.append(("insert", [self._make(kind, token)], state, i))
+        if "_COLON" in expected and token.type != "_ASSIGN":  # FUNCTION F without `: type`
+            candidates.append(("insert", [self._make("_COLON", token),
+                                          self._make("IDENT", token)], state, i))
+        if token.type == "IDENT" and "PROGRAM" in expected:
+            # `Main VAR ...` with its PROGRAM keyword lost: the POU's END_xxx
+            # further on says which keyword it was.
+            for later in self.tokens[i + 1:]:
+                opener = _POU_OPENERS.get(later.type)
+                if opener is not None:
+                    candidates.append(("insert", [self._make(opener, token)], state, i))
+                    break
+        following = self._token(i + 1)
+        if token.type != "$END" and following.type != "$END":
+            candidates.append(("swap", [following, token], state, i + 2))
+        if previous is not None:
+            # The fault may lie before the previous token: `x : INT;` with no
+            # VAR before it, or a statement after a VAR block never closed.
+            back, back_state = previous
+            table = back_state.parse_conf.states[back_state.position]
+            for kind in _RETREAT_INSERTIONS:
+                if kind in table:
+                    where = self._token(back)
+                    closing = "close" if kind.startswith("_END") else "open"
+                    candidates.append((closing, [self._make(kind, where)], back_state, back))
+
+        best = None
+        best_score = 0
+        for kind, inserted, base, start in candidates:
+            outcome = self._accepts_run(base, inserted, start, SCORE_LOOKAHEAD, early_stop=False)
+            score = SCORE_LOOKAHEAD + 1 if outcome is not None else self.consumed
+            if score > best_score:
+                best, best_score = (kind, inserted, base, start, outcome), score
+        if best is not None and best_score >= 2:
+            return self._apply(best, best_score, i)
+        panic = self._panic(state, i)
+        if panic is not None and panic[0] == "drop" and best is not None:
+            return self._apply(best, best_score, i)
+        return panic
+
+    def _apply(self, best, score, fault: int):
+        kind, inserted, base, start, outcome = best
+        if outcome is None:  # stopped by the next fault: read up to it
+            outcome = self._accepts_run(base, inserted, start, score, early_stop=False)
+        trial, nxt, finished = outcome
+        if start < fault:   # the repair went back before the faulty token
+            self.retreat_token = self._token(start)
+        return kind, inserted, trial, nxt, finished
 
     def _panic(self, state, i: int):
-        """Drop the open statement and skip to a point where parsing can go on."""
-        token = self._token(i)
-        trial = state.copy(deepcopy_values=False)
-        states = trial.parse_conf.states
-        # Pop back to a state that can start a statement (it accepts IF).
-        while len(trial.state_stack) > 1 and "IF" not in states[trial.state_stack[-1]]:
-            trial.state_stack.pop()
-            trial.value_stack.pop()
-        j = i
+        """Skip to the nearest point where the parser, with its open
+        constructs closed back to some depth, can go on.
+
+        Sync points, nearest first: the faulty token itself, a token after a
+        `;`, a block keyword (END_xxx, ELSE, ...), the end of the file.  At
+        each, the parser stack is popped as little as possible.
+        """
         n = len(self.tokens)
-        while j <= n:
+        depth = len(state.state_stack)
+        j = i
+        while j <= min(n, i + PANIC_REACH):
             candidate = self._token(j)
-            if candidate.type in _SYNC_KEYWORDS or candidate.type == "$END" or (
-                    j > i and self._token(j - 1).type == "_SEMI"):
-                outcome = self._accepts_run(trial, [], j)
-                if outcome is not None:
-                    new_state, nxt, finished = outcome
-                    return "panic", [], new_state, nxt, finished
+            if (j == i or candidate.type in _SYNC_KEYWORDS or candidate.type == "$END"
+                    or self._token(j - 1).type == "_SEMI"):
+                for keep in range(depth, 0, -1):
+                    if j == i and keep == depth:
+                        continue  # the unchanged state already failed here
+                    trial = state.copy(deepcopy_values=False)
+                    del trial.state_stack[keep:]
+                    del trial.value_stack[keep - 1:]
+                    outcome = self._accepts_run(trial, [], j)
+                    if outcome is not None and (self.consumed >= 2 or outcome[2]):
+                        new_state, nxt, finished = outcome
+                        return "panic", [], new_state, nxt, finished
             j += 1
-        if token.type == "$END":
+        if self._token(i).type == "$END":
             return None
         # Nothing fits: drop the token and go on from the unchanged state.
         return "drop", [], state, i + 1, False
@@ -434,6 +484,9 @@ class _Recovery:
         return False
 
     def _report(self, kind, token, inserted, expected, lark_state) -> None:
+        if self.retreat_token is not None:
+            token = self.retreat_token   # the repair went back one token
+        self.retreat_token = None
         found = self._describe_token(token)
         pos = ast.Pos(self.path, token.line, token.column)
         if kind == "semi":
@@ -442,6 +495,10 @@ class _Recovery:
             previous = self._previous_token(token)
             if previous is not None:  # point just past the unfinished line
                 pos = ast.Pos(self.path, previous.end_line, previous.end_column)
+        elif kind == "open":
+            code = "E-PARSE-001"
+            message = (f"expected 'VAR' before {found}: declarations belong in a "
+                       "VAR ... END_VAR block")
         elif kind == "close" and inserted[0].type.startswith("_END"):
             closer = self._describe_kind(inserted[0].type)
             code = "E-PARSE-003"
