@@ -40,6 +40,7 @@ class Declarations:
         self.global_blocks: list[ast.VarBlock] = []
         self._resolving: set[str] = set()
         self._names: dict[str, ast.Pos] = {}
+        self.configurations: list[ast.Configuration] = []
 
     # ------------------------------------------------------------- driver
     def run(self, files: list[ast.SourceFile]) -> None:
@@ -56,6 +57,28 @@ class Declarations:
             self.type_named(k)
         for k, node in self.ctx.pou_decls.items():
             self._interface(self.program.pous[k], node)
+        for config in self.configurations:
+            self._configuration(config)
+
+    def _configuration(self, config: ast.Configuration) -> None:
+        """Program instances name a declared PROGRAM and a declared TASK."""
+        tasks = {key(t.name) for t in config.tasks}
+        ex = self.global_ex
+        for task in config.tasks:
+            if task.interval is not None:
+                ex.check_value(task.interval, T.TIME, f"INTERVAL of task {task.name}")
+            if task.priority is not None:
+                ex.check_value(task.priority, T.UINT, f"PRIORITY of task {task.name}")
+        for inst in config.programs:
+            pou = self.ctx.pou_decls.get(key(inst.program_type))
+            if pou is None or pou.kind != "PROGRAM":
+                found = f"a {pou.kind}" if pou is not None else "nothing of that name"
+                self.ctx.error("E-DECL-004", f"program instance {inst.name}: expected a PROGRAM "
+                               f"'{inst.program_type}', found {found}", inst.pos)
+            if inst.task is not None and key(inst.task) not in tasks:
+                names = ", ".join(t.name for t in config.tasks) or "none"
+                self.ctx.error("E-DECL-001", f"program instance {inst.name}: undeclared task "
+                               f"'{inst.task}' (tasks: {names})", inst.pos)
 
     def _collect(self, item) -> None:
         if isinstance(item, ast.TypeDecl):
@@ -68,6 +91,7 @@ class Declarations:
             self.global_blocks.append(item)
         elif isinstance(item, ast.Configuration):
             self.global_blocks.extend(item.globals)
+            self.configurations.append(item)
 
     def _declare_name(self, name: str, pos: ast.Pos) -> bool:
         k = key(name)
