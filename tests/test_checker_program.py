@@ -6,7 +6,7 @@ from __future__ import annotations
 from st_runtime import ast
 from st_runtime import types as T
 from st_runtime.stdlib import fbs
-from tests.checker_helpers import checked, nodes, statement
+from checker_helpers import checked, nodes, statement
 
 SOURCE = """
 TYPE Dist : LREAL; END_TYPE

@@ -10,7 +10,7 @@ from st_runtime import ast
 from st_runtime.checker import check
 from st_runtime.checker.nj_rules import identifier_problems
 from st_runtime.parser import parse
-from tests.checker_helpers import load
+from checker_helpers import load
 
 CORPUS = Path(__file__).parent / "corpus"
 

@@ -8,7 +8,7 @@ import pytest
 from st_runtime import ast
 from st_runtime import types as T
 from st_runtime.checker import typesys as ts
-from tests.checker_helpers import checked, nodes, statement
+from checker_helpers import checked, nodes, statement
 
 E = T.ELEMENTARY
 
@@ -62,7 +62,7 @@ def test_common_type_of_binary_operands(a, b, common):
 
 
 def test_assignment_error_names_both_types_and_the_conversion():
-    from tests.checker_helpers import load
+    from checker_helpers import load
     result, program = load("PROGRAM Main\nVAR i : INT; x : LREAL; END_VAR\ni := x;\nEND_PROGRAM\n")
     assert program is None
     [d] = result.errors
