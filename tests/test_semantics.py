@@ -88,6 +88,12 @@ def test_real_is_float32_rounded_on_every_store():
     assert main["y"] == 16777216.0      # 2**24 + 1 is not a float32
 
 
+def test_integer_constants_stored_in_reals_are_rounded():
+    main, _ = run("x := 16777217; y := 16777217; z := 3;", "x : REAL; y : LREAL; z : LREAL;")
+    assert main.raw("x") == 16777216.0           # float32 has 24 bits of mantissa
+    assert main.raw("y") == 16777217.0 and isinstance(main.raw("z"), float)
+
+
 def test_lreal_is_float64():
     main, _ = run("FOR i := 1 TO 10 DO x := x + 0.1; END_FOR;", "x : LREAL; i : INT;")
     acc = 0.0

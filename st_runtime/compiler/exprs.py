@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from .. import ast
 from ..native import mangle
-from ..objects import is_aggregate
+from ..objects import is_aggregate, store_value
 from ..types import (
     ArrayType,
     ElementaryType,
@@ -458,6 +458,13 @@ class ExprCompiler:
         src_r = resolve_alias(src) if src is not None else None
         e = elementary(dst_r)
         plain_read = node is not None and isinstance(node, (ast.Name, ast.Member, ast.Index))
+        if e is not None and node is not None:
+            const = self.constant_of(node)
+            if isinstance(const, (bool, int, float)):
+                try:                  # a constant is stored as the literal it becomes
+                    return self.literal(store_value(e, const), e)
+                except (TypeError, ValueError, OverflowError):
+                    pass
         if e is not None:
             if e.kind == "bool":
                 return value
