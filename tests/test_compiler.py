@@ -190,3 +190,20 @@ def test_compile_errors_become_diagnostics():
         _compiled(result)
     assert info.value.diagnostics[-1].code == "E-COMPILE-001"
     assert "x.st:3:6: error[E-COMPILE-001]" in info.value.render()
+
+
+def test_global_loop_variable_changed_by_a_callee_is_seen_by_the_loop():
+    src = """
+    VAR_GLOBAL k : INT; END_VAR
+    FUNCTION Skip : BOOL
+    VAR_EXTERNAL k : INT; END_VAR
+    k := k + 2; Skip := TRUE;
+    END_FUNCTION
+    PROGRAM Main
+    VAR_EXTERNAL k : INT; END_VAR
+    VAR a : ARRAY[1..9] OF INT; END_VAR
+    FOR k := 1 TO 9 DO a[k] := 1; Skip(); END_FOR;
+    END_PROGRAM"""
+    main, plc = run(src)
+    assert main["a"] == [1, 0, 0, 1, 0, 0, 1, 0, 0]      # k = 1, 4, 7
+    assert plc.faults == []

@@ -223,7 +223,8 @@ class BodyCompiler(ExprCompiler):
             return
         start_c, end_c = self.constant_of(s.start), self.constant_of(s.end)
         assigned = Usage(self.program, s.body, None).assigned
-        if s.variable.upper() in assigned:
+        if s.variable.upper() in assigned or place.how == "global":
+            # The body may change the variable (a global can change in any call).
             self._for_as_while(s, target, var_t, step_value if const_step else None, assigned)
             return
         rng = self.temp()
