@@ -199,7 +199,12 @@ class Instance:
         return _read(container, slot)
 
     def __setitem__(self, path: str, value) -> None:
+        from .trace import parse_path
         from .values import from_json
+
+        head = parse_path(path)[0][1].upper()
+        if head in getattr(type(self.obj), "_st_constants", ()):
+            raise KeyError(f"{path}: '{head}' is a CONSTANT")
 
         container, slot, t = self._locate(path)
         stored = from_json(value, t, path)

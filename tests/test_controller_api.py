@@ -68,6 +68,18 @@ def test_bad_paths_and_values_raise_clear_errors():
         plc.add_program("Ramp")
 
 
+def test_constants_cannot_be_set():
+    src = "PROGRAM Main\nVAR CONSTANT t : ARRAY[1..2] OF INT := [1, 2]; END_VAR\nVAR x : INT; END_VAR\nx := t[2];\nEND_PROGRAM\n"
+    plc = load_text(src).controller()
+    main = plc.add_program("Main")
+    with pytest.raises(KeyError, match="CONSTANT"):
+        main["t"] = [5, 6]
+    with pytest.raises(KeyError, match="CONSTANT"):
+        main["t[1]"] = 5
+    plc.run(1)
+    assert main["x"] == 2
+
+
 def test_project_call_function_and_fb():
     project = load_text(SOURCE)
     result = project.call("Hyp", {"a": 3, "b": 4})

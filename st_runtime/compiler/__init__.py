@@ -176,9 +176,11 @@ def _make_classes(unit: CompileUnit) -> None:
         layout = {s.name.upper(): (s.name, s.type) for s in variables}
         unit.classes[key] = _new_class(pou.name, slots, layout, pou.kind)
         unit.classes[key]._st_kinds = {s.name.upper(): s.kind for s in variables}
+        unit.classes[key]._st_constants = frozenset(s.name.upper() for s in variables if s.constant)
     gl = [s for s in program.globals.values()]
     unit.classes["<GLOBALS>"] = _new_class(
         "Globals", tuple(mangle(s.name) for s in gl), {s.name.upper(): (s.name, s.type) for s in gl})
+    unit.classes["<GLOBALS>"]._st_constants = frozenset(s.name.upper() for s in gl if s.constant)
 
 
 def _new_class(name: str, slots: tuple, layout: dict, kind: str = "STRUCT") -> type:
