@@ -29,7 +29,7 @@ from .ast import Pos
 from .diagnostics import Diagnostic
 from .faults import FaultRecord
 from .native import mangle
-from .objects import STObject, assign_list, is_aggregate
+from .objects import is_aggregate
 from .types import ArrayType, FBType, StructType, resolve_alias
 
 
@@ -352,7 +352,7 @@ class _FunctionJob:
 def call_pou(project: Project, name: str, inputs: dict, until: str | None,
              max_cycles: int, period_ns: int) -> dict:
     """See `Project.call`."""
-    from .values import JsonValueError, from_json, to_json
+    from .values import from_json
 
     pou = project.program.pous.get(name.upper())
     if pou is None or pou.kind not in ("FUNCTION", "FUNCTION_BLOCK"):
@@ -375,7 +375,6 @@ def call_pou(project: Project, name: str, inputs: dict, until: str | None,
         if until:
             raise CallError("--until applies to FB outputs; a FUNCTION is called once")
         fn = project.compiled.functions[pou.name.upper()]
-        initial = project.compiled.namespace  # noqa: F841 - makers live there
         args = []
         for key, symbol in params.items():
             if symbol.kind == "VAR_IN_OUT":
@@ -459,8 +458,6 @@ class _Cell:
         return ItemRef(self.holder, 0)
 
     def to_json(self):
-        from .values import to_json
-
         value = self.holder[0] if hasattr(self, "holder") else self.value
         return value_to_json(value, self.symbol.type)
 

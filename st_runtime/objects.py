@@ -20,9 +20,8 @@ from __future__ import annotations
 from typing import Callable
 
 from .faults import STFault
-from .native import NativeFB, mangle
+from .native import mangle
 from .types import (
-    AliasType,
     ArrayType,
     ElementaryType,
     EnumType,

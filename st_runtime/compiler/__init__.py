@@ -19,7 +19,7 @@ from ..diagnostics import register
 from ..faults import STFault
 from ..native import NATIVE_FBS, mangle
 from ..objects import AttrRef, ItemRef, NullRef, STObject, assign_list, native_initializers
-from ..types import FBType, StructType, resolve_alias
+from ..types import StructType, resolve_alias
 from . import support
 from .calls import Calls
 from .initial import CompileError, Initial, InitialValues

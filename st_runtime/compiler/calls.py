@@ -16,7 +16,6 @@ Conventions of the generated code:
 
 from __future__ import annotations
 
-from .. import ast
 from ..native import mangle
 from ..objects import is_aggregate
 from ..types import ArrayType, ElementaryType, FBType, StructType, resolve_alias

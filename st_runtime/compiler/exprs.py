@@ -17,7 +17,6 @@ from ..objects import is_aggregate, store_value
 from ..types import (
     ArrayType,
     ElementaryType,
-    EnumType,
     FBType,
     StringType,
     StructType,
@@ -107,9 +106,6 @@ def int_bounds(t) -> tuple[int, int] | None:
     """The stored range of an integer-like type, None for others."""
     e = elementary(t)
     if e is None:
-        t = resolve_alias(t) if t is not None else None
-        if isinstance(t, EnumType):
-            return None
         return None
     if e.kind in ("int", "bits"):
         return e.min, e.max

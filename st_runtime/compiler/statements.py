@@ -20,9 +20,9 @@ from __future__ import annotations
 from .. import ast
 from ..native import mangle
 from ..objects import is_aggregate
-from ..types import ArrayType, resolve_alias
+from ..types import resolve_alias
 from .calls import copy_statement
-from .exprs import ExprCompiler, elementary, int_bounds
+from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
 from .pysrc import Emitter, pyliteral
 from .scope import Scope, Usage, walk
