@@ -27,7 +27,10 @@ from typing import Callable
 from .faults import FaultRecord, ScanOverrun, StopRun, STFault
 
 DEFAULT_PERIOD_NS = 1_000_000
-DEFAULT_BUDGET = 10_000_000      # loop iterations per scan
+# Loop iterations per scan before F-PERIOD.  An NJ501 runs a few ten thousand
+# loop iterations in a 1 ms period, so a million is generous for any real
+# program, and a runaway loop costs this simulator well under a second a scan.
+DEFAULT_BUDGET = 1_000_000
 MAX_FAULT_RECORDS = 10_000       # kept in `faults`; `fault_count` counts them all
 
 
