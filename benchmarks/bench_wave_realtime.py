@@ -30,7 +30,6 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-import numpy as np  # noqa: E402
 
 from stgen.config import PlatformConfig  # noqa: E402
 from stgen.reference.kinematics import inverse_kinematics  # noqa: E402

@@ -48,6 +48,10 @@ def test_power_off_disables(sim):
     sim.run(3)
     assert sim.state == _state(sim, "DISABLED")
     assert all(axis.state == AxisState.DISABLED for axis in sim.axes)
+    sim.set_pose("SpTargetPose", (10.0, 0.0, 150.0, 0.0, 0.0, 0.0))
+    sim.globals["SpMoveStart"] = True
+    sim.run(2)
+    assert sim.globals["SpRefusalID"] == sim.codes["SP_REFUSED_NOT_READY"]
 
 
 def test_target_outside_the_stroke_is_refused_before_any_motion(sim):
