@@ -152,6 +152,8 @@ def time_check(trees) -> tuple[float, int] | None:
     try:
         from st_runtime import native
         from st_runtime import stdlib  # noqa: F401  (registers the standard FBs)
+
+        del stdlib
         from st_runtime.checker import check
     except ImportError:
         return None

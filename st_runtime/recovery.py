@@ -1,23 +1,25 @@
 """Syntax-error reporting with recovery: one fault, one diagnostic.
 
-Runs only after the fast parse failed.  The text is lexed once with a basic
-lexer (lexical faults: unterminated comments and strings, stray characters),
-then the tokens are fed to the LALR parser one by one, without building an
-AST.  At each fault the first repair that lets the parser read the next few
-tokens is applied, in this order:
+Runs only after the fast parse failed.  `token_scan` lexes the text once
+(lexical faults: unterminated comments and strings, stray characters), then
+the tokens are fed to the LALR parser one by one, without building an AST.
+At a fault, candidate repairs are each tried on a copy of the parser over the
+next SCORE_LOOKAHEAD tokens, and the one that reads furthest wins (the
+earlier in this list on ties):
 
-1. insert the missing `;`;
-2. insert a missing closing keyword or bracket (END_IF, END_VAR, `)`, ...);
-3. delete the stray token;
-4. replace the token by one the parser expects (`=` -> `:=`);
-5. insert a placeholder identifier (a missing expression or name) or another
-   expected keyword (THEN, DO, OF, ...);
-6. panic mode: drop the open statement (pop the parser stack back to a state
-   that starts statements) and skip to the next `;` or block keyword.
+- insert the missing `;`; insert a missing END_xxx, `)` or `]`;
+- delete the stray token; replace it by an expected one (`=` -> `:=`);
+- insert an expected keyword (THEN, DO, OF, ...) or a placeholder name;
+- swap the token with the next one;
+- go back one token and open or close a VAR block there (`x : INT;` with no
+  VAR, a statement after a VAR block that was never closed);
+- restore a lost PROGRAM/FUNCTION_BLOCK keyword.
 
-The report names what was expected and what was found; a fault's repair is
-quiet, and faults within a few tokens of the previous one are not reported,
-so one typo gives one error rather than a cascade.
+When none reads at least two tokens, panic mode skips to the nearest `;` or
+block keyword and pops the parser stack as little as it must to go on there.
+`syntax_messages` words the report from the repair chosen.  A repair that
+stops at a second fault is taken up to it, so that fault is reported in its
+turn; a token dropped blindly silences faults for a few tokens.
 """
 
 from __future__ import annotations
@@ -25,17 +27,12 @@ from __future__ import annotations
 from copy import copy
 
 from lark import Token
-from lark.exceptions import UnexpectedCharacters, UnexpectedToken
-from lark.lexer import LexerState
+from lark.exceptions import UnexpectedToken
 
 from . import ast
-from .ast_builder import AstBuilder
 from .diagnostics import Diagnostic
-
-try:  # Lark >= 1.2 wraps the text in a TextSlice
-    from lark.utils import TextSlice
-except ImportError:  # pragma: no cover
-    TextSlice = None
+from .syntax_messages import Messages
+from .token_scan import literal_errors, scan
 
 LOOKAHEAD = 4          # tokens a resynchronisation must let the parser read
 SCORE_LOOKAHEAD = 10    # tokens over which candidate repairs are compared
@@ -48,15 +45,6 @@ _CLOSERS = (
     "_END_STRUCT", "_END_TYPE", "_END_PROGRAM", "_END_FUNCTION", "_END_FUNCTION_BLOCK",
     "_END_CONFIGURATION", "_END_RESOURCE", "_RPAR", "_RSQB",
 )
-_OPENERS = {
-    "_END_IF": ("IF",), "_END_CASE": ("CASE",), "_END_FOR": ("FOR",),
-    "_END_WHILE": ("WHILE",), "_END_REPEAT": ("REPEAT",), "_END_STRUCT": ("STRUCT",),
-    "_END_PROGRAM": ("PROGRAM",), "_END_FUNCTION": ("FUNCTION",),
-    "_END_FUNCTION_BLOCK": ("FUNCTION_BLOCK",), "_END_CONFIGURATION": ("CONFIGURATION",),
-    "_END_RESOURCE": ("RESOURCE",),
-    "_END_VAR": ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_TEMP", "VAR_GLOBAL",
-                 "VAR_EXTERNAL"),
-}
 _REPLACEMENTS = ("_ASSIGN", "_THEN", "_DO", "_OF", "_COLON", "_TO", "_SEMI", "_RPAR",
                  "_RSQB", "_COMMA", "IDENT")
 _POU_OPENERS = {"_END_PROGRAM": "PROGRAM", "_END_FUNCTION_BLOCK": "FUNCTION_BLOCK",
@@ -64,114 +52,22 @@ _POU_OPENERS = {"_END_PROGRAM": "PROGRAM", "_END_FUNCTION_BLOCK": "FUNCTION_BLOC
 _RETREAT_INSERTIONS = ("_END_VAR", "VAR")
 _INSERTIONS = ("IDENT", "_THEN", "_DO", "_OF", "_TO", "_ASSIGN", "_COLON", "_LPAR")
 _SYNC_KEYWORDS = frozenset(_CLOSERS[:-2]) | {"_ELSE", "ELSIF", "_UNTIL"}
-_STATEMENT_STARTS = frozenset({"IF", "CASE", "FOR", "WHILE", "REPEAT", "EXIT", "CONTINUE",
-                               "RETURN", "IDENT"})
-_BINARY_OPERATORS = frozenset({"AMP", "AND", "OR", "XOR", "EQ", "NE", "LT", "GT", "LE", "GE",
-                               "PLUS", "MINUS", "STAR", "SLASH", "MOD", "POW"})
-_AFTER_STATEMENT_NAME = {"_ASSIGN", "_LPAR", "_DOT", "_LSQB"}
-_EXPRESSION_STARTS = frozenset({
-    "IDENT", "INT", "BASED_INT", "REAL_NUMBER", "TIME_LIT", "DATE_LIT", "TOD_LIT",
-    "DT_LIT", "TYPED_LIT", "SSTRING", "DSTRING", "TRUE", "FALSE", "MINUS", "PLUS", "NOT",
-})
-_NAMES = {
-    "IDENT": "identifier", "INT": "integer", "BASED_INT": "based integer",
-    "REAL_NUMBER": "real number", "TIME_LIT": "TIME literal", "DATE_LIT": "DATE literal",
-    "TOD_LIT": "TIME_OF_DAY literal", "DT_LIT": "DATE_AND_TIME literal",
-    "TYPED_LIT": "typed literal", "SSTRING": "string", "DSTRING": "wide string",
-    "$END": "end of file",
-}
-
-
-class _Lexed:
-    def __init__(self) -> None:
-        self.tokens: list[Token] = []
-        self.diagnostics: list[Diagnostic] = []
-        self.truncated = False   # an unterminated comment/string swallowed the rest
-        self.after_bad: set[int] = set()  # tokens right after a stray character
 
 
 def diagnose(grammar, text: str, path: str) -> list[Diagnostic]:
     """The diagnostics for a text that the fast parse rejected."""
-    lexed = _lex(grammar, text, path)
-    literal_errors = _literal_errors(lexed.tokens, path)
+    lexed = scan(grammar, text, path)
+    literal_faults = literal_errors(lexed.tokens, path)
     recovery = _Recovery(grammar, lexed.tokens, text, path)
     recovery.silent = lexed.after_bad
     syntax = recovery.run(report_eof=not lexed.truncated)
-    merged = sorted(lexed.diagnostics + literal_errors + syntax, key=lambda d: (d.pos.line, d.pos.col))
+    merged = sorted(lexed.diagnostics + literal_faults + syntax,
+                    key=lambda d: (d.pos.line, d.pos.col))
     if len(merged) > MAX_ERRORS + 1:
         merged = merged[:MAX_ERRORS] + [Diagnostic(
             "E-PARSE-013", "too many syntax errors; the rest of the file was not checked",
             merged[MAX_ERRORS].pos)]
     return merged
-
-
-_LITERAL_RULES = {
-    "INT": "int_literal", "BASED_INT": "based_literal", "REAL_NUMBER": "real_literal",
-    "TIME_LIT": "time_literal", "DATE_LIT": "date_literal", "TOD_LIT": "tod_literal",
-    "DT_LIT": "dt_literal", "TYPED_LIT": "typed_literal", "SSTRING": "string_literal",
-    "DSTRING": "wstring_literal",
-}
-
-
-def _literal_errors(tokens, path: str) -> list[Diagnostic]:
-    """Invalid literals: the AST builder's checks, run on the tokens alone."""
-    builder = AstBuilder()
-    builder.reset(path)
-    for token in tokens:
-        rule = _LITERAL_RULES.get(token.type)
-        if rule is not None:
-            getattr(builder, rule)(token)
-    return builder.errors
-
-
-# ------------------------------------------------------------------- lexing
-
-
-def _lex(grammar, text: str, path: str) -> _Lexed:
-    result = _Lexed()
-    lexer = grammar.lark._build_lexer()
-    state = LexerState(TextSlice.cast_from(text) if TextSlice else text)
-    previous = None
-    bad_run_end = -1
-    while True:
-        try:
-            token = lexer.next_token(state)
-        except EOFError:
-            break
-        except UnexpectedCharacters as exc:
-            pos = ast.Pos(path, exc.line, exc.column)
-            char = text[exc.pos_in_stream]
-            if char in "'\"":
-                kind = "string" if char == "'" else "wide string"
-                result.diagnostics.append(Diagnostic(
-                    "E-PARSE-006", f"unterminated {kind}: no closing {char} before the end "
-                    "of the file", pos))
-                result.truncated = True
-                break
-            if exc.pos_in_stream != bad_run_end:
-                shown = char if char.isprintable() else f"U+{ord(char):04X}"
-                result.diagnostics.append(Diagnostic(
-                    "E-PARSE-007", f"unexpected character '{shown}'", pos))
-            state.line_ctr.feed(char)
-            bad_run_end = exc.pos_in_stream + 1
-            result.after_bad.add(len(result.tokens))
-            if len(result.diagnostics) > MAX_ERRORS:
-                break
-            continue
-        if (previous is not None and token.type == "STAR"
-                and previous.type in ("_LPAR", "SLASH")
-                and previous.end_pos == token.start_pos):
-            opener = "(*" if previous.type == "_LPAR" else "/*"
-            closer = "*)" if opener == "(*" else "*/"
-            result.diagnostics.append(Diagnostic(
-                "E-PARSE-005", f"unterminated comment: '{opener}' has no closing '{closer}'",
-                ast.Pos(path, previous.line, previous.column)))
-            result.tokens.pop()
-            result.truncated = True
-            break
-        result.tokens.append(token)
-        previous = token
-    return result
 
 
 # ----------------------------------------------------------------- parsing
@@ -189,6 +85,7 @@ class _Recovery:
         self.report_eof = True
         self.consumed = -1
         self.retreat_token = None
+        self.messages = Messages(grammar, tokens, path)
         lines = text.count("\n") + 1
         last_newline = text.rfind("\n")
         if tokens:  # point just past the last token, on a line that exists
@@ -293,7 +190,9 @@ class _Recovery:
                     repaired = ("none", [], state, i, True)
                 kind, inserted, repaired_state, next_i, finished = repaired
                 if (i >= quiet_until or not self.diagnostics) and i not in self.silent:
-                    self._report(kind, token, inserted, expected, state)
+                    shown = self.retreat_token or token   # a repair may go back one token
+                    self.diagnostics.append(
+                        self.messages.compose(kind, shown, inserted, expected, state))
                     if len(self.diagnostics) >= MAX_ERRORS:
                         self.diagnostics.append(Diagnostic(
                             "E-PARSE-013", "too many syntax errors; the rest of the file "
@@ -418,120 +317,3 @@ class _Recovery:
             return None
         # Nothing fits: drop the token and go on from the unchanged state.
         return "drop", [], state, i + 1, False
-
-    # ------------------------------------------------------------- messages
-
-    def _describe_token(self, token: Token) -> str:
-        if token.type == "$END":
-            return "end of file"
-        if token.type in self.grammar.keywords.values():
-            return f"keyword '{token.value}'"
-        text = token.value if len(token.value) <= 30 else token.value[:27] + "..."
-        return f"'{text}'"
-
-    def _describe_kind(self, kind: str) -> str:
-        if kind in _NAMES:
-            return _NAMES[kind]
-        term = self.terminals.get(kind)
-        value = getattr(term.pattern, "value", None) if term else None
-        if value is None:
-            return kind.strip("_").lower()
-        return f"'{value.upper() if value.isalpha() or '_' in value else value}'"
-
-    def _expected_list(self, expected: set[str]) -> str:
-        kinds = set(expected)
-        first = []
-        if "_SEMI" in kinds:
-            kinds.discard("_SEMI")
-            first.append("';'")
-        if len(kinds & _STATEMENT_STARTS) > 4:
-            kinds -= _STATEMENT_STARTS
-            first.append("statement")
-        if {"ARRAY", "STRING", "IDENT"} <= kinds:
-            kinds -= {"ARRAY", "STRING", "WSTRING", "IDENT"}
-            first.append("type")
-        if len(kinds & _EXPRESSION_STARTS) > 3:
-            kinds -= _EXPRESSION_STARTS | {"_LPAR"}
-            first.append("expression")
-        if len(kinds & _BINARY_OPERATORS) > 4:
-            kinds -= _BINARY_OPERATORS
-            first.append("operator")
-        words = first + sorted(self._describe_kind(k) for k in kinds)
-        if len(words) > 6:
-            words = words[:6] + ["..."]
-        if len(words) == 1:
-            return words[0]
-        return ", ".join(words[:-1]) + " or " + words[-1]
-
-    def _opener_line(self, lark_state, closer: str) -> str:
-        openers = _OPENERS.get(closer, ())
-        for value in reversed(lark_state.value_stack if lark_state else []):
-            if isinstance(value, list) and len(value) == 1:
-                value = value[0]
-            if isinstance(value, Token) and value.type in openers:
-                return f" to close the {value.type} at line {value.line}"
-        return ""
-
-    def _in_declaration(self, lark_state) -> bool:
-        for value in reversed(lark_state.value_stack if lark_state else []):
-            if isinstance(value, list) and len(value) == 1:
-                value = value[0]   # an inlined rule such as _var_kind
-            if isinstance(value, Token) and value.type in _OPENERS["_END_VAR"] + ("STRUCT",):
-                return True
-            if isinstance(value, Token) and value.type in ("PROGRAM", "FUNCTION",
-                                                          "FUNCTION_BLOCK"):
-                return False
-        return False
-
-    def _report(self, kind, token, inserted, expected, lark_state) -> None:
-        if self.retreat_token is not None:
-            token = self.retreat_token   # the repair went back one token
-        self.retreat_token = None
-        found = self._describe_token(token)
-        pos = ast.Pos(self.path, token.line, token.column)
-        if kind == "semi":
-            where = "declaration" if self._in_declaration(lark_state) else "statement"
-            code, message = "E-PARSE-002", f"expected ';' after {where}, found {found}"
-            previous = self._previous_token(token)
-            if previous is not None:  # point just past the unfinished line
-                pos = ast.Pos(self.path, previous.end_line, previous.end_column)
-        elif kind == "open":
-            code = "E-PARSE-001"
-            message = (f"expected 'VAR' before {found}: declarations belong in a "
-                       "VAR ... END_VAR block")
-        elif kind == "close" and inserted[0].type.startswith("_END"):
-            closer = self._describe_kind(inserted[0].type)
-            code = "E-PARSE-003"
-            message = (f"expected {closer}{self._opener_line(lark_state, inserted[0].type)}, "
-                       f"found {found}")
-        elif kind == "insert" and inserted[0].type != "IDENT":
-            code = "E-PARSE-001"
-            message = f"expected {self._describe_kind(inserted[0].type)}, found {found}"
-            previous = self._previous_token(token)
-            if previous is not None:
-                pos = ast.Pos(self.path, previous.end_line, previous.end_column)
-        elif (expected == _AFTER_STATEMENT_NAME and kind in ("panic", "drop", "none")
-              and self._previous_token(token) is not None):
-            name = self._previous_token(token)
-            code = "E-PARSE-001"
-            message = (f"expected ':=' or '(' after '{name.value}' (an assignment or a call), "
-                       f"found {found}")
-            pos = ast.Pos(self.path, name.line, name.column)
-        elif kind == "close":
-            code = "E-PARSE-001"
-            message = f"expected {self._describe_kind(inserted[0].type)}, found {found}"
-        elif token.type == "$END":
-            code = "E-PARSE-008"
-            message = f"unexpected end of file: expected {self._expected_list(expected)}"
-        elif len(expected & _EXPRESSION_STARTS) > 3 and token.type not in _EXPRESSION_STARTS:
-            code, message = "E-PARSE-004", f"expected expression, found {found}"
-        else:
-            code = "E-PARSE-001"
-            message = f"expected {self._expected_list(expected)}, found {found}"
-        self.diagnostics.append(Diagnostic(code, message, pos))
-
-    def _previous_token(self, token: Token):
-        for index, candidate in enumerate(self.tokens):
-            if candidate is token:
-                return self.tokens[index - 1] if index else None
-        return self.tokens[-1] if token.type == "$END" and self.tokens else None
