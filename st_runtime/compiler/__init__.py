@@ -17,13 +17,13 @@ from dataclasses import dataclass, field
 from .. import ast
 from ..diagnostics import register
 from ..faults import STFault
-from ..native import NATIVE_FBS, mangle
+from ..native import NATIVE_FBS
 from ..objects import AttrRef, ItemRef, NullRef, STObject, assign_list, native_initializers
 from ..types import StructType, resolve_alias
 from . import support
 from .calls import Calls
 from .initial import CompileError, Initial, InitialValues
-from .pysrc import Emitter, pyliteral, safe_name
+from .pysrc import Emitter, pyliteral, safe_name, pyident
 from .statements import BodyCompiler
 
 __all__ = ["compile_program", "CompiledProgram", "CompileError"]
@@ -155,7 +155,7 @@ def _make_classes(unit: CompileUnit) -> None:
     for key, t in program.types.items():
         t = resolve_alias(t)
         if isinstance(t, StructType) and t.name.upper() == key:
-            slots = tuple(mangle(name) for name, _ in t.fields.values())
+            slots = tuple(pyident(name) for name, _ in t.fields.values())
             layout = {k: (name, ft) for k, (name, ft) in t.fields.items()}
             unit.classes[key] = _new_class(t.name, slots, layout)
     for key, pou in program.pous.items():
@@ -172,14 +172,14 @@ def _make_classes(unit: CompileUnit) -> None:
             unit.classes[key] = native
             continue
         variables = _instance_variables(pou)
-        slots = tuple(mangle(s.name) for s in variables)
+        slots = tuple(pyident(s.name) for s in variables)
         layout = {s.name.upper(): (s.name, s.type) for s in variables}
         unit.classes[key] = _new_class(pou.name, slots, layout, pou.kind)
         unit.classes[key]._st_kinds = {s.name.upper(): s.kind for s in variables}
         unit.classes[key]._st_constants = frozenset(s.name.upper() for s in variables if s.constant)
     gl = [s for s in program.globals.values()]
     unit.classes["<GLOBALS>"] = _new_class(
-        "Globals", tuple(mangle(s.name) for s in gl), {s.name.upper(): (s.name, s.type) for s in gl})
+        "Globals", tuple(pyident(s.name) for s in gl), {s.name.upper(): (s.name, s.type) for s in gl})
     unit.classes["<GLOBALS>"]._st_constants = frozenset(s.name.upper() for s in gl if s.constant)
 
 
@@ -197,7 +197,7 @@ def _make_initializers(unit: CompileUnit) -> None:
         t = resolve_alias(t)
         if isinstance(t, StructType) and t.name.upper() == key:
             inits = initial.member_inits.get(key, {})
-            members = [(mangle(name), initial.of(ft, inits.get(fkey), ast.NOWHERE))
+            members = [(pyident(name), initial.of(ft, inits.get(fkey), ast.NOWHERE))
                        for fkey, (name, ft) in t.fields.items()]
             _install_init(unit, key, members)
     for key, pou in program.pous.items():
@@ -208,10 +208,10 @@ def _make_initializers(unit: CompileUnit) -> None:
             pairs = native_initializers(pou, lambda s: _maker_of(initial.of_symbol(s)))
             cls.set_initializers(pairs)
             continue
-        members = [(mangle(s.name), _unconnected(s) if s.kind == "VAR_IN_OUT" else initial.of_symbol(s))
+        members = [(pyident(s.name), _unconnected(s) if s.kind == "VAR_IN_OUT" else initial.of_symbol(s))
                    for s in _instance_variables(pou)]
         _install_init(unit, key, members)
-    members = [(mangle(s.name), initial.of_symbol(s)) for s in program.globals.values()]
+    members = [(pyident(s.name), initial.of_symbol(s)) for s in program.globals.values()]
     _install_init(unit, "<GLOBALS>", members)
 
 

@@ -16,12 +16,11 @@ Conventions of the generated code:
 
 from __future__ import annotations
 
-from ..native import mangle
 from ..objects import is_aggregate
 from ..types import ArrayType, ElementaryType, FBType, StructType, resolve_alias
 from .exprs import elementary, is_real
 from .initial import CompileError
-from .pysrc import pyliteral, safe_name
+from .pysrc import pyliteral, safe_name, pyident
 
 # Standard functions that map to a Python builtin or to their argument.
 _INLINE = {"ABS": "abs"}
@@ -126,14 +125,14 @@ class Calls:
             symbol = variables.get(key)
             if symbol is None:
                 raise CompileError(f"no input '{arg.name}'", arg.pos)
-            attr = f"{instance}.{mangle(symbol.name)}"
+            attr = f"{instance}.{pyident(symbol.name)}"
             if symbol.kind != "VAR_IN_OUT" and is_aggregate(symbol.type):
                 lines.append(copy_statement(attr, ec.aggregate(arg.value), symbol.type))
             else:
                 lines.append(f"{attr} = {self.argument(ec, symbol, arg)}")
         lines.append(f"{instance}.execute(_ctx)")
         for symbol, arg in outputs:
-            lines.append(self.store_output(ec, f"{instance}.{mangle(symbol.name)}", symbol, arg))
+            lines.append(self.store_output(ec, f"{instance}.{pyident(symbol.name)}", symbol, arg))
         return lines
 
     def user_call_with_outputs(self, ec, call, target) -> list[str]:

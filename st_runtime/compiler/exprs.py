@@ -12,7 +12,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .. import ast
-from ..native import mangle
 from ..objects import is_aggregate, store_value
 from ..types import (
     ArrayType,
@@ -24,7 +23,7 @@ from ..types import (
     resolve_alias,
 )
 from .initial import CompileError
-from .pysrc import pyliteral
+from .pysrc import pyliteral, pyident
 
 # Python source of the comparison/arithmetic operators that map one to one.
 _PLAIN_OPS = {"+": "+", "-": "-", "*": "*", "<": "<", ">": ">", "<=": "<=", ">=": ">=",
@@ -318,7 +317,7 @@ class ExprCompiler:
             base_t = self.ty(e.base)
             base = self.aggregate(e.base)
             t = self.member_type(base_t, e.name, e)
-            return LValue("attr", t, obj=base, key=mangle(e.name))
+            return LValue("attr", t, obj=base, key=pyident(e.name))
         if isinstance(e, ast.Index):
             return self.index_lvalue(e)
         self.fail("this expression cannot be assigned or referenced", e)

@@ -13,9 +13,9 @@ from dataclasses import dataclass
 from typing import Callable
 
 from .. import ast
-from ..native import mangle
 from ..objects import default_value, is_aggregate, store_value
 from ..types import ArrayType, EnumType, FBType, StructType, Type, resolve_alias
+from .pysrc import pyident
 from .support import idiv, imod
 
 
@@ -146,7 +146,7 @@ class InitialValues:
             if member_type is None:
                 raise CompileError(f"{t.name} has no member '{field.name}'", field.pos)
             value = self.of(member_type, field.value, field.pos)
-            overrides.append((mangle(field.name), value))
+            overrides.append((pyident(field.name), value))
 
         def make():
             obj = cls()

@@ -42,6 +42,13 @@ def safe_name(name: str) -> str:
     return name
 
 
+def pyident(st_name: str) -> str:
+    """The Python name of an ST identifier: `mangle`, checked to be plain."""
+    from ..native import mangle
+
+    return safe_name(mangle(st_name))
+
+
 class Emitter:
     """Collects indented lines of Python source."""
 

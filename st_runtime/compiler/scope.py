@@ -24,9 +24,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .. import ast
-from ..native import mangle
 from ..objects import is_aggregate
 from .exprs import LValue
+from .pysrc import pyident
 from .initial import CompileError
 
 
@@ -141,7 +141,7 @@ class Scope:
     def _plan(self) -> None:
         u = self.usage
         for key, symbol in self.pou.variables.items():
-            name = mangle(symbol.name)
+            name = pyident(symbol.name)
             aggregate = is_aggregate(symbol.type)
             kind = symbol.kind
             if kind == "VAR_EXTERNAL" or kind == "VAR_GLOBAL":
@@ -195,7 +195,7 @@ class Scope:
             return place
         symbol = self.program.globals.get(key)
         if symbol is not None:
-            place = VarPlace(symbol, "global", mangle(symbol.name))
+            place = VarPlace(symbol, "global", pyident(symbol.name))
             self.places[key] = place
             return place
         raise CompileError(f"'{e.name}' is not a variable here", e.pos)
@@ -211,7 +211,7 @@ class Scope:
                 symbol = self.program.globals.get(key)
                 if symbol is None:
                     continue
-                place = VarPlace(symbol, "global", mangle(symbol.name))
+                place = VarPlace(symbol, "global", pyident(symbol.name))
             if is_aggregate(place.symbol.type):
                 self.places[key] = VarPlace(place.symbol, "alias", place.name)
                 self.prologue.append(f"{place.name} = _G.{place.name}")

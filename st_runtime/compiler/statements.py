@@ -18,13 +18,12 @@ unit per iteration.  When the budget goes negative the scan ends with
 from __future__ import annotations
 
 from .. import ast
-from ..native import mangle
 from ..objects import is_aggregate
 from ..types import resolve_alias
 from .calls import copy_statement
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .pysrc import Emitter, pyliteral
+from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
 
@@ -48,8 +47,8 @@ class BodyCompiler(ExprCompiler):
 
             symbol = Symbol(self.pou.name, self.pou.return_type, "RETURN")
             how = "cell" if key in self.scope.usage.referenced else ("alias" if is_aggregate(symbol.type) else "local")
-            self.scope.places[key] = VarPlace(symbol, how, mangle(self.pou.name))
-            self.scope.prologue.append(("init", symbol, mangle(self.pou.name), how))
+            self.scope.places[key] = VarPlace(symbol, how, pyident(self.pou.name))
+            self.scope.prologue.append(("init", symbol, pyident(self.pou.name), how))
 
     # -------------------------------------------------------------- units
 
