@@ -88,3 +88,14 @@ def test_never_a_jump(result):
     assert steps.max() < CONFIG.actuator.max_velocity * CONFIG.task.period_s
     edge = result.command_scan - 1  # row of the command scan
     assert np.max(np.abs(result.commanded[edge] - result.commanded[edge - 1])) <= 1e-9
+
+
+def test_random_wave_with_lagging_servos():
+    # A 2 ms first-order servo lag: the actual positions trail the commands, the
+    # FK locates the platform from them, and the commands still follow the reference.
+    from stgen.scenarios.simulation import FOLLOWING_ERROR_LIMIT_MM
+
+    lagging = run_scenario(RANDOM_WAVE.with_wave_seconds(5.0), CONFIG, servo_lag_s=0.002)
+    assert lagging.passed and lagging.max_error_mm <= MAX_ERROR_MM
+    lag = np.abs(lagging.following_error).max()
+    assert 0.0 < lag < FOLLOWING_ERROR_LIMIT_MM

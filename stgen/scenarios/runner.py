@@ -45,6 +45,7 @@ class ScenarioResult:
     state: np.ndarray              # SpState
     fault_id: np.ndarray           # SpFaultID
     axis_fault: np.ndarray         # True where some axis is in ErrorStop
+    following_error: np.ndarray    # command - actual position of every axis, mm
     runtime_faults: list = field(default_factory=list)
     wall_seconds: float = 0.0
     move_duration_s: float = 0.0   # SpMoveDuration: the move or the lead-in
@@ -104,6 +105,7 @@ class _Recorder:
         self.state = np.empty(capacity, dtype=np.int64)
         self.fault_id = np.empty(capacity, dtype=np.int64)
         self.axis_fault = np.empty(capacity, dtype=bool)
+        self.following_error = np.empty((capacity, 6))
         self.count = 0
 
     def __call__(self, controller) -> None:
@@ -115,6 +117,7 @@ class _Recorder:
         self.state[row] = getattr(g, self.attrs["SpState"])
         self.fault_id[row] = getattr(g, self.attrs["SpFaultID"])
         self.axis_fault[row] = any(axis.fault_active for axis in axes)
+        self.following_error[row] = [axis.following_error for axis in axes]
         self.count = row + 1
 
 
@@ -160,10 +163,14 @@ def run_scenario(
     scenario: Scenario,
     config: PlatformConfig | None = None,
     progress: Progress | None = None,
+    servo_lag_s: float = 0.0,
 ) -> ScenarioResult:
-    """Power on at the start pose, give the command, run to the end, compare with the reference."""
+    """Power on at the start pose, give the command, run to the end, compare with the reference.
+
+    ``servo_lag_s``: the axes' servo lag (0: ideal axes, the actual position is the command).
+    """
     config = config if config is not None else PlatformConfig.default()
-    sim = ControllerSimulation(config, scenario.start_pose)
+    sim = ControllerSimulation(config, scenario.start_pose, servo_lag_s)
     after_command = motion_scans(scenario, config)
     recorder = _Recorder(sim, POWER_ON_SCANS + after_command)
     sim.plc.controller.add_observer(recorder)
@@ -193,6 +200,7 @@ def run_scenario(
         state=recorder.state[:count],
         fault_id=recorder.fault_id[:count],
         axis_fault=recorder.axis_fault[:count],
+        following_error=recorder.following_error[:count],
         runtime_faults=list(sim.runtime_faults),
         wall_seconds=wall,
         move_duration_s=float(sim.globals["SpMoveDuration"]),

@@ -2,9 +2,9 @@
 
 Scan order as on the NJ (``st_runtime.motion.motion_task``): axis feedback in,
 SP_Controller, motion processing. The axes are the six cylinders: software
-limits = the stroke, maximum velocity = the actuator's, ideal servo (the
-actual position equals the command), starting where the IK of the start pose
-puts them.
+limits = the stroke, maximum velocity = the actuator's, an ideal servo (the
+actual position equals the command) unless a servo lag is given, starting
+where the IK of the start pose puts them.
 
 The acceleration of the synchronised command is not checked by the axes
 (``max_acceleration = 0``): starting the wave clock after the lead-in is a
@@ -29,8 +29,12 @@ FOLLOWING_ERROR_LIMIT_MM = 1.0
 IN_POSITION_RANGE_MM = 0.01
 
 
-def axis_tables(config: PlatformConfig, start_pose) -> list[dict]:
-    """The six ``[[axis]]`` tables: cylinder i starts at q_i of ``start_pose``."""
+def axis_tables(config: PlatformConfig, start_pose, servo_lag_s: float = 0.0) -> list[dict]:
+    """The six ``[[axis]]`` tables: cylinder i starts at q_i of ``start_pose``.
+
+    ``servo_lag_s``: first-order lag of the actual position behind the command
+    (0: an ideal servo).
+    """
     ik = inverse_kinematics(config.geometry, np.asarray(start_pose, dtype=float), config.stroke)
     if not bool(np.all(ik.in_stroke)):
         raise ValueError(f"start pose {tuple(start_pose)} puts a cylinder outside the stroke")
@@ -43,7 +47,7 @@ def axis_tables(config: PlatformConfig, start_pose) -> list[dict]:
             "max_acceleration": 0.0,
             "in_position_range": IN_POSITION_RANGE_MM,
             "following_error_limit": FOLLOWING_ERROR_LIMIT_MM,
-            "servo_lag": 0.0,
+            "servo_lag": servo_lag_s,
             "initial_position": float(position),
         }
         for name, position in zip(AXIS_NAMES, ik.positions)
@@ -58,11 +62,13 @@ class ControllerSimulation:
     (``st_runtime.motion.axis.Axis``), in cylinder order.
     """
 
-    def __init__(self, config: PlatformConfig | None = None, start_pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0)):
+    def __init__(
+        self, config: PlatformConfig | None = None, start_pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), servo_lag_s: float = 0.0
+    ):
         from st_runtime.motion.motion_task import MotionTask
 
         self.config = config if config is not None else PlatformConfig.default()
-        self.motion = MotionTask.from_tables(axis_tables(self.config, start_pose))
+        self.motion = MotionTask.from_tables(axis_tables(self.config, start_pose, servo_lag_s))
         project = load_controller(self.config)
         period_ns = round(self.config.task.period_s * 1e9)
         self.plc = project.controller(period=period_ns)
