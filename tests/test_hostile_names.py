@@ -155,3 +155,30 @@ def test_generated_code_has_no_access_to_python_builtins():
     allowed = project.compiled.namespace["__builtins__"]
     assert "__import__" not in allowed and "open" not in allowed and "eval" not in allowed
     assert set(allowed) <= set(dir(builtins))
+
+
+# -------------------------------------------------------------- property test
+
+from hypothesis import HealthCheck, given, settings, strategies as st  # noqa: E402
+
+from st_runtime.api import LoadError  # noqa: E402
+
+IDENT = st.from_regex(r"[A-Za-z][A-Za-z0-9]{0,12}", fullmatch=True)
+TEXT = st.text(alphabet=st.characters(min_codepoint=32, max_codepoint=126), max_size=40)
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(name=IDENT, text=TEXT)
+def test_any_identifier_and_printable_string_is_data(name, text):
+    src = (f"PROGRAM Main\nVAR {name} : STRING[60] := {st_string(text)}; n : INT; END_VAR\n"
+           f"n := LEN({name});\nEND_PROGRAM\n")
+    try:
+        project = load_text(src)
+    except LoadError as exc:
+        # A keyword or a reserved name is refused with a diagnostic, never run.
+        assert all(d.code.startswith(("E-", "W-")) for d in exc.diagnostics)
+        return
+    plc = project.controller()
+    main = plc.add_program("Main")
+    plc.run(1)
+    assert main[name] == text and main["n"] == len(text)
