@@ -99,3 +99,18 @@ def test_random_wave_with_lagging_servos():
     assert lagging.passed and lagging.max_error_mm <= MAX_ERROR_MM
     lag = np.abs(lagging.following_error).max()
     assert 0.0 < lag < FOLLOWING_ERROR_LIMIT_MM
+
+
+def test_another_platform_and_a_2_ms_task():
+    # Nothing is tied to the study's numbers: other radii, a 2 ms period, other limits.
+    from stgen.config import GeometryConfig, TaskConfig, TrajectoryConfig
+
+    other = PlatformConfig(
+        geometry=GeometryConfig(rb=500.0, rp=400.0),
+        task=TaskConfig(period_s=0.002),
+        trajectory=TrajectoryConfig(linear_velocity=50.0),
+    )
+    for scenario in (POINT_TO_POINT, RANDOM_WAVE.with_wave_seconds(2.0)):
+        outcome = run_scenario(scenario, other)
+        assert outcome.passed, (scenario.name, outcome.max_error_mm, outcome.fault_count)
+        assert outcome.period_s == 0.002
