@@ -142,6 +142,15 @@ def test_time_arithmetic_in_nanoseconds():
     assert main.raw("w") == -2_000_000_000
 
 
+def test_time_times_real_rounds_to_the_nearest_nanosecond():
+    main, plc = run("a := T#1s * 0.3; b := T#10ns * 0.25; c := T#1s / 3.0; d := T#1s / z;",
+                    "a, b, c, d : TIME; z : LREAL;")
+    assert main.raw("a") == 300_000_000
+    assert main.raw("b") == 2                 # 2.5 ns: ties to even
+    assert main.raw("c") == 333_333_333
+    assert [f.code for f in plc.faults] == ["F-DIV-ZERO"]
+
+
 # ---------------------------------------------------------------------- arrays
 
 

@@ -20,6 +20,7 @@ from ..faults import STFault
 from ..native import NATIVE_FBS
 from ..objects import AttrRef, ItemRef, NullRef, STObject, assign_list, native_initializers
 from ..types import StructType, resolve_alias
+from .. import values
 from . import support
 from .calls import Calls
 from .initial import CompileError, Initial, InitialValues
@@ -60,7 +61,7 @@ class CompileUnit:
             "__builtins__": {"len": len, "range": range, "float": float, "int": int,
                              "abs": abs, "min": min, "max": max},
             "_f32": support.f32, "_idiv": support.idiv, "_imod": support.imod,
-            "_rdiv": support.rdiv, "_time_scale": support.time_scale,
+            "_rdiv": support.rdiv, "_time_mul": values.time_mul, "_time_div": values.time_div,
             "_index_fault": support.index_fault, "_index_fault_n": support.index_fault_n,
             "_overrun": support.overrun, "_for_range": support.for_range,
             "_truncate": support.truncate_string, "_AttrRef": AttrRef, "_ItemRef": ItemRef,

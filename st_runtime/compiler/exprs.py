@@ -147,9 +147,20 @@ class ExprCompiler:
 
     # --------------------------------------------------------- constants
 
+    def folded(self, expr):
+        """The checker's folded value of `expr` when it fits the expression's type.
+
+        (A non-integral float for an integer or TIME expression is left to the
+        compiled code, which rounds as the runtime does.)
+        """
+        value = self.program.constants.get(id(expr))
+        if isinstance(value, float) and not value.is_integer() and is_int_like(self.ty(expr)):
+            return None
+        return value
+
     def constant_of(self, expr):
         """The folded value of `expr`, or None when it is not constant."""
-        value = self.program.constants.get(id(expr))
+        value = self.folded(expr)
         if value is not None:
             return value
         if isinstance(expr, (ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral, ast.StringLiteral)):
@@ -214,7 +225,7 @@ class ExprCompiler:
     # ------------------------------------------------------- expressions
 
     def expr(self, e) -> str:
-        value = self.program.constants.get(id(e))
+        value = self.folded(e)
         if value is not None and not isinstance(e, ast.Call):
             return self.literal(value, self.ty(e))
         method = getattr(self, "x_" + type(e).__name__, None)
@@ -279,16 +290,17 @@ class ExprCompiler:
         left, right = self.expr(e.left), self.expr(e.right)
         if op in _BIT_OPS:
             return f"({left} {_BIT_OPS[op]} {right})"
-        if op in ("*",) and elementary(t) is not None and elementary(t).kind == "time" \
+        if op == "*" and elementary(t) is not None and elementary(t).kind == "time" \
                 and (is_real(lt) or is_real(rt)):
-            return f"_time_scale({left}, {right})" if elementary(lt).kind == "time" \
-                else f"_time_scale({right}, {left})"
+            # TIME * REAL rounds to the nearest ns, as the NJ's MULTIME (values.time_mul).
+            return f"_time_mul({left}, float({right}))" if elementary(lt).kind == "time" \
+                else f"_time_mul({right}, float({left}))"
         if op in _PLAIN_OPS:
             return f"({left} {_PLAIN_OPS[op]} {right})"
         if op == "/":
             if is_int_like(t):
-                if is_real(rt):   # TIME / REAL
-                    return f"int(_rdiv({left}, {right}))"
+                if is_real(rt):   # TIME / REAL: nearest ns, zero is F-DIV-ZERO (values.time_div)
+                    return f"_time_div({left}, float({right}))"
                 return f"_idiv({left}, {right}, {self.where(e)})"
             divisor = self.constant_of(e.right)
             if isinstance(divisor, (int, float)) and not isinstance(divisor, bool) and divisor != 0:

@@ -63,11 +63,6 @@ def rdiv(a: float, b: float) -> float:
         return math.copysign(math.inf, a) * math.copysign(1.0, b)
 
 
-def time_scale(t: int, factor) -> int:
-    """TIME * number and TIME / number, truncated to whole nanoseconds."""
-    return int(t * factor)
-
-
 def index_fault(value: int, lo: int, hi: int, name: str, where: tuple):
     raise STFault(
         "F-INDEX",
