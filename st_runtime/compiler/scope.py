@@ -86,8 +86,10 @@ class Usage:
             elif isinstance(node, ast.Assign):
                 self._store(node.target)
             elif isinstance(node, ast.For):
-                self.used.add(node.variable.upper())
-                self.assigned.add(node.variable.upper())
+                key = node.variable.upper()
+                self.used.add(key)
+                self.assigned.add(key)
+                self.count[key] = self.count.get(key, 0) + 10   # stored every iteration
             elif isinstance(node, ast.Call):
                 self._call(program, node, calls)
 
