@@ -1,0 +1,463 @@
+"""Hold the generated ST, executed in ``st_runtime``, against the NumPy reference.
+
+The kinematics POUs are rendered for a configuration and loaded together with
+small harness PROGRAMs (below) that run many cases in one scan, so ten
+thousand IK poses cost one call into the runtime, not ten thousand. The
+harness only moves numbers in and out of the POUs under test; every number
+compared comes from the POUs themselves.
+
+Public API (used by the differential tests, ``stgen verify`` and the benchmark):
+
+* :func:`load_kinematics` -> :class:`KinematicsRuntime` with
+  :meth:`~KinematicsRuntime.inverse_kinematics`, :meth:`~KinematicsRuntime.determinants`,
+  :meth:`~KinematicsRuntime.lu_solve` and :meth:`~KinematicsRuntime.forward_kinematics`;
+* :func:`random_poses`, :func:`test_matrices`: seeded cases;
+* :func:`run_verification` -> rows of (POU, cases, max error, iterations, pass).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from stgen.config import PlatformConfig, SolverConfig
+from stgen.error_codes import ErrorCode
+from stgen.exports.iec import pou_text
+from stgen.reference import forward_kinematics, inverse_kinematics, leibniz_det, lu_doolittle, lu_solve
+from stgen.reference.linalg import SingularMatrixError
+from stgen.render import RenderOptions, render_program
+
+#: Kinematics POUs (the controller's are not needed here).
+KINEMATICS_POUS = (
+    "SP_Constants", "SP_Atan2", "SP_LuSolve", "SP_LeibnizDeterminant", "SP_Jacobian",
+    "SP_InverseKinematics", "SP_ForwardKinematics",
+)
+
+#: Loop iterations one harness scan may take (a scan runs up to `capacity` cases).
+HARNESS_LOOP_BUDGET = 2_000_000_000
+
+# --------------------------------------------------------------------------- harness programs
+
+_IK_HARNESS = """
+PROGRAM VerifyIk
+VAR
+    CaseCount : DINT;
+    Poses : ARRAY[1..{n}, 1..6] OF LREAL;
+    Positions : ARRAY[1..{n}, 1..6] OF LREAL;
+    Reachable : ARRAY[1..{n}] OF BOOL;
+    ErrorIDs : ARRAY[1..{n}] OF WORD;
+    Pose : ARRAY[1..6] OF LREAL;
+    Ik : SP_InverseKinematics;
+    Item : DINT;
+    Leg : DINT;
+END_VAR
+FOR Item := 1 TO CaseCount DO
+    FOR Leg := 1 TO 6 DO
+        Pose[Leg] := Poses[Item, Leg];
+    END_FOR;
+    Ik(Pose := Pose);
+    FOR Leg := 1 TO 6 DO
+        Positions[Item, Leg] := Ik.CylinderPos[Leg];
+    END_FOR;
+    Reachable[Item] := Ik.Reachable;
+    ErrorIDs[Item] := Ik.ErrorID;
+END_FOR;
+END_PROGRAM
+"""
+
+_LINALG_HARNESS = """
+PROGRAM VerifyLinalg
+VAR
+    CaseCount : DINT;
+    Matrices : ARRAY[1..{n}, 1..6, 1..6] OF LREAL;
+    Rhs : ARRAY[1..{n}, 1..6] OF LREAL;
+    Determinants : ARRAY[1..{n}] OF LREAL;
+    LuDeterminants : ARRAY[1..{n}] OF LREAL;
+    Solutions : ARRAY[1..{n}, 1..6] OF LREAL;
+    Solved : ARRAY[1..{n}] OF BOOL;
+    Matrix : ARRAY[1..6, 1..6] OF LREAL;
+    B : ARRAY[1..6] OF LREAL;
+    X : ARRAY[1..6] OF LREAL;
+    LuDet : LREAL;
+    Det : SP_LeibnizDeterminant;
+    Item : DINT;
+    Row : DINT;
+    Column : DINT;
+END_VAR
+FOR Item := 1 TO CaseCount DO
+    FOR Row := 1 TO 6 DO
+        B[Row] := Rhs[Item, Row];
+        X[Row] := 0.0;
+        FOR Column := 1 TO 6 DO
+            Matrix[Row, Column] := Matrices[Item, Row, Column];
+        END_FOR;
+    END_FOR;
+    Det(Matrix := Matrix);
+    Determinants[Item] := Det.Determinant;
+    LuDet := 0.0;
+    Solved[Item] := SP_LuSolve(Matrix := Matrix, Rhs := B, Solution := X, Determinant => LuDet);
+    LuDeterminants[Item] := LuDet;
+    FOR Row := 1 TO 6 DO
+        Solutions[Item, Row] := X[Row];
+    END_FOR;
+END_FOR;
+END_PROGRAM
+"""
+
+_FK_HARNESS = """
+PROGRAM VerifyFk
+VAR
+    CaseCount : DINT;
+    MaxCalls : DINT;
+    Tolerance : LREAL;
+    IterationsPerScan : INT;
+    MaxIterations : INT;
+    Targets : ARRAY[1..{n}, 1..6] OF LREAL;
+    Starts : ARRAY[1..{n}, 1..6] OF LREAL;
+    Poses : ARRAY[1..{n}, 1..6] OF LREAL;
+    Iterations : ARRAY[1..{n}] OF INT;
+    Calls : ARRAY[1..{n}] OF DINT;
+    Done : ARRAY[1..{n}] OF BOOL;
+    ErrorIDs : ARRAY[1..{n}] OF WORD;
+    CylinderPos : ARRAY[1..6] OF LREAL;
+    StartPose : ARRAY[1..6] OF LREAL;
+    Fk : SP_ForwardKinematics;
+    Item : DINT;
+    Leg : DINT;
+    Call : DINT;
+END_VAR
+FOR Item := 1 TO CaseCount DO
+    FOR Leg := 1 TO 6 DO
+        CylinderPos[Leg] := Targets[Item, Leg];
+        StartPose[Leg] := Starts[Item, Leg];
+    END_FOR;
+    (* One FB call per (simulated) scan until the solution ends. *)
+    Call := 0;
+    REPEAT
+        Fk(Execute := TRUE, CylinderPos := CylinderPos, StartPose := StartPose, Tolerance := Tolerance,
+           IterationsPerScan := IterationsPerScan, MaxIterations := MaxIterations);
+        Call := Call + 1;
+    UNTIL NOT Fk.Busy OR Call >= MaxCalls
+    END_REPEAT;
+    Calls[Item] := Call;
+    Done[Item] := Fk.Done;
+    ErrorIDs[Item] := Fk.ErrorID;
+    Iterations[Item] := Fk.Iterations;
+    FOR Leg := 1 TO 6 DO
+        Poses[Item, Leg] := Fk.Pose[Leg];
+    END_FOR;
+    Fk(Execute := FALSE);
+END_FOR;
+END_PROGRAM
+"""
+
+
+# --------------------------------------------------------------------------- results
+
+
+@dataclass(frozen=True)
+class IkRun:
+    positions: np.ndarray  # [n, 6] mm
+    reachable: np.ndarray  # [n] bool
+    error_ids: np.ndarray  # [n] int
+
+
+@dataclass(frozen=True)
+class LinalgRun:
+    determinants: np.ndarray  # [n] Leibniz
+    lu_determinants: np.ndarray  # [n] from the LU diagonal (valid where solved)
+    solutions: np.ndarray  # [n, 6] (valid where solved)
+    solved: np.ndarray  # [n] bool
+
+
+@dataclass(frozen=True)
+class FkRun:
+    poses: np.ndarray  # [n, 6] mm and degrees (valid where done)
+    iterations: np.ndarray  # [n]
+    calls: np.ndarray  # [n] FB calls (scans) used
+    done: np.ndarray  # [n] bool
+    error_ids: np.ndarray  # [n] int
+
+
+class KinematicsRuntime:
+    """The rendered kinematics loaded in ``st_runtime`` with the harness programs."""
+
+    def __init__(self, project, capacity: int) -> None:
+        self.project = project
+        self.capacity = capacity
+        # One harness scan runs many cases: lift the runaway-loop budget accordingly.
+        self._plc = project.controller(period="1ms", budget=HARNESS_LOOP_BUDGET)
+        self._programs = {name: self._plc.add_program(name) for name in ("VerifyIk", "VerifyLinalg", "VerifyFk")}
+        self._plc.controller.tasks[0].programs.clear()  # each harness runs only when asked
+
+    def _run(self, name: str, **arrays) -> object:
+        program = self._programs[name]
+        for key, value in arrays.items():
+            program.raw(key)[: len(value)] = value
+        controller = self._plc.controller
+        controller.tasks[0].programs[:] = [(name, program.obj)]
+        faults_before = len(controller.faults)
+        controller.run(1)
+        if len(controller.faults) > faults_before:
+            raise RuntimeError(f"runtime fault in {name}: {controller.faults[faults_before]}")
+        return program
+
+    def _batches(self, count: int):
+        for start in range(0, count, self.capacity):
+            yield start, min(start + self.capacity, count)
+
+    def inverse_kinematics(self, poses_deg) -> IkRun:
+        poses = np.asarray(poses_deg, dtype=float).reshape(-1, 6)
+        positions, reachable, error_ids = [], [], []
+        for start, stop in self._batches(len(poses)):
+            chunk = poses[start:stop]
+            program = self._programs["VerifyIk"]
+            program["CaseCount"] = len(chunk)
+            self._run("VerifyIk", Poses=chunk.ravel().tolist())
+            positions.append(np.array(program.raw("Positions")[: len(chunk) * 6]).reshape(-1, 6))
+            reachable.append(np.array(program.raw("Reachable")[: len(chunk)], dtype=bool))
+            error_ids.append(np.array(program.raw("ErrorIDs")[: len(chunk)], dtype=int))
+        return IkRun(np.concatenate(positions), np.concatenate(reachable), np.concatenate(error_ids))
+
+    def linear_algebra(self, matrices, rhs) -> LinalgRun:
+        """Leibniz det (SP_LeibnizDeterminant) and SP_LuSolve of every matrix [n, 6, 6] with rhs [n, 6]."""
+        matrices = np.asarray(matrices, dtype=float).reshape(-1, 6, 6)
+        rhs = np.asarray(rhs, dtype=float).reshape(-1, 6)
+        parts: dict[str, list] = {"dets": [], "lu": [], "x": [], "ok": []}
+        for start, stop in self._batches(len(matrices)):
+            n = stop - start
+            program = self._programs["VerifyLinalg"]
+            program["CaseCount"] = n
+            self._run("VerifyLinalg", Matrices=matrices[start:stop].ravel().tolist(), Rhs=rhs[start:stop].ravel().tolist())
+            parts["dets"].append(np.array(program.raw("Determinants")[:n]))
+            parts["lu"].append(np.array(program.raw("LuDeterminants")[:n]))
+            parts["x"].append(np.array(program.raw("Solutions")[: n * 6]).reshape(-1, 6))
+            parts["ok"].append(np.array(program.raw("Solved")[:n], dtype=bool))
+        return LinalgRun(*(np.concatenate(parts[k]) for k in ("dets", "lu", "x", "ok")))
+
+    def forward_kinematics(self, positions, start_poses_deg, solver: SolverConfig, max_calls: int = 10_000) -> FkRun:
+        """SP_ForwardKinematics on every case, one FB call per simulated scan until it ends."""
+        targets = np.asarray(positions, dtype=float).reshape(-1, 6)
+        starts = np.broadcast_to(np.asarray(start_poses_deg, dtype=float), targets.shape)
+        program = self._programs["VerifyFk"]
+        program["Tolerance"] = solver.tolerance
+        program["IterationsPerScan"] = solver.iterations_per_scan
+        program["MaxIterations"] = solver.max_iterations
+        program["MaxCalls"] = max_calls
+        parts: dict[str, list] = {k: [] for k in ("poses", "iterations", "calls", "done", "ids")}
+        for start, stop in self._batches(len(targets)):
+            n = stop - start
+            program["CaseCount"] = n
+            self._run("VerifyFk", Targets=targets[start:stop].ravel().tolist(),
+                      Starts=np.ascontiguousarray(starts[start:stop]).ravel().tolist())
+            parts["poses"].append(np.array(program.raw("Poses")[: n * 6]).reshape(-1, 6))
+            parts["iterations"].append(np.array(program.raw("Iterations")[:n], dtype=int))
+            parts["calls"].append(np.array(program.raw("Calls")[:n], dtype=int))
+            parts["done"].append(np.array(program.raw("Done")[:n], dtype=bool))
+            parts["ids"].append(np.array(program.raw("ErrorIDs")[:n], dtype=int))
+        return FkRun(*(np.concatenate(parts[k]) for k in ("poses", "iterations", "calls", "done", "ids")))
+
+
+def kinematics_sources(config: PlatformConfig | None = None, options: RenderOptions | None = None,
+                       capacity: int = 1000) -> dict[str, str]:
+    """IEC texts of the kinematics POUs plus the harness programs (``capacity`` cases per scan)."""
+    program = render_program(config, options)
+    sources = {f"{name}.st": pou_text(program.pou(name)) for name in KINEMATICS_POUS}
+    for name, text in (("VerifyIk", _IK_HARNESS), ("VerifyLinalg", _LINALG_HARNESS), ("VerifyFk", _FK_HARNESS)):
+        sources[f"{name}.st"] = text.format(n=capacity)
+    return sources
+
+
+def load_kinematics(config: PlatformConfig | None = None, options: RenderOptions | None = None,
+                    capacity: int = 1000) -> KinematicsRuntime:
+    """Render, parse, check and compile the kinematics and the harness (raises ``LoadError``)."""
+    from st_runtime import api
+
+    return KinematicsRuntime(api.load_sources(kinematics_sources(config, options, capacity)), capacity)
+
+
+# --------------------------------------------------------------------------- cases
+
+
+#: Box the random poses are drawn from (mm, degrees): x, y, z, alpha, beta, gamma half-widths/centres.
+POSE_CENTRE = np.array([0.0, 0.0, 250.0, 0.0, 0.0, 0.0])
+POSE_HALF_WIDTH = np.array([150.0, 150.0, 220.0, 15.0, 15.0, 15.0])
+
+
+def random_poses(config: PlatformConfig, count: int, seed: int, reachable: bool = True) -> np.ndarray:
+    """``count`` seeded random poses (mm, degrees) from a box around the workspace centre.
+
+    With ``reachable`` only poses whose six legs lie inside the stroke (by the
+    reference IK) are kept, so they spread over the reachable workspace.
+    """
+    rng = np.random.default_rng(seed)
+    found: list[np.ndarray] = []
+    total = 0
+    while total < count:
+        batch = POSE_CENTRE + POSE_HALF_WIDTH * rng.uniform(-1.0, 1.0, size=(4 * count, 6))
+        if reachable:
+            batch = batch[inverse_kinematics(config.geometry, batch, config.stroke).reachable]
+        found.append(batch)
+        total += len(batch)
+    return np.concatenate(found)[:count]
+
+
+def sample_matrices(count: int, seed: int) -> tuple[np.ndarray, np.ndarray, list[str]]:
+    """Seeded 6x6 matrices and right-hand sides, in four kinds (a quarter each):
+    ``random`` (standard normal), ``scaled`` (rows and columns scaled by 10^-6 .. 10^6),
+    ``near-singular`` (one row a combination of the others plus 1e-10 noise) and
+    ``singular`` (two equal rows, or a zero column)."""
+    rng = np.random.default_rng(seed)
+    matrices, kinds = [], []
+    for index in range(count):
+        kind = ("random", "scaled", "near-singular", "singular")[index % 4]
+        a = rng.standard_normal((6, 6))
+        if kind == "scaled":
+            a = a * 10.0 ** rng.uniform(-6, 6, size=(6, 1)) * 10.0 ** rng.uniform(-3, 3, size=(1, 6))
+        elif kind == "near-singular":
+            a[5] = rng.standard_normal(5) @ a[:5] + 1e-10 * rng.standard_normal(6)
+        elif kind == "singular":
+            if index % 8 == 3:
+                a[4] = a[1]
+            else:
+                a[:, 2] = 0.0
+        matrices.append(a)
+        kinds.append(kind)
+    return np.array(matrices), rng.standard_normal((count, 6)), kinds
+
+
+# --------------------------------------------------------------------------- the comparison table
+
+
+@dataclass(frozen=True)
+class Check:
+    """One row of ``stgen verify``'s table."""
+
+    pou: str
+    what: str
+    cases: int
+    max_error: float
+    limit: float
+    unit: str
+    iterations: str = ""
+    problems: tuple[str, ...] = ()
+
+    @property
+    def passed(self) -> bool:
+        return not self.problems and self.max_error <= self.limit
+
+
+def check_inverse_kinematics(runtime: KinematicsRuntime, config: PlatformConfig, poses) -> Check:
+    reference = inverse_kinematics(config.geometry, poses, config.stroke)
+    run = runtime.inverse_kinematics(poses)
+    error = float(np.max(np.abs(run.positions - reference.positions)))
+    problems = []
+    if not np.array_equal(run.reachable, reference.reachable):
+        problems.append(f"Reachable differs on {int(np.sum(run.reachable != reference.reachable))} poses")
+    expected_ids = np.array([ErrorCode(int(s)).error_id for s in reference.status])
+    if not np.array_equal(run.error_ids, expected_ids):
+        problems.append("ErrorID differs from the reference status")
+    return Check("SP_InverseKinematics", "q vs reference IK", len(poses), error, 1e-9, "mm", problems=tuple(problems))
+
+
+def check_linear_algebra(runtime: KinematicsRuntime, count: int, seed: int, variant: str) -> tuple[Check, Check]:
+    """SP_LeibnizDeterminant and SP_LuSolve on :func:`sample_matrices`.
+
+    Both must equal the reference bit for bit (same operation order) and report
+    the same matrices singular; against ``numpy.linalg`` the relative error must
+    be <= 1e-9 where the condition number allows it: determinants of the
+    ``random`` and ``scaled`` kinds, solutions with cond(A) < 1e6.
+    """
+    matrices, rhs, kinds = sample_matrices(count, seed)
+    run = runtime.linear_algebra(matrices, rhs)
+    det_errors, solve_errors, det_problems, lu_problems = [], [], [], []
+    for index, (a, b, kind) in enumerate(zip(matrices, rhs, kinds)):
+        if leibniz_det(a) != run.determinants[index]:
+            det_problems.append(f"det #{index} ({kind}) differs from the reference")
+        if kind in ("random", "scaled"):
+            expected = np.linalg.det(a)
+            det_errors.append(abs(run.determinants[index] - expected) / abs(expected))
+        try:
+            lu, perm = lu_doolittle(a)
+            expected_x = lu_solve(lu, perm, b)
+        except SingularMatrixError:
+            if run.solved[index]:
+                lu_problems.append(f"#{index} ({kind}): singular, but SP_LuSolve returned TRUE")
+            continue
+        if not run.solved[index]:
+            lu_problems.append(f"#{index} ({kind}): not singular, but SP_LuSolve returned FALSE")
+            continue
+        if not np.array_equal(run.solutions[index], expected_x):
+            lu_problems.append(f"solution #{index} ({kind}) differs from the reference")
+        if np.linalg.cond(a) < 1e6:
+            exact = np.linalg.solve(a, b)
+            solve_errors.append(float(np.max(np.abs(run.solutions[index] - exact)) / np.max(np.abs(exact))))
+        if kind in ("random", "scaled"):
+            expected = np.linalg.det(a)
+            solve_errors.append(abs(run.lu_determinants[index] - expected) / abs(expected))
+    if not all(not run.solved[i] for i, k in enumerate(kinds) if k == "singular"):
+        lu_problems.append("a singular matrix was reported solved")
+    return (
+        Check("SP_LeibnizDeterminant", f"det, {variant} (rel. to numpy)", len(matrices),
+              max(det_errors, default=0.0), 1e-9, "rel", problems=tuple(det_problems)),
+        Check("SP_LuSolve", "x and det (rel. to numpy)", len(matrices),
+              max(solve_errors, default=0.0), 1e-9, "rel", problems=tuple(lu_problems)),
+    )
+
+
+def check_forward_kinematics(runtime: KinematicsRuntime, config: PlatformConfig, poses, label: str,
+                             starts, tolerance: float = 1e-9) -> Check:
+    """FK of the reference IK's cylinder positions; pose within 1e-6 mm / 1e-6 deg, same iterations."""
+    solver = SolverConfig(tolerance=tolerance, singularity_threshold=config.solver.singularity_threshold,
+                          iterations_per_scan=config.solver.iterations_per_scan,
+                          max_iterations=config.solver.max_iterations, start_pose=config.solver.start_pose)
+    positions = inverse_kinematics(config.geometry, poses, config.stroke).positions
+    starts = np.broadcast_to(np.asarray(starts, dtype=float), np.shape(poses))
+    run = runtime.forward_kinematics(positions, starts, solver)
+    problems = []
+    errors = []
+    iteration_counts = []
+    for index in range(len(poses)):
+        ref = forward_kinematics(config.geometry, positions[index], starts[index], solver)
+        if int(run.iterations[index]) != ref.iterations:
+            problems.append(f"case {index}: {run.iterations[index]} iterations, reference {ref.iterations}")
+        if int(run.error_ids[index]) != ref.status.error_id:
+            problems.append(f"case {index}: ErrorID {run.error_ids[index]:#06x}, reference {ref.status.name}")
+        if int(run.calls[index]) != ref.scans:
+            problems.append(f"case {index}: {run.calls[index]} scans, reference {ref.scans}")
+        if ref.converged and run.done[index]:
+            errors.append(float(np.max(np.abs(run.poses[index] - poses[index]))))
+            iteration_counts.append(ref.iterations)
+        elif ref.converged:
+            problems.append(f"case {index}: reference converged, the FB did not")
+    counts = f"{min(iteration_counts)}..{max(iteration_counts)}" if iteration_counts else "-"
+    return Check("SP_ForwardKinematics", f"pose from {label} (Tolerance {tolerance:g})", len(poses),
+                 max(errors, default=math.inf), 1e-6, "mm|deg", counts, tuple(problems))
+
+
+def run_verification(config: PlatformConfig | None = None, poses: int = 10_000, seed: int = 2024,
+                     fk_poses: int = 500, matrices: int = 400) -> list[Check]:
+    """Every comparison of ``stgen verify``: ``poses`` IK poses (plus a tenth unreachable
+    ones), ``matrices`` 6x6 systems per determinant variant, ``fk_poses`` FK solves from
+    p_NR and as many from warm starts."""
+    config = config if config is not None else PlatformConfig.default()
+    reachable = random_poses(config, poses, seed)
+    mixed = random_poses(config, max(1, poses // 10), seed + 1, reachable=False)
+    table = load_kinematics(config, RenderOptions("table"))
+    unrolled = load_kinematics(config, RenderOptions("unrolled"))
+    checks = [check_inverse_kinematics(table, config, np.concatenate([reachable, mixed]))]
+    det_table, lu = check_linear_algebra(table, matrices, seed + 2, "table")
+    det_unrolled, _ = check_linear_algebra(unrolled, matrices, seed + 2, "unrolled")
+    checks += [det_table, det_unrolled, lu]
+    fk = reachable[:fk_poses]
+    checks.append(check_forward_kinematics(table, config, fk, "p_NR", config.solver.start_pose))
+    rng = np.random.default_rng(seed + 3)
+    warm = fk + rng.uniform(-1.0, 1.0, size=fk.shape) * WARM_START_OFFSET
+    checks.append(check_forward_kinematics(table, config, fk, "warm starts", warm))
+    return checks
+
+
+#: Largest offset of a warm start from the true pose (mm, degrees).
+WARM_START_OFFSET = np.array([2.0, 2.0, 2.0, 0.5, 0.5, 0.5])
