@@ -427,5 +427,10 @@ def test_empty_file_is_an_empty_source_file():
     assert parse_ok("(* only a comment *)\n// and another\n", "e.st").items == ()
 
 
+def test_byte_order_mark_and_crlf_are_blank():
+    tree = parse_ok("\ufeffPROGRAM P\r\n\tx := 1;\r\nEND_PROGRAM\r\n", "bom.st")
+    assert tree.items[0].body[0].pos == ast.Pos("bom.st", 2, 2)
+
+
 def test_parse_returns_path_in_source_file():
     assert parse_ok("PROGRAM P END_PROGRAM", "dir/x.st").path == "dir/x.st"
