@@ -65,12 +65,7 @@ def format_expr(expr) -> str:
     if kind is ast.Name:
         return expr.name
     if kind is ast.Binary:
-        level = _BINARY_LEVEL[expr.op]
-        left = _wrap(expr.left, _level(expr.left) < level)
-        # Left-associative: an equal-level right operand needs parentheses.
-        right = _wrap(expr.right, _level(expr.right) <= level)
-        op = "AND" if expr.op == "&" else expr.op
-        return f"{left} {op} {right}"
+        return _format_binary(expr)
     if kind is ast.Unary:
         operand = _wrap(expr.operand, _level(expr.operand) < _UNARY_LEVEL)
         if expr.op == "NOT":
@@ -103,6 +98,21 @@ def format_expr(expr) -> str:
     if kind is ast.Call:
         return f"{_postfix_base(expr.callee)}({_format_args(expr.args)})"
     raise TypeError(f"not an expression node: {kind.__name__}")
+
+
+def _format_binary(expr: ast.Binary) -> str:
+    """`a + b - c ...`: the left spine of one precedence level is walked in a
+    loop, so a generated sum of thousands of terms does not exhaust the stack."""
+    level = _BINARY_LEVEL[expr.op]
+    tail = []
+    node = expr
+    while type(node) is ast.Binary and _BINARY_LEVEL[node.op] == level:
+        # Left-associative: an equal-level right operand needs parentheses.
+        right = _wrap(node.right, _level(node.right) <= level)
+        tail.append(f" {'AND' if node.op == '&' else node.op} {right}")
+        node = node.left
+    head = _wrap(node, _level(node) < level)
+    return head + "".join(reversed(tail))
 
 
 def _postfix_base(expr) -> str:

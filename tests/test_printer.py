@@ -120,6 +120,15 @@ def test_format_source_layout():
         "END_FUNCTION_BLOCK\n")
 
 
+def test_long_generated_sum_prints_without_recursion_limit():
+    expr = ast.Name("a0")
+    for i in range(1, 5000):
+        expr = B("+" if i % 2 else "-", expr, B("*", N(f"a{i}"), N("b")))
+    text = format_expr(expr)
+    assert text.startswith("a0 + a1 * b - a2 * b + a3 * b")
+    assert text.count(" * b") == 4999
+
+
 # ------------------------------------------- round trip of random expressions
 
 _names = st.sampled_from(["a", "b", "Speed", "x1"]).map(ast.Name)
