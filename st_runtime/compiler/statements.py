@@ -216,65 +216,25 @@ class BodyCompiler(ExprCompiler):
         var_t = place.symbol.type
         step_value = 1 if s.step is None else self.constant_of(s.step)
         where = self.where(s)
-        const_step = isinstance(step_value, int) and not isinstance(step_value, bool)
+        const_step = _is_int(step_value)
         if const_step and step_value == 0:
             o.line(f"_overrun({where})")     # BY 0 never ends: the period is exceeded
             return
-        start_c, end_c = self.constant_of(s.start), self.constant_of(s.end)
+        key = s.variable.upper()
         assigned = Usage(self.program, s.body, None).assigned
-        if s.variable.upper() in assigned or place.how == "global":
+        if key in assigned or place.how == "global":
             # The body may change the variable (a global can change in any call).
             self._for_as_while(s, target, var_t, step_value if const_step else None, assigned)
             return
-        rng = self.temp()
-        final = None          # Python source of the value after a normal end
-        count = None          # the iteration count when known now
-        if const_step and _is_int(start_c) and _is_int(end_c):
-            r = range(start_c, end_c + (1 if step_value > 0 else -1), step_value)
-            rng = self.unit.register_constant(r)
-            count = len(r)
-            final = pyliteral(start_c + count * step_value)
-        elif const_step:
-            start, end = self.expr(s.start), self.expr(s.end)
-            if not _is_int(start_c):          # bounds are evaluated once, before the loop
-                tmp = self.temp()
-                o.line(f"{tmp} = {start}")
-                start = tmp
-            if not _is_int(end_c):
-                tmp = self.temp()
-                o.line(f"{tmp} = {end}")
-                end = tmp
-            edge = pyliteral(end_c + (1 if step_value > 0 else -1)) if _is_int(end_c) \
-                else (f"{end} + 1" if step_value > 0 else f"{end} - 1")
-            o.line(f"{rng} = range({start}, {edge}, {step_value})" if step_value != 1
-                   else f"{rng} = range({start}, {edge})")
-            if step_value == 1:
-                final = f"({edge} if {start} <= {end} else {start})"
-            elif step_value == -1:
-                final = f"({edge} if {start} >= {end} else {start})"
-            else:
-                final = f"{start} + len({rng}) * {step_value}"
-        else:
-            step_code = self.temp()
-            o.line(f"{step_code} = {self.expr(s.step)}")
-            o.line(f"{rng} = _for_range({self.expr(s.start)}, {self.expr(s.end)}, {step_code}, {where})")
-            final = f"{rng}.start + len({rng}) * {step_code}"
+        rng, count, final = self._for_range(s, step_value if const_step else None, where)
         early = _leaves_early(s.body)
-        if not early:
-            if count is not None:
-                if count:
-                    o.line(f"_ctx.budget -= {count}")
-                    o.line(f"if _ctx.budget < 0: _overrun({where})")
-            else:
-                o.line(f"_ctx.budget -= len({rng})")
-                o.line(f"if _ctx.budget < 0: _overrun({where})")
-        key = s.variable.upper()
+        if not early and count != 0:
+            o.line(f"_ctx.budget -= {count if count is not None else f'len({rng})'}")
+            o.line(f"if _ctx.budget < 0: _overrun({where})")
         saved = self.known_ranges.get(key)
         lo_r, hi_r = self.static_range(s.start), self.static_range(s.end)
-        known = None
-        if lo_r and hi_r and const_step and key not in assigned:
-            known = (lo_r[0], hi_r[1]) if step_value > 0 else (hi_r[0], lo_r[1])
-            self.known_ranges[key] = known
+        if lo_r and hi_r and const_step:
+            self.known_ranges[key] = (lo_r[0], hi_r[1]) if step_value > 0 else (hi_r[0], lo_r[1])
         else:
             self.known_ranges.pop(key, None)
         self.loops.append(_Loop(key, assigned, "FOR"))
@@ -295,7 +255,63 @@ class BodyCompiler(ExprCompiler):
         self.statements(s.body)
         o.ensure_body(body_mark)
         o.dedent()
-        loop = self.loops.pop()
+        self._place_loop_code(self.loops.pop(), mark, body_mark)
+        if saved is None:
+            self.known_ranges.pop(key, None)
+        else:
+            self.known_ranges[key] = saved
+        # After a normal end the variable holds the first value that failed
+        # the test (IEC: FOR is a WHILE loop that increments by BY).
+        o.line("else:")
+        o.indent()
+        bounds = int_bounds(var_t)
+        if lo_r and hi_r and const_step and bounds:
+            ends = (lo_r[0], lo_r[1], hi_r[0] + step_value, hi_r[1] + step_value)
+            if bounds[0] <= min(ends) and max(ends) <= bounds[1]:
+                var_t = None          # the final value cannot leave the type: no wrap
+        o.line(target.store(final if var_t is None else self.convert(final, None, var_t)))
+        o.dedent()
+
+    def _for_range(self, s, step: int | None, where: str) -> tuple[str, int | None, str]:
+        """Emit the loop's range; (range source, iteration count if known, final value source).
+
+        The bounds are evaluated once, before the loop (into temps).
+        """
+        o = self.out
+        start_c, end_c = self.constant_of(s.start), self.constant_of(s.end)
+        if step is not None and _is_int(start_c) and _is_int(end_c):
+            r = range(start_c, end_c + (1 if step > 0 else -1), step)
+            return self.unit.register_constant(r), len(r), pyliteral(start_c + len(r) * step)
+        rng = self.temp()
+        if step is None:
+            step_code = self.temp()
+            o.line(f"{step_code} = {self.expr(s.step)}")
+            o.line(f"{rng} = _for_range({self.expr(s.start)}, {self.expr(s.end)}, {step_code}, {where})")
+            return rng, None, f"{rng}.start + len({rng}) * {step_code}"
+        start, end = self.expr(s.start), self.expr(s.end)
+        if not _is_int(start_c):
+            tmp = self.temp()
+            o.line(f"{tmp} = {start}")
+            start = tmp
+        if not _is_int(end_c):
+            tmp = self.temp()
+            o.line(f"{tmp} = {end}")
+            end = tmp
+        if _is_int(end_c):
+            edge = pyliteral(end_c + (1 if step > 0 else -1))
+        else:
+            edge = f"{end} + 1" if step > 0 else f"{end} - 1"
+        o.line(f"{rng} = range({start}, {edge})" if step == 1 else f"{rng} = range({start}, {edge}, {step})")
+        if step == 1:
+            return rng, None, f"({edge} if {start} <= {end} else {start})"
+        if step == -1:
+            return rng, None, f"({edge} if {start} >= {end} else {start})"
+        return rng, None, f"{start} + len({rng}) * {step}"
+
+    def _place_loop_code(self, loop: "_Loop", mark: int, body_mark: int) -> None:
+        """Put the per-iteration products at the top of the body and the hoisted
+        invariants before the loop (both were collected while compiling the body)."""
+        o = self.out
         if loop.scaled:
             per_iteration = []
             for text, (placeholder, uses) in loop.scaled.items():
@@ -309,24 +325,6 @@ class BodyCompiler(ExprCompiler):
             o.dedent()
         if loop.hoisted:
             o.insert(mark, [f"{name} = {code}" for code, name in loop.hoisted.items()])
-        if saved is None:
-            self.known_ranges.pop(key, None)
-        else:
-            self.known_ranges[key] = saved
-        # After a normal end the variable holds the first value that failed
-        # the test (IEC: FOR is a WHILE loop that increments by BY).
-        o.line("else:")
-        o.indent()
-        bounds = int_bounds(var_t)
-        final_range = None
-        if lo_r and hi_r and const_step:
-            ends = (lo_r[0], lo_r[1], hi_r[0] + step_value, hi_r[1] + step_value)
-            final_range = (min(ends), max(ends))
-        if final_range and bounds and bounds[0] <= final_range[0] and final_range[1] <= bounds[1]:
-            o.line(target.store(final))
-        else:
-            o.line(target.store(self.convert(final, None, var_t)))
-        o.dedent()
 
     def _for_as_while(self, s, target, var_t, step, assigned) -> None:
         """FOR whose body changes its variable: a loop that tests it, as on a PLC."""
