@@ -338,7 +338,7 @@ class Check:
     pou: str
     what: str
     cases: int
-    max_error: float
+    max_error: float | None  # None: a check of outcomes, not of a numeric error
     limit: float
     unit: str
     iterations: str = ""
@@ -346,7 +346,7 @@ class Check:
 
     @property
     def passed(self) -> bool:
-        return not self.problems and self.max_error <= self.limit
+        return not self.problems and (self.max_error is None or self.max_error <= self.limit)
 
 
 def check_inverse_kinematics(runtime: KinematicsRuntime, config: PlatformConfig, poses) -> Check:
@@ -407,12 +407,21 @@ def check_linear_algebra(runtime: KinematicsRuntime, count: int, seed: int, vari
     )
 
 
+def fk_solver(config: PlatformConfig, tolerance: float = 1e-9, **changes) -> SolverConfig:
+    """The configuration's solver settings with ``tolerance`` (and any other field) replaced."""
+    values = dict(tolerance=tolerance, singularity_threshold=config.solver.singularity_threshold,
+                  iterations_per_scan=config.solver.iterations_per_scan,
+                  max_iterations=config.solver.max_iterations, start_pose=config.solver.start_pose)
+    values.update(changes)
+    return SolverConfig(**values)
+
+
 def check_forward_kinematics(runtime: KinematicsRuntime, config: PlatformConfig, poses, label: str,
-                             starts, tolerance: float = 1e-9) -> Check:
-    """FK of the reference IK's cylinder positions; pose within 1e-6 mm / 1e-6 deg, same iterations."""
-    solver = SolverConfig(tolerance=tolerance, singularity_threshold=config.solver.singularity_threshold,
-                          iterations_per_scan=config.solver.iterations_per_scan,
-                          max_iterations=config.solver.max_iterations, start_pose=config.solver.start_pose)
+                             starts, tolerance: float = 1e-9, iterations_per_scan: int | None = None) -> Check:
+    """FK of the reference IK's cylinder positions: the pose within 1e-6 mm / 1e-6 deg of
+    the true one, and the same ErrorID, iterations and scans as the reference."""
+    solver = fk_solver(config, tolerance, **({} if iterations_per_scan is None else
+                                             {"iterations_per_scan": iterations_per_scan}))
     positions = inverse_kinematics(config.geometry, poses, config.stroke).positions
     starts = np.broadcast_to(np.asarray(starts, dtype=float), np.shape(poses))
     run = runtime.forward_kinematics(positions, starts, solver)
@@ -433,8 +442,46 @@ def check_forward_kinematics(runtime: KinematicsRuntime, config: PlatformConfig,
         elif ref.converged:
             problems.append(f"case {index}: reference converged, the FB did not")
     counts = f"{min(iteration_counts)}..{max(iteration_counts)}" if iteration_counts else "-"
-    return Check("SP_ForwardKinematics", f"pose from {label} (Tolerance {tolerance:g})", len(poses),
+    per_scan = "" if iterations_per_scan is None else f", {iterations_per_scan}/scan"
+    return Check("SP_ForwardKinematics", f"pose from {label} (Tolerance {tolerance:g}{per_scan})", len(poses),
                  max(errors, default=math.inf), 1e-6, "mm|deg", counts, tuple(problems))
+
+
+def fk_error_cases(config: PlatformConfig) -> list[tuple[str, np.ndarray, np.ndarray, SolverConfig]]:
+    """(name, cylinder positions, start pose, solver) of the FK error paths."""
+    g = config.geometry
+    solver = fk_solver(config)
+    reachable = inverse_kinematics(g, np.array([20.0, -10.0, 150.0, 2.0, -1.0, 3.0]), config.stroke).positions
+    lo, hi = config.stroke.min, config.stroke.max
+    start = np.asarray(config.solver.start_pose, dtype=float)
+    # R = I with the platform joints in the plane of the base joints (z + h0 + hp = hb): all legs
+    # horizontal, the z column of J is zero and det J = 0 before the first step.
+    flat = np.array([0.0, 0.0, g.hb - g.h0 - g.hp, 0.0, 0.0, 0.0])
+    return [
+        ("unreachable lengths", np.array([lo, hi, lo, hi, lo, hi]), start, solver),
+        ("NaN cylinder position", np.where(np.arange(6) == 2, np.nan, reachable), start, solver),
+        ("singular Jacobian at the start", reachable, flat, solver),
+        ("iteration limit 2", reachable, start, fk_solver(config, max_iterations=2)),
+    ]
+
+
+def check_fk_error_paths(runtime: KinematicsRuntime, config: PlatformConfig) -> Check:
+    """Every error path ends like the reference (same ErrorID and iterations), with a finite Pose."""
+    problems = []
+    cases = fk_error_cases(config)
+    for name, positions, start, solver in cases:
+        run = runtime.forward_kinematics(positions[None, :], start[None, :], solver)
+        ref = forward_kinematics(config.geometry, positions, start, solver)
+        got = (int(run.error_ids[0]), int(run.iterations[0]), bool(run.done[0]))
+        want = (ref.status.error_id, ref.iterations, ref.converged)
+        if got != want:
+            problems.append(f"{name}: (ErrorID, iterations, done) = {got}, reference {want}")
+        if ref.converged:
+            problems.append(f"{name}: the reference converged; not an error path")
+        if not np.all(np.isfinite(run.poses[0])):
+            problems.append(f"{name}: a non-finite value reached Pose")
+    return Check("SP_ForwardKinematics", "error paths (ErrorID, iterations)", len(cases), None, 0.0, "",
+                 problems=tuple(problems))
 
 
 def run_verification(config: PlatformConfig | None = None, poses: int = 10_000, seed: int = 2024,
@@ -456,6 +503,12 @@ def run_verification(config: PlatformConfig | None = None, poses: int = 10_000, 
     rng = np.random.default_rng(seed + 3)
     warm = fk + rng.uniform(-1.0, 1.0, size=fk.shape) * WARM_START_OFFSET
     checks.append(check_forward_kinematics(table, config, fk, "warm starts", warm))
+    checks.append(check_forward_kinematics(table, config, fk[: max(1, len(fk) // 10)], "p_NR", config.solver.start_pose,
+                                           iterations_per_scan=1))
+    checks.append(check_fk_error_paths(table, config))
+    from_lu = load_kinematics(config, RenderOptions("lu"))
+    check = check_forward_kinematics(from_lu, config, fk, "p_NR, det J from LU", config.solver.start_pose)
+    checks.append(check)
     return checks
 
 

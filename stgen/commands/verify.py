@@ -1,0 +1,82 @@
+"""``stgen verify [--config FILE] [--poses N] [--fk-poses N] [--seed S]``.
+
+Renders the kinematics for the configuration, runs them in st_runtime and
+holds every result against the NumPy reference (see :mod:`stgen.verify`).
+Prints one row per check: POU, what was compared, cases, max error and its
+limit, the FK iteration counts, PASS or FAIL (with the first problems).
+Exit status 0 when every check passes, 1 otherwise or for a bad
+configuration.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+
+from stgen.config import ConfigError, load_config
+from stgen.verify import Check, run_verification
+
+_MAX_PROBLEMS_SHOWN = 5
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--config", metavar="FILE", help="platform TOML file (default: the study's platform)")
+    parser.add_argument("--poses", type=_positive, default=10_000, metavar="N",
+                        help="random reachable poses for the IK comparison (default: 10000)")
+    parser.add_argument("--fk-poses", type=_positive, default=500, metavar="N",
+                        help="poses for the FK comparisons, from p_NR and from warm starts (default: 500)")
+    parser.add_argument("--seed", type=int, default=2024, help="random seed (default: 2024)")
+
+
+def _positive(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {value}")
+    return value
+
+
+def format_table(checks: list[Check]) -> str:
+    header = ("POU", "check", "cases", "max error", "limit", "iterations", "result")
+    rows = [
+        (c.pou, c.what, str(c.cases), "-" if c.max_error is None else f"{c.max_error:.3g} {c.unit}".strip(),
+         "-" if c.max_error is None else f"{c.limit:g}", c.iterations or "-",
+         "PASS" if c.passed else "FAIL")
+        for c in checks
+    ]
+    widths = [max(len(r[i]) for r in [header, *rows]) for i in range(len(header))]
+    lines = ["  ".join(cell.ljust(width) for cell, width in zip(row, widths)).rstrip() for row in [header, *rows]]
+    lines.insert(1, "  ".join("-" * width for width in widths))
+    for check in checks:
+        for problem in check.problems[:_MAX_PROBLEMS_SHOWN]:
+            lines.append(f"  {check.pou}: {problem}")
+        if len(check.problems) > _MAX_PROBLEMS_SHOWN:
+            lines.append(f"  {check.pou}: ... {len(check.problems) - _MAX_PROBLEMS_SHOWN} more")
+    return "\n".join(lines)
+
+
+def run(args: argparse.Namespace) -> int:
+    try:
+        config = load_config(args.config)
+    except ConfigError as error:
+        print(f"stgen verify: error: {error}", file=sys.stderr)
+        return 1
+    from st_runtime.api import LoadError
+
+    started = time.perf_counter()
+    try:
+        checks = run_verification(config, poses=args.poses, seed=args.seed, fk_poses=min(args.fk_poses, args.poses))
+    except LoadError as error:
+        print(f"stgen verify: error: the rendered kinematics do not load:\n{error.render()}", file=sys.stderr)
+        return 1
+    except RuntimeError as error:
+        print(f"stgen verify: error: {error}", file=sys.stderr)
+        return 1
+    print(format_table(checks))
+    failed = [c for c in checks if not c.passed]
+    verdict = "all checks passed" if not failed else f"{len(failed)} of {len(checks)} checks FAILED"
+    print(f"\n{verdict} ({time.perf_counter() - started:.1f} s)")
+    return 1 if failed else 0

@@ -1,0 +1,44 @@
+"""`stgen verify`: the table, the exit status, bad configurations."""
+
+from __future__ import annotations
+
+import re
+
+from stgen.cli import main
+from stgen.commands import verify as verify_command
+from stgen.verify import Check
+
+
+def test_verify_passes_on_the_default_platform_with_a_small_sample(capsys):
+    assert main(["verify", "--poses", "200", "--fk-poses", "20", "--seed", "3"]) == 0
+    out = capsys.readouterr().out
+    for pou in ("SP_InverseKinematics", "SP_LeibnizDeterminant", "SP_LuSolve", "SP_ForwardKinematics"):
+        assert pou in out
+    assert "FAIL" not in out and "all checks passed" in out
+    assert "unrolled" in out and "error paths" in out and "1/scan" in out
+
+
+def test_verify_runs_the_example_configuration(capsys):
+    assert main(["verify", "--config", "examples/default_platform.toml", "--poses", "50", "--fk-poses", "5"]) == 0
+
+
+def test_a_failed_check_is_shown_and_exits_1(monkeypatch, capsys):
+    failing = [Check("SP_InverseKinematics", "q", 3, 2e-9, 1e-9, "mm"),
+               Check("SP_ForwardKinematics", "error paths", 4, None, 0.0, "", problems=("NaN: ErrorID 0",))]
+    monkeypatch.setattr(verify_command, "run_verification", lambda *args, **kwargs: failing)
+    assert main(["verify"]) == 1
+    out = capsys.readouterr().out
+    assert len(re.findall(r"\bFAIL\b", out)) == 2 and "NaN: ErrorID 0" in out and "2 of 2 checks FAILED" in out
+
+
+def test_bad_config_and_bad_arguments(tmp_path, capsys):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[stroke]\nmin = 10.0\nmax = 5.0\n")
+    assert main(["verify", "--config", str(bad)]) == 1
+    assert "stroke.min" in capsys.readouterr().err
+    try:
+        main(["verify", "--poses", "0"])
+    except SystemExit as exit_info:
+        assert exit_info.code == 2
+    else:
+        raise AssertionError("--poses 0 must be a usage error")
