@@ -1,6 +1,7 @@
 """Parse Structured Text into the AST, or into diagnostics worth reading.
 
     file, diagnostics = parse(text, "motion.st")
+    statements, diagnostics = parse_body(text, "Main.body.st")   # a POU body alone
 
 `parse` never raises.  The fast path is Lark's LALR parser with the contextual
 lexer and the AST builder as its in-parser transformer (no parse tree).  Only
@@ -78,6 +79,7 @@ class _Grammar:
             postlex=_Postlex(),
             lexer_callbacks={"IDENT": reserve_keywords},
             maybe_placeholders=True,
+            start=["start", "stmt_list"],
             cache=_cache_path(),
         )
 
@@ -127,17 +129,32 @@ def parse(text: str, path: str) -> tuple[ast.SourceFile | None, list[Diagnostic]
                                  f"{type(exc).__name__}: {exc}", ast.Pos(path, 1, 1))]
 
 
-def _parse(text: str, path: str):
+def parse_body(text: str, path: str) -> tuple[tuple[ast.Stmt, ...] | None, list[Diagnostic]]:
+    """Parse a POU body alone (statements only, as Sysmac Studio stores it).
+
+    Returns (statements, []) or (None, diagnostics); never raises.
+    """
+    try:
+        if not isinstance(text, str):
+            raise TypeError(f"parse_body() needs str, not {type(text).__name__}")
+        with _lock:
+            return _parse(text, path, "stmt_list")
+    except Exception as exc:  # the promise: no traceback for any input
+        return None, [Diagnostic("E-PARSE-099", f"internal parser error: "
+                                 f"{type(exc).__name__}: {exc}", ast.Pos(path, 1, 1))]
+
+
+def _parse(text: str, path: str, start: str = "start"):
     g = grammar()
     g.builder.reset(path)
     try:
-        tree = g.lark.parse(text)
+        tree = g.lark.parse(text, start=start)
     except RecursionError:
         raise
     except Exception:
         from .recovery import diagnose
 
-        diagnostics = diagnose(g, text, path)
+        diagnostics = diagnose(g, text, path, start)
         if not diagnostics:  # should not happen: keep the promise of a diagnostic
             diagnostics = [Diagnostic("E-PARSE-001", "syntax error", ast.Pos(path, 1, 1))]
         return None, diagnostics

@@ -54,11 +54,12 @@ _INSERTIONS = ("IDENT", "_THEN", "_DO", "_OF", "_TO", "_ASSIGN", "_COLON", "_LPA
 _SYNC_KEYWORDS = frozenset(_CLOSERS[:-2]) | {"_ELSE", "ELSIF", "_UNTIL"}
 
 
-def diagnose(grammar, text: str, path: str) -> list[Diagnostic]:
+def diagnose(grammar, text: str, path: str, start: str = "start") -> list[Diagnostic]:
     """The diagnostics for a text that the fast parse rejected."""
     lexed = scan(grammar, text, path)
     literal_faults = literal_errors(lexed.tokens, path)
     recovery = _Recovery(grammar, lexed.tokens, text, path)
+    recovery.start = start
     recovery.silent = lexed.after_bad
     syntax = recovery.run(report_eof=not lexed.truncated)
     merged = sorted(lexed.diagnostics + literal_faults + syntax,
@@ -83,6 +84,7 @@ class _Recovery:
         self.diagnostics: list[Diagnostic] = []
         self.silent: set[int] = set()
         self.report_eof = True
+        self.start = "start"
         self.consumed = -1
         self.retreat_token = None
         self.messages = Messages(grammar, tokens, path)
@@ -98,7 +100,7 @@ class _Recovery:
         return self.tokens[i] if i < len(self.tokens) else self.eof
 
     def _fresh_state(self):
-        interactive = self.grammar.lark.parse_interactive("")
+        interactive = self.grammar.lark.parse_interactive("", start=self.start)
         state = interactive.parser_state
         conf = copy(state.parse_conf)
         conf.callbacks = {}   # syntax only: no AST while recovering

@@ -434,3 +434,21 @@ def test_byte_order_mark_and_crlf_are_blank():
 
 def test_parse_returns_path_in_source_file():
     assert parse_ok("PROGRAM P END_PROGRAM", "dir/x.st").path == "dir/x.st"
+
+
+def test_parse_body_reads_statements_alone():
+    from st_runtime.parser import parse_body
+
+    stmts, diagnostics = parse_body("x := 1;\nIF a THEN\n    y := x;\nEND_IF;\n", "Main.body.st")
+    assert diagnostics == []
+    assert stmts == (ast.Assign(N("x"), I(1)),
+                     ast.If((ast.IfBranch(N("a"), (ast.Assign(N("y"), N("x")),)),)))
+    assert stmts[1].pos == ast.Pos("Main.body.st", 2, 1)
+
+
+def test_parse_body_reports_faults_like_parse():
+    from st_runtime.parser import parse_body
+
+    stmts, diagnostics = parse_body("x := 1\ny := 2;\nVAR z : INT; END_VAR\n", "b.st")
+    assert stmts is None
+    assert [(d.code, d.pos.line) for d in diagnostics] == [("E-PARSE-002", 1), ("E-PARSE-001", 3)]
