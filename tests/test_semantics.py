@@ -396,3 +396,16 @@ def test_standard_fbs_run_on_the_simulated_clock():
                   "t : TON; q : BOOL; n, at : INT;", cycles=10)
     # Scan k runs at (k-1) ms: ET reaches 5 ms in scan 6 (n = 5 before its increment).
     assert main["at"] == 5
+
+
+def test_standard_functions_with_formal_and_extensible_arguments():
+    main, _ = run("a := LIMIT(MX := 10, IN := 42, MN := 0);\n"
+                  "b := MUX(K := 2, IN0 := 5, IN1 := 6, IN2 := 7, IN3 := 8);\n"
+                  "c := SEL(G := TRUE, IN0 := 1, IN1 := 2);\n"
+                  "d := MAX(3, 9, -4, 7);\n"
+                  "e := MIN(IN1 := 2.5, IN2 := -1.5);\n"
+                  "s := MID(IN := 'abcdef', L := 3, P := 2);\n"
+                  "n := LEN(CONCAT('ab', 'cd', 'e'));",
+                  "a, b, c, d, n : INT; e : LREAL; s : STRING;")
+    assert (main["a"], main["b"], main["c"], main["d"], main["n"]) == (10, 7, 2, 9, 5)
+    assert main["e"] == -1.5 and main["s"] == "bcd"
