@@ -25,3 +25,25 @@ def test_checked_in_output_is_up_to_date(target, tmp_path):
     assert sorted(fresh) == sorted(stored), f"{folder.relative_to(ROOT)} has other files than a fresh generation; " + how
     stale = [name for name in fresh if fresh[name] != stored[name]]
     assert not stale, f"out of date in {folder.relative_to(ROOT)}: {', '.join(stale)}; " + how
+
+
+def test_checked_in_iec_checks_clean_under_the_nj_dialect(capsys):
+    """`stgen check --dialect nj generated/iec`: no error and no warning."""
+    from stgen.cli import main
+
+    assert main(["check", "--dialect", "nj", str(CHECKED_IN["iec"])]) == 0
+    out = capsys.readouterr()
+    assert "0 error(s), 0 warning(s)" in out.out + out.err
+
+
+@pytest.mark.parametrize("determinant", ["unrolled", "lu"])
+def test_other_variants_check_clean_under_the_nj_dialect(determinant):
+    from st_runtime import api
+    from stgen.render import RenderOptions
+    from stgen.verify import KINEMATICS_POUS
+    from stgen.exports.iec import pou_text
+    from stgen.render import render_program
+
+    program = render_program(options=RenderOptions(determinant))
+    project = api.load_sources({f"{n}.st": pou_text(program.pou(n)) for n in KINEMATICS_POUS}, dialect="nj")
+    assert project.diagnostics == []
