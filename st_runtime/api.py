@@ -109,6 +109,7 @@ class Project:
     compiled: object
     diagnostics: list          # warnings of a successful load
     sources: dict = field(default_factory=dict)
+    _controllers: int = field(default=0, repr=False)
 
     @property
     def program(self):
@@ -121,7 +122,18 @@ class Project:
         return pou
 
     def controller(self, period="1ms", budget: int = DEFAULT_BUDGET, stop_on_fault: bool = False) -> "Plc":
-        return Plc(Controller(self.compiled, parse_period(period), budget, stop_on_fault))
+        """A simulated controller with its own memory.
+
+        The first controller runs `self.compiled`; each further one gets a
+        fresh compilation, so no two controllers share global variables.
+        """
+        from .compiler import compile_program
+
+        compiled = self.compiled
+        if self._controllers:
+            compiled = compile_program(self.program)
+        self._controllers += 1
+        return Plc(Controller(compiled, parse_period(period), budget, stop_on_fault))
 
     def call(self, name: str, inputs: dict | None = None, until: str | None = None,
              max_cycles: int = 1000, period="1ms") -> dict:
@@ -285,6 +297,7 @@ class Plc:
 
     def __init__(self, controller: Controller):
         self.controller = controller
+        self.compiled = controller.compiled     # the program image this controller runs
 
     def add_program(self, name: str, task: str | None = None) -> Instance:
         return Instance(self.controller.add_program(name, task))

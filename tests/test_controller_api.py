@@ -108,3 +108,16 @@ def test_load_directory_and_run(tmp_path):
 def test_package_exports_the_api():
     assert st_runtime.load is load and st_runtime.load_text is load_text
     assert {"Controller", "FaultRecord", "STFault", "Project", "Plc"} <= set(st_runtime.__all__)
+
+
+def test_each_controller_has_its_own_globals():
+    project = load_text(SOURCE)
+    one, two = project.controller(), project.controller()
+    one.globals["Gain"] = 10.0
+    assert two.globals["Gain"] == 2.0
+    a, b = one.add_program("Main"), two.add_program("Main")
+    a["input"] = [0.1, 0.1, 0.1]
+    b["input"] = [0.1, 0.1, 0.1]
+    one.run(1)
+    two.run(1)
+    assert a["output"] == [1.0, 1.0, 1.0] and b["output"] == [0.2, 0.2, 0.2]
