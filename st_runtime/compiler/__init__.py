@@ -7,6 +7,26 @@ global variables.  Each POU body is written as Python source (kept in
 `python_sources` for reading), `compile()`d once, and executed into one
 namespace shared by the whole program.  The rules of the translation live
 in `exprs.py`, `statements.py`, `calls.py` and `scope.py`.
+
+Semantic choices (each has a test in tests/test_semantics*.py):
+
+* Integers wrap to their width on every store; intermediate results are
+  exact Python ints (so + - * agree with wrapping arithmetic; `/` and MOD
+  truncate toward zero / take the dividend's sign; a zero divisor is
+  F-DIV-ZERO).  REAL is rounded to float32 on every store, intermediate
+  results are float64; real division by zero gives IEEE inf/nan.
+* A runtime fault abandons the statement it happens in (at any nesting
+  level); the POU goes on with the next statement.
+* FOR evaluates its bounds once.  When the body cannot change the control
+  variable it runs over a Python `range` (the iteration count is charged to
+  the scan budget up front); otherwise, and for a global control variable,
+  it runs as a loop that tests the variable each time, as a PLC does.
+  After a normal end the variable holds the first value past the end.  (A
+  `range` FOR up to the type's maximum ends; on a PLC its variable would
+  wrap and the loop never end.)
+* Bounds checks are skipped only where a static range proves the index in
+  bounds (constant indices, FOR variables with constant bounds, elements of
+  CONSTANT integer tables).
 """
 
 from __future__ import annotations
