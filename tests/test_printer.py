@@ -164,3 +164,22 @@ def test_random_expressions_round_trip(expr):
     text = f"PROGRAM P\n    y := {format_expr(expr)};\nEND_PROGRAM\n"
     tree = parse_ok(text)
     assert tree.items[0].body[0].value == expr
+
+
+GENERATED = Path(__file__).parent.parent / "generated"
+
+
+@pytest.mark.parametrize("path", sorted((GENERATED / "iec").glob("*.st")), ids=lambda p: p.stem)
+def test_round_trip_generated_iec_files(path: Path):
+    original = parse_ok(path.read_text(encoding="utf-8"), path.name)
+    assert parse_ok(format_source(original), path.name) == original
+
+
+@pytest.mark.parametrize("path", sorted((GENERATED / "nj501").glob("*.st")), ids=lambda p: p.stem)
+def test_generated_nj_bodies_parse(path: Path):
+    from st_runtime.parser import parse_body
+
+    text = path.read_text(encoding="utf-8")
+    body, diagnostics = parse_body(text, path.name)
+    assert not diagnostics, "\n".join(d.render(text) for d in diagnostics)
+    assert body
