@@ -365,8 +365,6 @@ class _FunctionJob:
 def call_pou(project: Project, name: str, inputs: dict, until: str | None,
              max_cycles: int, period_ns: int) -> dict:
     """See `Project.call`."""
-    from .values import from_json
-
     pou = project.program.pous.get(name.upper())
     if pou is None or pou.kind not in ("FUNCTION", "FUNCTION_BLOCK"):
         raise CallError(f"no FUNCTION or FUNCTION_BLOCK named {name}")
@@ -375,104 +373,95 @@ def call_pou(project: Project, name: str, inputs: dict, until: str | None,
         if key.upper() not in params:
             raise CallError(f"{pou.name} has no input named {key} "
                             f"(inputs: {', '.join(s.name for s in params.values()) or 'none'})")
-    controller = Controller(project.compiled, period_ns)
     given = {k.upper(): v for k, v in inputs.items()}
-    in_outs = {}
-    for key, symbol in params.items():
-        if symbol.kind == "VAR_IN_OUT":
-            cell = _Cell(project.compiled, symbol)
-            if key in given:
-                cell.set_json(given[key], symbol.name)
-            in_outs[key] = cell
+    in_outs = {key: _Cell(project.compiled, symbol, given.get(key))
+               for key, symbol in params.items() if symbol.kind == "VAR_IN_OUT"}
+    controller = Controller(project.compiled, period_ns)
     if pou.kind == "FUNCTION":
         if until:
             raise CallError("--until applies to FB outputs; a FUNCTION is called once")
-        fn = project.compiled.functions[pou.name.upper()]
-        args = []
-        for key, symbol in params.items():
-            if symbol.kind == "VAR_IN_OUT":
-                args.append(in_outs[key].arg())
-            elif key in given:
-                args.append(_plain_value(project.compiled, symbol, from_json(given[key], symbol.type, symbol.name)))
-            else:
-                args.append(_initial(project.compiled, symbol))
-        job = _FunctionJob(fn, args)
-        controller.tasks[0].programs.append((pou.name, job))
-        controller.run(1)
-        out = {}
-        outputs = pou.outputs
-        result = job.result
-        if outputs:
-            values = list(result) if result is not None else [None] * (1 + len(outputs))
-            result = values[0]
-            for symbol, value in zip(outputs, values[1:]):
-                if value is not None:
-                    out[symbol.name] = value_to_json(value, symbol.type)
-        for key, cell in in_outs.items():
-            out[params[key].name] = cell.to_json()
-        if pou.return_type is not None and result is not None:
-            out["return"] = value_to_json(result, pou.return_type)
-        out["cycles"] = 1
-        return {"outputs": out, "faults": controller.faults}
-    instance = project.compiled.new(pou.name)
+        out, reached = _call_function(project.compiled, pou, params, given, in_outs, controller), True
+    else:
+        out, reached = _call_fb(project.compiled, pou, params, given, in_outs, controller, until, max_cycles)
+    for key, cell in in_outs.items():
+        out[params[key].name] = cell.to_json()
+    out["cycles"] = out.pop("cycles")       # last, after the outputs
+    return {"outputs": out, "faults": controller.faults, "reached": reached}
+
+
+def _call_function(compiled, pou, params: dict, given: dict, in_outs: dict, controller) -> dict:
+    from .values import from_json
+
+    args = []
+    for key, symbol in params.items():
+        if symbol.kind == "VAR_IN_OUT":
+            args.append(in_outs[key].arg)
+        elif key in given:
+            args.append(_plain_value(compiled, symbol, from_json(given[key], symbol.type, symbol.name)))
+        else:
+            args.append(_initial(compiled, symbol))
+    job = _FunctionJob(compiled.functions[pou.name.upper()], args)
+    controller.tasks[0].programs.append((pou.name, job))
+    controller.run(1)
+    out = {}
+    result = job.result
+    if pou.outputs:     # the function returned (result, outputs...) unless a fault stopped it
+        values = list(result) if result is not None else [None] * (1 + len(pou.outputs))
+        result = values[0]
+        for symbol, value in zip(pou.outputs, values[1:]):
+            if value is not None:
+                out[symbol.name] = value_to_json(value, symbol.type)
+    if pou.return_type is not None and result is not None:
+        out["return"] = value_to_json(result, pou.return_type)
+    out["cycles"] = 1
+    return out
+
+
+def _call_fb(compiled, pou, params: dict, given: dict, in_outs: dict, controller,
+             until: str | None, max_cycles: int) -> tuple[dict, bool]:
+    instance = compiled.new(pou.name)
     view = Instance(instance)
     for key, symbol in params.items():
         if symbol.kind == "VAR_IN_OUT":
-            setattr(instance, mangle(symbol.name), in_outs[key].arg())
+            setattr(instance, mangle(symbol.name), in_outs[key].arg)
         elif key in given:
             view[symbol.name] = given[key]
     flag = None
     if until:
         flag = pou.variables.get(until.upper())
-        if flag is None or flag.kind != "VAR_OUTPUT" or resolve_alias(flag.type).__str__() != "BOOL":
+        if flag is None or flag.kind != "VAR_OUTPUT" or str(resolve_alias(flag.type)) != "BOOL":
             raise CallError(f"--until needs a BOOL output of {pou.name}; '{until}' is not one")
     controller.tasks[0].programs.append((pou.name, instance))
-    cycles = 0
+    cycles, reached = 0, flag is None
     limit = max_cycles if flag is not None else 1
-    attr = mangle(flag.name) if flag is not None else None
-    reached = flag is None
     while cycles < limit:
         cycles += 1
         if not controller.scan():
             break
-        if attr is not None and getattr(instance, attr):
+        if flag is not None and getattr(instance, mangle(flag.name)):
             reached = True
             break
-    out = {}
-    for symbol in pou.outputs:
-        out[symbol.name] = value_to_json(getattr(instance, mangle(symbol.name)), symbol.type)
-    for key, cell in in_outs.items():
-        out[params[key].name] = cell.to_json()
+    out = {s.name: value_to_json(getattr(instance, mangle(s.name)), s.type) for s in pou.outputs}
     out["cycles"] = cycles
-    return {"outputs": out, "faults": controller.faults, "reached": reached}
+    return out, reached
 
 
 class _Cell:
-    """A variable owned by the caller, passed to a VAR_IN_OUT."""
+    """A variable owned by the caller, passed to a VAR_IN_OUT (`arg`)."""
 
-    def __init__(self, compiled, symbol):
-        self.symbol = symbol
-        self.value = _initial(compiled, symbol)
-
-    def set_json(self, data, name: str) -> None:
+    def __init__(self, compiled, symbol, data=None):
+        from .objects import ItemRef
         from .values import from_json
 
-        stored = from_json(data, self.symbol.type, name)
-        holder = [self.value]
-        _store(holder, 0, self.symbol.type, stored)
-        self.value = holder[0]
-
-    def arg(self):
-        from .objects import ItemRef
-
-        if is_aggregate(self.symbol.type):
-            return self.value
-        self.holder = [self.value]
-        return ItemRef(self.holder, 0)
+        self.symbol = symbol
+        self.holder = [_initial(compiled, symbol)]
+        if data is not None:
+            _store(self.holder, 0, symbol.type, from_json(data, symbol.type, symbol.name))
+        aggregate = is_aggregate(symbol.type)
+        self.arg = self.holder[0] if aggregate else ItemRef(self.holder, 0)
 
     def to_json(self):
-        value = self.holder[0] if hasattr(self, "holder") else self.value
-        return value_to_json(value, self.symbol.type)
+        return value_to_json(self.holder[0], self.symbol.type)
 
 
 def _initial(compiled, symbol):

@@ -55,6 +55,13 @@ VAR_OUTPUT done : BOOL; elapsed : TIME; END_VAR
 VAR t : TON; END_VAR
 t(IN := start, PT := pt); done := t.Q; elapsed := t.ET;
 END_FUNCTION_BLOCK
+FUNCTION Negate : BOOL
+VAR_IN_OUT v : ARRAY[1..3] OF LREAL; count : INT; END_VAR
+VAR i : INT; END_VAR
+FOR i := 1 TO 3 DO v[i] := -v[i]; END_FOR;
+count := count + 1;
+Negate := TRUE;
+END_FUNCTION
 FUNCTION DivBy : INT
 VAR_INPUT a, b : INT; END_VAR
 DivBy := a / b;
@@ -176,3 +183,10 @@ def test_console_script_never_shows_a_traceback(files):
                              "--pou", "Sum6", "--set", "v=[1,2]"], capture_output=True, text=True)
     assert result.returncode == 2
     assert "Traceback" not in result.stderr and "v" in result.stderr
+
+
+def test_call_with_var_in_out_prints_the_variables_after_the_call(files, capsys):
+    code, out, err = stgen(capsys, "call", files / "lib.st", "--pou", "Negate",
+                           "--set", "v=[1, -2, 3.5]", "--set", "count=41")
+    assert code == 0, err
+    assert json.loads(out) == {"return": True, "v": [-1.0, 2.0, -3.5], "count": 42, "cycles": 1}
