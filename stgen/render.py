@@ -163,10 +163,13 @@ def comment_text(text: Any) -> str:
     return text
 
 
-def array_initializer(values, per_line: int, indent: str = "    ") -> str:
-    """``[a, b, ...]`` with ``per_line`` items a line (continuation lines indented)."""
+def array_initializer(values, per_line: int, indent: str = "    ", separator: str = ", ") -> str:
+    """``[a, b, ...]`` with ``per_line`` items a line (continuation lines indented).
+
+    ``separator`` goes between the items of a line (a wider one sets groups apart).
+    """
     items = [str(v) for v in values]
-    lines = [", ".join(items[start : start + per_line]) for start in range(0, len(items), per_line)]
+    lines = [separator.join(items[start : start + per_line]) for start in range(0, len(items), per_line)]
     return "[" + (",\n" + indent).join(lines) + "]"
 
 
