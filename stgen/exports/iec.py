@@ -71,19 +71,27 @@ One plain-text file per POU, with its declarations:
 
 {listing}
 
-`{constants}.st` is a global variable list (`VAR_GLOBAL CONSTANT`): create it
-first (CODESYS: *Add Object > Global Variable List*, TwinCAT: *GVL*), then the
-functions and function blocks in the order above (each POU only calls POUs
-listed before it). In CODESYS or TwinCAT create a POU of the same name and
-kind in ST and paste the declaration part and the body, or import the files
-with a tool that reads IEC text. The POUs reach the global constants through
-`VAR_EXTERNAL CONSTANT`, as IEC 61131-3 requires; tools that do not need it
-accept it.
+The global variable lists ({globals}) come first (CODESYS: *Add Object >
+Global Variable List*, TwinCAT: *GVL*); then create the functions, function
+blocks and the program in the order above (each POU only calls POUs listed
+before it): a POU of the same name and kind in ST, with the declaration part
+and the body pasted in, or import the files with a tool that reads IEC text.
+The POUs reach the globals through `VAR_EXTERNAL` (`CONSTANT` for the
+constants), as IEC 61131-3 requires; tools that do not need it accept it.
+`SP_Axes.st` declares the six axis variables with the type `AXIS_REF`: use
+your tool's PLCopen axis type. Run `SP_Controller` in the primary periodic
+task.
 
 All kinematics use LREAL; no pointers, references or object-oriented features
 are used. `stgen check --dialect nj` checks these files against the OMRON NJ
 rules, and a test parses every file with blark, an independent IEC parser.
 """
+
+
+def _kind_label(pou: Pou) -> str:
+    if pou.kind != "VAR_GLOBAL":
+        return pou.kind
+    return "global constants" if all(v.constant for v in pou.variables) else "global variables"
 
 
 def write(program: RenderedProgram, out_dir: str | Path) -> list[Path]:
@@ -96,10 +104,9 @@ def write(program: RenderedProgram, out_dir: str | Path) -> list[Path]:
         path = out / f"{pou.name}.st"
         path.write_text(pou_text(pou), encoding="utf-8")
         written.append(path)
-        kind = "global constants" if pou.kind == "VAR_GLOBAL" else pou.kind
-        listing.append(f"- `{path.name}`: {kind}")
-    constants = next((p.name for p in program.pous if p.kind == "VAR_GLOBAL"), "SP_Constants")
+        listing.append(f"- `{path.name}`: {_kind_label(pou)}")
+    globals_ = ", ".join(f"`{p.name}.st`" for p in program.pous if p.kind == "VAR_GLOBAL")
     readme = out / "README.md"
-    readme.write_text(README.format(listing="\n".join(listing), constants=constants), encoding="utf-8")
+    readme.write_text(README.format(listing="\n".join(listing), globals=globals_), encoding="utf-8")
     written.append(readme)
     return written
