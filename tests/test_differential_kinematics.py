@@ -240,3 +240,17 @@ def test_execute_dropped_while_busy_shows_done_for_one_scan(scan_program):
             done_scans.append(scan)
     assert done_scans == [ref.scans - 2]  # exactly one scan, the one that finished the solve
     assert program["Fk.Iterations"] == ref.iterations
+
+
+def test_another_platform_renders_and_matches_its_reference():
+    from stgen.config import GeometryConfig, StrokeConfig
+
+    config = PlatformConfig(geometry=GeometryConfig(rb=520.0, rp=350.0, h0=1300.0, l0=1150.0, hb=80.0, hp=-90.0,
+                                                    phi_b_deg=30.0, phi_p_deg=90.0),
+                            stroke=StrokeConfig(min=-20.0, max=650.0))
+    other = load_kinematics(config, RenderOptions("table"), capacity=1000)
+    poses = random_poses(config, 1000, 77)
+    ik = check_inverse_kinematics(other, config, poses)
+    assert ik.problems == () and ik.max_error <= 1e-9
+    fk = check_forward_kinematics(other, config, poses[:50], "p_NR", config.solver.start_pose)
+    assert fk.problems == () and fk.max_error <= 1e-6
