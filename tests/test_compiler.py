@@ -207,3 +207,38 @@ def test_global_loop_variable_changed_by_a_callee_is_seen_by_the_loop():
     main, plc = run(src)
     assert main["a"] == [1, 0, 0, 1, 0, 0, 1, 0, 0]      # k = 1, 4, 7
     assert plc.faults == []
+
+
+def test_a_fault_in_a_condition_or_bound_abandons_that_statement():
+    main, plc = run("""PROGRAM Main
+    VAR a : ARRAY[1..3] OF INT; i : INT := 9; n, k : INT; r : ARRAY[1..6] OF INT; END_VAR
+    IF a[i] > 0 THEN r[1] := 1; ELSE r[1] := 2; END_IF;
+    IF n > 0 THEN r[2] := 1; ELSIF a[i] = 0 THEN r[2] := 2; ELSE r[2] := 3; END_IF;
+    CASE a[i] OF 0: r[3] := 1; ELSE r[3] := 2; END_CASE;
+    FOR k := 1 TO a[i] DO r[4] := r[4] + 1; END_FOR;
+    WHILE a[i] = 0 DO r[5] := r[5] + 1; END_WHILE;
+    REPEAT r[6] := r[6] + 1; UNTIL a[i] = 0 END_REPEAT;
+    n := 7;
+    END_PROGRAM""")
+    assert main["r"] == [0, 0, 0, 0, 0, 1]       # REPEAT runs its body once, then the test faults
+    assert main["n"] == 7 and main["k"] == 0
+    assert [(f.code, f.line) for f in plc.faults] == [("F-INDEX", line) for line in range(3, 9)]
+
+
+def test_deeply_nested_statements_compile():
+    depth = 40
+    body = "".join(f"IF x < {100 + i} THEN\n" for i in range(depth)) + "x := x + 1;\n" + "END_IF;\n" * depth
+    loops = "".join(f"FOR i{k} := 1 TO 2 DO\n" for k in range(12)) + "n := n + 1;\n" + "END_FOR;\n" * 12
+    decls = " ".join(f"i{k} : INT;" for k in range(12))
+    main, _ = run(f"PROGRAM Main\nVAR x : INT; n : DINT; {decls} END_VAR\n{body}{loops}END_PROGRAM\n")
+    assert main["x"] == 1 and main["n"] == 2 ** 12
+
+
+def test_nesting_beyond_python_limits_is_a_diagnostic():
+    loops = "".join(f"FOR i{k} := 1 TO 2 DO\n" for k in range(25)) + "n := n + 1;\n" + "END_FOR;\n" * 25
+    decls = " ".join(f"i{k} : INT;" for k in range(25))
+    with pytest.raises(LoadError) as info:
+        load_text(f"PROGRAM Main\nVAR n : DINT; {decls} END_VAR\n{loops}END_PROGRAM\n", "deep.st")
+    diagnostic = info.value.diagnostics[-1]
+    assert diagnostic.code == "E-COMPILE-001" and "nested too deeply" in diagnostic.message
+    assert diagnostic.pos.file == "deep.st" and diagnostic.pos.line == 1

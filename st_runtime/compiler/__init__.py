@@ -128,9 +128,13 @@ class CompileUnit:
         self.namespace[pyname] = fn
         return pyname
 
-    def run_source(self, key: str, source: str) -> None:
+    def run_source(self, key: str, source: str, pos=ast.NOWHERE) -> None:
         self.sources[key] = self.sources.get(key, "") + source
-        code = compile(source, f"<st:{key}>", "exec")
+        try:
+            code = compile(source, f"<st:{key}>", "exec")
+        except (SyntaxError, RecursionError, MemoryError) as exc:
+            # CPython limits nesting (20 loops/try blocks, 100 indentation levels).
+            raise CompileError(f"POU {key} is nested too deeply for the runtime ({exc.msg if isinstance(exc, SyntaxError) else type(exc).__name__})", pos) from None
         exec(code, self.namespace)  # the source is generated; ST text only as repr literals
 
 
@@ -153,11 +157,13 @@ def compile_program(program, guard_statements: bool = True) -> CompiledProgram:
             continue
         if pou.kind == "FUNCTION":
             pyname = safe_name("_fn_" + key)
-            unit.run_source(key, BodyCompiler(program, pou, unit, method=False).function_source(pyname))
+            unit.run_source(key, BodyCompiler(program, pou, unit, method=False).function_source(pyname),
+                            pou.node.pos)
             functions[key] = unit.namespace[pyname]
         else:
             pyname = safe_name("_body_" + key)
-            unit.run_source(key, BodyCompiler(program, pou, unit, method=True).function_source(pyname))
+            unit.run_source(key, BodyCompiler(program, pou, unit, method=True).function_source(pyname),
+                            pou.node.pos)
             unit.classes[key].execute = unit.namespace[pyname]
     classes = {k: v for k, v in unit.classes.items() if k != "<GLOBALS>"}
     return CompiledProgram(program, classes, functions, globals_obj, unit.sources, unit.namespace)

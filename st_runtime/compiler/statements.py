@@ -117,26 +117,46 @@ class BodyCompiler(ExprCompiler):
     def statement(self, stmt) -> None:
         if isinstance(stmt, ast.Empty):
             return
-        if isinstance(stmt, (ast.Exit, ast.Continue, ast.Return)):
-            getattr(self, "s_" + type(stmt).__name__)(stmt)
-            return
         method = getattr(self, "s_" + type(stmt).__name__, None)
         if method is None:
             raise CompileError(f"statement {type(stmt).__name__} is not supported by the runtime", stmt.pos)
+        if isinstance(stmt, (ast.Assign, ast.CallStmt)):
+            self.guard(stmt, lambda: method(stmt))
+        else:
+            # Compound statements guard their own conditions and bounds, so
+            # Python blocks nest only as deep as the ST loops do.
+            method(stmt)
+
+    def guard(self, node, emit, on_fault=lambda: ()) -> None:
+        """Emit `emit()` inside `try`; a fault is recorded, then `on_fault()` lines run."""
         o = self.out
         if not self.unit.guard_statements:
-            method(stmt)
+            emit()
             return
         o.line("try:")
         o.indent()
         mark = o.mark()
-        method(stmt)
+        emit()
         o.ensure_body(mark)
         o.dedent()
         o.line("except _FAULTS as _e:")
         o.indent()
-        o.line(f"_ctx.fault(_e, {self.where(stmt)})")
+        o.line(f"_ctx.fault(_e, {self.where(node)})")
+        for line in on_fault():
+            o.line(line)
         o.dedent()
+
+    def guarded_value(self, node, code: str, on_fault: str) -> tuple[str, bool]:
+        """(name holding `code` evaluated under a guard, whether a guard was needed).
+
+        After a fault the name holds `on_fault`.  Names and literals cannot
+        fault and are used as they are.
+        """
+        if _cannot_fault(code):
+            return code, False
+        tmp = self.temp()
+        self.guard(node, lambda: self.out.line(f"{tmp} = {code}"), lambda: [f"{tmp} = {on_fault}"])
+        return tmp, True
 
     def block(self, body) -> None:
         self.out.indent()
@@ -159,17 +179,36 @@ class BodyCompiler(ExprCompiler):
             self.out.line(line)
 
     def s_If(self, s):
+        """A fault in a condition abandons the whole IF (no branch runs)."""
+        o = self.out
+        if len(s.branches) == 1:
+            test, guarded = self.guarded_value(s, self.expr(s.branches[0].condition), "None")
+            o.line(f"if {test}:")
+            self.block(s.branches[0].body)
+            if s.else_body:
+                o.line(f"elif {test} is not None:" if guarded else "else:")
+                self.block(s.else_body)
+            return
+        # IF/ELSIF chain: the index of the branch taken, conditions evaluated in order.
+        n = len(s.branches)
+        chooser = str(n)
+        for i in range(n - 1, -1, -1):
+            chooser = f"{i} if {self.expr(s.branches[i].condition)} else ({chooser})"
+        which, _ = self.guarded_value(s, chooser, "-1")
         for i, branch in enumerate(s.branches):
-            keyword = "if" if i == 0 else "elif"
-            self.out.line(f"{keyword} {self.expr(branch.condition)}:")
+            o.line(f"{'if' if i == 0 else 'elif'} {which} == {i}:")
             self.block(branch.body)
         if s.else_body:
-            self.out.line("else:")
+            o.line(f"elif {which} == {n}:")
             self.block(s.else_body)
 
     def s_Case(self, s):
+        """A fault in the selector abandons the whole CASE."""
         selector = self.temp()
-        self.out.line(f"{selector} = {self.expr(s.selector)}")
+        code = self.expr(s.selector)
+        self.guard(s, lambda: self.out.line(f"{selector} = {code}"), lambda: [f"{selector} = None"])
+        self.out.line(f"if {selector} is not None:")
+        self.out.indent()
         t = self.ty(s.selector)
         first = True
         for clause in s.clauses:
@@ -195,6 +234,7 @@ class BodyCompiler(ExprCompiler):
             else:
                 self.out.line("else:")
             self.block(s.else_body)
+        self.out.dedent()
 
     def _label(self, label):
         value = self.constant_of(label)
@@ -226,7 +266,17 @@ class BodyCompiler(ExprCompiler):
             # The body may change the variable (a global can change in any call).
             self._for_as_while(s, target, var_t, step_value if const_step else None, assigned)
             return
-        rng, count, final = self._for_range(s, step_value if const_step else None, where)
+        setup: list = []
+        const_range = _is_int(self.constant_of(s.start)) and _is_int(self.constant_of(s.end)) and const_step
+        if const_range:
+            setup.append(self._for_range(s, step_value, where))
+        else:       # a fault while evaluating the bounds abandons the whole FOR
+            self.guard(s, lambda: setup.append(self._for_range(s, step_value if const_step else None, where)),
+                       lambda: [f"{setup[0][0]} = None"])
+        rng, count, final = setup[0]
+        if not const_range:
+            o.line(f"if {rng} is not None:")
+            o.indent()
         early = _leaves_early(s.body)
         if not early and count != 0:
             o.line(f"_ctx.budget -= {count if count is not None else f'len({rng})'}")
@@ -271,6 +321,8 @@ class BodyCompiler(ExprCompiler):
                 var_t = None          # the final value cannot leave the type: no wrap
         o.line(target.store(final if var_t is None else self.convert(final, None, var_t)))
         o.dedent()
+        if not const_range:
+            o.dedent()
 
     def _for_range(self, s, step: int | None, where: str) -> tuple[str, int | None, str]:
         """Emit the loop's range; (range source, iteration count if known, final value source).
@@ -331,19 +383,23 @@ class BodyCompiler(ExprCompiler):
         o = self.out
         key = s.variable.upper()
         self.known_ranges.pop(key, None)
-        start = self.expr(s.start)
-        end = self.expr(s.end)
         end_tmp = self.temp()
-        o.line(f"{end_tmp} = {end}")
-        o.line(target.store(self.convert(start, self.ty(s.start), var_t, s.start)))
+        step_code = pyliteral(step) if step is not None else self.temp()
+
+        def setup():
+            o.line(f"{end_tmp} = {self.expr(s.end)}")
+            o.line(target.store(self.convert(self.expr(s.start), self.ty(s.start), var_t, s.start)))
+            if step is None:
+                o.line(f"{step_code} = {self.expr(s.step)}")
+
+        self.guard(s, setup, lambda: [f"{end_tmp} = None"])
         if step is None:
-            step_code = self.temp()
-            o.line(f"{step_code} = {self.expr(s.step)}")
             test = f"({target.read()} <= {end_tmp} if {step_code} > 0 else {target.read()} >= {end_tmp})"
         else:
-            step_code = pyliteral(step)
             test = f"{target.read()} {'<=' if step > 0 else '>='} {end_tmp}"
         increment = target.store(self.convert(f"{target.read()} + {step_code}", None, var_t))
+        o.line(f"if {end_tmp} is not None:")
+        o.indent()
         o.line(f"while {test}:")
         o.indent()
         self._charge(s)
@@ -352,11 +408,19 @@ class BodyCompiler(ExprCompiler):
         self.loops.pop()
         o.line(increment)
         o.dedent()
+        o.dedent()
 
     def s_While(self, s):
+        """A fault in the condition ends the loop."""
         o = self.out
-        o.line(f"while {self.expr(s.condition)}:")
-        o.indent()
+        cond = self.expr(s.condition)
+        if _cannot_fault(cond):
+            o.line(f"while {cond}:")
+            o.indent()
+        else:
+            o.line("while True:")
+            o.indent()
+            self.guard(s, lambda: o.line(f"if not ({cond}): break"), lambda: ["break"])
         self._charge(s)
         self.loops.append(_Loop("", set(), "WHILE"))
         self.statements(s.body)
@@ -364,11 +428,17 @@ class BodyCompiler(ExprCompiler):
         o.dedent()
 
     def s_Repeat(self, s):
+        """The condition is tested after the body (CONTINUE goes to the test)."""
         o = self.out
         first = self.temp()
+        cond = self.expr(s.condition)
         o.line(f"{first} = True")
-        o.line(f"while {first} or not {self.expr(s.condition)}:")
+        o.line("while True:")
         o.indent()
+        o.line(f"if not {first}:")
+        o.indent()
+        self.guard(s, lambda: o.line(f"if {cond}: break"), lambda: ["break"])
+        o.dedent()
         o.line(f"{first} = False")
         self._charge(s)
         self.loops.append(_Loop("", set(), "WHILE"))
@@ -406,6 +476,11 @@ class _Loop:
         self.on_continue = list(on_continue)     # statements CONTINUE runs first (an increment)
         self.hoisted: dict[str, str] = {}     # Python expression -> temp computed before the loop
         self.scaled: dict[str, list] = {}     # `i * k` -> [placeholder, uses]: once per iteration
+
+
+def _cannot_fault(code: str) -> bool:
+    """Python source that only reads a local or is a literal."""
+    return code.isidentifier() or code in ("True", "False") or code.lstrip("-").replace(".", "", 1).isdigit()
 
 
 def _is_int(value) -> bool:
