@@ -1,12 +1,16 @@
 """Statements and whole POU bodies.
 
-Runtime faults.  Every statement, at every nesting level, is wrapped in
-`try: ... except _FAULTS as _e: _ctx.fault(_e, <where>)`: a faulting
-statement is abandoned (as an NJ abandons a faulting instruction and sets its
-error flag) and execution goes on with the next statement.  In CPython 3.11+
-a `try` costs nothing until something is raised (zero-cost exception
-tables), so this is free on the normal path.  A fault in an IF condition
-abandons the whole IF; in a FOR bound, the whole loop.
+Runtime faults.  Every assignment and call, at every nesting level, is
+wrapped in `try: ... except _FAULTS as _e: _ctx.fault(_e, <where>)`: a
+faulting statement is abandoned (as an NJ abandons a faulting instruction and
+sets its error flag) and execution goes on with the next statement.  IF,
+CASE, FOR, WHILE and REPEAT guard only the expressions they evaluate
+themselves: a fault in an IF/ELSIF condition or a CASE selector abandons the
+whole statement, in FOR bounds the whole loop, in a WHILE/UNTIL condition it
+ends the loop.  (So Python blocks nest only as deep as the ST loops: CPython
+allows 20.)  In CPython 3.11+ a `try` costs nothing until something is raised
+(zero-cost exception tables): benchmarks/bench_runtime.py shows the same
+times with and without the guards.
 
 Scan budget.  A FOR loop charges its iteration count to `_ctx.budget` once,
 before it starts (its bounds are evaluated once, so the count is known);
