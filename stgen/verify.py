@@ -281,27 +281,66 @@ def load_kinematics(config: PlatformConfig | None = None, options: RenderOptions
 # --------------------------------------------------------------------------- cases
 
 
-#: Box the random poses are drawn from (mm, degrees): x, y, z, alpha, beta, gamma half-widths/centres.
-POSE_CENTRE = np.array([0.0, 0.0, 250.0, 0.0, 0.0, 0.0])
-POSE_HALF_WIDTH = np.array([150.0, 150.0, 220.0, 15.0, 15.0, 15.0])
+#: Half-widths of the sampling box relative to the vertical stroke span (x, y, z) and in degrees.
+BOX_LINEAR_FRACTION = np.array([0.3, 0.3, 0.45])
+BOX_ANGLE_DEG = 15.0
+#: Batches drawn before giving up on finding enough reachable poses.
+MAX_SAMPLING_BATCHES = 50
+
+
+class SamplingError(ValueError):
+    """The configuration's reachable workspace could not be sampled."""
+
+
+def workspace_box(config: PlatformConfig) -> tuple[np.ndarray, np.ndarray]:
+    """(centre, half-widths) of the box the random poses are drawn from (mm, degrees).
+
+    The heights z at which the level platform (x = y = 0, no rotation) is
+    reachable span [z_lo, z_hi]; the box is centred at the middle of that span
+    with half-widths 0.3, 0.3, 0.45 times the span for x, y, z and 15 degrees
+    for the angles, so it covers the reachable workspace of any geometry and
+    stroke. (Default platform: z from -10 to 602 mm.)
+    """
+    g = config.geometry
+    # Only heights with the platform joints above the base joints (z + h0 + hp > hb): below
+    # that plane lies the mirror image of the workspace, which no real platform reaches.
+    lowest = g.hb - g.h0 - g.hp
+    heights = lowest + np.arange(1.0, 8000.0, 1.0)
+    poses = np.zeros((len(heights), 6))
+    poses[:, 2] = heights
+    reachable = inverse_kinematics(g, poses, config.stroke).reachable
+    if not reachable.any():
+        raise SamplingError("no height z makes the level platform reachable: "
+                            "check geometry.h0, geometry.l0 and the stroke")
+    first = int(np.argmax(reachable))
+    run = int(np.argmin(reachable[first:])) if not reachable[first:].all() else len(reachable) - first
+    low, high = heights[first], heights[first + run - 1]
+    span = max(high - low, 1.0)
+    centre = np.array([0.0, 0.0, (low + high) / 2.0, 0.0, 0.0, 0.0])
+    half = np.concatenate([BOX_LINEAR_FRACTION * span, np.full(3, BOX_ANGLE_DEG)])
+    return centre, half
 
 
 def random_poses(config: PlatformConfig, count: int, seed: int, reachable: bool = True) -> np.ndarray:
-    """``count`` seeded random poses (mm, degrees) from a box around the workspace centre.
+    """``count`` seeded random poses (mm, degrees) drawn uniformly from :func:`workspace_box`.
 
     With ``reachable`` only poses whose six legs lie inside the stroke (by the
     reference IK) are kept, so they spread over the reachable workspace.
     """
+    centre, half = workspace_box(config)
     rng = np.random.default_rng(seed)
     found: list[np.ndarray] = []
     total = 0
-    while total < count:
-        batch = POSE_CENTRE + POSE_HALF_WIDTH * rng.uniform(-1.0, 1.0, size=(4 * count, 6))
+    for _ in range(MAX_SAMPLING_BATCHES):
+        batch = centre + half * rng.uniform(-1.0, 1.0, size=(4 * count, 6))
         if reachable:
             batch = batch[inverse_kinematics(config.geometry, batch, config.stroke).reachable]
         found.append(batch)
         total += len(batch)
-    return np.concatenate(found)[:count]
+        if total >= count:
+            return np.concatenate(found)[:count]
+    raise SamplingError(f"found only {total} reachable poses of {count} in the box "
+                        f"centre {centre.tolist()}, half-widths {half.tolist()}")
 
 
 def sample_matrices(count: int, seed: int) -> tuple[np.ndarray, np.ndarray, list[str]]:

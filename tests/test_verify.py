@@ -42,3 +42,22 @@ def test_bad_config_and_bad_arguments(tmp_path, capsys):
         assert exit_info.code == 2
     else:
         raise AssertionError("--poses 0 must be a usage error")
+
+
+def test_workspace_box_spans_the_reachable_heights_of_the_level_platform():
+    import numpy as np
+
+    from stgen.config import PlatformConfig
+    from stgen.reference import inverse_kinematics
+    from stgen.verify import BOX_LINEAR_FRACTION, workspace_box
+
+    config = PlatformConfig.default()
+    centre, half = workspace_box(config)
+    span = half[2] / BOX_LINEAR_FRACTION[2]
+    low, high = centre[2] - span / 2, centre[2] + span / 2
+    heights = np.array([low - 1.0, low, centre[2], high, high + 1.0])
+    poses = np.zeros((5, 6))
+    poses[:, 2] = heights
+    reachable = inverse_kinematics(config.geometry, poses, config.stroke).reachable
+    assert list(reachable) == [False, True, True, True, False]
+    assert low < 0.0 < high  # the home pose lies inside

@@ -15,7 +15,7 @@ import sys
 import time
 
 from stgen.config import ConfigError, load_config
-from stgen.verify import Check, run_verification
+from stgen.verify import Check, SamplingError, run_verification
 
 _MAX_PROBLEMS_SHOWN = 5
 
@@ -72,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
     except LoadError as error:
         print(f"stgen verify: error: the rendered kinematics do not load:\n{error.render()}", file=sys.stderr)
         return 1
-    except RuntimeError as error:
+    except (RuntimeError, SamplingError) as error:
         print(f"stgen verify: error: {error}", file=sys.stderr)
         return 1
     print(format_table(checks))
