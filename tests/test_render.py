@@ -207,6 +207,9 @@ def test_lu_variant_takes_the_determinant_from_the_lu_diagonal():
 
 NJ_INSTRUCTION_NAMES = {"LIMIT", "MAX", "MIN", "SEL", "MUX", "MOVE", "ABS", "SQRT", "SIN", "COS", "TAN", "ASIN",
                         "ACOS", "ATAN", "EXPT", "EXP", "LN", "LOG", "TRUNC", "MOD", "AND", "OR", "XOR", "NOT"}
+#: IEC 61131-3 keywords outside ST proper (SFC, configuration) that some tools still reserve.
+IEC_RESERVED = {"STEP", "INITIAL_STEP", "TRANSITION", "ACTION", "FROM", "ON", "WITH", "TASK", "RESOURCE",
+                "PROGRAM", "CONFIGURATION", "AT", "RETAIN", "CONSTANT", "EN", "ENO"}
 
 
 @pytest.mark.parametrize("options", [RenderOptions("table"), RenderOptions("unrolled"), RenderOptions("lu")])
@@ -217,7 +220,7 @@ def test_every_identifier_obeys_the_nj_rules(options):
         for name in names:
             assert len(name.encode("utf-8")) <= 127
             assert not name.startswith("_") and not name.endswith("_") and "__" not in name, name
-            assert name.upper() not in NJ_INSTRUCTION_NAMES, name
+            assert name.upper() not in NJ_INSTRUCTION_NAMES | IEC_RESERVED, name
         text = iec.pou_text(pou)
         assert not re.search(r"\bREAL\b", text), f"{pou.name} uses 32-bit REAL"
         code = re.sub(r"\(\*.*?\*\)", "", text, flags=re.S)
