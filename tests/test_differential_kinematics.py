@@ -254,3 +254,22 @@ def test_another_platform_renders_and_matches_its_reference():
     assert ik.problems == () and ik.max_error <= 1e-9
     fk = check_forward_kinematics(other, config, poses[:50], "p_NR", config.solver.start_pose)
     assert fk.problems == () and fk.max_error <= 1e-6
+
+
+def test_fk_on_a_singular_geometry_reports_a_singular_jacobian():
+    """Joint pairs that coincide (phi_b = phi_p = 0) make legs 2k-1 and 2k one leg: J has two
+    equal rows everywhere. The configuration refuses such a geometry, so it is forced past
+    the validation here, as a hand-edited SP_Constants could be; the FB must still end
+    in ERR_SINGULAR_JACOBIAN, never in a division by a zero pivot or a NaN."""
+    geometry = CONFIG.geometry.__class__()
+    object.__setattr__(geometry, "phi_b_deg", 0.0)
+    object.__setattr__(geometry, "phi_p_deg", 0.0)
+    config = PlatformConfig()
+    object.__setattr__(config, "geometry", geometry)
+    singular = load_kinematics(config, RenderOptions("table"), capacity=1)
+    positions = inverse_kinematics(geometry, np.array([0.0, 0.0, 150.0, 0.0, 0.0, 0.0]), CONFIG.stroke).positions
+    run = singular.forward_kinematics(positions[None, :], np.array([CONFIG.solver.start_pose]), _solver())
+    ref = forward_kinematics(geometry, positions, CONFIG.solver.start_pose, _solver())
+    assert ref.status == ErrorCode.SINGULAR_JACOBIAN and ref.iterations == 0
+    assert run.error_ids[0] == 0x1001 and run.iterations[0] == 0 and not run.done[0]
+    assert np.all(np.isfinite(run.poses[0]))
