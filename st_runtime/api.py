@@ -31,6 +31,7 @@ from .faults import FaultRecord
 from .native import mangle
 from .objects import is_aggregate
 from .types import ArrayType, FBType, StructType, resolve_alias
+from .values import object_to_json, to_json as value_to_json  # the one JSON walk
 
 
 class LoadError(Exception):
@@ -225,43 +226,6 @@ class Instance:
     def to_json(self) -> dict:
         """Every variable (not VAR_IN_OUT/VAR_EXTERNAL/VAR_TEMP) by declared name."""
         return object_to_json(self.obj)
-
-
-_HIDDEN_KINDS = ("VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP", "VAR_GLOBAL")
-
-
-def object_to_json(obj) -> dict:
-    """A struct value, FB or PROGRAM instance as a dict by declared name."""
-    kinds = getattr(type(obj), "_st_kinds", None) or {}
-    out = {}
-    for key, (name, t) in type(obj)._st_vars.items():
-        if kinds.get(key) in _HIDDEN_KINDS:
-            continue
-        value = getattr(obj, mangle(name), None)
-        if value is None:
-            continue
-        out[name] = value_to_json(value, t)
-    return out
-
-
-def value_to_json(value, t):
-    """A stored value as JSON-like data (objects walked by their own layout)."""
-    from .values import to_json
-
-    r = resolve_alias(t)
-    if isinstance(r, (StructType, FBType)):
-        return object_to_json(value)
-    if isinstance(r, ArrayType) and is_aggregate(r.element):
-        flat = [value_to_json(v, r.element) for v in value]
-        return _nest(flat, r.dims)
-    return to_json(value, t)
-
-
-def _nest(flat: list, dims) -> list:
-    if len(dims) == 1:
-        return flat
-    inner = len(flat) // (dims[0][1] - dims[0][0] + 1)
-    return [_nest(flat[i:i + inner], dims[1:]) for i in range(0, len(flat), inner)]
 
 
 def _read(container, slot):

@@ -36,7 +36,7 @@ from typing import Callable, Iterable
 import numpy as np
 
 from .types import ArrayType, ElementaryType, EnumType, FBType, StringType, StructType, resolve_alias
-from .values import FORMATTERS, NS_PER_S, PARSERS, ValueFormatError
+from .values import FORMATTERS, HIDDEN_KINDS, NS_PER_S, PARSERS, ValueFormatError
 
 Getter = Callable[[object], object]
 
@@ -153,9 +153,9 @@ def _members_of_type(t) -> dict | None:
     t = resolve_alias(t)
     if isinstance(t, StructType):
         return dict(t.fields)
-    if isinstance(t, FBType):
+    if isinstance(t, FBType):   # the members JSON shows (no temps, in-outs, externals)
         return {key: (sym.name, sym.type) for key, sym in t.variables.items()
-                if sym.kind not in ("VAR_IN_OUT", "VAR_EXTERNAL")}
+                if sym.kind not in HIDDEN_KINDS}
     return None
 
 

@@ -25,6 +25,7 @@ from fractions import Fraction
 from typing import Callable
 
 from .faults import STFault
+from .native import mangle
 from .types import (
     ArrayType,
     ElementaryType,
@@ -417,20 +418,21 @@ class JsonValueError(ValueError):
     """A JSON value that does not fit the ST type; the message names the path."""
 
 
-def _members(t) -> list[tuple[str, object]]:
-    """(declared name, type) of the members a struct or FB shows in JSON.
+# Variables of an FB or PROGRAM instance that JSON and traces do not show:
+# VAR_IN_OUT and VAR_EXTERNAL belong to someone else, VAR_TEMP lives only
+# during a call (an instance does not store it), VAR_GLOBAL is the
+# configuration's.
+HIDDEN_KINDS = frozenset({"VAR_IN_OUT", "VAR_EXTERNAL", "VAR_TEMP", "VAR_GLOBAL"})
 
-    FB instances show every variable except VAR_IN_OUT and VAR_EXTERNAL,
-    which belong to someone else.
-    """
+
+def json_members(t) -> list[tuple[str, object]]:
+    """(declared name, type) of the members a struct or FB instance shows."""
     if isinstance(t, StructType):
         return list(t.fields.values())
-    out = []
-    for sym in t.variables.values():
-        if sym.kind in ("VAR_IN_OUT", "VAR_EXTERNAL"):
-            continue
-        out.append((sym.name, sym.type))
-    return out
+    return [(sym.name, sym.type) for sym in t.variables.values() if sym.kind not in HIDDEN_KINDS]
+
+
+_members = json_members
 
 
 def _member_value(obj, name: str):
@@ -438,7 +440,22 @@ def _member_value(obj, name: str):
         if name.upper() in obj:
             return obj[name.upper()]
         return obj[name]
-    return getattr(obj, "v_" + name.upper())
+    return getattr(obj, mangle(name))
+
+
+def object_to_json(obj) -> dict:
+    """A struct value, FB or PROGRAM instance as a dict by declared name.
+
+    Walks the object's own layout (`_st_vars`, `_st_kinds`), so it also
+    serves PROGRAM instances, which have no type of their own.
+    """
+    kinds = getattr(type(obj), "_st_kinds", None) or {}
+    out = {}
+    for key, (name, t) in type(obj)._st_vars.items():
+        if kinds.get(key) in HIDDEN_KINDS:
+            continue
+        out[name] = to_json(getattr(obj, mangle(name)), t)
+    return out
 
 
 def _nest(flat: list, dims: tuple[tuple[int, int], ...]) -> list:

@@ -121,3 +121,39 @@ def test_each_controller_has_its_own_globals():
     one.run(1)
     two.run(1)
     assert a["output"] == [1.0, 1.0, 1.0] and b["output"] == [0.2, 0.2, 0.2]
+
+
+FB_WITH_TEMP = """
+FUNCTION_BLOCK Acc
+VAR_INPUT x : INT; END_VAR
+VAR_OUTPUT y : INT; END_VAR
+VAR_TEMP t : INT; END_VAR
+t := x * 2;
+y := y + t;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR a : Acc; pair : ARRAY[1..2] OF Acc; END_VAR
+a(x := 3);
+pair[2](x := 1);
+END_PROGRAM
+"""
+
+
+def test_one_json_walk_for_fb_instances_with_temps():
+    # Two scans: y = 0 + 2*3 + 2*3 = 12 for a, 2 + 2 = 4 for pair[2].  A
+    # VAR_TEMP lives only during a call: it is no member in JSON or a trace.
+    from st_runtime.values import to_json
+
+    project = load_text(FB_WITH_TEMP)
+    plc = project.controller()
+    main = plc.add_program("Main")
+    trace = plc.trace(["a", "pair[2]"], program="Main")
+    plc.run(2)
+    expected_a = {"x": 3, "y": 12}
+    assert main["a"] == expected_a
+    acc = project.program.pous["MAIN"].variables["A"].type
+    assert to_json(main.raw("a"), acc) == expected_a
+    pair = project.program.pous["MAIN"].variables["PAIR"].type
+    assert to_json(main.raw("pair"), pair) == [{"x": 0, "y": 0}, {"x": 1, "y": 4}]
+    assert main.to_json() == {"a": expected_a, "pair": [{"x": 0, "y": 0}, {"x": 1, "y": 4}]}
+    assert trace.column_names == ["a.x", "a.y", "pair[2].x", "pair[2].y"]
