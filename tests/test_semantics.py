@@ -129,6 +129,25 @@ def test_power_operator_follows_ieee_like_expt():
     assert plc.faults == []
 
 
+def test_power_of_constants_folds_as_expt_at_run_time():
+    # C99 Annex F pow(): 0 ** -1 = +inf, (-0) ** -1 = -inf (odd exponent),
+    # (-8) ** 0.5 = NaN; the folded constants equal what EXPT gives the same
+    # values held in variables, and nothing faults.  A REAL context gives
+    # the base its type (2.0 ** 3 into a REAL is no LREAL narrowing).
+    main, plc = run(
+        "v1 := a ** b; v2 := EXPT(a, b); f1 := Pole; f2 := 0.0 ** -1.0; f3 := (-8.0) ** 0.5;"
+        " r := 2.0 ** 3; n := NegPole;",
+        "a : LREAL := 0.0; b : LREAL := -1.0; v1, v2, f1, f2, f3, n : LREAL; r : REAL;\n"
+        "END_VAR\nVAR CONSTANT Pole : LREAL := 0.0 ** -1.0; NegPole : LREAL := (-0.0) ** -1.0;"
+        " Half : REAL := 0.25 ** 0.5;")
+    inf = float("inf")
+    assert [main.raw(n) for n in ("v1", "v2", "f1", "f2", "Pole")] == [inf] * 5
+    assert main.raw("n") == -inf
+    assert main.raw("f3") != main.raw("f3")
+    assert main.raw("r") == 8.0 and main.raw("Half") == 0.5
+    assert plc.faults == []
+
+
 # ------------------------------------------------------------------------ time
 
 

@@ -2,14 +2,15 @@
 
 Values are Python `bool`, `int` (integers, bit strings, TIME nanoseconds) and
 `float`.  Integer `/` truncates toward zero and `MOD` takes the sign of the
-dividend, as on the controller.  A fold that cannot be done (a division by
+dividend, as on the controller; `**` is the library's EXPT, so a folded
+`0.0 ** -1.0` is +inf exactly as at run time.  A fold that cannot be done (a division by
 zero, an operator on unsuitable values) yields `NOT_CONSTANT`, and the
 caller reports what it must.
 """
 
 from __future__ import annotations
 
-import math
+from ..stdlib.functions import EXPT
 
 
 class _NotConstant:
@@ -85,9 +86,8 @@ def apply_binary(op: str, a, b):
             return a / b if b != 0 else NOT_CONSTANT
         if op == "MOD":
             return int_mod(a, b) if both_int else NOT_CONSTANT
-        if op == "**":
-            result = float(a) ** float(b)
-            return result if isinstance(result, float) and math.isfinite(result) else NOT_CONSTANT
+        if op == "**":      # the runtime's EXPT: IEEE results (+inf, NaN), no fault, as the NJ
+            return EXPT(float(a), b)
     except (OverflowError, ZeroDivisionError, ValueError):
         return NOT_CONSTANT
     return NOT_CONSTANT

@@ -400,8 +400,8 @@ class ExprChecker:
         if left_untyped and not right_untyped:
             rt = self.infer(e.right)
             lt = self.infer(e.left, self._hint(op, rt, expected, left=True))
-        else:
-            lt = self.infer(e.left)
+        else:   # the base of ** takes the context's real type (`r := 2.0 ** 3` is REAL)
+            lt = self.infer(e.left, self._hint(op, None, expected, left=True) if op == "**" else None)
             rt = self.infer(e.right, self._hint(op, lt, expected, left=False))
         t = self._binary_type(e, lt, rt)
         if t is ts.ERROR:

@@ -16,6 +16,7 @@ from .. import ast
 from ..objects import default_value, is_aggregate, store_value
 from ..types import ArrayType, EnumType, FBType, StructType, Type, resolve_alias
 from .pysrc import pyident
+from ..stdlib.functions import EXPT
 from .support import idiv, imod
 
 
@@ -201,8 +202,8 @@ def _fold_binary(op: str, a, b, pos):
             return a / b
         if op == "MOD":
             return imod(a, b, ("", "", pos.line, pos.col))
-        if op == "**":
-            return float(a) ** b
+        if op == "**":     # the library's EXPT, as at run time (IEEE results)
+            return EXPT(float(a), b)
         if op in ("AND", "&"):
             return a & b
         if op == "OR":
