@@ -428,3 +428,17 @@ def test_standard_functions_with_formal_and_extensible_arguments():
                   "a, b, c, d, n : INT; e : LREAL; s : STRING;")
     assert (main["a"], main["b"], main["c"], main["d"], main["n"]) == (10, 7, 2, 9, 5)
     assert main["e"] == -1.5 and main["s"] == "bcd"
+
+
+def test_string_functions_insert_delete_replace_find():
+    # IEC 61131-3 string functions (1-based positions): INSERT puts IN2 after
+    # the P-th character of IN1; DELETE removes L characters from P; REPLACE
+    # puts IN2 in place of L characters from P; FIND is the position of the
+    # first IN2 in IN1, 0 when absent.
+    main, plc = run(
+        "a := INSERT('ABC', 'XY', 2); b := DELETE(IN := 'ABXYC', L := 2, P := 3);"
+        " c := REPLACE('ABCDE', 'X', 2, 3); f := FIND('ABCBC', 'BC'); g := FIND('ABC', 'Z');",
+        "a, b, c : STRING; f, g : INT;")
+    assert (main["a"], main["b"], main["c"]) == ("ABXYC", "ABC", "ABXE")
+    assert (main["f"], main["g"]) == (2, 0)
+    assert plc.faults == []

@@ -68,6 +68,11 @@ def _table() -> dict[str, Builtin]:
     add("LEFT", [Param("IN", "STRING"), Param("L", "ANY_INT")], "STRING")
     add("RIGHT", [Param("IN", "STRING"), Param("L", "ANY_INT")], "STRING")
     add("MID", [Param("IN", "STRING"), Param("L", "ANY_INT"), Param("P", "ANY_INT")], "STRING")
+    add("INSERT", [Param("IN1", "STRING"), Param("IN2", "STRING"), Param("P", "ANY_INT")], "STRING")
+    add("DELETE", [Param("IN", "STRING"), Param("L", "ANY_INT"), Param("P", "ANY_INT")], "STRING")
+    add("REPLACE", [Param("IN1", "STRING"), Param("IN2", "STRING"), Param("L", "ANY_INT"),
+                    Param("P", "ANY_INT")], "STRING")
+    add("FIND", [Param("IN1", "STRING"), Param("IN2", "STRING")], "INT")
     return table
 
 

@@ -13,7 +13,7 @@ from ..symbols import CallTarget, PouInfo
 from . import builtins as B
 from . import typesys as ts
 from .expressions import start_pos
-from .stores import check_store, is_variable_path, root_name
+from .stores import check_store, in_out_problem, is_variable_path, root_name
 
 _PIN_KINDS = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
 
@@ -186,9 +186,10 @@ class CallChecker:
             self.ctx.error("E-CALL-007", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
                            f"variable, found an enumeration value", start_pos(value))
             return
-        if ref.constant:
+        problem = in_out_problem(self.ex, value, ref)
+        if problem is not None:
             self.ctx.error("E-CALL-007", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
-                           f"writable variable, found CONSTANT '{ref.name}'", start_pos(value))
+                           f"writable variable, found {problem}", start_pos(value))
             return
         if not (ts.same_type(t, sym.type) or t is sym.type):
             self.ctx.error("E-CALL-011", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "

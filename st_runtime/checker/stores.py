@@ -60,6 +60,24 @@ def check_store(ex, target, what: str = "assignment"):
     return t
 
 
+def in_out_problem(ex, target, sym) -> str | None:
+    """Why the variable path `target` (root variable `sym`) cannot be passed
+    to a VAR_IN_OUT, which the callee may write; None when it can."""
+    if sym.constant:
+        return f"CONSTANT '{sym.name}'"
+    if sym.kind == "VAR_INPUT" and ex.scope.is_local(sym):
+        return (f"VAR_INPUT '{sym.name}' of {ex.scope.pou.name} (inputs are read-only inside "
+                f"their POU)")
+    if any(sym is loop_var for loop_var in ex.loop_vars):
+        return f"'{sym.name}', the control variable of an enclosing FOR loop"
+    member = _fb_member(ex, target)
+    if member is not None:
+        fb, var = member
+        return (f"'{var.name}', a {var.kind} of function block {fb.name} (only its inputs may be "
+                f"written from outside)")
+    return None
+
+
 def _fb_member(ex, target):
     """(FBType, Symbol) when the path writes a non-input variable of an FB instance."""
     e = target
