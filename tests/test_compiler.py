@@ -59,7 +59,11 @@ def test_index_checks_stay_when_loop_bounds_are_variables():
     assert "index 3 (dimension 1)" in plc.faults[0].message
 
 
-def test_loop_variable_changed_in_the_body_keeps_its_checks():
+def test_loop_variable_passed_to_an_in_out_is_refused_before_compiling():
+    # IEC: the control variable is not written in the loop; handing it to a
+    # VAR_IN_OUT (which may write it) is a checker error.  The compiler's
+    # testing FOR loop for a variable a callee can change is exercised by
+    # test_global_loop_variable_changed_by_a_callee_is_seen_by_the_loop.
     src = """
     FUNCTION Bump : BOOL
     VAR_IN_OUT v : INT; END_VAR
@@ -69,11 +73,9 @@ def test_loop_variable_changed_in_the_body_keeps_its_checks():
     VAR a : ARRAY[1..5] OF INT; i : INT; END_VAR
     FOR i := 1 TO 5 DO Bump(i); a[i] := 1; END_FOR;
     END_PROGRAM"""
-    main, plc = run(src)
-    # As on a PLC, FOR is a loop that tests the variable: i = 11 after the
-    # first Bump is caught by the bounds check, then 11 + 1 > 5 ends the loop.
-    assert [f.code for f in plc.faults] == ["F-INDEX"]
-    assert main["a"] == [0] * 5 and main["i"] == 12
+    with pytest.raises(LoadError) as info:
+        load_text(src)
+    assert [(d.code, d.pos.line) for d in info.value.diagnostics] == [("E-CALL-007", 8)]
 
 
 def test_hoisted_row_offsets_follow_the_outer_loop():
