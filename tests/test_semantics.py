@@ -442,3 +442,20 @@ def test_string_functions_insert_delete_replace_find():
     assert (main["a"], main["b"], main["c"]) == ("ABXYC", "ABC", "ABXE")
     assert (main["f"], main["g"]) == (2, 0)
     assert plc.faults == []
+
+
+def test_time_times_real_constants_fold_to_whole_nanoseconds():
+    # TIME * real rounds the exact product to the nearest ns, ties to even
+    # (values.time_mul, the NJ's MULTIME): 10 ns * 0.25 = 2.5 -> 2 ns,
+    # 10 ns * 0.75 = 7.5 -> 8 ns, 0.5 * 1 s = 500 ms, 1 s / 8.0 = 125 ms.
+    # Folded constants (a CONSTANT initial value, a constant right-hand
+    # side) equal the run-time products of the same values in variables.
+    main, plc = run(
+        "a := T#10ns * 0.25; b := T#10ns * 0.75; c := 0.5 * T#1s; d := T#1s / 8.0;"
+        " va := t10 * q; vb := t10 * tq;",
+        "a, b, c, d, va, vb : TIME; t10 : TIME := T#10ns; q : LREAL := 0.25; tq : LREAL := 0.75;\n"
+        "END_VAR\nVAR CONSTANT Quarter : TIME := T#10ns * 0.25; Eighth : TIME := T#1s / 8.0;")
+    assert [main.raw(n) for n in ("a", "b", "c", "d")] == [2, 8, 500_000_000, 125_000_000]
+    assert (main.raw("va"), main.raw("vb")) == (2, 8)
+    assert (main["Quarter"], main["Eighth"]) == ("T#2ns", "T#125ms")
+    assert plc.faults == []

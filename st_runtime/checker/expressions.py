@@ -40,6 +40,15 @@ LOGIC = ("AND", "&", "OR", "XOR")
 COMPARISON = ("=", "<>", "<", ">", "<=", ">=")
 
 
+def _time_scaled(op: str, ns: int, k) -> int:
+    """A folded TIME * number or TIME / number, in integer nanoseconds as the
+    runtime computes it (`values.time_mul`/`time_div`: a real factor rounds
+    to the nearest ns, ties to even; T#10ns * 0.25 is T#2ns, not 2.5)."""
+    from ..values import time_div, time_mul
+
+    return time_mul(ns, k) if op == "*" else time_div(ns, k)
+
+
 def is_untyped_constant(e, memo: dict | None = None) -> bool:
     """Whether `e` is made only of untyped literals and + - * / MOD (see above)."""
     if memo is not None:
@@ -415,6 +424,9 @@ class ExprChecker:
         if op in ("/", "MOD") and ts.is_int(rt) and self.constant(e.right) == 0:
             self.ctx.error("E-TYPE-017", "division by zero in a constant expression", e.right.pos)
             return self.record(e, ts.ERROR)
+        if t is T.TIME and op in ("*", "/") and value is not NOT_CONSTANT:
+            ns, k = self.constant(e.left), self.constant(e.right)
+            value = _time_scaled(op, *((ns, k) if lt is T.TIME else (k, ns)))
         return self.record(e, t, value)
 
     def _hint(self, op, other, expected, left: bool):

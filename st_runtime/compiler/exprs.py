@@ -150,8 +150,9 @@ class ExprCompiler:
     def folded(self, expr):
         """The checker's folded value of `expr` when it fits the expression's type.
 
-        (A non-integral float for an integer or TIME expression is left to the
-        compiled code, which rounds as the runtime does.)
+        (The checker folds TIME * real to whole nanoseconds as `values.time_mul`
+        does; a non-integral float for an integer or TIME expression would be
+        a checker bug, and is left to the compiled code, which rounds.)
         """
         value = self.program.constants.get(id(expr))
         if isinstance(value, float) and not value.is_integer() and is_int_like(self.ty(expr)):
