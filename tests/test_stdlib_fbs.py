@@ -160,10 +160,15 @@ def test_r_trig_input_true_from_the_start_is_an_edge():
 
 
 def test_f_trig_single_scan_pulse_on_falling_edges():
-    # 3rd edition: M starts TRUE, so CLK FALSE on the first call is no edge.
+    # IEC 61131-3 (tables 35/44): M has no initial value, so it starts FALSE
+    # and Q := NOT CLK AND NOT M is TRUE on a first call with CLK FALSE;
+    # after that only TRUE -> FALSE changes of CLK pulse.
     clock, trig = Clock(), make(fbs.F_TRIG)
+    assert trig.v_M is False
     clk = [False, True, False, False, True, True, False]
-    assert [clock.step(trig, CLK=c).v_Q for c in clk] == [False, False, True, False, False, False, True]
+    assert [clock.step(trig, CLK=c).v_Q for c in clk] == [True, False, True, False, False, False, True]
+    held = make(fbs.F_TRIG)
+    assert [clock.step(held, CLK=c).v_Q for c in (True, True, False)] == [False, False, True]
 
 
 # --- counters ---------------------------------------------------------------

@@ -168,10 +168,11 @@ END_PROGRAM
     assert main["Latch.Q1"] is True         # set dominates
     assert main["Veto.Q1"] is False         # reset dominates
     # Toggle is TRUE on odd scans: falling edges on scans 2, 4, 6, 8.  F_TRIG's
-    # memory starts TRUE (3rd edition), so a CLK FALSE from the first call is
-    # no edge (with the 2nd edition's FALSE, Quiet.Q would pulse on scan 1).
+    # memory M starts FALSE (IEC 61131-3 tables 35/44 give it no initial
+    # value), so Quiet, whose CLK is FALSE from the first call, pulses once
+    # on scan 1 and never again.
     assert main["Falls"] == 4
-    assert main["Spurious"] == 0
+    assert main["Spurious"] == 1
 
 
 def test_call_ton_until_q():

@@ -10,8 +10,8 @@ after the call that saw IN rise.
 Edge detectors, counters and bistables follow the bodies given in IEC
 61131-3 (3rd ed., tables 43-46); counters count on the rising edge of CU/CD
 and saturate at the limits of INT (PVmax = 32767, PVmin = -32768).
-F_TRIG's memory starts TRUE as in the 3rd edition, so a CLK that is FALSE
-from the first call gives no edge.
+F_TRIG's memory M has no initial value in the standard (it starts FALSE), so
+a CLK that is FALSE on the first call gives Q = TRUE once: see F_TRIG.
 """
 
 from __future__ import annotations
@@ -180,6 +180,22 @@ END_FUNCTION_BLOCK
 
 @native_fb
 class F_TRIG(NativeFB):
+    """Falling edge: the standard's body, `Q := NOT CLK AND NOT M; M := NOT CLK;`
+    with `VAR M : BOOL; END_VAR` (no initial value, so M starts FALSE).
+
+    Consequence: a CLK that is FALSE on the very first call pulses Q once.
+    Sources: IEC 61131-3 2nd ed. table 35 / 3rd ed. table 44 (edge
+    detection), whose ST text MATIEC's library reproduces verbatim
+    ("taken directly from the IEC 61131.3 draft standard", lib
+    edge_detection.txt); CODESYS Safety documentation of SF_F_TRIG: "In the
+    first cycle, SF_F_TRIG recognizes a falling edge when FALSE is applied
+    and sets the output Q to TRUE. This behavior conforms to the F_TRIG of
+    IEC 61131-3 from Edition 2" (content.helpme-codesys.com, CODESYS Safety
+    Extension, SF_F_TRIG).  An initial M = TRUE, which suppresses that first
+    pulse (Fernhill, CODESYS Standard), is the IEC 61131-8 guideline's
+    recommendation and edition 1's behaviour, not part 3's text.
+    """
+
     NAME = "F_TRIG"
     DECLARATION = """
 FUNCTION_BLOCK F_TRIG
@@ -190,7 +206,7 @@ VAR_OUTPUT
     Q : BOOL;
 END_VAR
 VAR
-    M : BOOL := TRUE;
+    M : BOOL;
 END_VAR
 END_FUNCTION_BLOCK
 """
