@@ -61,12 +61,16 @@ def _import_natives() -> None:
                 raise
 
 
-def load(paths, dialect: str = "iec") -> "Project":
-    """Load ST files and directories as one program: parse, check, compile."""
+def load(paths, dialect: str = "iec", extra_sources: dict[str, str] | None = None) -> "Project":
+    """Load ST files and directories as one program: parse, check, compile.
+
+    `extra_sources` (name -> ST text) are loaded with the files, e.g. the axis
+    globals of `MotionTask.globals_source()`.
+    """
     from . import loader
 
     _import_natives()
-    return _compiled(loader.load([os.fspath(p) for p in paths], dialect))
+    return _compiled(loader.load([os.fspath(p) for p in paths], dialect, extra_sources))
 
 
 def load_text(text: str, path: str = "<text>", dialect: str = "iec") -> "Project":

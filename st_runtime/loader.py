@@ -110,8 +110,12 @@ def load_texts(texts: dict[str, str], dialect: str = "iec") -> LoadResult:
     return LoadResult(program if ok else None, _ordered(diagnostics, list(sources)), sources)
 
 
-def load(paths: list[str], dialect: str = "iec") -> LoadResult:
-    """Read, parse and check the files and directories in `paths` as one program."""
+def load(paths: list[str], dialect: str = "iec", extra: dict[str, str] | None = None) -> LoadResult:
+    """Read, parse and check the files and directories in `paths` as one program.
+
+    `extra` adds in-memory sources (name -> ST text) after the files, e.g. the
+    axis globals of a motion configuration (`MotionTask.globals_source()`).
+    """
     names, diagnostics = expand(list(paths))
     texts: dict[str, str] = {}
     for name in names:
@@ -120,6 +124,7 @@ def load(paths: list[str], dialect: str = "iec") -> LoadResult:
             diagnostics.append(problem)
         else:
             texts[name] = text
+    texts.update(extra or {})
     result = load_texts(texts, dialect)
     if diagnostics:
         result.diagnostics = diagnostics + result.diagnostics

@@ -9,7 +9,13 @@ and FB instances as objects).  Without it, one `name = value` line per
 variable.  Runtime faults go to stderr as
 `file:line:col: fault[CODE]: message (scan N)`.
 
-Exit 0 on success, 1 on diagnostics or runtime faults, 2 on usage errors.
+With `--axes FILE.toml` the controller also simulates servo axes: each
+`[[axis]]` table (see `st_runtime.motion.axis_config`) becomes a global
+AXIS_REF variable of that name, which the program passes to MC_Power,
+MC_SyncMoveAbsolute, ... and reads (`Cyl1.Cmd.Pos`); `--watch` traces it.
+
+Exit 0 on success, 1 on diagnostics, runtime faults or an invalid axes
+file, 2 on usage errors.
 """
 
 from __future__ import annotations
@@ -36,6 +42,13 @@ def add_arguments(parser) -> None:
                         help="variables to trace: x, fb.Q, Axis.Cmd.Pos, a[3], m[1,2]")
     parser.add_argument("--dialect", choices=("iec", "nj"), default="iec")
     parser.add_argument("--stop-on-fault", action="store_true", help="stop at the first runtime fault")
+    parser.add_argument("--axes", metavar="FILE.toml",
+                        help="simulate servo axes: one [[axis]] table per axis (name, max_velocity;"
+                             " optional soft_limit_min, soft_limit_max, max_acceleration,"
+                             " in_position_range, following_error_limit, servo_lag,"
+                             " initial_position); each axis is a global AXIS_REF variable of its"
+                             " name for MC_Power, MC_SyncMoveAbsolute, ... (example:"
+                             " examples/axes.toml)")
     parser.add_argument("--budget", type=int, default=DEFAULT_BUDGET, metavar="N",
                         help="loop iterations per scan before 'task period exceeded' "
                              f"(default {DEFAULT_BUDGET})")
@@ -62,8 +75,20 @@ def run(args) -> int:
         return usage(f"--period: {exc}")
     if period <= 0:
         return usage("--period must be positive")
+    motion = None
+    if args.axes:
+        if os.path.isdir(args.axes):
+            return usage(f"--axes: '{args.axes}' is a directory; expected a TOML file")
+        if not os.path.exists(args.axes):
+            return usage(f"--axes: no such file: '{args.axes}'")
+        try:
+            motion = read_axes(args.axes)
+        except AxesFileError as exc:
+            print(f"stgen run: error: {exc}", file=sys.stderr)
+            return 1
+    extra = {axes_source_name(args.axes): motion.globals_source()} if motion else None
     try:
-        project = load(args.paths, dialect=args.dialect)
+        project = load(args.paths, dialect=args.dialect, extra_sources=extra)
     except LoadError as exc:
         print(exc.render(), file=sys.stderr)
         return 1
@@ -75,6 +100,8 @@ def run(args) -> int:
         names = sorted(p.name for p in project.program.pous.values() if p.kind == "PROGRAM")
         return usage(f"no PROGRAM named '{args.program}' (programs: {', '.join(names) or 'none'})")
     plc = project.controller(period=period, budget=args.budget, stop_on_fault=args.stop_on_fault)
+    if motion is not None:
+        motion.install(plc.controller)
     program = plc.add_program(pou.name)
     trace = None
     if args.trace:
@@ -96,6 +123,33 @@ def run(args) -> int:
             print(f"stgen run: error: cannot write {args.trace}: {exc}", file=sys.stderr)
             return 1
     return report_faults("stgen run", plc.controller)
+
+
+class AxesFileError(Exception):
+    """An axes file that cannot be read or breaks a rule (names file and key)."""
+
+
+def read_axes(path: str):
+    """The MotionTask of an axes TOML file (AxesFileError if it is not valid)."""
+    from st_runtime.motion import MotionTask
+    from st_runtime.motion.axis_config import AxisConfigError
+
+    try:
+        with open(path, "rb") as handle:
+            text = handle.read().decode("utf-8-sig")
+    except OSError as exc:
+        raise AxesFileError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    except UnicodeDecodeError:
+        raise AxesFileError(f"{path}: not UTF-8 text (an axes file is TOML)") from None
+    try:
+        return MotionTask.from_toml(text)
+    except (AxisConfigError, ValueError) as exc:
+        raise AxesFileError(f"{path}: {exc}") from None
+
+
+def axes_source_name(path: str) -> str:
+    """The name under which the axis globals' ST text is loaded (in diagnostics)."""
+    return f"{path} (axis globals)"
 
 
 def report_faults(prog: str, controller) -> int:
