@@ -35,11 +35,8 @@ from stgen.reference.linalg import permutation_table
 
 TEMPLATE_DIR = Path(__file__).resolve().parent.parent / "st_templates"
 
-#: The POU templates (paths below ``st_templates/`` without ``.st.j2``), in
-#: dependency order: a POU only calls POUs listed before it. The POU's name is
-#: the last path component.
-POU_TEMPLATES = (
-    # kinematics (SPEC 1-3)
+#: Templates of the kinematics POUs (SPEC 1-3), in dependency order.
+KINEMATICS_TEMPLATES = (
     "SP_Constants",
     "SP_Atan2",
     "SP_LuSolve",
@@ -47,7 +44,10 @@ POU_TEMPLATES = (
     "SP_Jacobian",
     "SP_InverseKinematics",
     "SP_ForwardKinematics",
-    # trajectories (SPEC 4) and the controller program (SPEC 5)
+)
+
+#: Templates of the trajectory FBs (SPEC 4) and the controller program (SPEC 5), in dependency order.
+CONTROLLER_TEMPLATES = (
     "trajectory/TRJ_Constants",
     "trajectory/TRJ_Cycloidal",
     "trajectory/TRJ_OceanWave",
@@ -56,6 +56,17 @@ POU_TEMPLATES = (
     "controller/SP_Axes",
     "controller/SP_Controller",
 )
+
+#: Every POU template (paths below ``st_templates/`` without ``.st.j2``), in
+#: dependency order: a POU only calls POUs listed before it. The POU's name is
+#: the last path component.
+POU_TEMPLATES = KINEMATICS_TEMPLATES + CONTROLLER_TEMPLATES
+
+
+def pou_name(template: str) -> str:
+    """The POU a template renders: the last component of its path."""
+    return template.rsplit("/", 1)[-1]
+
 
 #: How the FK obtains det J (SPEC 3, step 1), a generator option.
 DETERMINANT_METHODS = ("table", "unrolled", "lu")
@@ -248,7 +259,7 @@ def template_context(config: PlatformConfig, options: RenderOptions) -> dict[str
 
 def render_pou(env: jinja2.Environment, template: str, context: dict[str, Any]) -> Pou:
     """Render ``st_templates/<template>.st.j2``; the POU is named after the template's file name."""
-    name = template.rsplit("/", 1)[-1]
+    name = pou_name(template)
     try:
         module = env.get_template(f"{template}.st.j2").make_module(context)
     except jinja2.TemplateError as error:

@@ -27,13 +27,10 @@ from stgen.error_codes import ErrorCode
 from stgen.exports.iec import pou_text
 from stgen.reference import forward_kinematics, inverse_kinematics, leibniz_det, lu_doolittle, lu_solve
 from stgen.reference.linalg import SingularMatrixError
-from stgen.render import RenderOptions, render_program
+from stgen.render import KINEMATICS_TEMPLATES, RenderOptions, pou_name, render_program
 
 #: Kinematics POUs (the controller's are not needed here).
-KINEMATICS_POUS = (
-    "SP_Constants", "SP_Atan2", "SP_LuSolve", "SP_LeibnizDeterminant", "SP_Jacobian",
-    "SP_InverseKinematics", "SP_ForwardKinematics",
-)
+KINEMATICS_POUS = tuple(pou_name(template) for template in KINEMATICS_TEMPLATES)
 
 #: Loop iterations one harness scan may take (a scan runs up to `capacity` cases).
 HARNESS_LOOP_BUDGET = 2_000_000_000

@@ -313,3 +313,27 @@ def test_sysmac_leaves_the_axis_variables_to_the_motion_setup():
     assert [v.name for v in sysmac.system_created(globals_)] == [f"MC_Axis{i:03d}" for i in range(6)]
     controller = sysmac.pou_table(DEFAULT.pou("SP_Controller"))
     assert "MC_Axis000\tExternal\t_sAXIS_REF\t" in controller
+
+
+def test_sysmac_readme_lists_every_command_and_status_variable():
+    readme = sysmac.files(DEFAULT)["README.md"]
+    commands = readme[readme.index("## Commanding the controller"):readme.index("Status, written by")]
+    status = readme[readme.index("Status, written by"):]
+    # Every global of SP_ControllerGlobals is documented in the table its comment names.
+    for variable in DEFAULT.pou("SP_ControllerGlobals").variables:
+        row = f"| `{variable.name}` | `{variable.type}` |"
+        section = commands if variable.comment.startswith("command:") else status
+        assert variable.comment.split(":")[0] in ("command", "status"), variable.name
+        assert row in section, variable.name
+    assert "| `SpPowerOn` | `BOOL` | TRUE servo on, FALSE servo off |" in commands
+    assert "| `SpFaultAxis` | `INT` | axis or leg 1..6 of the fault, 0 when none applies |" in status
+
+
+def test_sysmac_readme_does_not_call_every_external_a_constant():
+    readme = sysmac.files(DEFAULT)["README.md"]
+    assert "global constants the POU reads; declare them with *Constant* ticked" not in readme
+    # SP_Controller's externals include non-constant globals: their rows say Constant FALSE.
+    rows = [r.split("\t") for r in sysmac.pou_table(DEFAULT.pou("SP_Controller")).splitlines()[1:]]
+    externals = {r[0]: r[5] for r in rows if r[1] == "External"}
+    assert externals["SpPowerOn"] == "FALSE" and externals["SP_STATE_STANDBY"] == "TRUE"
+    assert "leave it\n     clear where it says `FALSE`" in readme

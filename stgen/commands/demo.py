@@ -21,7 +21,8 @@ import argparse
 import sys
 from pathlib import Path
 
-from stgen.config import ConfigError, load_config
+from stgen.commands.config_option import add_config_argument, config_from_args
+from stgen.exports.folder import ForeignFileError
 
 QUICK_WAVE_SECONDS = 10.0
 
@@ -30,7 +31,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out", metavar="DIR", default="demo", help="output folder (default: ./demo)")
     parser.add_argument("--quick", action="store_true",
                         help=f"waves of {QUICK_WAVE_SECONDS:g} s instead of 60 s")
-    parser.add_argument("--config", metavar="FILE", help="platform TOML file (default: the study's platform)")
+    add_config_argument(parser)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -39,10 +40,8 @@ def run(args: argparse.Namespace) -> int:
     console = Console()
     if not console.is_terminal:  # a log file or a pipe: room for the whole table
         console = Console(width=110)
-    try:
-        config = load_config(args.config)
-    except ConfigError as error:
-        print(f"stgen demo: error: {error}", file=sys.stderr)
+    config = config_from_args(args, "demo")
+    if config is None:
         return 1
     out = Path(args.out)
     try:
@@ -50,6 +49,9 @@ def run(args: argparse.Namespace) -> int:
         generated = _generate(config, out / "generated")
     except OSError as error:
         print(f"stgen demo: error: cannot write {error.filename or out}: {error.strerror}", file=sys.stderr)
+        return 1
+    except ForeignFileError as error:
+        print(f"stgen demo: error: {error}", file=sys.stderr)
         return 1
     console.print(f"Generated the controller: {generated} files in {out / 'generated'}")
 
@@ -83,11 +85,12 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _generate(config, out: Path) -> int:
-    from stgen.exports import iec, sysmac
+    from stgen.commands.generate import write_program
     from stgen.scenarios.program import render_controller_program
 
     program = render_controller_program(config)
-    return len(sysmac.write(program, out / "nj501")) + len(iec.write(program, out / "iec"))
+    return sum(len(write_program(program, out / folder, target).written)
+               for target, folder in (("nj", "nj501"), ("iec", "iec")))
 
 
 def _run_all(scenarios, config, console):

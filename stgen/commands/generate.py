@@ -4,6 +4,11 @@ Renders the platform's POUs from ``st_templates/`` and writes them for one
 target: ``nj`` (Sysmac Studio bodies and variable tables) or ``iec`` (plain
 IEC 61131-3 files). A configuration that cannot be read or is invalid is
 reported as ``file[:line:col]: key: rule`` with exit status 1.
+
+The folder is kept in step with the configuration: generated files of an
+earlier run that this run does not write (a POU renamed, say) are removed,
+and a file there that stgen did not write is never overwritten (exit status
+1, nothing written); see :mod:`stgen.exports.folder`.
 """
 
 from __future__ import annotations
@@ -12,25 +17,32 @@ import argparse
 import sys
 from pathlib import Path
 
-from stgen.config import ConfigError, PlatformConfig, load_config
+from stgen.commands.config_option import add_config_argument, config_from_args
+from stgen.config import PlatformConfig
 from stgen.exports import iec, sysmac
-from stgen.render import DETERMINANT_METHODS, RenderError, RenderOptions, render_program
+from stgen.exports.folder import FolderUpdate, ForeignFileError
+from stgen.render import DETERMINANT_METHODS, RenderedProgram, RenderError, RenderOptions, render_program
 
-#: Target name -> writer(program, out_dir) -> list of paths.
+#: Target name -> writer(program, out_dir) -> FolderUpdate.
 TARGETS = {"nj": sysmac.write, "iec": iec.write}
 
 
-def generate(out_dir: str | Path, target: str = "nj", config: PlatformConfig | None = None,
-             options: RenderOptions | None = None) -> list[Path]:
-    """Render ``config`` (default platform if ``None``) and write ``target``'s files into ``out_dir``."""
+def write_program(program: RenderedProgram, out_dir: str | Path, target: str = "nj") -> FolderUpdate:
+    """Write ``program`` for ``target`` into ``out_dir``; stale generated files there are removed
+    and a file stgen did not write is never overwritten (:mod:`stgen.exports.folder`)."""
     if target not in TARGETS:
         raise ValueError(f"unknown target {target!r}; expected one of {', '.join(TARGETS)}")
-    program = render_program(config, options)
     return TARGETS[target](program, out_dir)
 
 
+def generate(out_dir: str | Path, target: str = "nj", config: PlatformConfig | None = None,
+             options: RenderOptions | None = None) -> FolderUpdate:
+    """Render ``config`` (default platform if ``None``) and write ``target``'s files into ``out_dir``."""
+    return write_program(render_program(config, options), out_dir, target)
+
+
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--config", metavar="FILE", help="platform TOML file (default: the study's platform)")
+    add_config_argument(parser)
     parser.add_argument("--target", choices=sorted(TARGETS), default="nj",
                         help="nj: Sysmac Studio bodies + variable tables; iec: plain IEC 61131-3 files (default: nj)")
     parser.add_argument("--determinant", choices=DETERMINANT_METHODS, default="table",
@@ -40,18 +52,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    try:
-        config = load_config(args.config)
-    except ConfigError as error:
-        print(f"stgen generate: error: {error}", file=sys.stderr)
+    config = config_from_args(args, "generate")
+    if config is None:
         return 1
     try:
-        written = generate(args.out, args.target, config, RenderOptions(determinant=args.determinant))
-    except RenderError as error:
+        update = generate(args.out, args.target, config, RenderOptions(determinant=args.determinant))
+    except (RenderError, ForeignFileError) as error:
         print(f"stgen generate: error: {error}", file=sys.stderr)
         return 1
     except OSError as error:
         print(f"stgen generate: error: cannot write {error.filename or args.out}: {error.strerror}", file=sys.stderr)
         return 1
-    print(f"stgen generate: wrote {len(written)} files for target '{args.target}' to {args.out}")
+    removed = f"; removed {len(update.removed)} stale: " + ", ".join(p.name for p in update.removed) if update.removed else ""
+    print(f"stgen generate: wrote {len(update.written)} files for target '{args.target}' to {args.out}{removed}")
     return 0

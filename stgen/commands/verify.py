@@ -14,14 +14,14 @@ import argparse
 import sys
 import time
 
-from stgen.config import ConfigError, load_config
+from stgen.commands.config_option import add_config_argument, config_from_args
 from stgen.verify import Check, SamplingError, run_verification
 
 _MAX_PROBLEMS_SHOWN = 5
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--config", metavar="FILE", help="platform TOML file (default: the study's platform)")
+    add_config_argument(parser)
     parser.add_argument("--poses", type=_positive, default=10_000, metavar="N",
                         help="random reachable poses for the IK comparison (default: 10000)")
     parser.add_argument("--fk-poses", type=_positive, default=500, metavar="N",
@@ -59,10 +59,8 @@ def format_table(checks: list[Check]) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    try:
-        config = load_config(args.config)
-    except ConfigError as error:
-        print(f"stgen verify: error: {error}", file=sys.stderr)
+    config = config_from_args(args, "verify")
+    if config is None:
         return 1
     from st_runtime.api import LoadError
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from stgen.exports import GENERATED_BANNER
+from stgen.exports.folder import FolderUpdate, write_files
 from stgen.render import EXTERNAL, GLOBAL, IN_OUT, INPUT, INTERNAL, OUTPUT, Pou, RenderedProgram, Variable
 
 #: (keyword, usage, constant) in the order the sections are written.
@@ -94,19 +95,23 @@ def _kind_label(pou: Pou) -> str:
     return "global constants" if all(v.constant for v in pou.variables) else "global variables"
 
 
-def write(program: RenderedProgram, out_dir: str | Path) -> list[Path]:
-    """Write ``<POU>.st`` for every POU and a README; returns the paths written."""
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    written = []
+def files(program: RenderedProgram) -> dict[str, str]:
+    """``{file name: text}``: ``<POU>.st`` for every POU, then the README."""
+    texts = {}
     listing = []
     for pou in program.pous:
-        path = out / f"{pou.name}.st"
-        path.write_text(pou_text(pou), encoding="utf-8")
-        written.append(path)
-        listing.append(f"- `{path.name}`: {_kind_label(pou)}")
+        name = f"{pou.name}.st"
+        texts[name] = pou_text(pou)
+        listing.append(f"- `{name}`: {_kind_label(pou)}")
     globals_ = ", ".join(f"`{p.name}.st`" for p in program.pous if p.kind == "VAR_GLOBAL")
-    readme = out / "README.md"
-    readme.write_text(README.format(listing="\n".join(listing), globals=globals_), encoding="utf-8")
-    written.append(readme)
-    return written
+    texts["README.md"] = README.format(listing="\n".join(listing), globals=globals_)
+    return texts
+
+
+#: First lines that mark a file in the folder as written by this export (see :mod:`stgen.exports.folder`).
+SIGNATURES = frozenset({GENERATED_BANNER, README.splitlines()[0]})
+
+
+def write(program: RenderedProgram, out_dir: str | Path) -> FolderUpdate:
+    """Write :func:`files` into ``out_dir`` and remove the stale files of earlier runs."""
+    return write_files(files(program), out_dir, SIGNATURES)

@@ -19,6 +19,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from stgen.exports import GENERATED_BANNER
+from stgen.exports.folder import FolderUpdate, write_files
 from stgen.render import EXTERNAL, GLOBAL, IN_OUT, INPUT, INTERNAL, OUTPUT, Pou, RenderedProgram, Variable
 
 #: Columns of a POU's variable table (the first row of every ``.variables.tsv``).
@@ -133,16 +134,39 @@ the header comment) and `<POU>.variables.tsv` its variables, tab-separated.
      the variables of one usage at a time (Inputs, Outputs, In-Outs,
      Externals, Internals): filter the spreadsheet on *Usage* and paste the
      rows of each usage without the *Usage* column. *External* rows are the
-     global constants the POU reads; declare them with *Constant* ticked.
+     global variables the POU uses, as declared in the global table: tick
+     *Constant* where the row says `TRUE` (the global constants) and leave it
+     clear where it says `FALSE` (the controller's command and status
+     variables, which `SP_Controller` reads and writes).
    - Algorithm: paste the whole of `<POU>.st` into the ST editor.
 3. Assign the program `SP_Controller` to the primary periodic task
    (*Configurations and Setup > Task Settings*, period as configured).
 4. *Project > Check All Programs* and *Build*.
 
-The column order is the one of the variable tables as this generator knows
-them; if your Sysmac Studio version orders them differently, reorder the
-columns in the spreadsheet before pasting. Array initial values use Sysmac
-Studio's `[a, b, ...]` form, row-major for two dimensions.
+## Commanding the controller
+
+`SP_Controller` is commanded and read only through global variables (their
+comments in `{global_table}` say the same). Commands are edges: write TRUE,
+and FALSE again before the next command.
+
+{commands}
+
+Status, written by `SP_Controller` every scan:
+
+{status}
+
+Never paste a header row: Sysmac Studio would take it for a variable named
+`Name`. The column order is not confirmed by OMRON's Sysmac Studio Operation
+Manual (W504), which was not at hand; the NJ-series CPU Unit Software User's
+Manual (W501) names the attributes (Retain, Initial Value, Constant, Network
+Publish, AT) but not the table layout. The order used (global table: Name,
+Data Type, Initial Value, AT, Retain, Constant, Network Publish, Comment; a
+POU's table, once its *Usage* column is dropped: Name, Data Type, Initial
+Value, Retain, Constant, Comment) agrees with third-party notes on pasting
+into Sysmac Studio. Compare it with the table of your Sysmac Studio version
+before pasting and reorder the spreadsheet's columns if it differs: a row
+pasted with shifted columns is only caught at *Build*. Array initial values
+use Sysmac Studio's `[a, b, ...]` form, row-major for two dimensions.
 
 The code respects the NJ rules of SPEC section 5: LREAL for all kinematics,
 no recursion, no pointers, identifiers of at most 127 bytes without leading,
@@ -151,37 +175,49 @@ quadrant-correct ATAN2 (`SP_Atan2`), as the NJ has none.
 """
 
 
-def write(program: RenderedProgram, out_dir: str | Path) -> list[Path]:
-    """Write the body and variable files of every POU, the global table and the README."""
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    written = []
-    listing = []
+#: Prefixes of the comments of the controller's command and status variables.
+COMMAND_PREFIX, STATUS_PREFIX = "command:", "status:"
+
+
+def interface_table(pous: list[Pou], prefix: str) -> str:
+    """Markdown table of the global variables whose comment starts with ``prefix``."""
+    rows = ["| variable | type | meaning |", "|---|---|---|"]
+    for pou in pous:
+        for variable in pou.variables_of(GLOBAL):
+            if variable.comment.startswith(prefix):
+                meaning = variable.comment[len(prefix):].strip().replace("|", "\\|")
+                rows.append(f"| `{variable.name}` | `{sysmac_type(variable.type)}` | {meaning} |")
+    return "\n".join(rows) if len(rows) > 2 else "(none)"
+
+
+def files(program: RenderedProgram) -> dict[str, str]:
+    """``{file name: text}``: the global table, every POU's body and variable table, the README."""
     globals_ = [pou for pou in program.pous if pou.kind == "VAR_GLOBAL"]
-    path = out / GLOBAL_TABLE
-    path.write_text(global_table(globals_), encoding="utf-8")
-    written.append(path)
-    listing.append(f"| `{GLOBAL_TABLE}` | global variables: " + ", ".join(p.name for p in globals_) + " |")
+    texts = {GLOBAL_TABLE: global_table(globals_)}
+    listing = [f"| `{GLOBAL_TABLE}` | global variables: " + ", ".join(p.name for p in globals_) + " |"]
     for pou in program.pous:
         if pou.kind == "VAR_GLOBAL":
             continue
-        body = out / f"{pou.name}.st"
-        table = out / f"{pou.name}.variables.tsv"
-        body.write_text(body_text(pou), encoding="utf-8")
-        table.write_text(pou_table(pou), encoding="utf-8")
-        written += [body, table]
-        listing.append(f"| `{body.name}`, `{table.name}` | {KIND_NAMES[pou.kind]} `{pou.name}` |")
-    readme = out / "README.md"
-    axes = system_created(globals_)
-    readme.write_text(
-        README.format(
-            listing="\n".join(listing),
-            axes=", ".join(f"`{v.name}`" for v in axes) or "none",
-            global_table=GLOBAL_TABLE,
-            global_columns=", ".join(GLOBAL_COLUMNS),
-            pou_columns=", ".join(POU_COLUMNS),
-        ),
-        encoding="utf-8",
+        body, table = f"{pou.name}.st", f"{pou.name}.variables.tsv"
+        texts[body] = body_text(pou)
+        texts[table] = pou_table(pou)
+        listing.append(f"| `{body}`, `{table}` | {KIND_NAMES[pou.kind]} `{pou.name}` |")
+    texts["README.md"] = README.format(
+        listing="\n".join(listing),
+        axes=", ".join(f"`{v.name}`" for v in system_created(globals_)) or "none",
+        global_table=GLOBAL_TABLE,
+        global_columns=", ".join(GLOBAL_COLUMNS),
+        pou_columns=", ".join(POU_COLUMNS),
+        commands=interface_table(globals_, COMMAND_PREFIX),
+        status=interface_table(globals_, STATUS_PREFIX),
     )
-    written.append(readme)
-    return written
+    return texts
+
+
+#: First lines that mark a file in the folder as written by this export (see :mod:`stgen.exports.folder`).
+SIGNATURES = frozenset({GENERATED_BANNER, _row(POU_COLUMNS), _row(GLOBAL_COLUMNS), README.splitlines()[0]})
+
+
+def write(program: RenderedProgram, out_dir: str | Path) -> FolderUpdate:
+    """Write :func:`files` into ``out_dir`` and remove the stale files of earlier runs."""
+    return write_files(files(program), out_dir, SIGNATURES)

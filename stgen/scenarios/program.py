@@ -1,6 +1,6 @@
 """The whole controller as ST: the kinematics POUs plus the trajectory FBs and
-SP_Controller (:data:`CONTROLLER_TEMPLATES`, part of ``stgen generate``'s
-``POU_TEMPLATES``), rendered for a platform and loaded into ``st_runtime``.
+SP_Controller (:data:`stgen.render.CONTROLLER_TEMPLATES`), rendered for a
+platform and loaded into ``st_runtime``.
 """
 
 from __future__ import annotations
@@ -9,17 +9,6 @@ from functools import lru_cache
 
 from stgen import render
 from stgen.config import PlatformConfig
-
-#: Templates of the trajectory FBs and the controller, in dependency order.
-CONTROLLER_TEMPLATES = (
-    "trajectory/TRJ_Constants",
-    "trajectory/TRJ_Cycloidal",
-    "trajectory/TRJ_OceanWave",
-    "controller/SP_ControllerConstants",
-    "controller/SP_ControllerGlobals",
-    "controller/SP_Axes",
-    "controller/SP_Controller",
-)
 
 #: The PROGRAM the primary task runs.
 CONTROLLER_PROGRAM = "SP_Controller"
@@ -32,9 +21,6 @@ def render_controller_program(
     config: PlatformConfig | None = None, options: render.RenderOptions | None = None
 ) -> render.RenderedProgram:
     """Every POU the controller needs, in dependency order: what ``stgen generate`` writes."""
-    missing = [t for t in CONTROLLER_TEMPLATES if t not in render.POU_TEMPLATES]
-    if missing:  # a guard for whoever edits the POU list
-        raise render.RenderError(f"stgen.render.POU_TEMPLATES lacks the controller's templates {missing}")
     return render.render_program(config, options)
 
 
