@@ -13,8 +13,9 @@ Every section and key, with its default (SPEC table 1 for the geometry)::
 
 ``examples/default_platform.toml`` lists them all with comments. Every
 missing key takes its default; an unknown key, a wrong type or a broken rule
-raises :class:`ConfigError`, whose message names the dotted key
-(``geometry.rb``) and the rule. Constructing the dataclasses directly runs the
+raises :class:`ConfigError`, whose message names the file, the line and
+column where the key is written, the dotted key (``geometry.rb``) and the
+rule: ``platform.toml:7:1: geometry.rb: must be > 0, got -1.0``. Constructing the dataclasses directly runs the
 same checks.
 """
 
@@ -65,9 +66,10 @@ class ConfigError(ValueError):
         what = f"{self.key}: " if self.key else ""
         return f"{where}{what}{self.message}"
 
-    def with_source(self, source: str) -> "ConfigError":
-        """The same error, attributed to ``source``."""
-        return ConfigError(self.message, key=self.key, source=source, line=self.line, column=self.column)
+    def with_source(self, source: str, position: tuple[int, int] | None = None) -> "ConfigError":
+        """The same error, attributed to ``source`` (at ``position`` = (line, column) when given)."""
+        line, column = position if position is not None else (self.line, self.column)
+        return ConfigError(self.message, key=self.key, source=source, line=line, column=column)
 
 
 # --------------------------------------------------------------------------- field rules
@@ -380,7 +382,40 @@ def parse_config(text: str, source: str = "<string>") -> PlatformConfig:
     try:
         return config_from_mapping(data)
     except ConfigError as error:
-        raise error.with_source(source) from None
+        position = key_position(text, error.key) if error.key else None
+        raise error.with_source(source, position) from None
+
+
+_TABLE_HEADER = re.compile(r"^\s*\[\s*([A-Za-z0-9_-]+)\s*\]\s*(?:#.*)?$")
+_KEY_LINE = re.compile(r"^(\s*)([A-Za-z0-9_-]+)\s*=")
+
+
+def key_position(text: str, key: str) -> tuple[int, int] | None:
+    """(line, column), 1-based, where ``key`` is written in the TOML ``text``.
+
+    ``key`` is a dotted key as :class:`ConfigError` names it: ``section`` (the
+    ``[section]`` header), ``section.name`` or ``section.name[index]`` (the
+    line that assigns ``name`` inside ``[section]``). ``None`` when the key is
+    not written in that plain form (a default that broke a rule, say).
+    """
+    section, _, name = key.partition(".")
+    name = name.split("[", 1)[0]
+    current = None
+    for number, line in enumerate(text.splitlines(), 1):
+        header = _TABLE_HEADER.match(line)
+        if header:
+            current = header.group(1)
+            if current == section and not name:
+                return number, line.index("[") + 1
+            continue
+        assignment = _KEY_LINE.match(line)
+        if assignment is None:
+            continue
+        if (name and current == section and assignment.group(2) == name) or (
+            not name and current is None and assignment.group(2) == section
+        ):
+            return number, len(assignment.group(1)) + 1
+    return None
 
 
 def load_config(path: str | Path | None = None) -> PlatformConfig:

@@ -99,8 +99,25 @@ def test_validation_error_names_key_and_rule(toml, key, rule):
         parse_config(toml, source="platform.toml")
     assert caught.value.key == key
     message = str(caught.value)
-    assert message.startswith(f"platform.toml: {key}: ")
+    # Where the key is written: the line of the table header for a section, else the assignment.
+    line = 1 if "." not in key else 2
+    assert message.startswith(f"platform.toml:{line}:1: {key}: ")
     assert rule in message
+
+
+def test_validation_error_points_at_the_line_and_column_of_the_key():
+    text = "# platform\n[geometry]\nrb = 470.45\n\n[stroke]\n  min = 600  # too high\nmax = 600\n"
+    with pytest.raises(ConfigError) as caught:
+        parse_config(text, source="p.toml")
+    assert (caught.value.line, caught.value.column) == (6, 3)
+    assert str(caught.value).startswith("p.toml:6:3: stroke.min: must be less than stroke.max")
+
+
+def test_a_rule_broken_by_a_default_has_no_line():
+    # stroke.min = 20 puts the home pose (q = 9.9994 mm) outside; the key at fault, geometry, is not written.
+    with pytest.raises(ConfigError) as caught:
+        parse_config("[stroke]\nmin = 20\n", source="p.toml")
+    assert caught.value.line is None and str(caught.value).startswith("p.toml: geometry: ")
 
 
 def test_home_pose_out_of_stroke_is_rejected():
@@ -165,4 +182,4 @@ def test_validation_error_from_file_names_the_file(tmp_path):
     path.write_text("[geometry]\nrb = -3\n", encoding="utf-8")
     with pytest.raises(ConfigError) as caught:
         load_config(path)
-    assert str(caught.value).startswith(f"{path}: geometry.rb: ")
+    assert str(caught.value).startswith(f"{path}:2:1: geometry.rb: ")

@@ -61,3 +61,49 @@ def test_workspace_box_spans_the_reachable_heights_of_the_level_platform():
     reachable = inverse_kinematics(config.geometry, poses, config.stroke).reachable
     assert list(reachable) == [False, True, True, True, False]
     assert low < 0.0 < high  # the home pose lies inside
+
+
+def _inject(monkeypatch, file_name: str, correct: str, bugged: str) -> None:
+    """Make every rendering that verify loads carry a bug in one POU."""
+    import stgen.verify as verify_module
+
+    original = verify_module.kinematics_sources
+
+    def tampered(*args, **kwargs):
+        sources = original(*args, **kwargs)
+        assert correct in sources[file_name]
+        sources[file_name] = sources[file_name].replace(correct, bugged)
+        return sources
+
+    monkeypatch.setattr(verify_module, "kinematics_sources", tampered)
+
+
+def _rows(out: str) -> dict[str, list[str]]:
+    """Result column of every table row, by POU."""
+    rows: dict[str, list[str]] = {}
+    for line in out.splitlines():
+        words = line.split()
+        if words and words[-1] in ("PASS", "FAIL"):
+            rows.setdefault(words[0], []).append(words[-1])
+    return rows
+
+
+def test_a_1e6_mm_bug_in_the_rendered_ik_fails_only_the_ik_row(monkeypatch, capsys):
+    _inject(monkeypatch, "SP_InverseKinematics.st",
+            "- SP_RETRACTED_LENGTH;", "- SP_RETRACTED_LENGTH + 1.0E-6;")
+    assert main(["verify", "--poses", "60", "--fk-poses", "6", "--seed", "5"]) == 1
+    rows = _rows(capsys.readouterr().out)
+    assert rows["SP_InverseKinematics"] == ["FAIL"]
+    assert set(rows["SP_ForwardKinematics"]) == {"PASS"} and set(rows["SP_LuSolve"]) == {"PASS"}
+
+
+def test_a_wrong_jacobian_entry_fails_the_fk_rows(monkeypatch, capsys):
+    # Newton still converges with a slightly wrong Jacobian, but in other iteration counts.
+    _inject(monkeypatch, "SP_Jacobian.st",
+            "Jacobian[Leg, 1] := 2.0 * (XBar + U);", "Jacobian[Leg, 1] := 2.2 * (XBar + U);")
+    assert main(["verify", "--poses", "60", "--fk-poses", "6", "--seed", "5"]) == 1
+    out = capsys.readouterr().out
+    rows = _rows(out)
+    assert rows["SP_InverseKinematics"] == ["PASS"]
+    assert "FAIL" in rows["SP_ForwardKinematics"]
+    assert "iterations, reference" in out and "checks FAILED" in out
