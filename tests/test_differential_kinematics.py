@@ -21,6 +21,7 @@ from stgen.verify import (
     WARM_START_OFFSET,
     check_forward_kinematics,
     check_inverse_kinematics,
+    fk_solver,
     kinematics_sources,
     load_kinematics,
     random_poses,
@@ -43,11 +44,8 @@ def reachable_poses():
 
 
 def _solver(**changes) -> SolverConfig:
-    values = dict(tolerance=1e-9, singularity_threshold=CONFIG.solver.singularity_threshold,
-                  iterations_per_scan=CONFIG.solver.iterations_per_scan,
-                  max_iterations=CONFIG.solver.max_iterations, start_pose=CONFIG.solver.start_pose)
-    values.update(changes)
-    return SolverConfig(**values)
+    """The default solver settings with Tolerance 1e-9 (and ``changes``)."""
+    return fk_solver(CONFIG, **changes)
 
 
 # --------------------------------------------------------------------------- inverse kinematics

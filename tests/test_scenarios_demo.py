@@ -24,6 +24,9 @@ def short_waves(monkeypatch):
 def test_demo_writes_code_traces_figures_and_passes(tmp_path, short_waves, capsys):
     assert cli.main(["demo", "--quick", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
+    # The summary table has the columns the issue asks for.
+    for column in ("scenario", "duration", "scans", "max error", "faults"):
+        assert column in out
     for name in ("point_to_point", "airy_wave", "random_wave"):
         assert name in out
         assert (tmp_path / f"{name}.png").read_bytes()[:8] == PNG_SIGNATURE
