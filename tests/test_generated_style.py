@@ -56,3 +56,21 @@ def test_no_generated_line_ends_in_whitespace():
             continue
         for number, line in enumerate(text.splitlines(), 1):
             assert line == line.rstrip(), f"{name}:{number}: trailing whitespace"
+
+
+def _stem(variable) -> str:
+    """R11 -> R, LegY -> Leg: the name without its index or axis letter."""
+    return re.sub(r"(\d+|[XYZ])$", "", variable.name)
+
+
+def test_every_own_variable_is_commented_or_continues_a_commented_group():
+    # Externals are documented in their global lists. A group such as R11 .. R33 or
+    # LegX, LegY, LegZ carries its comment on its first member.
+    for variant, program in VARIANTS.items():
+        for pou in program.pous:
+            previous = None
+            for variable in pou.variables:
+                if variable.usage != "External" and not variable.comment:
+                    grouped = previous is not None and previous.usage == variable.usage and _stem(previous) == _stem(variable)
+                    assert grouped, f"{variant} {pou.name}.{variable.name} has no comment"
+                previous = variable
