@@ -5,8 +5,10 @@
 * :mod:`stgen.exports.sysmac`: OMRON Sysmac Studio (NJ501), where a POU is
   its ST body plus a variable table.
 
-Both take a :class:`stgen.render.RenderedProgram` and a folder, write their
-files and return the paths written.
+Each has ``files(program) -> {file name: text}`` and ``write(program,
+folder)``, which writes those files through :mod:`stgen.exports.folder`
+(stale generated files removed, a user's file never overwritten) and returns
+a :class:`stgen.exports.folder.FolderUpdate`.
 """
 
 #: First line of every generated ST file.
