@@ -130,7 +130,8 @@ def command_scenario(sim: ControllerSimulation, scenario: Scenario) -> None:
         g["SpMoveStart"] = True
     elif isinstance(motion, WaveMotion):
         components = motion.wave.components
-        padding = [0.0] * (8 - len(components))
+        # The component arrays are as long as the generated code declares them (TRJ_WAVE_COMPONENTS_MAX).
+        padding = [0.0] * (len(g["SpWaveAmplitude"]) - len(components))
         g["SpWaveComponentCount"] = len(components)
         g["SpWaveAmplitude"] = [c.amplitude_mm for c in components] + padding
         g["SpWavePeriod"] = [c.period_s for c in components] + padding
