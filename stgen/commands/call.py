@@ -14,13 +14,12 @@ Exit 0 on success, 1 on diagnostics or runtime faults, 2 on usage errors.
 from __future__ import annotations
 
 import json
-import os
 import sys
 
 from st_runtime.api import CallError, LoadError, load, parse_period
 from st_runtime.values import JsonValueError
 
-from .run import MAX_FAULT_LINES
+from .run import MAX_FAULT_LINES, kind_hint, one_line_usage_errors, source_problem
 
 
 def add_arguments(parser) -> None:
@@ -35,6 +34,7 @@ def add_arguments(parser) -> None:
     parser.add_argument("--period", default="1ms", help="scan period for FB calls (default 1ms)")
     parser.add_argument("--json", action="store_true", help="print the outputs as JSON (the default)")
     parser.add_argument("--dialect", choices=("iec", "nj"), default="iec")
+    one_line_usage_errors(parser)
 
 
 def usage(message: str) -> int:
@@ -48,6 +48,8 @@ def parse_sets(items: list[str]) -> dict:
         name, sep, text = item.partition("=")
         if not sep or not name.strip():
             raise ValueError(f"--set {item!r}: expected NAME=JSON")
+        if name.strip().upper() in (key.upper() for key in inputs):
+            raise ValueError(f"--set {name.strip()}: given twice")
         try:
             inputs[name.strip()] = json.loads(text)
         except json.JSONDecodeError as exc:
@@ -57,16 +59,21 @@ def parse_sets(items: list[str]) -> dict:
 
 
 def run(args) -> int:
-    missing = [p for p in args.paths if not os.path.exists(p)]
-    if missing:
-        return usage(f"no such file or directory: '{missing[0]}'")
+    problem = source_problem(args.paths)
+    if problem:
+        return usage(problem)
     if args.max_cycles <= 0:
         return usage("--max-cycles must be positive")
     try:
         inputs = parse_sets(args.set)
-        period = parse_period(args.period)
     except ValueError as exc:
         return usage(str(exc))
+    try:
+        period = parse_period(args.period)
+    except ValueError as exc:
+        return usage(f"--period: {exc}")
+    if period <= 0:
+        return usage("--period must be positive")
     try:
         project = load(args.paths, dialect=args.dialect)
     except LoadError as exc:
@@ -75,8 +82,11 @@ def run(args) -> int:
     try:
         result = project.call(args.pou, inputs, until=args.until, max_cycles=args.max_cycles,
                               period=period)
-    except (CallError, JsonValueError) as exc:
-        return usage(str(exc))
+    except JsonValueError as exc:
+        return usage(f"--set {exc}")
+    except CallError as exc:
+        hint = kind_hint(project, args.pou, "stgen run --program runs it")
+        return usage(f"{exc}{hint}" if "named" in str(exc) else str(exc))
     print(json.dumps(result["outputs"]))
     faults = result["faults"]
     for record in faults[:MAX_FAULT_LINES]:

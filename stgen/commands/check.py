@@ -2,7 +2,8 @@
 
 Diagnostics go to stderr, gcc-style with the source line and a caret; a
 one-line summary follows.  Exit 0 when there is no error (warnings allowed),
-1 on errors, 2 on usage errors (a path that does not exist).
+1 on errors, 2 on usage errors (a path that does not exist, nothing to
+check: no .st file in the paths given).
 """
 
 from __future__ import annotations
@@ -12,12 +13,15 @@ import sys
 
 from st_runtime.loader import load
 
+from .run import one_line_usage_errors, source_problem
+
 
 def add_arguments(parser) -> None:
     parser.add_argument("paths", nargs="+", metavar="FILE_OR_DIR",
                         help="ST files, or directories whose .st files are checked together")
     parser.add_argument("--dialect", choices=("iec", "nj"), default="iec",
                         help="nj: OMRON NJ identifier rules are errors (default iec: warnings)")
+    one_line_usage_errors(parser)
 
 
 def run(args) -> int:
@@ -25,6 +29,10 @@ def run(args) -> int:
     if missing:
         for path in missing:
             print(f"stgen check: error: no such file or directory: '{path}'", file=sys.stderr)
+        return 2
+    problem = source_problem(args.paths)
+    if problem:
+        print(f"stgen check: error: {problem}", file=sys.stderr)
         return 2
     result = load(args.paths, dialect=args.dialect)
     if result.diagnostics:

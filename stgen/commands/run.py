@@ -52,6 +52,7 @@ def add_arguments(parser) -> None:
     parser.add_argument("--budget", type=int, default=DEFAULT_BUDGET, metavar="N",
                         help="loop iterations per scan before 'task period exceeded' "
                              f"(default {DEFAULT_BUDGET})")
+    one_line_usage_errors(parser)
 
 
 def usage(message: str) -> int:
@@ -59,16 +60,71 @@ def usage(message: str) -> int:
     return 2
 
 
-def run(args) -> int:
-    missing = [p for p in args.paths if not os.path.exists(p)]
+# ---------------------------------------------------------------- shared checks
+# (`stgen call` and `stgen check` use these too: one wording for one mistake)
+
+
+def one_line_usage_errors(parser) -> None:
+    """Make argparse report a usage error as one line (exit 2), not a usage block.
+
+    argparse calls `parser.error` for a missing required option, a bad
+    choice or a value of the wrong type; it is replaced on this parser only.
+    """
+    def error(message: str):
+        if message.endswith("expected one argument"):
+            message += " (write a value that starts with '-' as --option=VALUE)"
+        print(f"{parser.prog}: error: {message} (see '{parser.prog} --help')", file=sys.stderr)
+        sys.exit(2)
+
+    parser.error = error
+
+
+def source_problem(paths: list[str]) -> str | None:
+    """Why `paths` give nothing to load (a missing path, no .st file at all)."""
+    from st_runtime.loader import expand
+
+    missing = [p for p in paths if not os.path.exists(p)]
     if missing:
-        return usage(f"no such file or directory: '{missing[0]}'")
+        return f"no such file or directory: '{missing[0]}'"
+    files, _ = expand(list(paths))
+    if not files:
+        where = ", ".join(f"'{p}'" for p in paths)
+        return f"no .st file in {where}"
+    return None
+
+
+def output_problem(path: str) -> str | None:
+    """Why a file cannot be written at `path` (checked before a long run)."""
+    if os.path.isdir(path):
+        return f"'{path}' is a directory"
+    parent = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(parent):
+        return f"cannot write '{path}': directory '{parent}' does not exist"
+    if not os.access(parent, os.W_OK) or (os.path.exists(path) and not os.access(path, os.W_OK)):
+        return f"cannot write '{path}': permission denied"
+    return None
+
+
+def kind_hint(project, name: str, wanted: str) -> str:
+    """', which is a FUNCTION' when `name` names a POU of another kind."""
+    pou = project.program.pous.get(name.upper())
+    if pou is None or pou.node is None:
+        return ""
+    return f" ('{pou.name}' is a {pou.kind}; {wanted})"
+
+
+def run(args) -> int:
+    problem = source_problem(args.paths)
+    if problem:
+        return usage(problem)
     if args.cycles < 0:
         return usage("--cycles must be 0 or more")
     if args.budget <= 0:
         return usage("--budget must be positive")
     if bool(args.trace) != bool(args.watch):
         return usage("--trace and --watch go together")
+    if args.trace and output_problem(args.trace):
+        return usage(f"--trace: {output_problem(args.trace)}")
     try:
         period = parse_period(args.period)
     except ValueError as exc:
@@ -98,7 +154,8 @@ def run(args) -> int:
     pou = project.program.pous.get(args.program.upper())
     if pou is None or pou.kind != "PROGRAM":
         names = sorted(p.name for p in project.program.pous.values() if p.kind == "PROGRAM")
-        return usage(f"no PROGRAM named '{args.program}' (programs: {', '.join(names) or 'none'})")
+        hint = kind_hint(project, args.program, "stgen call --pou calls it")
+        return usage(f"no PROGRAM named '{args.program}'{hint} (programs: {', '.join(names) or 'none'})")
     plc = project.controller(period=period, budget=args.budget, stop_on_fault=args.stop_on_fault)
     if motion is not None:
         motion.install(plc.controller)
@@ -120,7 +177,7 @@ def run(args) -> int:
         try:
             trace.write_csv(args.trace)
         except OSError as exc:
-            print(f"stgen run: error: cannot write {args.trace}: {exc}", file=sys.stderr)
+            print(f"stgen run: error: cannot write {args.trace}: {exc.strerror or exc}", file=sys.stderr)
             return 1
     return report_faults("stgen run", plc.controller)
 
