@@ -25,9 +25,11 @@ gives +/-infinity (NJ-series CPU Unit Software User's Manual W501, section
 "Data Processing" / "Special Value Calculations"), and LN/LOG list -inf as a
 valid output (Instructions Reference W502, LN and LOG).  `FUNCTIONS` does the
 same: SQRT(-1) = NaN, LN(0) = -inf, ASIN(2) = NaN, EXP(1000) = +inf, no
-fault.  `STRICT_FUNCTIONS` is the same table with those cases raising
-`STFault("F-MATH", ...)` instead, for runs that want to stop at the first
-non-finite value (a controller option picks the table).
+fault.  The compiled code uses `FUNCTIONS` only, for calls and for the `**`
+operator alike, and the constant folders call the same EXPT, so every path
+gives the NJ's result.  `STRICT_FUNCTIONS` is the same table with those cases
+raising `STFault("F-MATH", ...)` instead, for Python callers that want to
+stop at the first non-finite value; no controller option selects it.
 """
 
 from __future__ import annotations
