@@ -215,3 +215,16 @@ def test_simulated_axes_are_named_as_the_generated_axis_variables():
 
     declared = [v.name for v in render_controller_program(CONFIG).pou("SP_Axes").variables]
     assert declared == list(AXIS_NAMES)
+
+
+def test_mc_stop_is_not_given_to_the_axis_that_stopped_itself_in_errorstop(sim):
+    # PLCopen refuses MC_Stop on an axis in ErrorStop (it reports Error); the faulted axis
+    # has stopped itself, so the controller stops only the other five.
+    command_scenario(sim, AIRY_WAVE)
+    sim.run(2000)
+    sim.axes[2].fault(ErrorID.FOLLOWING_ERROR_EXCEEDED)
+    sim.run(2)
+    assert sim.state == _state(sim, "FAULT_STOPPING")
+    stops = sim.program["AxisStop"]
+    assert [stop["Execute"] for stop in stops] == [True, True, False, True, True, True]
+    assert not any(stop["Error"] for stop in stops)
