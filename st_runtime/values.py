@@ -189,6 +189,17 @@ def round_half_even(x: float) -> int:
     return round(x)
 
 
+def real_div(a: float, b: float) -> float:
+    """REAL/LREAL `/` with IEEE 754 results, no fault, as the NJ: x / 0 is
+    +-inf by the signs of x and of the zero, 0 / 0 and NaN / 0 are NaN."""
+    try:
+        return a / b
+    except ZeroDivisionError:
+        if a == 0 or a != a:
+            return math.nan
+        return math.copysign(math.inf, a) * math.copysign(1.0, b)
+
+
 # ---------------------------------------------------------------------------
 # TIME arithmetic (all in nanoseconds; results wrap to 64 bits as on the NJ,
 # whose MULTIME/DIVTIME raise no error on overflow)

@@ -459,3 +459,17 @@ def test_time_times_real_constants_fold_to_whole_nanoseconds():
     assert (main.raw("va"), main.raw("vb")) == (2, 8)
     assert (main["Quarter"], main["Eighth"]) == ("T#2ns", "T#125ms")
     assert plc.faults == []
+
+
+def test_real_division_by_zero_folds_as_it_runs():
+    # IEEE 754, no fault (NJ): 1/0 = +inf, -1/0 = -inf, 0/0 = NaN; a
+    # CONSTANT initial value folds to the same as the division at run time.
+    main, plc = run(
+        "p := one / zero; n := -one / zero; z := zero / zero; fp := Pos; fz := 0.0 / 0.0;",
+        "one : LREAL := 1.0; zero : LREAL; p, n, z, fp, fz : LREAL;\n"
+        "END_VAR\nVAR CONSTANT Pos : LREAL := 1.0 / 0.0; Neg : REAL := -1.0 / 0.0;")
+    inf = float("inf")
+    assert (main.raw("p"), main.raw("n"), main.raw("fp")) == (inf, -inf, inf)
+    assert main.raw("Neg") == -inf
+    assert main.raw("z") != main.raw("z") and main.raw("fz") != main.raw("fz")
+    assert plc.faults == []

@@ -2,8 +2,9 @@
 
 Values are Python `bool`, `int` (integers, bit strings, TIME nanoseconds) and
 `float`.  Integer `/` truncates toward zero and `MOD` takes the sign of the
-dividend, as on the controller; `**` is the library's EXPT, so a folded
-`0.0 ** -1.0` is +inf exactly as at run time.  A fold that cannot be done (a division by
+dividend, as on the controller; `**` is the library's EXPT and real `/`
+is `values.real_div`, so a folded `0.0 ** -1.0` or `1.0 / 0.0` is +inf
+exactly as at run time.  A fold that cannot be done (a division by
 zero, an operator on unsuitable values) yields `NOT_CONSTANT`, and the
 caller reports what it must.
 """
@@ -11,6 +12,7 @@ caller reports what it must.
 from __future__ import annotations
 
 from ..stdlib.functions import EXPT
+from ..values import real_div
 
 
 class _NotConstant:
@@ -83,7 +85,7 @@ def apply_binary(op: str, a, b):
         if op == "/":
             if both_int:
                 return int_div(a, b)
-            return a / b if b != 0 else NOT_CONSTANT
+            return real_div(float(a), float(b))     # x / 0.0 is +-inf or NaN, as at run time
         if op == "MOD":
             return int_mod(a, b) if both_int else NOT_CONSTANT
         if op == "**":      # the runtime's EXPT: IEEE results (+inf, NaN), no fault, as the NJ

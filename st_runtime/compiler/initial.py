@@ -17,6 +17,7 @@ from ..objects import default_value, is_aggregate, store_value
 from ..types import ArrayType, EnumType, FBType, StructType, Type, resolve_alias
 from .pysrc import pyident
 from ..stdlib.functions import EXPT
+from ..values import real_div
 from .support import idiv, imod
 
 
@@ -199,7 +200,7 @@ def _fold_binary(op: str, a, b, pos):
         if op == "/":
             if isinstance(a, int) and isinstance(b, int) and not isinstance(a, bool):
                 return idiv(a, b, ("", "", pos.line, pos.col))
-            return a / b
+            return real_div(float(a), float(b))
         if op == "MOD":
             return imod(a, b, ("", "", pos.line, pos.col))
         if op == "**":     # the library's EXPT, as at run time (IEEE results)

@@ -9,9 +9,9 @@ name starting with `_` (ST names are mangled to `v_...`, so they never meet).
 from __future__ import annotations
 
 import array
-import math
 
 from ..faults import STFault, ScanOverrun
+from ..values import real_div
 
 _F32 = array.array("f", [0.0])
 
@@ -53,14 +53,9 @@ def imod(a: int, b: int, where: tuple) -> int:
     return -r if a < 0 else r
 
 
-def rdiv(a: float, b: float) -> float:
-    """Real `/` with IEEE 754 results for a zero divisor (inf, -inf, nan)."""
-    try:
-        return a / b
-    except ZeroDivisionError:
-        if a == 0 or a != a:
-            return math.nan
-        return math.copysign(math.inf, a) * math.copysign(1.0, b)
+# Real `/` with IEEE 754 results for a zero divisor (inf, -inf, nan): the one
+# implementation in values, shared with the constant folders.
+rdiv = real_div
 
 
 def index_fault(value: int, lo: int, hi: int, name: str, where: tuple):
