@@ -106,7 +106,7 @@ def output_problem(path: str) -> str | None:
 
 
 def kind_hint(project, name: str, wanted: str) -> str:
-    """', which is a FUNCTION' when `name` names a POU of another kind."""
+    """" ('F' is a FUNCTION; <wanted>)" when `name` names a POU of another kind."""
     pou = project.program.pous.get(name.upper())
     if pou is None or pou.node is None:
         return ""
@@ -114,29 +114,11 @@ def kind_hint(project, name: str, wanted: str) -> str:
 
 
 def run(args) -> int:
-    problem = source_problem(args.paths)
+    problem = argument_problem(args)
     if problem:
         return usage(problem)
-    if args.cycles < 0:
-        return usage("--cycles must be 0 or more")
-    if args.budget <= 0:
-        return usage("--budget must be positive")
-    if bool(args.trace) != bool(args.watch):
-        return usage("--trace and --watch go together")
-    if args.trace and output_problem(args.trace):
-        return usage(f"--trace: {output_problem(args.trace)}")
-    try:
-        period = parse_period(args.period)
-    except ValueError as exc:
-        return usage(f"--period: {exc}")
-    if period <= 0:
-        return usage("--period must be positive")
     motion = None
     if args.axes:
-        if os.path.isdir(args.axes):
-            return usage(f"--axes: '{args.axes}' is a directory; expected a TOML file")
-        if not os.path.exists(args.axes):
-            return usage(f"--axes: no such file: '{args.axes}'")
         try:
             motion = read_axes(args.axes)
         except AxesFileError as exc:
@@ -156,7 +138,8 @@ def run(args) -> int:
         names = sorted(p.name for p in project.program.pous.values() if p.kind == "PROGRAM")
         hint = kind_hint(project, args.program, "stgen call --pou calls it")
         return usage(f"no PROGRAM named '{args.program}'{hint} (programs: {', '.join(names) or 'none'})")
-    plc = project.controller(period=period, budget=args.budget, stop_on_fault=args.stop_on_fault)
+    plc = project.controller(period=parse_period(args.period), budget=args.budget,
+                             stop_on_fault=args.stop_on_fault)
     if motion is not None:
         motion.install(plc.controller)
     program = plc.add_program(pou.name)
@@ -180,6 +163,32 @@ def run(args) -> int:
             print(f"stgen run: error: cannot write {args.trace}: {exc.strerror or exc}", file=sys.stderr)
             return 1
     return report_faults("stgen run", plc.controller)
+
+
+def argument_problem(args) -> str | None:
+    """The first usage error in the arguments of `stgen run`, before any loading."""
+    problem = source_problem(args.paths)
+    if problem:
+        return problem
+    if args.cycles < 0:
+        return "--cycles must be 0 or more"
+    if args.budget <= 0:
+        return "--budget must be positive"
+    if bool(args.trace) != bool(args.watch):
+        return "--trace and --watch go together"
+    if args.trace and output_problem(args.trace):
+        return f"--trace: {output_problem(args.trace)}"
+    try:
+        period = parse_period(args.period)
+    except ValueError as exc:
+        return f"--period: {exc}"
+    if period <= 0:
+        return "--period must be positive"
+    if args.axes and os.path.isdir(args.axes):
+        return f"--axes: '{args.axes}' is a directory; expected a TOML file"
+    if args.axes and not os.path.exists(args.axes):
+        return f"--axes: no such file: '{args.axes}'"
+    return None
 
 
 class AxesFileError(Exception):
