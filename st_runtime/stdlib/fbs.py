@@ -191,9 +191,11 @@ class F_TRIG(NativeFB):
     first cycle, SF_F_TRIG recognizes a falling edge when FALSE is applied
     and sets the output Q to TRUE. This behavior conforms to the F_TRIG of
     IEC 61131-3 from Edition 2" (content.helpme-codesys.com, CODESYS Safety
-    Extension, SF_F_TRIG).  An initial M = TRUE, which suppresses that first
-    pulse (Fernhill, CODESYS Standard), is the IEC 61131-8 guideline's
-    recommendation and edition 1's behaviour, not part 3's text.
+    Extension, SF_F_TRIG), which adds that CODESYS's standard F_TRIG keeps
+    edition 1's behaviour (no first pulse).  Fernhill Software declares
+    `M : BOOL := TRUE` and notes that this follows the recommendation of
+    IEC 61131-8 (guidelines), i.e. not part 3's text
+    (fernhillsoftware.com/help/iec-61131/common-elements/standard-function-blocks/edge.html).
     """
 
     NAME = "F_TRIG"
