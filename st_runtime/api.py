@@ -14,6 +14,15 @@
     project.call("Clamp", {"X": 5})           # a FUNCTION: {"return": ..., outputs...}
     project.call("Debounce", {"In": True}, until="Q", max_cycles=100)   # an FB, scan by scan
 
+Simulated servo axes (what `stgen run --axes FILE.toml` does):
+
+    from st_runtime.motion import MotionTask
+
+    axes = MotionTask.from_toml(open("axes.toml").read())   # [[axis]] tables
+    project = load(["plc/"], extra_sources={"axes": axes.globals_source()})
+    plc = project.controller()
+    axes.install(plc.controller)              # feedback in, programs, motion processing
+
 Values go in and come out as JSON-like Python values (see `values.to_json`):
 BOOL as bool, integers as int, REAL/LREAL as float, TIME as "T#1s500ms",
 arrays as nested lists, structs and FB instances as dicts.
