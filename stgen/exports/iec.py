@@ -88,7 +88,7 @@ task.
 All kinematics use LREAL; no pointers, references or object-oriented features
 are used. `stgen check --dialect nj` checks these files against the OMRON NJ
 rules, and a test parses every file with blark, an independent IEC parser
-(array initializers longer than 12 items cut short: blark's Earley parser
+(long array initializers cut short: blark's Earley parser
 cannot finish the 720-row Leibniz table).
 """
 
