@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import array
 import datetime as _dt
+import json
 import math
 import re
 from fractions import Fraction
@@ -484,8 +485,8 @@ def to_json(value, t):
 
     BOOL -> bool, integers -> int, REAL/LREAL -> float (a REAL in its shortest
     form that reads back to the same float32, 0.1 rather than
-    0.10000000149011612; non-finite values stay float: Python's json writes
-    them as NaN/Infinity), STRING -> str, TIME and
+    0.10000000149011612; non-finite values stay float here: `json_text`
+    writes them as the strings "NaN", "Infinity", "-Infinity"), STRING -> str, TIME and
     the date types -> IEC literal strings, enums -> the value's name, arrays ->
     nested lists (one level per dimension), structs and FB instances -> objects
     keyed by declared name.
@@ -513,6 +514,30 @@ def to_json(value, t):
     if isinstance(t, (StructType, FBType)):
         return {name: to_json(_member_value(value, name), ft) for name, ft in _members(t)}
     raise TypeError(f"cannot convert a value of type {t} to JSON")
+
+
+# Strict JSON (RFC 8259) has no NaN or infinity; Python's json module would
+# write the bare words NaN/Infinity, which JSON.parse, jq or serde refuse.
+# They go out as strings instead: nothing is lost (+inf, -inf and NaN stay
+# apart), float("Infinity") and JavaScript's Number("Infinity") read them
+# back, and `from_json` takes them for a REAL or LREAL.
+NON_FINITE_NAMES = {"NaN": math.nan, "Infinity": math.inf, "-Infinity": -math.inf}
+
+
+def _finite_only(data):
+    if isinstance(data, float) and not math.isfinite(data):
+        return "NaN" if math.isnan(data) else ("Infinity" if data > 0 else "-Infinity")
+    if isinstance(data, list):
+        return [_finite_only(item) for item in data]
+    if isinstance(data, dict):
+        return {key: _finite_only(item) for key, item in data.items()}
+    return data
+
+
+def json_text(data) -> str:
+    """`to_json` output as strict JSON text: non-finite reals as "NaN",
+    "Infinity" or "-Infinity" strings (what `stgen run/call --json` print)."""
+    return json.dumps(_finite_only(data), allow_nan=False)
 
 
 def _flat_elements(value) -> list:
@@ -568,8 +593,11 @@ def from_json(data, t, path: str = "value"):
                     f"{path}: {data} is outside the range of {t.name} ({t.min}..{t.max})")
             return data
         if kind == "real":
+            if isinstance(data, str) and data in NON_FINITE_NAMES:
+                data = NON_FINITE_NAMES[data]
             if isinstance(data, bool) or not isinstance(data, (int, float)):
-                fail(f"{t.name} number")
+                names = ' (or "NaN", "Infinity", "-Infinity")' if isinstance(data, str) else ""
+                fail(f"{t.name} number{names}")
             return to_real32(float(data)) if t.bits == 32 else float(data)
         if not isinstance(data, str):
             examples = {"time": "T#1s500ms", "date": "D#2024-01-31",

@@ -29,13 +29,32 @@ def build_parser() -> argparse.ArgumentParser:
     )
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
+    one_line_usage_errors(parser, hint=f"commands: {', '.join(COMMANDS)}; ")
     for name, help_text in COMMANDS.items():
         command_parser = sub.add_parser(name, help=help_text, description=help_text)
         module = _command_module(name)
         if module is not None:
             module.add_arguments(command_parser)
             command_parser.set_defaults(handler=module.run)
+        one_line_usage_errors(command_parser)
     return parser
+
+
+def one_line_usage_errors(parser: argparse.ArgumentParser, hint: str = "") -> None:
+    """Make argparse report a usage error as one line (exit 2), not a usage block.
+
+    argparse calls `parser.error` for an unknown option, a missing required
+    argument or subcommand, a bad choice or a value of the wrong type; it is
+    replaced on this parser only, so every parser of `stgen` speaks alike.
+    """
+    def error(message: str):
+        if message.endswith("expected one argument"):
+            message += " (write a value that starts with '-' as --option=VALUE)"
+        more = hint if message.endswith("required: COMMAND") else ""
+        print(f"{parser.prog}: error: {message} ({more}see '{parser.prog} --help')", file=sys.stderr)
+        sys.exit(2)
+
+    parser.error = error
 
 
 def _command_module(name: str):

@@ -80,10 +80,16 @@ CASES = [
     (["call", "{d}/fb.st", "--pou", "Acc", "--max-cycles", "0"], 2, "--max-cycles must be positive"),
     (["call", "{d}/fb.st", "--pou", "Acc", "--period", "0ms"], 2, "--period must be positive"),
     (["call", "{d}/fb.st", "--pou", "Acc", "--period", "1x"], 2, "--period: 'T#1x' is not a TIME"),
+    # the top-level parser speaks like the subcommands (was: a usage block, then the error)
+    ([], 2, "stgen: error: the following arguments are required: COMMAND (commands: check, run, call,"),
+    (["--bogus"], 2, "stgen: error: the following arguments are required: COMMAND"),
+    (["frob"], 2, "stgen: error: argument COMMAND: invalid choice: 'frob'"),
+    (["check", "{d}/main.st", "--bogus"], 2, "stgen: error: unrecognized arguments: --bogus (see 'stgen --help')"),
+    (["generate", "--bogus"], 2, "stgen generate: error: the following arguments are required: --out"),
 ]
 
 
-@pytest.mark.parametrize("argv, code, fragment", CASES, ids=[f"{n}-{c[0][0]}" for n, c in enumerate(CASES)])
+@pytest.mark.parametrize("argv, code, fragment", CASES, ids=[f"{n}-{(c[0] or ['none'])[0]}" for n, c in enumerate(CASES)])
 def test_broken_input_is_one_clear_line(d, capsys, argv, code, fragment):
     try:
         got = main([a.format(d=d) for a in argv])

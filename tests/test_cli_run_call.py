@@ -190,3 +190,60 @@ def test_call_with_var_in_out_prints_the_variables_after_the_call(files, capsys)
                            "--set", "v=[1, -2, 3.5]", "--set", "count=41")
     assert code == 0, err
     assert json.loads(out) == {"return": True, "v": [-1.0, 2.0, -3.5], "count": 42, "cycles": 1}
+
+
+NON_FINITE = """
+PROGRAM Inf
+VAR zero : LREAL; up : LREAL; down : REAL; undefined : LREAL; v : ARRAY[0..1] OF LREAL; END_VAR
+up := 1.0 / zero;                      (* IEC 60559: +inf *)
+down := LREAL_TO_REAL(-1.0 / zero);    (* -inf *)
+undefined := zero / zero;              (* NaN *)
+v[1] := up;
+END_PROGRAM
+FUNCTION Div : LREAL
+VAR_INPUT a : LREAL; b : LREAL; END_VAR
+Div := a / b;
+END_FUNCTION
+"""
+
+
+def strict_loads(text):
+    """json.loads as a strict RFC 8259 reader: bare NaN/Infinity are refused."""
+    def refuse(word):
+        raise ValueError(f"not JSON: {word}")
+    return json.loads(text, parse_constant=refuse)
+
+
+def test_json_is_strict_non_finite_reals_are_strings(tmp_path, capsys):
+    # Python's json would print bare NaN/Infinity, which JSON.parse and jq
+    # refuse; the contract is strict JSON with those values as strings.
+    (tmp_path / "inf.st").write_text(NON_FINITE)
+    code, out, err = stgen(capsys, "run", tmp_path / "inf.st", "--program", "Inf", "--json")
+    assert code == 0, err
+    assert strict_loads(out) == {"zero": 0.0, "up": "Infinity", "down": "-Infinity",
+                                 "undefined": "NaN", "v": [0.0, "Infinity"]}
+    code, out, err = stgen(capsys, "call", tmp_path / "inf.st", "--pou", "Div",
+                           "--set", "a=-1", "--set", "b=0", "--json")
+    assert code == 0, err
+    assert strict_loads(out) == {"return": "-Infinity", "cycles": 1}
+
+
+def test_call_takes_the_non_finite_strings_back(tmp_path, capsys):
+    (tmp_path / "inf.st").write_text(NON_FINITE)
+    code, out, _ = stgen(capsys, "call", tmp_path / "inf.st", "--pou", "Div",
+                         "--set", 'a="Infinity"', "--set", "b=-2", "--json")
+    assert code == 0 and strict_loads(out)["return"] == "-Infinity"
+    code, out, _ = stgen(capsys, "call", tmp_path / "inf.st", "--pou", "Div",
+                         "--set", 'a="NaN"', "--set", "b=1", "--json")
+    assert code == 0 and strict_loads(out)["return"] == "NaN"
+    code, _, err = stgen(capsys, "call", tmp_path / "inf.st", "--pou", "Div",
+                         "--set", 'a="inf"', "--set", "b=1", "--json")
+    assert code == 2 and 'expected LREAL number (or "NaN", "Infinity", "-Infinity")' in err
+
+
+def test_json_help_states_the_non_finite_rule(capsys):
+    for command in ("run", "call"):
+        with pytest.raises(SystemExit):
+            main([command, "--help"])
+        out, _ = capsys.readouterr()
+        assert '"Infinity"' in " ".join(out.split()), command

@@ -6,7 +6,9 @@ simulated clock by default) until its BOOL output named by `--until` is TRUE
 or `--max-cycles` (default 1000) scans have run; without `--until` it is
 called once.  Inputs are JSON: `--set 'Pose=[0,0,150,0,0,0]'`, `--set
 'PT="T#1s"'`.  stdout gets one JSON object: the outputs (and VAR_IN_OUTs) by
-declared name, for a FUNCTION also "return", plus "cycles".
+declared name, for a FUNCTION also "return", plus "cycles".  The JSON is
+strict: a non-finite REAL/LREAL is the string "NaN", "Infinity" or
+"-Infinity" (and `--set X='"Infinity"'` gives one).
 
 Exit 0 on success, 1 on diagnostics or runtime faults, 2 on usage errors.
 """
@@ -17,9 +19,9 @@ import json
 import sys
 
 from st_runtime.api import CallError, LoadError, load, parse_period
-from st_runtime.values import JsonValueError
+from st_runtime.values import JsonValueError, json_text
 
-from .run import MAX_FAULT_LINES, kind_hint, one_line_usage_errors, source_problem
+from .run import MAX_FAULT_LINES, kind_hint, source_problem
 
 
 def add_arguments(parser) -> None:
@@ -32,9 +34,11 @@ def add_arguments(parser) -> None:
     parser.add_argument("--max-cycles", type=int, default=1000, metavar="N",
                         help="most scans for an FB with --until (default 1000)")
     parser.add_argument("--period", default="1ms", help="scan period for FB calls (default 1ms)")
-    parser.add_argument("--json", action="store_true", help="print the outputs as JSON (the default)")
+    parser.add_argument("--json", action="store_true",
+                        help="print the outputs as one strict JSON object (the default; a"
+                             ' non-finite REAL/LREAL is the string "NaN", "Infinity" or'
+                             ' "-Infinity", which --set also accepts)')
     parser.add_argument("--dialect", choices=("iec", "nj"), default="iec")
-    one_line_usage_errors(parser)
 
 
 def usage(message: str) -> int:
@@ -87,7 +91,7 @@ def run(args) -> int:
     except CallError as exc:
         hint = kind_hint(project, args.pou, "stgen run --program runs it")
         return usage(f"{exc}{hint}" if "named" in str(exc) else str(exc))
-    print(json.dumps(result["outputs"]))
+    print(json_text(result["outputs"]))
     faults = result["faults"]
     for record in faults[:MAX_FAULT_LINES]:
         print(record.render(), file=sys.stderr)

@@ -13,7 +13,7 @@ import sys
 
 from st_runtime.loader import load
 
-from .run import one_line_usage_errors, source_problem
+from .run import source_problem
 
 
 def add_arguments(parser) -> None:
@@ -21,7 +21,6 @@ def add_arguments(parser) -> None:
                         help="ST files, or directories whose .st files are checked together")
     parser.add_argument("--dialect", choices=("iec", "nj"), default="iec",
                         help="nj: OMRON NJ identifier rules are errors (default iec: warnings)")
-    one_line_usage_errors(parser)
 
 
 def run(args) -> int:

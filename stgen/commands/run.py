@@ -5,7 +5,8 @@ The program runs on the primary task of a simulated controller for N scans
 (default 1).  With `--json`, stdout gets one JSON object: every variable of
 the program instance by its declared name (BOOL true/false, integers, reals,
 strings, TIME as an IEC literal "T#1s500ms", arrays as nested lists, structs
-and FB instances as objects).  Without it, one `name = value` line per
+and FB instances as objects; strict JSON, so a non-finite REAL/LREAL is the
+string "NaN", "Infinity" or "-Infinity").  Without it, one `name = value` line per
 variable.  Runtime faults go to stderr as
 `file:line:col: fault[CODE]: message (scan N)`.
 
@@ -20,12 +21,12 @@ file, 2 on usage errors.
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 
 from st_runtime.api import LoadError, load, parse_period
 from st_runtime.controller import DEFAULT_BUDGET
+from st_runtime.values import json_text
 
 MAX_FAULT_LINES = 100
 
@@ -36,7 +37,11 @@ def add_arguments(parser) -> None:
     parser.add_argument("--program", required=True, metavar="NAME", help="the PROGRAM to run")
     parser.add_argument("--cycles", type=int, default=1, metavar="N", help="scans to run (default 1)")
     parser.add_argument("--period", default="1ms", help="primary task period (default 1ms)")
-    parser.add_argument("--json", action="store_true", help="print the program's variables as JSON")
+    parser.add_argument("--json", action="store_true",
+                        help="print the program's variables as one strict JSON object (TIME as"
+                             ' "T#1s500ms", arrays as nested lists, structs and FBs as objects;'
+                             ' a non-finite REAL/LREAL as the string "NaN", "Infinity" or'
+                             ' "-Infinity")')
     parser.add_argument("--trace", metavar="OUT.csv", help="write the watched variables of every scan")
     parser.add_argument("--watch", nargs="+", metavar="PATH", default=[],
                         help="variables to trace: x, fb.Q, Axis.Cmd.Pos, a[3], m[1,2]")
@@ -52,7 +57,6 @@ def add_arguments(parser) -> None:
     parser.add_argument("--budget", type=int, default=DEFAULT_BUDGET, metavar="N",
                         help="loop iterations per scan before 'task period exceeded' "
                              f"(default {DEFAULT_BUDGET})")
-    one_line_usage_errors(parser)
 
 
 def usage(message: str) -> int:
@@ -61,22 +65,8 @@ def usage(message: str) -> int:
 
 
 # ---------------------------------------------------------------- shared checks
-# (`stgen call` and `stgen check` use these too: one wording for one mistake)
-
-
-def one_line_usage_errors(parser) -> None:
-    """Make argparse report a usage error as one line (exit 2), not a usage block.
-
-    argparse calls `parser.error` for a missing required option, a bad
-    choice or a value of the wrong type; it is replaced on this parser only.
-    """
-    def error(message: str):
-        if message.endswith("expected one argument"):
-            message += " (write a value that starts with '-' as --option=VALUE)"
-        print(f"{parser.prog}: error: {message} (see '{parser.prog} --help')", file=sys.stderr)
-        sys.exit(2)
-
-    parser.error = error
+# (`stgen call` and `stgen check` use these too: one wording for one mistake;
+# stgen.cli makes argparse's own usage errors one line for every command)
 
 
 def source_problem(paths: list[str]) -> str | None:
@@ -152,10 +142,10 @@ def run(args) -> int:
     plc.run(args.cycles)
     values = program.to_json()
     if args.json:
-        print(json.dumps(values))
+        print(json_text(values))
     else:
         for name, value in values.items():
-            print(f"{name} = {json.dumps(value)}")
+            print(f"{name} = {json_text(value)}")
     if trace is not None:
         try:
             trace.write_csv(args.trace)
