@@ -232,25 +232,23 @@ def test_ctud_up_down_and_simultaneous_edges():
 
 # --- bistables --------------------------------------------------------------
 
-@pytest.mark.parametrize("s1, r, before, after", [
-    (False, False, False, False), (False, False, True, True),
-    (True, False, False, True), (False, True, True, False),
-    (True, True, False, True), (True, True, True, True),    # set dominates
-])
-def test_sr_truth_table(s1, r, before, after):
-    sr = make(fbs.SR)
-    sr.v_Q1 = before
-    Clock().step(sr, S1=s1, R=r)
-    assert sr.v_Q1 is after
+# (set, reset, Q1 before, Q1 after), from the standard's bodies:
+# SR: Q1 := S1 OR (NOT R AND Q1); RS: Q1 := NOT R1 AND (S OR Q1).
+BISTABLE_TABLES = {
+    "SR": ("S1", "R", [(False, False, False, False), (False, False, True, True),
+                       (True, False, False, True), (False, True, True, False),
+                       (True, True, False, True), (True, True, True, True)]),      # set dominates
+    "RS": ("S", "R1", [(False, False, False, False), (False, False, True, True),
+                       (True, False, False, True), (False, True, True, False),
+                       (True, True, False, False), (True, True, True, False)]),    # reset dominates
+}
 
 
-@pytest.mark.parametrize("s, r1, before, after", [
-    (False, False, False, False), (False, False, True, True),
-    (True, False, False, True), (False, True, True, False),
-    (True, True, False, False), (True, True, True, False),  # reset dominates
-])
-def test_rs_truth_table(s, r1, before, after):
-    rs = make(fbs.RS)
-    rs.v_Q1 = before
-    Clock().step(rs, S=s, R1=r1)
-    assert rs.v_Q1 is after
+@pytest.mark.parametrize("name, set_value, reset_value, before, after", [
+    (name, *row) for name, (_, _, rows) in BISTABLE_TABLES.items() for row in rows])
+def test_bistable_truth_tables(name, set_value, reset_value, before, after):
+    set_pin, reset_pin, _ = BISTABLE_TABLES[name]
+    fb = make(getattr(fbs, name))
+    fb.v_Q1 = before
+    Clock().step(fb, **{set_pin: set_value, reset_pin: reset_value})
+    assert fb.v_Q1 is after

@@ -2,7 +2,8 @@
 
 Values are Python `bool`, `int` (integers, bit strings, TIME nanoseconds) and
 `float`.  Integer `/` truncates toward zero and `MOD` takes the sign of the
-dividend, as on the controller; `**` is the library's EXPT and real `/`
+dividend, as on the controller (the run time's `values.int_div`/`int_mod`);
+`**` is the library's EXPT and real `/`
 is `values.real_div`, so a folded `0.0 ** -1.0` or `1.0 / 0.0` is +inf
 exactly as at run time.  A fold that cannot be done (a division by
 zero, an operator on unsuitable values) yields `NOT_CONSTANT`, and the
@@ -11,8 +12,9 @@ caller reports what it must.
 
 from __future__ import annotations
 
+from ..faults import STFault
 from ..stdlib.functions import EXPT
-from ..values import real_div
+from ..values import int_div, int_mod, real_div
 
 
 class _NotConstant:
@@ -25,19 +27,6 @@ NOT_CONSTANT = _NotConstant()
 
 class DivisionByZero(Exception):
     pass
-
-
-def int_div(a: int, b: int) -> int:
-    if b == 0:
-        raise DivisionByZero()
-    q = abs(a) // abs(b)
-    return q if (a >= 0) == (b >= 0) else -q
-
-
-def int_mod(a: int, b: int) -> int:
-    if b == 0:
-        raise DivisionByZero()
-    return a - int_div(a, b) * b
 
 
 def _is_number(v) -> bool:
@@ -90,6 +79,8 @@ def apply_binary(op: str, a, b):
             return int_mod(a, b) if both_int else NOT_CONSTANT
         if op == "**":      # the runtime's EXPT: IEEE results (+inf, NaN), no fault, as the NJ
             return EXPT(float(a), b)
+    except STFault:         # values.int_div/int_mod: the run-time fault of a zero divisor
+        raise DivisionByZero() from None
     except (OverflowError, ZeroDivisionError, ValueError):
         return NOT_CONSTANT
     return NOT_CONSTANT

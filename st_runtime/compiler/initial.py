@@ -15,10 +15,8 @@ from typing import Callable
 from .. import ast
 from ..objects import default_value, is_aggregate, store_value
 from ..types import ArrayType, EnumType, FBType, StructType, Type, resolve_alias
+from ..checker.constfold import NOT_CONSTANT, DivisionByZero, apply_binary
 from .pysrc import pyident
-from ..stdlib.functions import EXPT
-from ..values import real_div
-from .support import idiv, imod
 
 
 class CompileError(Exception):
@@ -190,30 +188,11 @@ def _type_initializers(program) -> dict[str, object]:
 
 
 def _fold_binary(op: str, a, b, pos):
+    """The checker's folder (one set of IEC rules for constants), or a CompileError."""
     try:
-        if op == "+":
-            return a + b
-        if op == "-":
-            return a - b
-        if op == "*":
-            return a * b
-        if op == "/":
-            if isinstance(a, int) and isinstance(b, int) and not isinstance(a, bool):
-                return idiv(a, b, ("", "", pos.line, pos.col))
-            return real_div(float(a), float(b))
-        if op == "MOD":
-            return imod(a, b, ("", "", pos.line, pos.col))
-        if op == "**":     # the library's EXPT, as at run time (IEEE results)
-            return EXPT(float(a), b)
-        if op in ("AND", "&"):
-            return a & b
-        if op == "OR":
-            return a | b
-        if op == "XOR":
-            return a ^ b
-        comparisons = {"<": a < b, ">": a > b, "<=": a <= b, ">=": a >= b, "=": a == b, "<>": a != b}
-        if op in comparisons:
-            return comparisons[op]
-    except Exception:
-        pass
-    raise CompileError(f"cannot evaluate constant expression with '{op}'", pos)
+        value = apply_binary(op, a, b)
+    except DivisionByZero:
+        value = NOT_CONSTANT
+    if value is NOT_CONSTANT:
+        raise CompileError(f"cannot evaluate constant expression with '{op}'", pos)
+    return value

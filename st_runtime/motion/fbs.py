@@ -138,6 +138,28 @@ class _ExecuteFB(_AxisFB):
         pass
 
 
+# The outputs every command that moves the axis has after its own first one.
+MOVE_OUTPUTS = "Busy : BOOL; Active : BOOL; CommandAborted : BOOL; Error : BOOL; ErrorID : WORD;"
+
+
+def _axis_fb_declaration(name: str, inputs: str, outputs: str) -> str:
+    """The ST declaration of a motion FB: the axis by reference (VAR_IN_OUT
+    Axis : AXIS_REF, as Sysmac declares it), then its inputs and outputs."""
+    return f"""
+FUNCTION_BLOCK {name}
+VAR_IN_OUT
+    Axis : AXIS_REF;
+END_VAR
+VAR_INPUT
+    {inputs}
+END_VAR
+VAR_OUTPUT
+    {outputs}
+END_VAR
+END_FUNCTION_BLOCK
+"""
+
+
 def _check_buffer_mode(mode: int) -> None:
     if mode != BUFFER_MODE_ABORTING:
         raise MotionRefused(ErrorID.BUFFER_MODE_NOT_SUPPORTED)
@@ -152,22 +174,10 @@ class MC_Power(_AxisFB):
     """
 
     NAME = "MC_Power"
-    DECLARATION = """
-FUNCTION_BLOCK MC_Power
-VAR_IN_OUT
-    Axis : AXIS_REF;
-END_VAR
-VAR_INPUT
-    Enable : BOOL;
-END_VAR
-VAR_OUTPUT
-    Status : BOOL;
-    Busy : BOOL;
-    Error : BOOL;
-    ErrorID : WORD;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = _axis_fb_declaration(
+        "MC_Power",
+        inputs="Enable : BOOL;",
+        outputs="Status : BOOL; Busy : BOOL; Error : BOOL; ErrorID : WORD;")
 
     def execute(self, ctx) -> None:
         axis = self._axis(ctx)
@@ -194,23 +204,10 @@ class MC_Reset(_ExecuteFB):
     """
 
     NAME = "MC_Reset"
-    DECLARATION = """
-FUNCTION_BLOCK MC_Reset
-VAR_IN_OUT
-    Axis : AXIS_REF;
-END_VAR
-VAR_INPUT
-    Execute : BOOL;
-END_VAR
-VAR_OUTPUT
-    Done : BOOL;
-    Busy : BOOL;
-    Failure : BOOL;
-    Error : BOOL;
-    ErrorID : WORD;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = _axis_fb_declaration(
+        "MC_Reset",
+        inputs="Execute : BOOL;",
+        outputs="Done : BOOL; Busy : BOOL; Failure : BOOL; Error : BOOL; ErrorID : WORD;")
     FINAL_OUTPUTS = ("v_DONE", "v_FAILURE", "v_ERROR")
     ACTIVE_OUTPUT = False
 
@@ -232,23 +229,10 @@ class MC_Home(_ExecuteFB):
     """
 
     NAME = "MC_Home"
-    DECLARATION = """
-FUNCTION_BLOCK MC_Home
-VAR_IN_OUT
-    Axis : AXIS_REF;
-END_VAR
-VAR_INPUT
-    Execute : BOOL;
-END_VAR
-VAR_OUTPUT
-    Done : BOOL;
-    Busy : BOOL;
-    CommandAborted : BOOL;
-    Error : BOOL;
-    ErrorID : WORD;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = _axis_fb_declaration(
+        "MC_Home",
+        inputs="Execute : BOOL;",
+        outputs="Done : BOOL; Busy : BOOL; CommandAborted : BOOL; Error : BOOL; ErrorID : WORD;")
     ACTIVE_OUTPUT = False
 
     def _begin(self, axis: Axis) -> MotionCommand:
@@ -266,27 +250,10 @@ class MC_Stop(_ExecuteFB):
     """
 
     NAME = "MC_Stop"
-    DECLARATION = """
-FUNCTION_BLOCK MC_Stop
-VAR_IN_OUT
-    Axis : AXIS_REF;
-END_VAR
-VAR_INPUT
-    Execute : BOOL;
-    Deceleration : LREAL;
-    Jerk : LREAL;
-    BufferMode : _eMC_BUFFER_MODE;
-END_VAR
-VAR_OUTPUT
-    Done : BOOL;
-    Busy : BOOL;
-    Active : BOOL;
-    CommandAborted : BOOL;
-    Error : BOOL;
-    ErrorID : WORD;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = _axis_fb_declaration(
+        "MC_Stop",
+        inputs="Execute : BOOL; Deceleration : LREAL; Jerk : LREAL; BufferMode : _eMC_BUFFER_MODE;",
+        outputs="Done : BOOL; " + MOVE_OUTPUTS)
 
     def _begin(self, axis: Axis) -> MotionCommand:
         _check_buffer_mode(self.v_BUFFERMODE)
@@ -311,31 +278,12 @@ class MC_MoveAbsolute(_ExecuteFB):
     """
 
     NAME = "MC_MoveAbsolute"
-    DECLARATION = """
-FUNCTION_BLOCK MC_MoveAbsolute
-VAR_IN_OUT
-    Axis : AXIS_REF;
-END_VAR
-VAR_INPUT
-    Execute : BOOL;
-    Position : LREAL;
-    Velocity : LREAL;
-    Acceleration : LREAL;
-    Deceleration : LREAL;
-    Jerk : LREAL;
-    Direction : _eMC_DIRECTION;
-    BufferMode : _eMC_BUFFER_MODE;
-END_VAR
-VAR_OUTPUT
-    Done : BOOL;
-    Busy : BOOL;
-    Active : BOOL;
-    CommandAborted : BOOL;
-    Error : BOOL;
-    ErrorID : WORD;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = _axis_fb_declaration(
+        "MC_MoveAbsolute",
+        inputs="Execute : BOOL; Position : LREAL; Velocity : LREAL; Acceleration : LREAL;"
+               " Deceleration : LREAL; Jerk : LREAL; Direction : _eMC_DIRECTION;"
+               " BufferMode : _eMC_BUFFER_MODE;",
+        outputs="Done : BOOL; " + MOVE_OUTPUTS)
 
     def _begin(self, axis: Axis) -> MotionCommand:
         _check_buffer_mode(self.v_BUFFERMODE)
@@ -359,27 +307,10 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
     """
 
     NAME = "MC_SyncMoveAbsolute"
-    DECLARATION = """
-FUNCTION_BLOCK MC_SyncMoveAbsolute
-VAR_IN_OUT
-    Axis : AXIS_REF;
-END_VAR
-VAR_INPUT
-    Execute : BOOL;
-    Position : LREAL;
-    Direction : _eMC_DIRECTION;
-    BufferMode : _eMC_BUFFER_MODE;
-END_VAR
-VAR_OUTPUT
-    InPosition : BOOL;
-    Busy : BOOL;
-    Active : BOOL;
-    CommandAborted : BOOL;
-    Error : BOOL;
-    ErrorID : WORD;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = _axis_fb_declaration(
+        "MC_SyncMoveAbsolute",
+        inputs="Execute : BOOL; Position : LREAL; Direction : _eMC_DIRECTION; BufferMode : _eMC_BUFFER_MODE;",
+        outputs="InPosition : BOOL; " + MOVE_OUTPUTS)
     FINAL_OUTPUTS = ("v_COMMANDABORTED", "v_ERROR")
 
     def _begin(self, axis: Axis) -> MotionCommand:

@@ -22,13 +22,21 @@ INT_MAX = 32767
 INT_MIN = -32768
 
 
-@native_fb
-class TON(NativeFB):
-    """On-delay: Q rises once IN has been TRUE for PT; IN FALSE resets."""
+def _time_up(timer, now: int) -> bool:
+    """Set a timer's ET to the time since its StartTime, capped at PT;
+    TRUE once PT has elapsed (the one rule TON, TOF and TP share)."""
+    elapsed = now - timer.v_STARTTIME
+    if elapsed >= timer.v_PT:
+        timer.v_ET = timer.v_PT
+        return True
+    timer.v_ET = elapsed
+    return False
 
-    NAME = "TON"
-    DECLARATION = """
-FUNCTION_BLOCK TON
+
+def _timer_declaration(name: str, memory: str) -> str:
+    """The ST declaration of a timer: IN, PT in; Q, ET out; its own memory."""
+    return f"""
+FUNCTION_BLOCK {name}
 VAR_INPUT
     IN : BOOL;
     PT : TIME;
@@ -38,11 +46,18 @@ VAR_OUTPUT
     ET : TIME;
 END_VAR
 VAR
-    StartTime : TIME;
-    Running : BOOL;
+    {memory}
 END_VAR
 END_FUNCTION_BLOCK
 """
+
+
+@native_fb
+class TON(NativeFB):
+    """On-delay: Q rises once IN has been TRUE for PT; IN FALSE resets."""
+
+    NAME = "TON"
+    DECLARATION = _timer_declaration("TON", "StartTime : TIME; Running : BOOL;")
 
     def execute(self, ctx) -> None:
         if not self.v_IN:
@@ -54,14 +69,7 @@ END_FUNCTION_BLOCK
         if not self.v_RUNNING:
             self.v_RUNNING = True
             self.v_STARTTIME = now
-        pt = self.v_PT
-        elapsed = now - self.v_STARTTIME
-        if elapsed >= pt:
-            self.v_ET = pt
-            self.v_Q = True
-        else:
-            self.v_ET = elapsed
-            self.v_Q = False
+        self.v_Q = _time_up(self, now)
 
 
 @native_fb
@@ -69,23 +77,7 @@ class TOF(NativeFB):
     """Off-delay: Q follows IN up, and falls PT after IN fell."""
 
     NAME = "TOF"
-    DECLARATION = """
-FUNCTION_BLOCK TOF
-VAR_INPUT
-    IN : BOOL;
-    PT : TIME;
-END_VAR
-VAR_OUTPUT
-    Q : BOOL;
-    ET : TIME;
-END_VAR
-VAR
-    StartTime : TIME;
-    Running : BOOL;
-    PrevIN : BOOL;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = _timer_declaration("TOF", "StartTime : TIME; Running : BOOL; PrevIN : BOOL;")
 
     def execute(self, ctx) -> None:
         now = ctx.now_ns
@@ -97,15 +89,9 @@ END_FUNCTION_BLOCK
             if self.v_PREVIN:               # falling edge of IN: start timing
                 self.v_RUNNING = True
                 self.v_STARTTIME = now
-            if self.v_RUNNING:
-                pt = self.v_PT
-                elapsed = now - self.v_STARTTIME
-                if elapsed >= pt:
-                    self.v_ET = pt
-                    self.v_Q = False
-                    self.v_RUNNING = False
-                else:
-                    self.v_ET = elapsed
+            if self.v_RUNNING and _time_up(self, now):
+                self.v_Q = False
+                self.v_RUNNING = False
         self.v_PREVIN = self.v_IN
 
 
@@ -118,22 +104,7 @@ class TP(NativeFB):
     """
 
     NAME = "TP"
-    DECLARATION = """
-FUNCTION_BLOCK TP
-VAR_INPUT
-    IN : BOOL;
-    PT : TIME;
-END_VAR
-VAR_OUTPUT
-    Q : BOOL;
-    ET : TIME;
-END_VAR
-VAR
-    StartTime : TIME;
-    PrevIN : BOOL;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = _timer_declaration("TP", "StartTime : TIME; PrevIN : BOOL;")
 
     def execute(self, ctx) -> None:
         now = ctx.now_ns
@@ -144,14 +115,8 @@ END_FUNCTION_BLOCK
                 self.v_STARTTIME = now
             elif not inp:
                 self.v_ET = 0
-        if self.v_Q:
-            pt = self.v_PT
-            elapsed = now - self.v_STARTTIME
-            if elapsed >= pt:
-                self.v_ET = pt
-                self.v_Q = False
-            else:
-                self.v_ET = elapsed
+        if self.v_Q and _time_up(self, now):
+            self.v_Q = False
         self.v_PREVIN = inp
 
 
