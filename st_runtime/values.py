@@ -26,6 +26,8 @@ from fractions import Fraction
 from typing import Callable
 
 from .faults import STFault
+from .literals import (NS_PER_UNIT, encode_date, encode_date_and_time, encode_duration,
+                       encode_time_of_day)
 from .native import mangle
 from .types import (
     ArrayType,
@@ -248,54 +250,27 @@ class ValueFormatError(ValueError):
     """Text that is not a valid literal for the requested type."""
 
 
-_TIME_UNITS = (("d", NS_PER_DAY), ("h", NS_PER_H), ("m", NS_PER_MIN),
-               ("s", NS_PER_S), ("ms", NS_PER_MS), ("us", NS_PER_US), ("ns", 1))
-
+# The JSON text of a TIME or date value is its IEC literal, written by the
+# same encoders as the pretty-printer's (one spelling of a literal).
 
 def format_time(ns: int, prefix: str = "T#") -> str:
     """A TIME as its shortest IEC literal: `T#1s500ms`, `T#-2s500ms`, `T#0s`."""
-    if ns == 0:
-        return prefix + "0s"
-    sign = "-" if ns < 0 else ""
-    rest = abs(ns)
-    parts = []
-    for unit, size in _TIME_UNITS:
-        count, rest = divmod(rest, size)
-        if count:
-            parts.append(f"{count}{unit}")
-    return prefix + sign + "".join(parts)
-
-
-_EPOCH = _dt.datetime(1970, 1, 1)
-
-
-def _split_day(ns: int) -> tuple[int, int]:
-    return divmod(ns, NS_PER_DAY)
-
-
-def _clock(ns_in_day: int) -> str:
-    secs, frac = divmod(ns_in_day, NS_PER_S)
-    h, rem = divmod(secs, 3600)
-    m, s = divmod(rem, 60)
-    text = f"{h:02d}:{m:02d}:{s:02d}"
-    if frac:
-        text += "." + f"{frac:09d}".rstrip("0")
-    return text
+    return encode_duration(ns, prefix.rstrip("#"))
 
 
 def format_date(ns: int) -> str:
-    days, _ = _split_day(ns)
-    return "D#" + (_EPOCH + _dt.timedelta(days=days)).strftime("%Y-%m-%d")
+    return encode_date(ns)
 
 
 def format_tod(ns: int) -> str:
-    return "TOD#" + _clock(ns % NS_PER_DAY)
+    return encode_time_of_day(ns % NS_PER_DAY)
 
 
 def format_dt(ns: int) -> str:
-    days, in_day = _split_day(ns)
-    date = (_EPOCH + _dt.timedelta(days=days)).strftime("%Y-%m-%d")
-    return f"DT#{date}-{_clock(in_day)}"
+    return encode_date_and_time(ns)
+
+
+_EPOCH = _dt.datetime(1970, 1, 1)
 
 
 FORMATTERS: dict[str, Callable[[int], str]] = {
@@ -308,7 +283,7 @@ FORMATTERS: dict[str, Callable[[int], str]] = {
 
 _TIME_PREFIX = re.compile(r"(?i)^(?:T|TIME|LT|LTIME)#")
 _TIME_PART = re.compile(r"(?i)(\d+(?:\.\d+)?)(ms|us|ns|d|h|m|s)")
-_UNIT_NS = {unit: size for unit, size in _TIME_UNITS}
+_UNIT_NS = {unit.lower(): size for unit, size in NS_PER_UNIT.items()}
 
 
 def parse_time(text: str) -> int:
