@@ -10,7 +10,7 @@ import pytest
 
 from stgen import cli
 from stgen.commands import demo
-from stgen.scenarios import runner
+from stgen.scenarios import definitions, runner
 from stgen.scenarios.csv_trace import HEADER
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
@@ -37,16 +37,21 @@ def test_demo_writes_code_traces_figures_and_passes(tmp_path, short_waves, capsy
         errors = [float(row[-1]) for row in rows[1:]]
         assert max(errors) <= 1e-6
     assert "All scenarios passed" in out
+    # The twelve moves' durations as SP_Controller planned them: 2h/v = 10 s, or 6 s for 6 deg at 2 deg/s.
+    assert "12 moves planned by SP_Controller (SpMoveDuration): " + ", ".join(
+        ["10.000"] * 6 + ["6.000"] * 4 + ["10.000"] * 2) + " s" in out
     # The controller code was generated for both targets.
     assert (tmp_path / "generated" / "iec" / "SP_Controller.st").is_file()
     assert (tmp_path / "generated" / "nj501" / "SP_Controller.variables.tsv").is_file()
-    # The point-to-point move is 10 s + 0.5 s settling after power-on: more than 10,500 rows.
+    # The twelve point-to-point moves (8 of 10 s, 4 of 6 s, 0.5 s standstill after each) are not
+    # shortened by --quick: 8*10,001 + 4*6,001 + 12*500 = 110,012 scans after the first command.
     with (tmp_path / "point_to_point.csv").open() as stream:
-        assert sum(1 for _ in stream) - 1 > 10_500
+        assert sum(1 for _ in stream) - 1 > 110_012
 
 
 def test_demo_exits_1_when_a_scenario_fails(tmp_path, short_waves, monkeypatch, capsys):
     monkeypatch.setattr(runner, "MAX_ERROR_MM", 0.0)  # nothing can pass an error limit of zero
+    monkeypatch.setattr(definitions, "SCENARIOS", (definitions.AIRY_WAVE,))  # one short run is enough
     assert cli.main(["demo", "--quick", "--out", str(tmp_path)]) == 1
     assert "FAILED" in capsys.readouterr().out
 

@@ -3,12 +3,14 @@
 1. renders the controller for the platform (the default: the study's) and
    writes it for Sysmac Studio (``DIR/generated/nj501``) and as plain IEC
    (``DIR/generated/iec``);
-2. runs the three scenarios (point to point, Airy wave, random wave) with
-   SP_Controller and six simulated axes at the task period, with a progress
-   display, and holds every commanded cylinder position against the NumPy
-   reference;
-3. prints a summary table (scenario, duration, scans, max error, faults) and
-   writes for each scenario ``DIR/<scenario>.csv`` (every scan) and
+2. runs the three scenarios with SP_Controller and six simulated axes at the
+   task period, with a progress display, and holds every commanded cylinder
+   position against the NumPy reference: the study's point-to-point moves
+   (+100 mm in x, y, z at 20 mm/s, +6°, +6°, +10° in α, β, γ at 2°/s, each
+   out and back to (0, 0, 150, 0, 0, 0), twelve commands in one run), the
+   Airy wave and the random wave;
+3. prints a summary table (scenario, duration, scans, max error, faults), the
+   durations SP_Controller planned for the moves, and writes for each scenario ``DIR/<scenario>.csv`` (every scan) and
    ``DIR/<scenario>.png`` (pose and cylinder positions over time).
 
 ``--quick`` shortens the waves to 10 s. Exit 1 if any scenario fails (error
@@ -75,6 +77,11 @@ def run(args: argparse.Namespace) -> int:
         print(f"stgen demo: error: cannot write {error.filename or out}: {error.strerror}", file=sys.stderr)
         return 1
     console.print(_summary(results, config))
+    for result in results:
+        if len(result.move_durations_s) > 1:
+            durations = ", ".join(f"{d:.3f}" for d in result.move_durations_s)
+            console.print(f"{result.scenario.name}: {len(result.move_durations_s)} moves planned by SP_Controller "
+                          f"(SpMoveDuration): {durations} s", soft_wrap=True)
     console.print(f"Traces and figures in {out}/")
     failed = [r.scenario.name for r in results if not r.passed]
     if failed:

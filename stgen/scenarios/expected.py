@@ -1,22 +1,27 @@
 """What SP_Controller must command in every scan of a scenario, from the NumPy reference.
 
 The timeline is fixed by the controller's specification, not read from the
-run: the command's rising edge is seen in scan ``command_scan`` (1-based), and
+run. The first command's rising edge is seen in scan ``command_scan``
+(1-based); every move is planned by :func:`planned_moves`:
 
-* before it the platform holds the start pose;
+* before the first edge the platform holds the start pose;
 * a move is ``cycloidal_pose(start, target, T, j·dt)`` in the scan j calls
-  after the edge (j = 0 on the edge: the start pose, never a jump), T from
-  ``cycloidal_duration`` with the scenario's limits; after it the target;
-* a wave first runs the lead-in, the same cycloid from the start pose to
-  ``wave_pose(wave, 0, centre)``, for j = 0..n, where n is the first call with
-  j·dt/T >= 1 (the pose is then exactly the wave's first pose); the wave clock
-  starts in the next scan: scan ``command_scan + n + 1 + m`` commands
-  ``wave_pose(wave, m·dt, centre)``.
+  after its edge (j = 0 on the edge: the start pose, never a jump), T from
+  ``cycloidal_duration`` with the scenario's limits, for j = 0..n, where n is
+  the first call with j·dt/T >= 1 (the pose is then exactly the target, as
+  the reference computes it, and the controller is back in STANDBY);
+* a point-to-point motion holds that pose for ``settle_seconds``; the next
+  move's edge is the scan after, and it starts from the pose held;
+* a wave's only move is the lead-in to ``wave_pose(wave, 0, centre)``; the
+  wave clock starts in the scan after the lead-in's last call: scan
+  ``command_scan + n + 1 + m`` commands ``wave_pose(wave, m·dt, centre)``.
 
 Cylinder positions come from the reference IK of those poses.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -25,6 +30,18 @@ from stgen.reference.cycloidal import cycloidal_duration, cycloidal_pose
 from stgen.reference.kinematics import inverse_kinematics
 from stgen.reference.wave import wave_pose
 from stgen.scenarios.definitions import PointToPointMotion, Scenario, WaveMotion
+
+
+@dataclass(frozen=True)
+class PlannedMove:
+    """One cycloidal move of a scenario as the reference plans it (poses in mm and degrees)."""
+
+    start: np.ndarray   # where it starts: the scenario's start pose or the previous move's end
+    target: np.ndarray
+    end: np.ndarray     # the set-point of its last call (tau = 1): the target, to rounding
+    duration: float     # T, s
+    calls: int          # n: the call that outputs ``end`` (Done); the move spans calls 0..n
+    edge: int           # scans from the first command's edge to this move's edge
 
 
 def calls_until_done(duration: float, period: float) -> int:
@@ -37,47 +54,67 @@ def calls_until_done(duration: float, period: float) -> int:
     return calls
 
 
-def move_duration(scenario: Scenario, config: PlatformConfig) -> float:
-    """T of the scenario's cycloidal move (the lead-in for a wave), s."""
-    limits = scenario.limits if scenario.limits is not None else config.trajectory
-    return float(cycloidal_duration(np.subtract(first_target(scenario), scenario.start_pose), limits))
-
-
-def first_target(scenario: Scenario) -> np.ndarray:
-    """The target of the cycloidal move: the move's target, or the wave's pose at t = 0."""
+def move_targets(scenario: Scenario) -> list[np.ndarray]:
+    """The targets of the scenario's cycloidal moves: the moves, or the wave's pose at t = 0 (the lead-in)."""
     motion = scenario.motion
     if isinstance(motion, PointToPointMotion):
-        return np.asarray(motion.target_pose, dtype=float)
-    return wave_pose(motion.wave, 0.0, motion.centre_pose)
+        return [np.asarray(target, dtype=float) for target in motion.targets]
+    return [wave_pose(motion.wave, 0.0, motion.centre_pose)]
+
+
+def settle_scans(scenario: Scenario, config: PlatformConfig) -> int:
+    """Standstill after each move of a point-to-point motion, scans (none after a wave's lead-in)."""
+    if isinstance(scenario.motion, WaveMotion):
+        return 0
+    return int(round(scenario.settle_seconds / config.task.period_s))
+
+
+def planned_moves(scenario: Scenario, config: PlatformConfig) -> list[PlannedMove]:
+    """Every cycloidal move of the scenario, in order, each from where the previous ended."""
+    period = config.task.period_s
+    limits = scenario.limits if scenario.limits is not None else config.trajectory
+    hold = settle_scans(scenario, config)
+    start = np.asarray(scenario.start_pose, dtype=float)
+    edge = 0
+    moves = []
+    for target in move_targets(scenario):
+        duration = float(cycloidal_duration(target - start, limits))
+        calls = calls_until_done(duration, period)
+        # SP_Controller starts the next move from the set-point this last call output.
+        end = cycloidal_pose(start, target, duration, calls * period)
+        moves.append(PlannedMove(start, target, end, duration, calls, edge))
+        start = end
+        edge += calls + 1 + hold
+    return moves
 
 
 def motion_scans(scenario: Scenario, config: PlatformConfig) -> int:
-    """Scans from the command's edge to the end of the scenario (edge included)."""
-    period = config.task.period_s
-    lead = calls_until_done(move_duration(scenario, config), period) + 1
+    """Scans from the first command's edge to the end of the scenario (edge included)."""
+    moves = planned_moves(scenario, config)
+    last = moves[-1]
+    after_last = last.edge + last.calls + 1
     motion = scenario.motion
     if isinstance(motion, WaveMotion):
-        return lead + int(round(motion.wave_seconds / period))
-    return lead + int(round(scenario.settle_seconds / period))
+        return after_last + int(round(motion.wave_seconds / config.task.period_s))
+    return after_last + settle_scans(scenario, config)
 
 
 def expected_poses(scenario: Scenario, config: PlatformConfig, command_scan: int, scans: int) -> np.ndarray:
     """Pose set-point of scans 1..``scans`` (row k-1 is scan k), mm and degrees."""
     period = config.task.period_s
-    start = np.asarray(scenario.start_pose, dtype=float)
-    target = first_target(scenario)
-    duration = move_duration(scenario, config)
-    poses = np.tile(start, (scans, 1))
-    calls = np.arange(1, scans + 1) - command_scan  # j: calls since the edge
-    moving = calls >= 0
-    if isinstance(scenario.motion, WaveMotion):
-        lead_end = calls_until_done(duration, period)
-        moving = moving & (calls <= lead_end)
-        riding = calls > lead_end
-        wave_calls = (calls[riding] - lead_end - 1).astype(float)
-        motion = scenario.motion
-        poses[riding] = wave_pose(motion.wave, wave_calls * period, motion.centre_pose)
-    poses[moving] = cycloidal_pose(start, target, duration, calls[moving].astype(float) * period)
+    poses = np.tile(np.asarray(scenario.start_pose, dtype=float), (scans, 1))
+    since_first = np.arange(1, scans + 1) - command_scan  # scans since the first command's edge
+    moves = planned_moves(scenario, config)
+    for move in moves:  # in order: a later move overwrites the hold of the one before
+        calls = since_first - move.edge  # j: calls since this move's edge
+        moving = (calls >= 0) & (calls <= move.calls)
+        poses[moving] = cycloidal_pose(move.start, move.target, move.duration, calls[moving].astype(float) * period)
+        poses[calls > move.calls] = move.end
+    motion = scenario.motion
+    if isinstance(motion, WaveMotion):
+        wave_calls = since_first - moves[0].calls - 1  # m: the wave clock runs from the scan after the lead-in
+        riding = wave_calls >= 0
+        poses[riding] = wave_pose(motion.wave, wave_calls[riding].astype(float) * period, motion.centre_pose)
     return poses
 
 

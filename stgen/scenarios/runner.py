@@ -1,6 +1,11 @@
 """Run a scenario: SP_Controller and six axes in the simulator, every scan
 recorded and held against the NumPy reference (:mod:`stgen.scenarios.expected`).
 
+The commands are given at the scans the reference timeline plans (a command
+refused because the controller was not ready shows as SpRefusalID and as an
+error against the reference); ``SpMoveStart`` and ``SpWaveStart`` are written
+TRUE before their edge scan and FALSE after it.
+
 The comparison takes the command position of every axis after every scan
 (what motion processing applied, i.e. what ``MC_SyncMoveAbsolute`` commanded)
 and the reference IK of the reference trajectory for that scan.
@@ -16,7 +21,7 @@ import numpy as np
 
 from stgen.config import PlatformConfig
 from stgen.scenarios.definitions import PointToPointMotion, Scenario, WaveMotion
-from stgen.scenarios.expected import expected_cylinders, expected_poses, motion_scans
+from stgen.scenarios.expected import expected_cylinders, expected_poses, motion_scans, planned_moves
 from stgen.scenarios.simulation import ControllerSimulation
 
 #: Largest allowed |commanded - reference| cylinder position, mm (issue 5).
@@ -37,18 +42,24 @@ class ScenarioResult:
 
     scenario: Scenario
     period_s: float
-    command_scan: int
+    command_scans: tuple[int, ...]  # scan of every command's rising edge (1-based)
     commanded: np.ndarray          # axis command positions, mm
     expected: np.ndarray           # reference IK of the reference trajectory, mm
     setpoint_pose: np.ndarray      # SpSetpointPose, mm and deg
     expected_pose: np.ndarray      # reference trajectory, mm and deg
     state: np.ndarray              # SpState
     fault_id: np.ndarray           # SpFaultID
+    refusal_id: np.ndarray         # SpRefusalID
     axis_fault: np.ndarray         # True where some axis is in ErrorStop
     following_error: np.ndarray    # command - actual position of every axis, mm
     runtime_faults: list = field(default_factory=list)
     wall_seconds: float = 0.0
-    move_duration_s: float = 0.0   # SpMoveDuration: the move or the lead-in
+    move_durations_s: tuple[float, ...] = ()  # SpMoveDuration after each move's edge (a wave: the lead-in)
+
+    @property
+    def command_scan(self) -> int:
+        """Scan of the first command's rising edge."""
+        return self.command_scans[0]
 
     @property
     def scans(self) -> int:
@@ -87,8 +98,13 @@ class ScenarioResult:
         return self.duration_s / self.wall_seconds if self.wall_seconds > 0 else float("inf")
 
     @property
+    def refused_commands(self) -> int:
+        """Scans in which SpRefusalID reported a refused command."""
+        return int(np.count_nonzero(self.refusal_id))
+
+    @property
     def passed(self) -> bool:
-        return self.max_error_mm <= MAX_ERROR_MM and self.fault_count == 0
+        return self.max_error_mm <= MAX_ERROR_MM and self.fault_count == 0 and self.refused_commands == 0
 
 
 class _Recorder:
@@ -99,11 +115,12 @@ class _Recorder:
 
         self.sim = sim
         self.globals_obj = sim.globals.obj
-        self.attrs = {name: mangle(name) for name in ("SpSetpointPose", "SpState", "SpFaultID")}
+        self.attrs = {name: mangle(name) for name in ("SpSetpointPose", "SpState", "SpFaultID", "SpRefusalID")}
         self.commanded = np.empty((capacity, 6))
         self.pose = np.empty((capacity, 6))
         self.state = np.empty(capacity, dtype=np.int64)
         self.fault_id = np.empty(capacity, dtype=np.int64)
+        self.refusal_id = np.empty(capacity, dtype=np.int64)
         self.axis_fault = np.empty(capacity, dtype=bool)
         self.following_error = np.empty((capacity, 6))
         self.count = 0
@@ -116,33 +133,50 @@ class _Recorder:
         self.pose[row] = getattr(g, self.attrs["SpSetpointPose"])
         self.state[row] = getattr(g, self.attrs["SpState"])
         self.fault_id[row] = getattr(g, self.attrs["SpFaultID"])
+        self.refusal_id[row] = getattr(g, self.attrs["SpRefusalID"])
         self.axis_fault[row] = any(axis.fault_active for axis in axes)
         self.following_error[row] = [axis.following_error for axis in axes]
         self.count = row + 1
 
 
-def command_scenario(sim: ControllerSimulation, scenario: Scenario) -> None:
-    """Write the scenario's command into the globals; the edge is seen in the next scan."""
+def command_move(sim: ControllerSimulation, target) -> None:
+    """SpTargetPose := ``target``, SpMoveStart := TRUE: the edge is seen in the next scan."""
+    sim.set_pose("SpTargetPose", target)
+    sim.globals["SpMoveStart"] = True
+
+
+def command_wave(sim: ControllerSimulation, motion: WaveMotion) -> None:
+    """The wave's parameters and SpWaveStart := TRUE: the edge is seen in the next scan."""
     g = sim.globals
+    components = motion.wave.components
+    # The component arrays are as long as the generated code declares them (TRJ_WAVE_COMPONENTS_MAX).
+    padding = [0.0] * (len(g["SpWaveAmplitude"]) - len(components))
+    g["SpWaveComponentCount"] = len(components)
+    g["SpWaveAmplitude"] = [c.amplitude_mm for c in components] + padding
+    g["SpWavePeriod"] = [c.period_s for c in components] + padding
+    g["SpWaveLength"] = [c.wavelength for c in components] + padding
+    g["SpWavePhase"] = [c.phase_deg for c in components] + padding
+    g["SpWaveLengthUnit"] = motion.wave.wavelength_unit_mm
+    g["SpWaveHeading"] = motion.wave.heading_deg
+    sim.set_pose("SpWaveCentrePose", motion.centre_pose)
+    g["SpWaveStart"] = True
+
+
+def command_scenario(sim: ControllerSimulation, scenario: Scenario, move: int = 0) -> None:
+    """Write the scenario's command number ``move`` (a wave has one) into the globals."""
     motion = scenario.motion
     if isinstance(motion, PointToPointMotion):
-        sim.set_pose("SpTargetPose", motion.target_pose)
-        g["SpMoveStart"] = True
+        command_move(sim, motion.targets[move])
     elif isinstance(motion, WaveMotion):
-        components = motion.wave.components
-        # The component arrays are as long as the generated code declares them (TRJ_WAVE_COMPONENTS_MAX).
-        padding = [0.0] * (len(g["SpWaveAmplitude"]) - len(components))
-        g["SpWaveComponentCount"] = len(components)
-        g["SpWaveAmplitude"] = [c.amplitude_mm for c in components] + padding
-        g["SpWavePeriod"] = [c.period_s for c in components] + padding
-        g["SpWaveLength"] = [c.wavelength for c in components] + padding
-        g["SpWavePhase"] = [c.phase_deg for c in components] + padding
-        g["SpWaveLengthUnit"] = motion.wave.wavelength_unit_mm
-        g["SpWaveHeading"] = motion.wave.heading_deg
-        sim.set_pose("SpWaveCentrePose", motion.centre_pose)
-        g["SpWaveStart"] = True
+        command_wave(sim, motion)
     else:  # pragma: no cover - a new motion kind without a command
         raise TypeError(f"unknown motion {motion!r}")
+
+
+def release_commands(sim: ControllerSimulation) -> None:
+    """SpMoveStart and SpWaveStart back to FALSE, so the next command is a new edge."""
+    sim.globals["SpMoveStart"] = False
+    sim.globals["SpWaveStart"] = False
 
 
 def apply_limits(sim: ControllerSimulation, scenario: Scenario) -> None:
@@ -160,13 +194,22 @@ def apply_limits(sim: ControllerSimulation, scenario: Scenario) -> None:
         sim.globals[name] = value
 
 
+def _run_to(sim: ControllerSimulation, scan: int, total: int, progress: Progress | None) -> None:
+    """Scan until ``scan`` scans have run, reporting progress every CHUNK_SCANS."""
+    while sim.scan_count < scan:
+        sim.run(min(CHUNK_SCANS - sim.scan_count % CHUNK_SCANS, scan - sim.scan_count))
+        if progress is not None and (sim.scan_count % CHUNK_SCANS == 0 or sim.scan_count == total):
+            progress(sim.scan_count, total)
+
+
 def run_scenario(
     scenario: Scenario,
     config: PlatformConfig | None = None,
     progress: Progress | None = None,
     servo_lag_s: float = 0.0,
 ) -> ScenarioResult:
-    """Power on at the start pose, give the command, run to the end, compare with the reference.
+    """Power on at the start pose, give the commands at their planned scans, run to the end,
+    compare with the reference.
 
     ``servo_lag_s``: the axes' servo lag (0: ideal axes, the actual position is the command).
     """
@@ -179,30 +222,36 @@ def run_scenario(
 
     started = time.perf_counter()
     sim.power_on(POWER_ON_SCANS)
-    command_scan = sim.scan_count + 1
-    command_scenario(sim, scenario)
-    total = command_scan - 1 + after_command
-    while sim.scan_count < total:
-        sim.run(min(CHUNK_SCANS, total - sim.scan_count))
-        if progress is not None:
-            progress(sim.scan_count, total)
+    first = sim.scan_count + 1
+    total = first - 1 + after_command
+    command_scans, durations = [], []
+    for index, move in enumerate(planned_moves(scenario, config)):
+        edge = first + move.edge
+        _run_to(sim, edge - 1, total, progress)
+        command_scenario(sim, scenario, index)
+        sim.run(1)
+        release_commands(sim)
+        command_scans.append(edge)
+        durations.append(float(sim.globals["SpMoveDuration"]))
+    _run_to(sim, total, total, progress)
     wall = time.perf_counter() - started
 
     count = recorder.count
-    poses = expected_poses(scenario, config, command_scan, count)
+    poses = expected_poses(scenario, config, first, count)
     return ScenarioResult(
         scenario=scenario,
         period_s=config.task.period_s,
-        command_scan=command_scan,
+        command_scans=tuple(command_scans),
         commanded=recorder.commanded[:count],
         expected=expected_cylinders(poses, config),
         setpoint_pose=recorder.pose[:count],
         expected_pose=poses,
         state=recorder.state[:count],
         fault_id=recorder.fault_id[:count],
+        refusal_id=recorder.refusal_id[:count],
         axis_fault=recorder.axis_fault[:count],
         following_error=recorder.following_error[:count],
         runtime_faults=list(sim.runtime_faults),
         wall_seconds=wall,
-        move_duration_s=float(sim.globals["SpMoveDuration"]),
+        move_durations_s=tuple(durations),
     )
