@@ -233,3 +233,88 @@ END_PROGRAM
 """)
     assert plc.faults == []
     assert main["R"] == expected
+
+
+def test_tof_ctd_ctud_from_st_on_the_simulated_clock():
+    # 1 ms scans, scan k runs at (k - 1) ms.  Toggle is TRUE on odd scans.
+    # TOF: IN TRUE on scans 1-2, falls at scan 3 (2 ms): ET 0, 1, 2, 3 ms on
+    #   scans 3..6; Q stays TRUE until ET reaches PT = 3 ms on scan 6.
+    # CTD (IEC body: LD wins over the edge of the same call): loaded to 2 on
+    #   scan 1; rising edges of CD on scans 3, 5, 7 -> CV 1, 0, -1; Q once CV <= 0.
+    # CTUD: CU edges on scans 1, 3, 5, CD's one edge on scan 3 (both edges in
+    #   one call: no count) -> CV 1, 1, 2; QU once CV >= PV = 2.
+    project = load_text("""
+PROGRAM Main
+VAR
+    Scan : INT;
+    Toggle : BOOL;
+    OffDelay : TOF;
+    Down : CTD;
+    UpDown : CTUD;
+END_VAR
+Scan := Scan + 1;
+Toggle := NOT Toggle;
+OffDelay(IN := Scan <= 2, PT := T#3ms);
+Down(CD := Toggle, LD := Scan = 1, PV := 2);
+UpDown(CU := Toggle, CD := Scan = 3 OR Scan = 4, R := FALSE, LD := FALSE, PV := 2);
+END_PROGRAM
+""")
+    plc = project.controller(period="1ms")
+    main = plc.add_program("Main")
+    seen = []
+    for _ in range(8):
+        plc.run(1)
+        seen.append((main["OffDelay.Q"], main["OffDelay.ET"], main["Down.CV"], main["Down.Q"],
+                     main["UpDown.CV"], main["UpDown.QU"], main["UpDown.QD"]))
+    assert seen == [
+        (True, "T#0s", 2, False, 1, False, False),
+        (True, "T#0s", 2, False, 1, False, False),
+        (True, "T#0s", 1, False, 1, False, False),
+        (True, "T#1ms", 1, False, 1, False, False),
+        (True, "T#2ms", 0, True, 2, True, False),
+        (False, "T#3ms", 0, True, 2, True, False),
+        (False, "T#3ms", -1, True, 3, True, False),
+        (False, "T#3ms", -1, True, 3, True, False),
+    ]
+    assert plc.faults == []
+
+
+def test_the_rest_of_the_function_list_from_st():
+    plc, main = run("""
+PROGRAM Main
+VAR
+    AbsR : LREAL; AbsI : INT; Ln1 : LREAL; Log1 : LREAL; Exp1 : LREAL; Expt1 : LREAL;
+    Sin1 : LREAL; Cos1 : LREAL; Tan1 : LREAL; Asin1 : LREAL; Acos1 : LREAL;
+    Min1 : DINT; Move1 : INT; Shr1 : WORD; Ror1 : BYTE; And1 : WORD; Or1 : WORD; Xor1 : WORD;
+END_VAR
+AbsR := ABS(-2.5);
+AbsI := ABS(INT#-7);
+Ln1 := LN(10.0);
+Log1 := LOG(1000.0);
+Exp1 := EXP(0.5);
+Expt1 := EXPT(2.0, 10);
+Sin1 := SIN(0.5);
+Cos1 := COS(0.5);
+Tan1 := TAN(0.5);
+Asin1 := ASIN(0.5);
+Acos1 := ACOS(0.5);
+Min1 := MIN(DINT#3, -4, 7);
+Move1 := MOVE(INT#42);
+Shr1 := SHR(WORD#16#8001, 4);
+Ror1 := ROR(BYTE#16#81, 1);
+And1 := WORD#16#F0F0 AND WORD#16#FF00;
+Or1 := WORD#16#F0F0 OR WORD#16#FF00;
+Xor1 := WORD#16#F0F0 XOR WORD#16#FF00;
+END_PROGRAM
+""")
+    assert plc.faults == []
+    assert (main["AbsR"], main["AbsI"], main["Min1"], main["Move1"]) == (2.5, 7, -4, 42)
+    assert main["Ln1"] == np.log(10.0) and main["Log1"] == np.log10(1000.0)
+    assert main["Exp1"] == np.exp(0.5) and main["Expt1"] == 1024.0
+    # the library calls Python's libm, NumPy its own: they may differ in the last bit
+    for name, ref in (("Sin1", np.sin), ("Cos1", np.cos), ("Tan1", np.tan),
+                      ("Asin1", np.arcsin), ("Acos1", np.arccos)):
+        assert abs(main[name] - ref(0.5)) <= np.spacing(ref(0.5)), name
+    # 16#8001 >> 4 = 16#0800; ROR of 1000_0001 by 1 = 1100_0000
+    assert (main["Shr1"], main["Ror1"]) == (0x0800, 0xC0)
+    assert (main["And1"], main["Or1"], main["Xor1"]) == (0xF000, 0xFFF0, 0x0FF0)
