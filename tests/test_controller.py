@@ -211,3 +211,33 @@ def test_a_fault_raised_by_an_io_hook_is_recorded():
     assert plc.run(2) == 2
     assert fast["n"] == 2
     assert [(f.code, f.file, f.scan) for f in plc.faults] == [("F-MATH", "<io>", 1), ("F-MATH", "<io>", 2)]
+
+
+def test_one_ms_primary_task_and_a_four_ms_task_in_program_order():
+    # Primary 1 ms: Fast; 4 ms task: Slow, then Clock (assignment order).  The
+    # 4 ms task runs in scans 1, 5, 9 (t = 0, 4, 8 ms), after the primary's
+    # programs of the same scan, so `log` reads 1, 2 (Slow) for scans 1, 5, 9
+    # and 1 alone otherwise (log := log * 10 + digit).  Clock's TON (PT 10 ms) sees the clock of its own
+    # calls only: 0, 4, 8 ms -> ET 8 ms, not yet Q, after 12 scans.
+    plc = load_text(PROGRAMS).controller(period="1ms")
+    plc.add_task("Slow4", "4ms")
+    fast = plc.add_program("Fast")
+    slow = plc.add_program("Slow", task="Slow4")
+    clock = plc.add_program("Clock", task="Slow4")
+    plc.run(5)
+    assert plc.globals["log"] == 1_211_112    # scans 1..5: 12, 1, 1, 1, 12
+    plc.run(4)
+    assert (fast["n"], slow["n"]) == (9, 3)
+    plc.run(3)
+    assert plc.now_ns == 12_000_000
+    assert (clock["t.ET"], clock["t.Q"], clock["fired"]) == ("T#8ms", False, 0)
+
+
+def test_task_period_exceeded_is_named_and_located():
+    plc = load_text(RUNAWAY, "loop.st").controller(budget=100)
+    plc.add_program("Main")
+    plc.run(1)
+    record = plc.faults[0]
+    assert (record.code, record.pou, record.file, record.line, record.scan) == \
+        ("F-PERIOD", "Main", "loop.st", 5, 1)
+    assert "task period exceeded" in record.render()
