@@ -1,5 +1,5 @@
 """PNG figures of a scenario run, laid out like the study's: the platform pose
-over time (positions, then angles) and the six cylinder positions over time,
+over time (positions relative to the start pose, then angles) and the six cylinder positions over time,
 with the error against the NumPy reference underneath. A run of several
 moves has each excursion (out and back to the start pose) shaded and named
 above the top panel ("x +100 mm", ...).
@@ -56,6 +56,7 @@ def scenario_figure(result: ScenarioResult, path: str | Path, dpi: int = 110) ->
     shown = slice(max(result.command_scan - 2, 0), None)
     time = result.time_s[shown]
     pose = result.setpoint_pose[shown]
+    start = result.scenario.start_pose[:3]
     commanded = result.commanded[shown]
     error = result.error[shown].max(axis=1)
     figure, axes = plt.subplots(4, 1, figsize=(10, 12), sharex=True, constrained_layout=True)
@@ -66,9 +67,10 @@ def scenario_figure(result: ScenarioResult, path: str | Path, dpi: int = 110) ->
     )
 
     for index, label in enumerate(POSITION_LABELS):
-        axes[0].plot(time, pose[:, index], label=label)
-    axes[0].set_ylabel("position (mm)")
-    axes[0].set_title("Platform pose set-point: position")
+        # Relative to the start: a wave's 3 mm would be lost on an axis that also spans z = 150 mm.
+        axes[0].plot(time, pose[:, index] - start[index], label=label)
+    axes[0].set_ylabel("position − start (mm)")
+    axes[0].set_title(f"Platform pose set-point: position relative to the start (x, y, z) = ({', '.join(f'{v:g}' for v in start)}) mm")
     axes[0].legend(**LEGEND_OUTSIDE)
 
     for index, label in enumerate(ANGLE_LABELS):
