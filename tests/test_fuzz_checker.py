@@ -6,7 +6,8 @@ corpus go through the whole `load` (parse, check, compile) and, when they
 load, every PROGRAM runs two scans: the only outcomes allowed are a
 LoadError with diagnostics (none of them an internal error) or runtime
 faults recorded by the controller.  Bounded: 150 examples (ST_FUZZ_EXAMPLES
-for a long sweep; a sweep of 17,000 mutations found nothing).
+for a long sweep; seeded sweeps of 58,000 mutations, 5,600 of them loading
+and running, found nothing).
 """
 
 from __future__ import annotations
