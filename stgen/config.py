@@ -257,7 +257,10 @@ STUDY_START_POSE = (60.25, 85.0, 230.7, 0.0, 0.0, 3.75)
 class SolverConfig(_Section):
     """Newton–Raphson forward kinematics, SPEC section 3.
 
-    ``tolerance`` is Klim (mm and rad: converged when every |Δk| < Klim).
+    ``tolerance`` is Klim (mm and rad: converged when every |Δk| < Klim).  It
+    drives the NumPy reference and `stgen verify`'s check at the study's Klim;
+    the generated `SP_ForwardKinematics.Tolerance` keeps the study's 0.01 as
+    its interface default (issue 4 fixes it), callers pass another bound.
     ``singularity_threshold`` is Ktol: |det J| <= Ktol is "singular". det J
     is not scale-free (J rows are 2·Li ≈ 2300 mm for x, y, z and ≈ 1e6 mm²
     for the angles): with the default geometry |det J| is ≈ 8.8e27 at the home
