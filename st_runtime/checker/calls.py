@@ -105,15 +105,13 @@ class CallChecker:
         for arg in call.args:
             if arg.name is None:
                 if formal_seen:
-                    self.ctx.error("E-CALL-008", f"call of {pou.name}: positional argument after "
-                                   f"a formal (name := value) argument", arg.pos)
-                    self._infer_arg(arg)
+                    self._refuse("E-CALL-008", f"call of {pou.name}: positional argument after "
+                                 f"a formal (name := value) argument", arg)
                     continue
                 if n_positional >= len(positional):
-                    self.ctx.error("E-CALL-006", f"call of {pou.name}: expected at most "
-                                   f"{len(positional)} positional argument(s), found "
-                                   f"{sum(1 for a in call.args if a.name is None)}", arg.pos)
-                    self._infer_arg(arg)
+                    self._refuse("E-CALL-006", f"call of {pou.name}: expected at most "
+                                 f"{len(positional)} positional argument(s), found "
+                                 f"{sum(1 for a in call.args if a.name is None)}", arg)
                     n_positional += 1
                     continue
                 sym = positional[n_positional]
@@ -123,15 +121,13 @@ class CallChecker:
                 sym = pou.variables.get(key(arg.name))
                 if sym is None or sym.kind not in _PIN_KINDS:
                     pins = ", ".join(s.name for s in pou.variables.values() if s.kind in _PIN_KINDS)
-                    self.ctx.error("E-CALL-002", f"{pou.name} has no parameter '{arg.name}' "
-                                   f"(parameters: {pins or 'none'})", arg.pos)
-                    self._infer_arg(arg)
+                    self._refuse("E-CALL-002", f"{pou.name} has no parameter '{arg.name}' "
+                                 f"(parameters: {pins or 'none'})", arg)
                     continue
             k = key(sym.name)
             if k in seen:
-                self.ctx.error("E-CALL-003", f"call of {pou.name}: parameter '{sym.name}' is "
-                               f"given twice", arg.pos)
-                self._infer_arg(arg)
+                self._refuse("E-CALL-003", f"call of {pou.name}: parameter '{sym.name}' is "
+                             f"given twice", arg)
                 continue
             seen.add(k)
             self._pass(call, pou, arg, sym)
@@ -150,9 +146,8 @@ class CallChecker:
         what = f"argument '{sym.name}' of {pou.name}"
         if arg.direction == "out":
             if sym.kind != "VAR_OUTPUT":
-                self.ctx.error("E-CALL-005", f"'{sym.name}' is a {sym.kind} of {pou.name}: pass "
-                               f"it with :=, not =>", arg.pos)
-                self._infer_arg(arg)
+                self._refuse("E-CALL-005", f"'{sym.name}' is a {sym.kind} of {pou.name}: pass "
+                             f"it with :=, not =>", arg)
                 return
             target = check_store(self.ex, arg.value, f"output '{sym.name}' of {pou.name}")
             if target is not ts.ERROR and arg.negated and not ts.is_bool(sym.type):
@@ -163,9 +158,8 @@ class CallChecker:
                                        f"output '{sym.name}' of {pou.name}")
             return
         if sym.kind == "VAR_OUTPUT":
-            self.ctx.error("E-CALL-005", f"'{sym.name}' is an output of {pou.name}: read it "
-                           f"with =>, not :=", arg.pos)
-            self._infer_arg(arg)
+            self._refuse("E-CALL-005", f"'{sym.name}' is an output of {pou.name}: read it "
+                         f"with =>, not :=", arg)
             return
         if sym.kind == "VAR_IN_OUT":
             self._in_out(pou, arg.value, sym)
@@ -196,6 +190,11 @@ class CallChecker:
                            f"variable of type {sym.type}, found {t} (in-out parameters are passed "
                            f"by reference, without conversion)", start_pos(value))
 
+    def _refuse(self, code: str, message: str, arg) -> None:
+        """Report a bad argument, still typing its value (its own errors show)."""
+        self.ctx.error(code, message, arg.pos)
+        self._infer_arg(arg)
+
     def _infer_arg(self, arg) -> None:
         if arg.value is not None:
             self.ex.infer(arg.value)
@@ -208,22 +207,19 @@ class CallChecker:
         ok = True
         for i, arg in enumerate(call.args):
             if arg.direction == "out":
-                self.ctx.error("E-CALL-005", f"{fn.name} has no outputs: '{arg.name}' cannot be "
-                               f"read with =>", arg.pos)
-                self._infer_arg(arg)
+                self._refuse("E-CALL-005", f"{fn.name} has no outputs: '{arg.name}' cannot be "
+                             f"read with =>", arg)
                 ok = False
                 continue
             if arg.name is None:
                 if formal_seen:
-                    self.ctx.error("E-CALL-008", f"call of {fn.name}: positional argument after "
-                                   f"a formal argument", arg.pos)
-                    self._infer_arg(arg)
+                    self._refuse("E-CALL-008", f"call of {fn.name}: positional argument after "
+                                 f"a formal argument", arg)
                     ok = False
                     continue
                 if i >= len(fn.params) and not fn.extensible:
-                    self.ctx.error("E-CALL-006", f"{fn.name}: expected {len(fn.params)} "
-                                   f"argument(s), found {len(call.args)}", arg.pos)
-                    self._infer_arg(arg)
+                    self._refuse("E-CALL-006", f"{fn.name}: expected {len(fn.params)} "
+                                 f"argument(s), found {len(call.args)}", arg)
                     ok = False
                     continue
                 param = B.extra_param(fn, i)
@@ -232,15 +228,13 @@ class CallChecker:
                 param = self._standard_param(fn, arg.name)
                 if param is None:
                     pins = ", ".join(p.name for p in fn.params)
-                    self.ctx.error("E-CALL-002", f"{fn.name} has no parameter '{arg.name}' "
-                                   f"(parameters: {pins}{', ...' if fn.extensible else ''})", arg.pos)
-                    self._infer_arg(arg)
+                    self._refuse("E-CALL-002", f"{fn.name} has no parameter '{arg.name}' "
+                                 f"(parameters: {pins}{', ...' if fn.extensible else ''})", arg)
                     ok = False
                     continue
             if param.name in seen:
-                self.ctx.error("E-CALL-003", f"call of {fn.name}: parameter '{param.name}' is "
-                               f"given twice", arg.pos)
-                self._infer_arg(arg)
+                self._refuse("E-CALL-003", f"call of {fn.name}: parameter '{param.name}' is "
+                             f"given twice", arg)
                 ok = False
                 continue
             seen.add(param.name)
