@@ -473,3 +473,29 @@ def test_real_division_by_zero_folds_as_it_runs():
     assert main.raw("Neg") == -inf
     assert main.raw("z") != main.raw("z") and main.raw("fz") != main.raw("fz")
     assert plc.faults == []
+
+
+# ------------------------------------------------------------- precedence
+
+
+@pytest.mark.parametrize("decl, expr, expected", [
+    # IEC 61131-3 3rd ed. table 71: ** above unary minus, equal levels left to right
+    ("x : LREAL;", "x := 2.0 ** 3.0 ** 2.0;", 64.0),       # (2**3)**2, not 2**9 = 512
+    ("x : LREAL;", "x := -2.0 ** 2.0;", -4.0),             # -(2**2), not (-2)**2 = 4
+    ("x : LREAL;", "x := 2.0 ** -1.0;", 0.5),              # a signed exponent
+    ("x : LREAL;", "x := 2.0 * 3.0 ** 2.0;", 18.0),        # ** above *
+    ("x : DINT;", "x := 7 - 2 - 1;", 4),                   # left to right, not 7 - (2 - 1)
+    ("x : DINT;", "x := 100 / 10 / 5;", 2),                # (100/10)/5, not 100/(10/5) = 50
+    ("x : DINT;", "x := 1 + 3 * 4 MOD 5;", 3),             # 1 + ((3*4) MOD 5)
+    ("x : DINT;", "x := -7 MOD 3 * 2;", -2),               # ((-7) MOD 3) * 2
+    ("x : BOOL;", "x := 1 + 1 > 1;", True),                # + above >
+    ("x : BOOL;", "x := 1 < 2 = 3 < 4;", True),            # < above =
+    ("x : BOOL;", "x := TRUE OR TRUE XOR TRUE;", True),    # XOR above OR
+    ("x : BOOL;", "x := TRUE XOR TRUE AND FALSE;", True),  # AND above XOR
+    ("x : BOOL;", "x := TRUE XOR TRUE & FALSE;", True),    # & is AND
+    ("x : BOOL;", "x := NOT FALSE AND FALSE;", False),     # NOT above AND
+    ("x : BOOL;", "x := 2 = 2 AND 3 = 3;", True),          # = above AND
+])
+def test_the_precedence_table_at_run_time(decl, expr, expected):
+    main, plc = run(expr, decl)
+    assert plc.faults == [] and main["x"] == expected
