@@ -48,13 +48,26 @@ def one_line_usage_errors(parser: argparse.ArgumentParser, hint: str = "") -> No
     replaced on this parser only, so every parser of `stgen` speaks alike.
     """
     def error(message: str):
-        if message.endswith("expected one argument"):
+        if message.endswith("expected one argument") and _dash_value_follows(message):
             message += " (write a value that starts with '-' as --option=VALUE)"
         more = hint if message.endswith("required: COMMAND") else ""
         print(f"{parser.prog}: error: {message} ({more}see '{parser.prog} --help')", file=sys.stderr)
         sys.exit(2)
 
     parser.error = error
+
+
+_ARGV: list[str] = []   # the arguments being parsed (for the hint below)
+
+
+def _dash_value_follows(message: str) -> bool:
+    """Whether the option argparse found without a value was followed by a
+    word starting with '-' (`--period -1ms`): argparse takes it for an option."""
+    option = message.removeprefix("argument ").split(":", 1)[0].split("/")[-1]
+    for here, word in enumerate(_ARGV[:-1]):
+        if word == option and _ARGV[here + 1].startswith("-"):
+            return True
+    return False
 
 
 def _command_module(name: str):
@@ -68,6 +81,7 @@ def _command_module(name: str):
 
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
+    _ARGV[:] = sys.argv[1:] if argv is None else argv
     args = parser.parse_args(argv)  # exits 2 on usage errors
     handler = getattr(args, "handler", None)
     if handler is None:
