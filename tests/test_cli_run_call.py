@@ -247,3 +247,48 @@ def test_json_help_states_the_non_finite_rule(capsys):
             main([command, "--help"])
         out, _ = capsys.readouterr()
         assert '"Infinity"' in " ".join(out.split()), command
+
+
+EVERY_TYPE = """
+PROGRAM AllTypes
+VAR
+  b : BOOL := TRUE; si : SINT := -128; i : INT := INT#-5; di : DINT := 16#7FFF_FFFF;
+  li : LINT := -9223372036854775808; us : USINT := 255; ui : UINT := 8#17;
+  ud : UDINT := 2#1010_0101; ul : ULINT := 18446744073709551615;
+  bt : BYTE := 16#FF; w : WORD := 16#ABCD; dw : DWORD := 16#DEADBEEF; lw : LWORD := 16#FFFF_FFFF_FFFF_FFFF;
+  r : REAL := 0.1; lr : LREAL := LREAL#1.5E-3;
+  t : TIME := TIME#-2.5s; d : DATE := D#2024-02-29; tod1 : TIME_OF_DAY := TOD#23:59:59.5;
+  dt1 : DATE_AND_TIME := DT#2024-02-29-12:30:00.25; s : STRING[10] := 'it$'s $$5$N';
+END_VAR
+END_PROGRAM
+FUNCTION Later : DATE_AND_TIME
+VAR_INPUT at : DATE_AND_TIME; wait : TIME; END_VAR
+VAR_OUTPUT day : DATE; clock : TOD; END_VAR
+Later := at + wait;
+day := DT_TO_DATE(Later);
+clock := DT_TO_TOD(Later);
+END_FUNCTION
+"""
+
+
+def test_every_elementary_type_in_run_json(tmp_path, capsys):
+    (tmp_path / "all.st").write_text(EVERY_TYPE)
+    code, out, err = stgen(capsys, "run", tmp_path / "all.st", "--program", "AllTypes", "--cycles", "0",
+                           "--json")
+    assert code == 0, err
+    assert strict_loads(out) == {
+        "b": True, "si": -128, "i": -5, "di": 2**31 - 1, "li": -2**63, "us": 255, "ui": 15,
+        "ud": 165, "ul": 2**64 - 1, "bt": 255, "w": 0xABCD, "dw": 0xDEADBEEF, "lw": 2**64 - 1,
+        "r": 0.1, "lr": 0.0015, "t": "T#-2s500ms", "d": "D#2024-02-29", "tod1": "TOD#23:59:59.5",
+        "dt1": "DT#2024-02-29-12:30:00.25", "s": "it's $5\n",
+    }
+
+
+def test_call_takes_and_gives_date_and_time_literals(tmp_path, capsys):
+    (tmp_path / "all.st").write_text(EVERY_TYPE)
+    code, out, err = stgen(capsys, "call", tmp_path / "all.st", "--pou", "Later",
+                           "--set", 'at="DT#2024-12-31-23:59:59.5"', "--set", 'wait="T#1h500ms"',
+                           "--json")
+    assert code == 0, err
+    assert strict_loads(out) == {"return": "DT#2025-01-01-01:00:00", "day": "D#2025-01-01",
+                                 "clock": "TOD#01:00:00", "cycles": 1}
