@@ -43,6 +43,17 @@ def mangle(name: str) -> str:
     return "v_" + name.upper()
 
 
+def fb_declaration(name: str, *, inputs: str = "", outputs: str = "", in_outs: str = "",
+                   memory: str = "") -> str:
+    """The ST declaration of a native FB from its variable lists
+    (`"IN : BOOL; PT : TIME;"`): VAR_IN_OUT, VAR_INPUT, VAR_OUTPUT, VAR."""
+    blocks = [(keyword, names) for keyword, names in
+              (("VAR_IN_OUT", in_outs), ("VAR_INPUT", inputs), ("VAR_OUTPUT", outputs),
+               ("VAR", memory)) if names]
+    body = "".join(f"{keyword}\n    {names}\nEND_VAR\n" for keyword, names in blocks)
+    return f"\nFUNCTION_BLOCK {name}\n{body}END_FUNCTION_BLOCK\n"
+
+
 def native_fb(cls: type) -> type:
     """Class decorator: register a native FB (its `NAME` and `DECLARATION`)."""
     NATIVE_FBS[cls.NAME.upper()] = cls

@@ -24,7 +24,7 @@ model are accepted and ignored: `Jerk` (profiles are trapezoidal) and
 
 from __future__ import annotations
 
-from ..native import NativeFB, native_fb
+from ..native import NativeFB, fb_declaration, native_fb
 from . import types as _types  # noqa: F401  (registers AXIS_REF before the FBs)
 from .axis import Axis, MotionCommand, MotionRefused
 from .error_ids import ErrorID
@@ -143,21 +143,9 @@ MOVE_OUTPUTS = "Busy : BOOL; Active : BOOL; CommandAborted : BOOL; Error : BOOL;
 
 
 def _axis_fb_declaration(name: str, inputs: str, outputs: str) -> str:
-    """The ST declaration of a motion FB: the axis by reference (VAR_IN_OUT
-    Axis : AXIS_REF, as Sysmac declares it), then its inputs and outputs."""
-    return f"""
-FUNCTION_BLOCK {name}
-VAR_IN_OUT
-    Axis : AXIS_REF;
-END_VAR
-VAR_INPUT
-    {inputs}
-END_VAR
-VAR_OUTPUT
-    {outputs}
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    """A motion FB's declaration: the axis by reference (VAR_IN_OUT Axis :
+    AXIS_REF, as Sysmac declares it), then its inputs and outputs."""
+    return fb_declaration(name, in_outs="Axis : AXIS_REF;", inputs=inputs, outputs=outputs)
 
 
 def _check_buffer_mode(mode: int) -> None:

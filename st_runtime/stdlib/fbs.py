@@ -16,7 +16,7 @@ a CLK that is FALSE on the first call gives Q = TRUE once: see F_TRIG.
 
 from __future__ import annotations
 
-from ..native import NativeFB, native_fb
+from ..native import NativeFB, fb_declaration, native_fb
 
 INT_MAX = 32767
 INT_MIN = -32768
@@ -33,23 +33,8 @@ def _time_up(timer, now: int) -> bool:
     return False
 
 
-def _timer_declaration(name: str, memory: str) -> str:
-    """The ST declaration of a timer: IN, PT in; Q, ET out; its own memory."""
-    return f"""
-FUNCTION_BLOCK {name}
-VAR_INPUT
-    IN : BOOL;
-    PT : TIME;
-END_VAR
-VAR_OUTPUT
-    Q : BOOL;
-    ET : TIME;
-END_VAR
-VAR
-    {memory}
-END_VAR
-END_FUNCTION_BLOCK
-"""
+TIMER_INPUTS = "IN : BOOL; PT : TIME;"
+TIMER_OUTPUTS = "Q : BOOL; ET : TIME;"
 
 
 @native_fb
@@ -57,7 +42,8 @@ class TON(NativeFB):
     """On-delay: Q rises once IN has been TRUE for PT; IN FALSE resets."""
 
     NAME = "TON"
-    DECLARATION = _timer_declaration("TON", "StartTime : TIME; Running : BOOL;")
+    DECLARATION = fb_declaration("TON", inputs=TIMER_INPUTS, outputs=TIMER_OUTPUTS,
+                                 memory="StartTime : TIME; Running : BOOL;")
 
     def execute(self, ctx) -> None:
         if not self.v_IN:
@@ -77,7 +63,8 @@ class TOF(NativeFB):
     """Off-delay: Q follows IN up, and falls PT after IN fell."""
 
     NAME = "TOF"
-    DECLARATION = _timer_declaration("TOF", "StartTime : TIME; Running : BOOL; PrevIN : BOOL;")
+    DECLARATION = fb_declaration("TOF", inputs=TIMER_INPUTS, outputs=TIMER_OUTPUTS,
+                                 memory="StartTime : TIME; Running : BOOL; PrevIN : BOOL;")
 
     def execute(self, ctx) -> None:
         now = ctx.now_ns
@@ -104,7 +91,8 @@ class TP(NativeFB):
     """
 
     NAME = "TP"
-    DECLARATION = _timer_declaration("TP", "StartTime : TIME; PrevIN : BOOL;")
+    DECLARATION = fb_declaration("TP", inputs=TIMER_INPUTS, outputs=TIMER_OUTPUTS,
+                                 memory="StartTime : TIME; PrevIN : BOOL;")
 
     def execute(self, ctx) -> None:
         now = ctx.now_ns
@@ -123,19 +111,11 @@ class TP(NativeFB):
 @native_fb
 class R_TRIG(NativeFB):
     NAME = "R_TRIG"
-    DECLARATION = """
-FUNCTION_BLOCK R_TRIG
-VAR_INPUT
-    CLK : BOOL;
-END_VAR
-VAR_OUTPUT
-    Q : BOOL;
-END_VAR
-VAR
-    M : BOOL;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = fb_declaration(
+        "R_TRIG",
+        inputs="CLK : BOOL;",
+        outputs="Q : BOOL;",
+        memory="M : BOOL;")
 
     def execute(self, ctx) -> None:
         clk = self.v_CLK
@@ -164,19 +144,11 @@ class F_TRIG(NativeFB):
     """
 
     NAME = "F_TRIG"
-    DECLARATION = """
-FUNCTION_BLOCK F_TRIG
-VAR_INPUT
-    CLK : BOOL;
-END_VAR
-VAR_OUTPUT
-    Q : BOOL;
-END_VAR
-VAR
-    M : BOOL;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = fb_declaration(
+        "F_TRIG",
+        inputs="CLK : BOOL;",
+        outputs="Q : BOOL;",
+        memory="M : BOOL;")
 
     def execute(self, ctx) -> None:
         low = not self.v_CLK
@@ -187,22 +159,11 @@ END_FUNCTION_BLOCK
 @native_fb
 class CTU(NativeFB):
     NAME = "CTU"
-    DECLARATION = """
-FUNCTION_BLOCK CTU
-VAR_INPUT
-    CU : BOOL;
-    R : BOOL;
-    PV : INT;
-END_VAR
-VAR_OUTPUT
-    Q : BOOL;
-    CV : INT;
-END_VAR
-VAR
-    CUMemory : BOOL;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = fb_declaration(
+        "CTU",
+        inputs="CU : BOOL; R : BOOL; PV : INT;",
+        outputs="Q : BOOL; CV : INT;",
+        memory="CUMemory : BOOL;")
 
     def execute(self, ctx) -> None:
         edge = self.v_CU and not self.v_CUMEMORY
@@ -217,22 +178,11 @@ END_FUNCTION_BLOCK
 @native_fb
 class CTD(NativeFB):
     NAME = "CTD"
-    DECLARATION = """
-FUNCTION_BLOCK CTD
-VAR_INPUT
-    CD : BOOL;
-    LD : BOOL;
-    PV : INT;
-END_VAR
-VAR_OUTPUT
-    Q : BOOL;
-    CV : INT;
-END_VAR
-VAR
-    CDMemory : BOOL;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = fb_declaration(
+        "CTD",
+        inputs="CD : BOOL; LD : BOOL; PV : INT;",
+        outputs="Q : BOOL; CV : INT;",
+        memory="CDMemory : BOOL;")
 
     def execute(self, ctx) -> None:
         edge = self.v_CD and not self.v_CDMEMORY
@@ -247,26 +197,11 @@ END_FUNCTION_BLOCK
 @native_fb
 class CTUD(NativeFB):
     NAME = "CTUD"
-    DECLARATION = """
-FUNCTION_BLOCK CTUD
-VAR_INPUT
-    CU : BOOL;
-    CD : BOOL;
-    R : BOOL;
-    LD : BOOL;
-    PV : INT;
-END_VAR
-VAR_OUTPUT
-    QU : BOOL;
-    QD : BOOL;
-    CV : INT;
-END_VAR
-VAR
-    CUMemory : BOOL;
-    CDMemory : BOOL;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = fb_declaration(
+        "CTUD",
+        inputs="CU : BOOL; CD : BOOL; R : BOOL; LD : BOOL; PV : INT;",
+        outputs="QU : BOOL; QD : BOOL; CV : INT;",
+        memory="CUMemory : BOOL; CDMemory : BOOL;")
 
     def execute(self, ctx) -> None:
         up = self.v_CU and not self.v_CUMEMORY
@@ -291,17 +226,10 @@ class SR(NativeFB):
     """Set-dominant bistable: Q1 := S1 OR (NOT R AND Q1)."""
 
     NAME = "SR"
-    DECLARATION = """
-FUNCTION_BLOCK SR
-VAR_INPUT
-    S1 : BOOL;
-    R : BOOL;
-END_VAR
-VAR_OUTPUT
-    Q1 : BOOL;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = fb_declaration(
+        "SR",
+        inputs="S1 : BOOL; R : BOOL;",
+        outputs="Q1 : BOOL;")
 
     def execute(self, ctx) -> None:
         self.v_Q1 = bool(self.v_S1 or (not self.v_R and self.v_Q1))
@@ -312,17 +240,10 @@ class RS(NativeFB):
     """Reset-dominant bistable: Q1 := NOT R1 AND (S OR Q1)."""
 
     NAME = "RS"
-    DECLARATION = """
-FUNCTION_BLOCK RS
-VAR_INPUT
-    S : BOOL;
-    R1 : BOOL;
-END_VAR
-VAR_OUTPUT
-    Q1 : BOOL;
-END_VAR
-END_FUNCTION_BLOCK
-"""
+    DECLARATION = fb_declaration(
+        "RS",
+        inputs="S : BOOL; R1 : BOOL;",
+        outputs="Q1 : BOOL;")
 
     def execute(self, ctx) -> None:
         self.v_Q1 = bool(not self.v_R1 and (self.v_S or self.v_Q1))
