@@ -11,6 +11,8 @@ strict: a non-finite REAL/LREAL is the string "NaN", "Infinity" or
 "-Infinity" (and `--set X='"Infinity"'` gives one).
 
 Exit 0 on success, 1 on diagnostics or runtime faults, 2 on usage errors.
+An `--until` output still FALSE after `--max-cycles` scans is no fault: the
+outputs are printed, stderr says so, and the exit status stays 0.
 """
 
 from __future__ import annotations
