@@ -325,3 +325,51 @@ def test_lint_string_round_trip(n):
 @given(st.floats(width=32, allow_nan=False, allow_infinity=False))
 def test_real_string_round_trip(x):
     assert CONVERSIONS["STRING_TO_REAL"](CONVERSIONS["REAL_TO_STRING"](x)) == x
+
+
+def test_to_date_keeps_the_day_and_faults_below_the_first_whole_day():
+    day = 86_400 * 10**9
+    # -1 ns is 1969-12-31-23:59:59.999999999: its day starts one day before the epoch
+    assert conversion("LINT", "DATE")(-1) == -day
+    assert conversion("DT", "DATE")(3 * day + 5) == 3 * day
+    # -2**63 ns lies in a day that starts before -2**63: no 64-bit DATE holds it
+    for src in ("LINT", "TIME", "DT"):
+        with pytest.raises(STFault, match="F-CONVERT|outside"):
+            conversion(src, "DATE")(-2**63)
+
+
+_EDGE_SAMPLES = {
+    "BOOL": [False, True],
+    "REAL": [0.0, -1.5, 2.5, 3.4e38, -3.4e38, math.inf, math.nan, 1e-45],
+    "LREAL": [0.0, -0.0, -1.5, 2.5, 1.7e308, -math.inf, math.nan, 9.3e18],
+    "STRING": ["", "42", "-1", "abc", "T#1s", "1.5", "TRUE", "16#FF", "D#2024-01-01",
+               "99999999999999999999999"],
+}
+
+
+@pytest.mark.parametrize("src", TYPE_NAMES)
+def test_the_whole_matrix_on_edge_values_faults_or_stays_in_range(src):
+    # Every <src>_TO_<dst> on the limits of src: a value of dst's kind and
+    # range, or an F-CONVERT fault; nothing else (found: LINT_TO_DATE(-2**63)
+    # gave a day start below -2**63).
+    t = T.ELEMENTARY.get(src)
+    values = _EDGE_SAMPLES.get(src) or sorted({t.min, t.max, 0, 1, t.max // 2, t.min // 2})
+    for dst in TYPE_NAMES:
+        if dst == src:
+            continue
+        d = T.ELEMENTARY.get(dst)
+        for value in values:
+            try:
+                result = conversion(src, dst)(value)
+            except STFault as fault:
+                assert fault.code in ("F-CONVERT", "F-STRING"), (src, dst, value, fault.code)
+                continue
+            if dst == "STRING":
+                assert isinstance(result, str), (src, dst, value)
+            elif d.kind == "bool":
+                assert isinstance(result, bool), (src, dst, value)
+            elif d.kind == "real":
+                assert isinstance(result, float), (src, dst, value)
+            else:
+                assert isinstance(result, int) and not isinstance(result, bool), (src, dst, value)
+                assert d.min <= result <= d.max, (src, dst, value, result)

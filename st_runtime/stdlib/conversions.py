@@ -46,6 +46,7 @@ from typing import Callable
 from ..faults import STFault
 from ..types import ELEMENTARY, ElementaryType
 from ..values import (
+    LINT_MIN,
     NS_PER_DAY,
     FORMATTERS,
     PARSERS,
@@ -221,14 +222,19 @@ def _build(src: str, dst: str) -> Callable:
         wrap64 = int_wrapper(ELEMENTARY["LINT"])
         to_ns = (lambda v: wrap64(int(v)))
     if dk == "date":
-        return lambda v: _drop_time_of_day(to_ns(v))
+        return lambda v: _drop_time_of_day(src, dst, to_ns(v))
     if dk == "tod":
         return lambda v: to_ns(v) % NS_PER_DAY
     return to_ns
 
 
-def _drop_time_of_day(ns: int) -> int:
-    return ns - ns % NS_PER_DAY
+def _drop_time_of_day(src: str, dst: str, ns: int) -> int:
+    """The start of the day of `ns`; the first ~12 hours of the 64-bit range
+    lie in a day that starts before it, which no DATE can hold."""
+    day = ns - ns % NS_PER_DAY
+    if day < LINT_MIN:
+        raise _fault(src, dst, ns, "the day starts outside the DATE range")
+    return day
 
 
 def _table() -> dict[str, Callable]:
