@@ -154,8 +154,11 @@ class Project:
         """Call a FUNCTION once, or an FB instance once per scan until `until`.
 
         Returns {"outputs": {declared name: JSON-like value, ..., "return"
-        (FUNCTION), "cycles"}, "faults": [FaultRecord], "reached": bool
-        (whether `until` became TRUE)}.
+        (FUNCTION), "cycles"}, "cycles": int, "faults": [FaultRecord],
+        "reached": bool (whether `until` became TRUE)}.  `outputs["cycles"]`
+        is the count only when the POU declares no output or in-out of that
+        name (a declared one is never overwritten); `result["cycles"]` is
+        always the count.
         """
         return call_pou(self, name, inputs or {}, until, max_cycles, parse_period(period))
 
@@ -357,13 +360,16 @@ def call_pou(project: Project, name: str, inputs: dict, until: str | None,
     if pou.kind == "FUNCTION":
         if until:
             raise CallError("--until applies to FB outputs; a FUNCTION is called once")
-        out, reached = _call_function(project.compiled, pou, params, given, in_outs, controller), True
+        out = _call_function(project.compiled, pou, params, given, in_outs, controller)
+        cycles, reached = 1, True
     else:
-        out, reached = _call_fb(project.compiled, pou, params, given, in_outs, controller, until, max_cycles)
+        out, cycles, reached = _call_fb(project.compiled, pou, params, given, in_outs, controller,
+                                        until, max_cycles)
     for key, cell in in_outs.items():
         out[params[key].name] = cell.to_json()
-    out["cycles"] = out.pop("cycles")       # last, after the outputs
-    return {"outputs": out, "faults": controller.faults, "reached": reached}
+    if not any(key.upper() == "CYCLES" for key in out):
+        out["cycles"] = cycles          # last, after the outputs
+    return {"outputs": out, "cycles": cycles, "faults": controller.faults, "reached": reached}
 
 
 def _call_function(compiled, pou, params: dict, given: dict, in_outs: dict, controller) -> dict:
@@ -390,12 +396,11 @@ def _call_function(compiled, pou, params: dict, given: dict, in_outs: dict, cont
                 out[symbol.name] = value_to_json(value, symbol.type)
     if pou.return_type is not None and result is not None:
         out["return"] = value_to_json(result, pou.return_type)
-    out["cycles"] = 1
     return out
 
 
 def _call_fb(compiled, pou, params: dict, given: dict, in_outs: dict, controller,
-             until: str | None, max_cycles: int) -> tuple[dict, bool]:
+             until: str | None, max_cycles: int) -> tuple[dict, int, bool]:
     instance = compiled.new(pou.name)
     view = Instance(instance)
     for key, symbol in params.items():
@@ -419,8 +424,7 @@ def _call_fb(compiled, pou, params: dict, given: dict, in_outs: dict, controller
             reached = True
             break
     out = {s.name: value_to_json(getattr(instance, mangle(s.name)), s.type) for s in pou.outputs}
-    out["cycles"] = cycles
-    return out, reached
+    return out, cycles, reached
 
 
 class _Cell:

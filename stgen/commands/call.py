@@ -6,7 +6,8 @@ simulated clock by default) until its BOOL output named by `--until` is TRUE
 or `--max-cycles` (default 1000) scans have run; without `--until` it is
 called once.  Inputs are JSON: `--set 'Pose=[0,0,150,0,0,0]'`, `--set
 'PT="T#1s"'`.  stdout gets one JSON object: the outputs (and VAR_IN_OUTs) by
-declared name, for a FUNCTION also "return", plus "cycles".  The JSON is
+declared name, for a FUNCTION also "return", plus "cycles" (unless the POU
+declares a variable of that name: then the count goes to stderr).  The JSON is
 strict: a non-finite REAL/LREAL is the string "NaN", "Infinity" or
 "-Infinity" (and `--set X='"Infinity"'` gives one).
 
@@ -92,8 +93,11 @@ def run(args) -> int:
         return usage(f"--set {exc}")
     except CallError as exc:
         hint = kind_hint(project, args.pou, "stgen run --program runs it")
-        return usage(f"{exc}{hint}" if "named" in str(exc) else str(exc))
+        return usage(f"{exc}{hint}" if str(exc).startswith("no FUNCTION") else str(exc))
     print(json_text(result["outputs"]))
+    if "CYCLES" in project.program.pous[args.pou.upper()].variables:
+        print(f"stgen call: {result['cycles']} cycle(s); the \"cycles\" above is {args.pou}'s own",
+              file=sys.stderr)
     faults = result["faults"]
     for record in faults[:MAX_FAULT_LINES]:
         print(record.render(), file=sys.stderr)

@@ -1,0 +1,81 @@
+"""`stgen call` / `Project.call`: a POU's own output named `cycles` is never
+overwritten by the call count; the "is a PROGRAM" hint only for a POU of the
+wrong kind; `python -m stgen` runs the CLI."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+from st_runtime import load
+from stgen.cli import main
+
+COUNTS_BY_TEN = """
+FUNCTION_BLOCK Cnt
+VAR_OUTPUT
+    cycles : INT;
+    done : BOOL;
+END_VAR
+cycles := cycles + 10;
+done := cycles >= 30;
+END_FUNCTION_BLOCK
+
+FUNCTION Twice : INT
+VAR_INPUT x : INT; END_VAR
+Twice := 2 * x;
+END_FUNCTION
+"""
+
+
+def write(tmp_path):
+    path = tmp_path / "cnt.st"
+    path.write_text(COUNTS_BY_TEN)
+    return str(path)
+
+
+def test_api_keeps_the_fb_output_named_cycles(tmp_path):
+    result = load([write(tmp_path)]).call("Cnt", until="done")
+    # 10, 20, 30: done after the third scan
+    assert result["outputs"] == {"cycles": 30, "done": True}
+    assert result["cycles"] == 3 and result["reached"]
+
+
+def test_api_count_for_a_function(tmp_path):
+    result = load([write(tmp_path)]).call("Twice", {"x": 4})
+    assert result["outputs"] == {"return": 8, "cycles": 1} and result["cycles"] == 1
+
+
+def test_cli_output_named_cycles_wins_count_on_stderr(tmp_path, capsys):
+    code = main(["call", write(tmp_path), "--pou", "Cnt", "--until", "done", "--json"])
+    captured = capsys.readouterr()
+    assert code == 0 and json.loads(captured.out) == {"cycles": 30, "done": True}
+    assert "3 cycle(s)" in captured.err
+
+
+def test_unknown_input_of_a_function_has_no_program_hint(tmp_path, capsys):
+    code = main(["call", write(tmp_path), "--pou", "Twice", "--set", "y=1", "--json"])
+    err = capsys.readouterr().err
+    assert code == 2 and "Twice has no input named y (inputs: x)" in err
+    assert "stgen run --program" not in err
+
+
+def test_python_dash_m_stgen(tmp_path):
+    proc = subprocess.run([sys.executable, "-m", "stgen", "call", write(tmp_path), "--pou", "Twice",
+                           "--set", "x=21", "--json"], capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0 and json.loads(proc.stdout) == {"return": 42, "cycles": 1}
+
+
+def test_check_on_a_sysmac_body_folder_names_the_way_out(tmp_path, capsys):
+    (tmp_path / "Fb.st").write_text("X := 1;\n")
+    (tmp_path / "Fb.variables.tsv").write_text("Name\tUsage\tData Type\nX\tVar\tINT\n")
+    code = main(["check", str(tmp_path)])
+    err = capsys.readouterr().err
+    assert code == 1 and "error[E-PARSE-001]" in err
+    assert "Sysmac Studio bodies" in err and "--target iec" in err
+
+
+def test_check_without_tsv_has_no_sysmac_note(tmp_path, capsys):
+    (tmp_path / "Fb.st").write_text("X := 1;\n")
+    assert main(["check", str(tmp_path)]) == 1
+    assert "Sysmac" not in capsys.readouterr().err
