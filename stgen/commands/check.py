@@ -41,4 +41,15 @@ def run(args) -> int:
     n_files = len([p for p in result.sources if p != "<builtin>"])
     print(f"stgen check: {n_files} file(s), {n_errors} error(s), {n_warnings} warning(s)",
           file=sys.stderr)
+    if n_errors and any(_is_sysmac_body(path) for path in result.sources):
+        print("stgen check: note: these .st files are Sysmac Studio bodies (stgen generate --target"
+              " nj: statements only, variables in <POU>.variables.tsv); to check the POUs, generate"
+              " whole ones with --target iec and run stgen check --dialect nj on that folder",
+              file=sys.stderr)
     return 1 if n_errors else 0
+
+
+def _is_sysmac_body(path: str) -> bool:
+    """An .st file with a `<POU>.variables.tsv` beside it, as `--target nj` writes."""
+    stem, ext = os.path.splitext(path)
+    return ext.lower() == ".st" and os.path.isfile(stem + ".variables.tsv")

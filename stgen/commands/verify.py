@@ -23,7 +23,8 @@ _MAX_PROBLEMS_SHOWN = 5
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_config_argument(parser)
     parser.add_argument("--poses", type=_positive, default=10_000, metavar="N",
-                        help="random reachable poses for the IK comparison (default: 10000)")
+                        help="random reachable poses for the IK comparison (default: 10000), plus N/10"
+                             " drawn anywhere in the box, reachable or not (the table counts both)")
     parser.add_argument("--fk-poses", type=_positive, default=500, metavar="N",
                         help="poses for the FK comparisons, from p_NR and from warm starts (default: 500)")
     parser.add_argument("--seed", type=int, default=2024, help="random seed (default: 2024)")
