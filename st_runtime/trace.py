@@ -36,7 +36,7 @@ from typing import Callable, Iterable
 import numpy as np
 
 from .types import ArrayType, ElementaryType, EnumType, FBType, StringType, StructType, resolve_alias
-from .values import FORMATTERS, HIDDEN_KINDS, NS_PER_S, PARSERS, ValueFormatError
+from .values import FORMATTERS, HIDDEN_KINDS, NS_PER_S, PARSERS, ValueFormatError, shortest_real32
 
 Getter = Callable[[object], object]
 
@@ -210,6 +210,8 @@ def _cell(value, t) -> str:
             return FORMATTERS[t.kind](int(value))
         if t.kind == "bool":
             return "TRUE" if value else "FALSE"
+        if t.kind == "real" and t.bits == 32:
+            value = shortest_real32(float(value))   # 0.01, not its double 0.009999999776482582
     if isinstance(t, EnumType):
         for name, number in t.values.values():
             if number == value:

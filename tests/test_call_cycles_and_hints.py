@@ -79,3 +79,18 @@ def test_check_without_tsv_has_no_sysmac_note(tmp_path, capsys):
     (tmp_path / "Fb.st").write_text("X := 1;\n")
     assert main(["check", str(tmp_path)]) == 1
     assert "Sysmac" not in capsys.readouterr().err
+
+
+def test_trace_csv_writes_a_real_in_its_shortest_float32_form(tmp_path):
+    source = tmp_path / "lvl.st"
+    source.write_text("PROGRAM P\nVAR Level : REAL; Big : LREAL; END_VAR\n"
+                      "Level := Level + 0.01;\nBig := Big + 0.01;\nEND_PROGRAM\n")
+    plc = load([str(source)]).controller()
+    plc.add_program("P")
+    trace = plc.trace(["Level", "Big"], program="P")
+    plc.run(2)
+    rows = trace.to_csv_text().splitlines()
+    # REAL 0.01f is 0.009999999776482582 as a double; its shortest REAL text is 0.01.
+    # 0.01f + 0.01f = 2 * 0.01f exactly, which is the float32 nearest 0.02.
+    assert rows[1].split(",")[2:] == ["0.01", "0.01"]
+    assert rows[2].split(",")[2:] == ["0.02", "0.02"]
