@@ -573,7 +573,14 @@ def from_json(data, t, path: str = "value"):
             if isinstance(data, bool) or not isinstance(data, (int, float)):
                 names = ' (or "NaN", "Infinity", "-Infinity")' if isinstance(data, str) else ""
                 fail(f"{t.name} number{names}")
-            return to_real32(float(data)) if t.bits == 32 else float(data)
+            try:
+                value = float(data)
+            except OverflowError:       # an int beyond the double range
+                value = math.inf
+            stored = to_real32(value) if t.bits == 32 else value
+            if math.isinf(stored) and not (isinstance(data, float) and math.isinf(data)):
+                raise JsonValueError(f"{path}: {data} is outside the range of {t.name}")
+            return stored
         if not isinstance(data, str):
             examples = {"time": "T#1s500ms", "date": "D#2024-01-31",
                         "tod": "TOD#12:30:00", "dt": "DT#2024-01-31-12:30:00"}

@@ -94,3 +94,42 @@ def test_trace_csv_writes_a_real_in_its_shortest_float32_form(tmp_path):
     # 0.01f + 0.01f = 2 * 0.01f exactly, which is the float32 nearest 0.02.
     assert rows[1].split(",")[2:] == ["0.01", "0.01"]
     assert rows[2].split(",")[2:] == ["0.02", "0.02"]
+
+
+HALF = """
+FUNCTION Half : LREAL
+VAR_INPUT x : LREAL; END_VAR
+Half := x / 2.0;
+END_FUNCTION
+
+FUNCTION HalfReal : REAL
+VAR_INPUT x : REAL; END_VAR
+HalfReal := x / 2.0;
+END_FUNCTION
+"""
+
+
+def call_half(tmp_path, capsys, pou, text):
+    path = tmp_path / "half.st"
+    path.write_text(HALF)
+    code = main(["call", str(path), "--pou", pou, "--set", f"x={text}", "--json"])
+    return code, capsys.readouterr()
+
+
+def test_set_numbers_beyond_the_range_are_usage_errors(tmp_path, capsys):
+    # an integer beyond the double range was an internal error (OverflowError)
+    code, out = call_half(tmp_path, capsys, "Half", "1" + "0" * 400)
+    assert code == 2 and "outside the range of LREAL" in out.err and "internal" not in out.err
+    # 1e999 was read by json as infinity
+    code, out = call_half(tmp_path, capsys, "Half", "1e999")
+    assert code == 2 and "--set x: 1e999 is too large" in out.err
+    # REAL's largest finite value is about 3.4028235e38; 1e40 rounded to +inf silently
+    code, out = call_half(tmp_path, capsys, "HalfReal", "1e40")
+    assert code == 2 and "outside the range of REAL" in out.err
+    code, out = call_half(tmp_path, capsys, "HalfReal", "3e38")
+    assert code == 0 and json.loads(out.out)["return"] == 1.5e38
+
+
+def test_set_infinity_is_still_taken_by_name(tmp_path, capsys):
+    code, out = call_half(tmp_path, capsys, "HalfReal", '"-Infinity"')
+    assert code == 0 and json.loads(out.out)["return"] == "-Infinity"

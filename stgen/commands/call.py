@@ -19,6 +19,7 @@ outputs are printed, stderr says so, and the exit status stays 0.
 from __future__ import annotations
 
 import json
+import math
 import sys
 
 from st_runtime.api import CallError, LoadError, load, parse_period
@@ -49,6 +50,14 @@ def usage(message: str) -> int:
     return 2
 
 
+def _finite_float(text: str) -> float:
+    """A JSON number; one beyond the double range (1e999) is refused, not infinity."""
+    value = float(text)
+    if math.isinf(value):
+        raise ValueError(f"{text} is too large for any ST number; infinity is written \"Infinity\"")
+    return value
+
+
 def parse_sets(items: list[str]) -> dict:
     inputs = {}
     for item in items:
@@ -58,10 +67,12 @@ def parse_sets(items: list[str]) -> dict:
         if name.strip().upper() in (key.upper() for key in inputs):
             raise ValueError(f"--set {name.strip()}: given twice")
         try:
-            inputs[name.strip()] = json.loads(text)
+            inputs[name.strip()] = json.loads(text, parse_float=_finite_float)
         except json.JSONDecodeError as exc:
             raise ValueError(f"--set {name.strip()}: not JSON ({exc.msg}): {text!r}; "
                              "strings need quotes, e.g. 'PT=\"T#1s\"'") from None
+        except ValueError as exc:
+            raise ValueError(f"--set {name.strip()}: {exc}") from None
     return inputs
 
 
