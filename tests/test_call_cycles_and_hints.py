@@ -133,3 +133,17 @@ def test_set_numbers_beyond_the_range_are_usage_errors(tmp_path, capsys):
 def test_set_infinity_is_still_taken_by_name(tmp_path, capsys):
     code, out = call_half(tmp_path, capsys, "HalfReal", '"-Infinity"')
     assert code == 0 and json.loads(out.out)["return"] == "-Infinity"
+
+
+def test_nj_reserves_the_p_underscore_prefix(tmp_path, capsys):
+    # W501 6-3-12: variable names may not start with "P_" (P_On, P_CY... are the system's);
+    # the NJ is not case sensitive, so p_ too.  "Pump_1" and "P1_x" are fine.
+    (tmp_path / "p.st").write_text("PROGRAM Main\nVAR P_Speed : INT; p_low : INT; Pump_1 : INT;"
+                                   " P1_x : INT; END_VAR\nP_Speed := 1;\nEND_PROGRAM\n")
+    assert main(["check", "--dialect", "nj", str(tmp_path)]) == 1
+    err = capsys.readouterr().err
+    assert "p.st:2:5: error[E-NJ-005]: identifier 'P_Speed'" in err
+    assert "p.st:2:20: error[E-NJ-005]: identifier 'p_low'" in err
+    assert "2 error(s)" in err and "'Pump_1'" not in err and "'P1_x'" not in err
+    assert main(["check", str(tmp_path)]) == 0
+    assert "warning[W-NJ-005]" in capsys.readouterr().err

@@ -68,8 +68,10 @@ CHECKER_CODES = register({
     "E-NJ-002": "identifier starts or ends with an underscore, not allowed on the NJ",
     "E-NJ-003": "identifier contains two consecutive underscores, not allowed on the NJ",
     "E-NJ-004": "identifier equals an NJ instruction name",
+    "E-NJ-005": "identifier starts with 'P_', reserved on the NJ for system-defined variables",
     "W-NJ-001": "identifier longer than 127 bytes (UTF-8): rejected by an OMRON NJ",
     "W-NJ-002": "identifier starts or ends with an underscore: rejected by an OMRON NJ",
     "W-NJ-003": "identifier contains two consecutive underscores: rejected by an OMRON NJ",
     "W-NJ-004": "identifier equals an NJ instruction name: rejected by an OMRON NJ",
+    "W-NJ-005": "identifier starts with 'P_': rejected by an OMRON NJ",
 })

@@ -2,6 +2,8 @@
 
 * at most 127 bytes in UTF-8;
 * no leading or trailing underscore, no two consecutive underscores;
+* no 'P_' prefix, in any case (system-defined variables such as P_On; NJ
+  Software User's Manual W501, 6-3-12);
 * not equal (case-insensitively) to an instruction name.
 
 Errors (`E-NJ-...`) under `--dialect nj`, warnings (`W-NJ-...`) otherwise.
@@ -58,6 +60,9 @@ def identifier_problems(name: str) -> list[tuple[str, str]]:
     if is_instruction(name):
         problems.append(("004", f"identifier '{name}' is the name of an NJ instruction: choose "
                                 f"another name"))
+    if name[:2].upper() == "P_":
+        problems.append(("005", f"identifier '{name}' starts with 'P_', which the NJ reserves for "
+                                f"system-defined variables"))
     return problems
 
 
