@@ -147,3 +147,11 @@ def test_nj_reserves_the_p_underscore_prefix(tmp_path, capsys):
     assert "2 error(s)" in err and "'Pump_1'" not in err and "'P1_x'" not in err
     assert main(["check", str(tmp_path)]) == 0
     assert "warning[W-NJ-005]" in capsys.readouterr().err
+
+
+def test_generate_out_naming_a_file_is_a_usage_error(tmp_path, capsys):
+    target = tmp_path / "platform.toml"
+    target.write_text("# mine\n")
+    assert main(["generate", "--target", "iec", "--out", str(target)]) == 2
+    assert "is a file; --out names a folder" in capsys.readouterr().err
+    assert target.read_text() == "# mine\n"

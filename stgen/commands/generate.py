@@ -8,7 +8,8 @@ reported as ``file[:line:col]: key: rule`` with exit status 1.
 The folder is kept in step with the configuration: generated files of an
 earlier run that this run does not write (a POU renamed, say) are removed,
 and a file there that stgen did not write is never overwritten (exit status
-1, nothing written); see :mod:`stgen.exports.folder`.
+1, nothing written); see :mod:`stgen.exports.folder`. An --out that names a
+file is a usage error (exit status 2).
 """
 
 from __future__ import annotations
@@ -55,6 +56,10 @@ def run(args: argparse.Namespace) -> int:
     config = config_from_args(args, "generate")
     if config is None:
         return 1
+    if Path(args.out).exists() and not Path(args.out).is_dir():
+        print(f"stgen generate: error: --out {args.out}: is a file; --out names a folder",
+              file=sys.stderr)
+        return 2
     try:
         update = generate(args.out, args.target, config, RenderOptions(determinant=args.determinant))
     except (RenderError, ForeignFileError) as error:
