@@ -27,17 +27,29 @@ def build_parser() -> argparse.ArgumentParser:
         prog="stgen",
         description="Stewart-platform kinematics as IEC 61131-3 ST, proven in a simulated NJ501.",
     )
+    parser.add_argument("--version", action="version", version=f"stgen {_version()}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     one_line_usage_errors(parser, hint=f"commands: {', '.join(COMMANDS)}; ")
+    parser.command_parsers = {}
     for name, help_text in COMMANDS.items():
         command_parser = sub.add_parser(name, help=help_text, description=help_text)
+        parser.command_parsers[name] = command_parser
         module = _command_module(name)
         if module is not None:
             module.add_arguments(command_parser)
             command_parser.set_defaults(handler=module.run)
         one_line_usage_errors(command_parser)
     return parser
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("stgen")
+    except PackageNotFoundError:    # run from a source tree that was never installed
+        return "(not installed)"
 
 
 def one_line_usage_errors(parser: argparse.ArgumentParser, hint: str = "") -> None:
@@ -82,7 +94,10 @@ def _command_module(name: str):
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     _ARGV[:] = sys.argv[1:] if argv is None else argv
-    args = parser.parse_args(argv)  # exits 2 on usage errors
+    args, extra = parser.parse_known_args(argv)  # exits 2 on usage errors
+    if extra:   # named by the subcommand, whose --help lists what it takes
+        command_parser = parser.command_parsers.get(args.command, parser)
+        command_parser.error(f"unrecognized arguments: {' '.join(extra)}")
     handler = getattr(args, "handler", None)
     if handler is None:
         parser.error(f"the '{args.command}' command is not available in this build")

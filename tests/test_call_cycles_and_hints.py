@@ -155,3 +155,26 @@ def test_generate_out_naming_a_file_is_a_usage_error(tmp_path, capsys):
     assert main(["generate", "--target", "iec", "--out", str(target)]) == 2
     assert "is a file; --out names a folder" in capsys.readouterr().err
     assert target.read_text() == "# mine\n"
+
+
+def test_unknown_option_is_named_by_its_subcommand(tmp_path, capsys):
+    # was "stgen: error: ... (see 'stgen --help')", whose help does not list run's options
+    code = None
+    try:
+        main(["run", write(tmp_path), "--program", "P", "--sett", "x=1"])
+    except SystemExit as exc:
+        code = exc.code
+    assert code == 2
+    assert capsys.readouterr().err.strip() == (
+        "stgen run: error: unrecognized arguments: --sett x=1 (see 'stgen run --help')")
+
+
+def test_version(capsys):
+    from importlib.metadata import version
+
+    code = None
+    try:
+        main(["--version"])
+    except SystemExit as exc:
+        code = exc.code
+    assert code == 0 and capsys.readouterr().out.strip() == f"stgen {version('stgen')}"

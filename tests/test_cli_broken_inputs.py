@@ -85,7 +85,7 @@ CASES = [
     ([], 2, "stgen: error: the following arguments are required: COMMAND (commands: check, run, call,"),
     (["--bogus"], 2, "stgen: error: the following arguments are required: COMMAND"),
     (["frob"], 2, "stgen: error: argument COMMAND: invalid choice: 'frob'"),
-    (["check", "{d}/main.st", "--bogus"], 2, "stgen: error: unrecognized arguments: --bogus (see 'stgen --help')"),
+    (["check", "{d}/main.st", "--bogus"], 2, "stgen check: error: unrecognized arguments: --bogus (see 'stgen check --help')"),
     (["generate", "--bogus"], 2, "stgen generate: error: the following arguments are required: --out"),
 ]
 
