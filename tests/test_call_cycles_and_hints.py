@@ -178,3 +178,47 @@ def test_version(capsys):
     except SystemExit as exc:
         code = exc.code
     assert code == 0 and capsys.readouterr().out.strip() == f"stgen {version('stgen')}"
+
+
+GATE = """
+VAR_GLOBAL Gain : LREAL := 1.0; END_VAR
+PROGRAM Gate
+VAR
+    Present : BOOL;
+    Count : INT;
+    Pose : ARRAY[1..3] OF LREAL;
+    Out : LREAL;
+END_VAR
+IF Present THEN
+    Count := Count + 1;
+END_IF;
+Out := Pose[2] * Gain;
+END_PROGRAM
+"""
+
+
+def run_gate(tmp_path, capsys, *sets, cycles="3"):
+    path = tmp_path / "gate.st"
+    path.write_text(GATE)
+    argv = ["run", str(path), "--program", "Gate", "--cycles", cycles, "--json"]
+    for item in sets:
+        argv += ["--set", item]
+    return main(argv), capsys.readouterr()
+
+
+def test_run_set_writes_program_variables_and_globals_before_scan_one(tmp_path, capsys):
+    code, out = run_gate(tmp_path, capsys, "Present=true", "Pose[2]=1.5", "Gain=4")
+    data = json.loads(out.out)
+    # Present stays TRUE: three scans count 3; Out = 1.5 * 4
+    assert code == 0 and data["Count"] == 3 and data["Out"] == 6.0
+    code, out = run_gate(tmp_path, capsys)
+    assert json.loads(out.out)["Count"] == 0
+
+
+def test_run_set_errors_name_the_path(tmp_path, capsys):
+    assert run_gate(tmp_path, capsys, "Pose[4]=1")[1].err.strip() == (
+        "stgen run: error: --set Pose[4]: index 4 out of bounds 1..3")
+    assert run_gate(tmp_path, capsys, "Nope=1")[1].err.strip() == (
+        "stgen run: error: --set Nope: no variable 'Nope'")
+    code, out = run_gate(tmp_path, capsys, "Count=40000")
+    assert code == 2 and "--set Count: 40000 is outside the range of INT" in out.err

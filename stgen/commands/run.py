@@ -1,8 +1,10 @@
-"""`stgen run FILE_OR_DIR... --program NAME [--cycles N] [--period 1ms] [--json]
-[--trace OUT.csv --watch PATH...]`: run a PROGRAM scan by scan.
+"""`stgen run FILE_OR_DIR... --program NAME [--cycles N] [--period 1ms]
+[--set PATH=JSON ...] [--json] [--trace OUT.csv --watch PATH...]`: run a
+PROGRAM scan by scan.
 
 The program runs on the primary task of a simulated controller for N scans
-(default 1).  With `--json`, stdout gets one JSON object: every variable of
+(default 1).  `--set` writes a variable of the program instance (or, when it
+has none of that name, a global) once, before the first scan.  With `--json`, stdout gets one JSON object: every variable of
 the program instance by its declared name (BOOL true/false, integers, reals,
 strings, TIME as an IEC literal "T#1s500ms", arrays as nested lists, structs
 and FB instances as objects; strict JSON, so a non-finite REAL/LREAL is the
@@ -22,6 +24,7 @@ file, 2 on usage errors.
 from __future__ import annotations
 
 import os
+import re
 import sys
 
 from st_runtime.api import LoadError, load, parse_period
@@ -37,6 +40,10 @@ def add_arguments(parser) -> None:
     parser.add_argument("--program", required=True, metavar="NAME", help="the PROGRAM to run")
     parser.add_argument("--cycles", type=int, default=1, metavar="N", help="scans to run (default 1)")
     parser.add_argument("--period", default="1ms", help="primary task period (default 1ms)")
+    parser.add_argument("--set", action="append", default=[], metavar="PATH=JSON",
+                        help="write a variable of the program (or a global) before the first scan,"
+                             " e.g. 'Setpoint=12.5', 'Pose[1]=3', 'Timer.PT=\"T#2s\"'; the"
+                             " program may overwrite it")
     parser.add_argument("--json", action="store_true",
                         help="print the program's variables as one strict JSON object (TIME as"
                              ' "T#1s500ms", arrays as nested lists, structs and FBs as objects;'
@@ -133,6 +140,9 @@ def run(args) -> int:
     if motion is not None:
         motion.install(plc.controller)
     program = plc.add_program(pou.name)
+    problem = write_sets(args.set, program, plc)
+    if problem:
+        return usage(problem)
     trace = None
     if args.trace:
         try:
@@ -153,6 +163,31 @@ def run(args) -> int:
             print(f"stgen run: error: cannot write {args.trace}: {exc.strerror or exc}", file=sys.stderr)
             return 1
     return report_faults("stgen run", plc.controller)
+
+
+def write_sets(items: list[str], program, plc) -> str | None:
+    """Store each `--set PATH=JSON` in the program instance, else in the globals;
+    the usage error of the first that cannot be stored."""
+    from st_runtime.values import JsonValueError
+
+    from .call import parse_sets
+
+    try:
+        values = parse_sets(items)
+    except ValueError as exc:
+        return str(exc)
+    for path, value in values.items():
+        root = re.split(r"[.\[]", path, maxsplit=1)[0].strip()
+        try:
+            program[root]
+            target = program
+        except KeyError:
+            target = plc.globals
+        try:
+            target[path] = value
+        except (KeyError, JsonValueError) as exc:
+            return f"--set {exc.args[0] if exc.args else exc}"
+    return None
 
 
 def argument_problem(args) -> str | None:
