@@ -222,3 +222,31 @@ def test_run_set_errors_name_the_path(tmp_path, capsys):
         "stgen run: error: --set Nope: no variable 'Nope'")
     code, out = run_gate(tmp_path, capsys, "Count=40000")
     assert code == 2 and "--set Count: 40000 is outside the range of INT" in out.err
+
+
+def check_text(tmp_path, capsys, text):
+    (tmp_path / "r.st").write_text(text)
+    code = main(["check", str(tmp_path)])
+    return code, capsys.readouterr().err
+
+
+def test_real_constants_beyond_the_range_are_refused(tmp_path, capsys):
+    # REAL's largest value is (2 - 2**-23) * 2**127 = 3.4028234663852886e38;
+    # 3.4028235e38 rounds to it, 3.40282357e38 is past the half-ulp and rounds to +inf.
+    code, err = check_text(tmp_path, capsys, "PROGRAM M\nVAR r : REAL := 3.4028235e38; END_VAR\n"
+                                              "r := -1e39;\nEND_PROGRAM\n")
+    assert code == 1 and "r.st:3:6: error[E-TYPE-005]: constant -1e+39 does not fit REAL" in err
+    assert "1 error(s)" in err
+    code, err = check_text(tmp_path, capsys, "PROGRAM M\nVAR r : REAL := 3.40282357e38; END_VAR\n"
+                                              "END_PROGRAM\n")
+    assert code == 1 and "r.st:2:17: error[E-TYPE-005]: constant 3.40282357e+38 does not fit REAL" in err
+    code, err = check_text(tmp_path, capsys, "PROGRAM M\nVAR l : LREAL; END_VAR\nl := 2.0 * 1e400;\n"
+                                              "END_PROGRAM\n")
+    assert code == 1 and "r.st:3:12: error[E-TYPE-005]: a real literal does not fit LREAL" in err
+
+
+def test_lreal_range_and_division_by_zero_constant_stay_accepted(tmp_path, capsys):
+    # 1e39 fits an LREAL; a folded 1.0 / 0.0 is +inf on purpose, as at run time
+    code, err = check_text(tmp_path, capsys, "PROGRAM M\nVAR l : LREAL := 1e39; r : REAL; END_VAR\n"
+                                              "r := 1.0 / 0.0;\nEND_PROGRAM\n")
+    assert code == 0, err

@@ -27,11 +27,13 @@ Literal typing rule (the compiler relies on it):
 from __future__ import annotations
 
 import difflib
+import math
 
 from .. import ast
 from .. import types as T
 from ..ast import key
 from . import typesys as ts
+from ..values import to_real32
 from .constfold import NOT_CONSTANT, DivisionByZero, apply_binary, apply_unary
 from .context import Context, Scope
 
@@ -188,6 +190,13 @@ class ExprChecker:
             return None
         if isinstance(value, float):
             t = expected if ts.is_real(expected) else T.LREAL
+            too_large = _beyond_real_range(value, t, e) if strict else None
+            if too_large:
+                what, where = too_large
+                self.ctx.error("E-TYPE-005", f"{what} does not fit {t} "
+                               f"(largest magnitude {_REAL_MAX[t.bits]})", where.pos)
+                self._record_tree(e, lambda n: ts.ERROR, {})
+                return ts.ERROR
             self._record_tree(e, lambda n: t, values)
             return t
         ints = [v for v in values.values() if isinstance(v, int)]
@@ -550,3 +559,29 @@ class ExprChecker:
 
 class _Unfoldable(Exception):
     pass
+
+
+
+_REAL_MAX = {32: "3.4028235e+38", 64: "1.7976931348623157e+308"}
+
+
+def _beyond_real_range(value: float, t, e) -> tuple[str, object] | None:
+    """(what, node) beyond the range of REAL/LREAL `t` in a constant: the
+    value, finite but rounding to infinity as a REAL (1e40), or a literal no
+    double holds (1e400).  A folded 1.0 / 0.0 is +inf on purpose, as at run time."""
+    if math.isfinite(value):
+        if t.bits == 32 and math.isinf(to_real32(value)):
+            return f"constant {value!r}", e
+        return None
+    literal = _infinite_literal(e)
+    return ("a real literal", literal) if literal is not None else None
+
+
+def _infinite_literal(e):
+    if isinstance(e, ast.RealLiteral):
+        return e if math.isinf(e.value) else None
+    if isinstance(e, ast.Unary):
+        return _infinite_literal(e.operand)
+    if isinstance(e, ast.Binary):
+        return _infinite_literal(e.left) or _infinite_literal(e.right)
+    return None
