@@ -250,3 +250,13 @@ def test_lreal_range_and_division_by_zero_constant_stay_accepted(tmp_path, capsy
     code, err = check_text(tmp_path, capsys, "PROGRAM M\nVAR l : LREAL := 1e39; r : REAL; END_VAR\n"
                                               "r := 1.0 / 0.0;\nEND_PROGRAM\n")
     assert code == 0, err
+
+
+def test_verify_negative_seed_is_a_usage_error(capsys):
+    code = None
+    try:
+        main(["verify", "--seed=-3", "--poses", "5"])
+    except SystemExit as exc:
+        code = exc.code
+    assert code == 2    # was "stgen: internal error: ValueError: expected non-negative integer"
+    assert "argument --seed: expected an integer 0 or more, got -3" in capsys.readouterr().err

@@ -27,7 +27,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              " drawn anywhere in the box, reachable or not (the table counts both)")
     parser.add_argument("--fk-poses", type=_positive, default=500, metavar="N",
                         help="poses for the FK comparisons, from p_NR and from warm starts (default: 500)")
-    parser.add_argument("--seed", type=int, default=2024, help="random seed (default: 2024)")
+    parser.add_argument("--seed", type=_non_negative, default=2024,
+                        help="random seed, 0 or more (default: 2024)")
 
 
 def _positive(text: str) -> int:
@@ -37,6 +38,17 @@ def _positive(text: str) -> int:
         raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}") from None
     if value < 1:
         raise argparse.ArgumentTypeError(f"expected a positive integer, got {value}")
+    return value
+
+
+def _non_negative(text: str) -> int:
+    """A NumPy seed: an integer >= 0 (a negative one was an internal error)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer 0 or more, got {text!r}") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"expected an integer 0 or more, got {value}")
     return value
 
 
