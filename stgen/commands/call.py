@@ -22,10 +22,10 @@ import json
 import math
 import sys
 
-from st_runtime.api import CallError, LoadError, load, parse_period
+from st_runtime.api import CallError, LoadError, load
 from st_runtime.values import JsonValueError, json_text
 
-from .run import MAX_FAULT_LINES, kind_hint, source_problem
+from .run import MAX_FAULT_LINES, kind_hint, period_option, source_problem
 
 
 def add_arguments(parser) -> None:
@@ -87,11 +87,9 @@ def run(args) -> int:
     except ValueError as exc:
         return usage(str(exc))
     try:
-        period = parse_period(args.period)
+        period = period_option(args.period)
     except ValueError as exc:
-        return usage(f"--period: {exc}")
-    if period <= 0:
-        return usage("--period must be positive")
+        return usage(str(exc))
     try:
         project = load(args.paths, dialect=args.dialect)
     except LoadError as exc:

@@ -102,6 +102,17 @@ def output_problem(path: str) -> str | None:
     return None
 
 
+def period_option(text: str) -> int:
+    """The `--period` option in nanoseconds; ValueError with the message to show."""
+    try:
+        period = parse_period(text)
+    except ValueError as exc:
+        raise ValueError(f"--period: {exc}") from None
+    if period <= 0:
+        raise ValueError("--period must be positive")
+    return period
+
+
 def kind_hint(project, name: str, wanted: str) -> str:
     """" ('F' is a FUNCTION; <wanted>)" when `name` names a POU of another kind."""
     pou = project.program.pous.get(name.upper())
@@ -135,7 +146,7 @@ def run(args) -> int:
         names = sorted(p.name for p in project.program.pous.values() if p.kind == "PROGRAM")
         hint = kind_hint(project, args.program, "stgen call --pou calls it")
         return usage(f"no PROGRAM named '{args.program}'{hint} (programs: {', '.join(names) or 'none'})")
-    plc = project.controller(period=parse_period(args.period), budget=args.budget,
+    plc = project.controller(period=period_option(args.period), budget=args.budget,
                              stop_on_fault=args.stop_on_fault)
     if motion is not None:
         motion.install(plc.controller)
@@ -204,11 +215,9 @@ def argument_problem(args) -> str | None:
     if args.trace and output_problem(args.trace):
         return f"--trace: {output_problem(args.trace)}"
     try:
-        period = parse_period(args.period)
+        period_option(args.period)
     except ValueError as exc:
-        return f"--period: {exc}"
-    if period <= 0:
-        return "--period must be positive"
+        return str(exc)
     if args.axes and os.path.isdir(args.axes):
         return f"--axes: '{args.axes}' is a directory; expected a TOML file"
     if args.axes and not os.path.exists(args.axes):
