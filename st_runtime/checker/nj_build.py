@@ -25,6 +25,7 @@ from dataclasses import fields
 
 from .. import ast
 from .. import types as T
+from ..printer import format_expr as _text
 from .context import BUILTIN_FILE, Context
 
 _LITERALS = (ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral, ast.StringLiteral,
@@ -153,19 +154,3 @@ def _start(e) -> ast.Pos:
         e = e.base if not isinstance(e, ast.Binary) else e.left
     return e.pos
 
-
-def _text(e) -> str:
-    """A short ST rendering of a variable path or a simple expression, for messages."""
-    if isinstance(e, ast.Name):
-        return e.name
-    if isinstance(e, ast.Member):
-        return f"{_text(e.base)}.{e.name}"
-    if isinstance(e, ast.Index):
-        return f"{_text(e.base)}[{', '.join(_text(i) for i in e.indices)}]"
-    if isinstance(e, ast.IntLiteral):
-        return str(e.value)
-    if isinstance(e, ast.Unary):
-        return f"{e.op}{_text(e.operand)}" if e.op != "NOT" else f"NOT {_text(e.operand)}"
-    if isinstance(e, ast.Binary):
-        return f"{_text(e.left)} {e.op} {_text(e.right)}"
-    return "expression"
