@@ -11,6 +11,7 @@ must be clean under `nj`.  Counter values by hand from the counters' bodies
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -108,3 +109,16 @@ def test_the_other_dialects_pin_names_are_refused_with_the_right_name(dialect, o
                                 ("E-PIN-001", 18)]
     first = result.diagnostics[0].message
     assert f"here the pin is '{RESET_PIN[dialect]}'" in first
+
+
+def test_stgen_run_takes_omrons_pins_under_dialect_nj(capsys):
+    from stgen.cli import main
+
+    path = str(COUNTERS["nj"])
+    assert main(["run", path, "--program", "Main", "--cycles", "3", "--dialect", "nj", "--json"]) == 0
+    state = json.loads(capsys.readouterr().out)
+    assert (state["Up"]["CV"], state["Up"]["Reset"], state["Down"]["CV"], state["Down"]["Load"]) \
+        == (1, False, 4, False)
+    assert main(["run", path, "--program", "Main", "--cycles", "3", "--json"]) == 1
+    printed = capsys.readouterr()
+    assert "E-PIN-001" in printed.out + printed.err
