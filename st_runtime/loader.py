@@ -96,7 +96,7 @@ def load_texts(texts: dict[str, str], dialect: str = "iec") -> LoadResult:
     sources: dict[str, str] = {}
     diagnostics: list[Diagnostic] = []
     files: list[ast.SourceFile] = []
-    prelude = native.prelude_source()
+    prelude = native.prelude_source(dialect)
     for path, text in [(BUILTIN, prelude)] + list(texts.items()):
         sources[path] = text
         parsed, found = parse(text, path)
