@@ -47,8 +47,9 @@ VAR
     Heading : LREAL;
     Rest : LREAL;
     Centre : ARRAY[1..6] OF LREAL;
+    Fade : BOOL;
 END_VAR
-Wave(Enable := Enable, RunClock := RunClock, ComponentCount := Count, Amplitude := Amplitude,
+Wave(Enable := Enable, RunClock := RunClock, FadeIn := Fade, ComponentCount := Count, Amplitude := Amplitude,
      WavePeriod := Period, WaveLength := Length, Phase := Phase, WaveLengthUnit := Unit,
      Heading := Heading, RestPosition := Rest, CentrePose := Centre);
 END_PROGRAM
@@ -277,3 +278,44 @@ def test_wave_refuses_invalid_parameters(project, trj_codes, field, value):
     program["Enable"] = False
     plc.scan()
     assert not program["Wave.Error"] and program["Wave.ErrorID"] == 0
+
+
+# --------------------------------------------------------------------------- fade-in (issue 8, SPEC 4)
+
+
+def test_fade_in_matches_reference_and_starts_at_rest(project):
+    from stgen.reference.wave import fade_in_duration
+
+    wave = OceanWave(RANDOM_5.components, heading_deg=30.0)
+    centre = (5.0, -3.0, 150.0, 1.0, 2.0, -1.5)
+    plc, program = _wave(project, wave, centre, rest=12.5)
+    program["Fade"] = True
+    program["Enable"] = True
+    program["RunClock"] = True
+    poses = []
+    for _ in range(1500):
+        plc.scan()
+        poses.append(program["Wave.Pose"])
+    fade = fade_in_duration(wave, TrajectoryConfig())
+    assert program["Wave.FadeDuration"] == pytest.approx(fade, rel=1e-12)
+    assert 0.1 < fade < 1.5  # the run covers the fade and beyond
+    expected = wave_pose(wave, np.arange(1500) * PERIOD, centre, position_mm=12.5, fade_s=fade)
+    assert np.max(np.abs(np.array(poses) - expected)) <= 1e-9
+    # Starts at rest at the centre: the first two calls (t = 0 and 1 ms) hardly move (sigma(tau) ~ tau^3).
+    assert poses[0] == pytest.approx(list(centre), abs=1e-15)
+    assert np.max(np.abs(np.array(poses[1]) - centre)) < 1e-6
+
+
+def test_fade_in_refuses_a_wave_faster_than_the_limits(project, trj_codes):
+    from stgen.reference.wave import fade_in_duration
+
+    # 60 mm at Tw = 1 s: the wave alone moves z at 2*pi*60 = 377 mm/s > 100 mm/s.
+    wave = OceanWave((WaveComponent(60.0, 1.0, 100.0, 0.0),))
+    with pytest.raises(ValueError):
+        fade_in_duration(wave, TrajectoryConfig())
+    plc, program = _wave(project, wave)
+    program["Fade"] = True
+    program["Enable"] = True
+    plc.run(2)
+    assert program["Wave.Error"] and not program["Wave.Active"]
+    assert program["Wave.ErrorID"] == trj_codes["TRJ_ERR_WAVE_LIMIT"]
