@@ -53,6 +53,17 @@ Wave(Enable := Enable, RunClock := RunClock, FadeIn := Fade, ComponentCount := C
      WavePeriod := Period, WaveLength := Length, Phase := Phase, WaveLengthUnit := Unit,
      Heading := Heading, RestPosition := Rest, CentrePose := Centre);
 END_PROGRAM
+
+PROGRAM TestBrake
+VAR
+    Stop : TRJ_Brake;
+    Execute : BOOL;
+    Start : ARRAY[1..6] OF LREAL;
+    Velocity : ARRAY[1..6] OF LREAL;
+    Acceleration : ARRAY[1..6] OF LREAL;
+END_VAR
+Stop(Execute := Execute, StartPose := Start, Velocity := Velocity, Acceleration := Acceleration);
+END_PROGRAM
 """
 
 
@@ -319,3 +330,51 @@ def test_fade_in_refuses_a_wave_faster_than_the_limits(project, trj_codes):
     plc.run(2)
     assert program["Wave.Error"] and not program["Wave.Active"]
     assert program["Wave.ErrorID"] == trj_codes["TRJ_ERR_WAVE_LIMIT"]
+
+
+# --------------------------------------------------------------------------- TRJ_Brake (issue 8)
+
+
+def _brake(project, start, velocity, acceleration, scans):
+    plc = project.controller(period="1ms")
+    program = plc.add_program("TestBrake")
+    program["Start"] = list(map(float, start))
+    program["Velocity"] = list(map(float, velocity))
+    program["Acceleration"] = list(map(float, acceleration))
+    program["Execute"] = True
+    poses, done = [], []
+    for _ in range(scans):
+        plc.scan()
+        poses.append(program["Stop.Pose"])
+        done.append(program["Stop.Done"])
+    return program, np.array(poses), np.array(done)
+
+
+def test_brake_from_100_mm_per_s_by_hand(project):
+    # v0 = 100 mm/s in x, a0 = 0, limits 500 mm/s^2 and 5000 mm/s^3: T_S = max(1.5*100/500 = 0.3 s,
+    # SQRT(12*100/5000) = 0.49 s) = 490 periods; stop distance v0*T_S/2 = 24.5 mm; the edge outputs t = 1 ms.
+    program, poses, done = _brake(project, [10, 0, 150, 0, 0, 0], [100, 0, 0, 0, 0, 0], [0] * 6, 492)
+    assert program["Stop.Duration"] == pytest.approx(0.49, abs=1e-12)
+    assert done.tolist().index(True) == 489 and done[489:].all()
+    assert poses[489][0] == pytest.approx(10.0 + 24.5, abs=1e-9)
+    assert poses[0][0] == pytest.approx(10.0 + 0.1, abs=1e-4)  # one period at about 100 mm/s
+    assert poses[-1].tolist() == poses[489].tolist()
+
+
+def test_brake_matches_reference(project):
+    from stgen.reference.brake import brake_duration, brake_pose
+
+    start = (5.0, -3.0, 150.0, 1.0, 2.0, -1.5)
+    velocity = (20.0, -35.0, 60.0, 3.0, -4.0, 1.0)
+    acceleration = (100.0, 50.0, -200.0, 10.0, 5.0, -20.0)
+    duration = brake_duration(velocity, acceleration, TrajectoryConfig(), PERIOD)
+    scans = round(duration / PERIOD) + 3
+    program, poses, _ = _brake(project, start, velocity, acceleration, scans)
+    assert program["Stop.Duration"] == pytest.approx(duration, rel=1e-12)
+    expected = brake_pose(start, velocity, acceleration, duration, np.arange(1, scans + 1) * PERIOD)
+    assert np.max(np.abs(poses - expected)) <= 1e-9
+
+
+def test_brake_refuses_an_acceleration_at_the_limit(project, trj_codes):
+    program, _, _ = _brake(project, [0] * 6, [0] * 6, [0, 0, 500, 0, 0, 0], 2)
+    assert program["Stop.Error"] and program["Stop.ErrorID"] == trj_codes["TRJ_ERR_STOP_LIMIT"]
