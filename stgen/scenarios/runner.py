@@ -59,6 +59,7 @@ class ScenarioResult:
     commanded_limits: SetpointLimitCheck = None  # the same of ``commanded`` (Cmd.Pos), reported apart
     runtime_faults: list = field(default_factory=list)
     wall_seconds: float = 0.0
+    servo_lag_s: float = 0.0      # first-order lag of Act.Pos behind Cmd.Pos of the simulated axes
     move_durations_s: tuple[float, ...] = ()  # SpMoveDuration after each move's edge (a wave: the lead-in)
 
     @property
@@ -275,5 +276,6 @@ def run_scenario(
                                                actuator.max_acceleration, sync),
         runtime_faults=list(sim.runtime_faults),
         wall_seconds=wall,
+        servo_lag_s=servo_lag_s,
         move_durations_s=tuple(durations),
     )

@@ -53,6 +53,27 @@ class SetpointLimitCheck:
                 + ("" if self.passed else f", breach from row {self.first_breach_scan}"))
 
 
+def _differences(q: np.ndarray, period_s: float, active):
+    on = np.ones(len(q), dtype=bool) if active is None else np.asarray(active, dtype=bool)
+    velocity = np.diff(q, axis=0) / period_s                       # row k-1 holds v of row k
+    acceleration = np.diff(velocity, axis=0) / period_s            # row k-2 holds a of row k
+    velocity_valid = on[1:] & on[:-1]
+    acceleration_valid = velocity_valid[1:] & velocity_valid[:-1]
+    return velocity, acceleration, velocity_valid, acceleration_valid
+
+
+def setpoint_rates(positions, period_s: float, active=None) -> tuple[np.ndarray, np.ndarray]:
+    """(v, a) per row and cylinder as :func:`check_setpoint_limits` takes them, same shape as
+    ``positions``; NaN where a difference is not taken (first rows, scans outside ``active``)."""
+    q = np.asarray(positions, dtype=float)
+    velocity, acceleration, velocity_valid, acceleration_valid = _differences(q, period_s, active)
+    v = np.full(q.shape, np.nan)
+    a = np.full(q.shape, np.nan)
+    v[1:] = np.where(velocity_valid[:, None], velocity, np.nan)
+    a[2:] = np.where(acceleration_valid[:, None], acceleration, np.nan)
+    return v, a
+
+
 def _masked_max(values: np.ndarray, valid: np.ndarray) -> np.ndarray:
     magnitude = np.where(valid[:, None], np.abs(values), 0.0)
     return magnitude.max(axis=0) if len(magnitude) else np.zeros(values.shape[1])
@@ -75,11 +96,7 @@ def check_setpoint_limits(
     if q.ndim != 2:
         raise ValueError(f"positions must be [scans, cylinders], got shape {q.shape}")
     scans, cylinders = q.shape
-    on = np.ones(scans, dtype=bool) if active is None else np.asarray(active, dtype=bool)
-    velocity = np.diff(q, axis=0) / period_s                       # row k-1 holds v of row k
-    acceleration = np.diff(velocity, axis=0) / period_s            # row k-2 holds a of row k
-    velocity_valid = on[1:] & on[:-1]
-    acceleration_valid = velocity_valid[1:] & velocity_valid[:-1]
+    velocity, acceleration, velocity_valid, acceleration_valid = _differences(q, period_s, active)
     v_over = (np.abs(velocity) > velocity_limit * (1.0 + LIMIT_SLACK)) & velocity_valid[:, None]
     a_over = (np.abs(acceleration) > acceleration_limit * (1.0 + LIMIT_SLACK)) & acceleration_valid[:, None]
     first = []
