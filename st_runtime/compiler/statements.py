@@ -12,11 +12,19 @@ allows 20.)  In CPython 3.11+ a `try` costs nothing until something is raised
 (zero-cost exception tables): benchmarks/bench_runtime.py shows the same
 times with and without the guards.
 
-Scan budget.  A FOR loop charges its iteration count to `_ctx.budget` once,
-before it starts (its bounds are evaluated once, so the count is known);
-WHILE, REPEAT and FOR loops that may leave early (EXIT, RETURN) charge one
-unit per iteration.  When the budget goes negative the scan ends with
-`ScanOverrun` (F-PERIOD), which the per-statement handlers let through.
+Execution time.  Every basic block of the ST source (a run of assignments
+and calls, with the IF condition, CASE selector or FOR bounds that ends it)
+subtracts its estimated NJ501 time (cost.py, picoseconds) from
+`_ctx.budget` once, at its start; an ELSIF or CASE branch also charges the
+tests it took to reach it.  A loop charges its overhead, its test and its
+body's first block once per iteration and checks the budget there: when it
+goes negative the scan ends with `ScanOverrun` (F-PERIOD), which the
+per-statement handlers let through.  A FOR whose body is one block and
+cannot leave early charges all its iterations once, before it starts (its
+bounds are evaluated once, so the count is known).  Straight-line code is
+checked by the controller after the program.  The charges come from the ST
+text only, so any change of the Python generated for it leaves them as
+they are.
 """
 
 from __future__ import annotations
@@ -25,6 +33,7 @@ from .. import ast
 from ..objects import is_aggregate
 from ..types import resolve_alias
 from .calls import copy_statement
+from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
 from .pysrc import Emitter, pyliteral, pyident
@@ -40,6 +49,7 @@ class BodyCompiler(ExprCompiler):
         self.method = method
         self.body = body
         self.out = Emitter()
+        self.cost = CostModel(program)
         if not method:
             self._add_return_variable()
 
@@ -114,9 +124,46 @@ class BodyCompiler(ExprCompiler):
 
     # --------------------------------------------------------- statements
 
-    def statements(self, body) -> None:
-        for stmt in body:
-            self.statement(stmt)
+    def statements(self, body, lead: float = 0, check: str | None = None, charge: bool = True) -> None:
+        """Compile `body` block by block, each block charged once at its start.
+
+        `lead`: units charged with the first block (a loop's overhead and
+        test, the tests an ELSIF took); `check`: the place of the loop whose
+        iteration this is (the first charge then tests for an overrun);
+        `charge=False`: the caller has charged the whole body already.
+        """
+        first = True
+        for simple, compound in _blocks(body):
+            units = sum(self.cost.simple(st) for st in simple) + (self._head_cost(compound) if compound else 0)
+            if first:
+                units += lead
+            if charge:
+                self._charge(units, check if first else None)
+            first = False
+            for stmt in simple:
+                self.statement(stmt)
+            if compound is not None:
+                self.statement(compound)
+
+    def _head_cost(self, s) -> float:
+        """What a compound statement evaluates once, on entry."""
+        if isinstance(s, ast.If):
+            return self.cost.condition(s.branches[0].condition)
+        if isinstance(s, ast.Case):
+            return self.cost.expr(s.selector)
+        if isinstance(s, ast.For):
+            return self.cost.for_setup(s)
+        return 0
+
+    def _charge(self, units: float, check: str | None = None, times: str | None = None) -> None:
+        """Subtract `units` (times `times`, Python source) from the scan's time; test if `check`."""
+        if not self.unit.charge_costs:
+            return
+        ps = picoseconds(units)
+        if ps or check:
+            self.out.line(f"_ctx.budget -= {ps if times is None else f'{times} * {ps}'}")
+        if check:
+            self.out.line(f"if _ctx.budget < 0: _overrun({check})")
 
     def statement(self, stmt) -> None:
         if isinstance(stmt, ast.Empty):
@@ -162,10 +209,10 @@ class BodyCompiler(ExprCompiler):
         self.guard(node, lambda: self.out.line(f"{tmp} = {code}"), lambda: [f"{tmp} = {on_fault}"])
         return tmp, True
 
-    def block(self, body) -> None:
+    def block(self, body, lead: float = 0) -> None:
         self.out.indent()
         mark = self.out.mark()
-        self.statements(body or ())
+        self.statements(body or (), lead)
         self.out.ensure_body(mark)
         self.out.dedent()
 
@@ -199,12 +246,14 @@ class BodyCompiler(ExprCompiler):
         for i in range(n - 1, -1, -1):
             chooser = f"{i} if {self.expr(s.branches[i].condition)} else ({chooser})"
         which, _ = self.guarded_value(s, chooser, "-1")
+        # The first test is charged before the IF; the later ones by the branch that took them.
+        tests = [0.0] + [self.cost.condition(b.condition) for b in s.branches[1:]]
         for i, branch in enumerate(s.branches):
             o.line(f"{'if' if i == 0 else 'elif'} {which} == {i}:")
-            self.block(branch.body)
+            self.block(branch.body, sum(tests[:i + 1]))
         if s.else_body:
             o.line(f"elif {which} == {n}:")
-            self.block(s.else_body)
+            self.block(s.else_body, sum(tests))
 
     def s_Case(self, s):
         """A fault in the selector abandons the whole CASE."""
@@ -215,7 +264,9 @@ class BodyCompiler(ExprCompiler):
         self.out.indent()
         t = self.ty(s.selector)
         first = True
+        labels = 0          # labels compared to reach a clause, charged by that clause
         for clause in s.clauses:
+            labels += self.cost.case_labels(clause)
             singles: list[str] = []
             tests: list[str] = []
             for label in clause.labels:
@@ -231,13 +282,13 @@ class BodyCompiler(ExprCompiler):
                 tests.insert(0, f"{selector} in ({', '.join(singles)},)")
             self.out.line(f"{'if' if first else 'elif'} {' or '.join(tests) or 'False'}:")
             first = False
-            self.block(clause.body)
+            self.block(clause.body, labels * self.cost.w["branch"])
         if s.else_body:
             if first:
                 self.out.line("if True:")
             else:
                 self.out.line("else:")
-            self.block(s.else_body)
+            self.block(s.else_body, labels * self.cost.w["branch"])
         self.out.dedent()
 
     def _label(self, label):
@@ -282,9 +333,14 @@ class BodyCompiler(ExprCompiler):
             o.line(f"if {rng} is not None:")
             o.indent()
         early = _leaves_early(s.body)
-        if not early and count != 0:
-            o.line(f"_ctx.budget -= {count if count is not None else f'len({rng})'}")
-            o.line(f"if _ctx.budget < 0: _overrun({where})")
+        # A body that is one block and runs to the end: all iterations charged up front.
+        upfront = not early and all(compound is None for _, compound in _blocks(s.body))
+        if upfront and count != 0:
+            units = self.cost.loop() + sum(self.cost.simple(b) for b in s.body if not isinstance(b, ast.Empty))
+            if count is None:
+                self._charge(units, where, f"len({rng})")
+            else:
+                self._charge(units * count, where)
         saved = self.known_ranges.get(key)
         lo_r, hi_r = self.static_range(s.start), self.static_range(s.end)
         if lo_r and hi_r and const_step:
@@ -302,11 +358,11 @@ class BodyCompiler(ExprCompiler):
         else:
             o.line(f"for {target.target} in {rng}:")
         o.indent()
-        if early:
-            o.line("_ctx.budget -= 1")
-            o.line(f"if _ctx.budget < 0: _overrun({where})")
         body_mark = o.mark()
-        self.statements(s.body)
+        if upfront:
+            self.statements(s.body, charge=False)
+        else:
+            self.statements(s.body, self.cost.loop(), where)
         o.ensure_body(body_mark)
         o.dedent()
         self._place_loop_code(self.loops.pop(), mark, body_mark)
@@ -406,9 +462,8 @@ class BodyCompiler(ExprCompiler):
         o.indent()
         o.line(f"while {test}:")
         o.indent()
-        self._charge(s)
         self.loops.append(_Loop(key, assigned, "WHILE", [increment]))
-        self.statements(s.body)
+        self.statements(s.body, self.cost.loop() + self.cost.w["compare"], self.where(s))
         self.loops.pop()
         o.line(increment)
         o.dedent()
@@ -425,9 +480,8 @@ class BodyCompiler(ExprCompiler):
             o.line("while True:")
             o.indent()
             self.guard(s, lambda: o.line(f"if not ({cond}): break"), lambda: ["break"])
-        self._charge(s)
         self.loops.append(_Loop("", set(), "WHILE"))
-        self.statements(s.body)
+        self.statements(s.body, self.cost.loop() + self.cost.condition(s.condition), self.where(s))
         self.loops.pop()
         o.dedent()
 
@@ -444,15 +498,10 @@ class BodyCompiler(ExprCompiler):
         self.guard(s, lambda: o.line(f"if {cond}: break"), lambda: ["break"])
         o.dedent()
         o.line(f"{first} = False")
-        self._charge(s)
         self.loops.append(_Loop("", set(), "WHILE"))
-        self.statements(s.body)
+        self.statements(s.body, self.cost.loop() + self.cost.condition(s.condition), self.where(s))
         self.loops.pop()
         o.dedent()
-
-    def _charge(self, s) -> None:
-        self.out.line("_ctx.budget -= 1")
-        self.out.line(f"if _ctx.budget < 0: _overrun({self.where(s)})")
 
     def s_Exit(self, s):
         self.out.line("break")
@@ -480,6 +529,29 @@ class _Loop:
         self.on_continue = list(on_continue)     # statements CONTINUE runs first (an increment)
         self.hoisted: dict[str, str] = {}     # Python expression -> temp computed before the loop
         self.scaled: dict[str, list] = {}     # `i * k` -> [placeholder, uses]: once per iteration
+
+
+_COMPOUND = (ast.If, ast.Case, ast.For, ast.While, ast.Repeat)
+
+
+def _blocks(body) -> list[tuple[list, object]]:
+    """`body` as basic blocks: (simple statements, the compound statement that ends them or None).
+
+    An empty body is one empty block (a loop still charges its iterations).
+    """
+    blocks: list[tuple[list, object]] = []
+    simple: list = []
+    for stmt in body or ():
+        if isinstance(stmt, ast.Empty):
+            continue
+        if isinstance(stmt, _COMPOUND):
+            blocks.append((simple, stmt))
+            simple = []
+        else:
+            simple.append(stmt)
+    if simple or not blocks:
+        blocks.append((simple, None))
+    return blocks
 
 
 def _cannot_fault(code: str) -> bool:
