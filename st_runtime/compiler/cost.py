@@ -30,6 +30,7 @@ model against the study's end points (3 iterations 0.149 ms, 13 iterations
 from __future__ import annotations
 
 from .. import ast
+from ..native import NATIVE_FBS
 from ..types import ArrayType, ElementaryType, FBType, StringType, StructType, resolve_alias
 
 # ---------------------------------------------------------------- the weights
@@ -50,7 +51,7 @@ WEIGHTS: dict[str, float] = {
     "function": 4,      # any other standard function or conversion (ABS, MIN, LREAL_TO_INT, ...)
     "call": 10,         # call and return of a user FUNCTION or FUNCTION_BLOCK
     "argument": 1,      # one parameter passed (aggregates: per element)
-    "element": 1,       # one element moved by an array or structure assignment
+    "element": 2,       # one element moved by an array or structure assignment (a load and a store)
     "branch": 1,        # an IF / ELSIF test's jump, a CASE label compared
     "loop": 2,          # one loop iteration: increment, end test, jump back
     "standard_fb": 20,  # a standard FB instruction (TON, R_TRIG, CTU, ...)
@@ -164,10 +165,9 @@ class CostModel:
         if target.kind == "conversion":
             return w["function"] + args
         if target.kind == "fb":
-            pou = target.pou
-            if pou is not None and pou.node is not None:
-                return w["call"] + args
             name = str(target.name).upper()
+            if name not in NATIVE_FBS:          # an FB written in ST: its blocks charge themselves
+                return w["call"] + args
             return (w["motion_fb"] if name.startswith("MC_") else w["standard_fb"]) + args
         if target.pou is not None and target.pou.node is not None:
             return w["call"] + args
