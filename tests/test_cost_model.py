@@ -180,7 +180,7 @@ def test_the_estimate_belongs_to_the_st_not_to_the_python(kinematics, target):
 def test_without_charges_nothing_is_estimated():
     project = load_text("PROGRAM Main VAR i : INT; END_VAR i := i + 1; END_PROGRAM")
     compiled = compile_program(project.program, charge_costs=False)
-    assert "_ctx.budget" not in compiled.python_sources["MAIN"]
+    assert "_spent" not in compiled.python_sources["MAIN"] and "budget" not in compiled.python_sources["MAIN"]
 
 
 def test_straight_line_overrun_is_reported_after_its_program():

@@ -14,11 +14,14 @@ times with and without the guards.
 
 Execution time.  Every basic block of the ST source (a run of assignments
 and calls, with the IF condition, CASE selector or FOR bounds that ends it)
-subtracts its estimated NJ501 time (cost.py, picoseconds) from
-`_ctx.budget` once, at its start; an ELSIF or CASE branch also charges the
-tests it took to reach it.  A loop charges its overhead, its test and its
-body's first block once per iteration and checks the budget there: when it
-goes negative the scan ends with `ScanOverrun` (F-PERIOD), which the
+adds its estimated NJ501 time (cost.py, picoseconds) to the local
+`_spent` once, at its start (a local: the cheapest charge Python has); an
+ELSIF or CASE branch also charges the tests it took to reach it.  Each
+compiled POU body flushes `_spent` into `_ctx.budget` when it returns
+(`finally`), so a caller sees its callees' time in `_ctx.budget` and the
+time left is always `_ctx.budget - _spent`.  A loop charges its overhead,
+its test and its body's first block once per iteration and checks there:
+when nothing is left the scan ends with `ScanOverrun` (F-PERIOD), which the
 per-statement handlers let through.  A FOR whose body is one block and
 cannot leave early charges all its iterations once, before it starts (its
 bounds are evaluated once, so the count is known).  Straight-line code is
@@ -74,16 +77,23 @@ class BodyCompiler(ExprCompiler):
         o.indent()
         for item in self.scope.prologue:
             o.line(self._prologue_line(item))
-        if self.method and self.scope.epilogue:
+        charge = self.unit.charge_costs
+        if charge:
+            o.line("_spent = 0")        # this call's own charges (ps), flushed into _ctx.budget on exit
+        if (self.method and self.scope.epilogue) or charge:
             o.line("try:")
             o.indent()
             mark = o.mark()
             self.statements(self.body)
             o.ensure_body(mark)
+            if not self.method:
+                o.line(self._return_statement())
             o.dedent()
             o.line("finally:")
             o.indent()
-            for line in self.scope.epilogue:
+            if charge:
+                o.line("_ctx.budget -= _spent")
+            for line in self.scope.epilogue if self.method else ():
                 o.line(line)
             o.dedent()
         else:
@@ -124,20 +134,22 @@ class BodyCompiler(ExprCompiler):
 
     # --------------------------------------------------------- statements
 
-    def statements(self, body, lead: float = 0, check: str | None = None, charge: bool = True) -> None:
+    def statements(self, body, lead: float = 0, check: str | None = None, charge: bool = True,
+                   first_charged: bool = False) -> None:
         """Compile `body` block by block, each block charged once at its start.
 
         `lead`: units charged with the first block (a loop's overhead and
         test, the tests an ELSIF took); `check`: the place of the loop whose
         iteration this is (the first charge then tests for an overrun);
-        `charge=False`: the caller has charged the whole body already.
+        `charge=False`: the caller has charged the whole body already;
+        `first_charged`: the caller has charged the first block.
         """
         first = True
         for simple, compound in _blocks(body):
             units = sum(self.cost.simple(st) for st in simple) + (self._head_cost(compound) if compound else 0)
             if first:
                 units += lead
-            if charge:
+            if charge and not (first and first_charged):
                 self._charge(units, check if first else None)
             first = False
             for stmt in simple:
@@ -146,24 +158,62 @@ class BodyCompiler(ExprCompiler):
                 self.statement(compound)
 
     def _head_cost(self, s) -> float:
-        """What a compound statement evaluates once, on entry."""
+        """What a compound statement charges with the block before it: what it
+        evaluates on entry, and what every one of its branches charges first."""
         if isinstance(s, ast.If):
-            return self.cost.condition(s.branches[0].condition)
+            return self.cost.condition(s.branches[0].condition) + self._if_entries(s)[1]
         if isinstance(s, ast.Case):
-            return self.cost.expr(s.selector)
+            return self.cost.expr(s.selector) + self._case_entries(s)[1]
         if isinstance(s, ast.For):
             return self.cost.for_setup(s)
         return 0
 
+    def _first_block(self, body) -> float:
+        simple, compound = _blocks(body)[0]
+        return sum(self.cost.simple(st) for st in simple) + (self._head_cost(compound) if compound else 0)
+
+    def _shared(self, tests: list, bodies: list, exhaustive: bool) -> tuple[list, float]:
+        """(lead of each branch, units every branch charges first).
+
+        Branch i is reached after `tests[i]` units of tests; when some branch
+        always runs (an ELSE), what they all charge first moves before the
+        statement (one charge instead of one per branch; the sum per path is
+        unchanged)."""
+        shared = min(t + self._first_block(b) for t, b in zip(tests, bodies)) if exhaustive else 0
+        return [t - shared for t in tests], shared
+
+    def _if_entries(self, s) -> tuple[list, float]:
+        """Leads of the IF's branches (then ELSE) and the shared first charge."""
+        tests = [0.0]
+        for branch in s.branches[1:]:       # the first test is charged before the IF
+            tests.append(tests[-1] + self.cost.condition(branch.condition))
+        bodies = [b.body for b in s.branches]
+        if s.else_body:
+            tests.append(tests[-1])
+            bodies.append(s.else_body)
+        return self._shared(tests, bodies, bool(s.else_body))
+
+    def _case_entries(self, s) -> tuple[list, float]:
+        """Leads of the CASE's clauses (then ELSE): the labels compared to reach each."""
+        tests, bodies, labels = [], [], 0
+        for clause in s.clauses:
+            labels += self.cost.case_labels(clause)
+            tests.append(labels * self.cost.w["branch"])
+            bodies.append(clause.body)
+        if s.else_body:
+            tests.append(labels * self.cost.w["branch"])
+            bodies.append(s.else_body)
+        return self._shared(tests, bodies, bool(s.else_body))
+
     def _charge(self, units: float, check: str | None = None, times: str | None = None) -> None:
-        """Subtract `units` (times `times`, Python source) from the scan's time; test if `check`."""
+        """Charge `units` (times `times`, Python source) to the scan's time; test if `check`."""
         if not self.unit.charge_costs:
             return
         ps = picoseconds(units)
-        if ps or check:
-            self.out.line(f"_ctx.budget -= {ps if times is None else f'{times} * {ps}'}")
+        if ps:
+            self.out.line(f"_spent += {ps if times is None else f'{times} * {ps}'}")
         if check:
-            self.out.line(f"if _ctx.budget < 0: _overrun({check})")
+            self.out.line(f"if _ctx.budget < _spent: _overrun({check})")
 
     def statement(self, stmt) -> None:
         if isinstance(stmt, ast.Empty):
@@ -232,13 +282,14 @@ class BodyCompiler(ExprCompiler):
     def s_If(self, s):
         """A fault in a condition abandons the whole IF (no branch runs)."""
         o = self.out
+        leads, _ = self._if_entries(s)
         if len(s.branches) == 1:
             test, guarded = self.guarded_value(s, self.expr(s.branches[0].condition), "None")
             o.line(f"if {test}:")
-            self.block(s.branches[0].body)
+            self.block(s.branches[0].body, leads[0])
             if s.else_body:
                 o.line(f"elif {test} is not None:" if guarded else "else:")
-                self.block(s.else_body)
+                self.block(s.else_body, leads[1])
             return
         # IF/ELSIF chain: the index of the branch taken, conditions evaluated in order.
         n = len(s.branches)
@@ -247,13 +298,12 @@ class BodyCompiler(ExprCompiler):
             chooser = f"{i} if {self.expr(s.branches[i].condition)} else ({chooser})"
         which, _ = self.guarded_value(s, chooser, "-1")
         # The first test is charged before the IF; the later ones by the branch that took them.
-        tests = [0.0] + [self.cost.condition(b.condition) for b in s.branches[1:]]
         for i, branch in enumerate(s.branches):
             o.line(f"{'if' if i == 0 else 'elif'} {which} == {i}:")
-            self.block(branch.body, sum(tests[:i + 1]))
+            self.block(branch.body, leads[i])
         if s.else_body:
             o.line(f"elif {which} == {n}:")
-            self.block(s.else_body, sum(tests))
+            self.block(s.else_body, leads[n])
 
     def s_Case(self, s):
         """A fault in the selector abandons the whole CASE."""
@@ -264,9 +314,8 @@ class BodyCompiler(ExprCompiler):
         self.out.indent()
         t = self.ty(s.selector)
         first = True
-        labels = 0          # labels compared to reach a clause, charged by that clause
-        for clause in s.clauses:
-            labels += self.cost.case_labels(clause)
+        leads, _ = self._case_entries(s)     # labels compared to reach a clause, charged by that clause
+        for index, clause in enumerate(s.clauses):
             singles: list[str] = []
             tests: list[str] = []
             for label in clause.labels:
@@ -282,13 +331,13 @@ class BodyCompiler(ExprCompiler):
                 tests.insert(0, f"{selector} in ({', '.join(singles)},)")
             self.out.line(f"{'if' if first else 'elif'} {' or '.join(tests) or 'False'}:")
             first = False
-            self.block(clause.body, labels * self.cost.w["branch"])
+            self.block(clause.body, leads[index])
         if s.else_body:
             if first:
                 self.out.line("if True:")
             else:
                 self.out.line("else:")
-            self.block(s.else_body, labels * self.cost.w["branch"])
+            self.block(s.else_body, leads[-1])
         self.out.dedent()
 
     def _label(self, label):
@@ -333,10 +382,14 @@ class BodyCompiler(ExprCompiler):
             o.line(f"if {rng} is not None:")
             o.indent()
         early = _leaves_early(s.body)
-        # A body that is one block and runs to the end: all iterations charged up front.
-        upfront = not early and all(compound is None for _, compound in _blocks(s.body))
-        if upfront and count != 0:
-            units = self.cost.loop() + sum(self.cost.simple(b) for b in s.body if not isinstance(b, ast.Empty))
+        # A loop that runs its whole count is bounded: its overhead and its
+        # body's first block (which every iteration runs) are charged and
+        # tested up front for all iterations, its other blocks per iteration
+        # without a test, and the total is tested when it ends.  One that may
+        # leave early charges and tests per iteration.
+        straight = len(_blocks(s.body)) == 1 and _blocks(s.body)[0][1] is None
+        if not early and count != 0:
+            units = self.cost.loop() + self._first_block(s.body)
             if count is None:
                 self._charge(units, where, f"len({rng})")
             else:
@@ -359,10 +412,10 @@ class BodyCompiler(ExprCompiler):
             o.line(f"for {target.target} in {rng}:")
         o.indent()
         body_mark = o.mark()
-        if upfront:
-            self.statements(s.body, charge=False)
-        else:
+        if early:
             self.statements(s.body, self.cost.loop(), where)
+        else:
+            self.statements(s.body, first_charged=True)
         o.ensure_body(body_mark)
         o.dedent()
         self._place_loop_code(self.loops.pop(), mark, body_mark)
@@ -380,6 +433,8 @@ class BodyCompiler(ExprCompiler):
             if bounds[0] <= min(ends) and max(ends) <= bounds[1]:
                 var_t = None          # the final value cannot leave the type: no wrap
         o.line(target.store(final if var_t is None else self.convert(final, None, var_t)))
+        if not early and not straight:
+            self._charge(0, where)          # what the body's blocks charged, tested once
         o.dedent()
         if not const_range:
             o.dedent()

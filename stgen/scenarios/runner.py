@@ -55,6 +55,7 @@ class ScenarioResult:
     runtime_faults: list = field(default_factory=list)
     wall_seconds: float = 0.0
     move_durations_s: tuple[float, ...] = ()  # SpMoveDuration after each move's edge (a wave: the lead-in)
+    nj_time: object = None         # estimated NJ501 time per scan (st_runtime.controller.TaskTime)
 
     @property
     def command_scan(self) -> int:
@@ -254,4 +255,5 @@ def run_scenario(
         runtime_faults=list(sim.runtime_faults),
         wall_seconds=wall,
         move_durations_s=tuple(durations),
+        nj_time=sim.plc.controller.time_report()[0],
     )
