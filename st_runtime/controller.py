@@ -288,9 +288,8 @@ class TaskTime:
         return self.max_ns <= self.period_ns
 
     def to_json(self) -> dict:
-        return {"task": self.task, "period_us": self.period_ns / 1e3, "runs": self.runs,
-                "max_us": round(self.max_ns / 1e3, 3), "p99_us": round(self.p99_ns / 1e3, 3),
-                "mean_us": round(self.mean_ns / 1e3, 3),
+        return {"task": self.task, "period_ns": self.period_ns, "runs": self.runs,
+                "max_ns": self.max_ns, "p99_ns": self.p99_ns, "mean_ns": round(self.mean_ns, 3),
                 "max_percent": round(100 * self.max_ns / self.period_ns, 4),
                 "mean_percent": round(100 * self.mean_ns / self.period_ns, 4),
                 "within_period": self.fits, "within_80_percent_rule": self.load_ok}

@@ -216,3 +216,50 @@ def test_the_loop_iteration_budget_is_deprecated():
         warnings.simplefilter("always")
         project.controller(budget=1000)
     assert any(issubclass(w.category, DeprecationWarning) and "budget" in str(w.message) for w in caught)
+
+
+def test_stgen_run_reports_the_estimate(tmp_path, capsys):
+    import json
+
+    from stgen.cli import main
+
+    (tmp_path / "main.st").write_text("PROGRAM Main VAR i : INT; END_VAR i := i + 1; END_PROGRAM")
+    assert main(["run", str(tmp_path / "main.st"), "--program", "Main", "--cycles", "3"]) == 0
+    err = capsys.readouterr().err
+    assert "estimated NJ501 time of task Primary (1000 us period, 3 runs)" in err
+    assert "meets OMRON's 80 % rule" in err
+    assert main(["run", str(tmp_path / "main.st"), "--program", "Main", "--json", "--time-report"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    units = 2 * WEIGHTS["load"] + WEIGHTS["int_op"] + WEIGHTS["store"]
+    assert data["i"] == 1
+    assert data["$nj501_time"] == [{
+        "task": "Primary", "period_ns": 1_000_000, "runs": 1,
+        "max_ns": _ps(units) / 1000, "p99_ns": _ps(units) / 1000, "mean_ns": _ps(units) / 1000,
+        "max_percent": round(100 * _ps(units) / 1e9, 4), "mean_percent": round(100 * _ps(units) / 1e9, 4),
+        "within_period": True, "within_80_percent_rule": True}]
+
+
+def test_stgen_run_time_limit_and_the_deprecated_budget(tmp_path, capsys):
+    from stgen.cli import main
+
+    (tmp_path / "loop.st").write_text(RUNAWAY_ONE)
+    assert main(["run", str(tmp_path / "loop.st"), "--program", "Main", "--time-limit", "5us",
+                 "--budget", "10"]) == 1
+    err = capsys.readouterr().err
+    assert "--budget is deprecated and ignored" in err
+    assert "fault[F-PERIOD]" in err and "passed 0.005 ms" in err
+
+
+RUNAWAY_ONE = "PROGRAM Main VAR k : DINT; END_VAR WHILE TRUE DO k := k + 1; END_WHILE; END_PROGRAM"
+
+
+def test_a_scenario_result_carries_the_controller_time_per_scan():
+    from stgen.scenarios.definitions import scenario_by_name
+    from stgen.scenarios.runner import run_scenario
+
+    result = run_scenario(scenario_by_name("airy_wave").with_wave_seconds(0.5))
+    times = result.nj_time
+    assert times.runs == result.scans and times.period_ns == 1_000_000
+    # The power-on FK solve (IterationsPerScan 4) is the longest scan: about 4 x 49.5 us.
+    assert 4 * 49_500 * 0.99 < times.max_ns < 4 * 49_500 * 1.03
+    assert times.fits and times.load_ok and times.p99_ns < times.max_ns

@@ -14,11 +14,11 @@ the NJ/NX-series Instructions Reference Manual (W502), appendix
 "Instruction execution times" (NJ501-1x00 columns).  That table could not
 be found in any public source this project can reach (searches of OMRON
 manual mirrors found only the CJ2 and CV-series tables and the NJ W501
-task-time appendix), so the RELATIVE weights below are an ASSUMPTION: unit
-costs in the proportions of a compiled x86 FPU program (the NJ501 CPU is
-an Intel Atom): an elementary load/store/integer step is 1, an LREAL add or
-multiply 2, a division 8, SQRT 8, a trigonometric/exponential function 30,
-an array element access with its bounds check 2 per index.  Only their
+task-time appendix), so the RELATIVE weights below are an ASSUMPTION, not
+a measurement: unit costs in proportions typical of compiled floating-point
+code (an elementary load/store/integer step 1, an LREAL add or multiply 2,
+a division 8, SQRT 8, a trigonometric/exponential function 30, an array
+subscript with its bounds check 2).  Only their
 proportions matter: ONE overall scale (`PICOSECONDS_PER_UNIT`) is fitted so
 that one Newton-Raphson iteration of the generated SP_ForwardKinematics
 (Leibniz-table variant) costs the study's 49.5 us on an NJ501-1300 (SPEC 3
