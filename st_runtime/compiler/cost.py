@@ -61,10 +61,10 @@ WEIGHTS: dict[str, float] = {
 # The one overall scale: picoseconds of NJ501 time per unit.  Fitted so that
 # one Newton-Raphson iteration of generated/iec SP_ForwardKinematics (Leibniz
 # table variant) costs the study's 49.5 us (SPEC 3): with the weights above
-# an iteration is 82,936.5 units (the slope between solves of 1 and 3
+# an iteration is 82,816.5 units (the slope between solves of 1 and 3
 # iterations in one scan; tests/test_cost_model.py recomputes it), and
-# 49.5e6 ps / 82,936.5 = 596.8, rounded to 597 (iteration 49.51 us).
-PICOSECONDS_PER_UNIT = 597
+# 49.5e6 ps / 82,816.5 = 597.7, rounded to 598 (iteration 49.52 us).
+PICOSECONDS_PER_UNIT = 598
 
 _TRANSCENDENTAL = {"SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "ATAN2", "EXP", "LN", "LOG", "EXPT"}
 
@@ -143,15 +143,21 @@ class CostModel:
             return w["transcendental"]
         return w["int_op"]                      # AND, OR, XOR, &
 
-    def _arguments(self, call) -> float:
+    def _arguments(self, call, variables: dict) -> float:
+        """Passing the arguments: by value element by element, a VAR_IN_OUT by
+        reference (one element).  Positional arguments count by value."""
         w = self.w
         total = 0.0
         for arg in call.args:
             if arg.value is None:
                 continue
+            symbol = variables.get(arg.name.upper()) if arg.name else None
+            if symbol is not None and symbol.kind == "VAR_IN_OUT":
+                total += w["argument"] + self._address(arg.value)
+                continue
             t = self.ty(arg.value)
             n = elements(t) if t is not None else 1
-            total += w["argument"] * n + (self.expr(arg.value) if n == 1 else 0)
+            total += w["argument"] * n + (self.expr(arg.value) if n == 1 else self._address(arg.value))
         return total
 
     def call(self, call) -> float:
@@ -159,7 +165,9 @@ class CostModel:
         user POU is charged by the callee's own blocks when it runs."""
         w = self.w
         target = self.program.call_targets.get(id(call))
-        args = self._arguments(call)
+        pou = getattr(target, "pou", None)
+        variables = pou.variables if pou is not None else getattr(self.ty(call.callee), "variables", {})
+        args = self._arguments(call, variables or {})
         if target is None:
             return w["call"] + args
         if target.kind == "conversion":

@@ -53,6 +53,7 @@ class BodyCompiler(ExprCompiler):
         self.body = body
         self.out = Emitter()
         self.cost = CostModel(program)
+        self._head_costs: dict[int, float] = {}
         if not method:
             self._add_return_variable()
 
@@ -160,13 +161,18 @@ class BodyCompiler(ExprCompiler):
     def _head_cost(self, s) -> float:
         """What a compound statement charges with the block before it: what it
         evaluates on entry, and what every one of its branches charges first."""
+        known = self._head_costs.get(id(s))
+        if known is not None:       # memo: nested IFs would otherwise be walked once per ancestor
+            return known
+        units = 0
         if isinstance(s, ast.If):
-            return self.cost.condition(s.branches[0].condition) + self._if_entries(s)[1]
-        if isinstance(s, ast.Case):
-            return self.cost.expr(s.selector) + self._case_entries(s)[1]
-        if isinstance(s, ast.For):
-            return self.cost.for_setup(s)
-        return 0
+            units = self.cost.condition(s.branches[0].condition) + self._if_entries(s)[1]
+        elif isinstance(s, ast.Case):
+            units = self.cost.expr(s.selector) + self._case_entries(s)[1]
+        elif isinstance(s, ast.For):
+            units = self.cost.for_setup(s)
+        self._head_costs[id(s)] = units
+        return units
 
     def _first_block(self, body) -> float:
         simple, compound = _blocks(body)[0]

@@ -114,14 +114,14 @@ def output_problem(path: str) -> str | None:
     return None
 
 
-def period_option(text: str) -> int:
-    """The `--period` option in nanoseconds; ValueError with the message to show."""
+def period_option(text: str, option: str = "--period") -> int:
+    """A duration option (`--period`) in nanoseconds; ValueError with the message to show."""
     try:
         period = parse_period(text)
     except ValueError as exc:
-        raise ValueError(f"--period: {exc}") from None
+        raise ValueError(f"{option}: {exc}") from None
     if period <= 0:
-        raise ValueError("--period must be positive")
+        raise ValueError(f"{option} must be positive")
     return period
 
 
@@ -202,15 +202,7 @@ TIME_KEY = "$nj501_time"     # `$` cannot start an ST identifier: no variable ha
 
 def time_limit_option(text: str | None) -> int | None:
     """`--time-limit` in nanoseconds (None: the period); ValueError with the message to show."""
-    if text is None:
-        return None
-    try:
-        limit = parse_period(text)
-    except ValueError as exc:
-        raise ValueError(f"--time-limit: {exc}") from None
-    if limit <= 0:
-        raise ValueError("--time-limit must be positive")
-    return limit
+    return None if text is None else period_option(text, "--time-limit")
 
 
 def write_sets(items: list[str], program, plc) -> str | None:
