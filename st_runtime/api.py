@@ -135,8 +135,13 @@ class Project:
             raise KeyError(f"no POU named {name}")
         return pou
 
-    def controller(self, period="1ms", budget: int = DEFAULT_BUDGET, stop_on_fault: bool = False) -> "Plc":
+    def controller(self, period="1ms", budget=DEFAULT_BUDGET, stop_on_fault: bool = False,
+                   time_limit=None) -> "Plc":
         """A simulated controller with its own memory.
+
+        A task run whose estimated NJ501 time passes `time_limit` (default:
+        the task's period; a duration like `period`) ends with F-PERIOD.
+        `budget` (loop iterations) is deprecated and ignored.
 
         The first controller runs `self.compiled`; each further one gets a
         fresh compilation, so no two controllers share global variables.
@@ -147,7 +152,8 @@ class Project:
         if self._controllers:
             compiled = compile_program(self.program)
         self._controllers += 1
-        return Plc(Controller(compiled, parse_period(period), budget, stop_on_fault))
+        limit = parse_period(time_limit) if time_limit is not None else None
+        return Plc(Controller(compiled, parse_period(period), budget, stop_on_fault, limit))
 
     def call(self, name: str, inputs: dict | None = None, until: str | None = None,
              max_cycles: int = 1000, period="1ms") -> dict:

@@ -13,8 +13,10 @@
    a table of the largest |v| and |a| of every cylinder's set-point (what
    SP_Controller hands to MC_SyncMoveAbsolute, finite differences at the task
    period) against the actuator's limits, and Cmd.Pos after any saturation by
-   the axis; the durations SP_Controller planned for the moves; and writes for
-   each scenario ``DIR/<scenario>.csv`` (every scan) and ``DIR/<scenario>.png``
+   the axis; the durations SP_Controller planned for the moves; the estimated
+   NJ501 time of SP_Controller per scan (max, p99, mean against the period and
+   OMRON's 80 % rule; st_runtime/compiler/cost.py); and writes for each
+   scenario ``DIR/<scenario>.csv`` (every scan) and ``DIR/<scenario>.png``
    (pose, cylinder positions, error, velocity and acceleration, following
    error over time).
 
@@ -92,6 +94,9 @@ def run(args: argparse.Namespace) -> int:
             durations = ", ".join(f"{d:.3f}" for d in result.move_durations_s)
             console.print(f"{result.scenario.name}: {len(result.move_durations_s)} moves planned by SP_Controller "
                           f"(SpMoveDuration): {durations} s", soft_wrap=True)
+    for result in results:
+        if result.nj_time is not None:
+            console.print(f"{result.scenario.name}: SP_Controller {_nj_time(result.nj_time)}", soft_wrap=True)
     console.print(f"Traces and figures in {out}/")
     failed = [r.scenario.name for r in results if not r.passed]
     if failed:
@@ -137,6 +142,15 @@ def _write_outputs(result, out: Path) -> None:
 
     write_trace_csv(result, out / f"{result.scenario.name}.csv")
     scenario_figure(result, out / f"{result.scenario.name}.png")
+
+
+def _nj_time(t) -> str:
+    """One line: the estimated NJ501 time per scan against the period and the 80 % rule."""
+    pct = 100 / t.period_ns
+    rule = "within" if t.load_ok else "[red]above[/]"
+    return (f"estimated NJ501 time per scan: max {t.max_ns / 1e3:.1f} us ({t.max_ns * pct:.1f} %), "
+            f"p99 {t.p99_ns / 1e3:.1f} us, mean {t.mean_ns / 1e3:.1f} us ({t.mean_ns * pct:.1f} %) of "
+            f"{t.period_ns / 1e3:g} us; {rule} OMRON's 80 % guideline")
 
 
 def _summary(results, config):

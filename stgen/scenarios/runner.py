@@ -61,6 +61,7 @@ class ScenarioResult:
     wall_seconds: float = 0.0
     servo_lag_s: float = 0.0      # first-order lag of Act.Pos behind Cmd.Pos of the simulated axes
     move_durations_s: tuple[float, ...] = ()  # SpMoveDuration after each move's edge (a wave: the lead-in)
+    nj_time: object = None         # estimated NJ501 time per scan (st_runtime.controller.TaskTime)
 
     @property
     def command_scan(self) -> int:
@@ -278,4 +279,5 @@ def run_scenario(
         wall_seconds=wall,
         servo_lag_s=servo_lag_s,
         move_durations_s=tuple(durations),
+        nj_time=sim.plc.controller.time_report()[0],
     )
