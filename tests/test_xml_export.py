@@ -223,3 +223,10 @@ def test_ik_and_fk_loaded_from_xml_match_the_reference(target):
     fk = check_forward_kinematics(runtime, config, poses[:20], "XML", config.solver.start_pose)
     assert fk.problems == () and fk.max_error <= 1e-6
     assert np.isfinite(fk.max_error)
+
+
+def test_the_nj_readme_starts_its_import_section_with_the_xml_file_and_keeps_the_pastes():
+    readme = (ROOT / "generated" / "nj501" / "README.md").read_text(encoding="utf-8")
+    section = readme[readme.index("## Bringing them in"):]
+    assert section.index(sysmac_xml.FILE_NAME) < section.index("GlobalVariables.tsv")
+    assert "Older Sysmac Studio versions" in section and "primary periodic task" in section
