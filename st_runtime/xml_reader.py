@@ -16,13 +16,15 @@ Formats, told apart by the root element's namespace:
 
 * PLCopen TC6 XML 2.01 (``http://www.plcopen.org/xml/tc6_0201``): CODESYS,
   TwinCAT, Beremiz/OpenPLC, Machine Expert, IronPLC, ``stgen generate
-  --target plcopen``;
+  --target plcopen``; also the earlier namespace ``http://www.plcopen.org/xml/tc6.xsd``
+  that Beremiz projects still carry, whose POU elements are the same;
 * IEC 61131-10 (``www.iec.ch/public/TC65SC65BWG7TF10``): Sysmac Studio 1.30+,
   ``stgen generate --target sysmac-xml``. OMRON's axis type ``_sAXIS_REF``
   is read as the PLCopen ``AXIS_REF``.
 
-Only ST bodies are read: a POU in LD, FBD, SFC or IL gets a diagnostic
-naming it and its language. Data types (structures, enumerations, aliases)
+Only ST bodies are read: a POU in LD, FBD, SFC or IL gets an error naming
+it and its language (the load fails), and stands with its interface and an
+empty body, so that the ST POUs of the file are still checked. Data types (structures, enumerations, aliases)
 and global variable lists of the configuration are read; tasks are not
 (``stgen run --program`` picks the program).
 
@@ -44,6 +46,8 @@ from . import ast
 from .diagnostics import Diagnostic, register
 
 TC6 = "http://www.plcopen.org/xml/tc6_0201"
+#: The namespace of TC6 XML before 2.01 (Beremiz still writes it): the same elements for POUs, interfaces and bodies.
+TC6_EARLIER = "http://www.plcopen.org/xml/tc6.xsd"
 IEC10 = "www.iec.ch/public/TC65SC65BWG7TF10"
 XSI = "http://www.w3.org/2001/XMLSchema-instance"
 
@@ -246,7 +250,7 @@ class _Reader:
         self.layout = _Layout(raw)
         self.diagnostics: list[Diagnostic] = []
         namespace = etree.QName(root).namespace
-        if namespace == TC6 and _local(root) == "project":
+        if namespace in (TC6, TC6_EARLIER) and _local(root) == "project":
             self.tc6 = True
         elif namespace == IEC10 and _local(root) == "Project":
             self.tc6 = False
@@ -276,8 +280,10 @@ class _Reader:
             self._tc6_project()
         else:
             self._iec10_project()
-        if any(d.is_error for d in self.diagnostics):
+        if any(d.is_error and d.code != "E-XML-005" for d in self.diagnostics):
             return None, self.diagnostics
+        # POUs in other languages stand with their interface and an empty body: the ST POUs
+        # that call them are checked all the same, and E-XML-005 still stops the load.
         return self.layout.text(), self.diagnostics
 
     # ------------------------------------------------------------------ types and values
@@ -416,7 +422,8 @@ class _Reader:
                 return
             header += f" : {result}"
         body = self._st_body(element, name)
-        if body is None:
+        if body is None and not any(d.code == "E-XML-005" and d.message.startswith(f"POU '{name}'")
+                                    for d in self.diagnostics):
             return
         self.layout.put(header, line, col)
         for child in element:
@@ -426,7 +433,7 @@ class _Reader:
             for item in (child,) if _local(child) not in ("interface", "Parameters") else child:
                 if isinstance(item.tag, str) and _local(item) in lists:
                     self._var_list(item, lists[_local(item)], name)
-        text = self._body(*body)
+        text = self._body(*body) if body is not None else ""
         closer = f"END_{kind}"
         if text.rsplit("\n", 1)[-1].strip():  # the body ends in a statement (or a // comment): a line of its own
             self.layout.put(closer, self.layout.line + 1, 1)

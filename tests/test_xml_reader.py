@@ -163,6 +163,18 @@ def test_a_tc6_body_in_another_language_is_named_with_its_pou(body, language):
     assert "'Graphic'" in problem.message and f"in {language}," in problem.message
 
 
+def test_the_st_pous_beside_a_graphical_one_are_still_checked():
+    text = tc6('<pou name="Graphic" pouType="functionBlock"><interface><inputVars><variable name="In">'
+               '<type><BOOL/></type></variable></inputVars></interface><body><FBD/></body></pou>\n'
+               '<pou name="Main" pouType="program"><interface><localVars><variable name="G"><type>'
+               '<derived name="Graphic"/></type></variable></localVars></interface>\n'
+               '<body><ST><xhtml:p>G(In := TRUE); Undeclared := 1;</xhtml:p></ST></body></pou>\n')
+    result = load_via_texts({"mixed.xml": text})
+    assert [(d.code, d.pos.line) for d in result.errors][0] == ("E-XML-005", 4)
+    assert [d.code for d in result.errors][1:] and "Undeclared" in result.render()  # Main checked; G(...) fine
+    assert "'G'" not in result.render() and not result.ok
+
+
 def test_a_sysmac_ladder_section_is_named_ld():
     text = iec10('<Program name="Rungs"><MainBody><BodyContent xsi:type="smcext:LdSection" '
                  'xmlns:smcext="https://www.ia.omron.com/Smc" name="Section0"/></MainBody></Program>\n')
@@ -188,7 +200,7 @@ def test_a_type_that_is_not_st_is_named():
 
 
 @pytest.mark.parametrize("root", [
-    '<project xmlns="http://www.plcopen.org/xml/tc6.xsd"/>',            # TC6 1.0, not 2.01
+    '<project xmlns="urn:example:plc"/>',
     '<Project xmlns="www.iec.ch/public/TC65SC65BWG7TF10/Other"/>',
     '<project/>',
     '<html xmlns="http://www.w3.org/1999/xhtml"/>',
