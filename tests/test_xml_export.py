@@ -230,3 +230,15 @@ def test_the_nj_readme_starts_its_import_section_with_the_xml_file_and_keeps_the
     section = readme[readme.index("## Bringing them in"):]
     assert section.index(sysmac_xml.FILE_NAME) < section.index("GlobalVariables.tsv")
     assert "Older Sysmac Studio versions" in section and "primary periodic task" in section
+
+
+@pytest.mark.parametrize("module", [sysmac_xml, plcopen_xml], ids=["sysmac-xml", "plcopen"])
+def test_a_body_holding_the_cdata_end_marker_goes_through_escaped(module):
+    from stgen.render import INPUT, Pou, RenderedProgram, Variable
+
+    pou = Pou("Deep", "FUNCTION", "BOOL", "(* a[b[1]]>0 is valid ST and ends a CDATA section *)",
+              (Variable(INPUT, "a", "ARRAY[1..2] OF INT"), Variable(INPUT, "b", "ARRAY[1..2] OF INT")),
+              "Deep := a[b[1]]>0;\n")
+    text = module.document(RenderedProgram((pou,)))
+    project = api.load_sources({"deep.xml": text})
+    assert project.call("Deep", {"a": [5, 0], "b": [1, 1]})["outputs"]["return"] is True  # a[b[1]] = a[1] = 5 > 0

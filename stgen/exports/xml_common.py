@@ -111,6 +111,12 @@ def serialise(root: etree._Element) -> str:
     return FIRST_LINE + "\n" + etree.tostring(root, encoding="unicode") + "\n"
 
 
-def body_cdata(body: str) -> etree.CDATA:
-    """A POU body as CDATA, starting on a line of its own and ending with a line break."""
-    return etree.CDATA("\n" + body.rstrip("\n") + "\n")
+def body_cdata(body: str) -> etree.CDATA | str:
+    """A POU body as CDATA, starting on a line of its own and ending with a line break.
+
+    A body holding ``]]>`` (``a[b[1]]>0`` is valid ST) cannot be one CDATA
+    section: it is written as escaped character data instead, the same text
+    to any XML reader.
+    """
+    text = "\n" + body.rstrip("\n") + "\n"
+    return text if "]]>" in text else etree.CDATA(text)
