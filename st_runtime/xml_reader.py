@@ -28,7 +28,9 @@ empty body, so that the ST POUs of the file are still checked. Data types (struc
 and global variable lists of the configuration are read; tasks are not
 (``stgen run --program`` picks the program).
 
-The XML parser is hardened: a document type declaration (where entity
+The file is read as UTF-8 text like every source (its encoding declaration
+is not followed; PLCopen and Sysmac Studio files are UTF-8). The XML parser
+is hardened: a document type declaration (where entity
 definitions live) is refused, entities are never expanded, nothing is
 fetched from the network and libxml2's limits for huge documents stay on,
 so an entity expansion attack (billion laughs) or an external entity gets a
@@ -288,13 +290,19 @@ class _Reader:
 
     # ------------------------------------------------------------------ types and values
 
-    def _type(self, holder, owner: str) -> str | None:
-        """The ST text of the type held by ``holder`` (``type``, ``baseType``, ``Type``, ``ResultType``...)."""
+    def _inner(self, holder, owner: str, what: str):
+        """The first child element of ``holder``, or ``None`` after a diagnostic."""
         inner = [c for c in holder if isinstance(c.tag, str)]
         if not inner:
-            self._error("E-XML-004", f"{owner}: <{_local(holder)}> holds no type", holder)
+            self._error("E-XML-004", f"{owner}: <{_local(holder)}> holds no {what}", holder)
             return None
-        element = inner[0]
+        return inner[0]
+
+    def _type(self, holder, owner: str) -> str | None:
+        """The ST text of the type held by ``holder`` (``type``, ``baseType``, ``Type``, ``ResultType``...)."""
+        element = self._inner(holder, owner, "type")
+        if element is None:
+            return None
         tag = _local(element)
         if self.tc6:
             if tag in _TC6_ELEMENTARY:
@@ -333,11 +341,9 @@ class _Reader:
 
     def _value(self, element, owner: str) -> str | None:
         """The ST initializer held by an initial value element."""
-        inner = [c for c in element if isinstance(c.tag, str)]
-        if not inner:
-            self._error("E-XML-004", f"{owner}: <{_local(element)}> holds no value", element)
+        value = self._inner(element, owner, "value")
+        if value is None:
             return None
-        value = inner[0]
         tag = _local(value).lower()
         if tag == "simplevalue" and value.get("value") is not None:
             return value.get("value")

@@ -25,7 +25,7 @@ from lxml import etree
 from st_runtime import ast
 from st_runtime.printer import format_expr
 from stgen.exports import xml_common
-from stgen.exports.folder import FolderUpdate, write_files
+from stgen.exports.folder import FolderUpdate
 from stgen.render import RenderedProgram
 
 NS = "http://www.plcopen.org/xml/tc6_0201"
@@ -126,10 +126,6 @@ def files(program: RenderedProgram) -> dict[str, str]:
     return {FILE_NAME: document(program)}
 
 
-#: First lines that mark a file in the folder as written by this export (see :mod:`stgen.exports.folder`).
-SIGNATURES = frozenset({xml_common.FIRST_LINE})
-
-
 def write(program: RenderedProgram, out_dir: str | Path) -> FolderUpdate:
     """Write :func:`files` into ``out_dir`` and remove the stale files of earlier runs."""
-    return write_files(files(program), out_dir, SIGNATURES)
+    return xml_common.write(files(program), out_dir)

@@ -1,8 +1,9 @@
 """OMRON Sysmac Studio (1.30 and later): the whole program as one IEC 61131-10 XML file.
 
-One import (*File > Import* ... of the XML file in Sysmac Studio) brings in every
-POU with its interface and ST body and the global variables, instead of about
-thirty pastes of variable tables and bodies (:mod:`stgen.exports.sysmac`, kept
+One import of the XML file in Sysmac Studio brings in every POU with its
+interface and ST body and the global variables, instead of the 51 steps of the
+variable-table route (9 POUs created, 2 return types set, 40 pastes of table
+rows and bodies) (:mod:`stgen.exports.sysmac`, kept
 as the fallback for older Sysmac Studio versions).
 
 The layout follows what was learned from files that Sysmac Studio imported
@@ -49,7 +50,7 @@ from lxml import etree
 from st_runtime import ast
 from st_runtime.printer import format_type
 from stgen.exports import xml_common
-from stgen.exports.folder import FolderUpdate, write_files
+from stgen.exports.folder import FolderUpdate
 from stgen.exports.sysmac import SYSTEM_CREATED_TYPES, sysmac_type
 from stgen.render import RenderedProgram
 
@@ -185,10 +186,6 @@ def files(program: RenderedProgram) -> dict[str, str]:
     return {FILE_NAME: document(program)}
 
 
-#: First lines that mark a file in the folder as written by this export (see :mod:`stgen.exports.folder`).
-SIGNATURES = frozenset({xml_common.FIRST_LINE})
-
-
 def write(program: RenderedProgram, out_dir: str | Path) -> FolderUpdate:
     """Write :func:`files` into ``out_dir`` and remove the stale files of earlier runs."""
-    return write_files(files(program), out_dir, SIGNATURES)
+    return xml_common.write(files(program), out_dir)
