@@ -16,8 +16,9 @@ Formats, told apart by the root element's namespace:
 
 * PLCopen TC6 XML 2.01 (``http://www.plcopen.org/xml/tc6_0201``): CODESYS,
   TwinCAT, Beremiz/OpenPLC, Machine Expert, IronPLC, ``stgen generate
-  --target plcopen``; also the earlier namespace ``http://www.plcopen.org/xml/tc6.xsd``
-  that Beremiz projects still carry, whose POU elements are the same;
+  --target plcopen``; also TC6 2.00 (``.../tc6_0200``, which CODESYS V3.5
+  exports carry) and ``http://www.plcopen.org/xml/tc6.xsd`` (Beremiz
+  projects), whose POU elements are the same;
 * IEC 61131-10 (``www.iec.ch/public/TC65SC65BWG7TF10``): Sysmac Studio 1.30+,
   ``stgen generate --target sysmac-xml``. OMRON's axis type ``_sAXIS_REF``
   is read as the PLCopen ``AXIS_REF``.
@@ -48,8 +49,9 @@ from . import ast
 from .diagnostics import Diagnostic, register
 
 TC6 = "http://www.plcopen.org/xml/tc6_0201"
-#: The namespace of TC6 XML before 2.01 (Beremiz still writes it): the same elements for POUs, interfaces and bodies.
-TC6_EARLIER = "http://www.plcopen.org/xml/tc6.xsd"
+#: Namespaces of TC6 XML before 2.01 with the same elements for POUs, interfaces and bodies:
+#: 2.00 (CODESYS V3.5 and TwinCAT exports carry it) and the earlier one Beremiz projects still carry.
+TC6_EARLIER = ("http://www.plcopen.org/xml/tc6_0200", "http://www.plcopen.org/xml/tc6.xsd")
 IEC10 = "www.iec.ch/public/TC65SC65BWG7TF10"
 XSI = "http://www.w3.org/2001/XMLSchema-instance"
 
@@ -252,7 +254,7 @@ class _Reader:
         self.layout = _Layout(raw)
         self.diagnostics: list[Diagnostic] = []
         namespace = etree.QName(root).namespace
-        if namespace in (TC6, TC6_EARLIER) and _local(root) == "project":
+        if namespace in (TC6, *TC6_EARLIER) and _local(root) == "project":
             self.tc6 = True
         elif namespace == IEC10 and _local(root) == "Project":
             self.tc6 = False

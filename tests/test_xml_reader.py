@@ -71,6 +71,27 @@ def test_a_tc6_body_as_escaped_xhtml_text_and_a_global_list_of_the_configuration
     assert main["Count"] == 3  # counts to Limit and stops
 
 
+def test_a_codesys_v3_5_export_tc6_2_00_with_an_xhtml_element_body():
+    """CODESYS V3.5 writes namespace tc6_0200 and the body as <ST><xhtml xmlns=...>text</xhtml></ST>."""
+    text = """<?xml version="1.0" encoding="utf-8"?>
+<project xmlns="http://www.plcopen.org/xml/tc6_0200">
+  <fileHeader companyName="" productName="CODESYS" productVersion="CODESYS V3.5 SP19" creationDateTime="2026-01-01T00:00:00" />
+  <contentHeader name="Export.project"><coordinateInfo><fbd><scaling x="1" y="1" /></fbd><ld><scaling x="1" y="1" /></ld><sfc><scaling x="1" y="1" /></sfc></coordinateInfo></contentHeader>
+  <types><dataTypes /><pous>
+    <pou name="Twice" pouType="function">
+      <interface><returnType><INT /></returnType><inputVars><variable name="x"><type><INT /></type></variable></inputVars>
+        <addData><data name="http://www.3s-software.com/plcopenxml/attributes" handleUnknown="implementation"><Attributes /></data></addData>
+      </interface>
+      <body><ST><xhtml xmlns="http://www.w3.org/1999/xhtml">Twice := x * 2;</xhtml></ST></body>
+      <addData />
+    </pou>
+  </pous></types>
+  <instances><configurations /></instances>
+</project>
+"""
+    assert api.load_sources({"codesys.xml": text}).call("Twice", {"x": 21})["outputs"]["return"] == 42
+
+
 def test_tc6_array_struct_and_enum_types_with_array_initial_values():
     data_types = """<dataType name="Pair"><baseType><struct>
 <variable name="x"><type><DINT/></type></variable>
