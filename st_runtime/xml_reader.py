@@ -221,6 +221,15 @@ class _Layout:
             return element.sourceline or self.line, 1
         return self.position(offset)
 
+    def name_value(self, element) -> tuple[int, int]:
+        """Where the value of the ``name="..."`` attribute of ``element`` starts (else the element's start)."""
+        offset = self.start_tag(element)
+        if offset is None:
+            return self.where(element)
+        end = self.raw.find(">", offset)
+        match = re.compile(r"\sname\s*=\s*[\"']").search(self.raw, offset, end if end >= 0 else len(self.raw))
+        return self.position(match.end() if match else offset)
+
     def text_start(self, element) -> tuple[int, int] | None:
         """Where the character data of ``element`` begins (after its start tag and a ``<![CDATA[``)."""
         offset = self.start_tag(element)
@@ -400,9 +409,8 @@ class _Reader:
         self.layout.put(keyword + qualifiers, line, col)
         for variable in variables:
             text = self._declaration(variable, owner)
-            if text is not None:
-                line, col = self.layout.where(variable)
-                self.layout.put(text, line, col)
+            if text is not None:  # the name over the name attribute's value: the caret lands on it
+                self.layout.put(text, *self.layout.name_value(variable))
         self.layout.put("END_VAR")
 
     def _body(self, holder, text_element) -> str:
@@ -489,8 +497,7 @@ class _Reader:
             for member in members:
                 text = self._declaration(member, name)
                 if text is not None:
-                    member_line, member_col = self.layout.where(member)
-                    self.layout.put(text, member_line, member_col)
+                    self.layout.put(text, *self.layout.name_value(member))
             self.layout.put("END_STRUCT; END_TYPE")
             return
         if enumerators is not None:

@@ -162,6 +162,15 @@ def test_a_declaration_error_points_at_the_variable_element():
     assert "NoSuchType" in result.render()
 
 
+def test_a_duplicate_declaration_points_at_the_name_attribute_value():
+    text = HYPOT_TC6.replace('<variable name="b">', '<variable name="a">')
+    result = load_via_texts({"hyp.xml": text})
+    lines = text.splitlines()
+    line = [i for i, t in enumerate(lines, 1) if '<variable name="a">' in t][1]
+    first = result.errors[0]  # then the body's uses of the now undeclared b
+    assert (first.pos.line, first.pos.col) == (line, len('<variable name="') + 1) and "'a'" in first.message
+
+
 def load_via_texts(texts):
     from st_runtime.loader import load_texts
 
