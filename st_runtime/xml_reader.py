@@ -62,6 +62,7 @@ CODES = register({
     "E-XML-004": "a required element or attribute is missing (POU body, name, type)",
     "E-XML-005": "a POU body in a language other than ST (LD, FBD, SFC, IL): not read",
     "E-XML-006": "a type or value element that cannot be read as ST",
+    "E-XML-099": "internal XML reader error (a bug: please report it)",
 })
 
 #: TC6 elementary types: element name -> ST type name.
@@ -111,7 +112,7 @@ def read_xml(text: str, path: str) -> tuple[str | None, list[Diagnostic]]:
     except _Refused as refused:
         return None, [refused.diagnostic]
     except Exception as exc:  # the promise: a diagnostic, never a traceback
-        return None, [Diagnostic("E-XML-001", f"cannot read the XML file: {type(exc).__name__}: {exc}",
+        return None, [Diagnostic("E-XML-099", f"internal XML reader error: {type(exc).__name__}: {exc}",
                                  ast.Pos(path, 1, 1))]
 
 

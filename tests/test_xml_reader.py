@@ -323,3 +323,35 @@ def test_stgen_check_reports_xml_problems_gcc_style(tmp_path, capsys):
 def test_hyp_from_xml_agrees_with_math_hypot():
     project = api.load_sources({"hyp.xml": HYPOT_TC6})
     assert project.call("Hyp", {"a": 1.5, "b": 2.0})["outputs"]["return"] == pytest.approx(math.hypot(1.5, 2.0))
+
+
+# --------------------------------------------------------------------------- fuzz
+
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+_SMALL_SYSMAC = None
+
+
+def _documents() -> list[str]:
+    from stgen.exports import sysmac_xml
+    from stgen.render import render_program
+
+    global _SMALL_SYSMAC
+    if _SMALL_SYSMAC is None:
+        program = render_program()
+        small = type(program)(tuple(p for p in program.pous if p.name in ("SP_Constants", "SP_Atan2", "SP_Jacobian")))
+        _SMALL_SYSMAC = sysmac_xml.document(small)
+    return [HYPOT_TC6, _SMALL_SYSMAC]
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+@given(st.integers(0, 1), st.integers(0, 10**6), st.integers(0, 200), st.text(max_size=20))
+def test_a_mutated_document_gives_st_or_diagnostics_never_an_exception(which, start, length, insert):
+    document = _documents()[which]
+    start %= len(document)
+    mutated = document[:start] + insert + document[start + length:]
+    st_text, problems = read_xml(mutated, "m.xml")
+    assert (st_text is not None) or problems
+    assert all(p.code.startswith("E-XML") and p.code != "E-XML-099" for p in problems)
+    assert all(p.pos.line >= 1 and p.pos.col >= 1 for p in problems)
