@@ -101,7 +101,7 @@ def load_texts(texts: dict[str, str], dialect: str = "iec") -> LoadResult:
     """
     sources: dict[str, str] = {}
     files: list[ast.SourceFile] = []
-    prelude = native.prelude_source()
+    prelude = native.prelude_source(dialect)
     st_of_xml, diagnostics = xml_reader.translate(texts)
     for path, text in [(BUILTIN, prelude)] + list(texts.items()):
         sources[path] = text

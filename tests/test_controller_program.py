@@ -37,7 +37,9 @@ def test_power_on_locates_the_start_pose_and_holds_it(sim):
     assert np.allclose(sim.globals["SpSetpointPose"], STUDY_START_POSE, atol=1e-9)
     start_q = inverse_kinematics(CONFIG.geometry, np.array(STUDY_START_POSE)).positions
     assert np.max(np.abs(sim.command_positions() - start_q)) <= 1e-9
-    assert all(axis.state == AxisState.SYNCHRONIZED for axis in sim.axes)
+    # DISCRETE, not SYNCHRONIZED: MC_SyncMoveAbsolute keeps the axis in
+    # Status.Discrete on the NJ (changed in issue 8, SPEC 7).
+    assert all(axis.state == AxisState.DISCRETE for axis in sim.axes)
     sim.run(50)  # holding: nothing moves
     assert np.max(np.abs(sim.command_positions() - start_q)) <= 1e-9
     assert sim.globals["SpFaultID"] == 0 and not sim.runtime_faults

@@ -57,7 +57,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--axes", metavar="FILE.toml",
                         help="simulate servo axes: one [[axis]] table per axis (name, max_velocity;"
                              " optional soft_limit_min, soft_limit_max, max_acceleration,"
-                             " in_position_range, following_error_limit, servo_lag,"
+                             " in_position_range, in_position_check_time, following_error_limit,"
+                             " following_error_warning, error_deceleration, servo_lag,"
                              " initial_position); each axis is a global AXIS_REF variable of its"
                              " name for MC_Power, MC_SyncMoveAbsolute, ... (example:"
                              " examples/axes.toml)")
