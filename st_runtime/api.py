@@ -73,7 +73,9 @@ def _import_natives() -> None:
 def load(paths, dialect: str = "iec", extra_sources: dict[str, str] | None = None) -> "Project":
     """Load ST files and directories as one program: parse, check, compile.
 
-    `extra_sources` (name -> ST text) are loaded with the files, e.g. the axis
+    A `.xml` file (PLCopen TC6 XML or IEC 61131-10, e.g. a Sysmac Studio
+    export) contributes its ST POUs, data types and global variables
+    (`st_runtime.xml_reader`). `extra_sources` (name -> ST text) are loaded with the files, e.g. the axis
     globals of `MotionTask.globals_source()`.
     """
     from . import loader

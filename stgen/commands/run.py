@@ -43,7 +43,7 @@ MAX_FAULT_LINES = 100
 
 def add_arguments(parser) -> None:
     parser.add_argument("paths", nargs="+", metavar="FILE_OR_DIR",
-                        help="ST files, or directories whose .st files form one program")
+                        help="ST files, PLCopen TC6 or IEC 61131-10 .xml files, or directories whose .st files form one program")
     parser.add_argument("--program", required=True, metavar="NAME", help="the PROGRAM to run")
     parser.add_argument("--cycles", type=int, default=1, metavar="N", help="scans to run (default 1)")
     parser.add_argument("--period", default="1ms", help="primary task period (default 1ms)")
