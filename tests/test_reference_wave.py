@@ -1,4 +1,4 @@
-"""Ocean wave (SPEC 4, [29–33]) at phases where the pose is known by hand."""
+"""Ocean wave (docs/mathematics.md section 4, [29–33]) at phases where the pose is known by hand."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Ocean-wave motion by Airy linear theory (SPEC section 4, [29–33]).
+"""Ocean-wave motion by Airy linear theory (docs/mathematics.md section 4, [29–33]).
 
 Component i: ψi = ki·x̃ − ωi·t + φi with ki = 2π/Li, ωi = 2π/Twi.
 Surface η = Σ Ai cos ψi; a surface point moves on the orbit
@@ -6,7 +6,7 @@ Surface η = Σ Ai cos ψi; a surface point moves on the orbit
 ζ = Σ Ai cos ψi vertically (z). The platform tilts with the surface:
 β (about Y) = −atan(∂η/∂x), γ (about X) = atan(∂η/∂y), α (about Z) = 0.
 
-Units of the wavelength. The study prints L without a clear unit (SPEC 4);
+Units of the wavelength. The study prints L without a clear unit (docs/mathematics.md section 4);
 here a wavelength is a number times ``OceanWave.wavelength_unit_mm``:
 the default 1000.0 reads L in metres, so L = 100 gives
 k = 2π/(100·1000 mm) ≈ 6.28e-5 per mm. Set ``wavelength_unit_mm=1.0`` to read
