@@ -57,13 +57,13 @@ def test_program_powers_an_axis_and_moves_it(ramp, capsys):
     csv = ramp / "trace.csv"
     code, out, err = stgen(capsys, "run", ramp / "main.st", "--axes", ramp / "axes.toml",
                            "--program", "Main", "--cycles", "5", "--json",
-                           "--trace", csv, "--watch", "Cyl1.Cmd.Pos", "Cyl1.Status.Synchronized")
+                           "--trace", csv, "--watch", "Cyl1.Cmd.Pos,Cyl1.Status.Synchronized")
     assert code == 0, err
     data = json.loads(out)
     assert data["Target"] == 2.0 and data["Commanded"] == 1.5
     assert data["Power"]["Status"] is True and data["Sync"]["Error"] is False
     rows = [line.split(",") for line in csv.read_text().splitlines()]
-    assert rows[0] == ["time", "scan", "Cyl1.Cmd.Pos", "Cyl1.Status.Synchronized"]
+    assert rows[0] == ["time_s", "scan", "Cyl1.Cmd.Pos", "Cyl1.Status.Synchronized"]
     assert [float(r[2]) for r in rows[1:]] == [0.0, 0.5, 1.0, 1.5, 2.0]
     assert [r[3] for r in rows[1:]] == ["FALSE", "TRUE", "TRUE", "TRUE", "TRUE"]
 
@@ -76,7 +76,7 @@ def test_a_step_above_the_velocity_limit_is_an_axis_error(ramp, capsys):
     csv = ramp / "trace.csv"
     code, out, err = stgen(capsys, "run", ramp / "main.st", "--axes", ramp / "slow.toml",
                            "--program", "Main", "--cycles", "3", "--json",
-                           "--trace", csv, "--watch", "Cyl1.Status.ErrorStop", "Cyl1.Cmd.Pos")
+                           "--trace", csv, "--watch", "Cyl1.Status.ErrorStop,Cyl1.Cmd.Pos")
     assert code == 0, err
     rows = [line.split(",")[2:] for line in csv.read_text().splitlines()[1:]]
     assert rows == [["FALSE", "0.0"], ["TRUE", "0.0"], ["TRUE", "0.0"]]

@@ -105,6 +105,19 @@ class Scenario:
             return self
         return dataclasses.replace(self, motion=dataclasses.replace(self.motion, wave_seconds=seconds))
 
+    def shortened(self, wave_seconds: float, move_fraction: float, settle_seconds: float) -> "Scenario":
+        """A quick version: a wave of ``wave_seconds``; point-to-point moves of
+        ``move_fraction`` of each displacement (same limits, so shorter moves)
+        with ``settle_seconds`` of standstill after each."""
+        if isinstance(self.motion, WaveMotion):
+            return self.with_wave_seconds(wave_seconds)
+        start = self.start_pose
+        targets = tuple(tuple(a + move_fraction * (b - a) for a, b in zip(start, target))
+                        for target in self.motion.targets)
+        return dataclasses.replace(self, motion=PointToPointMotion(targets=targets),
+                                   settle_seconds=settle_seconds,
+                                   title=f"{self.title} (quick: {move_fraction:g} of each move)")
+
 
 #: The study's limits of the point-to-point moves: 20 mm/s and 2 °/s (acceleration and jerk: the defaults).
 STUDY_MOVE_LIMITS = TrajectoryConfig(linear_velocity=20.0, angular_velocity=2.0)

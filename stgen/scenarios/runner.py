@@ -55,6 +55,7 @@ class ScenarioResult:
     runtime_faults: list = field(default_factory=list)
     wall_seconds: float = 0.0
     move_durations_s: tuple[float, ...] = ()  # SpMoveDuration after each move's edge (a wave: the lead-in)
+    state_names: dict[int, str] = field(default_factory=dict)  # SpState value -> SP_STATE_xxx name
 
     @property
     def command_scan(self) -> int:
@@ -72,8 +73,9 @@ class ScenarioResult:
 
     @property
     def time_s(self) -> np.ndarray:
-        """End of every scan, s."""
-        return np.arange(1, self.scans + 1) * self.period_s
+        """The simulated clock during every scan, s: (k - 1) * period for scan k,
+        the time the program's timers see and `stgen run --trace` writes."""
+        return np.arange(self.scans) * self.period_s
 
     @property
     def error(self) -> np.ndarray:
@@ -254,4 +256,5 @@ def run_scenario(
         runtime_faults=list(sim.runtime_faults),
         wall_seconds=wall,
         move_durations_s=tuple(durations),
+        state_names={value: name for name, value in sim.codes.items() if name.startswith("SP_STATE_")},
     )
