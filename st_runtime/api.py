@@ -58,18 +58,6 @@ class LoadError(Exception):
 # ------------------------------------------------------------------ loading
 
 
-def _import_natives() -> None:
-    """Register the native FBs shipped with the runtime (standard FBs, motion)."""
-    from importlib import import_module
-
-    for module in ("st_runtime.stdlib.fbs", "st_runtime.motion.fbs"):
-        try:
-            import_module(module)
-        except ModuleNotFoundError as exc:
-            if exc.name != module:
-                raise
-
-
 def load(paths, dialect: str = "iec", extra_sources: dict[str, str] | None = None) -> "Project":
     """Load ST files and directories as one program: parse, check, compile.
 
@@ -78,7 +66,6 @@ def load(paths, dialect: str = "iec", extra_sources: dict[str, str] | None = Non
     """
     from . import loader
 
-    _import_natives()
     return _compiled(loader.load([os.fspath(p) for p in paths], dialect, extra_sources))
 
 
@@ -91,7 +78,6 @@ def load_sources(sources: dict[str, str], dialect: str = "iec") -> "Project":
     """Load in-memory ST texts (path -> text) as one program."""
     from . import loader
 
-    _import_natives()
     return _compiled(loader.load_texts(dict(sources), dialect))
 
 

@@ -4,8 +4,8 @@
     if result.program is None: print(result.render())
 
 Directories expand to the `.st` files below them, sorted by path.  The
-native prelude (`st_runtime.native.prelude_source()`) is parsed as the file
-"<builtin>" and checked with the user's files.  Unreadable or non-UTF-8 files
+native prelude (`st_runtime.prelude`, parsed once per process) is the file
+"<builtin>", checked with the user's files.  Unreadable or non-UTF-8 files
 become diagnostics, never exceptions.
 """
 
@@ -14,15 +14,12 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass, field
 
-from . import ast, native
-# Register every native FB before the prelude is read: the standard FBs
-# (TON, R_TRIG, ...) and the PLCopen motion FBs (MC_Power, ...) with AXIS_REF.
-from . import motion as _motion  # noqa: F401
-from . import stdlib as _stdlib  # noqa: F401
+from . import ast
 from .checker import check
 from .checker import codes as _codes  # noqa: F401  (registers E-LOAD-*)
 from .diagnostics import Diagnostic, ERROR, WARNING
 from .parser import parse
+from .prelude import prelude_file
 from .symbols import CheckedProgram
 
 BUILTIN = "<builtin>"
@@ -96,8 +93,12 @@ def load_texts(texts: dict[str, str], dialect: str = "iec") -> LoadResult:
     sources: dict[str, str] = {}
     diagnostics: list[Diagnostic] = []
     files: list[ast.SourceFile] = []
-    prelude = native.prelude_source()
-    for path, text in [(BUILTIN, prelude)] + list(texts.items()):
+    prelude, parsed, found = prelude_file()      # parsed once per process
+    sources[BUILTIN] = prelude
+    diagnostics.extend(found)
+    if parsed is not None:
+        files.append(parsed)
+    for path, text in texts.items():
         sources[path] = text
         parsed, found = parse(text, path)
         diagnostics.extend(found)

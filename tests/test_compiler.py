@@ -177,8 +177,10 @@ def test_unguarded_compilation_gives_the_same_results():
 
 
 def test_native_fb_works_outside_a_compiled_program():
+    from st_runtime.compiler import install_native_layouts
     from st_runtime.stdlib.fbs import TON
 
+    install_native_layouts()
     t = TON()
     assert t.v_IN is False and t.v_PT == 0 and t.v_Q is False
 

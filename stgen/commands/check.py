@@ -13,7 +13,7 @@ import sys
 
 from st_runtime.loader import expand, load
 
-from .run import DIALECT_HELP, source_problem
+from .sources import DIALECT_HELP, source_problem
 
 
 def add_arguments(parser) -> None:

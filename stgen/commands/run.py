@@ -34,11 +34,10 @@ from st_runtime.api import LoadError, load, parse_period
 from st_runtime.controller import DEFAULT_BUDGET
 from st_runtime.values import json_text
 
+from .sources import DIALECT_HELP, source_problem  # noqa: F401  (call uses them from here too)
+
 MAX_FAULT_LINES = 100
 
-#: One help text for `--dialect` in every command that loads ST.
-DIALECT_HELP = ("rules to check against: iec (IEC 61131-3; OMRON NJ identifier rules are"
-                " warnings, the default) or nj (OMRON NJ/Sysmac Studio: those rules are errors)")
 
 
 def add_arguments(parser) -> None:
@@ -84,20 +83,6 @@ def usage(message: str) -> int:
 # ---------------------------------------------------------------- shared checks
 # (`stgen call` and `stgen check` use these too: one wording for one mistake;
 # stgen.cli makes argparse's own usage errors one line for every command)
-
-
-def source_problem(paths: list[str]) -> str | None:
-    """Why `paths` give nothing to load (a missing path, no .st file at all)."""
-    from st_runtime.loader import expand
-
-    missing = [p for p in paths if not os.path.exists(p)]
-    if missing:
-        return f"no such file or directory: '{missing[0]}'"
-    files, _ = expand(list(paths))
-    if not files:
-        where = ", ".join(f"'{p}'" for p in paths)
-        return f"no .st file in {where}"
-    return None
 
 
 def output_problem(path: str) -> str | None:
