@@ -43,6 +43,7 @@ from . import codes  # noqa: F401  (registers the codes)
 from .context import Context, FastSink, Scope
 from .declarations import Declarations
 from .expressions import ExprChecker
+from .limits import check_files
 from .nj_rules import check_identifiers
 from .recursion import check_recursion
 from .statements import StatementChecker
@@ -73,6 +74,8 @@ def _check(files, dialect):
     program = CheckedProgram(files=list(files))
     ctx = Context(program, FastSink(), dialect if dialect in DIALECTS else "iec")
     try:
+        if not check_files(ctx, files):       # structural limits first (limits.py)
+            return program, list(ctx.sink.items)
         Declarations(ctx).run(files)
         for info in program.pous.values():
             if info.node is None or info.native is not None:
