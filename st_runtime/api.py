@@ -185,7 +185,9 @@ class Instance:
             if kind == "name":
                 if t is not None:
                     obj = _read(container, slot)
-                layout = type(obj)._st_vars if not isinstance(obj, dict) else {}
+                layout = getattr(type(obj), "_st_vars", None) if not isinstance(obj, dict) else {}
+                if layout is None:      # a member of an elementary value or an array (a.__class__)
+                    raise KeyError(f"{path}: '{value}' is no member: only a STRUCT or an FB instance has members")
                 entry = layout.get(value.upper())
                 if entry is None:
                     raise KeyError(f"{path}: no variable '{value}'")

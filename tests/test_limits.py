@@ -145,3 +145,26 @@ def test_the_recursion_backstop_is_still_a_diagnostic(monkeypatch):
     parsed, _ = parse(program("x := 1;"), "limits.st")
     _, diagnostics = check([parsed])
     assert [d.code for d in diagnostics] == ["E-LIMIT-001"]
+
+
+def test_case_label_uniqueness_over_many_labels_and_ranges():
+    # 20,000 single labels, two ranges, then one duplicate of each kind: the overlaps found
+    # are the ones by hand (a dict and a sorted range list: near-linear, issue 15).
+    labels = ", ".join(str(k) for k in range(20_000))
+    text = program("CASE x OF\n"
+                   f"{labels}: x := 1;\n"            # line 4
+                   "30000..30010: x := 2;\n"        # line 5
+                   "40000..40010: x := 3;\n"        # line 6
+                   "19999: x := 4;\n"               # line 7: a single seen on line 4
+                   "30005..30020: x := 5;\n"        # line 8: overlaps line 5
+                   "25000..35000: x := 6;\n"        # line 9: overlaps line 5 (and 6? no: ends 35000)
+                   "39990..40000: x := 7;\n"        # line 10: touches line 6 at 40000
+                   "20000..29999: x := 8;\n"        # line 11: fits between, no overlap
+                   "END_CASE;")
+    diagnostics = refused(text)
+    assert [(d.code, d.pos.line, d.message) for d in diagnostics] == [
+        ("E-TYPE-013", 7, "CASE label 19999 overlaps a label at line 4"),
+        ("E-TYPE-013", 8, "CASE label 30005..30020 overlaps a label at line 5"),
+        ("E-TYPE-013", 9, "CASE label 25000..35000 overlaps a label at line 5"),
+        ("E-TYPE-013", 10, "CASE label 39990..40000 overlaps a label at line 6"),
+    ]

@@ -64,21 +64,65 @@ def _finite_float(text: str) -> float:
     return value
 
 
+#: Digits of the longest ST integer literal a --set may hold (ULINT: 20 digits).
+MAX_INT_DIGITS = 40
+#: Nesting of a --set JSON value (an ST value nests arrays and structs, never this deep).
+MAX_JSON_DEPTH = 64
+
+
+def _bounded_int(text: str) -> int:
+    """A JSON integer of at most MAX_INT_DIGITS digits (100,000 digits took
+    Python's own wording to the user)."""
+    if len(text.lstrip("-")) > MAX_INT_DIGITS:
+        raise ValueError(f"a number of {len(text.lstrip('-')):,} digits is beyond any ST integer")
+    return int(text)
+
+
+def _check_json(value) -> None:
+    """Refuse what JSON allows and no ST value holds: nesting beyond
+    MAX_JSON_DEPTH, and strings with a lone UTF-16 surrogate ("\\ud800")."""
+    work = [(value, 1)]
+    while work:
+        item, depth = work.pop()
+        if depth > MAX_JSON_DEPTH:
+            raise ValueError(f"nested more than {MAX_JSON_DEPTH} levels deep")
+        if isinstance(item, str):
+            try:
+                item.encode("utf-8")
+            except UnicodeEncodeError as exc:
+                raise ValueError(f"the string holds a lone UTF-16 surrogate (\\u{ord(item[exc.start]):04x}),"
+                                 " which is no character") from None
+        elif isinstance(item, list):
+            work.extend((x, depth + 1) for x in item)
+        elif isinstance(item, dict):
+            work.extend((x, depth + 1) for pair in item.items() for x in pair)
+
+
+def _shown(text: str, width: int = 40) -> str:
+    return repr(text if len(text) <= width else text[:width] + "...")
+
+
 def parse_sets(items: list[str]) -> dict:
     inputs = {}
     for item in items:
         name, sep, text = item.partition("=")
         if not sep or not name.strip():
-            raise ValueError(f"--set {item!r}: expected NAME=JSON")
-        if name.strip().upper() in (key.upper() for key in inputs):
-            raise ValueError(f"--set {name.strip()}: given twice")
+            raise ValueError(f"--set {_shown(item)}: expected NAME=JSON")
+        name = name.strip()
+        shown_name = name if len(name) <= 60 else name[:60] + "..."
+        if name.upper() in (key.upper() for key in inputs):
+            raise ValueError(f"--set {shown_name}: given twice")
         try:
-            inputs[name.strip()] = json.loads(text, parse_float=_finite_float)
+            value = json.loads(text, parse_float=_finite_float, parse_int=_bounded_int)
+            _check_json(value)
         except json.JSONDecodeError as exc:
-            raise ValueError(f"--set {name.strip()}: not JSON ({exc.msg}): {text!r}; "
+            raise ValueError(f"--set {shown_name}: not JSON ({exc.msg}): {_shown(text)}; "
                              "strings need quotes, e.g. 'PT=\"T#1s\"'") from None
+        except RecursionError:
+            raise ValueError(f"--set {shown_name}: nested more than {MAX_JSON_DEPTH} levels deep") from None
         except ValueError as exc:
-            raise ValueError(f"--set {name.strip()}: {exc}") from None
+            raise ValueError(f"--set {shown_name}: {exc}") from None
+        inputs[name] = value
     return inputs
 
 

@@ -160,7 +160,7 @@ def run(args) -> int:
         try:
             trace = plc.trace(watch_paths(args.watch), program=pou.name)
         except (KeyError, ValueError) as exc:
-            return usage(f"--watch: {exc}")
+            return usage(f"--watch: {clipped(str(exc))}")
     plc.run(args.cycles)
     values = program.to_json()
     if args.json:
@@ -175,6 +175,11 @@ def run(args) -> int:
             print(f"stgen run: error: cannot write {args.trace}: {exc.strerror or exc}", file=sys.stderr)
             return 1
     return report_faults("stgen run", plc.controller)
+
+
+def clipped(message: str, width: int = 160) -> str:
+    """A message cut to one readable line (a hostile path may be 100,000 characters)."""
+    return message if len(message) <= width else message[:width - 3] + "..."
 
 
 def watch_paths(items: list[str]) -> list[str]:
@@ -219,8 +224,6 @@ def fault_json(record) -> dict:
 def write_sets(items: list[str], program, plc) -> str | None:
     """Store each `--set PATH=JSON` in the program instance, else in the globals;
     the usage error of the first that cannot be stored."""
-    from st_runtime.values import JsonValueError
-
     from .call import parse_sets
 
     try:
@@ -236,8 +239,8 @@ def write_sets(items: list[str], program, plc) -> str | None:
             target = plc.globals
         try:
             target[path] = value
-        except (KeyError, JsonValueError) as exc:
-            return f"--set {exc.args[0] if exc.args else exc}"
+        except (KeyError, ValueError) as exc:      # JsonValueError, a path that does not parse
+            return f"--set {clipped(str(exc.args[0] if exc.args else exc))}"
     return None
 
 
