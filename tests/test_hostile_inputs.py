@@ -93,7 +93,7 @@ def test_a_surrogate_pair_is_one_character():
     ("a[]=1", "array indices must be integer literals"),
     ("a=" + "[" * 60_000, "--set a: nested more than 64 levels deep"),
     ("a=" + "[" * 70 + "]" * 70, "--set a: nested more than 64 levels deep"),
-    ("x=" + "1" * 100_000, "--set x: a number of 100,000 digits is beyond any ST integer"),
+    ("x=" + "1" * 100_000, "--set x: a number of 100,000 digits is beyond any ST number"),
     ('s="\\ud800x"', "--set s: the string holds a lone UTF-16 surrogate (\\ud800)"),
     ('w="\\udc00"', "--set w: the string holds a lone UTF-16 surrogate (\\udc00)"),
     ("a[" + "1" * 100_000 + "]=1", "--set 'a[1111"),

@@ -64,8 +64,9 @@ def _finite_float(text: str) -> float:
     return value
 
 
-#: Digits of the longest ST integer literal a --set may hold (ULINT: 20 digits).
-MAX_INT_DIGITS = 40
+#: Digits of the longest JSON integer a --set may hold: LREAL's largest value
+#: written out has 309; Python refuses 4,300 in its own words.
+MAX_INT_DIGITS = 1000
 #: Nesting of a --set JSON value (an ST value nests arrays and structs, never this deep).
 MAX_JSON_DEPTH = 64
 
@@ -74,7 +75,7 @@ def _bounded_int(text: str) -> int:
     """A JSON integer of at most MAX_INT_DIGITS digits (100,000 digits took
     Python's own wording to the user)."""
     if len(text.lstrip("-")) > MAX_INT_DIGITS:
-        raise ValueError(f"a number of {len(text.lstrip('-')):,} digits is beyond any ST integer")
+        raise ValueError(f"a number of {len(text.lstrip('-')):,} digits is beyond any ST number")
     return int(text)
 
 
