@@ -58,27 +58,29 @@ class LoadError(Exception):
 # ------------------------------------------------------------------ loading
 
 
-def load(paths, dialect: str = "iec", extra_sources: dict[str, str] | None = None) -> "Project":
+def load(paths, dialect: str = "iec", extra_sources: dict[str, str] | None = None,
+         memory_limit: int | None = None) -> "Project":
     """Load ST files and directories as one program: parse, check, compile.
 
     `extra_sources` (name -> ST text) are loaded with the files, e.g. the axis
-    globals of `MotionTask.globals_source()`.
+    globals of `MotionTask.globals_source()`; `memory_limit`: bytes a variable,
+    a POU instance or the project may need (default 64 MiB, checker/memory.py).
     """
     from . import loader
 
-    return _compiled(loader.load([os.fspath(p) for p in paths], dialect, extra_sources))
+    return _compiled(loader.load([os.fspath(p) for p in paths], dialect, extra_sources, memory_limit))
 
 
-def load_text(text: str, path: str = "<text>", dialect: str = "iec") -> "Project":
+def load_text(text: str, path: str = "<text>", dialect: str = "iec", memory_limit: int | None = None) -> "Project":
     """Load one ST text (tests, notebooks)."""
-    return load_sources({path: text}, dialect)
+    return load_sources({path: text}, dialect, memory_limit)
 
 
-def load_sources(sources: dict[str, str], dialect: str = "iec") -> "Project":
+def load_sources(sources: dict[str, str], dialect: str = "iec", memory_limit: int | None = None) -> "Project":
     """Load in-memory ST texts (path -> text) as one program."""
     from . import loader
 
-    return _compiled(loader.load_texts(dict(sources), dialect))
+    return _compiled(loader.load_texts(dict(sources), dialect, memory_limit))
 
 
 def _compiled(result) -> "Project":

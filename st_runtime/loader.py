@@ -88,7 +88,7 @@ def read_source(path: str) -> tuple[str | None, Diagnostic | None]:
     return text, None
 
 
-def load_texts(texts: dict[str, str], dialect: str = "iec") -> LoadResult:
+def load_texts(texts: dict[str, str], dialect: str = "iec", memory_limit: int | None = None) -> LoadResult:
     """Parse and check in-memory sources (path -> text), with the native prelude."""
     sources: dict[str, str] = {}
     diagnostics: list[Diagnostic] = []
@@ -104,14 +104,15 @@ def load_texts(texts: dict[str, str], dialect: str = "iec") -> LoadResult:
         diagnostics.extend(found)
         if parsed is not None:
             files.append(parsed)
-    program, found = check(files, dialect)
+    program, found = check(files, dialect, memory_limit)
     diagnostics.extend(found)
     program.sources = {p: t for p, t in sources.items() if p != BUILTIN}
     ok = not any(d.is_error for d in diagnostics)
     return LoadResult(program if ok else None, _ordered(diagnostics, list(sources)), sources)
 
 
-def load(paths: list[str], dialect: str = "iec", extra: dict[str, str] | None = None) -> LoadResult:
+def load(paths: list[str], dialect: str = "iec", extra: dict[str, str] | None = None,
+         memory_limit: int | None = None) -> LoadResult:
     """Read, parse and check the files and directories in `paths` as one program.
 
     `extra` adds in-memory sources (name -> ST text) after the files, e.g. the
@@ -126,7 +127,7 @@ def load(paths: list[str], dialect: str = "iec", extra: dict[str, str] | None = 
         else:
             texts[name] = text
     texts.update(extra or {})
-    result = load_texts(texts, dialect)
+    result = load_texts(texts, dialect, memory_limit)
     if diagnostics:
         result.diagnostics = diagnostics + result.diagnostics
         if any(d.is_error for d in diagnostics):

@@ -20,6 +20,9 @@ def add_arguments(parser) -> None:
     parser.add_argument("paths", nargs="+", metavar="FILE_OR_DIR",
                         help="ST files, or directories whose .st files are checked together")
     parser.add_argument("--dialect", choices=("iec", "nj"), default="iec", help=DIALECT_HELP)
+    parser.add_argument("--memory-limit", type=_bytes, default=None, metavar="BYTES",
+                        help="most bytes a variable, a POU instance or the project may need"
+                             " (default 64 MiB; suffixes k, M, G: 512k, 16M)")
 
 
 def run(args) -> int:
@@ -43,7 +46,8 @@ def run(args) -> int:
               file=sys.stderr)
         if len(bodies) == len(files):
             return 1
-    result = load([f for f in files if f not in bodies] if bodies else args.paths, dialect=args.dialect)
+    result = load([f for f in files if f not in bodies] if bodies else args.paths, dialect=args.dialect,
+                  memory_limit=args.memory_limit)
     if result.diagnostics:
         print(result.render(), file=sys.stderr)
     n_errors = sum(1 for d in result.diagnostics if d.is_error)
@@ -52,6 +56,17 @@ def run(args) -> int:
     print(f"stgen check: {n_files} file(s), {n_errors} error(s), {n_warnings} warning(s)",
           file=sys.stderr)
     return 1 if n_errors or bodies else 0
+
+
+def _bytes(text: str) -> int:
+    """`--memory-limit`: a positive number of bytes, with an optional k, M or G (powers of 1024)."""
+    import argparse
+
+    scale = {"k": 2**10, "m": 2**20, "g": 2**30}.get(text[-1:].lower(), 1)
+    digits = text[:-1] if scale != 1 else text
+    if not digits.isdigit() or int(digits) <= 0 or len(digits) > 15:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of bytes (e.g. 65536, 512k, 16M)")
+    return int(digits) * scale
 
 
 def _where(bodies: list[str]) -> str:
