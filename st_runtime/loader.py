@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 
 from . import ast
 from .checker import check
+from .checker.limits import file_too_large
 from .checker import codes as _codes  # noqa: F401  (registers E-LOAD-*)
 from .diagnostics import Diagnostic, ERROR, WARNING
 from .parser import parse
@@ -100,6 +101,10 @@ def load_texts(texts: dict[str, str], dialect: str = "iec", memory_limit: int | 
         files.append(parsed)
     for path, text in texts.items():
         sources[path] = text
+        too_large = file_too_large(text)
+        if too_large:
+            diagnostics.append(Diagnostic("E-LIMIT-012", too_large, ast.Pos(path, 1, 1), ERROR))
+            continue
         parsed, found = parse(text, path)
         diagnostics.extend(found)
         if parsed is not None:

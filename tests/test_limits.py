@@ -96,7 +96,8 @@ def test_beyond_a_limit_is_one_checker_diagnostic(body, code, line):
 
 
 def test_too_many_statements():
-    diagnostics = refused(program("x := 1;\n" * (limits.MAX_STATEMENTS + 1)))
+    lines = ["x := 1; " * 10] * (limits.MAX_STATEMENTS // 10) + ["x := 1;"]     # ten a line
+    diagnostics = refused(program("\n".join(lines)))
     assert [d.code for d in diagnostics] == ["E-LIMIT-007"]
     assert f"{limits.MAX_STATEMENTS + 1} statements" in diagnostics[0].message
 
@@ -168,3 +169,10 @@ def test_case_label_uniqueness_over_many_labels_and_ranges():
         ("E-TYPE-013", 9, "CASE label 25000..35000 overlaps a label at line 5"),
         ("E-TYPE-013", 10, "CASE label 39990..40000 overlaps a label at line 6"),
     ]
+
+
+def test_a_file_beyond_the_line_limit_is_refused_before_parsing():
+    text = program("x := 1;\n" * (limits.MAX_FILE_LINES + 1))
+    diagnostics = refused(text)
+    assert [(d.code, d.pos.line) for d in diagnostics] == [("E-LIMIT-012", 1)]
+    assert f"at most {limits.MAX_FILE_LINES:,}" in diagnostics[0].message

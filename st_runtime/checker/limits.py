@@ -20,6 +20,7 @@ RecursionError.
 | E-LIMIT-005 | at most MAX_ELSIF ELSIF branches in one IF |
 | E-LIMIT-006 | at most MAX_CASE_CLAUSES clauses in one CASE |
 | E-LIMIT-007 | at most MAX_STATEMENTS statements in one POU |
+| E-LIMIT-012 | at most MAX_FILE_LINES lines and MAX_FILE_BYTES characters in one source file (the loader, before parsing) |
 """
 
 from __future__ import annotations
@@ -33,6 +34,10 @@ MAX_LOOP_DEPTH = 12
 MAX_ELSIF = 150
 MAX_CASE_CLAUSES = 1_500
 MAX_STATEMENTS = 100_000
+#: A source file is read whole and parsed at some 10,000 to 30,000 lines a second: beyond
+#: these, the parse alone would take seconds and hundreds of MB (1,000,000 statements: 54 s).
+MAX_FILE_LINES = 100_000
+MAX_FILE_BYTES = 16 * 2**20
 
 register({
     "E-LIMIT-002": f"an expression or a type is nested more than {MAX_EXPRESSION_DEPTH} levels deep",
@@ -41,7 +46,18 @@ register({
     "E-LIMIT-005": f"an IF has more than {MAX_ELSIF} ELSIF branches",
     "E-LIMIT-006": f"a CASE has more than {MAX_CASE_CLAUSES} clauses",
     "E-LIMIT-007": f"a POU has more than {MAX_STATEMENTS} statements",
+    "E-LIMIT-012": f"a source file has more than {MAX_FILE_LINES:,} lines or {MAX_FILE_BYTES:,} bytes",
 })
+
+
+def file_too_large(text: str) -> str | None:
+    """Why `text` is too large to parse (E-LIMIT-012), or None."""
+    lines = text.count("\n") + 1
+    if lines > MAX_FILE_LINES:
+        return f"{lines:,} lines: a source file has at most {MAX_FILE_LINES:,} (split it into several files)"
+    if len(text) > MAX_FILE_BYTES:
+        return f"{len(text):,} characters: a source file has at most {MAX_FILE_BYTES:,} (split it)"
+    return None
 
 _BLOCKS = (ast.If, ast.Case, ast.For, ast.While, ast.Repeat)
 _LOOPS = (ast.For, ast.While, ast.Repeat)
