@@ -103,8 +103,8 @@ class NativeFB:
 
     Subclasses set `NAME` and `DECLARATION` and implement `execute(self, ctx)`.
     The initial values come from the checked declaration; the compiler installs
-    them when it compiles a program (`set_initializers`), and a class used on
-    its own (in a unit test) checks its declaration on first instantiation.
+    them when it compiles a program (`set_initializers`); a class used on its
+    own (a unit test) needs `st_runtime.compiler.install_native_layouts()` first.
     """
 
     NAME: str = ""
@@ -113,7 +113,8 @@ class NativeFB:
     def __init__(self) -> None:
         init = type(self).__dict__.get("_st_initializers")
         if init is None:
-            init = _initializers_from_declaration(type(self))
+            raise RuntimeError(f"native FB {self.NAME or type(self).__name__} has no layout yet: compile a"
+                               " program first, or call st_runtime.compiler.install_native_layouts()")
         for attr, make in init:
             setattr(self, attr, make())
 
@@ -124,14 +125,3 @@ class NativeFB:
     def set_initializers(cls, initializers: list[tuple[str, object]]) -> None:
         """Install (attribute, zero-argument factory) pairs for `__init__`."""
         cls._st_initializers = tuple(initializers)
-
-
-def _initializers_from_declaration(cls: type) -> tuple:
-    """Check the native prelude once and install every native FB's layout."""
-    from .objects import install_native_layouts  # late: objects needs the checker
-
-    install_native_layouts()
-    init = cls.__dict__.get("_st_initializers")
-    if init is None:
-        raise RuntimeError(f"native FB {cls.__name__} is not registered with @native_fb")
-    return init

@@ -1,4 +1,5 @@
-"""PNG figures of a scenario run, laid out like the study's: the platform pose
+"""PNG figures of a scenario run, laid out like the NJ501 study's (docs/mathematics.md,
+Sources; the scenarios are its trajectories of docs/mathematics.md section 4): the platform pose
 over time (positions relative to the start pose, then angles) and the six cylinder positions over time,
 with the error against the NumPy reference underneath; then the cylinder set-points' velocity and
 acceleration against the actuator's limits (issue 8) and the following error (commanded minus

@@ -35,7 +35,7 @@ from stgen.reference.linalg import permutation_table
 
 TEMPLATE_DIR = Path(__file__).resolve().parent.parent / "st_templates"
 
-#: Templates of the kinematics POUs (SPEC 1-3), in dependency order.
+#: Templates of the kinematics POUs (docs/mathematics.md sections 1-3), in dependency order.
 KINEMATICS_TEMPLATES = (
     "SP_Constants",
     "SP_Atan2",
@@ -46,7 +46,7 @@ KINEMATICS_TEMPLATES = (
     "SP_ForwardKinematics",
 )
 
-#: Templates of the trajectory FBs (SPEC 4) and the controller program (SPEC 5), in dependency order.
+#: Templates of the trajectory FBs (docs/mathematics.md section 4) and the controller program (docs/mathematics.md section 5), in dependency order.
 CONTROLLER_TEMPLATES = (
     "trajectory/TRJ_Constants",
     "trajectory/TRJ_Cycloidal",
@@ -69,7 +69,7 @@ def pou_name(template: str) -> str:
     return template.rsplit("/", 1)[-1]
 
 
-#: How the FK obtains det J (SPEC 3, step 1), a generator option.
+#: How the FK obtains det J (docs/mathematics.md section 3, step 1), a generator option.
 DETERMINANT_METHODS = ("table", "unrolled", "lu")
 
 # Variable usages, named as in Sysmac Studio's variable tables.

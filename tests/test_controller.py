@@ -190,7 +190,7 @@ def test_trace_records_paths_every_scan(tmp_path):
     assert list(data["t.Q"]) == [False, False, True, True]
     out = tmp_path / "trace.csv"
     trace.write_csv(out)
-    assert out.read_text().splitlines()[0].startswith("time,scan,n")
+    assert out.read_text().splitlines()[0].startswith("time_s,scan,n")
 
 
 def test_empty_controller_and_run_zero_cycles():

@@ -38,7 +38,7 @@ def test_power_on_locates_the_start_pose_and_holds_it(sim):
     start_q = inverse_kinematics(CONFIG.geometry, np.array(STUDY_START_POSE)).positions
     assert np.max(np.abs(sim.command_positions() - start_q)) <= 1e-9
     # DISCRETE, not SYNCHRONIZED: MC_SyncMoveAbsolute keeps the axis in
-    # Status.Discrete on the NJ (changed in issue 8, SPEC 7).
+    # Status.Discrete on the NJ (changed in issue 8, docs/nj501.md).
     assert all(axis.state == AxisState.DISCRETE for axis in sim.axes)
     sim.run(50)  # holding: nothing moves
     assert np.max(np.abs(sim.command_positions() - start_q)) <= 1e-9

@@ -1,7 +1,7 @@
 """The estimated NJ501 execution time (st_runtime/compiler/cost.py): its
 calibration against the study, how blocks are charged, and F-PERIOD from it.
 
-Expected values: the study's figures (SPEC 3: one Newton-Raphson iteration
+Expected values: the study's figures (docs/mathematics.md section 3: one Newton-Raphson iteration
 49.5 us on an NJ501-1300; 3 iterations 0.149 ms, 13 iterations 0.644 ms) and
 sums of the weights table by hand.
 """
@@ -20,7 +20,7 @@ from st_runtime.compiler.cost import PICOSECONDS_PER_UNIT, WEIGHTS
 from st_runtime.controller import Controller, Task, TaskTime
 
 GENERATED = Path(__file__).resolve().parents[1] / "generated" / "iec"
-STUDY_START = [60.25, 85.0, 230.7, 0.0, 0.0, 3.75]     # SPEC 3: the study's start p_NR
+STUDY_START = [60.25, 85.0, 230.7, 0.0, 0.0, 3.75]     # docs/mathematics.md section 3: the study's start p_NR
 
 
 @pytest.fixture(scope="module")

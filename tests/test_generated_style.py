@@ -12,7 +12,7 @@ from stgen.render import RenderOptions, render_program
 
 VARIANTS = {name: render_program(options=RenderOptions(name)) for name in ("table", "unrolled", "lu")}
 
-#: Literals that are no magic numbers: zero, one, and the factor 2 of d|L|^2/da (SPEC 3 [36]).
+#: Literals that are no magic numbers: zero, one, and the factor 2 of d|L|^2/da (docs/mathematics.md section 3 [36]).
 PLAIN_LITERALS = {"0", "1", "0.0", "1.0", "2.0"}
 
 _COMMENT = re.compile(r"\(\*.*?\*\)", re.S)
@@ -44,10 +44,10 @@ def test_the_magic_number_scan_sees_what_it_must():
     assert _NUMBER.findall(_code("CASE S OF\n    4, 5: (* SP_STATE_MOVING, SP_STATE_WAVE *)\n    7:\n")) == ["7"]
 
 
-def test_every_pou_header_cites_the_spec():
+def test_every_pou_header_cites_the_mathematics():
     for pou in VARIANTS["table"].pous:
         if pou.kind != "VAR_GLOBAL":
-            assert re.search(r"SPEC \d", pou.header), pou.name
+            assert re.search(r"docs/mathematics\.md section \d", pou.header), pou.name
 
 
 def test_no_generated_line_ends_in_whitespace():

@@ -56,7 +56,7 @@ def test_motion_on_disabled_axis_is_refused(start):
 def test_sync_position_is_the_command_of_the_same_period():
     axis = powered_axis()
     command = axis.start_sync()
-    assert axis.state == AxisState.DISCRETE  # changed in issue 8: not SYNCHRONIZED (OMRON, SPEC 7)
+    assert axis.state == AxisState.DISCRETE  # changed in issue 8: not SYNCHRONIZED (OMRON, docs/nj501.md)
     command.target = 0.05
     axis.step(DT)
     assert axis.cmd_pos == 0.05 and axis.act_pos == 0.05  # ideal axis
@@ -66,7 +66,7 @@ def test_sync_position_is_the_command_of_the_same_period():
 def test_step_at_velocity_limit_is_accepted_and_above_it_saturates():
     # Changed in issue 8: a step above the limit faulted the axis (invented
     # 16#6402); OMRON saturates at the maximum velocity and outputs the rest
-    # in later periods, Details.VelLimit TRUE meanwhile (SPEC 7, W507 9-2).
+    # in later periods, Details.VelLimit TRUE meanwhile (docs/nj501.md, W507 9-2).
     axis = powered_axis()  # 100 mm/s -> at most 0.1 mm per 1 ms scan
     command = axis.start_sync()
     command.target = 0.1
@@ -157,7 +157,7 @@ def test_reset_returns_to_standstill_when_powered_and_disabled_when_not():
     command.target = 60.0  # beyond +50
     axis.step(DT)
     assert axis.state == AxisState.ERRORSTOP
-    with pytest.raises(MotionAborted):  # CommandAborted, not an error (issue 8, SPEC 7)
+    with pytest.raises(MotionAborted):  # CommandAborted, not an error (issue 8, docs/nj501.md)
         axis.start_sync()
     assert axis.reset()
     assert axis.state == AxisState.STANDSTILL and axis.fault_code == ErrorID.NONE
@@ -189,7 +189,7 @@ def test_reset_fails_while_the_following_error_is_still_too_large():
 def test_stop_aborts_synchronized_motion_at_once():
     # Changed in issue 8: the stop decelerated at its 10,000 mm/s^2; OMRON's
     # MC_Stop on an axis under MC_SyncMoveAbsolute is an immediate stop, the
-    # deceleration ignored (SPEC 7).  A start while Stopping: CommandAborted.
+    # deceleration ignored (docs/nj501.md).  A start while Stopping: CommandAborted.
     axis = powered_axis()
     sync = axis.start_sync()
     for n in range(1, 4):
@@ -223,7 +223,7 @@ def test_stop_decelerates_a_move_and_deceleration_zero_stops_at_once():
     axis.release_stop(stop)
     axis.start_move_absolute(10.0, 50.0, 0.0, 0.0)
     axis.step(DT)                     # 0.30 at 50 mm/s
-    axis.start_stop(0.0)              # Deceleration 0: immediate stop (SPEC 7)
+    axis.start_stop(0.0)              # Deceleration 0: immediate stop (docs/nj501.md)
     axis.step(DT)
     assert axis.cmd_pos == pytest.approx(0.30) and axis.cmd_vel == 0.0
 

@@ -85,7 +85,7 @@ def test_sync_position_of_scan_k_is_the_command_of_scan_k():
         assert rig.ref().v_CMD.v_POS == 0.01 * k       # and published after it
     assert seen_at_start == pytest.approx([0.0, 0.01, 0.02, 0.03, 0.04])
     assert outputs(sync, "Busy", "Active", "InPosition") == (True, True, True)
-    # Changed in issue 8: Status.Discrete, not Synchronized (OMRON, SPEC 7).
+    # Changed in issue 8: Status.Discrete, not Synchronized (OMRON, docs/nj501.md).
     assert rig.ref().v_STATUS.v_DISCRETE and not rig.ref().v_STATUS.v_SYNCHRONIZED
 
 
@@ -121,7 +121,7 @@ def test_soft_limit_fault_then_reset_back_to_standstill():
     rig.scan(lambda: rig.call(sync, Execute=True, Position=0.16))
     assert rig.ref().v_MFAULTLVL.v_CODE == ErrorID.TARGET_POSITIVE_SOFT_LIMIT
     # A new start on the faulted axis ends with CommandAborted, not Error
-    # (changed in issue 8: it was Error 16#5403, invented; OMRON, SPEC 7).
+    # (changed in issue 8: it was Error 16#5403, invented; OMRON, docs/nj501.md).
     move = make_fb(fbs.MC_MoveAbsolute)
     rig.scan(lambda: rig.call(move, Execute=True, Position=0.0, Velocity=1.0))
     assert outputs(move, "CommandAborted", "Error", "ErrorID", "Busy") == (True, False, 0, False)
@@ -147,7 +147,7 @@ def test_reset_failure_while_following_error_persists():
 def test_stop_aborts_sync_and_axis_ends_in_standstill():
     # Changed in issue 8: the stop decelerated at 10,000 mm/s^2; on an axis
     # under MC_SyncMoveAbsolute OMRON's MC_Stop is an immediate stop, its
-    # Deceleration ignored (SPEC 7).  A start while Stopping is CommandAborted
+    # Deceleration ignored (docs/nj501.md).  A start while Stopping is CommandAborted
     # (it was Error 16#5404, invented).
     rig, power = powered_rig()
     sync = make_fb(fbs.MC_SyncMoveAbsolute)

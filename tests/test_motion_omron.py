@@ -2,7 +2,7 @@
 
 Each test runs an ST program against simulated axes (1 ms period) and checks
 values computed by hand next to it.  The sources of the behaviours are in
-docs/nj501.md ("OMRON's motion kernel") and SPEC section 7."""
+docs/nj501.md ("OMRON's motion kernel") and docs/nj501.md."""
 
 import math
 

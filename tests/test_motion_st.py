@@ -50,7 +50,7 @@ def test_position_written_in_scan_k_is_the_command_of_scan_k():
     assert main["CmdAtStart"] == pytest.approx(0.04)  # what scan 6 read: scan 5's command
     assert main["Sync.Busy"] and main["Sync.Active"] and main["Sync.InPosition"]
     # Discrete, not Synchronized (changed in issue 8: OMRON's MC_SyncMoveAbsolute
-    # keeps the axis in Status.Discrete, SPEC 7).
+    # keeps the axis in Status.Discrete, docs/nj501.md).
     assert plc.globals["Cyl1.Status.Discrete"] and not plc.globals["Cyl1.Status.Synchronized"]
     assert plc.faults == []
     data = trace.to_numpy()
@@ -180,7 +180,7 @@ END_PROGRAM
 def test_stop_aborts_synchronized_motion_and_ends_in_standstill():
     # Changed in issue 8: the stop decelerated at 10,000 mm/s^2 (40, 30, 20,
     # 10, 0 mm/s); on an axis under MC_SyncMoveAbsolute OMRON's MC_Stop is an
-    # immediate stop and its Deceleration is ignored (SPEC 7).
+    # immediate stop and its Deceleration is ignored (docs/nj501.md).
     plc, main, task = make_plc(STOP_DURING_SYNC)
     plc.run(4)                        # synchronized at 50 mm/s: 0.05, 0.10, 0.15
     main["StopNow"] = True

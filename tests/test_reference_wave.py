@@ -1,4 +1,4 @@
-"""Ocean wave (SPEC 4, [29–33]) at phases where the pose is known by hand."""
+"""Ocean wave (docs/mathematics.md section 4, [29–33]) at phases where the pose is known by hand."""
 
 from __future__ import annotations
 
@@ -108,7 +108,7 @@ def test_invalid_components_are_rejected():
         OceanWave((WaveComponent(3.0, 10.0, 100.0, 0.0),), wavelength_unit_mm=0.0)
 
 
-# Fade-in (issue 8, SPEC 4): continuity of position, velocity and acceleration.
+# Fade-in (issue 8, docs/mathematics.md section 4): continuity of position, velocity and acceleration.
 
 
 def test_fade_in_duration_of_the_airy_preset_by_hand():

@@ -41,19 +41,29 @@ def test_demo_writes_code_traces_figures_and_passes(tmp_path, short_waves, capsy
             rows = list(csv.reader(stream))
         assert tuple(rows[0]) == HEADER
         assert [int(row[1]) for row in rows[1:4]] == [1, 2, 3]
+        # The time base of stgen run --trace: scan k at (k - 1) * 1 ms.
+        assert [row[0] for row in rows[1:3]] == ["0.0", "0.001"]
+        assert rows[1][3] == "SP_STATE_POWERING"
         errors = [float(row[-1]) for row in rows[1:]]
         assert max(errors) <= 1e-6
     assert "All scenarios passed" in out
-    # The twelve moves' durations as SP_Controller planned them: 2h/v = 10 s, or 6 s for 6 deg at 2 deg/s.
+    # --quick moves a tenth of each displacement at the study's limits: 2h/v = 2*10/20 = 1 s for
+    # 10 mm at 20 mm/s and for 1 deg at 2 deg/s, 0.6 s for 0.6 deg.
     assert "12 moves planned by SP_Controller (SpMoveDuration): " + ", ".join(
-        ["10.000"] * 6 + ["6.000"] * 4 + ["10.000"] * 2) + " s" in out
+        ["1.000"] * 6 + ["0.600"] * 4 + ["1.000"] * 2) + " s" in out
     # The controller code was generated for both targets.
     assert (tmp_path / "generated" / "iec" / "SP_Controller.st").is_file()
     assert (tmp_path / "generated" / "nj501" / "SP_Controller.variables.tsv").is_file()
-    # The twelve point-to-point moves (8 of 10 s, 4 of 6 s, 0.5 s standstill after each) are not
-    # shortened by --quick: 8*10,001 + 4*6,001 + 12*500 = 110,012 scans after the first command.
+    # --quick shortens the point-to-point moves too (8 of 1 s, 4 of 0.6 s, 0.1 s standstill after
+    # each): 8*1,001 + 4*601 + 12*100 = 11,612 scans after the first command, not 110,012.
     with (tmp_path / "point_to_point.csv").open() as stream:
-        assert sum(1 for _ in stream) - 1 > 110_012
+        assert 11_612 < sum(1 for _ in stream) - 1 < 12_000
+
+
+def test_demo_csv_headers_carry_units():
+    for column in ("time_s", "x_mm", "alpha_deg", "gamma_deg", "ref_z_mm", "q1_mm", "ref_q6_mm", "max_error_mm"):
+        assert column in HEADER
+    assert not {"x", "alpha", "q1", "time"} & set(HEADER)
 
 
 def test_demo_exits_1_when_a_scenario_fails(tmp_path, short_waves, monkeypatch, capsys):

@@ -1,6 +1,6 @@
 """TRJ_Cycloidal and TRJ_OceanWave, rendered and run in st_runtime, scan by scan.
 
-Expected values by hand (SPEC 4 formulas worked out below) and from the NumPy
+Expected values by hand (docs/mathematics.md section 4 formulas worked out below) and from the NumPy
 reference (stgen.reference.cycloidal / wave) on seeded random cases.
 """
 
@@ -109,7 +109,7 @@ def _run_cycloid(plc, program, scans):
 
 
 def test_cycloid_30_mm_at_20_mm_per_s_takes_3_s_by_hand(project):
-    # SPEC 4 example: 30 mm with 20 mm/s -> T = 2*30/20 = 3 s. Acceleration
+    # docs/mathematics.md section 4 example: 30 mm with 20 mm/s -> T = 2*30/20 = 3 s. Acceleration
     # SQRT(2*pi*30/500) = 0.868 s and jerk (4*pi^2*30/5000)^(1/3) = 0.619 s do not bind.
     plc, program = _cycloid(project, [0, 0, 0, 0, 0, 0], [30, 0, 0, 0, 0, 0], [20, 500, 5000, 10, 50, 500])
     poses, done = _run_cycloid(plc, program, 3002)
@@ -244,7 +244,7 @@ def test_wave_clock_holds_at_zero_until_run(project):
 
 def test_random_wave_with_heading_and_steep_slopes_matches_reference(project):
     # L read in mm (unit 1) so the tilts are large (tens of degrees); heading 30 deg,
-    # a centre pose and a rest position: every term of SPEC 4 shows.
+    # a centre pose and a rest position: every term of docs/mathematics.md section 4 shows.
     wave = OceanWave(RANDOM_5.components, heading_deg=30.0, wavelength_unit_mm=1.0)
     centre = (5.0, -3.0, 150.0, 1.0, 2.0, -1.5)
     plc, program = _wave(project, wave, centre, rest=12.5)
@@ -291,7 +291,7 @@ def test_wave_refuses_invalid_parameters(project, trj_codes, field, value):
     assert not program["Wave.Error"] and program["Wave.ErrorID"] == 0
 
 
-# --------------------------------------------------------------------------- fade-in (issue 8, SPEC 4)
+# --------------------------------------------------------------------------- fade-in (issue 8, docs/mathematics.md section 4)
 
 
 def test_fade_in_matches_reference_and_starts_at_rest(project):

@@ -1,6 +1,6 @@
 """The two XML targets: the import rules they must follow, and the round trip through st_runtime.
 
-Rules of the IEC 61131-10 file come from SPEC 7 and the sources in
+Rules of the IEC 61131-10 file come from docs/nj501.md and the sources in
 docs/nj501.md (section "XML import"); those of the PLCopen file from the TC6
 XML 2.01 schema. The round trip compares with the checked-in generated/iec.
 """
@@ -66,7 +66,7 @@ def test_sysmac_root_names_the_namespace_omrons_schema_and_the_target_version(sy
 
 
 def test_sysmac_arrays_are_instantly_defined_array_type_specs_never_type_names(sysmac):
-    """SPEC 7: a TypeName "ARRAY..." passes the schema but the import fails."""
+    """docs/nj501.md: a TypeName "ARRAY..." passes the schema but the import fails."""
     type_names = [t.text for t in sysmac.iter(IEC + "TypeName")]
     assert type_names and not [t for t in type_names if "ARRAY" in t.upper() or "[" in t]
     specs = list(sysmac.iter(IEC + "InstantlyDefinedType"))

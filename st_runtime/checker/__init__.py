@@ -45,6 +45,8 @@ from .context import Context, FastSink, Scope
 from .declarations import Declarations
 from .expressions import ExprChecker
 from .nj_build import check_build_rules
+from .limits import check_files
+from .memory import check_memory
 from .nj_rules import check_identifiers
 from .recursion import check_recursion
 from .statements import StatementChecker
@@ -58,23 +60,28 @@ register({
 })
 
 
-def check(files: list[ast.SourceFile], dialect: str = "iec") -> tuple[CheckedProgram, list[Diagnostic]]:
-    """Check parsed files as one program; `dialect` is "iec" or "nj"."""
+def check(files: list[ast.SourceFile], dialect: str = "iec",
+          memory_limit: int | None = None) -> tuple[CheckedProgram, list[Diagnostic]]:
+    """Check parsed files as one program; `dialect` is "iec" or "nj";
+    `memory_limit`: bytes a variable, a POU instance or the project may need
+    (default `memory.DEFAULT_LIMIT`)."""
     files = [f for f in files if f is not None]
     # The checker walks expressions recursively; a generated sum of 720
     # products (an unrolled Leibniz determinant) is 720 levels deep.
     old_limit = sys.getrecursionlimit()
     sys.setrecursionlimit(max(old_limit, RECURSION_LIMIT))
     try:
-        return _check(files, dialect)
+        return _check(files, dialect, memory_limit)
     finally:
         sys.setrecursionlimit(old_limit)
 
 
-def _check(files, dialect):
+def _check(files, dialect, memory_limit=None):
     program = CheckedProgram(files=list(files))
     ctx = Context(program, FastSink(), dialect if dialect in DIALECTS else "iec")
     try:
+        if not check_files(ctx, files):       # structural limits first (limits.py)
+            return program, list(ctx.sink.items)
         Declarations(ctx).run(files)
         for info in program.pous.values():
             if info.node is None or info.native is not None:
@@ -82,6 +89,8 @@ def _check(files, dialect):
             ex = ExprChecker(ctx, Scope(ctx, info))
             StatementChecker(ex).block(info.node.body)
         check_recursion(ctx)
+        if not any(d.code == "E-REC-001" for d in ctx.sink.items):   # sizes need acyclic types
+            check_memory(ctx, memory_limit)
         check_identifiers(ctx, files)
         check_build_rules(ctx, files)
     except RecursionError:

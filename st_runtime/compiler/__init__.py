@@ -272,3 +272,28 @@ def _install_init(unit: CompileUnit, key: str, members: list) -> None:
     out.ensure_body(mark)
     unit.run_source("init:" + key, out.source())
     unit.classes[key].__init__ = unit.namespace[pyname]
+
+
+_native_layouts_installed = False
+
+
+def install_native_layouts() -> None:
+    """Check and compile the native prelude on its own, which installs every
+    native FB's layout (`NativeFB.set_initializers`).
+
+    Needed only to instantiate a native FB outside a compiled program (a unit
+    test of the library); compiling any program installs them too.
+    """
+    global _native_layouts_installed
+    if _native_layouts_installed:
+        return
+    from ..checker import check      # the checker is not the compiler's: only here
+    from ..prelude import prelude_file
+
+    _text, prelude, diagnostics = prelude_file()
+    program, more = check([prelude] if prelude is not None else [], "iec")
+    errors = [d for d in diagnostics + more if d.is_error]
+    if errors:
+        raise RuntimeError("native prelude does not check: " + "; ".join(d.header() for d in errors))
+    compile_program(program)
+    _native_layouts_installed = True

@@ -297,12 +297,25 @@ class BodyCompiler(ExprCompiler):
                 o.line(f"elif {test} is not None:" if guarded else "else:")
                 self.block(s.else_body, leads[1])
             return
-        # IF/ELSIF chain: the index of the branch taken, conditions evaluated in order.
+        # IF/ELSIF chain: the index of the branch taken, conditions evaluated in order,
+        # as flat if/elif lines (a nested conditional expression would add one level
+        # of parentheses per ELSIF to CPython's 200).
         n = len(s.branches)
-        chooser = str(n)
-        for i in range(n - 1, -1, -1):
-            chooser = f"{i} if {self.expr(s.branches[i].condition)} else ({chooser})"
-        which, _ = self.guarded_value(s, chooser, "-1")
+        conditions = [self.expr(branch.condition) for branch in s.branches]
+        which = self.temp()
+
+        def choose():
+            for i, condition in enumerate(conditions):
+                o.line(f"{'if' if i == 0 else 'elif'} {condition}:")
+                o.indent()
+                o.line(f"{which} = {i}")
+                o.dedent()
+            o.line("else:")
+            o.indent()
+            o.line(f"{which} = {n}")
+            o.dedent()
+
+        self.guard(s, choose, lambda: [f"{which} = -1"])
         # The first test is charged before the IF; the later ones by the branch that took them.
         for i, branch in enumerate(s.branches):
             o.line(f"{'if' if i == 0 else 'elif'} {which} == {i}:")

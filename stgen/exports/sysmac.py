@@ -188,7 +188,7 @@ before pasting and reorder the spreadsheet's columns if it differs: a row
 pasted with shifted columns is only caught at *Build*. Array initial values
 use Sysmac Studio's `[a, b, ...]` form, row-major for two dimensions.
 
-The code respects the NJ rules of SPEC section 5: LREAL for all kinematics,
+The code respects the NJ rules of docs/mathematics.md section 5: LREAL for all kinematics,
 no recursion, no pointers, identifiers of at most 127 bytes without leading,
 trailing or double underscores and not named like an instruction, and its own
 quadrant-correct ATAN2 (`SP_Atan2`), as the NJ has none.

@@ -22,7 +22,7 @@ The layout follows what was learned from files that Sysmac Studio imported
   the body as ``MainBody/BodyContent xsi:type="ST"/ST``;
 * an array type as ``InstantlyDefinedType xsi:type="ArrayTypeSpec"`` with a
   ``BaseType`` and one ``DimensionSpec`` per dimension, never a ``TypeName``
-  "ARRAY..." (that passes the schema but the import fails: SPEC 7);
+  "ARRAY..." (that passes the schema but the import fails: docs/nj501.md);
 * the global variables under ``Instances/Configuration/Resource`` in one
   ``GlobalVars`` container per (Constant, Retain) combination, the two being
   attributes of the container, not of the variable; Network Publish as

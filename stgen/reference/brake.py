@@ -1,6 +1,6 @@
-"""A controlled stop of a moving pose set-point (issue 8, SPEC 5): the program
+"""A controlled stop of a moving pose set-point (issue 8, docs/mathematics.md section 5): the program
 ramps the set-point to rest before MC_Stop, because MC_Stop on an axis under
-MC_SyncMoveAbsolute is an immediate stop (OMRON, SPEC 7).
+MC_SyncMoveAbsolute is an immediate stop (OMRON, docs/nj501.md).
 
 From the set-point's velocity v0 and acceleration a0 at the start of the stop,
 each coordinate's velocity follows the cubic Hermite curve from (v0, a0) to

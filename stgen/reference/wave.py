@@ -1,4 +1,4 @@
-"""Ocean-wave motion by Airy linear theory (SPEC section 4, [29–33]).
+"""Ocean-wave motion by Airy linear theory (docs/mathematics.md section 4, [29–33]).
 
 Component i: ψi = ki·x̃ − ωi·t + φi with ki = 2π/Li, ωi = 2π/Twi.
 Surface η = Σ Ai cos ψi; a surface point moves on the orbit
@@ -7,10 +7,10 @@ Surface η = Σ Ai cos ψi; a surface point moves on the orbit
 β (about Y) = −atan(∂η/∂x), γ (about X) = atan(∂η/∂y), α (about Z) = 0.
 The tilt about X is the study's atan(∂η/∂y), not the exact
 atan(cos β · ∂η/∂y) that aligns the platform normal with the surface normal
-(SPEC 4): they differ by less than 1e-6° for the study's presets, and the ST
+(docs/mathematics.md section 4): they differ by less than 1e-6° for the study's presets, and the ST
 (TRJ_OceanWave) computes the same.
 
-Fade-in (SPEC 4, issue 8): the wave clock starts at rest at the centre pose
+Fade-in (docs/mathematics.md section 4, issue 8): the wave clock starts at rest at the centre pose
 and the wave's offset w(t) from the centre is faded in,
 p(t) = centre + s(t/T_F)·w(t), with s = σ the cycloidal fraction
 (s(0) = 0, s(1) = 1, s' and s'' zero at both ends). Position, velocity and
@@ -19,7 +19,7 @@ acceleration are continuous at t = 0 (rest at the centre) and at t = T_F
 for which a bound of the faded motion's velocity, acceleration and jerk stays
 inside the trajectory limits in every coordinate.
 
-Units of the wavelength. The study prints L without a clear unit (SPEC 4);
+Units of the wavelength. The study prints L without a clear unit (docs/mathematics.md section 4);
 here a wavelength is a number times ``OceanWave.wavelength_unit_mm``:
 the default 1000.0 reads L in metres, so L = 100 gives
 k = 2π/(100·1000 mm) ≈ 6.28e-5 per mm. Set ``wavelength_unit_mm=1.0`` to read

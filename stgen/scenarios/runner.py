@@ -62,6 +62,7 @@ class ScenarioResult:
     servo_lag_s: float = 0.0      # first-order lag of Act.Pos behind Cmd.Pos of the simulated axes
     move_durations_s: tuple[float, ...] = ()  # SpMoveDuration after each move's edge (a wave: the lead-in)
     nj_time: object = None         # estimated NJ501 time per scan (st_runtime.controller.TaskTime)
+    state_names: dict[int, str] = field(default_factory=dict)  # SpState value -> SP_STATE_xxx name
 
     @property
     def command_scan(self) -> int:
@@ -79,8 +80,9 @@ class ScenarioResult:
 
     @property
     def time_s(self) -> np.ndarray:
-        """End of every scan, s."""
-        return np.arange(1, self.scans + 1) * self.period_s
+        """The simulated clock during every scan, s: (k - 1) * period for scan k,
+        the time the program's timers see and `stgen run --trace` writes."""
+        return np.arange(self.scans) * self.period_s
 
     @property
     def error(self) -> np.ndarray:
@@ -280,4 +282,5 @@ def run_scenario(
         servo_lag_s=servo_lag_s,
         move_durations_s=tuple(durations),
         nj_time=sim.plc.controller.time_report()[0],
+        state_names={value: name for name, value in sim.codes.items() if name.startswith("SP_STATE_")},
     )

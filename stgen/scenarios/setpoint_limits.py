@@ -1,5 +1,5 @@
 """Velocity and acceleration of the set-points a program hands to MC_SyncMoveAbsolute,
-checked against the actuator's limits (issue 8, SPEC 4 and 5).
+checked against the actuator's limits (issue 8, docs/mathematics.md sections 4 and 5).
 
 MC_SyncMoveAbsolute takes one position per task period and does not limit
 acceleration (OMRON: "maximum acceleration/deceleration are not used"), so

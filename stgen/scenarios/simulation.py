@@ -13,7 +13,7 @@ and acceleration, and every scenario checks that
 (:mod:`stgen.scenarios.setpoint_limits`). The study's start of the wave (a
 lead-in ending at rest, then the wave at full speed) was a velocity step of
 8.5 mm/s in one scan (8,486 mm/s² on a cylinder, random wave); the wave now
-fades in from rest (TRJ_OceanWave, SPEC 4). The controller itself checks
+fades in from rest (TRJ_OceanWave, docs/mathematics.md section 4). The controller itself checks
 stroke and per-scan step.
 """
 
