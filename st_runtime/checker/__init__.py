@@ -58,22 +58,28 @@ register({
 })
 
 
-def check(files: list[ast.SourceFile], dialect: str = "iec") -> tuple[CheckedProgram, list[Diagnostic]]:
-    """Check parsed files as one program; `dialect` is "iec" or "nj"."""
+def check(files: list[ast.SourceFile], dialect: str = "iec",
+          open_instances: bool = False) -> tuple[CheckedProgram, list[Diagnostic]]:
+    """Check parsed files as one program; `dialect` is "iec" or "nj".
+
+    `open_instances` lets code read and write every variable of an FB
+    instance from outside (`stgen test`: STruC++'s tests see inside
+    instances, st_runtime/testing/lowering.py).
+    """
     files = [f for f in files if f is not None]
     # The checker walks expressions recursively; a generated sum of 720
     # products (an unrolled Leibniz determinant) is 720 levels deep.
     old_limit = sys.getrecursionlimit()
     sys.setrecursionlimit(max(old_limit, RECURSION_LIMIT))
     try:
-        return _check(files, dialect)
+        return _check(files, dialect, open_instances)
     finally:
         sys.setrecursionlimit(old_limit)
 
 
-def _check(files, dialect):
+def _check(files, dialect, open_instances=False):
     program = CheckedProgram(files=list(files))
-    ctx = Context(program, FastSink(), dialect if dialect in DIALECTS else "iec")
+    ctx = Context(program, FastSink(), dialect if dialect in DIALECTS else "iec", open_instances)
     try:
         Declarations(ctx).run(files)
         for info in program.pous.values():
