@@ -104,8 +104,11 @@ class TestRun:
 
 
 def run_tests(paths, dialect: str = "iec", pattern: str | None = None,
-              period_ns: int = DEFAULT_PERIOD_NS) -> TestRun:
-    """Load the files, run every TEST (whose name matches `pattern`), report."""
+              period_ns: int = DEFAULT_PERIOD_NS, execute: bool = True) -> TestRun:
+    """Load the files, run every TEST (whose name matches `pattern`), report.
+
+    `execute=False` stops after the check (what `stgen check` does with test files).
+    """
     run = TestRun()
     names, problems = loader.expand([str(p) for p in paths])
     run.diagnostics.extend(problems)
@@ -129,6 +132,8 @@ def run_tests(paths, dialect: str = "iec", pattern: str | None = None,
     if lowered is None:
         return run
     lowering, checked = lowered
+    if not execute:
+        return run
     from ..compiler import CompileError, compile_program
 
     try:

@@ -1,6 +1,7 @@
 """`stgen check FILE_OR_DIR... [--dialect nj|iec]`: parse and check ST.
 
-Diagnostics go to stderr, gcc-style with the source line and a caret; a
+Test files (lines `TEST 'name'`, see `stgen test`) are checked as `stgen
+test` reads them.  Diagnostics go to stderr, gcc-style with the source line and a caret; a
 one-line summary follows.  Exit 0 when there is no error (warnings allowed),
 1 on errors, 2 on usage errors (a path that does not exist, nothing to
 check: no .st file in the paths given).
@@ -11,7 +12,8 @@ from __future__ import annotations
 import os
 import sys
 
-from st_runtime.loader import load
+from st_runtime.loader import LoadResult, expand, load, read_source
+from st_runtime.testing import is_test_source, run_tests
 
 from .run import source_problem
 
@@ -33,7 +35,7 @@ def run(args) -> int:
     if problem:
         print(f"stgen check: error: {problem}", file=sys.stderr)
         return 2
-    result = load(args.paths, dialect=args.dialect)
+    result = _load(args.paths, args.dialect)
     if result.diagnostics:
         print(result.render(), file=sys.stderr)
     n_errors = sum(1 for d in result.diagnostics if d.is_error)
@@ -47,6 +49,21 @@ def run(args) -> int:
               " whole ones with --target iec and run stgen check --dialect nj on that folder",
               file=sys.stderr)
     return 1 if n_errors else 0
+
+
+def _load(paths: list[str], dialect: str):
+    """The files loaded as one program; test files (`TEST 'name'` lines) are checked
+    as `stgen test` reads them, with the code they test."""
+    files, _ = expand(list(paths))
+    if not any(_is_test_file(path) for path in files):
+        return load(paths, dialect=dialect)
+    run = run_tests(paths, dialect, execute=False)
+    return LoadResult(None, run.diagnostics, run.sources)
+
+
+def _is_test_file(path: str) -> bool:
+    text, _ = read_source(path)
+    return text is not None and is_test_source(text)
 
 
 def _is_sysmac_body(path: str) -> bool:
