@@ -141,14 +141,7 @@ def grammar() -> _Grammar:
 
 def parse(text: str, path: str) -> tuple[ast.SourceFile | None, list[Diagnostic]]:
     """Parse one file.  Returns (AST, []) or (None, diagnostics); never raises."""
-    try:
-        if not isinstance(text, str):
-            raise TypeError(f"parse() needs str, not {type(text).__name__}")
-        with _lock:
-            return _parse(text, path)
-    except Exception as exc:  # the promise: no traceback for any input
-        return None, [Diagnostic("E-PARSE-099", f"internal parser error: "
-                                 f"{type(exc).__name__}: {exc}", ast.Pos(path, 1, 1))]
+    return _guarded(text, path, "start", "parse")
 
 
 def parse_body(text: str, path: str) -> tuple[tuple[ast.Stmt, ...] | None, list[Diagnostic]]:
@@ -156,14 +149,7 @@ def parse_body(text: str, path: str) -> tuple[tuple[ast.Stmt, ...] | None, list[
 
     Returns (statements, []) or (None, diagnostics); never raises.
     """
-    try:
-        if not isinstance(text, str):
-            raise TypeError(f"parse_body() needs str, not {type(text).__name__}")
-        with _lock:
-            return _parse(text, path, "stmt_list")
-    except Exception as exc:  # the promise: no traceback for any input
-        return None, [Diagnostic("E-PARSE-099", f"internal parser error: "
-                                 f"{type(exc).__name__}: {exc}", ast.Pos(path, 1, 1))]
+    return _guarded(text, path, "stmt_list", "parse_body")
 
 
 def parse_tests(text: str, path: str) -> tuple[ast.SourceFile | None, list[Diagnostic]]:
@@ -171,11 +157,15 @@ def parse_tests(text: str, path: str) -> tuple[ast.SourceFile | None, list[Diagn
 
     TEST, SETUP, TEARDOWN and their END_ keywords are reserved only here.
     """
+    return _guarded(text, path, "test_file", "parse_tests")
+
+
+def _guarded(text: str, path: str, start: str, caller: str):
     try:
         if not isinstance(text, str):
-            raise TypeError(f"parse_tests() needs str, not {type(text).__name__}")
+            raise TypeError(f"{caller}() needs str, not {type(text).__name__}")
         with _lock:
-            return _parse(text, path, "test_file")
+            return _parse(text, path) if start == "start" else _parse(text, path, start)
     except Exception as exc:  # the promise: no traceback for any input
         return None, [Diagnostic("E-PARSE-099", f"internal parser error: "
                                  f"{type(exc).__name__}: {exc}", ast.Pos(path, 1, 1))]

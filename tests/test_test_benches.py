@@ -25,6 +25,19 @@ def program():
     return render_program(options=RenderOptions(tests=True))
 
 
+def _with(program, pou):
+    """The program with `pou` in place of the POU of the same name."""
+    return dataclasses.replace(program, pous=tuple(pou if p.name == pou.name else p
+                                                   for p in program.pous))
+
+
+def _wrong_l0_constants():
+    """SP_Constants rendered with l0 half a millimetre too long."""
+    config = PlatformConfig.default()
+    geometry = dataclasses.replace(config.geometry, l0=config.geometry.l0 + 0.5)
+    return render_program(dataclasses.replace(config, geometry=geometry)).pou("SP_Constants")
+
+
 def _statuses(program, folder) -> dict[str, str]:
     iec.write(program, folder)
     run = run_tests([str(folder)])
@@ -45,13 +58,7 @@ def test_generated_benches_pass_and_are_nj_clean(tmp_path, capsys):
 
 
 def test_a_wrong_l0_fails_the_kinematics_benches_only(program, tmp_path):
-    config = PlatformConfig.default()
-    wrong = dataclasses.replace(config, geometry=dataclasses.replace(config.geometry,
-                                                                     l0=config.geometry.l0 + 0.5))
-    wrong_constants = render_program(wrong).pou("SP_Constants")
-    broken = dataclasses.replace(program, pous=tuple(
-        wrong_constants if p.name == "SP_Constants" else p for p in program.pous))
-    statuses = _statuses(broken, tmp_path)
+    statuses = _statuses(_with(program, _wrong_l0_constants()), tmp_path)
     assert statuses == {"TB_InverseKinematics": "failed", "TB_ForwardKinematics": "failed",
                         "TB_Determinant": "passed", "TB_LuSolve": "passed"}
 
@@ -61,21 +68,13 @@ def test_a_lost_sign_fails_the_lu_bench_only(program, tmp_path):
     assert "Determinant := -Determinant;" in lu.body
     broken_lu = dataclasses.replace(lu, body=lu.body.replace("Determinant := -Determinant;",
                                                              "Determinant := Determinant;"))
-    broken = dataclasses.replace(program, pous=tuple(
-        broken_lu if p.name == "SP_LuSolve" else p for p in program.pous))
-    statuses = _statuses(broken, tmp_path)
+    statuses = _statuses(_with(program, broken_lu), tmp_path)
     assert statuses == {"TB_InverseKinematics": "passed", "TB_ForwardKinematics": "passed",
                         "TB_Determinant": "passed", "TB_LuSolve": "failed"}
 
 
 def test_a_failed_bench_reports_its_failures(program, tmp_path):
-    config = PlatformConfig.default()
-    wrong = dataclasses.replace(config, geometry=dataclasses.replace(config.geometry,
-                                                                     l0=config.geometry.l0 + 0.5))
-    broken = dataclasses.replace(program, pous=tuple(
-        render_program(wrong).pou("SP_Constants") if p.name == "SP_Constants" else p
-        for p in program.pous))
-    iec.write(broken, tmp_path)
+    iec.write(_with(program, _wrong_l0_constants()), tmp_path)
     run = run_tests([str(tmp_path)], pattern="TB_InverseKinematics")
     [result] = run.results
     # the first assert after the scans that fails: some case differs by the 0.5 mm of l0
