@@ -125,3 +125,11 @@ def test_files_without_a_test_are_refused():
     run = run_tests([LIB])
     assert not run.loaded
     assert [d.code for d in run.diagnostics if d.is_error] == ["E-TEST-002"]
+
+
+def test_a_loop_that_never_ends_is_an_error(tmp_path):
+    path = tmp_path / "test_forever.st"
+    path.write_text("TEST 'forever'\nVAR I : DINT; END_VAR\n    WHILE TRUE DO\n        I := I + 1;\n"
+                    "    END_WHILE;\nEND_TEST\n")
+    [result] = run_tests([str(path)], time_limit_ps=10**10).results     # 10 ms of NJ501 time
+    assert result.status == "error" and "estimated NJ501 time" in result.detail

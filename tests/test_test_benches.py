@@ -97,3 +97,25 @@ def test_nj_export_says_how_to_run_the_benches(program):
     assert "## Test benches" not in plain["README.md"]
     assert not any(name.startswith("TB_") for name in plain)
     assert BENCH_TEST_FILE not in iec.files(render_program())
+
+
+@pytest.mark.parametrize("bench, done", [("TB_InverseKinematics", "TbIkDone"),
+                                         ("TB_ForwardKinematics", "TbFkDone"),
+                                         ("TB_Determinant", "TbDetDone"), ("TB_LuSolve", "TbLuDone")])
+def test_every_scan_of_a_bench_fits_the_task_period(program, tmp_path_factory, bench, done):
+    """By the NJ501 execution-time estimate (st_runtime/compiler/cost.py), each
+    scan of a bench stays under OMRON's 80 % load guideline of a 1 ms task."""
+    from st_runtime import load
+
+    folder = tmp_path_factory.mktemp("benches")
+    iec.write(program, folder)
+    project = load([p for p in folder.glob("*.st") if p.name != BENCH_TEST_FILE])
+    plc = project.controller(period="1ms")
+    plc.add_program(bench)
+    for _ in range(200):
+        plc.controller.scan()
+        if plc.globals[done]:
+            break
+    assert plc.globals[done] and not plc.controller.faults
+    [timing] = plc.controller.time_report()
+    assert timing.max_ns < 0.8 * 1_000_000, timing

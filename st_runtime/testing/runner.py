@@ -28,7 +28,7 @@ import re
 import time
 from dataclasses import dataclass, field
 
-from .. import ast, loader, native
+from .. import ast, loader, native, xml_reader
 from ..checker import check
 from ..controller import Controller, DEFAULT_PERIOD_NS
 from ..diagnostics import Diagnostic, register
@@ -43,9 +43,11 @@ CODES = register({
     "E-TEST-002": "no TEST block in the files given to `stgen test`",
 })
 
-# Loop iterations a whole test may spend (a test is one call of its FB, and
-# may run a program for thousands of scans); beyond it the test is an error.
-TEST_BUDGET = 200_000_000
+# Estimated NJ501 time (controller.py, compiler/cost.py) a whole test may
+# spend: a test is one call of its FB and may run a program for many scans,
+# so it gets 2 s, a thousand fully loaded 1 ms scans; beyond it the test is
+# an error (a loop that never ends stops there).
+TEST_TIME_LIMIT_PS = 2_000_000_000_000
 LABELS = {"passed": "PASS", "failed": "FAIL", "error": "ERROR"}
 _TEST_LINE = re.compile(r"^[ \t]*TEST[ \t]*['\"]", re.IGNORECASE | re.MULTILINE)
 
@@ -104,10 +106,12 @@ class TestRun:
 
 
 def run_tests(paths, dialect: str = "iec", pattern: str | None = None,
-              period_ns: int = DEFAULT_PERIOD_NS, execute: bool = True) -> TestRun:
+              period_ns: int = DEFAULT_PERIOD_NS, execute: bool = True,
+              time_limit_ps: int = TEST_TIME_LIMIT_PS) -> TestRun:
     """Load the files, run every TEST (whose name matches `pattern`), report.
 
-    `execute=False` stops after the check (what `stgen check` does with test files).
+    `execute=False` stops after the check (what `stgen check` does with test
+    files); `time_limit_ps` is the estimated NJ501 time one test may use.
     """
     run = TestRun()
     names, problems = loader.expand([str(p) for p in paths])
@@ -143,7 +147,7 @@ def run_tests(paths, dialect: str = "iec", pattern: str | None = None,
         return run
     for test in lowering.tests:
         if pattern is None or _matches(test.name, pattern):
-            run.results.append(_run_one(compiled, test, period_ns))
+            run.results.append(_run_one(compiled, test, period_ns, time_limit_ps))
     return run
 
 
@@ -154,9 +158,17 @@ def _matches(name: str, pattern: str) -> bool:
 
 
 def _parse_all(texts: dict[str, str], dialect: str, run: TestRun):
+    """Parse as `loader.load_texts` does (a `.xml` file through `xml_reader`),
+    test files with the test grammar."""
     plain, tests = [], []
+    st_of_xml, found = xml_reader.translate(texts)
+    run.diagnostics.extend(found)
     for path, text in [(loader.BUILTIN, native.prelude_source(dialect))] + list(texts.items()):
-        test_file = path != loader.BUILTIN and is_test_source(text)
+        if path in st_of_xml:
+            text = st_of_xml[path]
+            if text is None:      # the XML reader has said why
+                continue
+        test_file = path != loader.BUILTIN and path not in st_of_xml and is_test_source(text)
         parsed, found = (parse_tests if test_file else parse)(text, path)
         run.diagnostics.extend(found)
         if parsed is not None:
@@ -188,15 +200,15 @@ def _lower_and_check(plain, tests, dialect: str, run: TestRun):
     return lowering, checked
 
 
-def _run_one(compiled, test: LoweredTest, period_ns: int) -> TestResult:
+def _run_one(compiled, test: LoweredTest, period_ns: int, limit_ps: int) -> TestResult:
     result = TestResult(test.name, test.file, test.pos.line, "passed")
     started = time.perf_counter()
     fresh_globals = type(compiled.globals)()
     compiled.globals = fresh_globals
     compiled.namespace["_G"] = fresh_globals
-    controller = Controller(compiled, period_ns, TEST_BUDGET)
+    controller = Controller(compiled, period_ns)
     ctx = controller.ctx
-    ctx.scan, ctx.now_ns, ctx.budget, ctx.period_ns = 1, 0, TEST_BUDGET, period_ns
+    ctx.scan, ctx.now_ns, ctx.budget, ctx.period_ns = 1, 0, limit_ps, period_ns
     instance = compiled.new(test.fb_name)
     problems = []
     for phase in (False, True):
@@ -204,8 +216,9 @@ def _run_one(compiled, test: LoweredTest, period_ns: int) -> TestResult:
         try:
             instance.execute(ctx)
         except ScanOverrun:
-            problems.append(f"{test.file}:{test.pos.line}: the test used up its budget of "
-                            f"{TEST_BUDGET} loop iterations (a loop that never ends?)")
+            problems.append(f"{test.file}:{test.pos.line}: the test used up its "
+                            f"{limit_ps / 1e12:g} s of estimated NJ501 time "
+                            "(a loop that never ends?)")
         except StopRun:
             pass
     failed = getattr(instance, native.mangle(FAILED))
