@@ -61,24 +61,29 @@ register({
 
 
 def check(files: list[ast.SourceFile], dialect: str = "iec",
-          memory_limit: int | None = None) -> tuple[CheckedProgram, list[Diagnostic]]:
-    """Check parsed files as one program; `dialect` is "iec" or "nj";
+          memory_limit: int | None = None,
+          open_instances: bool = False) -> tuple[CheckedProgram, list[Diagnostic]]:
+    """Check parsed files as one program; `dialect` is "iec" or "nj".
+
     `memory_limit`: bytes a variable, a POU instance or the project may need
-    (default `memory.DEFAULT_LIMIT`)."""
+    (default `memory.DEFAULT_LIMIT`). `open_instances` lets code read and
+    write every variable of an FB instance from outside (`stgen test`:
+    STruC++'s tests see inside instances, st_runtime/testing/lowering.py).
+    """
     files = [f for f in files if f is not None]
     # The checker walks expressions recursively; a generated sum of 720
     # products (an unrolled Leibniz determinant) is 720 levels deep.
     old_limit = sys.getrecursionlimit()
     sys.setrecursionlimit(max(old_limit, RECURSION_LIMIT))
     try:
-        return _check(files, dialect, memory_limit)
+        return _check(files, dialect, memory_limit, open_instances)
     finally:
         sys.setrecursionlimit(old_limit)
 
 
-def _check(files, dialect, memory_limit=None):
+def _check(files, dialect, memory_limit=None, open_instances=False):
     program = CheckedProgram(files=list(files))
-    ctx = Context(program, FastSink(), dialect if dialect in DIALECTS else "iec")
+    ctx = Context(program, FastSink(), dialect if dialect in DIALECTS else "iec", open_instances)
     try:
         if not check_files(ctx, files):       # structural limits first (limits.py)
             return program, list(ctx.sink.items)

@@ -33,6 +33,7 @@ class Context:
     program: CheckedProgram
     sink: DiagnosticSink
     dialect: str = "iec"
+    open_instances: bool = False     # `stgen test`: every FB variable visible from outside
     # upper-case name -> declaration, for lazy type resolution
     type_decls: dict[str, ast.TypeDecl] = field(default_factory=dict)
     pou_decls: dict[str, ast.Pou] = field(default_factory=dict)

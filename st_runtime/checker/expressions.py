@@ -362,7 +362,7 @@ class ExprChecker:
                     self.ctx.error("E-TYPE-009", f"function block {base.name} has no variable "
                                    f"'{e.name}'", e.pos)
                 return self.record(e, ts.ERROR)
-            if sym.kind not in ("VAR_INPUT", "VAR_OUTPUT"):
+            if sym.kind not in ("VAR_INPUT", "VAR_OUTPUT") and not self.ctx.open_instances:
                 self.ctx.error("E-TYPE-009", f"'{e.name}' is a {sym.kind} of {base.name}: only "
                                f"inputs and outputs are visible outside the instance", e.pos)
                 return self.record(e, ts.ERROR)

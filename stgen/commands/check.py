@@ -1,6 +1,7 @@
 """`stgen check FILE_OR_DIR... [--dialect nj|iec]`: parse and check ST.
 
-Diagnostics go to stderr, gcc-style with the source line and a caret; a
+Test files (lines `TEST 'name'`, see `stgen test`) are checked as `stgen
+test` reads them.  Diagnostics go to stderr, gcc-style with the source line and a caret; a
 one-line summary follows.  Exit 0 when there is no error (warnings allowed),
 1 on errors, 2 on usage errors (a path that does not exist, nothing to
 check: no .st file in the paths given).
@@ -11,7 +12,8 @@ from __future__ import annotations
 import os
 import sys
 
-from st_runtime.loader import expand, load
+from st_runtime.loader import LoadResult, expand, load, read_source
+from st_runtime.testing import is_test_source, run_tests
 
 from .sources import DIALECT_HELP, source_problem
 
@@ -46,8 +48,8 @@ def run(args) -> int:
               file=sys.stderr)
         if len(bodies) == len(files):
             return 1
-    result = load([f for f in files if f not in bodies] if bodies else args.paths, dialect=args.dialect,
-                  memory_limit=args.memory_limit)
+    result = _load([f for f in files if f not in bodies] if bodies else args.paths, args.dialect,
+                   args.memory_limit)
     if result.diagnostics:
         print(result.render(), file=sys.stderr)
     n_errors = sum(1 for d in result.diagnostics if d.is_error)
@@ -73,6 +75,21 @@ def _where(bodies: list[str]) -> str:
     """The folder of the bodies (or the one file)."""
     folders = sorted({os.path.dirname(b) or "." for b in bodies})
     return bodies[0] if len(bodies) == 1 else ", ".join(folders)
+
+
+def _load(paths: list[str], dialect: str, memory_limit: int | None):
+    """The files loaded as one program; test files (`TEST 'name'` lines) are checked
+    as `stgen test` reads them, with the code they test."""
+    files, _ = expand(list(paths))
+    if not any(_is_test_file(path) for path in files):
+        return load(paths, dialect=dialect, memory_limit=memory_limit)
+    run = run_tests(paths, dialect, execute=False)
+    return LoadResult(None, run.diagnostics, run.sources)
+
+
+def _is_test_file(path: str) -> bool:
+    text, _ = read_source(path)
+    return text is not None and is_test_source(text)
 
 
 def _is_sysmac_body(path: str) -> bool:

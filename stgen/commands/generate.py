@@ -1,4 +1,4 @@
-"""``stgen generate [--config FILE] [--target nj|iec|sysmac-xml|plcopen] [--determinant table|unrolled|lu] --out DIR``.
+"""``stgen generate [--config FILE] [--target nj|iec|sysmac-xml|plcopen] [--determinant table|unrolled|lu] [--tests] --out DIR``.
 
 Renders the platform's POUs from ``st_templates/`` and writes them for one
 target: ``nj`` (Sysmac Studio bodies and variable tables), ``iec`` (plain
@@ -53,6 +53,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="Leibniz determinant as a permutation table loop, fully unrolled, "
                              "or the FK's det J from the LU diagonal (default: table)")
     parser.add_argument("--out", metavar="DIR", required=True, help="output folder (created if missing)")
+    parser.add_argument("--tests", action="store_true",
+                        help="also the test benches: one PROGRAM per bench (TB_...) with vectors from the "
+                             "NumPy reference and results in TB_Globals; with --target iec also "
+                             "test_benches.st for stgen test")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -64,7 +68,8 @@ def run(args: argparse.Namespace) -> int:
               file=sys.stderr)
         return 2
     try:
-        update = generate(args.out, args.target, config, RenderOptions(determinant=args.determinant))
+        update = generate(args.out, args.target, config, RenderOptions(determinant=args.determinant,
+                                                                          tests=args.tests))
     except (RenderError, ForeignFileError) as error:
         print(f"stgen generate: error: {error}", file=sys.stderr)
         return 1

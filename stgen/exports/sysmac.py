@@ -195,6 +195,35 @@ quadrant-correct ATAN2 (`SP_Atan2`), as the NJ has none.
 """
 
 
+BENCH_README = """
+## Test benches (`stgen generate --tests`)
+
+The `TB_...` programs prove on the controller that the downloaded POUs
+compute what the NumPy reference computes: each holds vectors the reference
+computed (constants in its table), runs a few cases a scan (the FK bench one
+FB call of IterationsPerScan Newton steps, about 0.2 ms at 49.5 us a step,
+docs/nj501.md) and reports in the global variables of `TB_Globals` (already in
+`{global_table}`).
+
+1. Bring in `TB_Globals` and the `TB_...` programs like the POUs above, after
+   them.
+2. Assign the `TB_...` programs to the primary periodic task (*Task Settings*,
+   program assignment); they command no axis, so `SP_Controller` may stay
+   unassigned or powered off meanwhile.
+3. Transfer and switch to RUN mode. Within a few hundred scans every
+   `Tb...Done` is TRUE.
+4. Read the results in a Watch Tab: `Tb...Pass` TRUE (no failed case),
+   `Tb...Failures` the failed cases, `Tb...WorstError` the largest difference
+   (IK mm, FK mm and deg, determinant and LU relative), `Tb...CasesRun`.
+
+Each bench starts once, from its initial values (`NextCase` = 0); to run it
+again, transfer the project again or cycle the power (non-retained variables
+start from their initial values, W501 on the Retain attribute; not tried on
+a controller). `stgen generate --target iec --tests` writes the same benches
+with `test_benches.st`, which `stgen test` runs in the simulation.
+"""
+
+
 #: Prefixes of the comments of the controller's command and status variables.
 COMMAND_PREFIX, STATUS_PREFIX = "command:", "status:"
 
@@ -232,6 +261,8 @@ def files(program: RenderedProgram) -> dict[str, str]:
         commands=interface_table(globals_, COMMAND_PREFIX),
         status=interface_table(globals_, STATUS_PREFIX),
     )
+    if program.bench_tests:    # stgen generate --tests
+        texts["README.md"] += BENCH_README.format(global_table=GLOBAL_TABLE)
     return texts
 
 
