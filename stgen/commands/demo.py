@@ -24,7 +24,7 @@ import sys
 from pathlib import Path
 
 from stgen.commands.config_option import add_config_argument, config_from_args
-from stgen.exports.folder import ForeignFileError
+from stgen.exports.folder import FolderError
 
 QUICK_WAVE_SECONDS = 10.0
 
@@ -52,7 +52,7 @@ def run(args: argparse.Namespace) -> int:
     except OSError as error:
         print(f"stgen demo: error: cannot write {error.filename or out}: {error.strerror}", file=sys.stderr)
         return 1
-    except ForeignFileError as error:
+    except FolderError as error:
         print(f"stgen demo: error: {error}", file=sys.stderr)
         return 1
     console.print(f"Generated the controller: {generated} files in {out / 'generated'}")

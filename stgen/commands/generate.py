@@ -6,10 +6,12 @@ IEC 61131-3 files). A configuration that cannot be read or is invalid is
 reported as ``file[:line:col]: key: rule`` with exit status 1.
 
 The folder is kept in step with the configuration: generated files of an
-earlier run that this run does not write (a POU renamed, say) are removed,
-and a file there that stgen did not write is never overwritten (exit status
-1, nothing written); see :mod:`stgen.exports.folder`. An --out that names a
-file is a usage error (exit status 2).
+earlier run that this run does not write (a POU renamed, say) are removed if
+unchanged, and a file there that is not stgen's (not in the folder's manifest,
+or changed since) is never overwritten (exit status 1, nothing written); files
+are written atomically under a folder lock, so an interrupted or concurrent
+run never leaves a broken folder; see :mod:`stgen.exports.folder`. An --out
+that names a file is a usage error (exit status 2).
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ from pathlib import Path
 from stgen.commands.config_option import add_config_argument, config_from_args
 from stgen.config import PlatformConfig
 from stgen.exports import iec, sysmac
-from stgen.exports.folder import FolderUpdate, ForeignFileError
+from stgen.exports.folder import FolderError, FolderUpdate
 from stgen.render import DETERMINANT_METHODS, RenderedProgram, RenderError, RenderOptions, render_program
 
 #: Target name -> writer(program, out_dir) -> FolderUpdate.
@@ -62,12 +64,13 @@ def run(args: argparse.Namespace) -> int:
         return 2
     try:
         update = generate(args.out, args.target, config, RenderOptions(determinant=args.determinant))
-    except (RenderError, ForeignFileError) as error:
+    except (RenderError, FolderError) as error:
         print(f"stgen generate: error: {error}", file=sys.stderr)
         return 1
     except OSError as error:
         print(f"stgen generate: error: cannot write {error.filename or args.out}: {error.strerror}", file=sys.stderr)
         return 1
-    removed = f"; removed {len(update.removed)} stale: " + ", ".join(p.name for p in update.removed) if update.removed else ""
-    print(f"stgen generate: wrote {len(update.written)} files for target '{args.target}' to {args.out}{removed}")
+    summary = update.summary()
+    print(f"stgen generate: wrote {len(update.written)} files for target '{args.target}' to {args.out}"
+          + (f"; {summary}" if summary else ""))
     return 0
