@@ -58,6 +58,9 @@ def run(args: argparse.Namespace) -> int:
     config = config_from_args(args, "generate")
     if config is None:
         return 1
+    if not args.out:  # Path('') is the current directory: never write there by accident
+        print("stgen generate: error: --out: empty path; name a folder (. for the current one)", file=sys.stderr)
+        return 2
     if Path(args.out).exists() and not Path(args.out).is_dir():
         print(f"stgen generate: error: --out {args.out}: is a file; --out names a folder",
               file=sys.stderr)

@@ -268,6 +268,16 @@ class FolderLock:
         self._fd = None
 
 
+def refuse_links_below(root: str | Path, folder: str | Path) -> None:
+    """Raise :class:`FolderError` if ``folder`` (at or below ``root``) passes through a symbolic link below ``root``."""
+    root, folder = Path(root), Path(folder)
+    path = root
+    for part in folder.relative_to(root).parts:
+        path = path / part
+        if path.is_symlink():
+            raise FolderError(f"{path}: is a symbolic link; stgen does not write through links out of {root}")
+
+
 def _holder(fd: int) -> str:
     """What the lock's holder recorded; it writes just after taking the lock, so wait a moment for it."""
     import time
@@ -306,7 +316,8 @@ class OwnedFolder:
         self._recovered: list[Path] = []
 
     def __enter__(self) -> OwnedFolder:
-        self._refuse_links_below_inside()
+        if self.inside is not None:
+            refuse_links_below(self.inside, self.folder)
         self.folder.mkdir(parents=True, exist_ok=True)
         self._lock.acquire()
         try:
@@ -324,17 +335,6 @@ class OwnedFolder:
         finally:
             self._staged.clear()
             self._lock.release()
-
-    def _refuse_links_below_inside(self) -> None:
-        if self.inside is None:
-            return
-        relative = self.folder.relative_to(self.inside)
-        path = self.inside
-        for part in relative.parts:
-            path = path / part
-            if path.is_symlink():
-                raise FolderError(f"{path}: is a symbolic link; stgen does not write through links "
-                                  f"out of {self.inside}")
 
     def _clear_unfinished(self) -> list[Path]:
         """Remove the temporary files of an interrupted run (no run holds the lock but this one)."""
