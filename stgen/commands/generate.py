@@ -32,10 +32,34 @@ TARGETS = {"nj": sysmac.write, "iec": iec.write}
 
 def write_program(program: RenderedProgram, out_dir: str | Path, target: str = "nj") -> FolderUpdate:
     """Write ``program`` for ``target`` into ``out_dir``; stale generated files there are removed
-    and a file stgen did not write is never overwritten (:mod:`stgen.exports.folder`)."""
+    and a file stgen did not write is never overwritten (:mod:`stgen.exports.folder`).
+
+    The program is checked first (:func:`check_rendered`): ST that does not
+    check is never written.
+    """
     if target not in TARGETS:
         raise ValueError(f"unknown target {target!r}; expected one of {', '.join(TARGETS)}")
+    check_rendered(program, "iec" if target == "iec" else "nj")
     return TARGETS[target](program, out_dir)
+
+
+#: Diagnostics shown when the rendered program does not check.
+_SHOWN_DIAGNOSTICS = 10
+
+
+def check_rendered(program: RenderedProgram, dialect: str) -> None:
+    """Raise :class:`RenderError` with the diagnostics if the rendered POUs, as IEC text, do not
+    pass ``stgen check --dialect <dialect>`` (a value the templates cannot hold, say)."""
+    from st_runtime.loader import load_texts
+
+    from stgen.exports.iec import pou_text
+
+    result = load_texts({f"{pou.name}.st": pou_text(pou) for pou in program.pous}, dialect)
+    errors = [d for d in result.diagnostics if d.is_error]
+    if errors:
+        shown = "\n".join(d.render(result.sources.get(d.pos.file)) for d in errors[:_SHOWN_DIAGNOSTICS])
+        raise RenderError(f"the rendered ST does not pass stgen check --dialect {dialect}, so nothing was "
+                          f"written ({len(errors)} error(s)):\n{shown}")
 
 
 def generate(out_dir: str | Path, target: str = "nj", config: PlatformConfig | None = None,

@@ -288,11 +288,12 @@ def read_axes(path: str):
     from st_runtime.motion import MotionTask
     from st_runtime.motion.axis_config import AxisConfigError
 
+    from st_runtime.input_files import MAX_TOML_BYTES, InputFileError, read_bounded
+
     try:
-        with open(path, "rb") as handle:
-            text = handle.read().decode("utf-8-sig")
-    except OSError as exc:
-        raise AxesFileError(f"{path}: cannot read: {exc.strerror or exc}") from None
+        text = read_bounded(path, MAX_TOML_BYTES).decode("utf-8-sig")  # never a FIFO or a device
+    except InputFileError as exc:
+        raise AxesFileError(f"{path}: {exc.reason}") from None
     except UnicodeDecodeError:
         raise AxesFileError(f"{path}: not UTF-8 text (an axes file is TOML)") from None
     try:
