@@ -13,6 +13,7 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+import time
 import tracemalloc
 from pathlib import Path
 
@@ -178,8 +179,8 @@ def test_string_literal_memory_is_linear(tmp_path):
         peak = tracemalloc.get_traced_memory()[1]
     finally:
         tracemalloc.stop()
-    # A 60,000-character literal with 20,000 escapes: 8.4 MB with the grouped lexer pattern; the
-    # possessive pattern keeps no state per character or escape.
+    # A 60,000-character literal with 20,000 escapes: 22 MB with the grouped lexer pattern, 0.8 MB with the
+    # possessive one, which keeps no state per character or escape.
     assert peak < 4_000_000, peak
 
 
@@ -209,3 +210,18 @@ def test_control_characters_of_the_source_are_escaped_in_diagnostics(tmp_path, c
     err = capsys.readouterr().err
     assert "\x1b" not in err and "\u202e" not in err
     assert "    x := \\x1b[2J; (* \\u202e *)\n         ^" in err  # the caret still under the character
+
+
+# --------------------------------------------------------------------------- work, not iterations
+
+
+@pytest.mark.xfail(run=False, reason="needs the NJ execution-time estimate (branch i8-cost): the loop budget "
+                                     "counts iterations, so this scan runs about 27 minutes before F-PERIOD")
+def test_a_loop_of_whole_array_assignments_ends_in_f_period_quickly(tmp_path, capsys):
+    source = tmp_path / "spin.st"
+    source.write_text("PROGRAM Spin\nVAR a, b : ARRAY[1..1000000] OF LREAL; END_VAR\n"
+                      "WHILE TRUE DO a := b; END_WHILE\nEND_PROGRAM\n", encoding="utf-8")
+    started = time.monotonic()
+    assert main(["run", str(source), "--program", "Spin", "--cycles", "1"]) == 1
+    assert "fault[F-PERIOD]" in capsys.readouterr().err
+    assert time.monotonic() - started < 1.0  # the bound: within a second of wall time
