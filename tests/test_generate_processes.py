@@ -96,3 +96,24 @@ def test_a_real_kill_at_a_random_moment_never_blocks_the_next_run(tmp_path, fres
         assert rerun.returncode == 0, rerun.stderr
         assert _contents(out) == fresh_nj
         assert MANIFEST_NAME in _contents(out)
+
+
+def test_two_runs_killed_in_a_row_still_leave_a_folder_the_next_run_completes(tmp_path):
+    """Two runs killed after writing their pending manifest, before renaming any file: the folder
+    still holds the first run's files, which the second run's manifest must still know (three
+    configurations, so the global table has three different contents)."""
+    out, fresh = tmp_path / "nj", tmp_path / "fresh"
+    configs = []
+    for stroke in (650.0, 700.0):
+        config = tmp_path / f"stroke{stroke:g}.toml"
+        config.write_text(f"[stroke]\nmax = {stroke}\n", encoding="utf-8")
+        configs.append(str(config))
+    assert _stgen("generate", "--target", "nj", "--out", str(out)).returncode == 0
+    for config in configs:
+        killed = subprocess.run([sys.executable, "-c", _KILLED_AT, "replace", "2", "generate", "--target", "nj",
+                                 "--config", config, "--out", str(out)], capture_output=True, text=True)
+        assert killed.returncode == -signal.SIGKILL
+    for folder in (out, fresh):  # not the first run's content: only the manifest can tell it is stgen's
+        done = _stgen("generate", "--target", "nj", "--config", configs[0], "--out", str(folder))
+        assert done.returncode == 0, done.stderr
+    assert _contents(out) == _contents(fresh)

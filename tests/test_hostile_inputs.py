@@ -147,7 +147,7 @@ def test_bad_utf8_and_deep_nesting_in_toml_are_clear_errors(tmp_path, capsys):
 @pytest.mark.parametrize("name", ["END_VAR", "end_var", "If"])
 def test_an_axis_named_like_a_keyword_is_refused_by_the_axes_validation(tmp_path, capsys, name):
     axes = tmp_path / "axes.toml"
-    axes.write_text(f'[[axis]]\nname = "{name}"\n', encoding="utf-8")
+    axes.write_text(f'[[axis]]\nname = "{name}"\nmax_velocity = 200.0\n', encoding="utf-8")  # complete otherwise
     assert main(["run", AXES_DEMO, "--axes", str(axes), "--program", "AxesDemo"]) == 1
     err = capsys.readouterr().err
     assert f"key 'name' must not be an ST keyword, found '{name}'" in err and "E-PARSE" not in err

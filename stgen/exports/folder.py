@@ -379,8 +379,8 @@ class OwnedFolder:
             raise FolderError(f"{temp}: the writer left no regular file")
         self._staged[name] = (temp, digest)
 
-    def commit(self, sweep: bool = True) -> FolderUpdate:
-        """Put every staged file in place; with ``sweep``, remove the previous run's files not written now.
+    def commit(self) -> FolderUpdate:
+        """Put every staged file in place and remove the previous run's files that are not written now.
 
         Checks again (under the lock nothing of stgen's changed, but the user
         may have put a file there meanwhile) before the first rename.
@@ -389,8 +389,9 @@ class OwnedFolder:
         new = {name: digest for name, (_, digest) in staged.items()}
         self.check(staged, new)
         old = self._manifest
-        # 1. Pending: every state a file can be in until step 4 is recognised as stgen's.
-        self._write_manifest(_Manifest(old.files | old.pending, new))
+        # 1. Pending: every state a file can be in until step 4 is recognised as stgen's: its
+        # content now (an earlier run's, or one an interrupted run left) or the new one.
+        self._write_manifest(_Manifest(self._owned_now(old), new))
         update = FolderUpdate(recovered=self._recovered)
         # 2. The files, each renamed over its old content.
         for name, (temp, _) in staged.items():
@@ -399,21 +400,27 @@ class OwnedFolder:
         self._staged.clear()
         _fsync_folder(self.folder)
         # 3. The previous run's files that are not written now.
-        owned = dict(new)
         for name in sorted(old.names() - set(new)):
             path = self.folder / name
             why = _why_not_ours(path, old.known(name), None)
-            if not sweep and why is None and path.exists():
-                owned[name] = old.files.get(name) or old.pending[name]
-            elif why is None and path.exists():
+            if why is None and path.exists():
                 path.unlink()
                 update.removed.append(path)
             elif why is not None:
                 update.kept.append(path)
         # 4. Finished.
-        self._write_manifest(_Manifest(owned))
-        self._manifest = _Manifest(owned)
+        self._write_manifest(_Manifest(new))
+        self._manifest = _Manifest(new)
         return update
+
+    def _owned_now(self, manifest: _Manifest) -> dict[str, str]:
+        """Name -> hash of the files ``manifest`` owns, as they are on disk now (changed ones left out)."""
+        owned = {}
+        for name in manifest.names():
+            digest = _regular_file_hash(self.folder / name)
+            if digest is not None and digest in manifest.known(name):
+                owned[name] = digest
+        return owned
 
     def _write_manifest(self, manifest: _Manifest) -> None:
         temp = self.folder / (TEMP_PREFIX + MANIFEST_NAME)
