@@ -73,7 +73,9 @@ def _import_natives() -> None:
 def load(paths, dialect: str = "iec", extra_sources: dict[str, str] | None = None) -> "Project":
     """Load ST files and directories as one program: parse, check, compile.
 
-    `extra_sources` (name -> ST text) are loaded with the files, e.g. the axis
+    A `.xml` file (PLCopen TC6 XML or IEC 61131-10, e.g. a Sysmac Studio
+    export) contributes its ST POUs, data types and global variables
+    (`st_runtime.xml_reader`). `extra_sources` (name -> ST text) are loaded with the files, e.g. the axis
     globals of `MotionTask.globals_source()`.
     """
     from . import loader
@@ -135,8 +137,13 @@ class Project:
             raise KeyError(f"no POU named {name}")
         return pou
 
-    def controller(self, period="1ms", budget: int = DEFAULT_BUDGET, stop_on_fault: bool = False) -> "Plc":
+    def controller(self, period="1ms", budget=DEFAULT_BUDGET, stop_on_fault: bool = False,
+                   time_limit=None) -> "Plc":
         """A simulated controller with its own memory.
+
+        A task run whose estimated NJ501 time passes `time_limit` (default:
+        the task's period; a duration like `period`) ends with F-PERIOD.
+        `budget` (loop iterations) is deprecated and ignored.
 
         The first controller runs `self.compiled`; each further one gets a
         fresh compilation, so no two controllers share global variables.
@@ -147,7 +154,8 @@ class Project:
         if self._controllers:
             compiled = compile_program(self.program)
         self._controllers += 1
-        return Plc(Controller(compiled, parse_period(period), budget, stop_on_fault))
+        limit = parse_period(time_limit) if time_limit is not None else None
+        return Plc(Controller(compiled, parse_period(period), budget, stop_on_fault, limit))
 
     def call(self, name: str, inputs: dict | None = None, until: str | None = None,
              max_cycles: int = 1000, period="1ms") -> dict:

@@ -6,12 +6,13 @@
 Directories expand to the `.st` files below them, sorted by path; an entry
 skipped on the way (a symbolic link to a directory, which is not followed; a
 directory that cannot be read; a `.st` name that is a FIFO, a device or a
-broken link) is named in a W-LOAD-005 warning with the reason.  Only regular
-files are read, at most `MAX_SOURCE_BYTES` each (`st_runtime.input_files`), so
-a FIFO or `/dev/zero` never hangs the loader.  The native prelude
-(`st_runtime.native.prelude_source()`) is parsed as the file "<builtin>" and
-checked with the user's files.  Unreadable or non-UTF-8 files become
-diagnostics, never exceptions.
+broken link) is named in a W-LOAD-005 warning with the reason.  A `.xml` file
+named on its own (PLCopen TC6 XML or IEC 61131-10) is read through
+`xml_reader`.  Only regular files are read, at most `MAX_SOURCE_BYTES` each
+(`st_runtime.input_files`), so a FIFO or `/dev/zero` never hangs the loader.
+The native prelude (`st_runtime.native.prelude_source()`) is parsed as the
+file "<builtin>" and checked with the user's files.  Unreadable or non-UTF-8
+files become diagnostics, never exceptions.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ import os
 import stat
 from dataclasses import dataclass, field
 
-from . import ast, native
+from . import ast, native, xml_reader
 # Register every native FB before the prelude is read: the standard FBs
 # (TON, R_TRIG, ...) and the PLCopen motion FBs (MC_Power, ...) with AXIS_REF.
 from . import motion as _motion  # noqa: F401
@@ -123,13 +124,21 @@ def read_source(path: str) -> tuple[str | None, Diagnostic | None]:
 
 
 def load_texts(texts: dict[str, str], dialect: str = "iec") -> LoadResult:
-    """Parse and check in-memory sources (path -> text), with the native prelude."""
+    """Parse and check in-memory sources (path -> text), with the native prelude.
+
+    A `.xml` source (PLCopen TC6 or IEC 61131-10) is read as the ST text of
+    `xml_reader`, laid out on the XML file's lines; `sources` keeps the XML.
+    """
     sources: dict[str, str] = {}
-    diagnostics: list[Diagnostic] = []
     files: list[ast.SourceFile] = []
-    prelude = native.prelude_source()
+    prelude = native.prelude_source(dialect)
+    st_of_xml, diagnostics = xml_reader.translate(texts)
     for path, text in [(BUILTIN, prelude)] + list(texts.items()):
         sources[path] = text
+        if path in st_of_xml:
+            text = st_of_xml[path]
+            if text is None:  # diagnostics from the XML reader already
+                continue
         parsed, found = parse(text, path)
         diagnostics.extend(found)
         if parsed is not None:

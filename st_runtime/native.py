@@ -30,6 +30,10 @@ The contract between a native FB and the compiled code (`NativeFB`):
 
 from __future__ import annotations
 
+import re
+
+from .dialects import DIALECTS
+
 NATIVE_FBS: dict[str, type] = {}       # upper-case FB name -> Python class
 NATIVE_TYPE_SOURCES: list[str] = []    # ST TYPE ... END_TYPE texts
 
@@ -55,9 +59,29 @@ def fb_declaration(name: str, *, inputs: str = "", outputs: str = "", in_outs: s
 
 
 def native_fb(cls: type) -> type:
-    """Class decorator: register a native FB (its `NAME` and `DECLARATION`)."""
+    """Class decorator: register a native FB (its `NAME` and `DECLARATION`).
+
+    A pin that a dialect names differently (`dialects.Dialect.pins`, e.g.
+    OMRON's `Reset` for CTU's `R`) becomes an alias attribute of the class,
+    so `execute` reads `v_R` whichever name the compiled caller stores to.
+    """
     NATIVE_FBS[cls.NAME.upper()] = cls
+    for dialect in DIALECTS.values():
+        for iec_pin, renamed in dialect.pins.get(cls.NAME.upper(), {}).items():
+            setattr(cls, mangle(renamed), _alias(mangle(iec_pin)))
     return cls
+
+
+def _alias(attr: str) -> property:
+    return property(lambda self: getattr(self, attr), lambda self, value: setattr(self, attr, value))
+
+
+def _renamed_pins(declaration: str, renames: dict[str, str]) -> str:
+    """The declaration text with each `Pin :` renamed (fb_declaration writes `Name : Type;`)."""
+    for iec_pin, renamed in renames.items():
+        declaration = re.sub(rf"(?<![A-Za-z0-9_]){iec_pin}(?=\s*:)", renamed, declaration,
+                             flags=re.IGNORECASE)
+    return declaration
 
 
 def native_types(source: str) -> None:
@@ -66,10 +90,11 @@ def native_types(source: str) -> None:
         NATIVE_TYPE_SOURCES.append(source)
 
 
-def prelude_source() -> str:
-    """All native declarations as one ST text, types first."""
+def prelude_source(dialect: str = "iec") -> str:
+    """All native declarations as one ST text, types first, with the dialect's pin names."""
+    pins = DIALECTS[dialect].pins if dialect in DIALECTS else {}
     parts = list(NATIVE_TYPE_SOURCES)
-    parts.extend(cls.DECLARATION for cls in NATIVE_FBS.values())
+    parts.extend(_renamed_pins(cls.DECLARATION, pins.get(key, {})) for key, cls in NATIVE_FBS.items())
     return "\n".join(parts)
 
 

@@ -51,6 +51,7 @@ CONTROLLER_TEMPLATES = (
     "trajectory/TRJ_Constants",
     "trajectory/TRJ_Cycloidal",
     "trajectory/TRJ_OceanWave",
+    "trajectory/TRJ_Brake",
     "controller/SP_ControllerConstants",
     "controller/SP_ControllerGlobals",
     "controller/SP_Axes",

@@ -50,7 +50,7 @@ CASES = [
     (["run", "{d}/main.st", "--program", "Main", "--period=-1ms"], 2, "--period must be positive"),
     (["run", "{d}/main.st", "--program", "Main", "--period", "-1ms"], 2, "--option=VALUE"),
     (["check", "{d}/main.st", "--dialect"], 2, "argument --dialect: expected one argument (see"),
-    (["run", "{d}/main.st", "--program", "Main", "--budget", "0"], 2, "--budget must be positive"),
+    (["run", "{d}/main.st", "--program", "Main", "--time-limit", "0ms"], 2, "--time-limit must be positive"),
     (["run", "{d}/main.st", "--program", "Main", "--trace", "{d}/t.csv", "--watch", "nothere"], 2,
      "--watch: 'nothere': no variable named 'nothere'"),
     (["run", "{d}/main.st", "--program", "Main", "--trace", "{d}/t.csv", "--watch", "x["], 2,

@@ -19,10 +19,12 @@ _COMMENT = re.compile(r"\(\*.*?\*\)", re.S)
 _NUMBER = re.compile(r"(?<![\w#.])(16#[0-9A-Fa-f_]+|\d+\.\d+(?:E[-+]?\d+)?|\d+)(?![\w.])")
 # Integers that index an unrolled array element or name the axis of an unrolled block.
 _INDEX = re.compile(r"\[\s*\d+\s*(?:,\s*\d+\s*)?\]|\[\s*\d+\s*,|,\s*\d+\s*\]|NewFaultAxis := \d+;")
+# A CASE label as Sysmac Studio takes it (NJ rule 007): the literal, named by the comment after it.
+_NAMED_LABEL = re.compile(r"^\s*\d+(?:, \d+)*: \(\* [A-Z][A-Z0-9_]*(?:, [A-Z][A-Z0-9_]*)* \*\)", re.M)
 
 
 def _code(body: str) -> str:
-    return _INDEX.sub(" ", _COMMENT.sub(" ", body))
+    return _INDEX.sub(" ", _COMMENT.sub(" ", _NAMED_LABEL.sub(" ", body)))
 
 
 @pytest.mark.parametrize("variant", sorted(VARIANTS))
@@ -39,6 +41,7 @@ def test_the_magic_number_scan_sees_what_it_must():
     assert _NUMBER.findall(_code("ErrorID := 16#0000; FOR Leg := 1 TO 6 DO X := Y * 0.25; END_FOR;")) == [
         "16#0000", "1", "6", "0.25"]
     assert _NUMBER.findall(_code("A[3, 4] := M[Term, 2] * 2.0; (* 42 *) NewFaultAxis := 5;")) == ["2.0"]
+    assert _NUMBER.findall(_code("CASE S OF\n    4, 5: (* SP_STATE_MOVING, SP_STATE_WAVE *)\n    7:\n")) == ["7"]
 
 
 def test_every_pou_header_cites_the_spec():

@@ -25,8 +25,15 @@ def test_demo_writes_code_traces_figures_and_passes(tmp_path, short_waves, capsy
     assert cli.main(["demo", "--quick", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     # The summary table has the columns the issue asks for.
-    for column in ("scenario", "duration", "scans", "max error", "faults"):
+    for column in ("scenario", "duration", "scans", "max error", "faults", "max |v|", "max |a|"):
         assert column in out
+    # Issue 8: the set-points' velocity and acceleration per cylinder against the actuator's limits.
+    assert "limit 250 mm/s" in out and "limit 2500 mm/s²" in out and "Cmd.Pos" in out
+    # Two rows (|v|, |a|) per scenario in the limits table, each within its limit.
+    limit_rows = [line for line in out.splitlines() if "mm/s" in line and ("within" in line or "ABOVE" in line)]
+    assert len(limit_rows) == 6 and all("within" in line for line in limit_rows)
+    # Issue 8 section 4: one estimated NJ501 time line per scenario, against the 80 % rule.
+    assert out.count("estimated NJ501 time per scan") == 3
     for name in ("point_to_point", "airy_wave", "random_wave"):
         assert name in out
         assert (tmp_path / f"{name}.png").read_bytes()[:8] == PNG_SIGNATURE
@@ -61,3 +68,15 @@ def test_demo_reports_a_bad_config(tmp_path, capsys):
     bad.write_text("[geometry]\nrb = -1.0\n")
     assert cli.main(["demo", "--config", str(bad), "--out", str(tmp_path / "o")]) == 1
     assert "geometry.rb" in capsys.readouterr().err
+
+
+def test_demo_fails_a_scenario_whose_setpoints_exceed_the_actuator_acceleration(tmp_path, short_waves, monkeypatch,
+                                                                                 capsys):
+    # The Airy wave's fade-in accelerates the cylinders at about 110 mm/s^2 (planned within the pose limits,
+    # 500 mm/s^2): an actuator limited to 50 mm/s^2 must fail the scenario, whatever the position error.
+    config = tmp_path / "slow.toml"
+    config.write_text("[actuator]\nmax_acceleration = 50.0\n")
+    monkeypatch.setattr(definitions, "SCENARIOS", (definitions.AIRY_WAVE,))
+    assert cli.main(["demo", "--quick", "--config", str(config), "--out", str(tmp_path / "o")]) == 1
+    out = capsys.readouterr().out
+    assert "ABOVE" in out and "FAILED" in out

@@ -3,7 +3,8 @@
     program, diagnostics = check(files, dialect="iec")
 
 Passes, each in its own module: `declarations` (types, POUs, globals),
-`statements`/`expressions`/`calls` (bodies), `recursion`, `nj_rules`.  The
+`statements`/`expressions`/`calls` (bodies), `recursion`, `nj_rules` (identifiers),
+`nj_build` (what Sysmac Studio refuses at Build).  The
 checker never raises on any AST: every problem is a `Diagnostic`, and an
 expression that already produced one has the type `typesys.ERROR`, which is
 compatible with everything (one root cause, one diagnostic).
@@ -43,6 +44,7 @@ from . import codes  # noqa: F401  (registers the codes)
 from .context import Context, FastSink, Scope
 from .declarations import Declarations
 from .expressions import ExprChecker
+from .nj_build import check_build_rules
 from .nj_rules import check_identifiers
 from .recursion import check_recursion
 from .statements import StatementChecker
@@ -82,6 +84,7 @@ def _check(files, dialect):
             StatementChecker(ex).block(info.node.body)
         check_recursion(ctx)
         check_identifiers(ctx, files)
+        check_build_rules(ctx, files)
     except RecursionError:
         ctx.error("E-LIMIT-001", "the program is nested too deeply to be checked "
                   "(expressions or statements nested hundreds of levels)", _where(files))

@@ -356,8 +356,12 @@ class ExprChecker:
         if isinstance(base, T.FBType):
             sym = base.variables.get(k)
             if sym is None:
-                self.ctx.error("E-TYPE-009", f"function block {base.name} has no variable "
-                               f"'{e.name}'", e.pos)
+                foreign = self.ctx.foreign_pin(base.name, e.name)
+                if foreign is not None:
+                    self.ctx.error("E-PIN-001", foreign, e.pos)
+                else:
+                    self.ctx.error("E-TYPE-009", f"function block {base.name} has no variable "
+                                   f"'{e.name}'", e.pos)
                 return self.record(e, ts.ERROR)
             if sym.kind not in ("VAR_INPUT", "VAR_OUTPUT"):
                 self.ctx.error("E-TYPE-009", f"'{e.name}' is a {sym.kind} of {base.name}: only "

@@ -30,7 +30,7 @@ from .run import MAX_FAULT_LINES, kind_hint, period_option, source_problem
 
 def add_arguments(parser) -> None:
     parser.add_argument("paths", nargs="+", metavar="FILE_OR_DIR",
-                        help="ST files, or directories whose .st files form one program")
+                        help="ST files, PLCopen TC6 or IEC 61131-10 .xml files, or directories whose .st files form one program")
     parser.add_argument("--pou", required=True, metavar="NAME", help="the FUNCTION or FUNCTION_BLOCK")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=JSON",
                         help="an input value as JSON, e.g. 'Pose=[0,0,150,0,0,0]'")

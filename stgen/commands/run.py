@@ -17,6 +17,14 @@ With `--axes FILE.toml` the controller also simulates servo axes: each
 AXIS_REF variable of that name, which the program passes to MC_Power,
 MC_SyncMoveAbsolute, ... and reads (`Cyl1.Cmd.Pos`); `--watch` traces it.
 
+Execution time: every scan's estimated NJ501 time per task (the ST code's
+basic blocks, st_runtime/compiler/cost.py) is reported after the run, max,
+p99 and mean against the period and OMRON's 80 % rule, on stderr; with
+`--json --time-report` also in the JSON object, under the key
+"$nj501_time" (never an ST name).  A task run whose
+estimate passes the period (or `--time-limit`) ends with F-PERIOD.
+`--budget` (loop iterations) is deprecated and ignored.
+
 Exit 0 on success, 1 on diagnostics, runtime faults or an invalid axes
 file, 2 on usage errors.
 """
@@ -29,7 +37,6 @@ import signal
 import sys
 
 from st_runtime.api import LoadError, load, parse_period
-from st_runtime.controller import DEFAULT_BUDGET
 from st_runtime.values import json_text
 
 MAX_FAULT_LINES = 100
@@ -37,7 +44,7 @@ MAX_FAULT_LINES = 100
 
 def add_arguments(parser) -> None:
     parser.add_argument("paths", nargs="+", metavar="FILE_OR_DIR",
-                        help="ST files, or directories whose .st files form one program")
+                        help="ST files, PLCopen TC6 or IEC 61131-10 .xml files, or directories whose .st files form one program")
     parser.add_argument("--program", required=True, metavar="NAME", help="the PROGRAM to run")
     parser.add_argument("--cycles", type=int, default=1, metavar="N", help="scans to run (default 1)")
     parser.add_argument("--period", default="1ms", help="primary task period (default 1ms)")
@@ -58,13 +65,19 @@ def add_arguments(parser) -> None:
     parser.add_argument("--axes", metavar="FILE.toml",
                         help="simulate servo axes: one [[axis]] table per axis (name, max_velocity;"
                              " optional soft_limit_min, soft_limit_max, max_acceleration,"
-                             " in_position_range, following_error_limit, servo_lag,"
+                             " in_position_range, in_position_check_time, following_error_limit,"
+                             " following_error_warning, error_deceleration, servo_lag,"
                              " initial_position); each axis is a global AXIS_REF variable of its"
                              " name for MC_Power, MC_SyncMoveAbsolute, ... (example:"
                              " examples/axes.toml)")
-    parser.add_argument("--budget", type=int, default=DEFAULT_BUDGET, metavar="N",
-                        help="loop iterations per scan before 'task period exceeded' "
-                             f"(default {DEFAULT_BUDGET})")
+    parser.add_argument("--time-limit", metavar="DURATION",
+                        help="estimated NJ501 time a scan may use before 'task period exceeded'"
+                             " (default: the period)")
+    parser.add_argument("--time-report", action="store_true",
+                        help='with --json: add the estimated NJ501 time per task under "$nj501_time"')
+    parser.add_argument("--budget", type=int, metavar="N",
+                        help="deprecated and ignored (counted loop iterations; the scan is now"
+                             " limited by its estimated NJ501 time, see --time-limit)")
 
 
 def usage(message: str) -> int:
@@ -103,14 +116,14 @@ def output_problem(path: str) -> str | None:
     return None
 
 
-def period_option(text: str) -> int:
-    """The `--period` option in nanoseconds; ValueError with the message to show."""
+def period_option(text: str, option: str = "--period") -> int:
+    """A duration option (`--period`) in nanoseconds; ValueError with the message to show."""
     try:
         period = parse_period(text)
     except ValueError as exc:
-        raise ValueError(f"--period: {exc}") from None
+        raise ValueError(f"{option}: {exc}") from None
     if period <= 0:
-        raise ValueError("--period must be positive")
+        raise ValueError(f"{option} must be positive")
     return period
 
 
@@ -147,8 +160,11 @@ def run(args) -> int:
         names = sorted(p.name for p in project.program.pous.values() if p.kind == "PROGRAM")
         hint = kind_hint(project, args.program, "stgen call --pou calls it")
         return usage(f"no PROGRAM named '{args.program}'{hint} (programs: {', '.join(names) or 'none'})")
-    plc = project.controller(period=period_option(args.period), budget=args.budget,
-                             stop_on_fault=args.stop_on_fault)
+    if args.budget is not None:
+        print("stgen run: warning: --budget is deprecated and ignored: a scan is now limited by its"
+              " estimated NJ501 time (--time-limit, default the period)", file=sys.stderr)
+    plc = project.controller(period=period_option(args.period), stop_on_fault=args.stop_on_fault,
+                             time_limit=time_limit_option(args.time_limit))
     if motion is not None:
         motion.install(plc.controller)
     program = plc.add_program(pou.name)
@@ -170,7 +186,10 @@ def run(args) -> int:
     except KeyboardInterrupt:
         return interrupted(plc.controller.scan_count, args.cycles, trace_file, between_scans=False)
     values = program.to_json()
+    times = plc.controller.time_report()
     if args.json:
+        if args.time_report:
+            values[TIME_KEY] = [t.to_json() for t in times]
         print(json_text(values))
     else:
         for name, value in values.items():
@@ -181,7 +200,18 @@ def run(args) -> int:
         except OSError as exc:
             print(f"stgen run: error: cannot write {args.trace}: {exc.strerror or exc}", file=sys.stderr)
             return 1
-    return report_faults("stgen run", plc.controller)
+    status = report_faults("stgen run", plc.controller)
+    for t in times:
+        print(t.render(), file=sys.stderr)
+    return status
+
+
+TIME_KEY = "$nj501_time"     # `$` cannot start an ST identifier: no variable has this name
+
+
+def time_limit_option(text: str | None) -> int | None:
+    """`--time-limit` in nanoseconds (None: the period); ValueError with the message to show."""
+    return None if text is None else period_option(text, "--time-limit")
 
 
 #: Exit status after Ctrl-C, as shells report a process ended by SIGINT.
@@ -262,8 +292,10 @@ def argument_problem(args) -> str | None:
         return problem
     if args.cycles < 0:
         return "--cycles must be 0 or more"
-    if args.budget <= 0:
-        return "--budget must be positive"
+    try:
+        time_limit_option(args.time_limit)
+    except ValueError as exc:
+        return str(exc)
     if bool(args.trace) != bool(args.watch):
         return "--trace and --watch go together"
     if args.trace and output_problem(args.trace):

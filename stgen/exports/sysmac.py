@@ -129,7 +129,21 @@ variable named `Name`); their columns, in order:
 |---|---|
 {listing}
 
-## Bringing them in, in this order
+## Bringing them in
+
+**Sysmac Studio 1.30 or later: one import.** `stgen generate --target
+sysmac-xml --out DIR` writes `{xml_file}` (checked in as
+`generated/sysmac-xml/{xml_file}`): one IEC 61131-10 XML file with every POU
+below (its variables and ST body, in dependency order) and the global
+variables, Constant and Network Publish set. Import it into the project that
+holds the NJ501 and its six axes with Sysmac Studio's XML import (1.30 and
+later; the menu entry is given in the Sysmac Studio Operation Manual, W504,
+of your version). The axis variables ({axes}) are not in the file: Sysmac
+Studio creates them with the axes, as in step 1 below. Then do steps 3 and 4
+below: the file format carries no task assignment.
+
+**Older Sysmac Studio versions (no XML import): the files of this folder,
+in this order.**
 
 1. **Global variables.** Open *Programming > Data > Global Variables*. Open
    `{global_table}` in a spreadsheet, copy all its rows and paste them into
@@ -155,8 +169,10 @@ variable named `Name`); their columns, in order:
      clear where it says `FALSE` (the controller's command and status
      variables, which `SP_Controller` reads and writes).
    - Algorithm: paste the whole of `<POU>.st` into the ST editor.
-3. Assign the program `SP_Controller` to the primary periodic task
-   (*Configurations and Setup > Task Settings*, period as configured).
+3. Assign the program `SP_Controller` to the primary periodic task:
+   *Configurations and Setup > Task Settings*, *Program Assignment
+   Settings*, add `SP_Controller` under the primary periodic task (period
+   as configured, e.g. 1 ms).
 4. *Project > Check All Programs* and *Build*.
 
 ## Commanding the controller
@@ -218,6 +234,7 @@ def files(program: RenderedProgram) -> dict[str, str]:
         texts[table] = pou_table(pou)
         listing.append(f"| `{body}`, `{table}` | {KIND_NAMES[pou.kind]} `{pou.name}` |")
     texts["README.md"] = README.format(
+        xml_file="StewartPlatform.xml",
         listing="\n".join(listing),
         axes=", ".join(f"`{v.name}`" for v in system_created(globals_)) or "none",
         global_table=GLOBAL_TABLE,

@@ -49,6 +49,15 @@ def cycloidal_duration(displacement, limits: TrajectoryConfig) -> float | np.nda
     return float(longest) if longest.ndim == 0 else longest
 
 
+def executed_duration(duration: float, period: float) -> float:
+    """T as TRJ_Cycloidal runs it: a move shorter than one task period is output at once (T = 0).
+
+    Such a move is tiny: the jerk limit keeps |h| <= j_max·T³/(4π²), 1.3e-7 mm at
+    5000 mm/s³ and T < 1 ms.
+    """
+    return 0.0 if duration < period else duration
+
+
 def _progress(duration: float, t, t0: float) -> np.ndarray:
     """τ = (t − t0)/T clipped to [0, 1]; with T <= 0 the move is a step at t0."""
     t = np.asarray(t, dtype=float)

@@ -3,8 +3,10 @@
 Columns: ``time_s`` (end of the scan), ``scan``, ``state`` (SpState),
 ``fault_id`` (SpFaultID), the pose set-point ``x, y, z, alpha, beta, gamma``
 (mm, deg), the reference pose ``ref_x .. ref_gamma``, the commanded cylinder
-positions ``q1 .. q6`` (mm), the reference IK ``ref_q1 .. ref_q6`` and
-``max_error_mm`` (largest |q - ref_q| of the scan). Floats in shortest
+positions ``q1 .. q6`` (mm, the axes' Cmd.Pos), the reference IK
+``ref_q1 .. ref_q6``, the set-points SP_Controller handed to
+MC_SyncMoveAbsolute ``sp_q1 .. sp_q6`` (mm; equal to q unless an axis
+saturated them) and ``max_error_mm`` (largest |q - ref_q| of the scan). Floats in shortest
 round-trip form (``repr``), so the file holds exactly the simulated values.
 """
 
@@ -22,6 +24,7 @@ HEADER = (
     + tuple(f"ref_{name}" for name in POSE_NAMES)
     + tuple(f"q{leg}" for leg in range(1, 7))
     + tuple(f"ref_q{leg}" for leg in range(1, 7))
+    + tuple(f"sp_q{leg}" for leg in range(1, 7))
     + ("max_error_mm",)
 )
 
@@ -42,6 +45,7 @@ def write_trace_csv(result: ScenarioResult, path: str | Path) -> Path:
                 + [repr(float(v)) for v in result.expected_pose[row]]
                 + [repr(float(v)) for v in result.commanded[row]]
                 + [repr(float(v)) for v in result.expected[row]]
+                + [repr(float(v)) for v in result.setpoint[row]]
                 + [repr(float(error[row]))]
             )
     return path
