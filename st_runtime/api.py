@@ -177,8 +177,9 @@ def parse_period(period) -> int:
 class Instance:
     """A PROGRAM/FB instance (or struct) seen through declared names."""
 
-    def __init__(self, obj):
+    def __init__(self, obj, dialect: str = "iec"):
         object.__setattr__(self, "obj", obj)
+        object.__setattr__(self, "dialect", dialect)  # how STRING[n] counts (st_runtime.types.STRING_UNITS)
 
     @property
     def layout(self) -> dict:
@@ -234,7 +235,7 @@ class Instance:
             raise KeyError(f"{path}: '{head}' is a CONSTANT")
 
         container, slot, t = self._locate(path)
-        stored = from_json(value, t, path)
+        stored = from_json(value, t, path, self.dialect)
         _store(container, slot, t, stored)
 
     def to_json(self) -> dict:
@@ -278,7 +279,7 @@ class Plc:
         self.compiled = controller.compiled     # the program image this controller runs
 
     def add_program(self, name: str, task: str | None = None) -> Instance:
-        return Instance(self.controller.add_program(name, task))
+        return Instance(self.controller.add_program(name, task), self.compiled.checked.dialect)
 
     def add_task(self, name: str, period) -> None:
         self.controller.add_task(name, parse_period(period))
@@ -289,12 +290,12 @@ class Plc:
     def program(self, name: str) -> Instance:
         for key, obj in self.controller.instances.items():
             if key.upper() == name.upper():
-                return Instance(obj)
+                return Instance(obj, self.compiled.checked.dialect)
         raise KeyError(f"no program instance {name}")
 
     @property
     def globals(self) -> Instance:
-        return Instance(self.controller.globals)
+        return Instance(self.controller.globals, self.compiled.checked.dialect)
 
     def run(self, cycles: int = 1) -> int:
         return self.controller.run(cycles)
@@ -378,7 +379,8 @@ def _call_function(compiled, pou, params: dict, given: dict, in_outs: dict, cont
         if symbol.kind == "VAR_IN_OUT":
             args.append(in_outs[key].arg)
         elif key in given:
-            args.append(_plain_value(compiled, symbol, from_json(given[key], symbol.type, symbol.name)))
+            args.append(_plain_value(compiled, symbol, from_json(given[key], symbol.type, symbol.name,
+                                                                 compiled.checked.dialect)))
         else:
             args.append(_initial(compiled, symbol))
     job = _FunctionJob(compiled.functions[pou.name.upper()], args)
@@ -400,7 +402,7 @@ def _call_function(compiled, pou, params: dict, given: dict, in_outs: dict, cont
 def _call_fb(compiled, pou, params: dict, given: dict, in_outs: dict, controller,
              until: str | None, max_cycles: int) -> tuple[dict, int, bool]:
     instance = compiled.new(pou.name)
-    view = Instance(instance)
+    view = Instance(instance, compiled.checked.dialect)
     for key, symbol in params.items():
         if symbol.kind == "VAR_IN_OUT":
             setattr(instance, mangle(symbol.name), in_outs[key].arg)
@@ -435,7 +437,7 @@ class _Cell:
         self.symbol = symbol
         self.holder = [_initial(compiled, symbol)]
         if data is not None:
-            _store(self.holder, 0, symbol.type, from_json(data, symbol.type, symbol.name))
+            _store(self.holder, 0, symbol.type, from_json(data, symbol.type, symbol.name, compiled.checked.dialect))
         aggregate = is_aggregate(symbol.type)
         self.arg = self.holder[0] if aggregate else ItemRef(self.holder, 0)
 

@@ -20,6 +20,7 @@ from .literals import (
     BOOL_TYPES,
     REAL_TYPES,
     LiteralError,
+    abridged,
     decode_based,
     decode_date,
     decode_date_and_time,
@@ -347,7 +348,7 @@ class AstBuilder(Transformer):
         try:
             return decoder(str(token))
         except (LiteralError, ValueError, OverflowError) as exc:
-            self._error(BAD_LITERAL, f"invalid literal '{token}': {exc}", self._pos(token))
+            self._error(BAD_LITERAL, f"invalid literal {abridged(str(token))}: {exc}", self._pos(token))
             return fallback
 
     def int_literal(self, token):
@@ -395,7 +396,7 @@ class AstBuilder(Transformer):
         try:
             value = decode_number(body)
         except (LiteralError, ValueError, OverflowError) as exc:
-            self._error(BAD_LITERAL, f"invalid literal '{token}': {exc}", pos)
+            self._error(BAD_LITERAL, f"invalid literal {abridged(str(token))}: {exc}", pos)
             value = 0
         if type_name in REAL_TYPES:
             return ast.RealLiteral(float(value), type_name, pos=pos)

@@ -14,6 +14,7 @@ code used anywhere must be registered there (a test enforces it).
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 
 from .ast import Pos
@@ -35,7 +36,7 @@ class Diagnostic:
         return self.severity != WARNING
 
     def header(self) -> str:
-        return f"{self.pos}: {self.severity}[{self.code}]: {self.message}"
+        return f"{shown(str(self.pos))}: {self.severity}[{self.code}]: {shown(self.message)}"
 
     def render(self, source: str | None = None) -> str:
         """The header line, then the source line and a caret when known."""
@@ -47,9 +48,20 @@ class Diagnostic:
             return text
         line = lines[self.pos.line - 1]
         caret_col = max(self.pos.col, 1)
-        # Keep tabs in the caret line so the caret lines up with the source.
-        prefix = "".join(ch if ch == "\t" else " " for ch in line[: caret_col - 1])
-        return f"{text}\n    {line}\n    {prefix}^"
+        # Keep tabs in the caret line so the caret lines up with the (escaped) source.
+        prefix = "".join(ch if ch == "\t" else " " for ch in shown(line[: caret_col - 1]))
+        return f"{text}\n    {shown(line)}\n    {prefix}^"
+
+
+#: Characters never echoed to a terminal: C0/C1 controls but tab (an ESC starts a
+#: terminal escape sequence), DEL, and the bidirectional controls that reorder text.
+_UNSAFE = re.compile("[\x00-\x08\x0a-\x1f\x7f-\x9f\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069]")
+
+
+def shown(text: str) -> str:
+    """`text` safe to print: each unsafe character as `\\xhh` or `\\uhhhh` (ST text is data)."""
+    return _UNSAFE.sub(lambda m: f"\\x{ord(m.group()):02x}" if ord(m.group()) < 256
+                       else f"\\u{ord(m.group()):04x}", text)
 
 
 class DiagnosticError(Exception):

@@ -65,4 +65,6 @@ class FaultRecord:
     scan: int
 
     def render(self) -> str:
-        return f"{self.file}:{self.line}:{self.col}: fault[{self.code}]: {self.message} (scan {self.scan})"
+        from .diagnostics import shown
+
+        return f"{shown(self.file)}:{self.line}:{self.col}: fault[{self.code}]: {shown(self.message)} (scan {self.scan})"

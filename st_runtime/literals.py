@@ -38,6 +38,29 @@ class LiteralError(ValueError):
     """A literal that the lexer accepted but that has no valid value."""
 
 
+#: No integer type has more than 64 bits; a literal of more than this many
+#: bits is refused here, before any message tries to print its decimal value
+#: (Python refuses to print integers of more than 4300 digits).
+MAX_INT_LITERAL_BITS = 128
+#: Longest string literal read, in characters (a PLC STRING holds far fewer).
+MAX_STRING_LITERAL_CHARS = 65_535
+
+
+def abridged(text: str, keep: int = 40) -> str:
+    """`'text'` quoted for a message; a long literal shown by its ends and its length."""
+    if len(text) <= keep:
+        return f"'{text}'"
+    return f"'{text[:keep - 8]}...{text[-4:]}' ({len(text):,} characters)"
+
+
+def _bounded_int(digits: str, base: int, text: str) -> int:
+    significant = digits.lstrip("0")
+    bits_per_digit = {2: 1, 8: 3, 16: 4, 10: 3.33}[base]
+    if len(significant) * bits_per_digit > MAX_INT_LITERAL_BITS + 4:
+        raise LiteralError(f"{len(digits):,} digits, far beyond the largest integer type (64 bits)")
+    return int(digits, base)
+
+
 def _digits(text: str) -> str:
     if text.startswith("_") or text.endswith("_") or "__" in text:
         raise LiteralError(f"misplaced '_' separator in '{text}'")
@@ -46,7 +69,7 @@ def _digits(text: str) -> str:
 
 def decode_int(text: str) -> int:
     """`1_000` -> 1000."""
-    return int(_digits(text))
+    return _bounded_int(_digits(text), 10, text)
 
 
 def decode_based(text: str) -> int:
@@ -57,7 +80,9 @@ def decode_based(text: str) -> int:
         raise LiteralError(f"base {base} is not allowed in '{text}' (use 2#, 8# or 16#)")
     clean = _digits(digits)
     try:
-        return int(clean, base)
+        return _bounded_int(clean, base, text)
+    except LiteralError:
+        raise
     except ValueError:
         raise LiteralError(f"'{digits}' is not a base-{base} number in '{text}'") from None
 
@@ -147,6 +172,9 @@ def decode_string(text: str) -> str:
     `'It$'s'` -> "It's"; `'a$Nb'` -> "a\\nb"; `'$41'` -> "A".
     """
     quote, body = text[0], text[1:-1]
+    if len(body) > MAX_STRING_LITERAL_CHARS:
+        raise LiteralError(f"string literal of {len(body):,} characters; the limit is "
+                           f"{MAX_STRING_LITERAL_CHARS:,}")
     hex_width = 2 if quote == "'" else 4
     out: list[str] = []
     i = 0

@@ -3,17 +3,22 @@
     result = load(["src/", "extra.st"], dialect="nj")
     if result.program is None: print(result.render())
 
-Directories expand to the `.st` files below them, sorted by path; a `.xml`
-file named on its own (PLCopen TC6 XML or IEC 61131-10) is read through
-`xml_reader`.  The native prelude (`st_runtime.prelude`, parsed once per
-process and dialect) is the file "<builtin>", checked with the user's
-files.  Unreadable or non-UTF-8 files
-become diagnostics, never exceptions.
+Directories expand to the `.st` files below them, sorted by path; an entry
+skipped on the way (a symbolic link to a directory, which is not followed; a
+directory that cannot be read; a `.st` name that is a FIFO, a device or a
+broken link) is named in a W-LOAD-005 warning with the reason.  A `.xml` file
+named on its own (PLCopen TC6 XML or IEC 61131-10) is read through
+`xml_reader`.  Only regular files are read, at most `MAX_SOURCE_BYTES` each
+(`st_runtime.input_files`), so a FIFO or `/dev/zero` never hangs the loader.
+The native prelude (`st_runtime.prelude`, parsed once per process and
+dialect) is the file "<builtin>", checked with the user's files.  Unreadable
+or non-UTF-8 files become diagnostics, never exceptions.
 """
 
 from __future__ import annotations
 
 import os
+import stat
 from dataclasses import dataclass, field
 
 from . import ast, xml_reader
@@ -21,6 +26,7 @@ from .checker import check
 from .checker.limits import file_too_large
 from .checker import codes as _codes  # noqa: F401  (registers E-LOAD-*)
 from .diagnostics import Diagnostic, ERROR, WARNING
+from .input_files import MAX_SOURCE_BYTES, InputFileError, kind_of, read_bounded
 from .parser import parse
 from .prelude import prelude_file
 from .symbols import CheckedProgram
@@ -53,12 +59,9 @@ def expand(paths: list[str]) -> tuple[list[str], list[Diagnostic]]:
     diagnostics: list[Diagnostic] = []
     for path in paths:
         if os.path.isdir(path):
-            found = sorted(
-                os.path.join(root, name)
-                for root, _dirs, names in os.walk(path)
-                for name in names
-                if name.lower().endswith(".st")
-            )
+            found: list[str] = []
+            _walk(path, found, diagnostics)
+            found.sort()
             if not found:
                 diagnostics.append(Diagnostic("W-LOAD-004", f"directory '{path}' holds no .st file",
                                               ast.Pos(path, 0, 0), WARNING))
@@ -72,13 +75,40 @@ def expand(paths: list[str]) -> tuple[list[str], list[Diagnostic]]:
     return unique, diagnostics
 
 
+def _walk(folder: str, found: list[str], diagnostics: list[Diagnostic]) -> None:
+    """Collect the `.st` files below `folder`; a W-LOAD-005 warning for each entry skipped."""
+    def skipped(path: str, why: str) -> None:
+        diagnostics.append(Diagnostic("W-LOAD-005", f"skipped '{path}': {why}", ast.Pos(path, 0, 0), WARNING))
+
+    try:
+        entries = sorted(os.scandir(folder), key=lambda e: e.name)
+    except OSError as exc:
+        skipped(folder, f"cannot read the directory: {exc.strerror or type(exc).__name__}")
+        return
+    for entry in entries:
+        try:
+            is_link, mode = entry.is_symlink(), os.stat(entry.path).st_mode
+        except OSError:
+            if entry.name.lower().endswith(".st"):
+                skipped(entry.path, "a broken symbolic link")
+            continue
+        if stat.S_ISDIR(mode):
+            if is_link:
+                skipped(entry.path, "a symbolic link to a directory (not followed)")
+            else:
+                _walk(entry.path, found, diagnostics)
+        elif entry.name.lower().endswith(".st"):
+            if stat.S_ISREG(mode):
+                found.append(entry.path)
+            else:
+                skipped(entry.path, f"{kind_of(mode)}, not a regular file")
+
+
 def read_source(path: str) -> tuple[str | None, Diagnostic | None]:
     try:
-        with open(path, "rb") as handle:
-            data = handle.read()
-    except OSError as exc:
-        reason = exc.strerror or type(exc).__name__
-        return None, Diagnostic("E-LOAD-002", f"cannot read '{path}': {reason}",
+        data = read_bounded(path, MAX_SOURCE_BYTES)
+    except InputFileError as exc:
+        return None, Diagnostic("E-LOAD-002", f"cannot read '{path}': {exc.reason}",
                                 ast.Pos(path, 0, 0), ERROR)
     try:
         text = data.decode("utf-8-sig")

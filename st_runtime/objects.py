@@ -30,6 +30,7 @@ from .types import (
     StringType,
     StructType,
     Type,
+    fit_string,
     resolve_alias,
 )
 
@@ -178,7 +179,7 @@ def is_aggregate(t: Type) -> bool:
     return _is_aggregate(t)
 
 
-def store_value(t: Type, value):
+def store_value(t: Type, value, dialect: str = "iec"):
     """Convert a Python value to what a variable of type `t` stores.
 
     Used for initial values and values coming from outside (API, JSON): wraps
@@ -198,7 +199,7 @@ def store_value(t: Type, value):
         bits = 64 if t.kind in ("time", "date", "tod", "dt") else t.bits
         return wrap_int(value, bits, t.signed or t.kind in ("time", "date", "tod", "dt"))
     if isinstance(t, StringType):
-        return str(value)[: t.length]
+        return fit_string(str(value), t.length, dialect)
     if isinstance(t, EnumType):
         return int(value)
     raise TypeError(f"{t} is not an elementary type")

@@ -106,6 +106,18 @@ TEST_KEYWORDS = frozenset({"TEST", "END_TEST", "SETUP", "END_SETUP", "TEARDOWN",
 TEST_TERMINALS = frozenset({"TEST", "_END_TEST", "SETUP", "_END_SETUP", "TEARDOWN", "_END_TEARDOWN"})
 
 
+def reserved_words() -> frozenset[str]:
+    """The keywords of the grammar, upper case: a name spelled like one (any case) is never an identifier."""
+    global _reserved
+    if _reserved is None:
+        with open(GRAMMAR_PATH, encoding="utf-8") as handle:
+            _reserved = frozenset(_keyword_terminals(handle.read()))
+    return _reserved
+
+
+_reserved: frozenset[str] | None = None
+
+
 def _keyword_terminals(grammar: str) -> dict[str, str]:
     """Upper-case keyword -> terminal name, from lines `NAME: "WORD"i`."""
     result = {}

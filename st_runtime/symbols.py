@@ -85,6 +85,7 @@ class CheckedProgram:
     # id(expr) -> value, for expressions the checker folded to a constant.
     constants: dict[int, object] = field(default_factory=dict)
     sources: dict[str, str] = field(default_factory=dict)          # path -> text
+    dialect: str = "iec"                                           # "iec" or "nj", as checked
     # Added by the checker: id(For) -> the Symbol of its control variable.
     for_vars: dict[int, Symbol] = field(default_factory=dict)
 

@@ -22,6 +22,14 @@ column per leaf.  Cells: BOOL as TRUE/FALSE, integers in decimal, REAL/LREAL
 in shortest round-trip form, TIME/DATE/TOD/DT as IEC literals, strings as
 they are.  `read_csv` turns each column back into a NumPy array (bool,
 int64, float64, int64 nanoseconds for time literals, or str).
+
+A trace keeps its rows in memory (for `to_numpy`) unless it streams them to
+disk: `trace.stream_to(path)` returns a :class:`CsvTraceFile` that writes each
+row as it is sampled (memory bounded whatever the run's length) to
+`path + ".partial"` and renames it to `path` only at `close()`. So a file at
+`path` is always a whole trace of the scans that ran; a run that dies (out of
+memory, killed) leaves only the `.partial` file, whose name says it is cut
+short.
 """
 
 from __future__ import annotations
@@ -30,6 +38,7 @@ import csv
 import io
 import itertools
 import math
+import os
 import re
 from dataclasses import dataclass
 from typing import Callable, Iterable
@@ -268,6 +277,7 @@ class Trace:
         self.times_ns: list[int] = []
         self.scans: list[int] = []
         self.rows: list[tuple] = []
+        self._sink: CsvTraceFile | None = None
         # One getter per column that starts from the watched value.
         self._plan = [(source, tuple(c.get for c in cols)) for source, cols in self._sources]
 
@@ -282,12 +292,32 @@ class Trace:
             value = source()
             for get in getters:
                 row.append(get(value))
+        if self._sink is not None:
+            self._sink.write_row(time_ns, scan, row)
+            return
         self.times_ns.append(time_ns)
         self.scans.append(scan)
         self.rows.append(tuple(row))
 
     def __len__(self) -> int:
-        return len(self.rows)
+        return self._sink.rows if self._sink is not None else len(self.rows)
+
+    def _refuse_if_streaming(self) -> None:
+        if self._sink is not None:
+            raise ValueError(f"the trace streams to {self._sink.path}; read it back with read_csv")
+
+    def stream_to(self, path) -> "CsvTraceFile":
+        """From now on write every sample to the CSV file `path` instead of keeping it (see the module doc).
+
+        Rows sampled before are written first. Call `close()` on the result
+        when the run ends, interrupted or not, to put the file in place.
+        """
+        sink = CsvTraceFile(path, ["time_s", "scan"] + self.column_names, [c.type for c in self.columns])
+        for t_ns, scan, row in zip(self.times_ns, self.scans, self.rows):
+            sink.write_row(t_ns, scan, row)
+        self.times_ns, self.scans, self.rows = [], [], []
+        self._sink = sink
+        return sink
 
     # -- output --------------------------------------------------------------
 
@@ -300,11 +330,12 @@ class Trace:
             self._write(target)
 
     def _write(self, fh) -> None:
+        self._refuse_if_streaming()
         writer = csv.writer(fh, lineterminator="\n")
         writer.writerow(["time_s", "scan"] + self.column_names)
         types = [c.type for c in self.columns]
         for t_ns, scan, row in zip(self.times_ns, self.scans, self.rows):
-            writer.writerow([_seconds(t_ns), scan] + [_cell(v, t) for v, t in zip(row, types)])
+            writer.writerow(_csv_row(t_ns, scan, row, types))
 
     def to_csv_text(self) -> str:
         buf = io.StringIO()
@@ -313,6 +344,7 @@ class Trace:
 
     def to_numpy(self) -> dict[str, np.ndarray]:
         """`time` (s, float64), `time_ns`, `scan`, then one array per column."""
+        self._refuse_if_streaming()
         out: dict[str, np.ndarray] = {
             "time": np.array(self.times_ns, dtype=np.int64) / NS_PER_S,
             "time_ns": np.array(self.times_ns, dtype=np.int64),
@@ -322,6 +354,53 @@ class Trace:
             values = [row[i] for row in self.rows]
             out[col.name] = _array(values, col.type)
         return out
+
+
+def _csv_row(time_ns: int, scan: int, row, types) -> list:
+    return [_seconds(time_ns), scan] + [_cell(v, t) for v, t in zip(row, types)]
+
+
+class CsvTraceFile:
+    """A trace CSV written row by row to `path + ".partial"` and renamed to `path` by `close()`.
+
+    Each row reaches the file in one `write` call, so an interrupt between
+    scans (Ctrl-C) never leaves half a row. A symbolic link at either name is
+    replaced, never followed.
+    """
+
+    #: Suffix of the file while the trace is being written.
+    PARTIAL_SUFFIX = ".partial"
+
+    def __init__(self, path, header: list[str], types: list) -> None:
+        self.path = os.fspath(path)
+        self.partial_path = self.path + self.PARTIAL_SUFFIX
+        self._types = types
+        self.rows = 0
+        try:
+            os.unlink(self.partial_path)  # a run that died earlier; never write through a link there
+        except FileNotFoundError:
+            pass
+        fd = os.open(self.partial_path, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0), 0o666)
+        self._file = open(fd, "w", newline="", encoding="utf-8", buffering=1 << 16)
+        self._writer = csv.writer(self._file, lineterminator="\n")
+        self._writer.writerow(header)
+
+    def write_row(self, time_ns: int, scan: int, row) -> None:
+        self._writer.writerow(_csv_row(time_ns, scan, row, self._types))
+        self.rows += 1
+
+    @property
+    def closed(self) -> bool:
+        return self._file.closed
+
+    def close(self) -> None:
+        """Flush the rows written so far to disk and rename the file to `path`."""
+        if self._file.closed:
+            return
+        self._file.flush()
+        os.fsync(self._file.fileno())
+        self._file.close()
+        os.replace(self.partial_path, self.path)
 
 
 def _array(values: list, t) -> np.ndarray:

@@ -115,6 +115,31 @@ class StringType:
         return f"{base}[{self.length}]"
 
 
+#: What the n of STRING[n] counts, per dialect, the same in the checker, the
+#: compiled code and values from outside (`--set`, the API):
+#: * iec: characters (IEC 61131-3 STRING: a string of single-byte characters);
+#: * nj: bytes of UTF-8. OMRON sizes NJ strings in bytes, NULL-terminated
+#:   (myOMRON knowledge base 1668, https://www.myomron.com/index.php?action=kb&article=1668:
+#:   "define the STRING in the Sysmac NJ one byte longer"); that the bytes are
+#:   UTF-8 was not confirmed by a source at hand (assumed, docs/nj501.md).
+STRING_UNITS = {"iec": "character", "nj": "byte"}
+
+
+def string_size(text: str, dialect: str = "iec") -> int:
+    """The size of `text` in the units STRING[n] counts under `dialect`."""
+    return len(text.encode("utf-8")) if STRING_UNITS.get(dialect) == "byte" else len(text)
+
+
+def fit_string(text: str, length: int, dialect: str = "iec") -> str:
+    """`text` cut to what STRING[length] holds under `dialect` (never half a UTF-8 character)."""
+    if STRING_UNITS.get(dialect) != "byte":
+        return text if len(text) <= length else text[:length]
+    data = text.encode("utf-8")
+    if len(data) <= length:
+        return text
+    return data[:length].decode("utf-8", "ignore")
+
+
 @dataclass(frozen=True, slots=True)
 class ArrayType:
     """`dims` are inclusive (lo, hi) pairs, first dimension first."""

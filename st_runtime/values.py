@@ -34,9 +34,11 @@ from .types import (
     ElementaryType,
     EnumType,
     FBType,
+    STRING_UNITS,
     StringType,
     StructType,
     resolve_alias,
+    string_size,
 )
 
 NS_PER_US = 1_000
@@ -548,7 +550,7 @@ def _describe(data) -> str:
     return repr(data)
 
 
-def from_json(data, t, path: str = "value"):
+def from_json(data, t, path: str = "value", dialect: str = "iec"):
     """A JSON value (as loaded by `json.loads`) as a stored value of type `t`.
 
     Arrays come back as flat row-major lists, structs and FB instances as
@@ -605,9 +607,9 @@ def from_json(data, t, path: str = "value"):
     if isinstance(t, StringType):
         if not isinstance(data, str):
             fail(f"{t} string")
-        if len(data.encode("utf-8")) > t.length:
-            raise JsonValueError(
-                f"{path}: string of {len(data.encode('utf-8'))} bytes exceeds {t}")
+        if string_size(data, dialect) > t.length:
+            raise JsonValueError(f"{path}: string of {string_size(data, dialect)} {STRING_UNITS[dialect]}s "
+                                 f"exceeds {t}")
         return data
     if isinstance(t, EnumType):
         if isinstance(data, str):
@@ -620,7 +622,7 @@ def from_json(data, t, path: str = "value"):
                 return data
         fail(f"a value of {t.name}")
     if isinstance(t, ArrayType):
-        return _array_from_json(data, t, path)
+        return _array_from_json(data, t, path, dialect)
     if isinstance(t, (StructType, FBType)):
         if not isinstance(data, dict):
             fail(f"an object for {t.name}")
@@ -632,12 +634,12 @@ def from_json(data, t, path: str = "value"):
                 raise JsonValueError(
                     f"{path}: {t.name} has no member {key!r} "
                     f"(members: {', '.join(n for n, _ in members.values())})")
-            out[member[0].upper()] = from_json(item, member[1], f"{path}.{member[0]}")
+            out[member[0].upper()] = from_json(item, member[1], f"{path}.{member[0]}", dialect)
         return out
     raise JsonValueError(f"{path}: values of type {t} cannot be given as JSON")
 
 
-def _array_from_json(data, t: ArrayType, path: str) -> list:
+def _array_from_json(data, t: ArrayType, path: str, dialect: str = "iec") -> list:
     flat: list = []
 
     def walk(item, level: int, prefix: list[int]):
@@ -652,7 +654,7 @@ def _array_from_json(data, t: ArrayType, path: str) -> list:
             if level + 1 < len(t.dims):
                 walk(element, level + 1, index)
             else:
-                flat.append(from_json(element, t.element, f"{path}[{', '.join(map(str, index))}]"))
+                flat.append(from_json(element, t.element, f"{path}[{', '.join(map(str, index))}]", dialect))
 
     walk(data, 0, [])
     return flat

@@ -81,9 +81,24 @@ _COUNT = "count"  # an integer >= 1
 _POSE = "pose"  # six finite numbers
 
 
-def _spec(default: Any, rule: str, doc: str) -> Any:
-    """A dataclass field with its validation rule and a one-line description."""
-    return field(default=default, metadata={"rule": rule, "doc": doc})
+def _spec(default: Any, rule: str, doc: str, within: tuple[float, float, str] | None = None) -> Any:
+    """A dataclass field with its validation rule, a one-line description and its allowed range.
+
+    ``within`` = (low, high, unit), both ends included: a value that is a
+    valid number but absurd for the job (a 1 µs task period that would make
+    the demo allocate gigabytes, an iteration count the generated INT cannot
+    hold) is refused with the range in the message.
+    """
+    return field(default=default, metadata={"rule": rule, "doc": doc, "within": within})
+
+
+def _check_within(key: str, number: float, within: tuple[float, float, str] | None) -> None:
+    if within is None:
+        return
+    low, high, unit = within
+    if not low <= number <= high:
+        unit = f" {unit}" if unit else ""
+        raise ConfigError(f"must lie in [{low:g}, {high:g}]{unit}, got {number:g}", key=key)
 
 
 def _is_number(value: Any) -> bool:
@@ -123,14 +138,24 @@ def _validate_fields(section: Any) -> None:
         key = f"{section.SECTION}.{spec.name}"
         value = getattr(section, spec.name)
         rule = spec.metadata["rule"]
+        within = spec.metadata.get("within")
         if rule == _COUNT:
             checked: Any = _check_count(key, value)
+            _check_within(key, checked, within)
         elif rule == _POSE:
             checked = _check_pose(key, value)
+            for index, number in enumerate(checked):
+                _check_within(f"{key}[{index}]", number, within)
         else:
             checked = _check_real(key, value, rule)
+            _check_within(key, checked, within)
         object.__setattr__(section, spec.name, checked)
 
+
+#: Ranges shared by several keys: lengths of the mechanism, offsets and positions, angles.
+_MM_SIZE = (1.0, 1e5, "mm")
+_MM_OFFSET = (-1e5, 1e5, "mm")
+_DEGREES = (-360.0, 360.0, "degrees")
 
 # --------------------------------------------------------------------------- sections
 
@@ -154,14 +179,15 @@ class GeometryConfig(_Section):
 
     SECTION: ClassVar[str] = "geometry"
 
-    rb: float = _spec(470.45, _POSITIVE, "rb: radius of the base joint circle, mm")
-    rp: float = _spec(388.95, _POSITIVE, "rp: radius of the platform joint circle, mm")
-    h0: float = _spec(1374.0, _POSITIVE, "h0: centre-to-centre height at the home pose, mm")
-    l0: float = _spec(1192.63, _POSITIVE, "l0: length of a fully retracted cylinder, mm")
-    hb: float = _spec(95.0, _FINITE, "hb: height of the universal-joint centres above the base, mm")
-    hp: float = _spec(-115.0, _FINITE, "hp: height of the spherical-joint centres in the platform frame, mm")
-    phi_b_deg: float = _spec(24.07, _FINITE, "φb: angle between the two joints of a base pair, degrees")
-    phi_p_deg: float = _spec(103.66, _FINITE, "φp: angle between the two joints of a platform pair, degrees")
+    rb: float = _spec(470.45, _POSITIVE, "rb: radius of the base joint circle, mm", _MM_SIZE)
+    rp: float = _spec(388.95, _POSITIVE, "rp: radius of the platform joint circle, mm", _MM_SIZE)
+    h0: float = _spec(1374.0, _POSITIVE, "h0: centre-to-centre height at the home pose, mm", _MM_SIZE)
+    l0: float = _spec(1192.63, _POSITIVE, "l0: length of a fully retracted cylinder, mm", _MM_SIZE)
+    hb: float = _spec(95.0, _FINITE, "hb: height of the universal-joint centres above the base, mm", _MM_OFFSET)
+    hp: float = _spec(-115.0, _FINITE, "hp: height of the spherical-joint centres in the platform frame, mm",
+                      _MM_OFFSET)
+    phi_b_deg: float = _spec(24.07, _FINITE, "φb: angle between the two joints of a base pair, degrees", _DEGREES)
+    phi_p_deg: float = _spec(103.66, _FINITE, "φp: angle between the two joints of a platform pair, degrees", _DEGREES)
 
     def _check_rules(self) -> None:
         # Imported here: the reference depends on this module for its data types.
@@ -195,8 +221,8 @@ class StrokeConfig(_Section):
 
     SECTION: ClassVar[str] = "stroke"
 
-    min: float = _spec(0.0, _FINITE, "lower end of the usable cylinder travel, mm")
-    max: float = _spec(600.0, _FINITE, "upper end of the usable cylinder travel, mm")
+    min: float = _spec(0.0, _FINITE, "lower end of the usable cylinder travel, mm", _MM_OFFSET)
+    max: float = _spec(600.0, _FINITE, "upper end of the usable cylinder travel, mm", _MM_OFFSET)
 
     def _check_rules(self) -> None:
         if not self.min < self.max:
@@ -217,8 +243,8 @@ class ActuatorConfig(_Section):
 
     SECTION: ClassVar[str] = "actuator"
 
-    max_velocity: float = _spec(250.0, _POSITIVE, "largest cylinder speed, mm/s")
-    max_acceleration: float = _spec(2500.0, _POSITIVE, "largest cylinder acceleration, mm/s²")
+    max_velocity: float = _spec(250.0, _POSITIVE, "largest cylinder speed, mm/s", (0.1, 1e5, "mm/s"))
+    max_acceleration: float = _spec(2500.0, _POSITIVE, "largest cylinder acceleration, mm/s²", (1.0, 1e7, "mm/s²"))
 
 
 @dataclass(frozen=True)
@@ -232,21 +258,29 @@ class TrajectoryConfig(_Section):
 
     SECTION: ClassVar[str] = "trajectory"
 
-    linear_velocity: float = _spec(100.0, _POSITIVE, "largest speed of x, y, z, mm/s")
-    linear_acceleration: float = _spec(500.0, _POSITIVE, "largest acceleration of x, y, z, mm/s²")
-    linear_jerk: float = _spec(5000.0, _POSITIVE, "largest jerk of x, y, z, mm/s³")
-    angular_velocity: float = _spec(10.0, _POSITIVE, "largest rate of α, β, γ, deg/s")
-    angular_acceleration: float = _spec(50.0, _POSITIVE, "largest angular acceleration, deg/s²")
-    angular_jerk: float = _spec(500.0, _POSITIVE, "largest angular jerk, deg/s³")
+    linear_velocity: float = _spec(100.0, _POSITIVE, "largest speed of x, y, z, mm/s", (5.0, 1e4, "mm/s"))
+    linear_acceleration: float = _spec(500.0, _POSITIVE, "largest acceleration of x, y, z, mm/s²", (5.0, 1e6, "mm/s²"))
+    linear_jerk: float = _spec(5000.0, _POSITIVE, "largest jerk of x, y, z, mm/s³", (5.0, 1e8, "mm/s³"))
+    angular_velocity: float = _spec(10.0, _POSITIVE, "largest rate of α, β, γ, deg/s", (0.5, 1e3, "deg/s"))
+    angular_acceleration: float = _spec(50.0, _POSITIVE, "largest angular acceleration, deg/s²",
+                                        (0.5, 1e5, "deg/s²"))
+    angular_jerk: float = _spec(500.0, _POSITIVE, "largest angular jerk, deg/s³", (0.5, 1e7, "deg/s³"))
 
 
 @dataclass(frozen=True)
 class TaskConfig(_Section):
-    """The PLC primary task (docs/mathematics.md section 5): period in seconds, default 1 ms."""
+    """The PLC primary task (docs/mathematics.md section 5): period in seconds, default 1 ms.
+
+    Allowed 0.5 ms to 100 ms: 500 µs is the shortest primary period OMRON
+    names for the NJ series (myOMRON knowledge base article 1415, "NJ-series
+    task execution", https://www.myomron.com/index.php?action=kb&article=1415;
+    the list of settable periods is in W501, not at hand); 100 ms is a bound
+    of ours, far above any motion task, that keeps the demo's arrays small.
+    """
 
     SECTION: ClassVar[str] = "task"
 
-    period_s: float = _spec(0.001, _POSITIVE, "primary task period, s")
+    period_s: float = _spec(0.001, _POSITIVE, "primary task period, s", (0.0005, 0.1, "s"))
 
 
 #: p_NR, the study's Newton–Raphson start pose (mm and degrees), docs/mathematics.md section 3.
@@ -268,17 +302,19 @@ class SolverConfig(_Section):
     The default Ktol = 1e21, about a millionth of the home value, lies far
     above the rounding noise.
     ``iterations_per_scan`` bounds one FB call (≈ 49.5 µs per iteration on the
-    NJ501, so 4 keep one call near 0.2 ms); ``max_iterations`` ends in
-    "not converged". ``start_pose`` is p_NR.
+    NJ501, so 4 keep one call near 0.2 ms; at most 100, ≈ 5 ms, already more
+    than a primary period); ``max_iterations`` ends in "not converged" (at
+    most 32767: the generated FB holds it in an INT). ``start_pose`` is p_NR.
     """
 
     SECTION: ClassVar[str] = "solver"
 
-    tolerance: float = _spec(0.01, _POSITIVE, "Klim: convergence bound on every |Δk|, mm and rad")
+    tolerance: float = _spec(0.01, _POSITIVE, "Klim: convergence bound on every |Δk|, mm and rad",
+                             (1e-12, 10.0, "mm and rad"))
     singularity_threshold: float = _spec(1e21, _NON_NEGATIVE, "Ktol: |det J| at or below this is singular")
-    iterations_per_scan: int = _spec(4, _COUNT, "Newton-Raphson iterations in one FB call")
-    max_iterations: int = _spec(50, _COUNT, "total iterations before 'not converged'")
-    start_pose: tuple[float, ...] = _spec(STUDY_START_POSE, _POSE, "p_NR: start pose, mm and degrees")
+    iterations_per_scan: int = _spec(4, _COUNT, "Newton-Raphson iterations in one FB call", (1, 100, ""))
+    max_iterations: int = _spec(50, _COUNT, "total iterations before 'not converged'", (1, 32767, ""))
+    start_pose: tuple[float, ...] = _spec(STUDY_START_POSE, _POSE, "p_NR: start pose, mm and degrees", _MM_OFFSET)
 
 
 # --------------------------------------------------------------------------- the whole platform
@@ -371,6 +407,8 @@ def parse_config(text: str, source: str = "<string>") -> PlatformConfig:
     """Parse TOML text; errors name ``source`` (and line and column for syntax errors)."""
     try:
         data = tomllib.loads(text)
+    except RecursionError:  # tomllib recurses once per level of nested arrays or inline tables
+        raise ConfigError("invalid TOML: arrays or inline tables nested too deeply", source=source) from None
     except tomllib.TOMLDecodeError as error:
         message = str(error)
         match = _TOML_POSITION.search(message)
@@ -425,9 +463,21 @@ def load_config(path: str | Path | None = None) -> PlatformConfig:
     """Read a platform TOML file; ``None`` gives :meth:`PlatformConfig.default`."""
     if path is None:
         return PlatformConfig.default()
-    path = Path(path)
+    from st_runtime.input_files import MAX_TOML_BYTES, InputFileError, read_bounded
+
     try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as error:
-        raise ConfigError(f"cannot read: {error.strerror}", source=str(path)) from error
-    return parse_config(text, source=str(path))
+        data = read_bounded(path, MAX_TOML_BYTES)  # a regular file only: a FIFO or /dev/zero never hangs
+    except InputFileError as error:
+        raise ConfigError(error.reason, source=str(path)) from None
+    return parse_config(decode_utf8(data, str(path)), source=str(path))
+
+
+def decode_utf8(data: bytes, source: str) -> str:
+    """The text of a TOML file (TOML is UTF-8); a bad byte is a ConfigError at its line and column."""
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        line = data.count(b"\n", 0, error.start) + 1
+        column = error.start - (data.rfind(b"\n", 0, error.start) + 1) + 1
+        raise ConfigError(f"not UTF-8 text: byte 0x{data[error.start]:02X} cannot be decoded (TOML is UTF-8)",
+                          source=source, line=line, column=column) from None

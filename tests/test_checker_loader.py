@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from st_runtime import loader
+import os
+
 from st_runtime.loader import load
 
 MAIN = "PROGRAM Main\nVAR t : TON; x : LREAL; END_VAR\nt(IN := TRUE, PT := T#1s);\nx := Half(2.0);\nEND_PROGRAM\n"
@@ -50,10 +51,14 @@ def test_unreadable_file(tmp_path, monkeypatch):
     path = tmp_path / "locked.st"
     path.write_text(MAIN)
 
-    def refuse(*args, **kwargs):
-        raise PermissionError(13, "Permission denied")
+    real_open = os.open
 
-    monkeypatch.setattr(loader, "open", refuse, raising=False)
+    def refuse(name, *args, **kwargs):  # (chmod does not stop root, who runs the CI)
+        if os.fspath(name) == str(path):
+            raise PermissionError(13, "Permission denied")
+        return real_open(name, *args, **kwargs)
+
+    monkeypatch.setattr(os, "open", refuse)
     result = load([str(path)])
     assert [d.code for d in result.errors] == ["E-LOAD-002"]
     assert "Permission denied" in result.errors[0].message

@@ -22,7 +22,8 @@ def test_checked_in_output_is_up_to_date(target, tmp_path):
     folder = CHECKED_IN[target]
     generate(tmp_path, target)
     fresh, stored = _files(tmp_path), _files(folder)
-    how = f"regenerate with: stgen generate --target {target} --out {folder.relative_to(ROOT)}"
+    how = (f"regenerate with: stgen generate --target {target} --out {folder.relative_to(ROOT)} (if it refuses "
+           f"a file changed since stgen wrote it, e.g. merged by hand: git rm -r that folder first)")
     assert sorted(fresh) == sorted(stored), f"{folder.relative_to(ROOT)} has other files than a fresh generation; " + how
     stale = [name for name in fresh if fresh[name] != stored[name]]
     assert not stale, f"out of date in {folder.relative_to(ROOT)}: {', '.join(stale)}; " + how

@@ -84,6 +84,7 @@ def check(files: list[ast.SourceFile], dialect: str = "iec",
 def _check(files, dialect, memory_limit=None, open_instances=False):
     program = CheckedProgram(files=list(files))
     ctx = Context(program, FastSink(), dialect if dialect in DIALECTS else "iec", open_instances)
+    program.dialect = ctx.dialect
     try:
         if not check_files(ctx, files):       # structural limits first (limits.py)
             return program, list(ctx.sink.items)

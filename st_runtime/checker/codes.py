@@ -10,6 +10,8 @@ CHECKER_CODES = register({
     "E-LOAD-002": "a file cannot be read (permissions, I/O error, not a regular file)",
     "E-LOAD-003": "a file is not valid UTF-8 text",
     "W-LOAD-004": "a directory holds no .st file",
+    "W-LOAD-005": "an entry of a directory was skipped (a link to a directory, an unreadable directory, "
+                  "a .st name that is not a regular file)",
     # declarations
     "E-DECL-001": "a name is used but not declared",
     "E-DECL-002": "a variable, member or enumeration value is declared twice in the same scope",

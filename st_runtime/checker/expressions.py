@@ -139,9 +139,9 @@ class ExprChecker:
         """Type `e` for storing into type `dst`; report when it cannot be."""
         src = self.infer(e, dst, strict=True)
         if self.require_assignable(src, dst, start_pos(e), what) and isinstance(e, ast.StringLiteral) \
-                and isinstance(dst, T.StringType) and len(e.value) > dst.length:
-            self.ctx.warning("W-TYPE-001", f"{what}: string of {len(e.value)} characters is "
-                             f"truncated to {dst}", e.pos)
+                and isinstance(dst, T.StringType) and T.string_size(e.value, self.ctx.dialect) > dst.length:
+            size, unit = T.string_size(e.value, self.ctx.dialect), T.STRING_UNITS[self.ctx.dialect]
+            self.ctx.warning("W-TYPE-001", f"{what}: string of {size} {unit}s is truncated to {dst}", e.pos)
         return src
 
     def require_assignable(self, src, dst, pos, what: str) -> bool:
@@ -269,7 +269,8 @@ class ExprChecker:
         return self.record(e, T.BOOL, bool(e.value))
 
     def _StringLiteral(self, e, expected):
-        return self.record(e, T.StringType(max(len(e.value), 1), e.wide), e.value)
+        size = len(e.value) if e.wide else T.string_size(e.value, self.ctx.dialect)
+        return self.record(e, T.StringType(max(size, 1), e.wide), e.value)
 
     def _TimeLiteral(self, e, expected):
         return self.record(e, T.TIME, e.nanoseconds)

@@ -31,6 +31,7 @@ Semantic choices (each has a test in tests/test_semantics*.py):
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -39,7 +40,7 @@ from ..diagnostics import register
 from ..faults import STFault
 from ..native import NATIVE_FBS
 from ..objects import AttrRef, ItemRef, NullRef, STObject, assign_list, native_initializers
-from ..types import StructType, resolve_alias
+from ..types import StructType, fit_string, resolve_alias
 from .. import values
 from . import support
 from .calls import Calls
@@ -84,7 +85,8 @@ class CompileUnit:
             "_rdiv": support.rdiv, "_time_mul": values.time_mul, "_time_div": values.time_div,
             "_index_fault": support.index_fault, "_index_fault_n": support.index_fault_n,
             "_overrun": support.overrun, "_for_range": support.for_range,
-            "_truncate": support.truncate_string, "_AttrRef": AttrRef, "_ItemRef": ItemRef,
+            "_truncate": functools.partial(fit_string, dialect=program.dialect),
+            "_AttrRef": AttrRef, "_ItemRef": ItemRef,
             "_setattr": setattr, "_assign_list": assign_list, "_FAULTS": _FAULTS,
             "_INF": math.inf, "_NAN": math.nan,
         }

@@ -21,6 +21,7 @@ from ..types import (
     StructType,
     Type,
     resolve_alias,
+    string_size,
 )
 from .initial import CompileError
 from .pysrc import pyliteral, pyident
@@ -503,7 +504,7 @@ class ExprCompiler:
             return f"(({value}) & {mask})"
         if isinstance(dst_r, StringType):
             if node is not None and isinstance(self.constant_of(node), str) \
-                    and len(self.constant_of(node)) <= dst_r.length:
+                    and string_size(self.constant_of(node), self.program.dialect) <= dst_r.length:
                 return value
             if plain_read and isinstance(src_r, StringType) and src_r.length <= dst_r.length:
                 return value

@@ -102,7 +102,7 @@ class InitialValues:
         if not is_aggregate(t):
             if init is None:
                 return Initial(const=default_value(t, self.classes)())
-            return Initial(const=store_value(t, self.const(init)))
+            return Initial(const=store_value(t, self.const(init), self.program.dialect))
         if isinstance(t, ArrayType):
             return Initial(maker=self._array_maker(t, init, pos))
         return Initial(maker=self._object_maker(t, init, pos))

@@ -69,7 +69,3 @@ def for_range(start: int, end: int, step: int, where: tuple) -> range:
     if step < 0:
         return range(start, end - 1, step)
     raise ScanOverrun(where)  # BY 0 loops forever on a PLC: period exceeded
-
-
-def truncate_string(s: str, n: int) -> str:
-    return s if len(s) <= n else s[:n]

@@ -84,6 +84,9 @@ def axis_config_from_dict(table: Mapping[str, Any], where: str = "axis") -> Axis
     if unknown:
         raise AxisConfigError(f"{where}: unknown key {unknown[0]!r} (known keys: {', '.join(_KEYS)})")
     name = table.get("name")
+    if isinstance(name, str) and _is_keyword(name):
+        raise AxisConfigError(f"{where}: key 'name' must not be an ST keyword, found {name!r} "
+                              f"(the axis becomes a global variable of that name)")
     if not isinstance(name, str) or not _is_valid_name(name):
         raise AxisConfigError(
             f"{where}: key 'name' must be an ST identifier (letter first, then letters, digits"
@@ -119,10 +122,19 @@ def axis_configs_from_toml(text: str) -> list[AxisConfig]:
         document = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise AxisConfigError(f"axis configuration is not valid TOML: {exc}") from None
+    except RecursionError:  # tomllib recurses once per level of nested arrays or inline tables
+        raise AxisConfigError("axis configuration is not valid TOML: arrays or inline tables nested "
+                              "too deeply") from None
     tables = document.get("axis")
     if not isinstance(tables, list) or not tables:
         raise AxisConfigError("axis configuration: expected at least one [[axis]] table")
     return axis_configs_from_tables(tables)
+
+
+def _is_keyword(name: str) -> bool:
+    from ..parser import reserved_words
+
+    return name.upper() in reserved_words()
 
 
 def _is_valid_name(name: str) -> bool:

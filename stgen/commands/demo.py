@@ -18,7 +18,13 @@
    OMRON's 80 % rule; st_runtime/compiler/cost.py); and writes for each
    scenario ``DIR/<scenario>.csv`` (every scan) and ``DIR/<scenario>.png``
    (pose, cylinder positions, error, velocity and acceleration, following
-   error over time).
+   error over time), and says which files it wrote.
+
+DIR is written as ``stgen generate`` writes its folder (:mod:`stgen.exports.folder`):
+a file there that stgen did not write (or changed since) is never
+overwritten, checked before the scenarios run; nothing is written through a
+symbolic link (``DIR/generated`` and the files in DIR included); a second demo
+into the same DIR refuses while the first runs.
 
 ``--quick`` shortens every scenario: waves of 5 s, point-to-point moves of a
 tenth of each displacement with 0.1 s of standstill after each (a few MB of
@@ -33,7 +39,7 @@ import sys
 from pathlib import Path
 
 from stgen.commands.config_option import add_config_argument, config_from_args
-from stgen.exports.folder import ForeignFileError
+from stgen.exports.folder import FolderError, OwnedFolder, refuse_links_below
 
 #: ``--quick``: seconds of wave, fraction of each point-to-point move, standstill after a move.
 QUICK_WAVE_SECONDS = 5.0
@@ -61,37 +67,28 @@ def run(args: argparse.Namespace) -> int:
     config = config_from_args(args, "demo")
     if config is None:
         return 1
+    if not args.out:
+        print("stgen demo: error: --out: empty path; name a folder (. for the current one)", file=sys.stderr)
+        return 2
     out = Path(args.out)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-        generated = _generate(config, out / "generated")
-    except OSError as error:
-        print(f"stgen demo: error: cannot write {error.filename or out}: {error.strerror}", file=sys.stderr)
-        return 1
-    except ForeignFileError as error:
-        print(f"stgen demo: error: {error}", file=sys.stderr)
-        return 1
-    console.print(f"Generated the controller: {generated} files in {out / 'generated'}")
-
     from stgen.scenarios.definitions import SCENARIOS
-
-    from st_runtime.api import LoadError
 
     scenarios = [s.shortened(QUICK_WAVE_SECONDS, QUICK_MOVE_FRACTION, QUICK_SETTLE_SECONDS) if args.quick
                  else s for s in SCENARIOS]
     try:
-        results = _run_all(scenarios, config, console)
-    except LoadError as error:
-        print(f"stgen demo: error: the generated controller does not load:\n{error.render()}", file=sys.stderr)
-        return 1
-    except (TimeoutError, ValueError) as error:  # no STANDBY after power-on; a start pose outside the stroke
-        print(f"stgen demo: error: {error}", file=sys.stderr)
-        return 1
-    try:
-        for result in results:
-            _write_outputs(result, out)
+        with OwnedFolder(out) as folder:
+            folder.check(_output_names(scenarios))  # refuse before the long runs, not after
+            results = _generate_and_run(config, scenarios, out, console)
+            if results is None:
+                return 1
+            for result in results:
+                _stage_outputs(result, folder)
+            update = folder.commit()
     except OSError as error:
         print(f"stgen demo: error: cannot write {error.filename or out}: {error.strerror}", file=sys.stderr)
+        return 1
+    except FolderError as error:
+        print(f"stgen demo: error: {error}", file=sys.stderr)
         return 1
     console.print(_summary(results, config))
     console.print(_limits_table(results, config))
@@ -103,7 +100,9 @@ def run(args: argparse.Namespace) -> int:
     for result in results:
         if result.nj_time is not None:
             console.print(f"{result.scenario.name}: SP_Controller {_nj_time(result.nj_time)}", soft_wrap=True)
-    console.print(f"Traces and figures in {out}/")
+    summary = update.summary()
+    console.print(f"Wrote {len(update.written)} traces and figures in {out}/: "
+                  + ", ".join(p.name for p in update.written) + (f"; {summary}" if summary else ""), soft_wrap=True)
     failed = [r.scenario.name for r in results if not r.passed]
     if failed:
         console.print(f"[bold red]FAILED:[/] {', '.join(failed)}")
@@ -112,13 +111,36 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _output_names(scenarios) -> list[str]:
+    return [f"{s.name}{suffix}" for s in scenarios for suffix in (".csv", ".png")]
+
+
+def _generate_and_run(config, scenarios, out: Path, console):
+    """Generate the controller into ``out/generated``, run the scenarios; ``None`` (reported) if they cannot run."""
+    from st_runtime.api import LoadError
+
+    generated = _generate(config, out)
+    console.print(f"Generated the controller: {generated} files in {out / 'generated'}")
+    try:
+        return _run_all(scenarios, config, console)
+    except LoadError as error:
+        print(f"stgen demo: error: the generated controller does not load:\n{error.render()}", file=sys.stderr)
+    except (TimeoutError, ValueError) as error:  # no STANDBY after power-on; a start pose outside the stroke
+        print(f"stgen demo: error: {error}", file=sys.stderr)
+    return None
+
+
 def _generate(config, out: Path) -> int:
+    """Write both targets under ``out/generated``, never through a symbolic link below ``out``."""
     from stgen.commands.generate import write_program
     from stgen.scenarios.program import render_controller_program
 
     program = render_controller_program(config)
-    return sum(len(write_program(program, out / folder, target).written)
-               for target, folder in (("nj", "nj501"), ("iec", "iec")))
+    written = 0
+    for target, folder in (("nj", "nj501"), ("iec", "iec")):
+        refuse_links_below(out, out / "generated" / folder)
+        written += len(write_program(program, out / "generated" / folder, target).written)
+    return written
 
 
 def _run_all(scenarios, config, console):
@@ -142,12 +164,12 @@ def _run_all(scenarios, config, console):
     return results
 
 
-def _write_outputs(result, out: Path) -> None:
+def _stage_outputs(result, folder: OwnedFolder) -> None:
     from stgen.figures import scenario_figure
     from stgen.scenarios.csv_trace import write_trace_csv
 
-    write_trace_csv(result, out / f"{result.scenario.name}.csv")
-    scenario_figure(result, out / f"{result.scenario.name}.png")
+    folder.stage_with(f"{result.scenario.name}.csv", lambda temp: write_trace_csv(result, temp))
+    folder.stage_with(f"{result.scenario.name}.png", lambda temp: scenario_figure(result, temp))
 
 
 def _nj_time(t) -> str:

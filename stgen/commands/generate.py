@@ -7,10 +7,12 @@ Studio 1.30+ imports) or ``plcopen`` (one PLCopen TC6 XML 2.01 file). A configur
 reported as ``file[:line:col]: key: rule`` with exit status 1.
 
 The folder is kept in step with the configuration: generated files of an
-earlier run that this run does not write (a POU renamed, say) are removed,
-and a file there that stgen did not write is never overwritten (exit status
-1, nothing written); see :mod:`stgen.exports.folder`. An --out that names a
-file is a usage error (exit status 2).
+earlier run that this run does not write (a POU renamed, say) are removed if
+unchanged, and a file there that is not stgen's (not in the folder's manifest,
+or changed since) is never overwritten (exit status 1, nothing written); files
+are written atomically under a folder lock, so an interrupted or concurrent
+run never leaves a broken folder; see :mod:`stgen.exports.folder`. An --out
+that names a file is a usage error (exit status 2).
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ from pathlib import Path
 from stgen.commands.config_option import add_config_argument, config_from_args
 from stgen.config import PlatformConfig
 from stgen.exports import iec, plcopen_xml, sysmac, sysmac_xml
-from stgen.exports.folder import FolderUpdate, ForeignFileError
+from stgen.exports.folder import FolderError, FolderUpdate
 from stgen.render import DETERMINANT_METHODS, RenderedProgram, RenderError, RenderOptions, render_program
 
 #: Target name -> writer(program, out_dir) -> FolderUpdate.
@@ -31,10 +33,34 @@ TARGETS = {"nj": sysmac.write, "iec": iec.write, "sysmac-xml": sysmac_xml.write,
 
 def write_program(program: RenderedProgram, out_dir: str | Path, target: str = "nj") -> FolderUpdate:
     """Write ``program`` for ``target`` into ``out_dir``; stale generated files there are removed
-    and a file stgen did not write is never overwritten (:mod:`stgen.exports.folder`)."""
+    and a file stgen did not write is never overwritten (:mod:`stgen.exports.folder`).
+
+    The program is checked first (:func:`check_rendered`): ST that does not
+    check is never written.
+    """
     if target not in TARGETS:
         raise ValueError(f"unknown target {target!r}; expected one of {', '.join(TARGETS)}")
+    check_rendered(program, "iec" if target == "iec" else "nj")
     return TARGETS[target](program, out_dir)
+
+
+#: Diagnostics shown when the rendered program does not check.
+_SHOWN_DIAGNOSTICS = 10
+
+
+def check_rendered(program: RenderedProgram, dialect: str) -> None:
+    """Raise :class:`RenderError` with the diagnostics if the rendered POUs, as IEC text, do not
+    pass ``stgen check --dialect <dialect>`` (a value the templates cannot hold, say)."""
+    from st_runtime.loader import load_texts
+
+    from stgen.exports.iec import pou_text
+
+    result = load_texts({f"{pou.name}.st": pou_text(pou) for pou in program.pous}, dialect)
+    errors = [d for d in result.diagnostics if d.is_error]
+    if errors:
+        shown = "\n".join(d.render(result.sources.get(d.pos.file)) for d in errors[:_SHOWN_DIAGNOSTICS])
+        raise RenderError(f"the rendered ST does not pass stgen check --dialect {dialect}, so nothing was "
+                          f"written ({len(errors)} error(s)):\n{shown}")
 
 
 def generate(out_dir: str | Path, target: str = "nj", config: PlatformConfig | None = None,
@@ -63,6 +89,9 @@ def run(args: argparse.Namespace) -> int:
     config = config_from_args(args, "generate")
     if config is None:
         return 1
+    if not args.out:  # Path('') is the current directory: never write there by accident
+        print("stgen generate: error: --out: empty path; name a folder (. for the current one)", file=sys.stderr)
+        return 2
     if Path(args.out).exists() and not Path(args.out).is_dir():
         print(f"stgen generate: error: --out {args.out}: is a file; --out names a folder",
               file=sys.stderr)
@@ -70,12 +99,13 @@ def run(args: argparse.Namespace) -> int:
     try:
         update = generate(args.out, args.target, config, RenderOptions(determinant=args.determinant,
                                                                           tests=args.tests))
-    except (RenderError, ForeignFileError) as error:
+    except (RenderError, FolderError) as error:
         print(f"stgen generate: error: {error}", file=sys.stderr)
         return 1
     except OSError as error:
         print(f"stgen generate: error: cannot write {error.filename or args.out}: {error.strerror}", file=sys.stderr)
         return 1
-    removed = f"; removed {len(update.removed)} stale: " + ", ".join(p.name for p in update.removed) if update.removed else ""
-    print(f"stgen generate: wrote {len(update.written)} files for target '{args.target}' to {args.out}{removed}")
+    summary = update.summary()
+    print(f"stgen generate: wrote {len(update.written)} files for target '{args.target}' to {args.out}"
+          + (f"; {summary}" if summary else ""))
     return 0

@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import os
 import re
+import signal
 import sys
 
 from st_runtime.api import LoadError, load, parse_period
@@ -171,13 +172,20 @@ def run(args) -> int:
     problem = write_sets(args.set, program, plc)
     if problem:
         return usage(problem)
-    trace = None
+    trace_file = None
     if args.trace:
         try:
-            trace = plc.trace(watch_paths(args.watch), program=pou.name)
+            trace_file = plc.trace(watch_paths(args.watch), program=pou.name).stream_to(args.trace)
         except (KeyError, ValueError) as exc:
             return usage(f"--watch: {clipped(str(exc))}")
-    plc.run(args.cycles)
+        except OSError as exc:
+            print(f"stgen run: error: cannot write {args.trace}: {exc.strerror or exc}", file=sys.stderr)
+            return 1
+    try:
+        if run_scans(plc.controller, args.cycles):
+            return interrupted(plc.controller.scan_count, args.cycles, trace_file, between_scans=True)
+    except KeyboardInterrupt:
+        return interrupted(plc.controller.scan_count, args.cycles, trace_file, between_scans=False)
     values = program.to_json()
     times = plc.controller.time_report()
     if args.json:
@@ -187,9 +195,9 @@ def run(args) -> int:
     else:
         for name, value in values.items():
             print(f"{name} = {json_text(value)}")
-    if trace is not None:
+    if trace_file is not None:
         try:
-            trace.write_csv(args.trace)
+            trace_file.close()
         except OSError as exc:
             print(f"stgen run: error: cannot write {args.trace}: {exc.strerror or exc}", file=sys.stderr)
             return 1
@@ -249,6 +257,52 @@ def fault_json(record) -> dict:
     """A runtime fault as JSON: code, message, POU, file, line, column, scan."""
     return {"code": record.code, "message": record.message, "pou": record.pou, "file": record.file,
             "line": record.line, "column": record.col, "scan": record.scan}
+
+
+#: Exit status after Ctrl-C, as shells report a process ended by SIGINT.
+EXIT_INTERRUPTED = 130
+
+
+def run_scans(controller, cycles: int) -> bool:
+    """Run up to `cycles` scans; a first Ctrl-C ends the run after the current scan (True returned),
+    a second one at once (KeyboardInterrupt), for a scan that takes too long."""
+    requested = []
+
+    def on_interrupt(signum, frame):
+        requested.append(signum)
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+
+    try:
+        previous = signal.signal(signal.SIGINT, on_interrupt)
+    except ValueError:  # not the main thread: no handler of ours
+        controller.run(cycles)
+        return False
+    try:
+        scan = controller.scan
+        for _ in range(cycles):
+            if requested or not scan():
+                break
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    return bool(requested)
+
+
+def interrupted(scans_done: int, cycles: int, trace_file, between_scans: bool) -> int:
+    """Ctrl-C during the run: the trace file of the scans that completed is put in place, and said so."""
+    if between_scans:
+        message = f"stgen run: interrupted after {scans_done} of {cycles} scans"
+        holds = f"the {trace_file.rows if trace_file else 0} scan(s) that ran"
+    else:
+        message = f"stgen run: interrupted during scan {scans_done + 1} of {cycles}"
+        holds = "the scans before it"
+    if trace_file is not None:
+        try:
+            trace_file.close()
+            message += f"; {trace_file.path} holds {holds}"
+        except OSError as exc:
+            message += f"; cannot write {trace_file.path}: {exc.strerror or exc}"
+    print(message, file=sys.stderr)
+    return EXIT_INTERRUPTED
 
 
 def write_sets(items: list[str], program, plc) -> str | None:
@@ -311,11 +365,12 @@ def read_axes(path: str):
     from st_runtime.motion import MotionTask
     from st_runtime.motion.axis_config import AxisConfigError
 
+    from st_runtime.input_files import MAX_TOML_BYTES, InputFileError, read_bounded
+
     try:
-        with open(path, "rb") as handle:
-            text = handle.read().decode("utf-8-sig")
-    except OSError as exc:
-        raise AxesFileError(f"{path}: cannot read: {exc.strerror or exc}") from None
+        text = read_bounded(path, MAX_TOML_BYTES).decode("utf-8-sig")  # never a FIFO or a device
+    except InputFileError as exc:
+        raise AxesFileError(f"{path}: {exc.reason}") from None
     except UnicodeDecodeError:
         raise AxesFileError(f"{path}: not UTF-8 text (an axes file is TOML)") from None
     try:

@@ -7,8 +7,9 @@
 
 Each has ``files(program) -> {file name: text}`` and ``write(program,
 folder)``, which writes those files through :mod:`stgen.exports.folder`
-(stale generated files removed, a user's file never overwritten) and returns
-a :class:`stgen.exports.folder.FolderUpdate`.
+(manifest of stgen's files, atomic writes under a folder lock, stale
+generated files removed, a user's file never overwritten) and returns a
+:class:`stgen.exports.folder.FolderUpdate`.
 """
 
 #: First line of every generated ST file.

@@ -115,10 +115,6 @@ def files(program: RenderedProgram) -> dict[str, str]:
     return texts
 
 
-#: First lines that mark a file in the folder as written by this export (see :mod:`stgen.exports.folder`).
-SIGNATURES = frozenset({GENERATED_BANNER, README.splitlines()[0]})
-
-
 def write(program: RenderedProgram, out_dir: str | Path) -> FolderUpdate:
     """Write :func:`files` into ``out_dir`` and remove the stale files of earlier runs."""
-    return write_files(files(program), out_dir, SIGNATURES)
+    return write_files(files(program), out_dir)
