@@ -283,6 +283,12 @@ def render_program(config: PlatformConfig | None = None, options: RenderOptions 
     """Render every POU of :data:`POU_TEMPLATES` for ``config`` (default: the study's platform)."""
     config = config if config is not None else PlatformConfig.default()
     options = options if options is not None else RenderOptions()
+    if not config.is_default_kind:
+        raise RenderError(
+            f"the ST for this platform kind (actuator {config.platform.actuator!r}, base "
+            f"{config.platform.base!r}, rotations {config.platform.base_rotation}/"
+            f"{config.platform.platform_rotation}, joint limits) is not rendered yet; "
+            "its NumPy reference and `stgen workspace` cover it")
     env = make_environment()
     context = template_context(config, options)
     return RenderedProgram(tuple(render_pou(env, template, context) for template in POU_TEMPLATES))
