@@ -10,8 +10,9 @@ IK, closed form (not the study's eqs 13-19, which carry sign errors):
 ρ = √(M² + Δz²); M cos θ + Δz sin θ = H/(2a), so
 θi = atan2(Δz, M) + σi·acos(H/(2aρ)), σi the configured branch.
 Unreachable when ρ = 0 or |H| > 2aρ; the crank-angle limits are checked too.
-Angles at the interface in degrees, wrapped into [angle_min − 180, angle_min + 180)
-so that one range [angle_min, angle_max] holds for every leg.
+Angles at the interface in degrees, wrapped into [c − 180, c + 180) with c the
+middle of [angle_min, angle_max], so that one range holds for every leg and
+an angle outside it reads as near the limit it is nearer to.
 
 FK: SPEC 3 with fi(a) = |Pi(a) − Ai|² − s², Ai from the measured crank
 angles (see :mod:`stgen.reference.variant_fk`).
@@ -34,8 +35,8 @@ def crank_planes(config: PlatformConfig) -> np.ndarray:
 
 
 def wrap_crank_angle(config: PlatformConfig, angles_deg) -> np.ndarray:
-    """Angles (degrees) brought into [angle_min − 180, angle_min + 180) by whole turns."""
-    low = config.crank.angle_min_deg - 180.0
+    """Angles (degrees) brought into [c − 180, c + 180) by whole turns, c the middle of the limits."""
+    low = 0.5 * (config.crank.angle_min_deg + config.crank.angle_max_deg) - 180.0
     return np.mod(np.asarray(angles_deg, dtype=float) - low, 360.0) + low
 
 
