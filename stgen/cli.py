@@ -19,6 +19,7 @@ COMMANDS = {
     "generate": "render the platform's POUs as Structured Text",
     "verify": "hold the generated ST against the NumPy reference",
     "demo": "generate, run the study's scenarios, write traces and figures",
+    "workspace": "map the reachable workspace: coordinate ranges and slices (NumPy, offline)",
 }
 
 
