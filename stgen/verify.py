@@ -527,6 +527,10 @@ def run_verification(config: PlatformConfig | None = None, poses: int = 10_000, 
     ones), ``matrices`` 6x6 systems per determinant variant, ``fk_poses`` FK solves from
     p_NR and as many from warm starts."""
     config = config if config is not None else PlatformConfig.default()
+    if not config.is_default_kind:  # a crank platform or a moving base (SPEC 6.1, 6.2)
+        from stgen.verify_variants import run_variant_verification
+
+        return run_variant_verification(config, poses=poses, seed=seed, fk_poses=fk_poses)
     reachable = random_poses(config, poses, seed)
     mixed = random_poses(config, max(1, poses // 10), seed + 1, reachable=False)
     table = load_kinematics(config, RenderOptions("table"))

@@ -44,12 +44,14 @@ def wrap_crank_angle(config: PlatformConfig, angles_deg) -> np.ndarray:
 class CrankSolution:
     """IK of a crank platform: ``angles_deg[..., 6]`` (NaN where no solution), ``solvable[..., 6]``
     (ρ > 0 and |H| <= 2aρ), ``in_limits[..., 6]`` (solvable and inside the crank-angle limits),
-    ``cosine[..., 6]`` = H/(2aρ) (beyond ±1 says how far out), and the platform joints in the base frame."""
+    ``cosine[..., 6]`` = H/(2aρ) (beyond ±1 says how far out), ``finite[..., 6]`` (H and ρ finite:
+    no NaN or infinity came in), and the platform joints in the base frame."""
 
     angles_deg: np.ndarray
     solvable: np.ndarray
     in_limits: np.ndarray
     cosine: np.ndarray
+    finite: np.ndarray
     platform_joints_base: np.ndarray
 
     @property
@@ -81,7 +83,8 @@ def crank_inverse_kinematics(config: PlatformConfig, upper_pose_deg, base_pose_d
     angles = wrap_crank_angle(config, np.degrees(theta))
     with np.errstate(invalid="ignore"):
         in_limits = solvable & (angles >= crank.angle_min_deg) & (angles <= crank.angle_max_deg)
-    return CrankSolution(angles, solvable, in_limits, cosine, joints)
+    finite = np.isfinite(h) & np.isfinite(rho)
+    return CrankSolution(angles, solvable & finite, in_limits & finite, cosine, finite, joints)
 
 
 def crank_directions(config: PlatformConfig, angles_deg) -> tuple[np.ndarray, np.ndarray]:

@@ -22,6 +22,7 @@ from enum import IntEnum
 import numpy as np
 
 from stgen.config import PlatformConfig
+from stgen.error_codes import ErrorCode, LegLimitError
 from stgen.reference.crank import crank_inverse_kinematics
 from stgen.reference.moving_base import legs, spherical_tilt, universal_joint_angles
 
@@ -89,10 +90,10 @@ def feasibility(config: PlatformConfig, upper_pose_deg, base_pose_deg=None) -> F
             values["crank_cosine"] = solution.cosine
             # |H/(2aρ)| − 1 says how far out (dimensionless); ρ = 0 gives inf or NaN: out.
             out = np.nan_to_num(np.maximum(np.abs(solution.cosine) - 1.0, 1e-12), nan=np.inf)
-            excess[..., Limit.CRANK_NO_SOLUTION] = np.where(solution.solvable, -np.inf, out)
+            excess[..., Limit.CRANK_NO_SOLUTION] = np.where(solution.solvable | ~solution.finite, -np.inf, out)
             excess[..., Limit.CRANK_ANGLE_MIN] = np.where(solution.solvable, config.crank.angle_min_deg - angles, -np.inf)
             excess[..., Limit.CRANK_ANGLE_MAX] = np.where(solution.solvable, angles - config.crank.angle_max_deg, -np.inf)
-            finite = np.isfinite(solution.cosine)
+            finite = solution.finite
         else:
             state = legs(config, upper, base_pose_deg)
             extension = state.extensions
@@ -144,3 +145,35 @@ def check_pose(config: PlatformConfig, upper_pose_deg, base_pose_deg=None) -> Po
         if result.excess[leg, limit] > 0.0
     )
     return PoseCheck(not violations, violations)
+
+
+#: Which ErrorID each limit reports, in the order a leg's limits are tested (SPEC 6.1, 6.2).
+LIMIT_ERRORS = (
+    (Limit.STROKE_MIN, LegLimitError.STROKE),
+    (Limit.STROKE_MAX, LegLimitError.STROKE),
+    (Limit.UNIVERSAL_GAMMA, LegLimitError.UNIVERSAL_JOINT),
+    (Limit.UNIVERSAL_PSI, LegLimitError.UNIVERSAL_JOINT),
+    (Limit.SPHERICAL_TILT, LegLimitError.SPHERICAL_TILT),
+    (Limit.CRANK_NO_SOLUTION, LegLimitError.CRANK_NO_SOLUTION),
+    (Limit.CRANK_ANGLE_MIN, LegLimitError.CRANK_ANGLE),
+    (Limit.CRANK_ANGLE_MAX, LegLimitError.CRANK_ANGLE),
+)
+
+
+def error_ids(result: FeasibilityMap) -> tuple[np.ndarray, np.ndarray]:
+    """(ErrorID WORD, leg 1..6 or 0) per pose, as the variants' SP_InverseKinematics reports them:
+    0 when feasible; 16#1003 when non-finite; else the lowest leg with a broken limit and its
+    first limit in :data:`LIMIT_ERRORS` order (:class:`~stgen.error_codes.LegLimitError`)."""
+    broken = result.broken
+    ids = np.zeros(broken.shape[:-2], dtype=int)
+    legs_out = np.zeros(broken.shape[:-2], dtype=int)
+    for leg in range(6, 0, -1):  # lowest leg last, so it wins
+        leg_id = np.zeros(broken.shape[:-2], dtype=int)
+        for limit, error in reversed(LIMIT_ERRORS):  # first limit last, so it wins
+            leg_id = np.where(broken[..., leg - 1, limit], error.error_id(leg), leg_id)
+        ids = np.where(leg_id > 0, leg_id, ids)
+        legs_out = np.where(leg_id > 0, leg, legs_out)
+    non_finite = np.any(broken[..., Limit.NON_FINITE], axis=-1)
+    ids = np.where(non_finite, ErrorCode.NON_FINITE.error_id, ids)
+    legs_out = np.where(non_finite, 0, legs_out)
+    return ids, legs_out
