@@ -78,7 +78,11 @@ CRANK_TEMPLATES = (
 MOVING_BASE_TEMPLATES = (
     "SP_Constants",
     "SP_Atan2",
+    "SP_LuSolve",
+    "SP_LeibnizDeterminant",
+    "moving_base/SP_Jacobian",
     "moving_base/SP_InverseKinematics",
+    "SP_ForwardKinematics",
 )
 
 
@@ -312,17 +316,26 @@ def variant_context(config: PlatformConfig) -> dict[str, Any]:
         "base_polar_sin": [math.sin(angle) for angle in polar],
         "base_rotation_entries": rotation_entries(config.platform.base_rotation, "B"),
         "platform_rotation_entries": rotation_entries(config.platform.platform_rotation, "U"),
+        "platform_rotation_partials": [rotation_entries(config.platform.platform_rotation, "U", k) for k in (1, 2, 3)],
     }
 
 
-def rotation_entries(order: str, suffix: str) -> list[list[str]]:
+def rotation_entries(order: str, suffix: str, derivative: int = 0) -> list[list[str]]:
     """ST expressions of the nine entries of R = R1(a1)·R2(a2)·R3(a3) for ``order`` ("ZYX", ...),
     in the cosines and sines ``C1{suffix}``, ``S1{suffix}``, ... of the three angles; products
-    written out symbolically so any rotation order renders without matrix code in the ST."""
+    written out symbolically so any rotation order renders without matrix code in the ST.
+    ``derivative`` = k (1..3) gives ∂R/∂ak instead (the FK Jacobian's angle columns)."""
     def elementary(axis: str, k: int) -> list[list[list[tuple[int, tuple[str, ...]]]]]:
         c, s = f"C{k}{suffix}", f"S{k}{suffix}"
         one = [(1, ())]
         zero: list = []
+        if k == derivative:  # d/da of cos a = -sin a, of sin a = cos a, of 1 = 0
+            table = {
+                "X": [[zero, zero, zero], [zero, [(-1, (s,))], [(-1, (c,))]], [zero, [(1, (c,))], [(-1, (s,))]]],
+                "Y": [[[(-1, (s,))], zero, [(1, (c,))]], [zero, zero, zero], [[(-1, (c,))], zero, [(-1, (s,))]]],
+                "Z": [[[(-1, (s,))], [(-1, (c,))], zero], [[(1, (c,))], [(-1, (s,))], zero], [zero, zero, zero]],
+            }
+            return table[axis]
         table = {
             "X": [[one, zero, zero], [zero, [(1, (c,))], [(-1, (s,))]], [zero, [(1, (s,))], [(1, (c,))]]],
             "Y": [[[(1, (c,))], zero, [(1, (s,))]], [zero, one, zero], [[(-1, (s,))], zero, [(1, (c,))]]],

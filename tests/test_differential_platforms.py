@@ -16,7 +16,7 @@ from stgen.config import load_config
 from stgen.error_codes import ErrorCode, LegLimitError
 from stgen.render import RenderError, render_program
 from stgen.verify import run_verification
-from stgen.verify_variants import VariantRuntime, check_crank_fk, check_variant_ik, check_variant_rates, variant_poses
+from stgen.verify_variants import VariantRuntime, check_variant_fk, check_variant_ik, check_variant_rates, variant_poses
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 CRANK = load_config(EXAMPLES / "crank_platform.toml")
@@ -52,9 +52,11 @@ def test_the_sample_holds_feasible_and_infeasible_poses_of_every_limit():
     assert {0, LegLimitError.STROKE, LegLimitError.SPHERICAL_TILT} <= kinds
 
 
-def test_crank_fk_of_50_poses_at_1e_9(crank_runtime):
-    upper, _ = variant_poses(CRANK, 60, seed=9, feasible_share=1.0)
-    check = check_crank_fk(crank_runtime, upper[:50])
+@pytest.mark.parametrize("name", ["crank", "moving"])
+def test_fk_of_50_poses_at_1e_9(name, crank_runtime, moving_runtime):
+    runtime = crank_runtime if name == "crank" else moving_runtime
+    upper, base = variant_poses(runtime.config, 50, seed=9, feasible_share=1.0)
+    check = check_variant_fk(runtime, upper, base)
     assert check.cases == 50
     assert check.passed, (check.max_error, check.problems)
 
@@ -71,7 +73,8 @@ def test_error_ids_name_limit_and_leg(crank_runtime, moving_runtime):
 
 def test_verify_dispatches_to_the_variant_checks():
     checks = run_verification(MOVING, poses=20, fk_poses=5)
-    assert [c.pou for c in checks] == ["SP_InverseKinematics", "SP_InverseKinematics", "reference rates"]
+    assert [c.pou for c in checks] == ["SP_InverseKinematics", "SP_InverseKinematics", "reference rates",
+                                       "SP_ForwardKinematics"]
     assert all(c.passed for c in checks)
 
 
