@@ -30,7 +30,7 @@ from stgen.reference.moving_base import legs, spherical_tilt, universal_joint_an
 from stgen.reference.rates import crank_rates, leg_rates
 from stgen.reference.variant_fk import variant_forward_kinematics
 from stgen.render import render_program
-from stgen.verify import HARNESS_LOOP_BUDGET, Check
+from stgen.verify import _FK_HARNESS, HARNESS_LOOP_BUDGET, Check, KinematicsRuntime
 
 _CRANK_IK = """
 PROGRAM VerifyVariantIk
@@ -112,62 +112,27 @@ END_FOR;
 END_PROGRAM
 """
 
-_VARIANT_FK = """
-PROGRAM VerifyVariantFk
-VAR
-    CaseCount : DINT;
-    MaxCalls : DINT;
-    Tolerance : LREAL;
-    IterationsPerScan : INT;
-    MaxIterations : INT;
-    Targets : ARRAY[1..{n}, 1..6] OF LREAL;
-    Starts : ARRAY[1..{n}, 1..6] OF LREAL;
-    Poses : ARRAY[1..{n}, 1..6] OF LREAL;
-    Iterations : ARRAY[1..{n}] OF INT;
-    Done : ARRAY[1..{n}] OF BOOL;
-    ErrorIDs : ARRAY[1..{n}] OF WORD;
-    Bases : ARRAY[1..{n}, 1..6] OF LREAL;
-    Measured : ARRAY[1..6] OF LREAL;
-    Base : ARRAY[1..6] OF LREAL;
-    StartPose : ARRAY[1..6] OF LREAL;
-    Solved : ARRAY[1..6] OF LREAL;
-    Fk : SP_ForwardKinematics;
-    Item : DINT;
-    Leg : DINT;
-    Call : DINT;
-END_VAR
-FOR Item := 1 TO CaseCount DO
-    FOR Leg := 1 TO 6 DO
-        Measured[Leg] := Targets[Item, Leg];
-        Base[Leg] := Bases[Item, Leg];
-        StartPose[Leg] := Starts[Item, Leg];
-    END_FOR;
-    Call := 0;
-    REPEAT
-        Fk(Execute := TRUE, {measured} := Measured,{base_argument} StartPose := StartPose, Tolerance := Tolerance,
-           IterationsPerScan := IterationsPerScan, MaxIterations := MaxIterations);
-        Call := Call + 1;
-    UNTIL NOT Fk.Busy OR Call >= MaxCalls
-    END_REPEAT;
-    Done[Item] := Fk.Done;
-    ErrorIDs[Item] := Fk.ErrorID;
-    Iterations[Item] := Fk.Iterations;
-    Solved := Fk.Pose;
-    FOR Leg := 1 TO 6 DO
-        Poses[Item, Leg] := Solved[Leg];
-    END_FOR;
-    Fk(Execute := FALSE);
-END_FOR;
-END_PROGRAM
-"""
+def variant_fk_harness(capacity: int, measured: str, moving_base: bool) -> str:
+    """The default platform's FK harness (:data:`stgen.verify._FK_HARNESS`) for a variant: the
+    measured input named ``measured`` and, on a moving base, the base pose of each case."""
+    text = _FK_HARNESS.replace("PROGRAM VerifyFk", "PROGRAM VerifyVariantFk").replace("CylinderPos", measured)
+    if moving_base:
+        text = text.replace("    StartPose : ARRAY[1..6] OF LREAL;",
+                            "    Bases : ARRAY[1..{n}, 1..6] OF LREAL;\n    Base : ARRAY[1..6] OF LREAL;\n"
+                            "    StartPose : ARRAY[1..6] OF LREAL;")
+        text = text.replace("        StartPose[Leg] := Starts[Item, Leg];",
+                            "        Base[Leg] := Bases[Item, Leg];\n        StartPose[Leg] := Starts[Item, Leg];")
+        text = text.replace("StartPose := StartPose,", "BasePose := Base, StartPose := StartPose,")
+    return text.format(n=capacity)
 
 #: Tolerances of the comparisons: mm and degrees.
 IK_LIMIT = 1e-9
 FK_LIMIT = 1e-9
 
 
-class VariantRuntime:
-    """A variant's rendered kinematics loaded in ``st_runtime`` with its harness programs."""
+class VariantRuntime(KinematicsRuntime):
+    """A variant's rendered kinematics loaded in ``st_runtime`` with its harness programs
+    (the default platform's runtime, with the variant's harnesses and their calls)."""
 
     def __init__(self, config: PlatformConfig, capacity: int = 1000) -> None:
         from st_runtime import api
@@ -176,9 +141,8 @@ class VariantRuntime:
         sources = {f"{pou.name}.st": pou_text(pou) for pou in program.pous}
         sources["VerifyVariantIk.st"] = (_CRANK_IK if config.is_crank else _MOVING_IK).format(n=capacity)
         names = ["VerifyVariantIk", "VerifyVariantFk"]
-        sources["VerifyVariantFk.st"] = _VARIANT_FK.format(
-            n=capacity, measured="CrankAngle" if config.is_crank else "CylinderPos",
-            base_argument=" BasePose := Base," if config.moving_base else "")
+        sources["VerifyVariantFk.st"] = variant_fk_harness(
+            capacity, "CrankAngle" if config.is_crank else "CylinderPos", config.moving_base)
         self.config = config
         self.capacity = capacity
         self.project = api.load_sources(sources)
@@ -187,17 +151,8 @@ class VariantRuntime:
         self._plc.controller.tasks[0].programs.clear()
 
     def _run(self, name: str, count: int, **arrays):
-        program = self._programs[name]
-        program["CaseCount"] = count
-        for key, value in arrays.items():
-            program.raw(key)[: len(value)] = value
-        controller = self._plc.controller
-        controller.tasks[0].programs[:] = [(name, program.obj)]
-        before = len(controller.faults)
-        controller.run(1)
-        if len(controller.faults) > before:
-            raise RuntimeError(f"runtime fault in {name}: {controller.faults[before]}")
-        return program
+        self._programs[name]["CaseCount"] = count
+        return super()._run(name, **arrays)
 
     def _read(self, program, name: str, count: int, width: int = 6, dtype=float) -> np.ndarray:
         values = np.array(program.raw(name)[: count * width], dtype=dtype)
@@ -207,8 +162,7 @@ class VariantRuntime:
         poses = np.asarray(poses, dtype=float).reshape(-1, 6)
         bases = np.zeros_like(poses) if bases is None else np.asarray(bases, dtype=float).reshape(-1, 6)
         parts: dict[str, list] = {}
-        for start in range(0, len(poses), self.capacity):
-            stop = min(start + self.capacity, len(poses))
+        for start, stop in self._batches(len(poses)):
             n = stop - start
             arrays = {"Poses": poses[start:stop].ravel().tolist()}
             if not self.config.is_crank:
@@ -232,12 +186,13 @@ class VariantRuntime:
         program["MaxIterations"] = solver.max_iterations
         program["MaxCalls"] = max_calls
         parts: dict[str, list] = {}
-        for start in range(0, len(measured), self.capacity):
-            stop = min(start + self.capacity, len(measured))
+        for start, stop in self._batches(len(measured)):
             n = stop - start
-            self._run("VerifyVariantFk", n, Targets=measured[start:stop].ravel().tolist(),
-                      Starts=np.ascontiguousarray(starts[start:stop]).ravel().tolist(),
-                      Bases=bases[start:stop].ravel().tolist())
+            arrays = {"Targets": measured[start:stop].ravel().tolist(),
+                      "Starts": np.ascontiguousarray(starts[start:stop]).ravel().tolist()}
+            if self.config.moving_base:
+                arrays["Bases"] = bases[start:stop].ravel().tolist()
+            self._run("VerifyVariantFk", n, **arrays)
             for name, width, dtype in (("Poses", 6, float), ("Iterations", 1, int), ("Done", 1, bool),
                                        ("ErrorIDs", 1, int)):
                 parts.setdefault(name, []).append(self._read(program, name, n, width, dtype))
