@@ -20,6 +20,7 @@ COMMANDS = {
     "verify": "hold the generated ST against the NumPy reference",
     "demo": "generate, run the study's scenarios, write traces and figures",
     "test": "run the TEST blocks of ST test files (JUnit XML for CI)",
+    "workspace": "map the reachable workspace: coordinate ranges and slices (NumPy, offline)",
 }
 
 

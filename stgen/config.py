@@ -10,6 +10,11 @@ Every section and key, with its default (docs/mathematics.md section 1, table fo
     [task]       period_s (s)
     [solver]     tolerance (Klim), singularity_threshold (Ktol), iterations_per_scan,
                  max_iterations, start_pose (p_NR: mm and degrees)
+    [platform]   actuator ("linear" | "crank"), base ("fixed" | "moving"),
+                 base_rotation, platform_rotation (rotation order, "ZYX" | "XYZ" | ...)
+    [crank]      crank_length, rod_length (mm), gear_ratio, plane_angle_deg[6],
+                 branch[6] (+1 | -1), angle_min_deg, angle_max_deg (docs/mathematics.md section 6.1)
+    [joints]     universal_max_deg, spherical_tilt_max_deg (docs/mathematics.md section 6.2; absent: not checked)
 
 ``examples/default_platform.toml`` lists them all with comments. Every
 missing key takes its default; an unknown key, a wrong type or a broken rule
@@ -79,6 +84,9 @@ _NON_NEGATIVE = "non-negative"
 _FINITE = "finite"
 _COUNT = "count"  # an integer >= 1
 _POSE = "pose"  # six finite numbers
+_LEGS = "legs"  # six finite numbers, one per leg
+_BRANCHES = "branches"  # six values, each +1 or -1
+_OPTIONAL_POSITIVE = "optional-positive"  # absent (None) or > 0
 
 
 def _spec(default: Any, rule: str, doc: str, within: tuple[float, float, str] | None = None) -> Any:
@@ -132,6 +140,27 @@ def _check_pose(key: str, value: Any) -> tuple[float, ...]:
     return tuple(_check_real(f"{key}[{index}]", item, _FINITE) for index, item in enumerate(value))
 
 
+def _check_legs(key: str, value: Any) -> tuple[float, ...]:
+    if not isinstance(value, (list, tuple)) or len(value) != 6:
+        raise ConfigError(f"must be an array of 6 numbers (one per leg), got {value!r}", key=key)
+    return tuple(_check_real(f"{key}[{index}]", item, _FINITE) for index, item in enumerate(value))
+
+
+def _check_branches(key: str, value: Any) -> tuple[int, ...]:
+    if not isinstance(value, (list, tuple)) or len(value) != 6:
+        raise ConfigError(f"must be an array of 6 values +1 or -1 (one per leg), got {value!r}", key=key)
+    for index, item in enumerate(value):
+        if isinstance(item, bool) or item not in (1, -1):
+            raise ConfigError(f"must be +1 or -1, got {item!r}", key=f"{key}[{index}]")
+    return tuple(int(item) for item in value)
+
+
+def _check_choice(key: str, value: Any, choices: tuple[str, ...]) -> str:
+    if not isinstance(value, str) or value not in choices:
+        raise ConfigError(f"must be one of {', '.join(repr(c) for c in choices)}, got {value!r}", key=key)
+    return value
+
+
 def _validate_fields(section: Any) -> None:
     """Check and normalise (int → float, list → tuple) every field of a section dataclass."""
     for spec in fields(section):
@@ -139,8 +168,18 @@ def _validate_fields(section: Any) -> None:
         value = getattr(section, spec.name)
         rule = spec.metadata["rule"]
         within = spec.metadata.get("within")
-        if rule == _COUNT:
-            checked: Any = _check_count(key, value)
+        if isinstance(rule, tuple):  # a choice among strings
+            checked: Any = _check_choice(key, value, rule)
+        elif rule == _LEGS:
+            checked = _check_legs(key, value)
+        elif rule == _BRANCHES:
+            checked = _check_branches(key, value)
+        elif rule == _OPTIONAL_POSITIVE:
+            checked = None if value is None else _check_real(key, value, _POSITIVE)
+            if checked is not None:
+                _check_within(key, checked, within)
+        elif rule == _COUNT:
+            checked = _check_count(key, value)
             _check_within(key, checked, within)
         elif rule == _POSE:
             checked = _check_pose(key, value)
@@ -317,6 +356,99 @@ class SolverConfig(_Section):
     start_pose: tuple[float, ...] = _spec(STUDY_START_POSE, _POSE, "p_NR: start pose, mm and degrees", _MM_OFFSET)
 
 
+#: Tait-Bryan rotation orders: "ZYX" is R = Rz(a4)·Ry(a5)·Rx(a6), the pose's
+#: three angles taken in the order of the factors (docs/mathematics.md section 1: α about Z, β about Y, γ about X).
+ROTATION_ORDERS = ("ZYX", "XYZ", "XZY", "YXZ", "YZX", "ZXY")
+ACTUATOR_KINDS = ("linear", "crank")
+BASE_KINDS = ("fixed", "moving")
+
+
+@dataclass(frozen=True)
+class PlatformKindConfig(_Section):
+    """Which platform: actuator kind, fixed or moving base, rotation order of each platform (docs/mathematics.md section 6).
+
+    ``actuator``: ``linear`` (six cylinders, docs/mathematics.md sections 1-3) or ``crank`` (six
+    rotary cranks with rods, docs/mathematics.md section 6.1, parameters in ``[crank]``).
+    ``base``: ``fixed``, or ``moving`` (docs/mathematics.md section 6.2: the base pose is an input,
+    the upper pose is held in the world frame).
+    ``base_rotation`` / ``platform_rotation``: the order of the factors of RB
+    and RU; the three angles of a pose are taken in that order, so the
+    default ``ZYX`` is docs/mathematics.md section 1's R = Rz(α)·Ry(β)·Rx(γ).
+    """
+
+    SECTION: ClassVar[str] = "platform"
+
+    actuator: str = _spec("linear", ACTUATOR_KINDS, "actuator kind: linear or crank")
+    base: str = _spec("fixed", BASE_KINDS, "base: fixed or moving")
+    base_rotation: str = _spec("ZYX", ROTATION_ORDERS, "rotation order of the base RB")
+    platform_rotation: str = _spec("ZYX", ROTATION_ORDERS, "rotation order of the upper platform RU")
+
+
+@dataclass(frozen=True)
+class CrankConfig(_Section):
+    """Rotary crank actuators, docs/mathematics.md section 6.1 (used when ``platform.actuator = "crank"``).
+
+    Leg i: the motor shaft sits at the base joint Bi of ``[geometry]``; its
+    crank of length ``crank_length`` turns in the vertical plane through Bi
+    with horizontal direction (cos φi, sin φi, 0), φi = ``plane_angle_deg[i]``
+    (from the base x axis); the crank angle θi is measured from that horizontal
+    direction towards +z, so the tip is Ai = Bi + a·(cos θi cos φi,
+    cos θi sin φi, sin θi). A rod of length ``rod_length`` joins Ai to the
+    platform joint Pi. ``branch[i]`` = σi = ±1 picks the IK solution
+    θi = atan2(Δz, M) + σi·acos(H/(2aρ)).
+
+    Crank-angle limits: one convention for all legs, the one above. The study's
+    odd/even legs (its eqs 4-9) describe the same crank with φ + 180° and
+    θ → 180° − θ, so its 50..230° on a leg written in the other parity is
+    −50..130° in that leg's φ; configure each leg's ``plane_angle_deg`` in the
+    parity where its range reads ``angle_min_deg..angle_max_deg``.
+
+    Defaults: the study's mechanism (crank 250 mm, rod 105 + 835 = 940 mm,
+    gearbox 32.41, limits 50..230°); the plane angles and branches are an
+    assumption (the study does not give the joint layout), see
+    ``examples/crank_platform.toml``.
+    """
+
+    SECTION: ClassVar[str] = "crank"
+
+    crank_length: float = _spec(250.0, _POSITIVE, "a: crank length, mm")
+    rod_length: float = _spec(940.0, _POSITIVE, "s: rod length, mm")
+    gear_ratio: float = _spec(32.41, _POSITIVE, "gearbox ratio, motor turns per crank turn")
+    plane_angle_deg: tuple[float, ...] = _spec(
+        (317.965, 162.035, 77.965, 282.035, 197.965, 42.035), _LEGS, "φi: horizontal direction of each crank plane, degrees"
+    )
+    branch: tuple[int, ...] = _spec((1, 1, 1, 1, 1, 1), _BRANCHES, "σi: IK branch of each leg, +1 or -1")
+    angle_min_deg: float = _spec(50.0, _FINITE, "lowest crank angle θi, degrees")
+    angle_max_deg: float = _spec(230.0, _FINITE, "highest crank angle θi, degrees")
+
+    def _check_rules(self) -> None:
+        if not self.angle_min_deg < self.angle_max_deg:
+            raise ConfigError(
+                f"must be less than crank.angle_max_deg, got {self.angle_min_deg} >= {self.angle_max_deg}",
+                key=f"{self.SECTION}.angle_min_deg",
+            )
+
+
+@dataclass(frozen=True)
+class JointLimitsConfig(_Section):
+    """Joint-angle limits, docs/mathematics.md section 6.2; a key left out is not checked (the default platform checks none).
+
+    ``universal_max_deg`` bounds |γi| and |ψi|, the two universal-joint angles
+    at the base; ``spherical_tilt_max_deg`` bounds the angle between a leg and
+    the upper platform's normal.
+    """
+
+    SECTION: ClassVar[str] = "joints"
+
+    universal_max_deg: float | None = _spec(None, _OPTIONAL_POSITIVE, "bound on |γi| and |ψi|, degrees")
+    spherical_tilt_max_deg: float | None = _spec(None, _OPTIONAL_POSITIVE, "bound on the spherical tilt, degrees")
+
+    @property
+    def any(self) -> bool:
+        """Whether any joint limit is checked."""
+        return self.universal_max_deg is not None or self.spherical_tilt_max_deg is not None
+
+
 # --------------------------------------------------------------------------- the whole platform
 
 _SECTIONS: dict[str, type] = {
@@ -326,6 +458,9 @@ _SECTIONS: dict[str, type] = {
     "trajectory": TrajectoryConfig,
     "task": TaskConfig,
     "solver": SolverConfig,
+    "platform": PlatformKindConfig,
+    "crank": CrankConfig,
+    "joints": JointLimitsConfig,
 }
 
 
@@ -339,6 +474,24 @@ class PlatformConfig:
     trajectory: TrajectoryConfig = field(default_factory=TrajectoryConfig)
     task: TaskConfig = field(default_factory=TaskConfig)
     solver: SolverConfig = field(default_factory=SolverConfig)
+    platform: PlatformKindConfig = field(default_factory=PlatformKindConfig)
+    crank: CrankConfig = field(default_factory=CrankConfig)
+    joints: JointLimitsConfig = field(default_factory=JointLimitsConfig)
+
+    @property
+    def is_crank(self) -> bool:
+        return self.platform.actuator == "crank"
+
+    @property
+    def moving_base(self) -> bool:
+        return self.platform.base == "moving"
+
+    @property
+    def is_default_kind(self) -> bool:
+        """Linear actuators, fixed base, docs/mathematics.md section 1's rotation, no joint limits: the NJ study's kind."""
+        return (
+            self.platform == PlatformKindConfig() and not self.joints.any
+        )
 
     def __post_init__(self) -> None:
         for name, cls in _SECTIONS.items():
@@ -353,23 +506,42 @@ class PlatformConfig:
 
 
 def _check_home_pose(config: PlatformConfig) -> None:
-    """The home pose a = 0 must be reachable (docs/mathematics.md section 2) and not singular (docs/mathematics.md section 3)."""
+    """The home pose a = 0 must be reachable (docs/mathematics.md sections 2, 6.1, 6.2) and not singular (docs/mathematics.md section 3)."""
     import numpy as np
 
-    from stgen.reference.kinematics import inverse_kinematics, jacobian
     from stgen.reference.linalg import leibniz_det
 
+    if config.is_crank and config.joints.any:
+        raise ConfigError("joint limits are checked for linear legs only; remove [joints] "
+                          "or set platform.actuator = \"linear\"", key="joints")
     home = np.zeros(6)
-    ik = inverse_kinematics(config.geometry, home, config.stroke)
-    outside = [leg + 1 for leg in range(6) if not ik.in_stroke[leg]]
-    if outside:
-        legs = ", ".join(f"q{leg} = {ik.positions[leg - 1]:.4f} mm" for leg in outside)
-        raise ConfigError(
-            f"the home pose puts {legs} outside the stroke "
-            f"[{config.stroke.min}, {config.stroke.max}] mm (check geometry.h0, geometry.l0 and stroke)",
-            key="geometry",
-        )
-    determinant = abs(float(leibniz_det(jacobian(config.geometry, home))))
+    if config.is_default_kind:
+        from stgen.reference.kinematics import inverse_kinematics, jacobian
+
+        ik = inverse_kinematics(config.geometry, home, config.stroke)
+        outside = [leg + 1 for leg in range(6) if not ik.in_stroke[leg]]
+        if outside:
+            legs = ", ".join(f"q{leg} = {ik.positions[leg - 1]:.4f} mm" for leg in outside)
+            raise ConfigError(
+                f"the home pose puts {legs} outside the stroke "
+                f"[{config.stroke.min}, {config.stroke.max}] mm (check geometry.h0, geometry.l0 and stroke)",
+                key="geometry",
+            )
+        matrix = jacobian(config.geometry, home)
+    else:
+        from stgen.reference.crank import crank_inverse_kinematics
+        from stgen.reference.feasibility import check_pose
+        from stgen.reference.variant_fk import VariantModel
+
+        report = check_pose(config, home)
+        if not report.feasible:
+            raise ConfigError("the home pose is not feasible: "
+                              + "; ".join(str(v) for v in report.violations), key="geometry")
+        measured = (crank_inverse_kinematics(config, home).angles_deg if config.is_crank
+                    else np.zeros(6))
+        model = VariantModel(config, measured)
+        matrix = model.jacobian(home)
+    determinant = abs(float(leibniz_det(matrix)))
     if not determinant > config.solver.singularity_threshold:
         raise ConfigError(
             f"the home pose is singular: |det J| = {determinant:.6g} <= "

@@ -67,3 +67,40 @@ class ErrorCode(IntEnum):
     def st_constant_name(self) -> str:
         """Name of the ST constant holding :attr:`error_id`, e.g. ``ERR_NOT_CONVERGED``."""
         return "ERR_OK" if self is ErrorCode.OK else f"ERR_{self.name}"
+
+
+class LegLimitError(IntEnum):
+    """ErrorIDs of the platform variants' IK (docs/mathematics.md sections 6.1, 6.2): a limit broken on a leg.
+
+    The WORD names both: ``base + leg`` with leg 1..6, e.g. ``16#1083`` is the
+    spherical tilt of leg 3. When several legs break limits the lowest leg is
+    named; on one leg the first limit in this table. Rendered only for the
+    variants (the default platform keeps ``16#1004`` for a leg outside the stroke).
+    """
+
+    description: str
+
+    def __new__(cls, value: int, description: str) -> "LegLimitError":
+        member = int.__new__(cls, value)
+        member._value_ = value
+        member.description = description
+        return member
+
+    STROKE = (0x1040, "leg outside the stroke (16#1041..16#1046 = leg 1..6)")
+    CRANK_NO_SOLUTION = (0x1050, "crank cannot reach the platform joint (16#1051..16#1056 = leg 1..6)")
+    CRANK_ANGLE = (0x1060, "crank angle outside its limits (16#1061..16#1066 = leg 1..6)")
+    UNIVERSAL_JOINT = (0x1070, "universal-joint angle outside its limit (16#1071..16#1076 = leg 1..6)")
+    SPHERICAL_TILT = (0x1080, "spherical-joint tilt outside its limit (16#1081..16#1086 = leg 1..6)")
+
+    def error_id(self, leg: int) -> int:
+        if not 1 <= leg <= 6:
+            raise ValueError(f"leg must be 1..6, got {leg}")
+        return int(self) + leg
+
+    @property
+    def st_constant_name(self) -> str:
+        return f"ERR_LEG_{self.name}"
+
+    @property
+    def st_literal(self) -> str:
+        return f"16#{int(self):04X}"

@@ -77,6 +77,44 @@ BENCH_TEST_TEMPLATE = "tests/test_benches"
 BENCH_TEST_FILE = "test_benches.st"
 
 
+#: Templates of the platform variants (docs/mathematics.md sections 6.1, 6.2): the kinematics only, the variant's
+#: own SP_InverseKinematics in a folder named after the variant; the controller program is
+#: not rendered for them yet.
+CRANK_TEMPLATES = (
+    "SP_Constants",
+    "SP_Atan2",
+    "SP_LuSolve",
+    "SP_LeibnizDeterminant",
+    "SP_Jacobian",
+    "crank/SP_InverseKinematics",
+    "SP_ForwardKinematics",
+)
+MOVING_BASE_TEMPLATES = (
+    "SP_Constants",
+    "SP_Atan2",
+    "SP_LuSolve",
+    "SP_LeibnizDeterminant",
+    "moving_base/SP_Jacobian",
+    "moving_base/SP_InverseKinematics",
+    "SP_ForwardKinematics",
+)
+
+
+def program_templates(config: PlatformConfig) -> tuple[str, ...]:
+    """The templates ``config``'s kind renders (raises :class:`RenderError` for a kind not rendered)."""
+    kind = config.platform
+    if config.is_default_kind:
+        return POU_TEMPLATES
+    if config.is_crank and not config.moving_base and kind.platform_rotation == "ZYX":
+        return CRANK_TEMPLATES
+    if not config.is_crank and config.moving_base:
+        return MOVING_BASE_TEMPLATES
+    raise RenderError(
+        f"the ST for this platform kind (actuator {kind.actuator!r}, base {kind.base!r}, rotations "
+        f"{kind.base_rotation}/{kind.platform_rotation}) is not rendered; rendered are the default "
+        "kind, a crank platform on a fixed base with ZYX, and linear legs on a moving base")
+
+
 def pou_name(template: str) -> str:
     """The POU a template renders: the last component of its path."""
     return template.rsplit("/", 1)[-1]
@@ -272,7 +310,75 @@ def template_context(config: PlatformConfig, options: RenderOptions) -> dict[str
         "deg_per_rad": 180.0 / math.pi,
         "lreal_max": 1.7976931348623157e308,
         "pi": math.pi,
+        **variant_context(config),
     }
+
+
+def variant_context(config: PlatformConfig) -> dict[str, Any]:
+    """Values only the variants' templates use (docs/mathematics.md sections 6.1, 6.2)."""
+    from stgen.error_codes import LegLimitError
+    from stgen.reference.geometry import joint_angles
+
+    planes = [math.radians(angle) for angle in config.crank.plane_angle_deg]
+    centre = 0.5 * (config.crank.angle_min_deg + config.crank.angle_max_deg)
+    polar, _ = joint_angles(config.geometry)
+    return {
+        "is_crank": config.is_crank,
+        "moving_base": config.moving_base,
+        "variant": not config.is_default_kind,
+        "leg_limit_errors": list(LegLimitError),
+        "crank_plane_cos": [math.cos(angle) for angle in planes],
+        "crank_plane_sin": [math.sin(angle) for angle in planes],
+        "crank_wrap_low_deg": centre - 180.0,
+        "base_polar_cos": [math.cos(angle) for angle in polar],
+        "base_polar_sin": [math.sin(angle) for angle in polar],
+        "base_rotation_entries": rotation_entries(config.platform.base_rotation, "B"),
+        "platform_rotation_entries": rotation_entries(config.platform.platform_rotation, "U"),
+        "platform_rotation_partials": [rotation_entries(config.platform.platform_rotation, "U", k) for k in (1, 2, 3)],
+    }
+
+
+def rotation_entries(order: str, suffix: str, derivative: int = 0) -> list[list[str]]:
+    """ST expressions of the nine entries of R = R1(a1)·R2(a2)·R3(a3) for ``order`` ("ZYX", ...),
+    in the cosines and sines ``C1{suffix}``, ``S1{suffix}``, ... of the three angles; products
+    written out symbolically so any rotation order renders without matrix code in the ST.
+    ``derivative`` = k (1..3) gives ∂R/∂ak instead (the FK Jacobian's angle columns)."""
+    def elementary(axis: str, k: int) -> list[list[list[tuple[int, tuple[str, ...]]]]]:
+        c, s = f"C{k}{suffix}", f"S{k}{suffix}"
+        one = [(1, ())]
+        zero: list = []
+        if k == derivative:  # d/da of cos a = -sin a, of sin a = cos a, of 1 = 0
+            table = {
+                "X": [[zero, zero, zero], [zero, [(-1, (s,))], [(-1, (c,))]], [zero, [(1, (c,))], [(-1, (s,))]]],
+                "Y": [[[(-1, (s,))], zero, [(1, (c,))]], [zero, zero, zero], [[(-1, (c,))], zero, [(-1, (s,))]]],
+                "Z": [[[(-1, (s,))], [(-1, (c,))], zero], [[(1, (c,))], [(-1, (s,))], zero], [zero, zero, zero]],
+            }
+            return table[axis]
+        table = {
+            "X": [[one, zero, zero], [zero, [(1, (c,))], [(-1, (s,))]], [zero, [(1, (s,))], [(1, (c,))]]],
+            "Y": [[[(1, (c,))], zero, [(1, (s,))]], [zero, one, zero], [[(-1, (s,))], zero, [(1, (c,))]]],
+            "Z": [[[(1, (c,))], [(-1, (s,))], zero], [[(1, (s,))], [(1, (c,))], zero], [zero, zero, one]],
+        }
+        return table[axis]
+
+    def multiply(left, right):
+        return [[[(a * b, fa + fb) for i in range(3) for a, fa in left[r][i] for b, fb in right[i][c]]
+                 for c in range(3)] for r in range(3)]
+
+    product = elementary(order[0], 1)
+    for k, axis in enumerate(order[1:], start=2):
+        product = multiply(product, elementary(axis, k))
+
+    def text(terms) -> str:
+        if not terms:
+            return "0.0"
+        parts = []
+        for index, (sign, factors) in enumerate(terms):
+            body = " * ".join(factors) if factors else "1.0"
+            parts.append(("-" if sign < 0 else "") + body if index == 0 else (" - " if sign < 0 else " + ") + body)
+        return "".join(parts)
+
+    return [[text(product[r][c]) for c in range(3)] for r in range(3)]
 
 
 def render_pou(env: jinja2.Environment, template: str, context: dict[str, Any]) -> Pou:
@@ -301,9 +407,9 @@ def render_program(config: PlatformConfig | None = None, options: RenderOptions 
     """Render every POU of :data:`POU_TEMPLATES` for ``config`` (default: the study's platform)."""
     config = config if config is not None else PlatformConfig.default()
     options = options if options is not None else RenderOptions()
+    templates = program_templates(config)
     env = make_environment()
     context = template_context(config, options)
-    templates = POU_TEMPLATES
     if options.tests:
         from stgen.benches import bench_vectors
 

@@ -604,6 +604,10 @@ def run_verification(config: PlatformConfig | None = None, poses: int = 10_000, 
     p_NR and as many from warm starts.  With a ``timing`` list, the estimated NJ501
     time of the FK calls (`FkScanTime`, up to 50 solves from p_NR) is appended to it."""
     config = config if config is not None else PlatformConfig.default()
+    if not config.is_default_kind:  # a crank platform or a moving base (docs/mathematics.md sections 6.1, 6.2)
+        from stgen.verify_variants import run_variant_verification
+
+        return run_variant_verification(config, poses=poses, seed=seed, fk_poses=fk_poses)
     reachable = random_poses(config, poses, seed)
     mixed = random_poses(config, max(1, poses // 10), seed + 1, reachable=False)
     table = load_kinematics(config, RenderOptions("table"))

@@ -17,6 +17,29 @@ def _files(folder: Path) -> dict[str, str]:
     return {p.relative_to(folder).as_posix(): p.read_text(encoding="utf-8") for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
+#: Checked-in output of the example variant platforms (issue 11), target iec.
+VARIANTS = {
+    "crank_iec": ROOT / "examples" / "crank_platform.toml",
+    "moving_base_iec": ROOT / "examples" / "moving_base_platform.toml",
+}
+
+
+@pytest.mark.parametrize("folder_name", sorted(VARIANTS))
+def test_checked_in_variant_output_is_up_to_date_and_checks_clean(folder_name, tmp_path, capsys):
+    from stgen.cli import main
+    from stgen.config import load_config
+
+    folder = ROOT / "generated" / folder_name
+    generate(tmp_path, "iec", load_config(VARIANTS[folder_name]))
+    fresh, stored = _files(tmp_path), _files(folder)
+    how = (f"regenerate with: stgen generate --config {VARIANTS[folder_name].relative_to(ROOT)} "
+           f"--target iec --out {folder.relative_to(ROOT)}")
+    assert fresh == stored, how
+    assert main(["check", "--dialect", "nj", str(folder)]) == 0
+    out = capsys.readouterr()
+    assert "0 error(s), 0 warning(s)" in out.out + out.err
+
+
 @pytest.mark.parametrize("target", sorted(CHECKED_IN))
 def test_checked_in_output_is_up_to_date(target, tmp_path):
     folder = CHECKED_IN[target]

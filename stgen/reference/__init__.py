@@ -8,6 +8,15 @@ The generated ST is proven against these functions. Modules, one job each:
 * :mod:`~stgen.reference.forward`    Newton–Raphson FK [13–18, 34–36]
 * :mod:`~stgen.reference.cycloidal`  cycloidal point-to-point [19–28]
 * :mod:`~stgen.reference.wave`       ocean wave [29–33]
+
+Platform variants (docs/mathematics.md sections 6.1, 6.2):
+
+* :mod:`~stgen.reference.orientation` any rotation order, Euler rates → ω and ω̇
+* :mod:`~stgen.reference.moving_base` legs from both transforms, universal-joint angles, tilt
+* :mod:`~stgen.reference.crank`       crank IK (closed form with branch), crank tips
+* :mod:`~stgen.reference.feasibility` stroke, joint and crank limits, naming leg and limit
+* :mod:`~stgen.reference.rates`       leg / crank velocity and acceleration from pose rates
+* :mod:`~stgen.reference.variant_fk`  the variants' FK residual, Jacobian and solve
 """
 
 from stgen.reference.cycloidal import cycloidal_duration, cycloidal_fraction, cycloidal_pose, cycloidal_velocity

@@ -53,8 +53,13 @@ class ForwardKinematicsResult:
 class NewtonRaphsonSolver:
     """The FK function block's state machine: :meth:`start`, then :meth:`scan` until :attr:`done`."""
 
-    def __init__(self, geometry: GeometryConfig, solver: SolverConfig | None = None) -> None:
+    def __init__(self, geometry: GeometryConfig, solver: SolverConfig | None = None,
+                 model_factory=None) -> None:
+        """``model_factory(positions)``, when given, returns an object with ``residual(pose_rad)`` and
+        ``jacobian(pose_rad)`` used in place of docs/mathematics.md section 3's (a platform variant, docs/mathematics.md section 6)."""
         self.geometry = geometry
+        self.model_factory = model_factory
+        self._model = None
         self.settings = solver if solver is not None else SolverConfig()
         self._estimate = np.zeros(6)
         self._positions = np.zeros(6)
@@ -68,6 +73,7 @@ class NewtonRaphsonSolver:
         start = self.settings.start_pose if start_pose_deg is None else start_pose_deg
         self._estimate = pose_to_radians(np.asarray(start, dtype=float).reshape(6))
         self._positions = np.asarray(positions, dtype=float).reshape(6).copy()
+        self._model = None if self.model_factory is None else self.model_factory(self._positions)
         self.iterations = 0
         self.scans = 0
         self.done = False
@@ -93,8 +99,12 @@ class NewtonRaphsonSolver:
         if self.done:
             return True
         with np.errstate(invalid="ignore", over="ignore"):  # non-finite values are reported, not warned
-            values = residual(self.geometry, self._estimate, self._positions)
-            matrix = jacobian(self.geometry, self._estimate)
+            if self._model is None:
+                values = residual(self.geometry, self._estimate, self._positions)
+                matrix = jacobian(self.geometry, self._estimate)
+            else:
+                values = self._model.residual(self._estimate)
+                matrix = self._model.jacobian(self._estimate)
         if not (np.all(np.isfinite(values)) and np.all(np.isfinite(matrix))):
             return self._finish(ErrorCode.NON_FINITE)
         determinant = leibniz_det(matrix)
