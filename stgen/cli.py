@@ -19,6 +19,7 @@ COMMANDS = {
     "generate": "render the platform's POUs as Structured Text",
     "verify": "hold the generated ST against the NumPy reference",
     "demo": "generate, run the study's scenarios, write traces and figures",
+    "plan": "plan a path or a playback: duration and actuator extremes against the limits",
 }
 
 

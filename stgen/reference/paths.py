@@ -37,12 +37,17 @@ import numpy as np
 
 from stgen.config import PlatformConfig
 from stgen.reference.actuator_rates import ActuatorRates, actuator_rates
+from stgen.reference.motion_limits import MotionCheck, check_motion
 
 FAMILIES = ("epitrochoid", "epicycloid", "hypocycloid", "spiral")
 LAWS = ("blend", "cycloidal")
 TWO_PI = 2.0 * math.pi
-#: Samples of u in [0, 1] on which the planner takes the extremes (end points included).
-PLAN_SAMPLES = 200_001
+#: Samples of u in [0, 1] on which the planner takes the extremes at T = 1 (end points included).
+PLAN_SAMPLES = 20_001
+#: Relative margin on the shortest T: a peak between two of those samples is higher than both by
+#: about (π·n·Δu)²/8 for n oscillations over u (3e-7 for n = 10), so the samples at the task
+#: period never see more than the limit.
+PLAN_MARGIN = 1e-6
 
 
 class PathError(ValueError):
@@ -180,24 +185,30 @@ def sample(spec: PathSpec, duration: float, t) -> PathSamples:
 
 @dataclass(frozen=True)
 class PathPlan:
-    """A planned path: duration, the binding limit, and the extremes per actuator on the plan's samples."""
+    """A planned path: its duration, the shortest one and the limit that sets it, the samples and their legs."""
 
     spec: PathSpec
     duration: float
     shortest: float
     binding: str
     samples: PathSamples = field(repr=False)
-    legs: ActuatorRates = field(repr=False)
-    positions: np.ndarray = field(repr=False)   # qi = li − l0, [n, 6]
+    check: MotionCheck = field(repr=False)
+
+    @property
+    def legs(self) -> ActuatorRates:
+        return self.check.legs
+
+    @property
+    def positions(self) -> np.ndarray:
+        return self.check.positions
 
     def extremes(self) -> dict[str, np.ndarray]:
-        """Per actuator: min/max position, max |velocity|, max |acceleration| over the samples."""
-        return {
-            "position_min": self.positions.min(axis=0),
-            "position_max": self.positions.max(axis=0),
-            "velocity_max": np.abs(self.legs.velocities).max(axis=0),
-            "acceleration_max": np.abs(self.legs.accelerations).max(axis=0),
-        }
+        return self.check.extremes()
+
+    @property
+    def too_short(self) -> bool:
+        """The requested duration is shorter than the shortest within every limit."""
+        return self.duration < self.shortest - 1e-12
 
 
 def _scale_duration(spec: PathSpec, config: PlatformConfig) -> tuple[float, str]:
@@ -222,16 +233,40 @@ def plan_path(spec: PathSpec, config: PlatformConfig, samples: int | None = None
     samples at the task period (or ``samples`` evenly spaced points) with leg positions and rates.
 
     The shortest T is rounded up to a whole number of task periods, since the
-    controller runs whole scans. Raises :class:`PathError` for a requested
-    duration shorter than the shortest.
+    controller runs whole scans. A requested duration shorter than the shortest
+    is planned as asked (:attr:`PathPlan.too_short`; the legs' breaches say which
+    actuator limit it breaks).
     """
     shortest, binding = _scale_duration(spec, config)
     period = config.task.period_s
-    shortest = math.ceil(shortest / period - 1e-9) * period
-    if spec.duration is not None and spec.duration < shortest:
-        raise PathError(f"duration: {spec.duration:g} s is shorter than the shortest {shortest:g} s ({binding})")
+    shortest = math.ceil(shortest * (1.0 + PLAN_MARGIN) / period - 1e-9) * period
     duration = spec.duration if spec.duration is not None else shortest
     count = samples if samples is not None else int(round(duration / period)) + 1
     path = sample(spec, duration, np.linspace(0.0, duration, count))
-    legs = actuator_rates(config.geometry, path.poses, path.rates, path.accelerations)
-    return PathPlan(spec, duration, shortest, binding, path, legs, legs.lengths - config.geometry.l0)
+    check = check_motion(config, path.t, path.poses, path.rates, path.accelerations)
+    return PathPlan(spec, duration, shortest, binding, path, check)
+
+
+#: The curve parameters of the figures (the study gives none): mm, centre (0, 0, 240) mm.
+STUDY_PATHS = (
+    PathSpec("epitrochoid", R=60.0, r=20.0, d=30.0),
+    PathSpec("epicycloid", R=60.0, r=20.0),
+    PathSpec("hypocycloid", R=100.0, r=25.0),
+    PathSpec("spiral", a=10.0, b=5.0),
+)
+#: The study's tilt: roll (about X, γ here) = pitch (about Y, β here) = 35°.
+STUDY_TILT = (0.0, 35.0, 35.0)
+
+
+def describe(spec: PathSpec) -> str:
+    """One line naming the curve, its parameters, placement, orientation and time law."""
+    if spec.family == "spiral":
+        shape = f"a={spec.a:g} mm b={spec.b:g} mm/rad"
+    elif spec.family == "epitrochoid":
+        shape = f"R={spec.R:g} r={spec.r:g} d={spec.d:g} mm"
+    else:
+        shape = f"R={spec.R:g} r={spec.r:g} mm"
+    alpha, beta, gamma = spec.orientation
+    law = f"blend {spec.blend:g}" if spec.law == "blend" else "cycloidal"
+    return (f"{spec.family} {shape}, φ_end={spec.end:.4g} rad, centre ({', '.join(f'{c:g}' for c in spec.centre)}) mm, "
+            f"roll γ={gamma:g} pitch β={beta:g} yaw α={alpha:g} deg, law {law}")
