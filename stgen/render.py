@@ -52,6 +52,7 @@ CONTROLLER_TEMPLATES = (
     "trajectory/TRJ_Cycloidal",
     "trajectory/TRJ_OceanWave",
     "trajectory/TRJ_Brake",
+    "trajectory/TRJ_Path",
     "controller/SP_ControllerConstants",
     "controller/SP_ControllerGlobals",
     "controller/SP_Axes",

@@ -211,9 +211,9 @@ class PathPlan:
         return self.duration < self.shortest - 1e-12
 
 
-def _scale_duration(spec: PathSpec, config: PlatformConfig) -> tuple[float, str]:
+def _scale_duration(spec: PathSpec, config: PlatformConfig, plan_samples: int) -> tuple[float, str]:
     """Shortest T and the name of the limit that sets it, from the extremes at T = 1."""
-    unit = sample(spec, 1.0, np.linspace(0.0, 1.0, PLAN_SAMPLES))
+    unit = sample(spec, 1.0, np.linspace(0.0, 1.0, plan_samples))
     legs = actuator_rates(config.geometry, unit.poses, unit.rates, unit.accelerations)
     limits = config.trajectory
     act = config.actuator
@@ -228,16 +228,18 @@ def _scale_duration(spec: PathSpec, config: PlatformConfig) -> tuple[float, str]
     return float(candidates[binding]), binding
 
 
-def plan_path(spec: PathSpec, config: PlatformConfig, samples: int | None = None) -> PathPlan:
+def plan_path(spec: PathSpec, config: PlatformConfig, samples: int | None = None,
+              plan_samples: int = PLAN_SAMPLES) -> PathPlan:
     """Plan ``spec`` on ``config``: the shortest duration (or the requested longer one), then the
     samples at the task period (or ``samples`` evenly spaced points) with leg positions and rates.
+    ``plan_samples``: points of u in [0, 1] for the extremes at T = 1 (TRJ_Path's PlanSamples).
 
     The shortest T is rounded up to a whole number of task periods, since the
     controller runs whole scans. A requested duration shorter than the shortest
     is planned as asked (:attr:`PathPlan.too_short`; the legs' breaches say which
     actuator limit it breaks).
     """
-    shortest, binding = _scale_duration(spec, config)
+    shortest, binding = _scale_duration(spec, config, plan_samples)
     period = config.task.period_s
     shortest = math.ceil(shortest * (1.0 + PLAN_MARGIN) / period - 1e-9) * period
     duration = spec.duration if spec.duration is not None else shortest
