@@ -64,6 +64,9 @@ CONTROLLER_TEMPLATES = (
 #: the last path component.
 POU_TEMPLATES = KINEMATICS_TEMPLATES + CONTROLLER_TEMPLATES
 
+#: Rendered only with a playback table (``stgen generate --playback FILE.csv``).
+PLAYBACK_TEMPLATES = ("trajectory/TRJ_PlaybackTable", "trajectory/TRJ_Playback")
+
 
 def pou_name(template: str) -> str:
     """The POU a template renders: the last component of its path."""
@@ -126,6 +129,8 @@ class RenderOptions:
     """
 
     determinant: str = "table"
+    #: A :class:`~stgen.reference.playback.PlaybackTable`: also render TRJ_PlaybackTable and TRJ_Playback.
+    playback: Any = field(default=None, compare=False)
 
     def __post_init__(self) -> None:
         if self.determinant not in DETERMINANT_METHODS:
@@ -256,7 +261,17 @@ def template_context(config: PlatformConfig, options: RenderOptions) -> dict[str
         "deg_per_rad": 180.0 / math.pi,
         "lreal_max": 1.7976931348623157e308,
         "pi": math.pi,
+        "playback": _playback_context(options.playback),
     }
+
+
+def _playback_context(table) -> dict[str, Any] | None:
+    """The playback table as plain lists for TRJ_PlaybackTable (file name only, comment-safe)."""
+    if table is None:
+        return None
+    name = str(table.source).replace("\\", "/").rsplit("/", 1)[-1].replace("(*", "( *").replace("*)", "* )")
+    return {"knots": len(table.t), "t": [float(v) for v in table.t], "file": name,
+            "poses": [float(v) for v in table.poses.ravel()], "slopes": [float(v) for v in table.slopes.ravel()]}
 
 
 def render_pou(env: jinja2.Environment, template: str, context: dict[str, Any]) -> Pou:
@@ -287,4 +302,5 @@ def render_program(config: PlatformConfig | None = None, options: RenderOptions 
     options = options if options is not None else RenderOptions()
     env = make_environment()
     context = template_context(config, options)
-    return RenderedProgram(tuple(render_pou(env, template, context) for template in POU_TEMPLATES))
+    templates = POU_TEMPLATES + (PLAYBACK_TEMPLATES if options.playback is not None else ())
+    return RenderedProgram(tuple(render_pou(env, template, context) for template in templates))

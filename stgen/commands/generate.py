@@ -23,6 +23,7 @@ from stgen.commands.config_option import add_config_argument, config_from_args
 from stgen.config import PlatformConfig
 from stgen.exports import iec, plcopen_xml, sysmac, sysmac_xml
 from stgen.exports.folder import FolderUpdate, ForeignFileError
+from stgen.reference.playback import PlaybackError
 from stgen.render import DETERMINANT_METHODS, RenderedProgram, RenderError, RenderOptions, render_program
 
 #: Target name -> writer(program, out_dir) -> FolderUpdate.
@@ -53,6 +54,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="Leibniz determinant as a permutation table loop, fully unrolled, "
                              "or the FK's det J from the LU diagonal (default: table)")
     parser.add_argument("--out", metavar="DIR", required=True, help="output folder (created if missing)")
+    parser.add_argument("--playback", metavar="FILE.csv",
+                        help="also render TRJ_Playback with this recorded motion (t,x,y,z,alpha,beta,gamma) as its table")
+
+
+def _playback_table(path: str | None):
+    """The checked table of ``--playback`` (None without it); PlaybackError names file, line and column."""
+    if path is None:
+        return None
+    from stgen.playback_memory import check_table_fits
+    from stgen.reference.playback import read_playback_csv
+
+    table = read_playback_csv(path)
+    check_table_fits(table)
+    return table
 
 
 def run(args: argparse.Namespace) -> int:
@@ -64,8 +79,9 @@ def run(args: argparse.Namespace) -> int:
               file=sys.stderr)
         return 2
     try:
-        update = generate(args.out, args.target, config, RenderOptions(determinant=args.determinant))
-    except (RenderError, ForeignFileError) as error:
+        update = generate(args.out, args.target, config,
+                          RenderOptions(determinant=args.determinant, playback=_playback_table(args.playback)))
+    except (RenderError, ForeignFileError, PlaybackError) as error:
         print(f"stgen generate: error: {error}", file=sys.stderr)
         return 1
     except OSError as error:
