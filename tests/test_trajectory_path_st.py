@@ -177,3 +177,33 @@ def test_hypocycloid_with_r_not_below_R_is_refused(project, codes):
     program["RollingRadius"] = 100.0
     plc.scan()
     assert program["Path.ErrorID"] == codes["TRJ_ERR_INVALID_PATH"]
+
+
+def test_stgen_plan_gives_the_extremes_of_the_controller_run(project, capsys):
+    """`stgen plan` against TRJ_Path run at 1 ms for the plan's duration: leg positions from the
+    IK of every pose the FB output, their min/max within 1e-6 mm of the plan's."""
+    import json
+
+    from stgen.cli import main
+    from stgen.path_spec import parse_path_spec
+    from stgen.reference.kinematics import inverse_kinematics
+
+    text = "hypocycloid:R=100,r=25,roll=20,pitch=-15"
+    assert main(["plan", "--path", text, "--json"]) == 0
+    plan = json.loads(capsys.readouterr().out)["motions"][0]
+    spec = dataclasses.replace(parse_path_spec(text), duration=plan["duration_s"])
+    plc, program = _start(project, spec)
+    _plan(plc, program)
+    assert program["Path.Ready"]
+    program["RunClock"] = True
+    poses = []
+    while not program["Path.Done"]:
+        plc.scan()
+        poses.append(program["Path.Pose"])
+    q = inverse_kinematics(CONFIG.geometry, np.array(poses)).positions
+    assert len(q) == int(round(plan["duration_s"] / 0.001)) + 1
+    assert np.abs(q.min(axis=0) - plan["position_min"]).max() < 1e-6
+    assert np.abs(q.max(axis=0) - plan["position_max"]).max() < 1e-6
+    # rates: the set-point differences the drive sees, against the plan's analytic extremes (O(dt^2))
+    v = np.abs(np.diff(q, axis=0)).max(axis=0) / 0.001
+    assert np.abs(v - plan["velocity_max"]).max() < 1e-3
