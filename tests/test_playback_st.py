@@ -9,14 +9,14 @@ import numpy as np
 import pytest
 
 from sea_state import jonswap_motion, write_csv
-from st_runtime import api
+from st_harness import load_with_harness, scan_while_planning
 from stgen.cli import main
 from stgen.config import PlatformConfig
 from stgen.playback_memory import max_knots
 from stgen.reference.kinematics import inverse_kinematics
 from stgen.reference.playback import evaluate, make_table, read_playback_csv
 from stgen.render import RenderOptions
-from stgen.scenarios.program import codes_of, iec_sources, render_controller_program
+from stgen.scenarios.program import codes_of, render_controller_program
 from stgen.scenarios.setpoint_limits import check_setpoint_limits
 
 PERIOD = 0.001
@@ -36,9 +36,7 @@ CONFIG = PlatformConfig()
 
 def _project(table):
     rendered = render_controller_program(CONFIG, RenderOptions(playback=table))
-    sources = iec_sources(rendered)
-    sources["harness.st"] = HARNESS
-    return api.load_sources(sources), codes_of(rendered, "TRJ_Constants")
+    return load_with_harness(rendered, HARNESS), codes_of(rendered, "TRJ_Constants")
 
 
 @pytest.fixture(scope="module")
@@ -52,12 +50,7 @@ def sea(tmp_path_factory):
 def _plan(program, plc, velocity=250.0):
     program["ActuatorVelocity"] = velocity
     program["Execute"] = True
-    scans = 0
-    while True:
-        plc.scan()
-        scans += 1
-        if not program["Play.Planning"]:
-            return scans
+    return scan_while_planning(plc, program, "Play")
 
 
 def test_playback_matches_the_reference_on_every_call(sea):

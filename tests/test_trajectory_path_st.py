@@ -9,11 +9,11 @@ import dataclasses
 import numpy as np
 import pytest
 
-from st_runtime import api
+from st_harness import load_with_harness, scan_while_planning
 from stgen.config import ActuatorConfig, PlatformConfig
 from stgen.reference.paths import PathSpec, plan_path, sample
 from stgen.scenarios.path_inputs import trj_path_inputs
-from stgen.scenarios.program import codes_of, iec_sources, render_controller_program
+from stgen.scenarios.program import codes_of, render_controller_program
 
 PLAN_SAMPLES = 801
 PER_SCAN = 100
@@ -60,9 +60,7 @@ def rendered():
 
 @pytest.fixture(scope="module")
 def project(rendered):
-    sources = iec_sources(rendered)
-    sources["harness.st"] = HARNESS
-    return api.load_sources(sources)
+    return load_with_harness(rendered, HARNESS)
 
 
 @pytest.fixture(scope="module")
@@ -82,12 +80,7 @@ def _start(project, spec, actuator_velocity=250.0):
 
 def _plan(plc, program):
     """Scans until planning ends; the number of planning calls."""
-    calls = 0
-    while True:
-        plc.scan()
-        calls += 1
-        if not program["Path.Planning"]:
-            return calls
+    return scan_while_planning(plc, program, "Path")
 
 
 SPECS = {
