@@ -17,7 +17,7 @@ The robustness issue's memory model, when merged, should replace these numbers.
 
 from __future__ import annotations
 
-from stgen.reference.playback import PlaybackError, PlaybackTable
+from stgen.reference.playback import ADDED_KNOTS, PlaybackError, PlaybackTable
 
 MAX_ARRAY_ELEMENTS = 65535
 TABLE_BYTES_MAX = 2 * 1024 * 1024
@@ -35,11 +35,16 @@ def max_knots() -> int:
     return min(MAX_ARRAY_ELEMENTS // 6, TABLE_BYTES_MAX // (VALUES_PER_KNOT * LREAL_BYTES))
 
 
+def max_rows() -> int:
+    """The most rows a recorded motion may have: the knots less the ones the table adds."""
+    return max_knots() - ADDED_KNOTS
+
+
 def check_table_fits(table: PlaybackTable) -> None:
     """Raise :class:`PlaybackError` (``file:1:1: ...``) when the table is too large for the controller."""
     knots = len(table.t)
     if knots > max_knots():
         raise PlaybackError(
-            f"{table.source}:1:1: {knots} rows is too large for the controller: at most {max_knots()} rows "
+            f"{table.source}:1:1: {knots - ADDED_KNOTS} rows is too large for the controller: at most {max_rows()} rows "
             f"({table_bytes(knots)} bytes against {TABLE_BYTES_MAX} bytes for the table, "
             f"{knots * 6} elements against {MAX_ARRAY_ELEMENTS} per array); resample the recording")

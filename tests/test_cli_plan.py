@@ -68,7 +68,7 @@ def test_plan_of_a_playback_csv(tmp_path, capsys):
     path.write_text("\n".join(rows) + "\n")
     code, out, _ = run_plan(capsys, "--playback", path, "--figures", tmp_path / "fig")
     assert code == 0
-    assert "101 knots" in out and "within every limit" in out
+    assert "101 rows, 103 knots" in out and "within every limit" in out
     assert (tmp_path / "fig" / "plan.png").stat().st_size > 10_000
 
 

@@ -12,7 +12,7 @@ from sea_state import jonswap_motion, write_csv
 from st_harness import load_with_harness, scan_while_planning
 from stgen.cli import main
 from stgen.config import PlatformConfig
-from stgen.playback_memory import max_knots
+from stgen.playback_memory import max_rows
 from stgen.reference.kinematics import inverse_kinematics
 from stgen.reference.playback import evaluate, make_table, read_playback_csv
 from stgen.render import RenderOptions
@@ -108,14 +108,14 @@ def test_playback_too_fast_for_the_actuators_is_refused_with_the_leg(sea):
 
 
 def test_generate_refuses_a_table_too_large_for_the_controller(tmp_path, capsys):
-    rows = max_knots() + 1
+    rows = max_rows() + 1
     t = np.arange(rows) * 0.01
     path = tmp_path / "long.csv"
     write_csv(path, t, np.tile([0.0, 0.0, 240.0, 0.0, 0.0, 0.0], (rows, 1)))
     code = main(["generate", "--target", "iec", "--out", str(tmp_path / "out"), "--playback", str(path)])
     err = capsys.readouterr().err
     assert code == 1
-    assert f"{path}:1:1: {rows} rows is too large for the controller: at most {max_knots()} rows" in err
+    assert f"{path}:1:1: {rows} rows is too large for the controller: at most {max_rows()} rows" in err
     assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
 
 

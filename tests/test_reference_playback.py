@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from stgen.reference.playback import PlaybackError, evaluate, make_table, read_playback_csv
+from stgen.reference.playback import (ADDED_KNOTS, PlaybackError, PlaybackTable, clamped_spline_slopes, evaluate,
+                                     make_table, read_playback_csv)
 
 
 def _table(n=41, seed=3):
@@ -28,6 +29,18 @@ def test_spline_passes_through_the_knots_and_is_c2_at_every_knot():
         assert np.abs(left - right).max() < 1e-5 * (1 + np.abs(left).max())
 
 
+def test_table_keeps_every_row_and_rests_in_velocity_and_acceleration_at_both_ends():
+    for rows in (2, 3, 41):
+        t = np.linspace(0.0, 4.0, rows)
+        poses = np.column_stack([20 * np.sin(1.3 * t + k) + 3 * k for k in range(6)])
+        table = make_table(t, poses)
+        assert len(table.t) == rows + ADDED_KNOTS
+        assert np.abs(evaluate(table, t)[0] - poses).max() < 1e-12
+        _, rate, acc = evaluate(table, np.array([0.0, 1e-12, table.duration - 1e-12, table.duration]))
+        assert np.abs(rate).max() < 1e-9
+        assert np.abs(acc).max() < 1e-6 * (1 + np.abs(poses).max())
+
+
 def test_spline_starts_and_ends_at_rest_and_rates_match_differences():
     table = _table()
     _, rate, _ = evaluate(table, np.array([0.0, table.duration]))
@@ -39,11 +52,11 @@ def test_spline_starts_and_ends_at_rest_and_rates_match_differences():
     assert np.abs((evaluate(table, t + h)[1] - evaluate(table, t - h)[1]) / (2 * h) - acc).max() < 1e-2
 
 
-def test_spline_reproduces_a_cubic_that_is_clamped():
+def test_clamped_slopes_reproduce_a_cubic_with_zero_end_slopes():
     # y = 3t² − 2t³ on [0, 1] has zero slope at both ends: the clamped spline is that cubic exactly
     t = np.linspace(0.0, 1.0, 7)
     y = np.repeat((3 * t**2 - 2 * t**3)[:, None], 6, axis=1)
-    table = make_table(t, y)
+    table = PlaybackTable(t, y, clamped_spline_slopes(t, y))
     s = np.linspace(0, 1, 101)
     pose, rate, acc = evaluate(table, s)
     assert np.abs(pose[:, 0] - (3 * s**2 - 2 * s**3)).max() < 1e-12
@@ -54,8 +67,8 @@ def test_csv_is_read_and_shifted_to_zero(tmp_path):
     path = tmp_path / "m.csv"
     path.write_text("t,x,y,z,alpha,beta,gamma\n5,0,0,200,0,0,0\n5.1,1,0,200,0,0,0\n5.2,2,0,200,0,0,0\n")
     table = read_playback_csv(path)
-    assert table.t == pytest.approx([0.0, 0.1, 0.2])
-    assert table.poses[2, 0] == 2.0
+    assert table.t == pytest.approx([0.0, 0.05, 0.1, 0.15, 0.2])     # rows at 0, 0.1, 0.2 s; knots added between
+    assert table.poses[[0, 2, 4], 0] == pytest.approx([0.0, 1.0, 2.0])
 
 
 @pytest.mark.parametrize("text, where", [

@@ -26,7 +26,7 @@ import numpy as np
 from stgen.commands.config_option import add_config_argument, config_from_args
 from stgen.reference.motion_limits import MotionCheck, check_motion
 from stgen.reference.paths import STUDY_PATHS, STUDY_TILT, PathError, describe, plan_path
-from stgen.reference.playback import PlaybackError, evaluate, read_playback_csv
+from stgen.reference.playback import ADDED_KNOTS, PlaybackError, evaluate, read_playback_csv
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -71,7 +71,8 @@ def _plan_playback(path: str, config) -> list[PlannedMotion]:
     period = config.task.period_s
     t = np.arange(int(np.floor(table.duration / period + 1e-9)) + 1) * period
     pose, rate, acc = evaluate(table, t)
-    note = f"{len(table.t)} knots, clamped cubic spline at {period * 1000:g} ms"
+    note = (f"{len(table.t) - ADDED_KNOTS} rows, {len(table.t)} knots with the two added for rest at the ends, "
+            f"cubic spline at {period * 1000:g} ms")
     return [PlannedMotion(f"playback {path}", table.duration, note, check_motion(config, t, pose, rate, acc))]
 
 

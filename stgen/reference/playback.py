@@ -13,8 +13,14 @@ Splines", ch. IV):
 On segment k with s = (t − t_k)/h_k the pose is
     y = (2s³ − 3s² + 1)·y_k + (s³ − 2s² + s)·h_k·m_k + (−2s³ + 3s²)·y_{k+1} + (s³ − s²)·h_k·m_{k+1},
 the form TRJ_Playback evaluates with the slopes rendered into its table.
-The acceleration at the two ends is generally not zero (a clamped spline fixes
-only the slope): the planner checks it against the limits like any other.
+
+Rest at both ends: a clamped spline fixes only the slope, so its acceleration
+at the first and last knot is generally not zero (a step from rest). The table
+therefore gets one knot more inside the first and inside the last segment
+(their midpoints; thirds of a two-row table), whose values are chosen so that
+the acceleration is zero at both ends: s''(t_0) = (6(y_1 − y_0) − 2h·m_1)/h² is
+affine in the two inserted values, so three spline solves and a 2×2 system per
+coordinate give them. The spline still passes through every recorded row.
 
 CSV: a header row ``t,x,y,z,alpha,beta,gamma`` (s, mm, degrees), then one row
 per knot, times strictly increasing, at least two rows. Errors are
@@ -87,11 +93,37 @@ def read_playback_csv(path) -> PlaybackTable:
     return make_table(data[:, 0] - data[0, 0], data[:, 1:], name)
 
 
+#: Knots the table gets beyond the recorded rows (one in the first, one in the last segment).
+ADDED_KNOTS = 2
+
+
 def make_table(t, poses, source: str = "<table>") -> PlaybackTable:
-    """A :class:`PlaybackTable` of knots ``t[n]`` (increasing) and ``poses[n, 6]``, slopes of the clamped spline."""
+    """A :class:`PlaybackTable` through the rows ``t[n]`` (increasing), ``poses[n, 6]`` that starts and
+    ends at rest in velocity and acceleration (:data:`ADDED_KNOTS` knots inserted, see the module)."""
     t = np.asarray(t, dtype=float)
     poses = np.asarray(poses, dtype=float)
-    return PlaybackTable(t, poses, clamped_spline_slopes(t, poses), source)
+    if len(t) == 2:
+        first, last = t[0] + (t[1] - t[0]) / 3.0, t[0] + 2.0 * (t[1] - t[0]) / 3.0
+    else:
+        first, last = (t[0] + t[1]) / 2.0, (t[-2] + t[-1]) / 2.0
+    knots = np.concatenate(([t[0], first], t[1:-1], [last, t[-1]]))
+
+    def end_accelerations(inserted_first, inserted_last):
+        values = np.concatenate(([poses[0], inserted_first], poses[1:-1], [inserted_last, poses[-1]]))
+        slopes = clamped_spline_slopes(knots, values)
+        h0, h1 = knots[1] - knots[0], knots[-1] - knots[-2]
+        start = (6.0 * (values[1] - values[0]) - 2.0 * h0 * slopes[1]) / h0**2
+        end = (6.0 * (values[-2] - values[-1]) + 2.0 * h1 * slopes[-2]) / h1**2
+        return np.stack((start, end), axis=-1), values
+
+    zero, one = np.zeros(poses.shape[1]), np.ones(poses.shape[1])
+    base, _ = end_accelerations(zero, zero)
+    by_first = end_accelerations(one, zero)[0] - base
+    by_last = end_accelerations(zero, one)[0] - base
+    matrix = np.stack((by_first, by_last), axis=-1)               # [6, 2 conditions, 2 unknowns]
+    inserted = np.linalg.solve(matrix, -base[..., None])[..., 0]  # [6, 2]
+    _, values = end_accelerations(inserted[:, 0], inserted[:, 1])
+    return PlaybackTable(knots, values, clamped_spline_slopes(knots, values), source)
 
 
 def clamped_spline_slopes(t, y) -> np.ndarray:
