@@ -21,6 +21,7 @@ COMMANDS = {
     "demo": "generate, run the study's scenarios, write traces and figures",
     "test": "run the TEST blocks of ST test files (JUnit XML for CI)",
     "workspace": "map the reachable workspace: coordinate ranges and slices (NumPy, offline)",
+    "plan": "plan a path or a playback: duration and actuator extremes against the limits",
 }
 
 

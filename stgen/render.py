@@ -52,6 +52,7 @@ CONTROLLER_TEMPLATES = (
     "trajectory/TRJ_Cycloidal",
     "trajectory/TRJ_OceanWave",
     "trajectory/TRJ_Brake",
+    "trajectory/TRJ_Path",
     "controller/SP_ControllerConstants",
     "controller/SP_ControllerGlobals",
     "controller/SP_Axes",
@@ -62,6 +63,10 @@ CONTROLLER_TEMPLATES = (
 #: dependency order: a POU only calls POUs listed before it. The POU's name is
 #: the last path component.
 POU_TEMPLATES = KINEMATICS_TEMPLATES + CONTROLLER_TEMPLATES
+
+#: Rendered only with a playback table (``stgen generate --playback FILE.csv``).
+PLAYBACK_TEMPLATES = ("trajectory/TRJ_PlaybackTable", "trajectory/TRJ_Playback")
+
 
 #: The test benches (``stgen generate --tests``): their results, then one
 #: PROGRAM per bench; vectors from :mod:`stgen.benches`.
@@ -177,6 +182,8 @@ class RenderOptions:
 
     determinant: str = "table"
     tests: bool = False          # also render the test benches (TEST_BENCH_TEMPLATES)
+    #: A :class:`~stgen.reference.playback.PlaybackTable`: also render TRJ_PlaybackTable and TRJ_Playback.
+    playback: Any = field(default=None, compare=False)
 
     def __post_init__(self) -> None:
         if self.determinant not in DETERMINANT_METHODS:
@@ -311,6 +318,7 @@ def template_context(config: PlatformConfig, options: RenderOptions) -> dict[str
         "lreal_max": 1.7976931348623157e308,
         "pi": math.pi,
         **variant_context(config),
+        "playback": _playback_context(options.playback),
     }
 
 
@@ -381,6 +389,15 @@ def rotation_entries(order: str, suffix: str, derivative: int = 0) -> list[list[
     return [[text(product[r][c]) for c in range(3)] for r in range(3)]
 
 
+def _playback_context(table) -> dict[str, Any] | None:
+    """The playback table as plain lists for TRJ_PlaybackTable (file name only, comment-safe)."""
+    if table is None:
+        return None
+    name = str(table.source).replace("\\", "/").rsplit("/", 1)[-1].replace("(*", "( *").replace("*)", "* )")
+    return {"knots": len(table.t), "t": [float(v) for v in table.t], "file": name,
+            "poses": [float(v) for v in table.poses.ravel()], "slopes": [float(v) for v in table.slopes.ravel()]}
+
+
 def render_pou(env: jinja2.Environment, template: str, context: dict[str, Any]) -> Pou:
     """Render ``st_templates/<template>.st.j2``; the POU is named after the template's file name."""
     name = pou_name(template)
@@ -410,6 +427,8 @@ def render_program(config: PlatformConfig | None = None, options: RenderOptions 
     templates = program_templates(config)
     env = make_environment()
     context = template_context(config, options)
+    if options.playback is not None:
+        templates += PLAYBACK_TEMPLATES
     if options.tests:
         from stgen.benches import bench_vectors
 

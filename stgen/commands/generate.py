@@ -25,6 +25,7 @@ from stgen.commands.config_option import add_config_argument, config_from_args
 from stgen.config import PlatformConfig
 from stgen.exports import iec, plcopen_xml, sysmac, sysmac_xml
 from stgen.exports.folder import FolderError, FolderUpdate
+from stgen.reference.playback import PlaybackError
 from stgen.render import DETERMINANT_METHODS, RenderedProgram, RenderError, RenderOptions, render_program
 
 #: Target name -> writer(program, out_dir) -> FolderUpdate.
@@ -83,6 +84,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="also the test benches: one PROGRAM per bench (TB_...) with vectors from the "
                              "NumPy reference and results in TB_Globals; with --target iec also "
                              "test_benches.st for stgen test")
+    parser.add_argument("--playback", metavar="FILE.csv",
+                        help="also render TRJ_Playback with this recorded motion (t,x,y,z,alpha,beta,gamma) as its table")
+
+
+def _playback_table(path: str | None):
+    """The checked table of ``--playback`` (None without it); PlaybackError names file, line and column."""
+    if path is None:
+        return None
+    from stgen.playback_memory import check_table_fits
+    from stgen.reference.playback import read_playback_csv
+
+    table = read_playback_csv(path)
+    check_table_fits(table)
+    return table
 
 
 def run(args: argparse.Namespace) -> int:
@@ -97,9 +112,10 @@ def run(args: argparse.Namespace) -> int:
               file=sys.stderr)
         return 2
     try:
-        update = generate(args.out, args.target, config, RenderOptions(determinant=args.determinant,
-                                                                          tests=args.tests))
-    except (RenderError, FolderError) as error:
+        update = generate(args.out, args.target, config,
+                          RenderOptions(determinant=args.determinant, tests=args.tests,
+                                        playback=_playback_table(args.playback)))
+    except (RenderError, FolderError, PlaybackError) as error:
         print(f"stgen generate: error: {error}", file=sys.stderr)
         return 1
     except OSError as error:
