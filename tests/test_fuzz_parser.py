@@ -31,10 +31,10 @@ RETURN NOT AND OR XOR MOD TRUE FALSE CONFIGURATION RESOURCE ON TASK WITH
 END_RESOURCE END_CONFIGURATION""".split()
 PUNCTUATION = [";", ":", ":=", "=>", ",", ".", "..", "(", ")", "[", "]", "**", "*", "/",
                "+", "-", "<=", ">=", "<>", "<", ">", "=", "&", "#", "(*", "*)", "/*", "*/",
-               "//", "'", '"', "$", "\n"]
+               "//", "'", '"', "$", "\n", "{", "}"]
 ATOMS = ["x", "Speed", "INT", "LREAL", "TON", "0", "1", "16#FF", "2#102", "1.5E-3",
          "T#1s", "T#5x", "INT#-5", "Color#Red", "'it$'s'", "'$Q'", "D#2024-02-30",
-         "TOD#25:00:00", "\"w\""]
+         "TOD#25:00:00", "\"w\"", "{attribute 'hide'}"]
 
 SETTINGS = settings(max_examples=int(os.environ.get("ST_FUZZ_EXAMPLES", "200")), deadline=None,
                     suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
