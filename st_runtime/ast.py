@@ -352,6 +352,7 @@ class VarDecl(Node):
     name: str
     type: TypeRef
     init: Initializer | None = None
+    edge: str | None = None     # "R_EDGE" | "F_EDGE" on an FB's BOOL input
 
 
 VAR_KINDS = (

@@ -128,8 +128,11 @@ class AstBuilder(Transformer):
         return token.type
 
     def var_decl(self, *args):
-        type_ref, init = args[-2], args[-1]
-        return [ast.VarDecl(str(tok), type_ref, init, pos=self._pos(tok)) for tok in args[:-2]]
+        type_ref, edge, init = args[-3:]
+        return [ast.VarDecl(str(tok), type_ref, init, edge, pos=self._pos(tok)) for tok in args[:-3]]
+
+    def edge(self, token):
+        return str(token).upper()
 
     def bare_array_init(self, *items):
         items = tuple(i if type(i) is ast.ArrayInitItem else ast.ArrayInitItem(i, pos=i.pos)

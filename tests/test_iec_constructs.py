@@ -30,3 +30,24 @@ def test_pragmas_change_nothing():
     assert main["Total"] == 6 and main["C.Count"] == 6
     assert main["Text"] == "{not a pragma}"   # braces inside a string are text
     assert plc.faults == []
+
+
+def test_edge_inputs_count_edges_and_bool_digits():
+    # Signal over scans 1..6 = 0 1 1 0 1 0 (then repeats).  Rising edges on
+    # scans 2 and 5; falling edges on scans 4 and 6 (scan 1 is FALSE after
+    # FALSE: the memory starts FALSE, so no edge).  After 6 scans: 2 and 2;
+    # after 8 (scans 7, 8 = 0, 1): one more rise.
+    plc, main = run("edge_inputs_and_bool_digits.st", 6)
+    assert (main["Rises"], main["Falls"]) == (2, 2)
+    assert main["Counter.SawUp"] is True
+    assert main["Counter.Up"] is False            # the caller sees the raw input
+    plc.run(2)
+    assert (main["Rises"], main["Falls"]) == (3, 2)
+    assert main["Pattern"] == [False, True, True, False, True, False]
+    assert plc.faults == []
+
+
+def test_edge_input_on_the_first_call_is_a_rising_edge():
+    # R_TRIG's memory starts FALSE: TRUE at the first call is an edge.
+    plc, main = run("edge_inputs_and_bool_digits.st", 1, sets={"Pattern[0]": True})
+    assert main["Rises"] == 1 and main["Falls"] == 0

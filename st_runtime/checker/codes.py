@@ -74,4 +74,6 @@ CHECKER_CODES = register({
     "W-NJ-003": "identifier contains two consecutive underscores: rejected by an OMRON NJ",
     "W-NJ-004": "identifier equals an NJ instruction name: rejected by an OMRON NJ",
     "W-NJ-005": "identifier starts with 'P_': rejected by an OMRON NJ",
+    # the rest of IEC 61131-3 (issue 13)
+    "E-DECL-013": "R_EDGE / F_EDGE on something other than a BOOL input of a function block or program",
 })

@@ -272,6 +272,12 @@ class Declarations:
             self.ctx.error("E-DECL-009", f"FUNCTION {pou.name} declares '{decl.name}' of function "
                            f"block type {fb_type_of(t).name}: functions keep no state; use a "
                            f"FUNCTION_BLOCK", decl.pos)
+        if decl.edge and (kind != "VAR_INPUT" or pou is None or pou.kind == "FUNCTION"
+                          or (t is not ts.ERROR and not ts.is_bool(t))):
+            self.ctx.error("E-DECL-013", f"'{decl.name}' is declared {decl.edge}: expected a BOOL "
+                           f"VAR_INPUT of a FUNCTION_BLOCK or PROGRAM, found a {t} {kind}"
+                           + (f" of FUNCTION {pou.name}" if pou is not None and pou.kind == "FUNCTION" else ""),
+                           decl.pos)
         constant = block.constant
         if kind == "VAR_EXTERNAL":
             glob = self.program.globals.get(k)

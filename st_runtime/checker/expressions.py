@@ -179,6 +179,10 @@ class ExprChecker:
         Returns None when it cannot be folded (e.g. `1.5 MOD 2`): the caller
         then types it operator by operator and reports what is wrong.
         """
+        if ts.is_bool(expected) and isinstance(e, ast.IntLiteral) and e.value in (0, 1):
+            # IEC 61131-3 6.3.2: a BOOL literal is 0, 1, TRUE or FALSE (Annex F
+            # writes `BOOL := 0`); only the bare digit, not `1 - 0`.
+            return self.record(e, T.BOOL, bool(e.value))
         values: dict[int, object] = {}
         try:
             value = self._fold_exact(e, values)

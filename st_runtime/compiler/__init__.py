@@ -45,6 +45,7 @@ from . import support
 from .calls import Calls
 from .initial import CompileError, Initial, InitialValues
 from .pysrc import Emitter, pyliteral, safe_name, pyident
+from .scope import edge_inputs, edge_slot
 from .statements import BodyCompiler
 
 __all__ = ["compile_program", "CompiledProgram", "CompileError"]
@@ -199,7 +200,7 @@ def _make_classes(unit: CompileUnit) -> None:
             unit.classes[key] = native
             continue
         variables = _instance_variables(pou)
-        slots = tuple(pyident(s.name) for s in variables)
+        slots = tuple(pyident(s.name) for s in variables) + tuple(edge_slot(s) for s in edge_inputs(pou))
         layout = {s.name.upper(): (s.name, s.type) for s in variables}
         unit.classes[key] = _new_class(pou.name, slots, layout, pou.kind)
         unit.classes[key]._st_kinds = {s.name.upper(): s.kind for s in variables}
@@ -237,6 +238,7 @@ def _make_initializers(unit: CompileUnit) -> None:
             continue
         members = [(pyident(s.name), _unconnected(s) if s.kind == "VAR_IN_OUT" else initial.of_symbol(s))
                    for s in _instance_variables(pou)]
+        members += [(edge_slot(s), Initial(const=False)) for s in edge_inputs(pou)]
         _install_init(unit, key, members)
     members = [(pyident(s.name), initial.of_symbol(s)) for s in program.globals.values()]
     _install_init(unit, "<GLOBALS>", members)

@@ -125,6 +125,31 @@ class Usage:
                         self.referenced.add(name)
 
 
+def edge_inputs(pou) -> list:
+    """The FB's BOOL inputs declared R_EDGE / F_EDGE (IEC 61131-3 6.5.1.2)."""
+    return [s for s in pou.variables.values()
+            if s.kind == "VAR_INPUT" and s.decl is not None and s.decl.edge]
+
+
+def edge_slot(symbol) -> str:
+    """The hidden slot holding an edge input's value at the previous call."""
+    return "_edge" + pyident(symbol.name)
+
+
+def edge_input_lines(symbol, name: str) -> list[str]:
+    """Inside the body an edge input reads TRUE only on its edge.
+
+    As an R_TRIG / F_TRIG whose memory starts FALSE (the standard's F_TRIG
+    keeps M := NOT CLK with M initially 1: the same thing).  The instance
+    keeps the raw input (what a caller reads as `fb.CLK`) and, in a hidden
+    slot, the raw value of the previous call.
+    """
+    memory = edge_slot(symbol)
+    edge = f"self.{name} and not self.{memory}" if symbol.decl.edge == "R_EDGE" \
+        else f"self.{memory} and not self.{name}"
+    return [f"{name} = {edge}", f"self.{memory} = self.{name}"]
+
+
 class Scope:
     def __init__(self, program, pou, method: bool, usage: Usage, globals_name: str = "_G"):
         self.program = program
@@ -158,6 +183,10 @@ class Scope:
                     self.params.append(name)
                 continue
             referenced = key in u.referenced
+            if self.method and symbol.decl is not None and symbol.decl.edge:
+                self.places[key] = VarPlace(symbol, "local", name)
+                self.prologue.extend(edge_input_lines(symbol, name))
+                continue
             if self.method and kind != "VAR_TEMP":
                 if aggregate:
                     self.places[key] = VarPlace(symbol, "alias", name)
