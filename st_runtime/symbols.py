@@ -87,6 +87,8 @@ class CheckedProgram:
     sources: dict[str, str] = field(default_factory=dict)          # path -> text
     # Added by the checker: id(For) -> the Symbol of its control variable.
     for_vars: dict[int, Symbol] = field(default_factory=dict)
+    # id(Call) -> the operator expression a call such as ADD(a, b) stands for.
+    lowered: dict[int, ast.Expr] = field(default_factory=dict)
 
     def type_of(self, expr: ast.Node) -> Type:
         return self.expr_types[id(expr)]

@@ -51,3 +51,25 @@ def test_edge_input_on_the_first_call_is_a_rising_edge():
     # R_TRIG's memory starts FALSE: TRUE at the first call is an edge.
     plc, main = run("edge_inputs_and_bool_digits.st", 1, sets={"Pattern[0]": True})
     assert main["Rises"] == 1 and main["Falls"] == 0
+
+
+def test_operators_in_call_form_and_bcd():
+    plc, main = run("operators_in_call_form.st", 1)
+    # A = 7, B = 3: by hand.
+    assert [main[n] for n in ("Sum", "Diff", "Prod", "Quot", "Rest", "Total")] == [10, 4, 21, 2, 1, 21]
+    # GT(10, 7, 3) is 10 > 7 AND 7 > 3; AND(3 <= 7, 7 < 8).
+    assert [main[n] for n in ("Bigger", "Chain", "Same", "Differ", "Fits")] == [True] * 5
+    assert (main["Both"], main["Either"]) == (0x00F0, 0x0FF0)
+    assert [main[n] for n in ("Longer", "Shorter", "Tripled", "Halved")] == \
+        ["T#1s500ms", "T#750ms", "T#3s", "T#500ms"]
+    assert main["Later"] == "TOD#11:30:00"
+    assert main["Gap"] == "T#2d"                 # 2024 is a leap year: Feb 28 -> Mar 1
+    assert (main["Decoded"], main["Encoded"]) == (1234, 0x1235)
+    assert (main["Decoded3"], main["Encoded3"]) == (99, 0x42)
+    assert plc.faults == []
+
+
+def test_bcd_with_a_nibble_above_nine_is_a_convert_fault():
+    plc, main = run("operators_in_call_form.st", 1, sets={"Bcd": 0x12A4})
+    assert [f.code for f in plc.faults] == ["F-CONVERT"]
+    assert main["Decoded"] == 0                  # the faulting statement is abandoned

@@ -11,6 +11,7 @@ from .. import types as T
 from ..ast import key
 from ..symbols import CallTarget, PouInfo
 from . import builtins as B
+from .operator_calls import OPERATOR_FUNCTIONS, lower, ordered_inputs
 from . import typesys as ts
 from .expressions import start_pos
 from .stores import check_store, in_out_problem, is_variable_path, root_name
@@ -40,6 +41,8 @@ class CallChecker:
                     msg = f"'{callee.name}' is a PROGRAM: programs are run by tasks, not called"
                 self.ctx.error("E-CALL-001", msg, callee.pos)
                 return self._give_up(call)
+            if k in OPERATOR_FUNCTIONS:
+                return self._operator_call(call, k, OPERATOR_FUNCTIONS[k], expected)
             if k in B.STANDARD_FUNCTIONS:
                 return self._standard(call, B.STANDARD_FUNCTIONS[k], expected)
             conv = B.conversion(k)
@@ -199,6 +202,26 @@ class CallChecker:
         if arg.value is not None:
             self.ex.infer(arg.value)
 
+    # ------------------------------------- operators in call form (ADD, GT)
+    def _operator_call(self, call, name: str, fn, expected):
+        values, problem = ordered_inputs(name, fn, call.args)
+        if problem:
+            self.ctx.error(problem[0], problem[1], call.pos)
+            return self._give_up(call)
+        for i, (value, want) in enumerate(zip(values, fn.operands), start=1):
+            wanted = T.ELEMENTARY.get(want)
+            t = self.ex.infer(value, wanted)
+            if t is ts.ERROR:
+                return self._give_up(call)
+            if not (ts.is_num(t) if want == "ANY_NUM" else t is wanted):
+                self.ctx.error("E-TYPE-004", f"{name}: argument IN{i}: expected "
+                               f"{B.describe(want) if want == 'ANY_NUM' else want}, found {t}",
+                               start_pos(value))
+                return self._give_up(call)
+        lowered = lower(fn, values, call.pos)
+        self.program.lowered[id(call)] = lowered
+        return self.ex.record(call, self.ex.infer(lowered, expected), self.ex.constant(lowered))
+
     # ------------------------------------------------- standard functions
     def _standard(self, call, fn: B.Builtin, expected):
         bound: list[tuple[B.Param, ast.Arg]] = []
@@ -324,7 +347,7 @@ class CallChecker:
             return True
         category = param.category
         hint = {"BOOL": T.BOOL, "ANY_INT": T.DINT, "STRING": T.StringType(),
-                "ANY_NUM": None}.get(category)
+                "ANY_NUM": None}.get(category, T.ELEMENTARY.get(category))
         t = self.ex.infer(arg.value, hint, strict=category == "BOOL")
         if t is ts.ERROR:
             return False
@@ -343,7 +366,7 @@ class CallChecker:
             return T.StringType()
         if fn.result == "ANY_INT":
             return expected if ts.is_int(expected) else T.DINT
-        return ts.ERROR
+        return T.ELEMENTARY.get(fn.result, ts.ERROR)
 
     # --------------------------------------------------------- conversions
     def _conversion(self, call, name, src, dst):

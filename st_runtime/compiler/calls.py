@@ -104,6 +104,8 @@ class Calls:
 
     def call_statement(self, ec, call) -> list[str]:
         """Python statements for a call used as a statement."""
+        if id(call) in ec.program.lowered:
+            return [self.call_expr(ec, call)]
         target = self.target(ec, call)
         if target.kind == "fb":
             return self.fb_call(ec, call, target)
@@ -148,6 +150,9 @@ class Calls:
     # ------------------------------------------------------- expressions
 
     def call_expr(self, ec, call) -> str:
+        lowered = ec.program.lowered.get(id(call))
+        if lowered is not None:      # ADD(a, b) and the like: the operator's expression
+            return ec.expr(lowered)
         target = self.target(ec, call)
         if target.kind == "conversion":
             return self.conversion(ec, call, target)
