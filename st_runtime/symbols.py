@@ -89,6 +89,8 @@ class CheckedProgram:
     for_vars: dict[int, Symbol] = field(default_factory=dict)
     # id(Call) -> the operator expression a call such as ADD(a, b) stands for.
     lowered: dict[int, ast.Expr] = field(default_factory=dict)
+    # id(Call) -> (EN expression or None, ENO Arg or None, the call without them).
+    enables: dict[int, tuple] = field(default_factory=dict)
 
     def type_of(self, expr: ast.Node) -> Type:
         return self.expr_types[id(expr)]

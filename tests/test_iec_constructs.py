@@ -73,3 +73,17 @@ def test_bcd_with_a_nibble_above_nine_is_a_convert_fault():
     plc, main = run("operators_in_call_form.st", 1, sets={"Bcd": 0x12A4})
     assert [f.code for f in plc.faults] == ["F-CONVERT"]
     assert main["Decoded"] == 0                  # the faulting statement is abandoned
+
+
+def test_en_false_skips_the_callee_and_clears_eno():
+    # Scan 1: Enable FALSE -> nothing runs, results are INT's initial 0,
+    # the ENOs FALSE; INT_TO_REAL without EN runs (ENO TRUE).
+    plc, main = run("en_eno_calls.st", 1)
+    assert (main["Doubled"], main["Biggest"], main["Counter.Count"]) == (0, 0, 0)
+    assert (main["DoubledOk"], main["MaxOk"], main["TallyOk"]) == (False, False, False)
+    assert main["Converted"] is True and main["Real1"] == 1.0
+    # Scans 2 and 4 enabled: Tally adds 10 twice; at scan 4 Twice(4) = 8, MAX(4, 3) = 4.
+    plc.run(3)
+    assert (main["Doubled"], main["Biggest"], main["Counter.Count"]) == (8, 4, 20)
+    assert (main["DoubledOk"], main["MaxOk"], main["TallyOk"]) == (True, True, True)
+    assert plc.faults == []

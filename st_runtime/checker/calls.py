@@ -27,6 +27,45 @@ class CallChecker:
 
     # ------------------------------------------------------------ dispatch
     def check_call(self, call: ast.Call, expected=None, statement: bool = False):
+        enable = self._enable_args(call)
+        if enable is None:
+            return self._dispatch(call, expected, statement)
+        en, eno, inner = enable
+        if en is not None and en.value is not None:
+            self.ex.check_value(en.value, T.BOOL, "EN")
+        if eno is not None and eno.value is not None:
+            t = check_store(self.ex, eno.value, "ENO")
+            if t is not ts.ERROR:
+                self.ex.require_assignable(T.BOOL, t, eno.value.pos, "ENO")
+        t = self._dispatch(inner, expected, statement)
+        self.program.enables[id(call)] = (en.value if en is not None else None, eno, inner)
+        return self.ex.record(call, t) if id(inner) in self.program.expr_types else t
+
+    def _enable_args(self, call: ast.Call):
+        """(EN arg, ENO arg, the call without them) when the call gives EN or ENO.
+
+        IEC 61131-3 6.6.1.2: every function and FB has the BOOL input EN and
+        output ENO; with EN FALSE the body is not executed and ENO is FALSE.
+        A callee that declares its own EN / ENO keeps them as ordinary pins.
+        """
+        en = next((a for a in call.args if a.name and key(a.name) == "EN" and a.direction == "in"), None)
+        eno = next((a for a in call.args if a.name and key(a.name) == "ENO" and a.direction == "out"), None)
+        if en is None and eno is None:
+            return None
+        callee = call.callee
+        pou = None
+        if isinstance(callee, ast.Name) and self._not_a_variable(callee):
+            pou = self.program.pous.get(key(callee.name))
+        else:
+            t = self.ex.infer(callee)
+            if isinstance(t, T.FBType):
+                pou = self.program.pous.get(key(t.name))
+        if pou is not None and ("EN" in pou.variables or "ENO" in pou.variables):
+            return None
+        rest = tuple(a for a in call.args if a is not en and a is not eno)
+        return en, eno, ast.Call(callee, rest, pos=call.pos)
+
+    def _dispatch(self, call: ast.Call, expected=None, statement: bool = False):
         callee = call.callee
         if isinstance(callee, ast.Name) and self._not_a_variable(callee):
             k = key(callee.name)

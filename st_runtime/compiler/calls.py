@@ -17,7 +17,7 @@ Conventions of the generated code:
 from __future__ import annotations
 
 from ..objects import is_aggregate
-from ..types import ArrayType, ElementaryType, FBType, StructType, resolve_alias
+from ..types import BOOL, ArrayType, ElementaryType, FBType, StructType, resolve_alias
 from .exprs import elementary, is_real
 from .initial import CompileError
 from .pysrc import pyliteral, safe_name, pyident
@@ -104,6 +104,15 @@ class Calls:
 
     def call_statement(self, ec, call) -> list[str]:
         """Python statements for a call used as a statement."""
+        enable = ec.program.enables.get(id(call))
+        if enable is not None:
+            en, eno, inner = enable
+            flag = ec.temp()
+            lines = [f"{flag} = {ec.expr(en) if en is not None else 'True'}", f"if {flag}:"]
+            lines += ["    " + line for line in self.call_statement(ec, inner)]
+            if eno is not None:
+                lines.append(self._store_eno(ec, eno, flag, statement=True))
+            return lines
         if id(call) in ec.program.lowered:
             return [self.call_expr(ec, call)]
         target = self.target(ec, call)
@@ -149,7 +158,31 @@ class Calls:
 
     # ------------------------------------------------------- expressions
 
+    def _store_eno(self, ec, eno, flag: str, statement: bool) -> str:
+        place = ec.lvalue(eno.value)
+        value = ec.convert(f"(not {flag})" if eno.negated else flag, BOOL, place.type)
+        return place.store(value) if statement else place.store_expr(value)
+
+    def enabled_call_expr(self, ec, call, enable) -> str:
+        """`F(EN := c, ..., ENO => ok)`: with c FALSE, F is not called, its value
+        is its type's initial value and ok is FALSE (IEC 61131-3 6.6.1.2)."""
+        en, eno, inner = enable
+        if en is None:
+            code = self.call_expr(ec, inner)
+            return code if eno is None else f"({code}, {self._store_eno(ec, eno, 'True', False)})[0]"
+        initial = self.unit.initial.of(ec.ty(inner), None, inner.pos)
+        default = ec.literal(initial.const, ec.ty(inner)) if initial.is_const \
+            else self.unit.register_maker(initial.maker) + "()"
+        flag, result = ec.temp(), ec.temp()
+        chosen = f"({self.call_expr(ec, inner)} if ({flag} := {ec.expr(en)}) else {default})"
+        if eno is None:
+            return chosen
+        return f"({result} := {chosen}, {self._store_eno(ec, eno, flag, False)}, {result})[-1]"
+
     def call_expr(self, ec, call) -> str:
+        enable = ec.program.enables.get(id(call))
+        if enable is not None:
+            return self.enabled_call_expr(ec, call, enable)
         lowered = ec.program.lowered.get(id(call))
         if lowered is not None:      # ADD(a, b) and the like: the operator's expression
             return ec.expr(lowered)
