@@ -66,6 +66,14 @@ class Subrange(Node):
 
 
 @dataclass(frozen=True, slots=True)
+class SubrangeType(Node):
+    """`INT (0..100)`: an integer type limited to a range."""
+
+    base: str
+    range: Subrange
+
+
+@dataclass(frozen=True, slots=True)
 class ArrayType(Node):
     """`ARRAY[lo..hi, ...] OF element` (up to three dimensions)."""
 
@@ -93,8 +101,8 @@ class EnumType(Node):
     values: tuple[EnumValue, ...]
 
 
-TypeRef = Union[NamedType, StringType, ArrayType]
-TypeSpec = Union[NamedType, StringType, ArrayType, StructType, EnumType]
+TypeRef = Union[NamedType, StringType, ArrayType, SubrangeType]
+TypeSpec = Union[NamedType, StringType, ArrayType, SubrangeType, StructType, EnumType]
 
 
 # --------------------------------------------------------------- expressions

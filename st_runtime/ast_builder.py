@@ -320,6 +320,9 @@ class AstBuilder(Transformer):
     def call(self, callee, args):
         return ast.Call(callee, args or (), pos=callee.pos)
 
+    def subrange_type(self, base, subrange):
+        return ast.SubrangeType(str(base), subrange, pos=self._pos(base))
+
     def keyword_callee(self, token):
         return ast.Name(str(token), pos=self._pos(token))
 

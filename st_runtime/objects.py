@@ -22,6 +22,7 @@ from typing import Callable
 from .faults import STFault
 from .native import mangle
 from .types import (
+    SubrangeType,
     ArrayType,
     ElementaryType,
     EnumType,
@@ -142,6 +143,9 @@ def st_vars_of(obj) -> dict:
 def default_value(t: Type, classes: dict[str, type]) -> Maker:
     """A maker of the default initial value of type `t` (no initializer)."""
     t = resolve_alias(t)
+    if isinstance(t, SubrangeType):
+        low = t.lo
+        return lambda: low
     if isinstance(t, ElementaryType):
         value = _ELEMENTARY_DEFAULTS[t.kind]
         return lambda: value

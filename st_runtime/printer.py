@@ -244,6 +244,8 @@ def format_type(type_ref) -> str:
     if kind is ast.ArrayType:
         ranges = ", ".join(f"{format_expr(r.lo)}..{format_expr(r.hi)}" for r in type_ref.ranges)
         return f"ARRAY[{ranges}] OF {format_type(type_ref.element)}"
+    if kind is ast.SubrangeType:
+        return f"{type_ref.base} ({format_expr(type_ref.range.lo)}..{format_expr(type_ref.range.hi)})"
     raise TypeError(f"not a type reference: {kind.__name__}")
 
 

@@ -53,6 +53,35 @@ class ElementaryType:
         return (1 << (self.bits - 1)) - 1 if self.signed else (1 << self.bits) - 1
 
 
+@dataclass(frozen=True, slots=True)
+class SubrangeType(ElementaryType):
+    """`INT (0..100)` (IEC 61131-3 6.4.4.4): the integer type with a narrower range.
+
+    It is its base type everywhere (same name, kind, width) except for the
+    range: `min`/`max` are the limits, every store outside them is an
+    F-SUBRANGE fault, a constant outside them is refused, and the default
+    initial value is the lower limit (6.4.2).
+    """
+
+    lo: int = 0
+    hi: int = 0
+
+    def __str__(self) -> str:
+        return f"{self.name} ({self.lo}..{self.hi})"
+
+    @property
+    def min(self) -> int:
+        return self.lo
+
+    @property
+    def max(self) -> int:
+        return self.hi
+
+
+def subrange_of(base: ElementaryType, lo: int, hi: int) -> SubrangeType:
+    return SubrangeType(base.name, base.kind, base.bits, base.signed, lo, hi)
+
+
 def _elementary() -> dict[str, ElementaryType]:
     table = [
         ElementaryType("BOOL", "bool", 1),

@@ -87,3 +87,24 @@ def test_en_false_skips_the_callee_and_clears_eno():
     assert (main["Doubled"], main["Biggest"], main["Counter.Count"]) == (8, 4, 20)
     assert (main["DoubledOk"], main["MaxOk"], main["TallyOk"]) == (True, True, True)
     assert plc.faults == []
+
+
+def test_subrange_stores_are_checked_and_start_at_the_lower_limit():
+    plc, main = run("subrange_types.st", 4)
+    # Level: 0 (lower limit) + 30 per scan -> 30, 60, 90; 120 faults, stays 90.
+    # Setting: starts at its lower limit 10 -> 14.  Lift: TYPE init 0 -> -1, -2,
+    # then -3 faults twice.
+    assert (main["Level"], main["Setting"], main["Lift"]) == (90, 14, -2)
+    faults = [(f.code, f.line) for f in plc.faults]
+    assert faults == [("F-SUBRANGE", 20), ("F-SUBRANGE", 18), ("F-SUBRANGE", 20)]
+
+
+def test_subrange_refuses_an_outside_value_from_the_api():
+    import pytest
+
+    project = load([str(ACCEPT / "subrange_types.st")])
+    main = project.controller().add_program("Main")
+    with pytest.raises(ValueError, match="outside the range of INT \\(0..100\\)"):
+        main["Level"] = 150
+    main["Level"] = 100
+    assert main["Level"] == 100

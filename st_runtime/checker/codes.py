@@ -76,4 +76,5 @@ CHECKER_CODES = register({
     "W-NJ-005": "identifier starts with 'P_': rejected by an OMRON NJ",
     # the rest of IEC 61131-3 (issue 13)
     "E-DECL-013": "R_EDGE / F_EDGE on something other than a BOOL input of a function block or program",
+    "E-DECL-014": "a subrange type whose base is not an integer type or whose limits are not lower <= upper inside the base",
 })

@@ -212,6 +212,8 @@ class Declarations:
                 hint = f" (did you mean {close[0]}?)" if close else ""
                 self.ctx.error("E-DECL-004", f"unknown type '{ref.name}'{hint}", ref.pos)
             return ts.ERROR
+        if isinstance(ref, ast.SubrangeType):
+            return self._subrange(ref, ex)
         if isinstance(ref, ast.StringType):
             if ref.length is None:
                 return T.StringType(wide=ref.wide)
@@ -243,6 +245,23 @@ class Declarations:
                 return ts.ERROR
             return T.ArrayType(tuple(dims), element)
         return ts.ERROR
+
+    def _subrange(self, ref: ast.SubrangeType, ex: ExprChecker):
+        """`INT (0..100)`: an integer base, constant limits inside it, lo <= hi."""
+        base = T.ELEMENTARY.get(key(ref.base))
+        if base is None or base.kind != "int":
+            self.ctx.error("E-DECL-014", f"subrange of '{ref.base}': expected an integer type "
+                           f"(SINT ... ULINT) before the range", ref.pos)
+            return ts.ERROR
+        lo = self._const_int(ref.range.lo, ex, "subrange lower limit")
+        hi = self._const_int(ref.range.hi, ex, "subrange upper limit")
+        if lo is None or hi is None:
+            return ts.ERROR
+        if not (base.min <= lo <= hi <= base.max):
+            self.ctx.error("E-DECL-014", f"subrange {lo}..{hi} of {base}: expected "
+                           f"{base.min} <= lower <= upper <= {base.max}", ref.range.pos)
+            return ts.ERROR
+        return T.subrange_of(base, lo, hi)
 
     def _const_int(self, e, ex: ExprChecker, what: str):
         t = ex.infer(e, T.DINT)

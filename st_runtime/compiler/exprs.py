@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from .. import ast
 from ..objects import is_aggregate, store_value
 from ..types import (
+    SubrangeType,
     ArrayType,
     ElementaryType,
     FBType,
@@ -494,6 +495,8 @@ class ExprCompiler:
                     sb = int_bounds(src_r)
                     if sb is not None and bounds[0] <= sb[0] and sb[1] <= bounds[1]:
                         return value
+            if isinstance(e, SubrangeType):
+                return f"_subrange({value}, {e.lo}, {e.hi})"
             bits = 64 if e.kind in ("time", "date", "tod", "dt") else e.bits
             signed = e.signed or e.kind in ("time", "date", "tod", "dt")
             mask = (1 << bits) - 1

@@ -93,3 +93,10 @@ def for_range(start: int, end: int, step: int, where: tuple) -> range:
 
 def truncate_string(s: str, n: int) -> str:
     return s if len(s) <= n else s[:n]
+
+
+def subrange(value: int, lo: int, hi: int) -> int:
+    """A value stored in a subrange variable: F-SUBRANGE outside its limits."""
+    if lo <= value <= hi:
+        return value
+    raise STFault("F-SUBRANGE", f"{value} is outside the subrange {lo}..{hi}")
