@@ -361,6 +361,7 @@ class VarDecl(Node):
     type: TypeRef
     init: Initializer | None = None
     edge: str | None = None     # "R_EDGE" | "F_EDGE" on an FB's BOOL input
+    location: str | None = None  # "%IX0.0": a located variable (AT ...)
 
 
 VAR_KINDS = (

@@ -128,8 +128,10 @@ class AstBuilder(Transformer):
         return token.type
 
     def var_decl(self, *args):
-        type_ref, edge, init = args[-3:]
-        return [ast.VarDecl(str(tok), type_ref, init, edge, pos=self._pos(tok)) for tok in args[:-3]]
+        location, type_ref, edge, init = args[-4:]
+        location = None if location is None else str(location).upper()
+        return [ast.VarDecl(str(tok), type_ref, init, edge, location, pos=self._pos(tok))
+                for tok in args[:-4]]
 
     def edge(self, token):
         return str(token).upper()

@@ -269,7 +269,8 @@ def _format_init_item(item: ast.ArrayInitItem) -> str:
 def _decl_line(decl: ast.VarDecl, indent: str) -> str:
     init = "" if decl.init is None else f" := {format_initializer(decl.init)}"
     edge = "" if decl.edge is None else f" {decl.edge}"
-    return f"{indent}{decl.name} : {format_type(decl.type)}{edge}{init};"
+    at = "" if decl.location is None else f" AT {decl.location}"
+    return f"{indent}{decl.name}{at} : {format_type(decl.type)}{edge}{init};"
 
 
 def _var_block_lines(block: ast.VarBlock, indent: str) -> list[str]:

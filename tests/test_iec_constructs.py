@@ -108,3 +108,39 @@ def test_subrange_refuses_an_outside_value_from_the_api():
         main["Level"] = 150
     main["Level"] = 100
     assert main["Level"] == 100
+
+
+def test_located_variables_share_the_process_image():
+    project = load([str(ACCEPT / "located_variables.st")])
+    plc = project.controller(period="1ms")
+    main = plc.add_program("Main")
+    plc.image["%IX0.0"] = True
+    plc.image["%IW1"] = 300                      # bytes 2..3 of %I
+    plc.run(1)
+    assert main["Start"] is True and main["Level"] == 300
+    assert plc.image["%QX0.1"] is True           # Lamp := Start
+    assert plc.image["%QX1.7"] is True           # the global Alarm: 300 > 100
+    assert main["Speed"] == 150.0
+    # %QD1 holds REAL 150.0 as IEEE single: 16#43160000.
+    assert plc.image["%QD1"] == 0x43160000
+    # Word1 := 16#8001 at %MW1 = bytes 2 (16#01), 3 (16#80), little-endian.
+    assert (main["Low"], main["High"], main["Bit0"], main["Bit15"]) == (1, 0x80, True, True)
+    assert main["Count"] == 0x01 + 0x80
+    assert main["Double0"] == 0x80010000         # %MD0 = bytes 0..3
+    # A store through one name is seen through the others at once.
+    main["Low"] = 0xFE
+    assert main["Word1"] == 0x80FE and main["Bit0"] is False
+    assert plc.image["%MB2"] == 0xFE
+    assert main["Spare"] == 0                    # %M*: an ordinary variable
+
+
+def test_image_refuses_bad_addresses_and_values():
+    import pytest
+
+    plc = load([str(ACCEPT / "located_variables.st")]).controller()
+    with pytest.raises(KeyError, match="bit 0..7"):
+        plc.image["%IX0.8"] = True
+    with pytest.raises(ValueError, match="0..65535"):
+        plc.image["%IW0"] = 70000
+    with pytest.raises(ValueError, match="true or false"):
+        plc.image["%IX0.0"] = 1

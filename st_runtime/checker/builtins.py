@@ -160,7 +160,5 @@ def conversion(name: str):
 
 
 def is_standard_name(name: str) -> bool:
-    from .operator_calls import OPERATOR_FUNCTIONS
-
     upper = name.upper()
-    return upper in STANDARD_FUNCTIONS or upper in OPERATOR_FUNCTIONS or conversion(upper) is not None
+    return upper in STANDARD_FUNCTIONS or conversion(upper) is not None

@@ -77,4 +77,5 @@ CHECKER_CODES = register({
     # the rest of IEC 61131-3 (issue 13)
     "E-DECL-013": "R_EDGE / F_EDGE on something other than a BOOL input of a function block or program",
     "E-DECL-014": "a subrange type whose base is not an integer type or whose limits are not lower <= upper inside the base",
+    "E-DECL-015": "a located variable (AT %IX0.0) with an invalid address, in the wrong place, or of a type whose width differs from the address's size",
 })

@@ -12,6 +12,7 @@ import difflib
 
 from .. import ast
 from .. import native
+from ..process_image import parse_address, type_fits
 from .. import types as T
 from ..ast import key
 from ..symbols import PouInfo, Symbol
@@ -291,6 +292,8 @@ class Declarations:
             self.ctx.error("E-DECL-009", f"FUNCTION {pou.name} declares '{decl.name}' of function "
                            f"block type {fb_type_of(t).name}: functions keep no state; use a "
                            f"FUNCTION_BLOCK", decl.pos)
+        if decl.location is not None:
+            self._located(decl, kind, t, pou)
         if decl.edge and (kind != "VAR_INPUT" or pou is None or pou.kind == "FUNCTION"
                           or (t is not ts.ERROR and not ts.is_bool(t))):
             self.ctx.error("E-DECL-013", f"'{decl.name}' is declared {decl.edge}: expected a BOOL "
@@ -332,6 +335,26 @@ class Declarations:
                            f"found none", decl.pos)
         table[k] = sym
         return sym
+
+    def _located(self, decl: ast.VarDecl, kind: str, t, pou) -> None:
+        """`x AT %IW3 : INT` (IEC 61131-3 6.5.5): a valid address of the type's width,
+        in a PROGRAM, a configuration or the globals; an FB may only say `%I*`."""
+        address, problem = parse_address(decl.location)
+        where = f"'{decl.name}' AT {decl.location}"
+        if problem is not None:
+            self.ctx.error("E-DECL-015", f"{where}: {problem}", decl.pos)
+        elif kind not in ("VAR", "VAR_GLOBAL", "VAR_INPUT", "VAR_OUTPUT"):
+            self.ctx.error("E-DECL-015", f"{where}: a {kind} cannot be located (VAR, VAR_GLOBAL, "
+                           f"VAR_INPUT or VAR_OUTPUT can)", decl.pos)
+        elif pou is not None and pou.kind == "FUNCTION":
+            self.ctx.error("E-DECL-015", f"{where}: a FUNCTION keeps no variables between calls "
+                           f"and cannot have located ones", decl.pos)
+        elif address is not None and pou is not None and pou.kind == "FUNCTION_BLOCK":
+            self.ctx.error("E-DECL-015", f"{where}: in a FUNCTION_BLOCK only %I*, %Q* or %M* "
+                           f"(a place chosen by the configuration), found a full address", decl.pos)
+        elif address is not None and t is not ts.ERROR and not type_fits(address, t):
+            self.ctx.error("E-DECL-015", f"{where}: a {address.size} address holds "
+                           f"{address.bits} bit(s); expected a type of that width, found {t}", decl.pos)
 
     def _default_init(self, ref):
         if isinstance(ref, ast.NamedType):

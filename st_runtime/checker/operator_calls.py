@@ -8,8 +8,8 @@ DIV_TIME).  The checker lowers such a call to the operator's expression
 (`CheckedProgram.lowered`), types that, and the compiler compiles it: one
 meaning for both spellings.  ADD and MUL take any number of inputs (left to
 right); a comparison with more inputs is the chain `a > b AND b > c`.
-A user POU of the same name is refused earlier (E-DECL-003), so the
-spelling is never ambiguous.
+These names are not reserved: a user FUNCTION named DIV (common in code
+written before the 3rd edition) is called instead, as its declaration says.
 """
 
 from __future__ import annotations

@@ -41,6 +41,7 @@ from ..native import NATIVE_FBS
 from ..objects import AttrRef, ItemRef, NullRef, STObject, assign_list, native_initializers
 from ..types import StructType, resolve_alias
 from .. import values
+from ..process_image import ProcessImage, located_property, parse_address
 from . import support
 from .calls import Calls
 from .initial import CompileError, Initial, InitialValues
@@ -63,6 +64,7 @@ class CompiledProgram:
     globals: object = None
     python_sources: dict[str, str] = field(default_factory=dict)  # POU upper name -> source
     namespace: dict = field(default_factory=dict)
+    image: ProcessImage = field(default_factory=ProcessImage)    # %I, %Q, %M (located variables)
 
     def pou(self, name: str):
         return self.checked.pous[name.upper()]
@@ -95,6 +97,7 @@ class CompileUnit:
         self.calls = Calls(self)
         self.sources: dict[str, str] = {}
         self.constant_ranges: dict[int, tuple | None] = {}   # id(Symbol) -> element range
+        self.image = ProcessImage()
 
     def register_maker(self, maker) -> str:
         self.makers += 1
@@ -167,7 +170,8 @@ def compile_program(program, guard_statements: bool = True) -> CompiledProgram:
                             pou.node.pos)
             unit.classes[key].execute = unit.namespace[pyname]
     classes = {k: v for k, v in unit.classes.items() if k != "<GLOBALS>"}
-    return CompiledProgram(program, classes, functions, globals_obj, unit.sources, unit.namespace)
+    return CompiledProgram(program, classes, functions, globals_obj, unit.sources, unit.namespace,
+                           unit.image)
 
 
 # ------------------------------------------------------------------ classes
@@ -200,15 +204,35 @@ def _make_classes(unit: CompileUnit) -> None:
             unit.classes[key] = native
             continue
         variables = _instance_variables(pou)
-        slots = tuple(pyident(s.name) for s in variables) + tuple(edge_slot(s) for s in edge_inputs(pou))
+        slots = tuple(pyident(s.name) for s in variables if located_at(s) is None) + \
+            tuple(edge_slot(s) for s in edge_inputs(pou))
         layout = {s.name.upper(): (s.name, s.type) for s in variables}
         unit.classes[key] = _new_class(pou.name, slots, layout, pou.kind)
         unit.classes[key]._st_kinds = {s.name.upper(): s.kind for s in variables}
         unit.classes[key]._st_constants = frozenset(s.name.upper() for s in variables if s.constant)
+        _locate_variables(unit, unit.classes[key], variables)
     gl = [s for s in program.globals.values()]
     unit.classes["<GLOBALS>"] = _new_class(
-        "Globals", tuple(pyident(s.name) for s in gl), {s.name.upper(): (s.name, s.type) for s in gl})
+        "Globals", tuple(pyident(s.name) for s in gl if located_at(s) is None),
+        {s.name.upper(): (s.name, s.type) for s in gl})
+    _locate_variables(unit, unit.classes["<GLOBALS>"], gl)
     unit.classes["<GLOBALS>"]._st_constants = frozenset(s.name.upper() for s in gl if s.constant)
+
+
+def located_at(symbol):
+    """The process-image Address of a located variable, None otherwise (and for %I*)."""
+    if symbol.decl is None or symbol.decl.location is None:
+        return None
+    return parse_address(symbol.decl.location)[0]
+
+
+def _locate_variables(unit: CompileUnit, cls: type, variables) -> None:
+    """A located variable is a property that reads and writes the process image."""
+    for symbol in variables:
+        address = located_at(symbol)
+        if address is not None:
+            setattr(cls, pyident(symbol.name), located_property(unit.image, address,
+                                                               resolve_alias(symbol.type)))
 
 
 def _new_class(name: str, slots: tuple, layout: dict, kind: str = "STRUCT") -> type:

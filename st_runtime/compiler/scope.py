@@ -192,7 +192,9 @@ class Scope:
                     self.places[key] = VarPlace(symbol, "alias", name)
                     if key in u.used:
                         self.prologue.append(f"{name} = self.{name}")
-                elif referenced or u.count.get(key, 0) < CACHE_THRESHOLD:
+                elif referenced or u.count.get(key, 0) < CACHE_THRESHOLD or \
+                        (symbol.decl is not None and symbol.decl.location is not None):
+                    # (A located variable is never cached: others may share its bits.)
                     # Passed by reference, or used too rarely to repay a load and a store.
                     self.places[key] = VarPlace(symbol, "self", name)
                 else:

@@ -177,7 +177,8 @@ def run(args) -> int:
 
 
 def write_sets(items: list[str], program, plc) -> str | None:
-    """Store each `--set PATH=JSON` in the program instance, else in the globals;
+    """Store each `--set PATH=JSON` in the program instance, else in the globals
+    (a direct address such as %IX0.0 or %IW2 in the process image);
     the usage error of the first that cannot be stored."""
     from st_runtime.values import JsonValueError
 
@@ -188,6 +189,12 @@ def write_sets(items: list[str], program, plc) -> str | None:
     except ValueError as exc:
         return str(exc)
     for path, value in values.items():
+        if path.strip().startswith("%"):       # a direct address: the process image
+            try:
+                plc.image[path] = value
+            except (KeyError, ValueError) as exc:
+                return f"--set {exc.args[0] if exc.args else exc}"
+            continue
         root = re.split(r"[.\[]", path, maxsplit=1)[0].strip()
         try:
             program[root]
