@@ -8,8 +8,9 @@ with the dialect the manifest gives it.  A file counts as accepted when it
 loads alone, or when the origin's files loaded together (project context: a
 file may use another's types and POUs) report no error in it.  A crash is an
 internal error (a code ending in -099) or a Python exception.  Prints, per
-origin, files accepted and the refusal reasons (first error code and message,
-counted); exit 0.
+origin, files accepted, files that at least parse (some test suites hold
+syntax-only files with undeclared names), and the refusal reasons (first
+error code and message, counted); exit 0.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
 from benchmarks.corpus_export import MANIFEST, rows  # noqa: E402
 from st_runtime.loader import load_texts  # noqa: E402
+from st_runtime.parser import parse  # noqa: E402
 
 
 def _errors(texts: dict[str, str], dialect: str):
@@ -52,8 +54,9 @@ def measure(corpus: str, manifest: str = MANIFEST) -> dict[str, dict]:
                 with open(path, encoding="utf-8-sig", errors="replace") as handle:
                     texts[row["path"]] = handle.read()
         together, crash = _errors(texts, dialect)
-        accepted, crashes, reasons = 0, 0, collections.Counter()
+        accepted, crashes, parsed, reasons = 0, 0, 0, collections.Counter()
         for path, text in texts.items():
+            parsed += parse(text, path)[0] is not None
             alone, crash_alone = _errors({path: text}, dialect)
             crash_alone = crash_alone or next((d.message for d in alone or ()
                                                if d.code.endswith("-099")), None)
@@ -66,7 +69,8 @@ def measure(corpus: str, manifest: str = MANIFEST) -> dict[str, dict]:
             else:
                 reasons[_reason(alone[0])] += 1
         report[origin] = {"dialect": dialect, "files": len(files), "present": len(texts),
-                          "accepted": accepted, "crashes": crashes, "reasons": reasons}
+                          "accepted": accepted, "parsed": parsed, "crashes": crashes,
+                          "reasons": reasons}
     return report
 
 
@@ -81,7 +85,7 @@ def main(argv: list[str]) -> int:
     for origin, r in report.items():
         share = 100.0 * r["accepted"] / r["present"] if r["present"] else 0.0
         print(f"{origin} (--dialect {r['dialect']}): {r['accepted']}/{r['present']} accepted "
-              f"({share:.0f} %), {r['crashes']} crashes"
+              f"({share:.0f} %), {r['parsed']} parse, {r['crashes']} crashes"
               + (f", {r['files'] - r['present']} missing" if r["files"] != r["present"] else ""))
         for reason, count in r["reasons"].most_common(args.reasons):
             print(f"    {count:3d}  {reason}")

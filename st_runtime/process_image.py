@@ -9,7 +9,7 @@ own units):
 
     %IX<b>.<n>  bit n (0..7) of byte b        %IB<b>  byte b
     %IW<w>      bytes 2w, 2w+1                %ID<d>  bytes 4d .. 4d+3
-    %IL<l>      bytes 8l .. 8l+7
+    %IL<l>      bytes 8l .. 8l+7               %IX<n>  (one number) bit n mod 8 of byte n div 8
 
 so %MW1 shares its bits with %MB2, %MB3, %MX2.0 .. %MX3.7 and half of %MD0,
 and a store through one is seen at once through every other (a variable
@@ -59,6 +59,8 @@ def parse_address(text: str) -> tuple[Address | None, str | None]:
     if numbers == "*":
         return None, None
     parts = [int(p) for p in numbers.split(".")]
+    if size == "X" and len(parts) == 1:      # %IX9: bits numbered on from bit 0 of byte 0
+        parts = [parts[0] // 8, parts[0] % 8]
     if size == "X":
         if len(parts) != 2 or not 0 <= parts[1] <= 7:
             return None, f"'{text}': a bit address is <byte>.<bit> with bit 0..7"
