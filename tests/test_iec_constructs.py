@@ -144,3 +144,11 @@ def test_image_refuses_bad_addresses_and_values():
         plc.image["%IW0"] = 70000
     with pytest.raises(ValueError, match="true or false"):
         plc.image["%IX0.0"] = 1
+
+
+def test_in_out_read_from_outside_and_function_without_result():
+    # Sum grows by 7 per scan through the in-out; Seen reads it back; Split
+    # gives its tens and units: after 3 scans Sum = 21 -> 2 and 1.
+    plc, main = run("in_out_read_and_function_without_result.st", 3)
+    assert (main["Sum"], main["Seen"], main["T"], main["U"]) == (21, 21, 2, 1)
+    assert plc.faults == []

@@ -366,9 +366,11 @@ class ExprChecker:
                 self.ctx.error("E-TYPE-009", f"function block {base.name} has no variable "
                                f"'{e.name}'", e.pos)
                 return self.record(e, ts.ERROR)
-            if sym.kind not in ("VAR_INPUT", "VAR_OUTPUT"):
+            # IEC 61131-3 2nd ed. Table 2.5.2.1a / 3rd ed. 6.6.3.2: an in-out may
+            # be read outside the instance (`IF FB1.INOUT THEN`), not assigned.
+            if sym.kind not in ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT"):
                 self.ctx.error("E-TYPE-009", f"'{e.name}' is a {sym.kind} of {base.name}: only "
-                               f"inputs and outputs are visible outside the instance", e.pos)
+                               f"inputs, outputs and in-outs are visible outside the instance", e.pos)
                 return self.record(e, ts.ERROR)
             return self.record(e, sym.type)
         self.ctx.error("E-TYPE-009", f"'.{e.name}': expected a struct or function block "

@@ -331,6 +331,11 @@ class ExprCompiler:
             base_t = self.ty(e.base)
             base = self.aggregate(e.base)
             t = self.member_type(base_t, e.name, e)
+            fb = resolve_alias(base_t) if base_t is not None else None
+            if isinstance(fb, FBType) and not is_aggregate(t) and \
+                    getattr(fb.variables.get(e.name.upper()), "kind", None) == "VAR_IN_OUT":
+                # An elementary in-out read from outside: the Ref the last call connected.
+                return LValue("ref", t, name=f"{base}.{pyident(e.name)}")
             return LValue("attr", t, obj=base, key=pyident(e.name))
         if isinstance(e, ast.Index):
             return self.index_lvalue(e)
