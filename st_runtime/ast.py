@@ -388,12 +388,29 @@ class TypeDecl(Node):
 
 
 @dataclass(frozen=True, slots=True)
+class Method(Node):
+    """`METHOD PUBLIC Area : LREAL ... END_METHOD` (IEC 61131-3 3rd ed. 6.6.5)."""
+
+    name: str
+    var_blocks: tuple[VarBlock, ...]
+    body: tuple[Stmt, ...]
+    return_type: TypeRef | None = None
+    access: str | None = None             # PUBLIC | PRIVATE | PROTECTED | INTERNAL
+    modifiers: tuple[str, ...] = ()       # ABSTRACT, FINAL, OVERRIDE
+
+
+@dataclass(frozen=True, slots=True)
 class Pou(Node):
-    kind: str  # "PROGRAM" | "FUNCTION" | "FUNCTION_BLOCK"
+    kind: str  # "PROGRAM" | "FUNCTION" | "FUNCTION_BLOCK" | "INTERFACE"
     name: str
     var_blocks: tuple[VarBlock, ...]
     body: tuple[Stmt, ...]
     return_type: TypeRef | None = None  # FUNCTION only
+    # 3rd edition object orientation (FUNCTION_BLOCK; INTERFACE: extends, methods)
+    extends: tuple[str, ...] = ()
+    implements: tuple[str, ...] = ()
+    methods: tuple[Method, ...] = ()
+    modifiers: tuple[str, ...] = ()       # ABSTRACT, FINAL
 
 
 @dataclass(frozen=True, slots=True)

@@ -105,9 +105,38 @@ class AstBuilder(Transformer):
         return ast.Pou("FUNCTION", str(name), tuple(rest[:-1]), rest[-1],
                        return_type, pos=self._pos(kw))
 
-    def fb_decl(self, kw, name, *rest):
-        return ast.Pou("FUNCTION_BLOCK", str(name), tuple(rest[:-1]), rest[-1],
+    def fb_decl(self, kw, *items):
+        modifiers = tuple(i[1] for i in items if isinstance(i, tuple) and i and i[0] == "modifier")
+        rest = [i for i in items if not (isinstance(i, tuple) and i and i[0] == "modifier")]
+        name, extends, implements = rest[0], rest[1], rest[2]
+        blocks = tuple(i for i in rest[3:-1] if type(i) is ast.VarBlock)
+        methods = tuple(i for i in rest[3:-1] if type(i) is ast.Method)
+        return ast.Pou("FUNCTION_BLOCK", str(name), blocks, rest[-1], None,
+                       extends or (), implements or (), methods, modifiers, pos=self._pos(kw))
+
+    def interface_decl(self, kw, name, extends, *methods):
+        return ast.Pou("INTERFACE", str(name), (), (), None, extends or (), (), tuple(methods),
                        pos=self._pos(kw))
+
+    def extends_clause(self, *names):
+        return tuple(str(n) for n in names)
+
+    implements_clause = extends_clause
+
+    def pou_modifier(self, token):
+        return ("modifier", str(token).upper())
+
+    def method_modifier(self, token):
+        return ("modifier", str(token).upper())
+
+    def method_decl(self, kw, *items):
+        words = [i[1] for i in items if isinstance(i, tuple) and i and i[0] == "modifier"]
+        rest = [i for i in items if not (isinstance(i, tuple) and i and i[0] == "modifier")]
+        access = next((w for w in words if w in ("PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL")), None)
+        modifiers = tuple(w for w in words if w not in ("PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL"))
+        name, return_type = rest[0], rest[1]
+        return ast.Method(str(name), tuple(rest[2:-1]), rest[-1], return_type, access, modifiers,
+                          pos=self._pos(name))
 
     # ---------------------------------------------------------- declarations
 

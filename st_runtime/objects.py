@@ -23,6 +23,7 @@ from .faults import STFault
 from .native import mangle
 from .types import (
     SubrangeType,
+    InterfaceType,
     ArrayType,
     ElementaryType,
     EnumType,
@@ -163,6 +164,8 @@ def default_value(t: Type, classes: dict[str, type]) -> Maker:
         return proto.copy
     if isinstance(t, (StructType, FBType)):
         return classes[t.name.upper()]
+    if isinstance(t, InterfaceType):
+        return lambda: None          # refers to no instance (NULL)
     raise TypeError(f"no default value for {t}")
 
 

@@ -301,14 +301,33 @@ def _type_decl_lines(decl: ast.TypeDecl, indent: str) -> list[str]:
 
 
 def _pou_lines(pou: ast.Pou) -> list[str]:
-    header = f"{pou.kind} {pou.name}"
+    header = " ".join([pou.kind, *pou.modifiers, pou.name])
     if pou.return_type is not None:
         header += f" : {format_type(pou.return_type)}"
+    if pou.extends:
+        header += " EXTENDS " + ", ".join(pou.extends)
+    if pou.implements:
+        header += " IMPLEMENTS " + ", ".join(pou.implements)
     lines = [header]
     for block in pou.var_blocks:
         lines.extend(_var_block_lines(block, ""))
+    for method in pou.methods:
+        lines.extend(_method_lines(method, INDENT))
     lines.extend(_body(pou.body, INDENT))
     lines.append(f"END_{pou.kind}")
+    return lines
+
+
+def _method_lines(method: ast.Method, indent: str) -> list[str]:
+    words = ["METHOD", *([method.access] if method.access else []), *method.modifiers, method.name]
+    header = indent + " ".join(words)
+    if method.return_type is not None:
+        header += f" : {format_type(method.return_type)}"
+    lines = [header]
+    for block in method.var_blocks:
+        lines.extend(_var_block_lines(block, indent))
+    lines.extend(_body(method.body, indent + INDENT))
+    lines.append(f"{indent}END_METHOD")
     return lines
 
 

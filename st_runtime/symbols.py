@@ -37,6 +37,35 @@ class PouInfo:
     return_type: Type | None = None
     file: str = "<builtin>"
     native: object = None                       # Python class/function for native POUs
+    # 3rd edition object orientation.  A METHOD is a PouInfo of kind "METHOD"
+    # whose `owner` is its FUNCTION_BLOCK (or INTERFACE); `methods` holds an
+    # FB's methods by upper-case name, inherited ones included.
+    owner: "PouInfo | None" = None
+    parent: "PouInfo | None" = None             # the FB this one EXTENDS
+    methods: dict = field(default_factory=dict)
+    interfaces: tuple = ()                      # PouInfos of the INTERFACEs implemented
+    access: str | None = None                   # METHOD: PUBLIC | PRIVATE | PROTECTED | INTERNAL
+    modifiers: tuple = ()                       # ABSTRACT, FINAL, OVERRIDE
+
+    def descends_from(self, other: "PouInfo") -> bool:
+        """This FB is `other` or extends it (directly or not)."""
+        info = self
+        while info is not None:
+            if info is other:
+                return True
+            info = info.parent
+        return False
+
+    def implements(self, interface: "PouInfo") -> bool:
+        info = self
+        while info is not None:
+            if any(i is interface or i.extends_interface(interface) for i in info.interfaces):
+                return True
+            info = info.parent
+        return False
+
+    def extends_interface(self, interface: "PouInfo") -> bool:
+        return any(i is interface or i.extends_interface(interface) for i in self.interfaces)
 
     def of_kind(self, *kinds: str) -> list[Symbol]:
         return [s for s in self.variables.values() if s.kind in kinds]

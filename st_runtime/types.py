@@ -194,6 +194,19 @@ class FBType:
     # Upper-case variable name -> Symbol (see symbols.py), filled by the checker.
     variables: dict = field(default_factory=dict)
     native: object = None  # the Python class for native FBs
+    info: object = None    # its PouInfo (methods, base FB, interfaces)
+
+    def __str__(self) -> str:
+        return self.name
+
+
+@dataclass(eq=False, slots=True)
+class InterfaceType:
+    """An INTERFACE (3rd ed. 6.6.6): a variable of it refers to an FB instance
+    that implements it (or holds nothing: NULL); `info` is its PouInfo."""
+
+    name: str
+    info: object = None
 
     def __str__(self) -> str:
         return self.name
@@ -210,7 +223,7 @@ class AliasType:
         return self.name
 
 
-Type = Union[ElementaryType, StringType, ArrayType, StructType, EnumType, FBType]
+Type = Union[ElementaryType, StringType, ArrayType, StructType, EnumType, FBType, InterfaceType]
 
 
 def resolve_alias(t: "Type | AliasType") -> Type:

@@ -467,6 +467,8 @@ def to_json(value, t):
     keyed by declared name.
     """
     t = resolve_alias(t)
+    if type(t).__name__ == "InterfaceType":    # a reference: what it refers to
+        return None if value is None else type(value)._st_name
     if isinstance(t, ElementaryType):
         kind = t.kind
         if kind == "bool":

@@ -152,3 +152,21 @@ def test_in_out_read_from_outside_and_function_without_result():
     plc, main = run("in_out_read_and_function_without_result.st", 3)
     assert (main["Sum"], main["Seen"], main["T"], main["U"]) == (21, 21, 2, 1)
     assert plc.faults == []
+
+
+def test_methods_dispatch_on_the_instance():
+    # Rect 2 x 3 -> 6; Square 4 x 4: SUPER.Area() (Rect's, 16) + 0.5 = 16.5;
+    # through the interface variable the Square's method runs; Describe (in
+    # the abstract base) calls THIS.Area(): the Square's, x 10 = 165.
+    plc, main = run("oo_methods_interfaces.st", 1)
+    assert (main["A1"], main["A2"], main["D2"]) == (6.0, 16.5, 165.0)
+    assert main["Sum"] == 6.0 + 16.5              # the array of IShape, one of each
+    assert main["S.Calls"] == 1 and main["R.Calls"] == 0
+    assert main["Any"] == "Square" and main["Shapes"] == ["Rect", "Square"]
+    assert plc.faults == []
+
+
+def test_a_method_call_through_an_empty_interface_variable_faults():
+    plc, main = run("oo_methods_interfaces.st", 1, program="Unbound")
+    assert [f.code for f in plc.faults] == ["F-NULL-REF"]
+    assert main["Result"] == -1.0 and main["Nobody"] is None

@@ -79,6 +79,10 @@ def _check(files, dialect):
                 continue
             ex = ExprChecker(ctx, Scope(ctx, info))
             StatementChecker(ex).block(info.node.body)
+            for method in info.methods.values():
+                if method.owner is info and info.kind == "FUNCTION_BLOCK":
+                    ex = ExprChecker(ctx, Scope(ctx, method))
+                    StatementChecker(ex).block(method.node.body)
         check_recursion(ctx)
         check_identifiers(ctx, files)
     except RecursionError:

@@ -11,6 +11,7 @@ from .. import types as T
 from ..ast import key
 from ..symbols import CallTarget, PouInfo
 from . import builtins as B
+from .oo import find_method, interface_methods, may_call
 from .operator_calls import OPERATOR_FUNCTIONS, lower, ordered_inputs
 from . import typesys as ts
 from .expressions import start_pos
@@ -67,6 +68,9 @@ class CallChecker:
 
     def _dispatch(self, call: ast.Call, expected=None, statement: bool = False):
         callee = call.callee
+        method = self._method_target(callee)
+        if method is not None:
+            return self._method_call(call, method[0], method[1], statement)
         if isinstance(callee, ast.Name) and self._not_a_variable(callee):
             k = key(callee.name)
             pou = self.program.pous.get(k)
@@ -100,6 +104,54 @@ class CallChecker:
                            f"instance, found a variable of type {t}", callee.pos)
             return self._give_up(call)
         return self._fb_call(call, t, statement)
+
+    # ------------------------------------------------------------ methods
+    def _method_target(self, callee):
+        """("super" | "virtual" | "interface" | "self", method PouInfo) or None."""
+        fb = self.ex.scope.fb
+        if isinstance(callee, ast.Member) and isinstance(callee.base, ast.Name) \
+                and key(callee.base.name) == "SUPER" and self.ex.scope.lookup("SUPER") is None:
+            parent = fb.parent if fb is not None else None
+            m = find_method(parent, callee.name)
+            if m is None:
+                self.ctx.error("E-DECL-016", f"SUPER.{callee.name}: " + (
+                    f"{fb.name} extends no FB with a method {callee.name}" if fb is not None
+                    else "SUPER is only valid inside a FUNCTION_BLOCK or its methods"), callee.pos)
+                return None
+            return "super", m
+        if isinstance(callee, ast.Member):
+            t = self.ex.infer(callee.base)
+            if isinstance(t, T.FBType) and key(callee.name) not in t.variables:
+                m = find_method(t.info, callee.name)
+                return ("virtual", m) if m is not None else None
+            if isinstance(t, T.InterfaceType):
+                m = interface_methods(t.info).get(key(callee.name))
+                return ("interface", m) if m is not None else None
+            return None
+        if isinstance(callee, ast.Name) and fb is not None and self.ex.scope.lookup(callee.name) is None:
+            m = find_method(fb, callee.name)
+            return ("self", m) if m is not None else None
+        return None
+
+    def _method_call(self, call, how: str, method: PouInfo, statement: bool):
+        name = f"{method.owner.name}.{method.name}"
+        if not may_call(method, self.ex.scope.fb):
+            self.ctx.error("E-CALL-012", f"method {name} is {method.access}: it may be called "
+                           + ("only inside " + method.owner.name if method.access == "PRIVATE"
+                              else f"only inside {method.owner.name} and the FBs extending it"),
+                           call.callee.pos)
+        if how == "super" and "ABSTRACT" in method.modifiers:
+            self.ctx.error("E-DECL-016", f"SUPER.{method.name}: the method of {method.owner.name} "
+                           f"is ABSTRACT (it has no body to call)", call.callee.pos)
+        self.program.call_targets[id(call)] = CallTarget("method", how, method)
+        self._bind(call, method, is_function=True)
+        if method.return_type is None:
+            if not statement:
+                self.ctx.error("E-TYPE-016", f"method {name} returns no value and cannot be "
+                               f"used in an expression", call.pos)
+                return self.ex.record(call, ts.ERROR)
+            return ts.ERROR
+        return self.ex.record(call, method.return_type)
 
     def _not_a_variable(self, name: ast.Name) -> bool:
         sym = self.ex.scope.lookup(name.name)

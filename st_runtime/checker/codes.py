@@ -78,4 +78,6 @@ CHECKER_CODES = register({
     "E-DECL-013": "R_EDGE / F_EDGE on something other than a BOOL input of a function block or program",
     "E-DECL-014": "a subrange type whose base is not an integer type or whose limits are not lower <= upper inside the base",
     "E-DECL-015": "a located variable (AT %IX0.0) with an invalid address, in the wrong place, or of a type whose width differs from the address's size",
+    "E-DECL-016": "object orientation: an unknown or wrong base / interface, a missing or FINAL-overridden method, an ABSTRACT FB instantiated",
+    "E-CALL-012": "a method is called from where its access specifier (PRIVATE, PROTECTED) does not allow it",
 })

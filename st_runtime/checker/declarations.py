@@ -21,6 +21,7 @@ from . import typesys as ts
 from .constfold import NOT_CONSTANT
 from .context import BUILTIN_FILE, Context, Scope
 from .expressions import ExprChecker
+from .oo import ObjectModel
 
 _INSTANCE_KINDS = ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP")
 
@@ -42,6 +43,8 @@ class Declarations:
         self._resolving: set[str] = set()
         self._names: dict[str, ast.Pos] = {}
         self.configurations: list[ast.Configuration] = []
+        self.objects = ObjectModel(self)
+        self._interfaces_done: set[int] = set()
 
     # ------------------------------------------------------------- driver
     def run(self, files: list[ast.SourceFile]) -> None:
@@ -57,7 +60,9 @@ class Declarations:
         for k in list(self.ctx.type_decls):
             self.type_named(k)
         for k, node in self.ctx.pou_decls.items():
-            self._interface(self.program.pous[k], node)
+            self.ensure_interface(self.program.pous[k])
+        for k, node in self.ctx.pou_decls.items():
+            self.objects.check_contracts(self.program.pous[k], node)
         for config in self.configurations:
             self._configuration(config)
 
@@ -114,8 +119,10 @@ class Declarations:
     def _create_pous(self) -> None:
         for k, node in self.ctx.pou_decls.items():
             info = PouInfo(node.name, node.kind, node, file=node.pos.file)
+            if node.kind == "INTERFACE":
+                self.program.types[k] = T.InterfaceType(node.name, info)
             if node.kind == "FUNCTION_BLOCK":
-                fb = T.FBType(node.name)
+                fb = T.FBType(node.name, info=info)
                 fb.variables = info.variables
                 if node.pos.file == BUILTIN_FILE and k in native.NATIVE_FBS:
                     fb.native = info.native = native.NATIVE_FBS[k]
@@ -294,6 +301,10 @@ class Declarations:
                            f"FUNCTION_BLOCK", decl.pos)
         if decl.location is not None:
             self._located(decl, kind, t, pou)
+        fb_node = self.ctx.pou_decls.get(key(t.name)) if isinstance(t, T.FBType) else None
+        if fb_node is not None and "ABSTRACT" in fb_node.modifiers:
+            self.ctx.error("E-DECL-016", f"'{decl.name}': {t.name} is ABSTRACT and cannot be "
+                           f"instantiated (declare an FB that extends it)", decl.pos)
         if decl.edge and (kind != "VAR_INPUT" or pou is None or pou.kind == "FUNCTION"
                           or (t is not ts.ERROR and not ts.is_bool(t))):
             self.ctx.error("E-DECL-013", f"'{decl.name}' is declared {decl.edge}: expected a BOOL "
@@ -431,9 +442,28 @@ class Declarations:
         return count
 
     # --------------------------------------------------------------- POUs
+    def ensure_interface(self, info: PouInfo) -> None:
+        """Declare a POU's variables once (a base FB before the FBs extending it)."""
+        if id(info) in self._interfaces_done or info.node is None:
+            return
+        self._interfaces_done.add(id(info))
+        self._interface(info, info.node)
+
+    def method_interface(self, info: PouInfo, node: ast.Method) -> None:
+        """A METHOD's result and variables (its FB's come from the scope)."""
+        ex = ExprChecker(self.ctx, Scope(self.ctx, info))
+        if node.return_type is not None:
+            info.return_type = self.resolve(node.return_type, ex)
+            info.variables[key(node.name)] = Symbol(node.name, info.return_type, "RETURN", None)
+        for block in node.var_blocks:
+            for decl in block.decls:
+                self.declare(decl, block, info.variables, ex, info)
+
     def _interface(self, info: PouInfo, node: ast.Pou) -> None:
         scope = Scope(self.ctx, info)
         ex = ExprChecker(self.ctx, scope)
+        if node.kind in ("FUNCTION_BLOCK", "INTERFACE"):
+            self.objects.inherit(info, node)
         if node.kind == "FUNCTION" and node.return_type is not None:
             rt = self.resolve(node.return_type, ex)
             info.return_type = rt
@@ -448,3 +478,5 @@ class Declarations:
                 continue
             for decl in block.decls:
                 self.declare(decl, block, info.variables, ex, info)
+        if node.methods:
+            self.objects.declare_methods(info, node)

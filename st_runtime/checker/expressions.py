@@ -29,6 +29,7 @@ from __future__ import annotations
 import difflib
 import math
 
+from .oo import assignable_reference
 from .. import ast
 from .. import types as T
 from ..ast import key
@@ -151,6 +152,12 @@ class ExprChecker:
     def require_assignable(self, src, dst, pos, what: str) -> bool:
         if src is ts.ERROR or dst is ts.ERROR:
             return True
+        if isinstance(dst, T.InterfaceType):
+            if assignable_reference(src, dst):
+                return True     # the variable now refers to that instance (no copy)
+            self.ctx.error("E-TYPE-004", f"{what}: expected an instance of an FB that implements "
+                           f"{dst}, found {src}", pos)
+            return False
         if isinstance(src, T.FBType) or isinstance(dst, T.FBType):
             self.ctx.error("E-TYPE-016", f"{what}: function block instances cannot be copied "
                            f"(found {src}, expected {dst})", pos)
@@ -368,7 +375,8 @@ class ExprChecker:
                 return self.record(e, ts.ERROR)
             # IEC 61131-3 2nd ed. Table 2.5.2.1a / 3rd ed. 6.6.3.2: an in-out may
             # be read outside the instance (`IF FB1.INOUT THEN`), not assigned.
-            if sym.kind not in ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT"):
+            inside = isinstance(e.base, ast.Name) and key(e.base.name) == "THIS"
+            if sym.kind not in ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT") and not inside:
                 self.ctx.error("E-TYPE-009", f"'{e.name}' is a {sym.kind} of {base.name}: only "
                                f"inputs, outputs and in-outs are visible outside the instance", e.pos)
                 return self.record(e, ts.ERROR)

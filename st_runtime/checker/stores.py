@@ -84,7 +84,8 @@ def _fb_member(ex, target):
     while isinstance(e, (ast.Member, ast.Index)):
         if isinstance(e, ast.Member):
             base_t = ex.program.expr_types.get(id(e.base))
-            if isinstance(base_t, T.FBType):
+            this = isinstance(e.base, ast.Name) and ast.key(e.base.name) == "THIS"
+            if isinstance(base_t, T.FBType) and not this:
                 var = base_t.variables.get(ast.key(e.name))
                 if var is not None and var.kind != "VAR_INPUT":
                     return base_t, var

@@ -87,7 +87,7 @@ class CompileUnit:
             "_rdiv": support.rdiv, "_time_mul": values.time_mul, "_time_div": values.time_div,
             "_index_fault": support.index_fault, "_index_fault_n": support.index_fault_n,
             "_overrun": support.overrun, "_for_range": support.for_range,
-            "_truncate": support.truncate_string, "_subrange": support.subrange, "_AttrRef": AttrRef, "_ItemRef": ItemRef,
+            "_truncate": support.truncate_string, "_subrange": support.subrange, "_method": support.bound_method, "_AttrRef": AttrRef, "_ItemRef": ItemRef,
             "_setattr": setattr, "_assign_list": assign_list, "_FAULTS": _FAULTS,
             "_INF": math.inf, "_NAN": math.nan,
         }
@@ -157,8 +157,12 @@ def compile_program(program, guard_statements: bool = True) -> CompiledProgram:
     unit.namespace["_G"] = globals_obj
     functions = {}
     for key, pou in program.pous.items():
-        if pou.node is None or pou.native is not None:
+        if pou.node is None or pou.native is not None or pou.kind == "INTERFACE":
             continue
+        if pou.kind == "FUNCTION_BLOCK":
+            _compile_methods(unit, key, pou)
+            if not pou.node.body and pou.parent is not None:
+                continue         # an FB that only extends keeps its base's body
         if pou.kind == "FUNCTION":
             pyname = safe_name("_fn_" + key)
             unit.run_source(key, BodyCompiler(program, pou, unit, method=False).function_source(pyname),
@@ -172,6 +176,24 @@ def compile_program(program, guard_statements: bool = True) -> CompiledProgram:
     classes = {k: v for k, v in unit.classes.items() if k != "<GLOBALS>"}
     return CompiledProgram(program, classes, functions, globals_obj, unit.sources, unit.namespace,
                            unit.image)
+
+
+def method_attr(name: str) -> str:
+    """The class attribute of a METHOD: `m` + the mangled name (no ST text in Python)."""
+    return "m" + pyident(name)
+
+
+def _compile_methods(unit: CompileUnit, key: str, pou) -> None:
+    """Each own METHOD is a Python function `(self, _ctx, inputs...)` set on the
+    FB's class; derived classes inherit or override it (dynamic dispatch)."""
+    for method in pou.methods.values():
+        if method.owner is not pou or "ABSTRACT" in method.modifiers:
+            continue
+        pyname = safe_name(f"_m_{key}_{method.name.upper()}")
+        compiler = BodyCompiler(unit.program, method, unit, method=False)
+        unit.run_source(f"{key}.{method.name.upper()}", compiler.function_source(pyname),
+                        method.node.pos)
+        setattr(unit.classes[key], method_attr(method.name), unit.namespace[pyname])
 
 
 # ------------------------------------------------------------------ classes
@@ -190,8 +212,8 @@ def _make_classes(unit: CompileUnit) -> None:
             slots = tuple(pyident(name) for name, _ in t.fields.values())
             layout = {k: (name, ft) for k, (name, ft) in t.fields.items()}
             unit.classes[key] = _new_class(t.name, slots, layout)
-    for key, pou in program.pous.items():
-        if pou.kind == "FUNCTION":
+    for key, pou in _bases_first(program):
+        if pou.kind in ("FUNCTION", "INTERFACE"):
             continue
         if pou.node is None or pou.native is not None:
             native = pou.native or NATIVE_FBS.get(key)
@@ -204,10 +226,13 @@ def _make_classes(unit: CompileUnit) -> None:
             unit.classes[key] = native
             continue
         variables = _instance_variables(pou)
-        slots = tuple(pyident(s.name) for s in variables if located_at(s) is None) + \
-            tuple(edge_slot(s) for s in edge_inputs(pou))
+        inherited = pou.parent.variables if pou.parent is not None else {}
+        slots = tuple(pyident(s.name) for s in variables
+                      if located_at(s) is None and inherited.get(s.name.upper()) is not s) + \
+            tuple(edge_slot(s) for s in edge_inputs(pou) if inherited.get(s.name.upper()) is not s)
         layout = {s.name.upper(): (s.name, s.type) for s in variables}
-        unit.classes[key] = _new_class(pou.name, slots, layout, pou.kind)
+        base = unit.classes[pou.parent.name.upper()] if pou.parent is not None else STObject
+        unit.classes[key] = _new_class(pou.name, slots, layout, pou.kind, base)
         unit.classes[key]._st_kinds = {s.name.upper(): s.kind for s in variables}
         unit.classes[key]._st_constants = frozenset(s.name.upper() for s in variables if s.constant)
         _locate_variables(unit, unit.classes[key], variables)
@@ -235,8 +260,25 @@ def _locate_variables(unit: CompileUnit, cls: type, variables) -> None:
                                                                resolve_alias(symbol.type)))
 
 
-def _new_class(name: str, slots: tuple, layout: dict, kind: str = "STRUCT") -> type:
-    cls = type(safe_name("ST_" + name.upper()), (STObject,), {
+def _bases_first(program) -> list:
+    """The POUs with every FB after the FB it extends (classes derive from their base's)."""
+    ordered, placed = [], set()
+
+    def place(key, pou):
+        if key in placed:
+            return
+        placed.add(key)
+        if pou.parent is not None:
+            place(pou.parent.name.upper(), pou.parent)
+        ordered.append((key, pou))
+
+    for key, pou in program.pous.items():
+        place(key, pou)
+    return ordered
+
+
+def _new_class(name: str, slots: tuple, layout: dict, kind: str = "STRUCT", base=STObject) -> type:
+    cls = type(safe_name("ST_" + name.upper()), (base,), {
         "__slots__": slots, "_st_name": name, "_st_vars": layout, "_st_kind": kind,
     })
     return cls
@@ -253,7 +295,7 @@ def _make_initializers(unit: CompileUnit) -> None:
                        for fkey, (name, ft) in t.fields.items()]
             _install_init(unit, key, members)
     for key, pou in program.pous.items():
-        if pou.kind == "FUNCTION":
+        if pou.kind in ("FUNCTION", "INTERFACE"):
             continue
         if pou.node is None or pou.native is not None:
             cls = unit.classes[key]

@@ -118,7 +118,7 @@ class Calls:
         target = self.target(ec, call)
         if target.kind == "fb":
             return self.fb_call(ec, call, target)
-        if target.kind == "function" and target.pou is not None and target.pou.outputs:
+        if target.kind in ("function", "method") and target.pou is not None and target.pou.outputs:
             return self.user_call_with_outputs(ec, call, target)
         return [self.call_expr(ec, call)]
 
@@ -189,7 +189,7 @@ class Calls:
         target = self.target(ec, call)
         if target.kind == "conversion":
             return self.conversion(ec, call, target)
-        if target.kind == "function" and target.pou is not None and target.pou.node is not None:
+        if target.kind in ("function", "method") and target.pou is not None and target.pou.node is not None:
             code, outputs = self.user_call(ec, call, target)
             if not target.pou.outputs:
                 return code
@@ -223,8 +223,27 @@ class Calls:
                 args.append(self.default_argument(ec, symbol))
             else:
                 args.append(self.argument(ec, symbol, arg))
+        if target.kind == "method":
+            return self.method_callee(ec, call, target, args), outputs
         name = safe_name("_fn_" + pou.name.upper())
         return f"{name}({', '.join(args)})", outputs
+
+    def method_callee(self, ec, call, target, args: list) -> str:
+        """`obj.mNAME(_ctx, ...)`: Python's attribute lookup on the instance's
+        class is the dynamic dispatch (a derived FB's class overrides)."""
+        from . import method_attr
+
+        method = target.pou
+        attr = method_attr(method.name)
+        how = target.name
+        if how == "super":       # the base's own method, whatever the instance's class
+            owner = self.unit.register_constant(self.unit.classes[method.owner.name.upper()])
+            return f"{owner}.{attr}(self, {', '.join(args)})"
+        if how == "self":
+            return f"self.{attr}({', '.join(args)})"
+        if how == "interface":   # the variable may refer to no instance
+            return f"_method({ec.expr(call.callee.base)}, {attr!r})({', '.join(args)})"
+        return f"{ec.aggregate(call.callee.base)}.{attr}({', '.join(args)})"
 
     def conversion(self, ec, call, target) -> str:
         if len(call.args) != 1 or call.args[0].direction == "out":

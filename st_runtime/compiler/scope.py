@@ -165,8 +165,21 @@ class Scope:
 
     # ------------------------------------------------------------ layout
 
+    def _shares_instance(self) -> bool:
+        """Whether code other than this body may change the instance's variables
+        while it runs (its methods, THIS): then nothing is cached in locals."""
+        pou = self.pou
+        if "THIS" in self.usage.used:
+            return True
+        while pou is not None and pou.kind == "FUNCTION_BLOCK":
+            if pou.methods:
+                return True
+            pou = pou.parent
+        return False
+
     def _plan(self) -> None:
         u = self.usage
+        no_cache = self.method and self._shares_instance()
         for key, symbol in self.pou.variables.items():
             name = pyident(symbol.name)
             aggregate = is_aggregate(symbol.type)
@@ -192,7 +205,7 @@ class Scope:
                     self.places[key] = VarPlace(symbol, "alias", name)
                     if key in u.used:
                         self.prologue.append(f"{name} = self.{name}")
-                elif referenced or u.count.get(key, 0) < CACHE_THRESHOLD or \
+                elif referenced or no_cache or u.count.get(key, 0) < CACHE_THRESHOLD or \
                         (symbol.decl is not None and symbol.decl.location is not None):
                     # (A located variable is never cached: others may share its bits.)
                     # Passed by reference, or used too rarely to repay a load and a store.
@@ -226,6 +239,18 @@ class Scope:
         place = self.places.get(key)
         if place is not None:
             return place
+        owner = self.pou.owner if self.pou.kind == "METHOD" else (
+            self.pou if self.pou.kind == "FUNCTION_BLOCK" else None)
+        if key == "THIS" and owner is not None:
+            return VarPlace(None, "this", "self")
+        if self.pou.kind == "METHOD" and key in owner.variables:
+            # A METHOD reaches its FB's variables through the instance.
+            symbol = owner.variables[key]
+            name = pyident(symbol.name)
+            how = "ref" if symbol.kind == "VAR_IN_OUT" and not is_aggregate(symbol.type) else "self"
+            place = VarPlace(symbol, how, f"self.{name}" if how == "ref" else name)
+            self.places[key] = place
+            return place
         symbol = self.program.globals.get(key)
         if symbol is not None:
             place = VarPlace(symbol, "global", pyident(symbol.name))
@@ -251,6 +276,8 @@ class Scope:
 
     def lvalue_of_name(self, ec, e) -> LValue:
         place = self.place_of(e)
+        if place.how == "this":
+            return LValue("local", ec.ty(e), name="self")
         t = place.symbol.type
         how = place.how
         if how in ("local", "alias"):

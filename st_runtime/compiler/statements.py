@@ -60,6 +60,8 @@ class BodyCompiler(ExprCompiler):
         """`def pyname(self, _ctx)` or `def pyname(_ctx, inputs...)`."""
         o = self.out
         params = ["self", "_ctx"] if self.method else ["_ctx"] + self.scope.params
+        if not self.method and self.pou.owner is not None:
+            params = ["self"] + params          # a METHOD: its instance first
         o.line(f"def {pyname}({', '.join(params)}):")
         o.indent()
         for item in self.scope.prologue:

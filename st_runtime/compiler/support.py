@@ -100,3 +100,12 @@ def subrange(value: int, lo: int, hi: int) -> int:
     if lo <= value <= hi:
         return value
     raise STFault("F-SUBRANGE", f"{value} is outside the subrange {lo}..{hi}")
+
+
+def bound_method(instance, attr: str):
+    """A method of the instance an interface variable refers to; F-NULL-REF
+    when it refers to none."""
+    if instance is None:
+        raise STFault("F-NULL-REF", "method call through an interface variable that "
+                      "refers to no instance")
+    return getattr(instance, attr)
