@@ -74,6 +74,14 @@ class SubrangeType(Node):
 
 
 @dataclass(frozen=True, slots=True)
+class RefType(Node):
+    """`REF_TO INT` (3rd ed. 6.4.4.10); `POINTER TO INT` in the codesys dialect."""
+
+    target: TypeRef
+    pointer: bool = False
+
+
+@dataclass(frozen=True, slots=True)
 class ArrayType(Node):
     """`ARRAY[lo..hi, ...] OF element` (up to three dimensions)."""
 
@@ -101,7 +109,7 @@ class EnumType(Node):
     values: tuple[EnumValue, ...]
 
 
-TypeRef = Union[NamedType, StringType, ArrayType, SubrangeType]
+TypeRef = Union[NamedType, StringType, ArrayType, SubrangeType, RefType]
 TypeSpec = Union[NamedType, StringType, ArrayType, SubrangeType, StructType, EnumType]
 
 
@@ -195,6 +203,18 @@ class Binary(Node):
     op: str
     left: Expr
     right: Expr
+
+
+@dataclass(frozen=True, slots=True)
+class Deref(Node):
+    """`r^`: the variable a reference refers to."""
+
+    base: Expr
+
+
+@dataclass(frozen=True, slots=True)
+class NullLiteral(Node):
+    """NULL: a reference (or interface variable) that refers to nothing."""
 
 
 @dataclass(frozen=True, slots=True)

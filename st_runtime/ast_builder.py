@@ -354,6 +354,18 @@ class AstBuilder(Transformer):
     def subrange_type(self, base, subrange):
         return ast.SubrangeType(str(base), subrange, pos=self._pos(base))
 
+    def ref_type(self, kw, target):
+        return ast.RefType(target, pos=self._pos(kw))
+
+    def pointer_type(self, kw, target):
+        return ast.RefType(target, True, pos=self._pos(kw))
+
+    def deref(self, base, caret):
+        return ast.Deref(base, pos=base.pos)
+
+    def null_literal(self, token):
+        return ast.NullLiteral(pos=self._pos(token))
+
     def keyword_callee(self, token):
         return ast.Name(str(token), pos=self._pos(token))
 

@@ -24,6 +24,7 @@ from .native import mangle
 from .types import (
     SubrangeType,
     InterfaceType,
+    RefType,
     ArrayType,
     ElementaryType,
     EnumType,
@@ -49,6 +50,12 @@ class AttrRef:
         self.obj = obj
         self.attr = attr
 
+    def __eq__(self, other) -> bool:      # REF(x) = REF(x): the same variable
+        return type(other) is AttrRef and other.obj is self.obj and other.attr == self.attr
+
+    def __hash__(self) -> int:
+        return hash((id(self.obj), self.attr))
+
     def get(self):
         return getattr(self.obj, self.attr)
 
@@ -64,6 +71,12 @@ class ItemRef:
     def __init__(self, seq: list, index: int):
         self.seq = seq
         self.index = index
+
+    def __eq__(self, other) -> bool:
+        return type(other) is ItemRef and other.seq is self.seq and other.index == self.index
+
+    def __hash__(self) -> int:
+        return hash((id(self.seq), self.index))
 
     def get(self):
         return self.seq[self.index]
@@ -164,8 +177,8 @@ def default_value(t: Type, classes: dict[str, type]) -> Maker:
         return proto.copy
     if isinstance(t, (StructType, FBType)):
         return classes[t.name.upper()]
-    if isinstance(t, InterfaceType):
-        return lambda: None          # refers to no instance (NULL)
+    if isinstance(t, (InterfaceType, RefType)):
+        return lambda: None          # refers to nothing (NULL)
     raise TypeError(f"no default value for {t}")
 
 

@@ -97,6 +97,10 @@ def format_expr(expr) -> str:
         return f"{_postfix_base(expr.base)}[{indices}]"
     if kind is ast.Call:
         return f"{_postfix_base(expr.callee)}({_format_args(expr.args)})"
+    if kind is ast.Deref:
+        return f"{_postfix_base(expr.base)}^"
+    if kind is ast.NullLiteral:
+        return "NULL"
     raise TypeError(f"not an expression node: {kind.__name__}")
 
 
@@ -117,7 +121,7 @@ def _format_binary(expr: ast.Binary) -> str:
 
 def _postfix_base(expr) -> str:
     text = format_expr(expr)
-    return text if type(expr) in (ast.Name, ast.Member, ast.Index) else f"({text})"
+    return text if type(expr) in (ast.Name, ast.Member, ast.Index, ast.Deref) else f"({text})"
 
 
 def _format_real(expr: ast.RealLiteral) -> str:
@@ -244,6 +248,8 @@ def format_type(type_ref) -> str:
     if kind is ast.ArrayType:
         ranges = ", ".join(f"{format_expr(r.lo)}..{format_expr(r.hi)}" for r in type_ref.ranges)
         return f"ARRAY[{ranges}] OF {format_type(type_ref.element)}"
+    if kind is ast.RefType:
+        return ("POINTER TO " if type_ref.pointer else "REF_TO ") + format_type(type_ref.target)
     if kind is ast.SubrangeType:
         return f"{type_ref.base} ({format_expr(type_ref.range.lo)}..{format_expr(type_ref.range.hi)})"
     raise TypeError(f"not a type reference: {kind.__name__}")

@@ -200,6 +200,30 @@ class FBType:
         return self.name
 
 
+@dataclass(frozen=True, slots=True)
+class RefType:
+    """`REF_TO T` (or codesys `POINTER TO T`): refers to a variable of type T,
+    or to nothing (NULL).  At run time an elementary target is a Ref object
+    (`get`/`set`), an array/struct/FB target the object itself, NULL None."""
+
+    target: "Type"
+    pointer: bool = False
+
+    def __str__(self) -> str:
+        return ("POINTER TO " if self.pointer else "REF_TO ") + str(self.target)
+
+
+@dataclass(frozen=True, slots=True)
+class NullType:
+    """The type of NULL: stores into any reference or interface variable."""
+
+    def __str__(self) -> str:
+        return "NULL"
+
+
+NULL = NullType()
+
+
 @dataclass(eq=False, slots=True)
 class InterfaceType:
     """An INTERFACE (3rd ed. 6.6.6): a variable of it refers to an FB instance
@@ -223,7 +247,8 @@ class AliasType:
         return self.name
 
 
-Type = Union[ElementaryType, StringType, ArrayType, StructType, EnumType, FBType, InterfaceType]
+Type = Union[ElementaryType, StringType, ArrayType, StructType, EnumType, FBType, InterfaceType,
+             RefType, NullType]
 
 
 def resolve_alias(t: "Type | AliasType") -> Type:

@@ -170,3 +170,13 @@ def test_a_method_call_through_an_empty_interface_variable_faults():
     plc, main = run("oo_methods_interfaces.st", 1, program="Unbound")
     assert [f.code for f in plc.faults] == ["F-NULL-REF"]
     assert main["Result"] == -1.0 and main["Nobody"] is None
+
+
+def test_references_read_and_write_what_they_refer_to():
+    # Per scan: A := 10 through RA; Bump adds 1 to B and to Arr[2]; Y = P.Y + A
+    # = 7 + 10; RA then NULL: Bump skips it, RA^ := 99 faults.  Two scans.
+    plc, main = run("references_ref_to.st", 2)
+    assert (main["A"], main["B"], main["Arr"], main["Y"]) == (10, 2, [0, 2, 0], 17)
+    assert main["P"] == {"X": 0, "Y": 7}
+    assert (main["Same"], main["Empty"], main["RA"], main["RP"]) == (True, True, None, "REF")
+    assert [f.code for f in plc.faults] == ["F-NULL-REF", "F-NULL-REF"]

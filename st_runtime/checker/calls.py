@@ -84,6 +84,8 @@ class CallChecker:
                     msg = f"'{callee.name}' is a PROGRAM: programs are run by tasks, not called"
                 self.ctx.error("E-CALL-001", msg, callee.pos)
                 return self._give_up(call)
+            if k in ("REF", "ADR") and (k == "REF" or self.ctx.dialect == "codesys"):
+                return self._reference(call, k)
             if k in OPERATOR_FUNCTIONS:
                 return self._operator_call(call, k, OPERATOR_FUNCTIONS[k], expected)
             if k in B.STANDARD_FUNCTIONS:
@@ -104,6 +106,21 @@ class CallChecker:
                            f"instance, found a variable of type {t}", callee.pos)
             return self._give_up(call)
         return self._fb_call(call, t, statement)
+
+    # --------------------------------------------------------- references
+    def _reference(self, call, name: str):
+        """REF(x) (3rd ed. 6.6.1.7; ADR(x) in the codesys dialect): a reference to x."""
+        args = call.args
+        if len(args) != 1 or args[0].direction == "out" or args[0].value is None:
+            self.ctx.error("E-CALL-009" if not args else "E-CALL-006",
+                           f"{name}: expected one variable, found {len(args)} argument(s)", call.pos)
+            return self._give_up(call)
+        value = args[0].value
+        t = check_store(self.ex, value, f"{name}(...)")
+        if t is ts.ERROR:
+            return self.ex.record(call, ts.ERROR)
+        self.program.call_targets[id(call)] = CallTarget("ref", name)
+        return self.ex.record(call, T.RefType(t, name == "ADR"))
 
     # ------------------------------------------------------------ methods
     def _method_target(self, callee):

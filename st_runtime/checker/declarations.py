@@ -222,6 +222,9 @@ class Declarations:
             return ts.ERROR
         if isinstance(ref, ast.SubrangeType):
             return self._subrange(ref, ex)
+        if isinstance(ref, ast.RefType):
+            target = self.resolve(ref.target, ex)
+            return ts.ERROR if target is ts.ERROR else T.RefType(target, ref.pointer)
         if isinstance(ref, ast.StringType):
             if ref.length is None:
                 return T.StringType(wide=ref.wide)

@@ -152,6 +152,16 @@ class ExprChecker:
     def require_assignable(self, src, dst, pos, what: str) -> bool:
         if src is ts.ERROR or dst is ts.ERROR:
             return True
+        if isinstance(dst, (T.RefType, T.InterfaceType)) and src is T.NULL:
+            return True
+        if isinstance(dst, T.RefType):
+            if isinstance(src, T.RefType) and (src.target is dst.target or ts.same_type(src.target, dst.target)
+                                               or str(src.target) == str(dst.target)):
+                return True
+            self.ctx.error("E-TYPE-004", f"{what}: expected {dst}, found {src}"
+                           + ("; take a reference with REF(...)" if not isinstance(src, T.RefType) else ""),
+                           pos)
+            return False
         if isinstance(dst, T.InterfaceType):
             if assignable_reference(src, dst):
                 return True     # the variable now refers to that instance (no copy)
@@ -385,6 +395,19 @@ class ExprChecker:
                        f"instance, found {base}", e.pos)
         return self.record(e, ts.ERROR)
 
+    def _Deref(self, e, expected):
+        base = self.infer(e.base)
+        if base is ts.ERROR:
+            return self.record(e, ts.ERROR)
+        if not isinstance(base, T.RefType):
+            self.ctx.error("E-TYPE-001", f"^: expected a reference (REF_TO or POINTER TO), "
+                           f"found {base}", e.pos)
+            return self.record(e, ts.ERROR)
+        return self.record(e, base.target)
+
+    def _NullLiteral(self, e, expected):
+        return self.record(e, T.NULL)
+
     def _Index(self, e, expected):
         base = self.infer(e.base)
         index_types = [self.infer(i, T.DINT) for i in e.indices]
@@ -548,6 +571,10 @@ class ExprChecker:
     def _comparison(self, e, lt, rt):
         def comparable(t):
             return isinstance(t, (T.ElementaryType, T.StringType, T.EnumType))
+
+        references = (T.RefType, T.NullType, T.InterfaceType)
+        if e.op in ("=", "<>") and isinstance(lt, references) and isinstance(rt, references):
+            return T.BOOL       # the same variable / instance, or both NULL
 
         for t in (lt, rt):
             if not comparable(t):

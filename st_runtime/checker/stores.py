@@ -10,13 +10,22 @@ from . import typesys as ts
 
 def root_name(e) -> ast.Name | None:
     """The variable at the root of `a.b[i].c`, or None if `e` is no variable path."""
-    while isinstance(e, (ast.Member, ast.Index)):
+    while isinstance(e, (ast.Member, ast.Index, ast.Deref)):
         e = e.base
     return e if isinstance(e, ast.Name) else None
 
 
+def through_reference(e) -> bool:
+    """`r^`, `r^.x`, `a[i]^`: the path writes what a reference refers to."""
+    while isinstance(e, (ast.Member, ast.Index, ast.Deref)):
+        if isinstance(e, ast.Deref):
+            return True
+        e = e.base
+    return False
+
+
 def is_variable_path(e) -> bool:
-    return isinstance(e, (ast.Name, ast.Member, ast.Index)) and root_name(e) is not None
+    return isinstance(e, (ast.Name, ast.Member, ast.Index, ast.Deref)) and root_name(e) is not None
 
 
 def check_store(ex, target, what: str = "assignment"):
@@ -31,8 +40,8 @@ def check_store(ex, target, what: str = "assignment"):
                      f"{_describe(target)}", target.pos)
         return ts.ERROR
     t = ex.infer(target)
-    if t is ts.ERROR:
-        return ts.ERROR
+    if t is ts.ERROR or through_reference(target):
+        return t                   # (the referenced variable was writable where REF took it)
     root = root_name(target)
     sym = ex.program.name_refs.get(id(root))
     if not hasattr(sym, "kind"):  # an enumeration value

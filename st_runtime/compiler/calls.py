@@ -208,6 +208,9 @@ class Calls:
             return f"({tmp} := {code}, {', '.join(stores)}, {tmp}[0])[-1]"
         if target.kind == "function":
             return self.standard(ec, call, target)
+        if target.kind == "ref":                 # REF(x) / ADR(x)
+            value = call.args[0].value
+            return ec.aggregate(value) if is_aggregate(ec.ty(value)) else ec.lvalue(value).ref()
         raise CompileError("an FB instance call is a statement, not a value", call.pos)
 
     def user_call(self, ec, call, target):

@@ -321,6 +321,12 @@ class ExprCompiler:
     def x_Call(self, e):
         return self.unit.calls.call_expr(self, e)
 
+    def x_Deref(self, e):
+        return self.lvalue(e).read()
+
+    def x_NullLiteral(self, e):
+        return "None"
+
     # ----------------------------------------------------------- places
 
     def lvalue(self, e) -> LValue:
@@ -339,6 +345,12 @@ class ExprCompiler:
             return LValue("attr", t, obj=base, key=pyident(e.name))
         if isinstance(e, ast.Index):
             return self.index_lvalue(e)
+        if isinstance(e, ast.Deref):
+            # What a reference refers to: a Ref (elementary) or the object itself;
+            # `_deref` faults on NULL.
+            t = self.ty(e)
+            target = f"_deref({self.expr(e.base)})"
+            return LValue("local", t, name=target) if is_aggregate(t) else LValue("ref", t, name=target)
         self.fail("this expression cannot be assigned or referenced", e)
 
     def aggregate(self, e) -> str:

@@ -63,7 +63,7 @@ def walk(node):
 
 
 def root_name(e) -> str | None:
-    while isinstance(e, (ast.Member, ast.Index)):
+    while isinstance(e, (ast.Member, ast.Index, ast.Deref)):
         e = e.base
     return e.name.upper() if isinstance(e, ast.Name) else None
 
@@ -100,6 +100,13 @@ class Usage:
 
     def _call(self, program, call, calls) -> None:
         target = program.call_targets.get(id(call))
+        if target is not None and target.kind == "ref" and call.args:
+            name = root_name(call.args[0].value)       # REF(x): x must stay addressable
+            if name:
+                self.assigned.add(name)
+                if isinstance(call.args[0].value, ast.Name):
+                    self.referenced.add(name)
+            return
         variables = {}
         if target is not None and target.pou is not None:
             variables = target.pou.variables

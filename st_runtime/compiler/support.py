@@ -109,3 +109,10 @@ def bound_method(instance, attr: str):
         raise STFault("F-NULL-REF", "method call through an interface variable that "
                       "refers to no instance")
     return getattr(instance, attr)
+
+
+def deref(reference):
+    """`r^`: what a reference refers to; F-NULL-REF for NULL."""
+    if reference is None:
+        raise STFault("F-NULL-REF", "dereference of NULL (the reference refers to nothing)")
+    return reference
