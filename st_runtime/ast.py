@@ -213,6 +213,14 @@ class Deref(Node):
 
 
 @dataclass(frozen=True, slots=True)
+class BitAccess(Node):
+    """`x.3`: bit 3 of an integer or bit-string variable (CODESYS, NJ)."""
+
+    base: Expr
+    bit: int
+
+
+@dataclass(frozen=True, slots=True)
 class NullLiteral(Node):
     """NULL: a reference (or interface variable) that refers to nothing."""
 

@@ -363,6 +363,9 @@ class AstBuilder(Transformer):
     def deref(self, base, caret):
         return ast.Deref(base, pos=base.pos)
 
+    def bit_access(self, base, bit):
+        return ast.BitAccess(base, int(str(bit).replace("_", "")), pos=base.pos)
+
     def null_literal(self, token):
         return ast.NullLiteral(pos=self._pos(token))
 

@@ -99,6 +99,8 @@ def format_expr(expr) -> str:
         return f"{_postfix_base(expr.callee)}({_format_args(expr.args)})"
     if kind is ast.Deref:
         return f"{_postfix_base(expr.base)}^"
+    if kind is ast.BitAccess:
+        return f"{_postfix_base(expr.base)}.{expr.bit}"
     if kind is ast.NullLiteral:
         return "NULL"
     raise TypeError(f"not an expression node: {kind.__name__}")
@@ -121,7 +123,7 @@ def _format_binary(expr: ast.Binary) -> str:
 
 def _postfix_base(expr) -> str:
     text = format_expr(expr)
-    return text if type(expr) in (ast.Name, ast.Member, ast.Index, ast.Deref) else f"({text})"
+    return text if type(expr) in (ast.Name, ast.Member, ast.Index, ast.Deref, ast.BitAccess) else f"({text})"
 
 
 def _format_real(expr: ast.RealLiteral) -> str:

@@ -180,3 +180,28 @@ def test_references_read_and_write_what_they_refer_to():
     assert main["P"] == {"X": 0, "Y": 7}
     assert (main["Same"], main["Empty"], main["RA"], main["RP"]) == (True, True, None, "REF")
     assert [f.code for f in plc.faults] == ["F-NULL-REF", "F-NULL-REF"]
+
+
+def test_codesys_pointers_and_bit_access():
+    plc, main = run("codesys_pointers_and_bits.st", 1, dialect="codesys")
+    assert main["Value"] == 15                                  # 5 * 3 through the pointer
+    assert (main["Bit0"], main["Bit1"], main["Bit2"]) == (True, False, True)   # 16#0005
+    assert main["Flags"] == 0x8004 and main["Top"] is True      # bit 15 set, bit 0 cleared
+    assert main["Signed"] == 0x7FFF                             # -1 (16#FFFF) without bit 15
+    assert plc.faults == []
+
+
+def test_a_dialect_mismatch_names_the_dialect_that_accepts_it():
+    import pytest
+
+    from st_runtime.api import LoadError
+
+    with pytest.raises(LoadError) as refused:
+        load([str(ACCEPT / "codesys_pointers_and_bits.st")], dialect="iec")
+    text = refused.value.render()
+    assert "POINTER TO is not accepted by --dialect iec; --dialect codesys accepts it" in text
+    assert "bit access x.3 is not accepted by --dialect iec; --dialect codesys or --dialect nj" in text
+    with pytest.raises(LoadError) as refused:
+        load([str(ACCEPT / "oo_methods_interfaces.st")], dialect="nj")
+    assert "METHOD is not accepted by --dialect nj; --dialect codesys or --dialect iec" \
+        in refused.value.render()

@@ -42,12 +42,13 @@ from ..symbols import CheckedProgram
 from . import codes  # noqa: F401  (registers the codes)
 from .context import Context, FastSink, Scope
 from .declarations import Declarations
+from .dialects import check_dialect
 from .expressions import ExprChecker
 from .nj_rules import check_identifiers
 from .recursion import check_recursion
 from .statements import StatementChecker
 
-DIALECTS = ("iec", "nj")
+DIALECTS = ("iec", "nj", "codesys")
 RECURSION_LIMIT = 30_000
 
 register({
@@ -84,6 +85,7 @@ def _check(files, dialect):
                     ex = ExprChecker(ctx, Scope(ctx, method))
                     StatementChecker(ex).block(method.node.body)
         check_recursion(ctx)
+        check_dialect(ctx, files)
         check_identifiers(ctx, files)
     except RecursionError:
         ctx.error("E-LIMIT-001", "the program is nested too deeply to be checked "

@@ -405,6 +405,16 @@ class ExprChecker:
             return self.record(e, ts.ERROR)
         return self.record(e, base.target)
 
+    def _BitAccess(self, e, expected):
+        base = self.infer(e.base)
+        if base is ts.ERROR:
+            return self.record(e, ts.ERROR)
+        if not (ts.is_int(base) or ts.is_bits(base)) or e.bit >= base.bits:
+            self.ctx.error("E-TYPE-009", f".{e.bit}: expected an integer or bit string with a bit "
+                           f"{e.bit}, found {base}", e.pos)
+            return self.record(e, ts.ERROR)
+        return self.record(e, T.BOOL)
+
     def _NullLiteral(self, e, expected):
         return self.record(e, T.NULL)
 

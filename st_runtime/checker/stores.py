@@ -10,14 +10,14 @@ from . import typesys as ts
 
 def root_name(e) -> ast.Name | None:
     """The variable at the root of `a.b[i].c`, or None if `e` is no variable path."""
-    while isinstance(e, (ast.Member, ast.Index, ast.Deref)):
+    while isinstance(e, (ast.Member, ast.Index, ast.Deref, ast.BitAccess)):
         e = e.base
     return e if isinstance(e, ast.Name) else None
 
 
 def through_reference(e) -> bool:
     """`r^`, `r^.x`, `a[i]^`: the path writes what a reference refers to."""
-    while isinstance(e, (ast.Member, ast.Index, ast.Deref)):
+    while isinstance(e, (ast.Member, ast.Index, ast.Deref, ast.BitAccess)):
         if isinstance(e, ast.Deref):
             return True
         e = e.base
@@ -25,7 +25,8 @@ def through_reference(e) -> bool:
 
 
 def is_variable_path(e) -> bool:
-    return isinstance(e, (ast.Name, ast.Member, ast.Index, ast.Deref)) and root_name(e) is not None
+    return isinstance(e, (ast.Name, ast.Member, ast.Index, ast.Deref, ast.BitAccess)) \
+        and root_name(e) is not None
 
 
 def check_store(ex, target, what: str = "assignment"):
@@ -90,7 +91,7 @@ def in_out_problem(ex, target, sym) -> str | None:
 def _fb_member(ex, target):
     """(FBType, Symbol) when the path writes a non-input variable of an FB instance."""
     e = target
-    while isinstance(e, (ast.Member, ast.Index)):
+    while isinstance(e, (ast.Member, ast.Index, ast.BitAccess)):
         if isinstance(e, ast.Member):
             base_t = ex.program.expr_types.get(id(e.base))
             this = isinstance(e.base, ast.Name) and ast.key(e.base.name) == "THIS"

@@ -45,6 +45,7 @@ class LValue:
     name: str = ""
     obj: str = ""
     key: str = ""
+    inner: "LValue | None" = None     # kind "bit": the integer holding the bit `key`
 
     @property
     def target(self) -> str:
@@ -59,15 +60,25 @@ class LValue:
     def read(self) -> str:
         if self.kind == "ref":
             return f"{self.name}.get()"
+        if self.kind == "bit":
+            return f"({self.inner.read()} >> {self.key} & 1 == 1)"
         return self.target
+
+    def _with_bit(self, value: str) -> str:
+        t = self.inner.type
+        return f"_setbit({self.inner.read()}, {self.key}, {value}, {t.bits}, {bool(t.signed)})"
 
     def store(self, value: str) -> str:
         if self.kind == "ref":
             return f"{self.name}.set({value})"
+        if self.kind == "bit":
+            return self.inner.store(self._with_bit(value))
         return f"{self.target} = {value}"
 
     def store_expr(self, value: str) -> str:
         """An expression that stores `value` (inside a larger expression)."""
+        if self.kind == "bit":
+            return self.inner.store_expr(self._with_bit(value))
         if self.kind == "local":
             return f"({self.name} := {value})"
         if self.kind == "attr":
@@ -324,6 +335,9 @@ class ExprCompiler:
     def x_Deref(self, e):
         return self.lvalue(e).read()
 
+    def x_BitAccess(self, e):
+        return self.lvalue(e).read()
+
     def x_NullLiteral(self, e):
         return "None"
 
@@ -345,6 +359,10 @@ class ExprCompiler:
             return LValue("attr", t, obj=base, key=pyident(e.name))
         if isinstance(e, ast.Index):
             return self.index_lvalue(e)
+        if isinstance(e, ast.BitAccess):
+            inner = self.lvalue(e.base)
+            inner.type = elementary(inner.type) or inner.type
+            return LValue("bit", self.ty(e), key=str(e.bit), inner=inner)
         if isinstance(e, ast.Deref):
             # What a reference refers to: a Ref (elementary) or the object itself;
             # `_deref` faults on NULL.

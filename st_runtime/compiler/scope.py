@@ -63,7 +63,7 @@ def walk(node):
 
 
 def root_name(e) -> str | None:
-    while isinstance(e, (ast.Member, ast.Index, ast.Deref)):
+    while isinstance(e, (ast.Member, ast.Index, ast.Deref, ast.BitAccess)):
         e = e.base
     return e.name.upper() if isinstance(e, ast.Name) else None
 

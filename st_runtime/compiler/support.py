@@ -116,3 +116,12 @@ def deref(reference):
     if reference is None:
         raise STFault("F-NULL-REF", "dereference of NULL (the reference refers to nothing)")
     return reference
+
+
+def set_bit(word: int, bit: int, value: bool, bits: int, signed: bool) -> int:
+    """`x.3 := v`: the integer with bit 3 set or cleared, in its type's range."""
+    word &= (1 << bits) - 1
+    word = word | 1 << bit if value else word & ~(1 << bit)
+    if signed and word >= 1 << (bits - 1):
+        word -= 1 << bits
+    return word

@@ -42,7 +42,7 @@ def add_arguments(parser) -> None:
                         help="print the outputs as one strict JSON object (the default; a"
                              ' non-finite REAL/LREAL is the string "NaN", "Infinity" or'
                              ' "-Infinity", which --set also accepts)')
-    parser.add_argument("--dialect", choices=("iec", "nj"), default="iec")
+    parser.add_argument("--dialect", choices=("iec", "nj", "codesys"), default="iec")
 
 
 def usage(message: str) -> int:

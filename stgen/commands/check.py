@@ -19,7 +19,7 @@ from .run import source_problem
 def add_arguments(parser) -> None:
     parser.add_argument("paths", nargs="+", metavar="FILE_OR_DIR",
                         help="ST files, or directories whose .st files are checked together")
-    parser.add_argument("--dialect", choices=("iec", "nj"), default="iec",
+    parser.add_argument("--dialect", choices=("iec", "nj", "codesys"), default="iec",
                         help="nj: OMRON NJ identifier rules are errors (default iec: warnings)")
 
 

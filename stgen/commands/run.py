@@ -52,7 +52,7 @@ def add_arguments(parser) -> None:
     parser.add_argument("--trace", metavar="OUT.csv", help="write the watched variables of every scan")
     parser.add_argument("--watch", nargs="+", metavar="PATH", default=[],
                         help="variables to trace: x, fb.Q, Axis.Cmd.Pos, a[3], m[1,2]")
-    parser.add_argument("--dialect", choices=("iec", "nj"), default="iec")
+    parser.add_argument("--dialect", choices=("iec", "nj", "codesys"), default="iec")
     parser.add_argument("--stop-on-fault", action="store_true", help="stop at the first runtime fault")
     parser.add_argument("--axes", metavar="FILE.toml",
                         help="simulate servo axes: one [[axis]] table per axis (name, max_velocity;"
