@@ -214,10 +214,12 @@ class Deref(Node):
 
 @dataclass(frozen=True, slots=True)
 class BitAccess(Node):
-    """`x.3`: bit 3 of an integer or bit-string variable (CODESYS, NJ)."""
+    """`x.3`: bit 3 of an integer or bit-string variable (CODESYS, NJ); with a
+    `size` the 3rd edition's partial access `x.%X3`, `w.%B1`, `d.%W0` (6.5.5.2)."""
 
     base: Expr
     bit: int
+    size: str = ""          # "" (x.3) | X | B | W | D | L
 
 
 @dataclass(frozen=True, slots=True)

@@ -366,6 +366,10 @@ class AstBuilder(Transformer):
     def bit_access(self, base, bit):
         return ast.BitAccess(base, int(str(bit).replace("_", "")), pos=base.pos)
 
+    def partial_access(self, base, token):
+        text = str(token)
+        return ast.BitAccess(base, int(text[2:]), text[1].upper(), pos=base.pos)
+
     def null_literal(self, token):
         return ast.NullLiteral(pos=self._pos(token))
 

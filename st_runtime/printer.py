@@ -100,7 +100,8 @@ def format_expr(expr) -> str:
     if kind is ast.Deref:
         return f"{_postfix_base(expr.base)}^"
     if kind is ast.BitAccess:
-        return f"{_postfix_base(expr.base)}.{expr.bit}"
+        size = f"%{expr.size}" if expr.size else ""
+        return f"{_postfix_base(expr.base)}.{size}{expr.bit}"
     if kind is ast.NullLiteral:
         return "NULL"
     raise TypeError(f"not an expression node: {kind.__name__}")

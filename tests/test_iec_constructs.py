@@ -205,3 +205,14 @@ def test_a_dialect_mismatch_names_the_dialect_that_accepts_it():
         load([str(ACCEPT / "oo_methods_interfaces.st")], dialect="nj")
     assert "METHOD is not accepted by --dialect nj; --dialect codesys or --dialect iec" \
         in refused.value.render()
+
+
+def test_partial_access_reads_and_writes_parts_of_a_bit_string():
+    plc, main = run("partial_access.st", 1)
+    # D = 16#12345678: byte 0 = 16#78, byte 3 = 16#12, word 1 = 16#1234,
+    # 16#78 = 2#0111_1000 -> bits 4 and 5 set; then byte 2 := 16#FF.
+    assert (main["B0"], main["B3"], main["W1"]) == (0x78, 0x12, 0x1234)
+    assert (main["X4"], main["X5"]) == (True, True)
+    assert main["D"] == 0x12FF5678
+    assert main["L"] == 0xABCD_0000_0000_0001
+    assert plc.faults == []

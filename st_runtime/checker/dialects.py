@@ -96,7 +96,7 @@ def _constructs(item):
             yield "DEREF", node.pos
         elif kind is ast.NullLiteral:
             yield "NULL", node.pos
-        elif kind is ast.BitAccess:
+        elif kind is ast.BitAccess and not node.size:      # x.%X3 is the standard's
             yield "BIT_ACCESS", node.pos
         for name in node.__dataclass_fields__:
             if name != "pos":

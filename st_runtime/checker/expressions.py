@@ -95,6 +95,9 @@ def _range(t) -> str:
     return f"{t.min}..{t.max}" if isinstance(t, T.ElementaryType) else "?"
 
 
+# The part a bit access selects: `x.3` and `x.%X3` a BOOL, `.%B1` a BYTE, ...
+PARTS = {"": T.BOOL, "X": T.BOOL, "B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}
+
 class ExprChecker:
     """Types expressions inside one scope."""
 
@@ -409,11 +412,14 @@ class ExprChecker:
         base = self.infer(e.base)
         if base is ts.ERROR:
             return self.record(e, ts.ERROR)
-        if not (ts.is_int(base) or ts.is_bits(base)) or e.bit >= base.bits:
-            self.ctx.error("E-TYPE-009", f".{e.bit}: expected an integer or bit string with a bit "
-                           f"{e.bit}, found {base}", e.pos)
+        part = PARTS[e.size]
+        width = part.bits
+        if not (ts.is_int(base) or ts.is_bits(base)) or (e.bit + 1) * width > base.bits:
+            self.ctx.error("E-TYPE-009", f".{'%' + e.size if e.size else ''}{e.bit}: expected an "
+                           f"integer or bit string holding part {e.bit} of {width} bit(s), "
+                           f"found {base}", e.pos)
             return self.record(e, ts.ERROR)
-        return self.record(e, T.BOOL)
+        return self.record(e, part)
 
     def _NullLiteral(self, e, expected):
         return self.record(e, T.NULL)

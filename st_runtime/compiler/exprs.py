@@ -61,12 +61,18 @@ class LValue:
         if self.kind == "ref":
             return f"{self.name}.get()"
         if self.kind == "bit":
-            return f"({self.inner.read()} >> {self.key} & 1 == 1)"
+            width = self.type.bits
+            shift = int(self.key) * width
+            if width == 1:
+                return f"({self.inner.read()} >> {shift} & 1 == 1)"
+            return f"({self.inner.read()} >> {shift} & {(1 << width) - 1})"
         return self.target
 
     def _with_bit(self, value: str) -> str:
         t = self.inner.type
-        return f"_setbit({self.inner.read()}, {self.key}, {value}, {t.bits}, {bool(t.signed)})"
+        width = self.type.bits
+        return (f"_setbit({self.inner.read()}, {int(self.key) * width}, {width}, {value}, "
+                f"{t.bits}, {bool(t.signed)})")
 
     def store(self, value: str) -> str:
         if self.kind == "ref":

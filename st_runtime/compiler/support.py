@@ -118,10 +118,12 @@ def deref(reference):
     return reference
 
 
-def set_bit(word: int, bit: int, value: bool, bits: int, signed: bool) -> int:
-    """`x.3 := v`: the integer with bit 3 set or cleared, in its type's range."""
+def set_bit(word: int, shift: int, width: int, value, bits: int, signed: bool) -> int:
+    """`x.3 := v` / `x.%B1 := v`: the integer with `width` bits at `shift`
+    replaced by v, in its type's range."""
+    mask = (1 << width) - 1
     word &= (1 << bits) - 1
-    word = word | 1 << bit if value else word & ~(1 << bit)
+    word = word & ~(mask << shift) | (int(value) & mask) << shift
     if signed and word >= 1 << (bits - 1):
         word -= 1 << bits
     return word
