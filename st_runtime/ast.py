@@ -267,6 +267,7 @@ Expr = Union[
 class Assign(Node):
     target: Expr
     value: Expr
+    mode: str = ":="     # CODESYS "S=" (set the BOOL when value) / "R=" (reset)
 
 
 @dataclass(frozen=True, slots=True)

@@ -277,6 +277,9 @@ class AstBuilder(Transformer):
     def assign_stmt(self, target, value):
         return ast.Assign(target, value, pos=target.pos)
 
+    def set_reset_stmt(self, target, op, value):
+        return ast.Assign(target, value, str(op).upper(), pos=target.pos)
+
     def call_stmt(self, callee, args):
         call = ast.Call(callee, args or (), pos=callee.pos)
         return ast.CallStmt(call, pos=callee.pos)

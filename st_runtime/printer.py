@@ -176,7 +176,7 @@ def _stmt_lines(stmt, indent: str) -> list[str]:
     kind = type(stmt)
     inner = indent + INDENT
     if kind is ast.Assign:
-        return [f"{indent}{format_expr(stmt.target)} := {format_expr(stmt.value)};"]
+        return [f"{indent}{format_expr(stmt.target)} {stmt.mode} {format_expr(stmt.value)};"]
     if kind is ast.CallStmt:
         return [f"{indent}{format_expr(stmt.call)};"]
     if kind is ast.If:

@@ -188,6 +188,7 @@ def test_codesys_pointers_and_bit_access():
     assert (main["Bit0"], main["Bit1"], main["Bit2"]) == (True, False, True)   # 16#0005
     assert main["Flags"] == 0x8004 and main["Top"] is True      # bit 15 set, bit 0 cleared
     assert main["Signed"] == 0x7FFF                             # -1 (16#FFFF) without bit 15
+    assert (main["Lamp"], main["Alarm"]) == (True, False)       # S= by Bit0, R= by Bit2
     assert plc.faults == []
 
 

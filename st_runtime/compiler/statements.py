@@ -173,6 +173,9 @@ class BodyCompiler(ExprCompiler):
 
     def s_Assign(self, s):
         target = self.lvalue(s.target)
+        if s.mode != ":=":
+            self.out.line(f"if {self.expr(s.value)}: {target.store(repr(s.mode == 'S='))}")
+            return
         t = resolve_alias(target.type)
         if is_aggregate(t):
             self.out.line(copy_statement(target.read(), self.aggregate(s.value), t))
