@@ -118,6 +118,7 @@ class CheckedProgram:
     for_vars: dict[int, Symbol] = field(default_factory=dict)
     # id(Call) -> the operator expression a call such as ADD(a, b) stands for.
     lowered: dict[int, ast.Expr] = field(default_factory=dict)
+    dialect: str = "iec"                                           # --dialect checked under
     # id(Call) -> (EN expression or None, ENO Arg or None, the call without them).
     enables: dict[int, tuple] = field(default_factory=dict)
 

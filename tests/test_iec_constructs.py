@@ -217,3 +217,27 @@ def test_partial_access_reads_and_writes_parts_of_a_bit_string():
     assert main["D"] == 0x12FF5678
     assert main["L"] == 0xABCD_0000_0000_0001
     assert plc.faults == []
+
+
+def test_time_to_number_counts_ms_under_codesys_and_ns_under_nj():
+    # CODESYS/TwinCAT: a TIME's number is milliseconds; the NJ (and iec here):
+    # nanoseconds (W501, TIME; TimeToNanoSec).
+    from st_runtime.api import load_text
+
+    source = """
+PROGRAM Main
+VAR Ms : LINT; Back, Negative : TIME; R : LREAL; END_VAR
+Ms := TIME_TO_LINT(T#1s500ms);
+Back := DINT_TO_TIME(250);
+Negative := DINT_TO_TIME(-3);
+R := TIME_TO_LREAL(T#1500us);
+END_PROGRAM
+"""
+    expected = {"codesys": (1500, "T#250ms", "T#-3ms", 1.5),
+                "nj": (1_500_000_000, "T#250ns", "T#-3ns", 1_500_000.0),
+                "iec": (1_500_000_000, "T#250ns", "T#-3ns", 1_500_000.0)}
+    for dialect, values in expected.items():
+        plc = load_text(source, dialect=dialect).controller()
+        main = plc.add_program("Main")
+        plc.run(1)
+        assert (main["Ms"], main["Back"], main["Negative"], main["R"]) == values, dialect

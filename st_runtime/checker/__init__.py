@@ -73,6 +73,7 @@ def check(files: list[ast.SourceFile], dialect: str = "iec") -> tuple[CheckedPro
 def _check(files, dialect):
     program = CheckedProgram(files=list(files))
     ctx = Context(program, FastSink(), dialect if dialect in DIALECTS else "iec")
+    program.dialect = ctx.dialect
     try:
         Declarations(ctx).run(files)
         for info in program.pous.values():

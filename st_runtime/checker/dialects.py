@@ -47,6 +47,15 @@ CONSTRUCTS = {
 }
 
 
+# What one unit of a number is when a TIME converts to or from it
+# (TIME_TO_DINT, DINT_TO_TIME, ...), in nanoseconds.  The NJ counts
+# nanoseconds (W501, TIME data type; its TimeToNanoSec / NanoSecToTime);
+# CODESYS and TwinCAT count milliseconds (TIME is a 32-bit count of ms:
+# TIME_TO_DINT(T#1s) = 1000).  IEC 61131-3 leaves it to the implementation;
+# `iec` keeps the NJ's nanoseconds.
+TIME_UNIT_NS = {"iec": 1, "nj": 1, "codesys": 1_000_000}
+
+
 def accepting(name: str) -> str:
     return " or ".join(f"--dialect {d}" for d in sorted(CONSTRUCTS[name].accepted_by))
 

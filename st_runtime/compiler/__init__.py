@@ -123,8 +123,15 @@ class CompileUnit:
         return pyname
 
     def bind_conversion(self, name: str, pos) -> str:
-        from ..stdlib.conversions import CONVERSIONS
+        from ..checker.dialects import TIME_UNIT_NS
+        from ..stdlib.conversions import CONVERSIONS, time_scaled
 
+        unit = TIME_UNIT_NS.get(getattr(self.program, "dialect", "iec"), 1)
+        scaled = time_scaled(name, unit)
+        if scaled is not None:          # this dialect's TIME counts ms, say
+            pyname = safe_name(f"_cv_{name.upper()}_{unit}")
+            self.namespace[pyname] = scaled
+            return pyname
         fn = CONVERSIONS.get(name.upper())
         if fn is None:
             raise CompileError(f"conversion {name} is not implemented", pos)
