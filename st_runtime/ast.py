@@ -252,6 +252,7 @@ class Call(Node):
 
     callee: Expr
     args: tuple[Arg, ...]
+    trailing_comma: bool = False    # `F(a, b,)`: CODESYS accepts it, IEC does not
 
 
 Expr = Union[

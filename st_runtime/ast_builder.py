@@ -67,6 +67,13 @@ def _statements(items) -> tuple:
     return tuple(out)
 
 
+_TRAILING = object()          # the marker of a trailing comma in an argument list
+
+
+class _ArgsWithComma(tuple):
+    """Arguments written with a trailing comma (`F(a, b,)`)."""
+
+
 @v_args(inline=True)
 class AstBuilder(Transformer):
     def __init__(self) -> None:
@@ -281,7 +288,7 @@ class AstBuilder(Transformer):
         return ast.Assign(target, value, str(op).upper(), pos=target.pos)
 
     def call_stmt(self, callee, args):
-        call = ast.Call(callee, args or (), pos=callee.pos)
+        call = ast.Call(callee, tuple(args or ()), type(args) is _ArgsWithComma, pos=callee.pos)
         return ast.CallStmt(call, pos=callee.pos)
 
     def if_stmt(self, kw, condition, body, *rest):
@@ -352,7 +359,7 @@ class AstBuilder(Transformer):
         return ast.Unary(_OPERATORS[op.type], operand, pos=self._pos(op))
 
     def call(self, callee, args):
-        return ast.Call(callee, args or (), pos=callee.pos)
+        return ast.Call(callee, tuple(args or ()), type(args) is _ArgsWithComma, pos=callee.pos)
 
     def subrange_type(self, base, subrange):
         return ast.SubrangeType(str(base), subrange, pos=self._pos(base))
@@ -389,7 +396,14 @@ class AstBuilder(Transformer):
         return ast.Index(base, indices, pos=base.pos)
 
     def arg_list(self, *args):
+        if args and args[-1] is None:
+            return args[:-1]
+        if args and args[-1] is _TRAILING:
+            return _ArgsWithComma(args[:-1])
         return args
+
+    def trailing_comma(self):
+        return _TRAILING
 
     def positional_arg(self, value):
         return ast.Arg(None, value, pos=value.pos)

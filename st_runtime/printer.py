@@ -96,7 +96,8 @@ def format_expr(expr) -> str:
         indices = ", ".join(format_expr(i) for i in expr.indices)
         return f"{_postfix_base(expr.base)}[{indices}]"
     if kind is ast.Call:
-        return f"{_postfix_base(expr.callee)}({_format_args(expr.args)})"
+        comma = "," if expr.trailing_comma else ""
+        return f"{_postfix_base(expr.callee)}({_format_args(expr.args)}{comma})"
     if kind is ast.Deref:
         return f"{_postfix_base(expr.base)}^"
     if kind is ast.BitAccess:

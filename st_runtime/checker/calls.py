@@ -84,6 +84,11 @@ class CallChecker:
                     msg = f"'{callee.name}' is a PROGRAM: programs are run by tasks, not called"
                 self.ctx.error("E-CALL-001", msg, callee.pos)
                 return self._give_up(call)
+            if k in ("__NEW", "__DELETE"):
+                self.ctx.error("E-CALL-013", f"{callee.name}: dynamic memory (CODESYS __NEW / "
+                               f"__DELETE) is not supported; declare the instance or array as a "
+                               f"variable instead", callee.pos)
+                return self.ex.record(call, ts.ERROR)     # (its argument is a type: not typed)
             if k in ("REF", "ADR") and (k == "REF" or self.ctx.dialect == "codesys"):
                 return self._reference(call, k)
             if k in OPERATOR_FUNCTIONS:

@@ -81,4 +81,5 @@ CHECKER_CODES = register({
     "E-DECL-016": "object orientation: an unknown or wrong base / interface, a missing or FINAL-overridden method, an ABSTRACT FB instantiated",
     "E-DIALECT-001": "a construct the chosen --dialect does not accept (the message names the dialects that do)",
     "E-CALL-012": "a method is called from where its access specifier (PRIVATE, PROTECTED) does not allow it",
+    "E-CALL-013": "dynamic memory (__NEW, __DELETE) is not supported by the runtime",
 })

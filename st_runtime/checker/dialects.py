@@ -40,6 +40,8 @@ CONSTRUCTS = {
     "NULL": Construct("NULL", frozenset({"iec", "codesys"}), _NJ_NO_OO),
     "POINTER": Construct("POINTER TO", frozenset({"codesys"}),
                          "CODESYS extension; IEC 61131-3 3rd ed. has REF_TO instead"),
+    "TRAILING_COMMA": Construct("a comma after the last argument", frozenset({"codesys"}),
+                                "CODESYS accepts it; IEC 61131-3's grammar does not"),
     "SET_RESET": Construct("S= / R=", frozenset({"codesys"}), "CODESYS extension, not in IEC 61131-3"),
     "BIT_ACCESS": Construct("bit access x.3", frozenset({"codesys", "nj"}),
                             "CODESYS; the NJ specifies bits of integer variables the same "
@@ -106,6 +108,8 @@ def _constructs(item):
             yield "DEREF", node.pos
         elif kind is ast.Assign and node.mode != ":=":
             yield "SET_RESET", node.pos
+        elif kind is ast.Call and node.trailing_comma:
+            yield "TRAILING_COMMA", node.pos
         elif kind is ast.NullLiteral:
             yield "NULL", node.pos
         elif kind is ast.BitAccess and not node.size:      # x.%X3 is the standard's
