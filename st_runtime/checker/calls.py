@@ -166,14 +166,7 @@ class CallChecker:
             self.ctx.error("E-DECL-016", f"SUPER.{method.name}: the method of {method.owner.name} "
                            f"is ABSTRACT (it has no body to call)", call.callee.pos)
         self.program.call_targets[id(call)] = CallTarget("method", how, method)
-        self._bind(call, method, is_function=True)
-        if method.return_type is None:
-            if not statement:
-                self.ctx.error("E-TYPE-016", f"method {name} returns no value and cannot be "
-                               f"used in an expression", call.pos)
-                return self.ex.record(call, ts.ERROR)
-            return ts.ERROR
-        return self.ex.record(call, method.return_type)
+        return self._bind_and_type(call, method, f"method {name}", statement)
 
     def _not_a_variable(self, name: ast.Name) -> bool:
         sym = self.ex.scope.lookup(name.name)
@@ -192,11 +185,15 @@ class CallChecker:
     def _user_function(self, call, pou: PouInfo, statement: bool):
         self.program.call_targets[id(call)] = CallTarget("function", key(pou.name), pou)
         self.ctx.add_call_edge(self.ex.scope.pou_key, key(pou.name), call.pos)
+        return self._bind_and_type(call, pou, f"function {pou.name}", statement)
+
+    def _bind_and_type(self, call, pou: PouInfo, what: str, statement: bool):
+        """Bind the arguments of a function or method call; its result type."""
         self._bind(call, pou, is_function=True)
         if pou.return_type is None:
             if not statement:
-                self.ctx.error("E-TYPE-016", f"function {pou.name} returns no value and cannot "
-                               f"be used in an expression", call.pos)
+                self.ctx.error("E-TYPE-016", f"{what} returns no value and cannot be used in "
+                               f"an expression", call.pos)
                 return self.ex.record(call, ts.ERROR)
             return ts.ERROR
         return self.ex.record(call, pou.return_type)
