@@ -133,6 +133,9 @@ class AstBuilder(Transformer):
     def pou_modifier(self, token):
         return ("modifier", str(token).upper())
 
+    def action_decl(self, kw, name, body):
+        return ast.Method(str(name), (), body, None, "PUBLIC", ("ACTION",), pos=self._pos(name))
+
     def method_modifier(self, token):
         return ("modifier", str(token).upper())
 

@@ -329,6 +329,9 @@ def _pou_lines(pou: ast.Pou) -> list[str]:
 
 
 def _method_lines(method: ast.Method, indent: str) -> list[str]:
+    if "ACTION" in method.modifiers:
+        return [f"{indent}ACTION {method.name}:", *_body(method.body, indent + INDENT),
+                f"{indent}END_ACTION"]
     words = ["METHOD", *([method.access] if method.access else []), *method.modifiers, method.name]
     header = indent + " ".join(words)
     if method.return_type is not None:

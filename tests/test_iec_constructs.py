@@ -241,3 +241,10 @@ END_PROGRAM
         main = plc.add_program("Main")
         plc.run(1)
         assert (main["Ms"], main["Back"], main["Negative"], main["R"]) == values, dialect
+
+
+def test_codesys_actions_run_on_the_instance():
+    # Count: 1, 2, 3 then Reset at scan 3 -> 0; 1, 2 at scans 4, 5.
+    plc, main = run("codesys_actions.st", 5, dialect="codesys")
+    assert (main["Seen"], main["C.Count"]) == (2, 2)
+    assert plc.faults == []

@@ -42,6 +42,7 @@ CONSTRUCTS = {
                          "CODESYS extension; IEC 61131-3 3rd ed. has REF_TO instead"),
     "TRAILING_COMMA": Construct("a comma after the last argument", frozenset({"codesys"}),
                                 "CODESYS accepts it; IEC 61131-3's grammar does not"),
+    "ACTION": Construct("ACTION", frozenset({"codesys"}), "CODESYS extension, not in IEC 61131-3"),
     "SET_RESET": Construct("S= / R=", frozenset({"codesys"}), "CODESYS extension, not in IEC 61131-3"),
     "BIT_ACCESS": Construct("bit access x.3", frozenset({"codesys", "nj"}),
                             "CODESYS; the NJ specifies bits of integer variables the same "
@@ -92,7 +93,7 @@ def _constructs(item):
         if item.implements:
             yield "IMPLEMENTS", item.pos
         for method in item.methods:
-            yield "METHOD", method.pos
+            yield ("ACTION" if "ACTION" in method.modifiers else "METHOD"), method.pos
     stack = [item]
     while stack:
         node = stack.pop()
