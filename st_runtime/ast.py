@@ -417,6 +417,7 @@ class TypeDecl(Node):
     name: str
     spec: TypeSpec
     init: Initializer | None = None
+    namespace: str = ""      # "A.B" inside NAMESPACE A.B (3rd ed. 6.9)
 
 
 @dataclass(frozen=True, slots=True)
@@ -443,6 +444,7 @@ class Pou(Node):
     implements: tuple[str, ...] = ()
     methods: tuple[Method, ...] = ()
     modifiers: tuple[str, ...] = ()       # ABSTRACT, FINAL
+    namespace: str = ""                   # "A.B" inside NAMESPACE A.B (3rd ed. 6.9)
 
 
 @dataclass(frozen=True, slots=True)

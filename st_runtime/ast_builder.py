@@ -12,6 +12,8 @@ does not stop the parse.
 
 from __future__ import annotations
 
+import dataclasses
+
 from lark import Transformer, v_args
 
 from . import ast
@@ -132,6 +134,27 @@ class AstBuilder(Transformer):
 
     def pou_modifier(self, token):
         return ("modifier", str(token).upper())
+
+    def qualified_name(self, *parts):
+        return ".".join(str(p) for p in parts)
+
+    def qualified_type(self, *parts):
+        return ast.NamedType(".".join(str(p) for p in parts), pos=self._pos(parts[0]))
+
+    def namespace_decl(self, kw, *rest):
+        rest = [r for r in rest if r is not None and not (hasattr(r, "type") and r.type == "INTERNAL")]
+        name, items = rest[0], rest[1:]
+        out = []
+        for item in items:
+            for one in (item if isinstance(item, list) else [item]):
+                if type(one) in (ast.Pou, ast.TypeDecl):
+                    inner = f"{name}.{one.namespace}" if one.namespace else name
+                    one = dataclasses.replace(one, namespace=inner)
+                out.append(one)
+        return out
+
+    def using_directive(self, *names):
+        return []          # names stay reachable by their short names (flattened)
 
     def action_decl(self, kw, name, body):
         return ast.Method(str(name), (), body, None, "PUBLIC", ("ACTION",), pos=self._pos(name))

@@ -374,11 +374,18 @@ def format_source(file: ast.SourceFile) -> str:
 
     for item in file.items:
         kind = type(item)
+        if kind is ast.TypeDecl and item.namespace:
+            flush_types()
+            chunks.append("\n".join([f"NAMESPACE {item.namespace}", "TYPE",
+                                     *_type_decl_lines(item, INDENT), "END_TYPE", "END_NAMESPACE"]))
+            continue
         if kind is ast.TypeDecl:
             pending_types.extend(_type_decl_lines(item, INDENT))
             continue
         flush_types()
-        if kind is ast.Pou:
+        if kind is ast.Pou and item.namespace:
+            chunks.append("\n".join([f"NAMESPACE {item.namespace}", *_pou_lines(item), "END_NAMESPACE"]))
+        elif kind is ast.Pou:
             chunks.append("\n".join(_pou_lines(item)))
         elif kind is ast.VarBlock:
             chunks.append("\n".join(_var_block_lines(item, "")))

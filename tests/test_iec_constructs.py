@@ -248,3 +248,10 @@ def test_codesys_actions_run_on_the_instance():
     plc, main = run("codesys_actions.st", 5, dialect="codesys")
     assert (main["Seen"], main["C.Count"]) == (2, 2)
     assert plc.faults == []
+
+
+def test_namespaces_qualified_and_short_names():
+    # Distance of (3, 4) from the origin = 5 both ways; 2500 mm = 2.5 m.
+    plc, main = run("namespaces.st", 1)
+    assert (main["D"], main["Short"], main["M"]) == (5.0, 5.0, 2.5)
+    assert plc.faults == []

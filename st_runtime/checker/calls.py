@@ -68,6 +68,12 @@ class CallChecker:
 
     def _dispatch(self, call: ast.Call, expected=None, statement: bool = False):
         callee = call.callee
+        short = self._namespaced(callee)
+        if short is not None:       # NS.F(x): the function F of namespace NS
+            inner = ast.Call(short, call.args, call.trailing_comma, pos=call.pos)
+            self.program.lowered[id(call)] = inner
+            t = self._dispatch(inner, expected, statement)
+            return self.ex.record(call, t) if id(inner) in self.program.expr_types else t
         method = self._method_target(callee)
         if method is not None:
             return self._method_call(call, method[0], method[1], statement)
@@ -126,6 +132,24 @@ class CallChecker:
             return self.ex.record(call, ts.ERROR)
         self.program.call_targets[id(call)] = CallTarget("ref", name)
         return self.ex.record(call, T.RefType(t, name == "ADR"))
+
+    def _namespaced(self, callee):
+        """Name(F) for a callee `NS.Sub.F` whose prefix is a NAMESPACE, else None."""
+        parts = []
+        e = callee
+        while isinstance(e, ast.Member):
+            parts.append(e.name)
+            e = e.base
+        if not parts or not isinstance(e, ast.Name) or self.ex.scope.lookup(e.name) is not None:
+            return None
+        space = ".".join([e.name, *reversed(parts[1:])])
+        if key(space) not in self.ctx.namespaces:
+            return None
+        node = self.ctx.pou_decls.get(key(parts[0]))
+        if node is None or key(node.namespace) != key(space):
+            self.ctx.error("E-DECL-001", f"NAMESPACE {space} declares no POU '{parts[0]}'", callee.pos)
+            return None
+        return ast.Name(parts[0], pos=callee.pos)
 
     # ------------------------------------------------------------ methods
     def _method_target(self, callee):

@@ -41,6 +41,7 @@ class Context:
     symbol_values: dict[int, object] = field(default_factory=dict)
     # call graph for the recursion check: caller -> [(callee, pos)]
     calls: dict[str, list[tuple[str, ast.Pos]]] = field(default_factory=dict)
+    namespaces: set = field(default_factory=set)     # upper-case "A", "A.B"
 
     def error(self, code: str, message: str, pos: ast.Pos) -> None:
         self.sink.error(code, message, pos)

@@ -51,6 +51,10 @@ class Declarations:
         for f in files:
             for item in f.items:
                 self._collect(item)
+                space = getattr(item, "namespace", "")
+                while space:            # NAMESPACE A.B declares A and A.B
+                    self.ctx.namespaces.add(key(space))
+                    space = space.rpartition(".")[0]
         self._create_pous()
         # Global constants first: types may use them (ARRAY[1..N_LEGS]); types
         # are resolved on demand while globals are declared, the rest after.
@@ -197,6 +201,11 @@ class Declarations:
 
     def resolve(self, ref, ex: ExprChecker):
         """A declared type reference as a semantic type (ERROR after a report)."""
+        if isinstance(ref, ast.NamedType) and "." in ref.name:
+            short = self.qualified(ref.name, ref.pos)
+            if short is None:
+                return ts.ERROR
+            ref = ast.NamedType(short, pos=ref.pos)
         if isinstance(ref, ast.NamedType):
             k = key(ref.name)
             if k == "STRING":
@@ -256,6 +265,16 @@ class Declarations:
                 return ts.ERROR
             return T.ArrayType(tuple(dims), element)
         return ts.ERROR
+
+    def qualified(self, name: str, pos) -> str | None:
+        """`NS.Name` -> "Name" when Name is declared in namespace NS."""
+        space, _, short = name.rpartition(".")
+        item = self.ctx.type_decls.get(key(short)) or self.ctx.pou_decls.get(key(short))
+        if key(space) not in self.ctx.namespaces or item is None or key(item.namespace) != key(space):
+            self.ctx.error("E-DECL-004", f"unknown type '{name}'" + (
+                "" if key(space) in self.ctx.namespaces else f" (no NAMESPACE {space})"), pos)
+            return None
+        return short
 
     def _subrange(self, ref: ast.SubrangeType, ex: ExprChecker):
         """`INT (0..100)`: an integer base, constant limits inside it, lo <= hi."""

@@ -43,6 +43,9 @@ CONSTRUCTS = {
     "TRAILING_COMMA": Construct("a comma after the last argument", frozenset({"codesys"}),
                                 "CODESYS accepts it; IEC 61131-3's grammar does not"),
     "ACTION": Construct("ACTION", frozenset({"codesys"}), "CODESYS extension, not in IEC 61131-3"),
+    "NAMESPACE": Construct("NAMESPACE", frozenset({"iec"}),
+                           "IEC 61131-3 3rd ed. 6.9; the NJ has namespaces, set in Sysmac Studio and "
+                           "written \\\\NS\\Name (W501 6-7)"),
     "SET_RESET": Construct("S= / R=", frozenset({"codesys"}), "CODESYS extension, not in IEC 61131-3"),
     "BIT_ACCESS": Construct("bit access x.3", frozenset({"codesys", "nj"}),
                             "CODESYS; the NJ specifies bits of integer variables the same "
@@ -85,6 +88,8 @@ def check_dialect(ctx, files) -> None:
 
 def _constructs(item):
     """(construct name, position) of each dialect-dependent construct in an item."""
+    if getattr(item, "namespace", ""):
+        yield "NAMESPACE", item.pos
     if isinstance(item, ast.Pou):
         if item.kind == "INTERFACE":
             yield "INTERFACE", item.pos
