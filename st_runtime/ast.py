@@ -83,9 +83,10 @@ class RefType(Node):
 
 @dataclass(frozen=True, slots=True)
 class ArrayType(Node):
-    """`ARRAY[lo..hi, ...] OF element` (up to three dimensions)."""
+    """`ARRAY[lo..hi, ...] OF element` (up to three dimensions); a range of
+    None is `*` (ARRAY[*] in a VAR_IN_OUT: the bounds come with the argument)."""
 
-    ranges: tuple[Subrange, ...]
+    ranges: tuple[Subrange | None, ...]
     element: TypeRef
 
 

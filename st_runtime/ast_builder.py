@@ -236,6 +236,9 @@ class AstBuilder(Transformer):
     def array_type(self, kw, *rest):
         return ast.ArrayType(tuple(rest[:-1]), rest[-1], pos=self._pos(kw))
 
+    def open_range(self, star):
+        return None
+
     def subrange(self, lo, hi):
         return ast.Subrange(lo, hi, pos=lo.pos)
 

@@ -250,7 +250,8 @@ def format_type(type_ref) -> str:
             return word
         return f"{word}[{format_expr(type_ref.length)}]"
     if kind is ast.ArrayType:
-        ranges = ", ".join(f"{format_expr(r.lo)}..{format_expr(r.hi)}" for r in type_ref.ranges)
+        ranges = ", ".join("*" if r is None else f"{format_expr(r.lo)}..{format_expr(r.hi)}"
+                           for r in type_ref.ranges)
         return f"ARRAY[{ranges}] OF {format_type(type_ref.element)}"
     if kind is ast.RefType:
         return ("POINTER TO " if type_ref.pointer else "REF_TO ") + format_type(type_ref.target)

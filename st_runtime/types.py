@@ -152,8 +152,13 @@ class ArrayType:
     element: "Type"
 
     def __str__(self) -> str:
-        ranges = ", ".join(f"{lo}..{hi}" for lo, hi in self.dims)
+        ranges = ", ".join("*" if lo is None else f"{lo}..{hi}" for lo, hi in self.dims)
         return f"ARRAY[{ranges}] OF {self.element}"
+
+    @property
+    def is_open(self) -> bool:
+        """ARRAY[*]: the bounds are the argument's, known at run time only."""
+        return any(lo is None for lo, _ in self.dims)
 
     @property
     def size(self) -> int:

@@ -255,3 +255,20 @@ def test_namespaces_qualified_and_short_names():
     plc, main = run("namespaces.st", 1)
     assert (main["D"], main["Short"], main["M"]) == (5.0, 5.0, 2.5)
     assert plc.faults == []
+
+
+def test_open_arrays_take_the_bounds_of_the_argument():
+    # 1 + 2 + 3 = 6; 10 + ... + 50 = 150; the 2 x 2 table times 3.
+    plc, main = run("open_arrays.st", 1)
+    assert (main["S1"], main["S2"], main["Low"], main["High"]) == (6, 150, -2, 6)
+    assert main["Table"] == [[3, 6], [9, 12]]
+    assert plc.faults == []
+
+
+def test_open_array_index_outside_the_arguments_bounds_faults():
+    plc, main = run("open_arrays.st", 1, program="Beyond")
+    assert [f.code for f in plc.faults] == ["F-INDEX"]
+    assert "index 4 of 'Values' out of bounds 1..3" in plc.faults[0].message
+    # The faulting statement inside the function is abandoned; the function
+    # returns its result's initial value, 0.
+    assert main["R"] == 0

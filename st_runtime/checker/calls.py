@@ -95,6 +95,8 @@ class CallChecker:
                                f"__DELETE) is not supported; declare the instance or array as a "
                                f"variable instead", callee.pos)
                 return self.ex.record(call, ts.ERROR)     # (its argument is a type: not typed)
+            if k in ("LOWER_BOUND", "UPPER_BOUND"):
+                return self._bound(call, k)
             if k in ("REF", "ADR") and (k == "REF" or self.ctx.dialect == "codesys"):
                 return self._reference(call, k)
             if k in OPERATOR_FUNCTIONS:
@@ -117,6 +119,31 @@ class CallChecker:
                            f"instance, found a variable of type {t}", callee.pos)
             return self._give_up(call)
         return self._fb_call(call, t, statement)
+
+    # ---------------------------------------------------------- array bounds
+    def _bound(self, call, name: str):
+        """LOWER_BOUND(A, n) / UPPER_BOUND(A, n) (3rd ed. 6.5.3): a bound of dimension n."""
+        args = [a.value for a in call.args if a.direction != "out"]
+        if len(args) != 2 or len(call.args) != 2:
+            self.ctx.error("E-CALL-009" if len(call.args) < 2 else "E-CALL-006",
+                           f"{name}: expected an array and a dimension number, found "
+                           f"{len(call.args)} argument(s)", call.pos)
+            return self._give_up(call)
+        t = self.ex.infer(args[0])
+        self.ex.infer(args[1], T.DINT)
+        dim = self.ex.constant(args[1])
+        if t is ts.ERROR:
+            return self.ex.record(call, ts.ERROR)
+        if not isinstance(t, T.ArrayType):
+            self.ctx.error("E-TYPE-006", f"{name}: expected an array, found {t}", start_pos(args[0]))
+            return self.ex.record(call, ts.ERROR)
+        if not isinstance(dim, int) or isinstance(dim, bool) or not 1 <= dim <= len(t.dims):
+            self.ctx.error("E-TYPE-008", f"{name}: expected a constant dimension 1..{len(t.dims)}, "
+                           f"found {dim if isinstance(dim, int) else 'a non-constant value'}",
+                           start_pos(args[1]))
+            return self.ex.record(call, ts.ERROR)
+        self.program.call_targets[id(call)] = CallTarget("bound", name)
+        return self.ex.record(call, T.DINT)
 
     # --------------------------------------------------------- references
     def _reference(self, call, name: str):
@@ -322,6 +349,10 @@ class CallChecker:
             self.ctx.error("E-CALL-007", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
                            f"writable variable, found {problem}", start_pos(value))
             return
+        if isinstance(sym.type, T.ArrayType) and sym.type.is_open and isinstance(t, T.ArrayType) \
+                and len(t.dims) == len(sym.type.dims) and (ts.same_type(t.element, sym.type.element)
+                                                           or t.element is sym.type.element):
+            return                  # ARRAY[*]: any bounds, same rank and element type
         if not (ts.same_type(t, sym.type) or t is sym.type):
             self.ctx.error("E-CALL-011", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
                            f"variable of type {sym.type}, found {t} (in-out parameters are passed "

@@ -249,6 +249,9 @@ class Declarations:
             dims = []
             ok = True
             for sub in ref.ranges:
+                if sub is None:          # ARRAY[*]
+                    dims.append((None, None))
+                    continue
                 lo = self._const_int(sub.lo, ex, "array lower bound")
                 hi = self._const_int(sub.hi, ex, "array upper bound")
                 if lo is None or hi is None:
@@ -323,6 +326,9 @@ class Declarations:
                            f"FUNCTION_BLOCK", decl.pos)
         if decl.location is not None:
             self._located(decl, kind, t, pou)
+        if isinstance(t, T.ArrayType) and t.is_open and kind != "VAR_IN_OUT":
+            self.ctx.error("E-DECL-006", f"'{decl.name}' : {t}: ARRAY[*] is only for a VAR_IN_OUT "
+                           f"(the bounds come with the argument)", decl.pos)
         fb_node = self.ctx.pou_decls.get(key(t.name)) if isinstance(t, T.FBType) else None
         if fb_node is not None and "ABSTRACT" in fb_node.modifiers:
             self.ctx.error("E-DECL-016", f"'{decl.name}': {t.name} is ABSTRACT and cannot be "

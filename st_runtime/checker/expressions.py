@@ -443,7 +443,7 @@ class ExprChecker:
                 self.ctx.error("E-TYPE-007", f"array index: expected an integer, found {t}", index.pos)
                 continue
             value = self.constant(index)
-            if isinstance(value, int) and not lo <= value <= hi:
+            if isinstance(value, int) and lo is not None and not lo <= value <= hi:
                 where = f" of dimension {n}" if len(base.dims) > 1 else ""
                 self.ctx.error("E-TYPE-008", f"index {value} is out of bounds {lo}..{hi}{where}", index.pos)
         return self.record(e, base.element)

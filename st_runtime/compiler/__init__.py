@@ -87,7 +87,7 @@ class CompileUnit:
             "_rdiv": support.rdiv, "_time_mul": values.time_mul, "_time_div": values.time_div,
             "_index_fault": support.index_fault, "_index_fault_n": support.index_fault_n,
             "_overrun": support.overrun, "_for_range": support.for_range,
-            "_truncate": support.truncate_string, "_subrange": support.subrange, "_method": support.bound_method, "_deref": support.deref, "_setbit": support.set_bit, "_AttrRef": AttrRef, "_ItemRef": ItemRef,
+            "_truncate": support.truncate_string, "_subrange": support.subrange, "_method": support.bound_method, "_deref": support.deref, "_ArrayView": support.ArrayView, "_setbit": support.set_bit, "_AttrRef": AttrRef, "_ItemRef": ItemRef,
             "_setattr": setattr, "_assign_list": assign_list, "_FAULTS": _FAULTS,
             "_INF": math.inf, "_NAN": math.nan,
         }

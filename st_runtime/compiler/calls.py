@@ -80,6 +80,9 @@ class Calls:
     def argument(self, ec, symbol, arg) -> str:
         """Python source passing `arg` to parameter `symbol`."""
         if symbol.kind == "VAR_IN_OUT":
+            open_array = isinstance(symbol.type, ArrayType) and symbol.type.is_open
+            if open_array and not ec.ty(arg.value).is_open:      # ARRAY[*]: bounds travel along
+                return f"_ArrayView({ec.aggregate(arg.value)}, {pyliteral(ec.ty(arg.value).dims)})"
             if is_aggregate(symbol.type):
                 return ec.aggregate(arg.value)
             return ec.lvalue(arg.value).ref()
@@ -208,6 +211,13 @@ class Calls:
             return f"({tmp} := {code}, {', '.join(stores)}, {tmp}[0])[-1]"
         if target.kind == "function":
             return self.standard(ec, call, target)
+        if target.kind == "bound":               # LOWER_BOUND / UPPER_BOUND
+            array, dim = call.args[0].value, ec.constant_of(call.args[1].value)
+            t = ec.ty(array)
+            side = 0 if target.name == "LOWER_BOUND" else 1
+            if not t.is_open:
+                return pyliteral(t.dims[dim - 1][side])
+            return f"{ec.aggregate(array)}.dims[{dim - 1}][{side}]"
         if target.kind == "ref":                 # REF(x) / ADR(x)
             value = call.args[0].value
             return ec.aggregate(value) if is_aggregate(ec.ty(value)) else ec.lvalue(value).ref()

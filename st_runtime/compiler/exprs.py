@@ -403,6 +403,10 @@ class ExprCompiler:
         if len(e.indices) != len(arr_t.dims):
             self.fail(f"{len(arr_t.dims)} indices expected, found {len(e.indices)}", e)
         base = self.aggregate(e.base)
+        if arr_t.is_open:        # ARRAY[*]: an _ArrayView, its bounds known at run time
+            indices = ", ".join(self.expr(i) for i in e.indices)
+            key = f"{base}.offset(({indices},), {_describe(e.base)!r}, {self.where(e)})"
+            return LValue("item", arr_t.element, obj=f"{base}.seq", key=key)
         name = _describe(e.base)
         checks: list[str] = []
         terms: list[str] = []

@@ -127,3 +127,22 @@ def set_bit(word: int, shift: int, width: int, value, bits: int, signed: bool) -
     if signed and word >= 1 << (bits - 1):
         word -= 1 << bits
     return word
+
+
+class ArrayView:
+    """An array passed to an ARRAY[*] in-out: the caller's flat list and its bounds."""
+
+    __slots__ = ("seq", "dims")
+
+    def __init__(self, seq: list, dims: tuple):
+        self.seq = seq
+        self.dims = dims
+
+    def offset(self, indices: tuple, name: str, where) -> int:
+        flat = 0
+        for i, (lo, hi) in zip(indices, self.dims):
+            if not lo <= i <= hi:
+                return index_fault_n(indices, self.dims, name, where) if len(indices) > 1 \
+                    else index_fault(i, lo, hi, name, where)
+            flat = flat * (hi - lo + 1) + (i - lo)
+        return flat
