@@ -118,8 +118,9 @@ class AstBuilder(Transformer):
         modifiers = tuple(i[1] for i in items if isinstance(i, tuple) and i and i[0] == "modifier")
         rest = [i for i in items if not (isinstance(i, tuple) and i and i[0] == "modifier")]
         name, extends, implements = rest[0], rest[1], rest[2]
-        blocks = tuple(i for i in rest[3:-1] if type(i) is ast.VarBlock)
-        methods = tuple(i for i in rest[3:-1] if type(i) is ast.Method)
+        parts = [p for i in rest[3:-1] for p in (i if isinstance(i, list) else [i])]
+        blocks = tuple(i for i in parts if type(i) is ast.VarBlock)
+        methods = tuple(i for i in parts if type(i) is ast.Method)
         return ast.Pou("FUNCTION_BLOCK", str(name), blocks, rest[-1], None,
                        extends or (), implements or (), methods, modifiers, pos=self._pos(kw))
 
@@ -155,6 +156,30 @@ class AstBuilder(Transformer):
 
     def using_directive(self, *names):
         return []          # names stay reachable by their short names (flattened)
+
+    def property_decl(self, kw, *items):
+        """A PROPERTY becomes up to two Methods: the getter (its result is the
+        property) and the setter (its one input is the property)."""
+        words = [i[1] for i in items if isinstance(i, tuple) and i and i[0] == "modifier"]
+        rest = [i for i in items if not (isinstance(i, tuple) and i and i[0] == "modifier")]
+        name, type_ref, getter, setter = rest
+        access = next((w for w in words if w in ("PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL")), None)
+        modifiers = tuple(w for w in words if w not in ("PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL"))
+        methods = []
+        if getter is not None:
+            methods.append(ast.Method(str(name), getter[0], getter[1], type_ref, access,
+                                      modifiers + ("GET",), pos=self._pos(name)))
+        if setter is not None:
+            value = ast.VarBlock("VAR_INPUT", (ast.VarDecl(str(name), type_ref, pos=self._pos(name)),),
+                                 pos=self._pos(name))
+            methods.append(ast.Method(str(name), (value,) + setter[0], setter[1], None, access,
+                                      modifiers + ("SET",), pos=self._pos(name)))
+        return methods
+
+    def property_get(self, kw, *rest):
+        return tuple(rest[:-1]), rest[-1]
+
+    property_set = property_get
 
     def action_decl(self, kw, name, body):
         return ast.Method(str(name), (), body, None, "PUBLIC", ("ACTION",), pos=self._pos(name))

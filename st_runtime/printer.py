@@ -322,10 +322,37 @@ def _pou_lines(pou: ast.Pou) -> list[str]:
     lines = [header]
     for block in pou.var_blocks:
         lines.extend(_var_block_lines(block, ""))
-    for method in pou.methods:
-        lines.extend(_method_lines(method, INDENT))
+    methods = list(pou.methods)
+    while methods:
+        method = methods.pop(0)
+        if "GET" in method.modifiers or "SET" in method.modifiers:
+            pair = [method]
+            if methods and "SET" in methods[0].modifiers and "GET" in method.modifiers \
+                    and methods[0].name == method.name:
+                pair.append(methods.pop(0))
+            lines.extend(_property_lines(pair, INDENT))
+        else:
+            lines.extend(_method_lines(method, INDENT))
     lines.extend(_body(pou.body, INDENT))
     lines.append(f"END_{pou.kind}")
+    return lines
+
+
+def _property_lines(accessors: list, indent: str) -> list[str]:
+    first = accessors[0]
+    words = ["PROPERTY", *([first.access] if first.access else []),
+             *[m for m in first.modifiers if m not in ("GET", "SET")], first.name]
+    prop_type = first.return_type if "GET" in first.modifiers else first.var_blocks[0].decls[0].type
+    lines = [f"{indent}{' '.join(words)} : {format_type(prop_type)}"]
+    for accessor in accessors:
+        word = "GET" if "GET" in accessor.modifiers else "SET"
+        blocks = accessor.var_blocks if word == "GET" else accessor.var_blocks[1:]
+        lines.append(f"{indent}{word}")
+        for block in blocks:
+            lines.extend(_var_block_lines(block, indent + INDENT))
+        lines.extend(_body(accessor.body, indent + INDENT + INDENT))
+        lines.append(f"{indent}END_{word}")
+    lines.append(f"{indent}END_PROPERTY")
     return lines
 
 

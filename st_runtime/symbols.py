@@ -119,6 +119,8 @@ class CheckedProgram:
     # id(Call) -> the operator expression a call such as ADD(a, b) stands for.
     lowered: dict[int, ast.Expr] = field(default_factory=dict)
     dialect: str = "iec"                                           # --dialect checked under
+    # id(Member) -> (getter, setter) PouInfos of a PROPERTY read or written there.
+    properties: dict[int, tuple] = field(default_factory=dict)
     # id(Call) -> (EN expression or None, ENO Arg or None, the call without them).
     enables: dict[int, tuple] = field(default_factory=dict)
 

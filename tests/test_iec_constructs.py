@@ -272,3 +272,12 @@ def test_open_array_index_outside_the_arguments_bounds_faults():
     # The faulting statement inside the function is abandoned; the function
     # returns its result's initial value, 0.
     assert main["R"] == 0
+
+
+def test_codesys_properties_call_their_get_and_set():
+    # Speed := 12.5 -> SET stores 125.0 (x 10), counts one write; GET gives 12.5;
+    # Running reads THIS.Speed > 0.
+    plc, main = run("codesys_properties.st", 1, dialect="codesys")
+    assert (main["Read"], main["IsOn"]) == (12.5, True)
+    assert (main["M.RawSpeed"], main["M.Writes"]) == (125.0, 1)
+    assert plc.faults == []

@@ -42,6 +42,7 @@ CONSTRUCTS = {
                          "CODESYS extension; IEC 61131-3 3rd ed. has REF_TO instead"),
     "TRAILING_COMMA": Construct("a comma after the last argument", frozenset({"codesys"}),
                                 "CODESYS accepts it; IEC 61131-3's grammar does not"),
+    "PROPERTY": Construct("PROPERTY", frozenset({"codesys"}), "CODESYS extension, not in IEC 61131-3"),
     "ACTION": Construct("ACTION", frozenset({"codesys"}), "CODESYS extension, not in IEC 61131-3"),
     "NAMESPACE": Construct("NAMESPACE", frozenset({"iec"}),
                            "IEC 61131-3 3rd ed. 6.9; the NJ has namespaces, set in Sysmac Studio and "
@@ -98,7 +99,9 @@ def _constructs(item):
         if item.implements:
             yield "IMPLEMENTS", item.pos
         for method in item.methods:
-            yield ("ACTION" if "ACTION" in method.modifiers else "METHOD"), method.pos
+            kinds = set(method.modifiers)
+            yield ("ACTION" if "ACTION" in kinds else "PROPERTY" if kinds & {"GET", "SET"}
+                   else "METHOD"), method.pos
     stack = [item]
     while stack:
         node = stack.pop()

@@ -29,7 +29,7 @@ from __future__ import annotations
 import difflib
 import math
 
-from .oo import assignable_reference
+from .oo import assignable_reference, find_property, may_call
 from .. import ast
 from .. import types as T
 from ..ast import key
@@ -382,6 +382,17 @@ class ExprChecker:
             return self.record(e, entry[1])
         if isinstance(base, T.FBType):
             sym = base.variables.get(k)
+            if sym is None and base.info is not None:
+                getter, setter = find_property(base.info, e.name)
+                if getter is not None or setter is not None:       # a PROPERTY
+                    accessor = getter or setter
+                    if not may_call(accessor, self.scope.fb):
+                        self.ctx.error("E-CALL-012", f"property {base.name}.{e.name} is "
+                                       f"{accessor.access}", e.pos)
+                    self.program.properties[id(e)] = (getter, setter)
+                    t = getter.return_type if getter is not None else \
+                        next(iter(setter.variables.values())).type
+                    return self.record(e, t)
             if sym is None:
                 self.ctx.error("E-TYPE-009", f"function block {base.name} has no variable "
                                f"'{e.name}'", e.pos)

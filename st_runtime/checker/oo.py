@@ -41,7 +41,7 @@ def fb_of_scope(pou: PouInfo | None) -> PouInfo | None:
 
 def find_method(info: PouInfo | None, name: str) -> PouInfo | None:
     while info is not None:
-        found = info.methods.get(key(name))
+        found = info.methods.get(key(name) if " " not in name else name)
         if found is not None:
             return found
         found = next((m for i in info.interfaces for m in [find_method(i, name)] if m), None)
@@ -49,6 +49,20 @@ def find_method(info: PouInfo | None, name: str) -> PouInfo | None:
             return found
         info = info.parent
     return None
+
+
+def accessor_key(method: ast.Method) -> str:
+    """The key of a method in `PouInfo.methods`; a PROPERTY's getter and setter
+    are "GET NAME" and "SET NAME" (a space: no identifier collides)."""
+    for word in ("GET", "SET"):
+        if word in method.modifiers:
+            return f"{word} {key(method.name)}"
+    return key(method.name)
+
+
+def find_property(info: PouInfo | None, name: str) -> tuple:
+    """(getter, setter) of a PROPERTY (either may be None), or (None, None)."""
+    return find_method(info, f"GET {key(name)}"), find_method(info, f"SET {key(name)}")
 
 
 def may_call(method: PouInfo, caller_fb: PouInfo | None) -> bool:
@@ -104,7 +118,7 @@ class ObjectModel:
 
     def declare_methods(self, info: PouInfo, node: ast.Pou) -> None:
         for m in node.methods:
-            k = key(m.name)
+            k = accessor_key(m)
             if k in info.variables and info.variables[k].kind != "RETURN":
                 self.ctx.error("E-DECL-002", f"method {m.name} has the name of a variable of "
                                f"{node.name}", m.pos)

@@ -41,6 +41,12 @@ def check_store(ex, target, what: str = "assignment"):
                      f"{_describe(target)}", target.pos)
         return ts.ERROR
     t = ex.infer(target)
+    accessors = ex.program.properties.get(id(target))
+    if accessors is not None and t is not ts.ERROR:
+        if accessors[1] is None:
+            ex.ctx.error("E-ASSIGN-004", f"{what}: property '{target.name}' has no SET", target.pos)
+            return ts.ERROR
+        return t
     if t is ts.ERROR or through_reference(target):
         return t                   # (the referenced variable was writable where REF took it)
     root = root_name(target)

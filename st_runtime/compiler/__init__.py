@@ -185,9 +185,10 @@ def compile_program(program, guard_statements: bool = True) -> CompiledProgram:
                            unit.image)
 
 
-def method_attr(name: str) -> str:
-    """The class attribute of a METHOD: `m` + the mangled name (no ST text in Python)."""
-    return "m" + pyident(name)
+def method_attr(name: str, accessor: str = "") -> str:
+    """The class attribute of a METHOD: `m` + the mangled name (no ST text in
+    Python); a PROPERTY's getter / setter: `mg` / `ms` + the mangled name."""
+    return {"": "m", "GET": "mg", "SET": "ms"}[accessor] + pyident(name)
 
 
 def _compile_methods(unit: CompileUnit, key: str, pou) -> None:
@@ -196,11 +197,13 @@ def _compile_methods(unit: CompileUnit, key: str, pou) -> None:
     for method in pou.methods.values():
         if method.owner is not pou or "ABSTRACT" in method.modifiers:
             continue
-        pyname = safe_name(f"_m_{key}_{method.name.upper()}")
+        pyname = safe_name(f"_m_{key}_{method.name.upper()}" + "".join(
+            "_" + w for w in ("GET", "SET") if w in method.modifiers))
         compiler = BodyCompiler(unit.program, method, unit, method=False)
         unit.run_source(f"{key}.{method.name.upper()}", compiler.function_source(pyname),
                         method.node.pos)
-        setattr(unit.classes[key], method_attr(method.name), unit.namespace[pyname])
+        accessor = next((w for w in ("GET", "SET") if w in method.modifiers), "")
+        setattr(unit.classes[key], method_attr(method.name, accessor), unit.namespace[pyname])
 
 
 # ------------------------------------------------------------------ classes

@@ -58,6 +58,8 @@ class LValue:
         raise AssertionError("a ref has no Python target")
 
     def read(self) -> str:
+        if self.kind == "prop":            # a PROPERTY: its getter
+            return f"{self.obj}.{self.name}(_ctx)"
         if self.kind == "ref":
             return f"{self.name}.get()"
         if self.kind == "bit":
@@ -75,6 +77,8 @@ class LValue:
                 f"{t.bits}, {bool(t.signed)})")
 
     def store(self, value: str) -> str:
+        if self.kind == "prop":            # its setter
+            return f"{self.obj}.{self.key}(_ctx, {value})"
         if self.kind == "ref":
             return f"{self.name}.set({value})"
         if self.kind == "bit":
@@ -85,6 +89,8 @@ class LValue:
         """An expression that stores `value` (inside a larger expression)."""
         if self.kind == "bit":
             return self.inner.store_expr(self._with_bit(value))
+        if self.kind == "prop":
+            return self.store(value)
         if self.kind == "local":
             return f"({self.name} := {value})"
         if self.kind == "attr":
@@ -353,6 +359,14 @@ class ExprCompiler:
         """Where a Name/Member/Index expression lives."""
         if isinstance(e, ast.Name):
             return self.scope.lvalue_of_name(self, e)
+        if isinstance(e, ast.Member) and id(e) in self.program.properties:
+            from . import method_attr      # (compiler/__init__ imports this module)
+
+            getter, setter = self.program.properties[id(e)]
+            base = self.aggregate(e.base)
+            return LValue("prop", self.ty(e), obj=base,
+                          name=method_attr(getter.name, "GET") if getter else "",
+                          key=method_attr(setter.name, "SET") if setter else "")
         if isinstance(e, ast.Member):
             base_t = self.ty(e.base)
             base = self.aggregate(e.base)
