@@ -92,9 +92,11 @@ class ArrayType(Node):
 
 @dataclass(frozen=True, slots=True)
 class StructType(Node):
-    """`STRUCT ... END_STRUCT`, only inside a TYPE declaration."""
+    """`STRUCT ... END_STRUCT` (or `UNION ... END_UNION`: the members share
+    their storage), only inside a TYPE declaration."""
 
     members: tuple[VarDecl, ...]
+    union: bool = False
 
 
 @dataclass(frozen=True, slots=True)

@@ -282,6 +282,9 @@ class AstBuilder(Transformer):
             members.extend(group)
         return ast.StructType(tuple(members), pos=self._pos(kw))
 
+    def union_type(self, kw, *decls):
+        return ast.StructType(tuple(m for group in decls for m in group), True, pos=self._pos(kw))
+
     def enum_type(self, *args):
         values = args[:-1]  # the last child is the optional base type (ignored)
         return ast.EnumType(tuple(values), pos=values[0].pos)

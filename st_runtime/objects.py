@@ -123,6 +123,8 @@ class STObject:
                 mine._assign(theirs)
             elif isinstance(mine, list):
                 assign_list(mine, theirs)
+            elif isinstance(mine, bytearray):      # a UNION's shared bytes: copied
+                mine[:] = theirs
             else:
                 setattr(self, attr, theirs)
 

@@ -296,7 +296,8 @@ def _type_spec(spec, indent: str) -> str:
     kind = type(spec)
     if kind is ast.StructType:
         members = [_decl_line(m, indent + INDENT) for m in spec.members]
-        return "\n".join(["STRUCT", *members, f"{indent}END_STRUCT"])
+        word = "UNION" if spec.union else "STRUCT"
+        return "\n".join([word, *members, f"{indent}END_{word}"])
     if kind is ast.EnumType:
         values = []
         for value in spec.values:

@@ -85,28 +85,51 @@ class ProcessImage:
             data[:] = bytes(len(data))
 
     def get(self, address: Address, kind: str, signed: bool = False):
-        data = self.areas[address.area]
-        if address.size == "X":
-            return bool(data[address.byte] >> address.bit & 1)
-        n = address.bits // 8
-        raw = bytes(data[address.byte:address.byte + n])
-        if kind == "real":
-            return struct.unpack("<f" if n == 4 else "<d", raw)[0]
-        value = int.from_bytes(raw, "little", signed=signed)
-        return bool(value & 1) if kind == "bool" else value
+        return decode(self.areas[address.area], address, kind, signed)
 
     def set(self, address: Address, kind: str, value) -> None:
-        data = self.areas[address.area]
-        if address.size == "X":
-            mask = 1 << address.bit
-            data[address.byte] = data[address.byte] | mask if value else data[address.byte] & ~mask
-            return
-        n = address.bits // 8
-        if kind == "real":
-            raw = struct.pack("<f" if n == 4 else "<d", value)
-        else:
-            raw = (int(value) & ((1 << address.bits) - 1)).to_bytes(n, "little")
-        data[address.byte:address.byte + n] = raw
+        encode(self.areas[address.area], address, kind, value)
+
+
+def decode(data: bytearray, address: Address, kind: str, signed: bool = False):
+    """The value at `address` in `data` (little-endian, REAL as IEEE bits)."""
+    if address.size == "X":
+        return bool(data[address.byte] >> address.bit & 1)
+    n = address.bits // 8
+    raw = bytes(data[address.byte:address.byte + n])
+    if kind == "real":
+        return struct.unpack("<f" if n == 4 else "<d", raw)[0]
+    value = int.from_bytes(raw, "little", signed=signed)
+    return bool(value & 1) if kind == "bool" else value
+
+
+def encode(data: bytearray, address: Address, kind: str, value) -> None:
+    """Store `value` at `address` in `data`."""
+    if address.size == "X":
+        mask = 1 << address.bit
+        data[address.byte] = data[address.byte] | mask if value else data[address.byte] & ~mask
+        return
+    n = address.bits // 8
+    if kind == "real":
+        raw = struct.pack("<f" if n == 4 else "<d", value)
+    else:
+        raw = (int(value) & ((1 << address.bits) - 1)).to_bytes(n, "little")
+    data[address.byte:address.byte + n] = raw
+
+
+def union_property(t) -> property:
+    """A UNION member: its value lives at byte 0 of the object's shared bytes."""
+    size = "X" if t.kind == "bool" else {8: "B", 16: "W", 32: "D", 64: "L"}[t.bits]
+    address = Address("U", size, 0, 0, "")
+    kind, signed = t.kind, bool(getattr(t, "signed", False))
+
+    def read(self):
+        return decode(self._bytes, address, kind, signed)
+
+    def write(self, value):
+        encode(self._bytes, address, kind, value)
+
+    return property(read, write)
 
 
 def located_property(image: ProcessImage, address: Address, t) -> property:

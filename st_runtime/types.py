@@ -174,6 +174,7 @@ class StructType:
 
     name: str
     fields: dict[str, tuple[str, "Type"]] = field(default_factory=dict)
+    union: bool = False      # UNION: every member starts at byte 0 of one storage
 
     def __str__(self) -> str:
         return self.name

@@ -281,3 +281,14 @@ def test_codesys_properties_call_their_get_and_set():
     assert (main["Read"], main["IsOn"]) == (12.5, True)
     assert (main["M.RawSpeed"], main["M.Writes"]) == (125.0, 1)
     assert plc.faults == []
+
+
+def test_union_members_share_their_bytes():
+    # REAL 1.0 is IEEE 16#3F800000: its low word is 0.  V := U copies the bytes,
+    # then V's low word 16#0001 sets bit 0 (Flag) and leaves U alone.
+    plc, main = run("codesys_unions.st", 1, dialect="codesys")
+    assert (main["Bits"], main["Low"]) == (0x3F80_0000, 0)
+    assert (main["U.AsDword"], main["U.Flag"]) == (0x3F80_0000, False)
+    assert (main["V.AsDword"], main["V.LowWord"], main["F"]) == (0x3F80_0001, 1, True)
+    for dialect in ("codesys", "nj"):
+        load([str(ACCEPT / "codesys_unions.st")], dialect=dialect)   # both accept UNION

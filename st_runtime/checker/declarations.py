@@ -166,11 +166,17 @@ class Declarations:
                     self.ctx.error("E-DECL-002", f"duplicate member '{member.name}' in struct "
                                    f"{decl.name}", member.pos)
                     continue
+                if spec.union and mt is not ts.ERROR and not (
+                        isinstance(mt, T.ElementaryType) and mt.kind in ("bool", "int", "bits", "real")):
+                    self.ctx.error("E-DECL-017", f"UNION {decl.name}: member '{member.name}' is "
+                                   f"{mt}; expected BOOL, an integer, a bit string or a real "
+                                   f"(they share bytes)", member.pos)
+                    continue
                 if member.init is not None and mt is not ts.ERROR:
                     self.initializer(member.init, mt, self.global_ex,
                                      f"initial value of member '{member.name}'")
                 fields[mk] = (member.name, mt)
-            return T.StructType(decl.name, fields)
+            return T.StructType(decl.name, fields, spec.union)
         if isinstance(spec, ast.EnumType):
             return self._enum(decl, spec)
         return self.resolve(spec, self.global_ex)

@@ -42,6 +42,9 @@ CONSTRUCTS = {
                          "CODESYS extension; IEC 61131-3 3rd ed. has REF_TO instead"),
     "TRAILING_COMMA": Construct("a comma after the last argument", frozenset({"codesys"}),
                                 "CODESYS accepts it; IEC 61131-3's grammar does not"),
+    "UNION": Construct("UNION", frozenset({"codesys", "nj"}),
+                        "CODESYS; the NJ has union data types (W501 6-7-2 lists union data type "
+                        "names); not in IEC 61131-3"),
     "PROPERTY": Construct("PROPERTY", frozenset({"codesys"}), "CODESYS extension, not in IEC 61131-3"),
     "ACTION": Construct("ACTION", frozenset({"codesys"}), "CODESYS extension, not in IEC 61131-3"),
     "NAMESPACE": Construct("NAMESPACE", frozenset({"iec"}),
@@ -119,6 +122,8 @@ def _constructs(item):
             yield "SET_RESET", node.pos
         elif kind is ast.Call and node.trailing_comma:
             yield "TRAILING_COMMA", node.pos
+        elif kind is ast.StructType and node.union:
+            yield "UNION", node.pos
         elif kind is ast.NullLiteral:
             yield "NULL", node.pos
         elif kind is ast.BitAccess and not node.size:      # x.%X3 is the standard's

@@ -41,7 +41,7 @@ from ..native import NATIVE_FBS
 from ..objects import AttrRef, ItemRef, NullRef, STObject, assign_list, native_initializers
 from ..types import StructType, resolve_alias
 from .. import values
-from ..process_image import ProcessImage, located_property, parse_address
+from ..process_image import ProcessImage, located_property, parse_address, union_property
 from . import support
 from .calls import Calls
 from .initial import CompileError, Initial, InitialValues
@@ -218,7 +218,14 @@ def _make_classes(unit: CompileUnit) -> None:
     program = unit.program
     for key, t in program.types.items():
         t = resolve_alias(t)
-        if isinstance(t, StructType) and t.name.upper() == key:
+        if isinstance(t, StructType) and t.name.upper() == key and t.union:
+            layout = {k: (name, ft) for k, (name, ft) in t.fields.items()}
+            cls = _new_class(t.name, ("_bytes",), layout)
+            for name, ft in t.fields.values():      # the members share `_bytes`
+                setattr(cls, pyident(name), union_property(resolve_alias(ft)))
+            size = max([max(resolve_alias(ft).bits // 8, 1) for _, ft in t.fields.values()] or [1])
+            unit.classes[key] = _union_storage(cls, size)
+        elif isinstance(t, StructType) and t.name.upper() == key:
             slots = tuple(pyident(name) for name, _ in t.fields.values())
             layout = {k: (name, ft) for k, (name, ft) in t.fields.items()}
             unit.classes[key] = _new_class(t.name, slots, layout)
@@ -268,6 +275,17 @@ def _locate_variables(unit: CompileUnit, cls: type, variables) -> None:
         if address is not None:
             setattr(cls, pyident(symbol.name), located_property(unit.image, address,
                                                                resolve_alias(symbol.type)))
+
+
+def _union_storage(cls: type, size: int) -> type:
+    """A UNION class whose instances first get their zeroed shared bytes."""
+    def __new__(klass, *args, **kwargs):
+        obj = object.__new__(klass)
+        obj._bytes = bytearray(size)
+        return obj
+
+    cls.__new__ = __new__
+    return cls
 
 
 def _bases_first(program) -> list:
