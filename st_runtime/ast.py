@@ -226,6 +226,13 @@ class BitAccess(Node):
 
 
 @dataclass(frozen=True, slots=True)
+class DirectVar(Node):
+    """`%IX0.0`, `%QW3` used in code: a place of the process image (6.5.5)."""
+
+    address: str
+
+
+@dataclass(frozen=True, slots=True)
 class NullLiteral(Node):
     """NULL: a reference (or interface variable) that refers to nothing."""
 

@@ -437,6 +437,13 @@ class AstBuilder(Transformer):
         text = str(token)
         return ast.BitAccess(base, int(text[2:]), text[1].upper(), pos=base.pos)
 
+    def direct_var(self, token):
+        return ast.DirectVar(str(token).upper(), pos=self._pos(token))
+
+    def unnamed_located(self, address, type_ref, init):
+        """`AT %IX1.1 : BOOL;` (no name: the code writes %IX1.1 itself)."""
+        return [ast.VarDecl("", type_ref, init, None, str(address).upper(), pos=self._pos(address))]
+
     def null_literal(self, token):
         return ast.NullLiteral(pos=self._pos(token))
 

@@ -105,6 +105,8 @@ def format_expr(expr) -> str:
         return f"{_postfix_base(expr.base)}.{size}{expr.bit}"
     if kind is ast.NullLiteral:
         return "NULL"
+    if kind is ast.DirectVar:
+        return expr.address
     raise TypeError(f"not an expression node: {kind.__name__}")
 
 
@@ -125,7 +127,7 @@ def _format_binary(expr: ast.Binary) -> str:
 
 def _postfix_base(expr) -> str:
     text = format_expr(expr)
-    return text if type(expr) in (ast.Name, ast.Member, ast.Index, ast.Deref, ast.BitAccess) else f"({text})"
+    return text if type(expr) in (ast.Name, ast.Member, ast.Index, ast.Deref, ast.BitAccess, ast.DirectVar) else f"({text})"
 
 
 def _format_real(expr: ast.RealLiteral) -> str:
@@ -281,6 +283,8 @@ def _decl_line(decl: ast.VarDecl, indent: str) -> str:
     init = "" if decl.init is None else f" := {format_initializer(decl.init)}"
     edge = "" if decl.edge is None else f" {decl.edge}"
     at = "" if decl.location is None else f" AT {decl.location}"
+    if not decl.name:                      # an unnamed located variable
+        return f"{indent}AT {decl.location} : {format_type(decl.type)}{init};"
     return f"{indent}{decl.name}{at} : {format_type(decl.type)}{edge}{init};"
 
 

@@ -155,6 +155,22 @@ def type_fits(address: Address, t) -> bool:
     return kind in ("int", "bits", "real") and t.bits == address.bits
 
 
+class ImageCell:
+    """One address of the image as a reference (`get`/`set`): `%QX0.1` in code."""
+
+    __slots__ = ("image", "address", "kind", "signed")
+
+    def __init__(self, image: ProcessImage, address: Address, t):
+        self.image, self.address = image, address
+        self.kind, self.signed = t.kind, bool(getattr(t, "signed", False))
+
+    def get(self):
+        return self.image.get(self.address, self.kind, self.signed)
+
+    def set(self, value) -> None:
+        self.image.set(self.address, self.kind, value)
+
+
 class ImageView:
     """`plc.image["%IW2"]`: an address read or written as its plain type."""
 

@@ -121,6 +121,8 @@ class CheckedProgram:
     dialect: str = "iec"                                           # --dialect checked under
     # id(Member) -> (getter, setter) PouInfos of a PROPERTY read or written there.
     properties: dict[int, tuple] = field(default_factory=dict)
+    # (Address, type, initializer) of unnamed located variables (`AT %QX0.1 : BOOL := 1;`)
+    image_inits: list = field(default_factory=list)
     # id(Call) -> (EN expression or None, ENO Arg or None, the call without them).
     enables: dict[int, tuple] = field(default_factory=dict)
 

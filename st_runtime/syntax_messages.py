@@ -39,7 +39,7 @@ _NAMES = {
     "REAL_NUMBER": "real number", "TIME_LIT": "TIME literal", "DATE_LIT": "DATE literal",
     "TOD_LIT": "TIME_OF_DAY literal", "DT_LIT": "DATE_AND_TIME literal",
     "TYPED_LIT": "typed literal", "SSTRING": "string", "DSTRING": "wide string",
-    "_AT": "'AT'", "SET_RESET": "'S=' or 'R='", "PARTIAL": "partial access (%X3, %B0)",
+    "_AT": "'AT'", "_AT_ADDRESS": "'AT'", "SET_RESET": "'S=' or 'R='", "PARTIAL": "partial access (%X3, %B0)",
     "DIRECT_VAR": "direct address (%IX0.0, %QW3, %MD10, %I*)",
     "$END": "end of file",
 }

@@ -292,3 +292,18 @@ def test_union_members_share_their_bytes():
     assert (main["V.AsDword"], main["V.LowWord"], main["F"]) == (0x3F80_0001, 1, True)
     for dialect in ("codesys", "nj"):
         load([str(ACCEPT / "codesys_unions.st")], dialect=dialect)   # both accept UNION
+
+
+def test_direct_variables_in_code_use_the_image():
+    project = load([str(ACCEPT / "direct_variables.st")])
+    plc = project.controller()
+    main = plc.add_program("Main")
+    plc.image["%IX0.0"] = True
+    plc.image["%IW1"] = 300
+    plc.run(1)
+    assert plc.image["%QX0.1"] is True            # %QX0.1 := %IX0.0
+    assert plc.image["%QX0.2"] is True            # AT %QX0.2 : BOOL := 1
+    assert main["Copy"] == -5 and main["Seen"] is True
+    assert plc.image["%MW2"] == 301               # %IW1 reads as Level's INT
+    assert main["Sum"] == 300 - 5
+    assert plc.faults == []

@@ -42,6 +42,7 @@ class Context:
     # call graph for the recursion check: caller -> [(callee, pos)]
     calls: dict[str, list[tuple[str, ast.Pos]]] = field(default_factory=dict)
     namespaces: set = field(default_factory=set)     # upper-case "A", "A.B"
+    direct_types: dict = field(default_factory=dict)  # "%MW1" -> type declared AT it
 
     def error(self, code: str, message: str, pos: ast.Pos) -> None:
         self.sink.error(code, message, pos)

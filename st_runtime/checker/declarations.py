@@ -319,6 +319,15 @@ class Declarations:
         kind = kind or block.kind
         k = key(decl.name)
         t = self.resolve(decl.type, ex)
+        if not decl.name:                     # `AT %IX1.1 : BOOL;`: a place, no symbol
+            self._located(decl, kind, t, pou)
+            address = parse_address(decl.location)[0]
+            if address is not None and t is not ts.ERROR:
+                self.ctx.direct_types[address.text] = t
+                if decl.init is not None:
+                    self.initializer(decl.init, t, ex, f"initial value of {decl.location}")
+                    self.program.image_inits.append((address, t, decl.init))
+            return None
         if k in table:
             first = table[k].decl.pos if table[k].decl is not None else None
             where = f" (first declared at {first})" if first is not None else ""
@@ -385,7 +394,7 @@ class Declarations:
         """`x AT %IW3 : INT` (IEC 61131-3 6.5.5): a valid address of the type's width,
         in a PROGRAM, a configuration or the globals; an FB may only say `%I*`."""
         address, problem = parse_address(decl.location)
-        where = f"'{decl.name}' AT {decl.location}"
+        where = f"'{decl.name}' AT {decl.location}" if decl.name else decl.location
         if problem is not None:
             self.ctx.error("E-DECL-015", f"{where}: {problem}", decl.pos)
         elif kind not in ("VAR", "VAR_GLOBAL", "VAR_INPUT", "VAR_OUTPUT"):
@@ -400,6 +409,8 @@ class Declarations:
         elif address is not None and t is not ts.ERROR and not type_fits(address, t):
             self.ctx.error("E-DECL-015", f"{where}: a {address.size} address holds "
                            f"{address.bits} bit(s); expected a type of that width, found {t}", decl.pos)
+        elif address is not None and t is not ts.ERROR:
+            self.ctx.direct_types.setdefault(address.text, t)    # `%IW1` in code reads as t
 
     def _default_init(self, ref):
         if isinstance(ref, ast.NamedType):

@@ -30,6 +30,7 @@ import difflib
 import math
 
 from .oo import assignable_reference, find_property, may_call
+from ..process_image import PLAIN_TYPES, parse_address
 from .. import ast
 from .. import types as T
 from ..ast import key
@@ -431,6 +432,16 @@ class ExprChecker:
                            f"found {base}", e.pos)
             return self.record(e, ts.ERROR)
         return self.record(e, part)
+
+    def _DirectVar(self, e, expected):
+        """`%IX0.0` in code: the type declared AT it, else the plain type of its size."""
+        address, problem = parse_address(e.address)
+        if address is None:
+            self.ctx.error("E-DECL-015", problem or f"{e.address}: %I* has no place in the "
+                           f"process image to read", e.pos)
+            return self.record(e, ts.ERROR)
+        t = self.ctx.direct_types.get(address.text) or T.ELEMENTARY[PLAIN_TYPES[address.size]]
+        return self.record(e, t)
 
     def _NullLiteral(self, e, expected):
         return self.record(e, T.NULL)

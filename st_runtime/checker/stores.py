@@ -35,6 +35,8 @@ def check_store(ex, target, what: str = "assignment"):
     Returns the target's type (ERROR after a report, so that the value is not
     also reported).
     """
+    if isinstance(target, ast.DirectVar):     # a place of the process image
+        return ex.infer(target)
     if not is_variable_path(target):
         ex.infer(target)
         ex.ctx.error("E-TYPE-014", f"{what}: expected a variable on the left, found "

@@ -160,6 +160,8 @@ def compile_program(program, guard_statements: bool = True) -> CompiledProgram:
     unit.guard_statements = guard_statements
     _make_classes(unit)
     _make_initializers(unit)
+    for address, t, init in program.image_inits:      # `AT %QX0.1 : BOOL := 1;`
+        unit.image.set(address, resolve_alias(t).kind, unit.initial.of(t, init, init.pos).const)
     globals_obj = unit.classes["<GLOBALS>"]()
     unit.namespace["_G"] = globals_obj
     functions = {}

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 from .. import ast
 from ..objects import is_aggregate, store_value
+from ..process_image import ImageCell, parse_address
 from ..types import (
     SubrangeType,
     ArrayType,
@@ -350,6 +351,9 @@ class ExprCompiler:
     def x_BitAccess(self, e):
         return self.lvalue(e).read()
 
+    def x_DirectVar(self, e):
+        return self.lvalue(e).read()
+
     def x_NullLiteral(self, e):
         return "None"
 
@@ -379,6 +383,10 @@ class ExprCompiler:
             return LValue("attr", t, obj=base, key=pyident(e.name))
         if isinstance(e, ast.Index):
             return self.index_lvalue(e)
+        if isinstance(e, ast.DirectVar):      # an ImageCell: get/set like a Ref
+            t = self.ty(e)
+            cell = ImageCell(self.unit.image, parse_address(e.address)[0], t)
+            return LValue("ref", t, name=self.unit.register_constant(cell))
         if isinstance(e, ast.BitAccess):
             inner = self.lvalue(e.base)
             inner.type = elementary(inner.type) or inner.type
