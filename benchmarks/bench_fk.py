@@ -14,7 +14,7 @@ iterations. The reference is timed the same way: NewtonRaphsonSolver over the
 same cases, time / iterations. Best of R rounds, CPU time of this process
 (time.process_time), all in the same run.
 
-The study's NJ501 takes about 49.5 us per iteration (SPEC 3).
+The study's NJ501 takes about 49.5 us per iteration (docs/mathematics.md section 3).
 Target (issue 4): the table variant at most 0.5 ms per iteration here.
 """
 

@@ -35,7 +35,7 @@ from stgen.config import PlatformConfig  # noqa: E402
 from stgen.reference.kinematics import inverse_kinematics  # noqa: E402
 from stgen.reference.wave import wave_pose  # noqa: E402
 from stgen.scenarios.definitions import RANDOM_WAVE  # noqa: E402
-from stgen.scenarios.expected import expected_cylinders, expected_poses, motion_scans  # noqa: E402
+from stgen.scenarios.expected import expected_cylinders, expected_poses, motion_scans, wave_fade_duration  # noqa: E402
 from stgen.scenarios.runner import command_scenario  # noqa: E402
 from stgen.scenarios.simulation import ControllerSimulation  # noqa: E402
 
@@ -61,9 +61,10 @@ def reference_per_scan(scenario, config, scans: int) -> float:
     """Wall s of the reference computed one scan at a time (wave pose + IK of one pose)."""
     motion = scenario.motion
     geometry, stroke, period = config.geometry, config.stroke, config.task.period_s
+    fade = wave_fade_duration(scenario, config)  # the wave fades in, as SP_Controller runs it
     started = time.perf_counter()
     for scan in range(scans):
-        pose = wave_pose(motion.wave, scan * period, motion.centre_pose)
+        pose = wave_pose(motion.wave, scan * period, motion.centre_pose, fade_s=fade)
         inverse_kinematics(geometry, pose, stroke)
     return time.perf_counter() - started
 

@@ -11,11 +11,21 @@ controller.  The Python API (see `api`):
     print(main.to_json(), plc.faults)
 """
 
-from .api import CallError, Instance, LoadError, Plc, Project, load, load_sources, load_text
-from .controller import Controller
-from .faults import FaultRecord, STFault
-
 __all__ = [
     "CallError", "Controller", "FaultRecord", "Instance", "LoadError", "Plc", "Project",
     "STFault", "load", "load_sources", "load_text",
 ]
+
+#: Where each public name lives. Imported on first use (PEP 562), so that a
+#: tool needing one stage (`stgen check`: the loader) does not import them all.
+_HOMES = {"Controller": "controller", "FaultRecord": "faults", "STFault": "faults"}
+
+
+def __getattr__(name: str):
+    if name not in __all__:
+        raise AttributeError(f"module 'st_runtime' has no attribute {name!r}")
+    from importlib import import_module
+
+    value = getattr(import_module(f".{_HOMES.get(name, 'api')}", __name__), name)
+    globals()[name] = value
+    return value

@@ -59,41 +59,31 @@ class LoadError(Exception):
 # ------------------------------------------------------------------ loading
 
 
-def _import_natives() -> None:
-    """Register the native FBs shipped with the runtime (standard FBs, motion)."""
-    from importlib import import_module
-
-    for module in ("st_runtime.stdlib.fbs", "st_runtime.motion.fbs"):
-        try:
-            import_module(module)
-        except ModuleNotFoundError as exc:
-            if exc.name != module:
-                raise
-
-
-def load(paths, dialect: str = "iec", extra_sources: dict[str, str] | None = None) -> "Project":
+def load(paths, dialect: str = "iec", extra_sources: dict[str, str] | None = None,
+         memory_limit: int | None = None) -> "Project":
     """Load ST files and directories as one program: parse, check, compile.
 
-    `extra_sources` (name -> ST text) are loaded with the files, e.g. the axis
-    globals of `MotionTask.globals_source()`.
+    A `.xml` file (PLCopen TC6 XML or IEC 61131-10, e.g. a Sysmac Studio
+    export) contributes its ST POUs, data types and global variables
+    (`st_runtime.xml_reader`). `extra_sources` (name -> ST text) are loaded with the files, e.g. the axis
+    globals of `MotionTask.globals_source()`; `memory_limit`: bytes a variable,
+    a POU instance or the project may need (default 64 MiB, checker/memory.py).
     """
     from . import loader
 
-    _import_natives()
-    return _compiled(loader.load([os.fspath(p) for p in paths], dialect, extra_sources))
+    return _compiled(loader.load([os.fspath(p) for p in paths], dialect, extra_sources, memory_limit))
 
 
-def load_text(text: str, path: str = "<text>", dialect: str = "iec") -> "Project":
+def load_text(text: str, path: str = "<text>", dialect: str = "iec", memory_limit: int | None = None) -> "Project":
     """Load one ST text (tests, notebooks)."""
-    return load_sources({path: text}, dialect)
+    return load_sources({path: text}, dialect, memory_limit)
 
 
-def load_sources(sources: dict[str, str], dialect: str = "iec") -> "Project":
+def load_sources(sources: dict[str, str], dialect: str = "iec", memory_limit: int | None = None) -> "Project":
     """Load in-memory ST texts (path -> text) as one program."""
     from . import loader
 
-    _import_natives()
-    return _compiled(loader.load_texts(dict(sources), dialect))
+    return _compiled(loader.load_texts(dict(sources), dialect, memory_limit))
 
 
 def _compiled(result) -> "Project":
@@ -136,8 +126,13 @@ class Project:
             raise KeyError(f"no POU named {name}")
         return pou
 
-    def controller(self, period="1ms", budget: int = DEFAULT_BUDGET, stop_on_fault: bool = False) -> "Plc":
+    def controller(self, period="1ms", budget=DEFAULT_BUDGET, stop_on_fault: bool = False,
+                   time_limit=None) -> "Plc":
         """A simulated controller with its own memory.
+
+        A task run whose estimated NJ501 time passes `time_limit` (default:
+        the task's period; a duration like `period`) ends with F-PERIOD.
+        `budget` (loop iterations) is deprecated and ignored.
 
         The first controller runs `self.compiled`; each further one gets a
         fresh compilation, so no two controllers share global variables.
@@ -148,7 +143,8 @@ class Project:
         if self._controllers:
             compiled = compile_program(self.program)
         self._controllers += 1
-        return Plc(Controller(compiled, parse_period(period), budget, stop_on_fault))
+        limit = parse_period(time_limit) if time_limit is not None else None
+        return Plc(Controller(compiled, parse_period(period), budget, stop_on_fault, limit))
 
     def call(self, name: str, inputs: dict | None = None, until: str | None = None,
              max_cycles: int = 1000, period="1ms") -> dict:
@@ -200,7 +196,9 @@ class Instance:
             if kind == "name":
                 if t is not None:
                     obj = _read(container, slot)
-                layout = type(obj)._st_vars if not isinstance(obj, dict) else {}
+                layout = getattr(type(obj), "_st_vars", None) if not isinstance(obj, dict) else {}
+                if layout is None:      # a member of an elementary value or an array (a.__class__)
+                    raise KeyError(f"{path}: '{value}' is no member: only a STRUCT or an FB instance has members")
                 entry = layout.get(value.upper())
                 if entry is None:
                     raise KeyError(f"{path}: no variable '{value}'")

@@ -490,3 +490,38 @@ class SourceFile(Node):
 
     path: str
     items: tuple[Item, ...]
+
+
+# ------------------------------------------------------------ test files
+# `stgen test` (st_runtime/testing): the blocks of a test file in STruC++'s
+# form.  They appear only in the SourceFile that `parser.parse_tests` returns.
+
+
+@dataclass(frozen=True, slots=True)
+class TestSetup(Node):
+    """SETUP [VAR ...] statements END_SETUP: run before each test of the file."""
+
+    __test__ = False   # not a pytest class
+
+    var_blocks: tuple[VarBlock, ...]
+    body: tuple[Stmt, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class TestTeardown(Node):
+    """TEARDOWN statements END_TEARDOWN: run after each test of the file."""
+
+    __test__ = False   # not a pytest class
+
+    body: tuple[Stmt, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class TestCase(Node):
+    """TEST 'name' [VAR ...] statements END_TEST."""
+
+    __test__ = False   # not a pytest class
+
+    name: str
+    var_blocks: tuple[VarBlock, ...]
+    body: tuple[Stmt, ...]

@@ -548,3 +548,19 @@ class AstBuilder(Transformer):
                 self._error(BAD_LITERAL, f"invalid literal '{token}': BOOL# takes 0 or 1", pos)
             return ast.BoolLiteral(bool(value), type_name, pos=pos)
         return ast.IntLiteral(value, type_name, pos=pos)
+
+    # ------------------------------------------------------------ test files
+    # (grammar.lark, block "test files"; parser.parse_tests)
+
+    def test_file(self, *items):
+        return self.start(*items)
+
+    def test_setup(self, kw, *rest):
+        return ast.TestSetup(tuple(rest[:-1]), rest[-1], pos=self._pos(kw))
+
+    def test_teardown(self, kw, body):
+        return ast.TestTeardown(body, pos=self._pos(kw))
+
+    def test_case(self, kw, name, *rest):
+        title = self._decode(decode_string, name, "")
+        return ast.TestCase(title, tuple(rest[:-1]), rest[-1], pos=self._pos(kw))

@@ -1,4 +1,4 @@
-"""The simulated controller: tasks, clock, scan loop, faults, scan budget.
+"""The simulated controller: tasks, clock, scan loop, faults, NJ501 time per scan.
 
 One call of `scan()` is one period of the primary task:
 
@@ -14,23 +14,37 @@ The clock only advances by the primary period: during scan k (1-based)
 
 Runtime faults (instruction errors) are recorded as `FaultRecord`s in
 `faults` and scanning goes on, unless `stop_on_fault` is set: then the first
-fault ends the run (`stopped` holds it).  A scan that spends more than
-`budget` loop iterations ends with F-PERIOD ("task period exceeded"): the
-rest of that scan's programs are skipped, the `after` hooks still run.
+fault ends the run (`stopped` holds it).
+
+Execution time.  The compiled code charges the estimated NJ501 time of every
+basic block it runs (st_runtime/compiler/cost.py) to `ctx.budget`, in
+picoseconds.  Each task starts with its period (or `time_limit_ns` when
+given) and `task_times[task]` keeps what each of its runs used.  A run whose
+estimate exceeds that limit ends with F-PERIOD ("task period exceeded"): at
+once inside a loop (so a runaway loop ends in its first iterations and the
+simulator never hangs), otherwise after the program that overran; the rest
+of that task's programs are skipped in this scan, the other tasks and the
+`after` hooks still run.  The estimate covers the ST code only, not the
+NJ's system services, I/O refresh or motion control processing.
 """
 
 from __future__ import annotations
 
+import warnings
+from array import array
 from dataclasses import dataclass, field
 from typing import Callable
 
 from .faults import FaultRecord, ScanOverrun, StopRun, STFault
 
 DEFAULT_PERIOD_NS = 1_000_000
-# Loop iterations per scan before F-PERIOD.  An NJ501 runs a few ten thousand
-# loop iterations in a 1 ms period, so a million is generous for any real
-# program, and a runaway loop costs this simulator well under a second a scan.
-DEFAULT_BUDGET = 1_000_000
+# Deprecated: the loop-iteration budget that the execution-time estimate
+# replaced; kept so that old imports work (`budget=` only warns now).
+DEFAULT_BUDGET = None
+# OMRON's guideline for the NJ501: average task execution time below 80 % of
+# the task period (NJ/NX-series CPU Unit Software User's Manual W501, quoted
+# in the NX701 manual, section B-1-5: https://www.easymanua.ls/omron/nx701-1620/manual?p=285).
+LOAD_GUIDELINE = 0.8
 MAX_FAULT_RECORDS = 10_000       # kept in `faults`; `fault_count` counts them all
 
 
@@ -44,7 +58,9 @@ class ScanContext:
         self.now_ns = 0
         self.scan = 0
         self.period_ns = controller.period_ns
-        self.budget = controller.budget
+        # Estimated NJ501 time (ps) the running task has left; each task run
+        # starts from its limit (code run outside a scan gets one period).
+        self.budget = (controller.time_limit_ns or controller.period_ns) * 1000
 
     def fault(self, exc: BaseException, where: tuple) -> None:
         """Record a fault raised by the statement at `where` (pou, file, line, col)."""
@@ -60,15 +76,24 @@ class Task:
 
 
 class Controller:
-    def __init__(self, compiled, period_ns: int = DEFAULT_PERIOD_NS, budget: int = DEFAULT_BUDGET,
-                 stop_on_fault: bool = False):
+    def __init__(self, compiled, period_ns: int = DEFAULT_PERIOD_NS, budget=None,
+                 stop_on_fault: bool = False, time_limit_ns: int | None = None):
+        """`time_limit_ns`: the estimated NJ501 time a task may use per run
+        before F-PERIOD (default: its period).  `budget` is deprecated."""
         if period_ns <= 0:
             raise ValueError("the task period must be positive")
+        if budget is not None:
+            warnings.warn("the loop-iteration budget is deprecated and ignored: a scan is now limited by"
+                          " its estimated NJ501 time (the task period, or time_limit_ns)",
+                          DeprecationWarning, stacklevel=2)
+        if time_limit_ns is not None and time_limit_ns <= 0:
+            raise ValueError("the time limit must be positive")
         self.compiled = compiled
         self.period_ns = period_ns
-        self.budget = budget
+        self.time_limit_ns = time_limit_ns
         self.stop_on_fault = stop_on_fault
         self.tasks: list[Task] = [Task("Primary", period_ns, 1)]
+        self.task_times: dict[str, array] = {"Primary": array("q")}   # picoseconds used per run
         self.instances: dict[str, object] = {}
         self.before_hooks: list[Callable] = []
         self.after_hooks: list[Callable] = []
@@ -97,6 +122,7 @@ class Controller:
             raise ValueError(f"task {name}: period must be a positive multiple of {self.period_ns} ns")
         task = Task(name, period_ns, period_ns // self.period_ns)
         self.tasks.append(task)
+        self.task_times[name] = array("q")
         return task
 
     def add_program(self, program: str, task: str | None = None, name: str | None = None):
@@ -143,21 +169,12 @@ class Controller:
         index = self.scan_count
         ctx.scan = index + 1
         ctx.now_ns = index * self.period_ns
-        ctx.budget = self.budget
         ctx.period_ns = self.period_ns
         try:
             self._hooks(self.before_hooks, ctx)
-            try:
-                for task in self.tasks:
-                    if index % task.every:
-                        continue
-                    ctx.period_ns = task.period_ns
-                    for _, instance in task.programs:
-                        instance.execute(ctx)
-            except ScanOverrun as overrun:
-                self._record(FaultRecord("F-PERIOD", "task period exceeded: the scan used up its budget "
-                                         f"of {self.budget} loop iterations", *_place(overrun.where),
-                                         ctx.scan))
+            for task in self.tasks:
+                if not index % task.every:
+                    self._run_task(task, ctx)
             ctx.period_ns = self.period_ns
             self._hooks(self.after_hooks, ctx)
         except StopRun as stop:
@@ -166,6 +183,34 @@ class Controller:
         for observer in self.observers:
             observer(self)
         return self.stopped is None
+
+    def _run_task(self, task: Task, ctx) -> None:
+        """One run of `task`'s programs, charged against its time limit."""
+        ctx.period_ns = task.period_ns
+        limit_ps = (self.time_limit_ns or task.period_ns) * 1000
+        ctx.budget = limit_ps
+        try:
+            for name, instance in task.programs:
+                instance.execute(ctx)
+                if ctx.budget < 0:          # straight-line code is checked after its program
+                    raise ScanOverrun(self._program_place(name))
+        except ScanOverrun as overrun:
+            self._record(FaultRecord("F-PERIOD", f"task period exceeded: the estimated NJ501 time of task "
+                                     f"{task.name} passed {_ms(limit_ps)}", *overrun.where, ctx.scan))
+        finally:
+            self.task_times[task.name].append(limit_ps - ctx.budget)
+
+    def _program_place(self, name: str) -> tuple:
+        pou = self.compiled.checked.pous.get(name.upper())
+        node = getattr(pou, "node", None)
+        if node is None:
+            return (name, "<task>", 0, 0)
+        return (pou.name, node.pos.file, node.pos.line, node.pos.col)
+
+    def time_report(self) -> list["TaskTime"]:
+        """The estimated NJ501 time per run of each task that ran."""
+        return [TaskTime.of(task, self.task_times[task.name]) for task in self.tasks
+                if self.task_times[task.name]]
 
     def run(self, cycles: int) -> int:
         """Run up to `cycles` scans; returns the number run (fewer if stopped)."""
@@ -208,6 +253,53 @@ class Controller:
             raise StopRun(record)
 
 
-def _place(where: tuple) -> tuple:
-    pou, file, line, col = where
-    return pou, file, line, col
+def _ms(ps: int) -> str:
+    return f"{ps / 1e9:.3f} ms"
+
+
+@dataclass(frozen=True)
+class TaskTime:
+    """Estimated NJ501 time per run of one task (ns), against its period.
+
+    `load_ok` applies OMRON's guideline (average below 80 % of the period,
+    LOAD_GUIDELINE); `fits` says whether every run stayed within the period.
+    """
+
+    task: str
+    period_ns: int
+    runs: int
+    max_ns: float
+    p99_ns: float
+    mean_ns: float
+
+    @classmethod
+    def of(cls, task: Task, times_ps) -> "TaskTime":
+        ordered = sorted(times_ps)
+        p99 = ordered[min(len(ordered) - 1, -(-99 * len(ordered) // 100) - 1)]   # nearest rank
+        return cls(task.name, task.period_ns, len(ordered), ordered[-1] / 1000, p99 / 1000,
+                   sum(ordered) / len(ordered) / 1000)
+
+    @property
+    def load_ok(self) -> bool:
+        return self.mean_ns < LOAD_GUIDELINE * self.period_ns
+
+    @property
+    def fits(self) -> bool:
+        return self.max_ns <= self.period_ns
+
+    def to_json(self) -> dict:
+        return {"task": self.task, "period_ns": self.period_ns, "runs": self.runs,
+                "max_ns": self.max_ns, "p99_ns": self.p99_ns, "mean_ns": round(self.mean_ns, 3),
+                "max_percent": round(100 * self.max_ns / self.period_ns, 4),
+                "mean_percent": round(100 * self.mean_ns / self.period_ns, 4),
+                "within_period": self.fits, "within_80_percent_rule": self.load_ok}
+
+    def render(self) -> str:
+        pct = 100 / self.period_ns
+        rule = "meets" if self.load_ok else "BREAKS"
+        over = "" if self.fits else "; some runs exceed the period (F-PERIOD)"
+        return (f"estimated NJ501 time of task {self.task} ({self.period_ns / 1e3:g} us period, {self.runs} runs): "
+                f"max {self.max_ns / 1e3:.1f} us ({self.max_ns * pct:.1f} %), "
+                f"p99 {self.p99_ns / 1e3:.1f} us ({self.p99_ns * pct:.1f} %), "
+                f"mean {self.mean_ns / 1e3:.1f} us ({self.mean_ns * pct:.1f} %); "
+                f"{rule} OMRON's 80 % rule (average below 80 % of the period){over}")

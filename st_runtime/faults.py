@@ -7,8 +7,8 @@ as an NJ goes on after an instruction error), and the controller records a
 unless told to stop at the first fault (`StopRun`).
 
 Two conditions are not instruction errors and end the whole scan instead:
-`ScanOverrun` (the scan used up its budget of loop iterations: "task period
-exceeded") and `StopRun` (stop_on_fault).  Neither derives from `STFault`, so
+`ScanOverrun` (the scan's estimated NJ501 time passed the task period:
+"task period exceeded"; see st_runtime/compiler/cost.py) and `StopRun` (stop_on_fault).  Neither derives from `STFault`, so
 the per-statement handlers let them through.  Codes are stable strings
 registered in `FAULT_CODES`.
 """
@@ -20,7 +20,7 @@ from dataclasses import dataclass
 FAULT_CODES: dict[str, str] = {
     "F-DIV-ZERO": "integer division or MOD by zero",
     "F-INDEX": "array index out of range",
-    "F-PERIOD": "task period exceeded (scan budget of loop iterations used up)",
+    "F-PERIOD": "task period exceeded (the scan's estimated NJ501 time passed the period)",
     "F-MATH": "math error in a standard function (e.g. SQRT of a negative value)",
     "F-CONVERT": "value cannot be converted (out of range or not finite)",
     "F-NULL-REF": "VAR_IN_OUT used before the caller passed a variable",
@@ -40,11 +40,11 @@ class STFault(Exception):
 
 
 class ScanOverrun(Exception):
-    """The scan's budget of loop iterations is used up: F-PERIOD, scan ends."""
+    """The task's estimated NJ501 time passed its limit: F-PERIOD, the task's run ends."""
 
     def __init__(self, where: tuple):
         super().__init__("task period exceeded")
-        self.where = where  # (pou, file, line, col) of the loop that ran out
+        self.where = where  # (pou, file, line, col) of the loop (or program) that ran out
 
 
 class StopRun(Exception):

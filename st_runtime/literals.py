@@ -164,8 +164,11 @@ def decode_string(text: str) -> str:
             continue
         code = body[i + 1 : i + 1 + hex_width]
         if len(code) == hex_width and all(c in "0123456789abcdefABCDEF" for c in code):
-            out.append(chr(int(code, 16)))
+            value = int(code, 16)
             i += 1 + hex_width
+            if 0xD800 <= value <= 0xDFFF:       # a UTF-16 surrogate: only a pair is a character
+                value, i = _surrogate_pair(body, i, value, code)
+            out.append(chr(value))
             continue
         shown = nxt if nxt.isprintable() and nxt else repr(nxt)
         raise LiteralError(
@@ -173,6 +176,19 @@ def decode_string(text: str) -> str:
             f"${'hh' if hex_width == 2 else 'hhhh'})"
         )
     return "".join(out)
+
+
+def _surrogate_pair(body: str, i: int, high: int, code: str) -> tuple[int, int]:
+    """(code point, next index) of the pair `$Dhhh$Dhhh` whose first half was
+    `high` and whose second half starts at `i`; LiteralError for a lone half,
+    which is no character at all (issue 15: it passed the checker, then broke
+    the CSV writer)."""
+    low = body[i + 1 : i + 5]
+    if (0xD800 <= high <= 0xDBFF and body[i : i + 1] == "$" and len(low) == 4
+            and all(c in "0123456789abcdefABCDEF" for c in low) and 0xDC00 <= int(low, 16) <= 0xDFFF):
+        return 0x10000 + ((high - 0xD800) << 10) + (int(low, 16) - 0xDC00), i + 5
+    raise LiteralError(f"'${code}' is half of a UTF-16 surrogate pair, not a character: write the"
+                       " pair ($D83D$DE00) or the character itself")
 
 
 def encode_string(value: str, wide: bool = False) -> str:

@@ -3,9 +3,11 @@
     result = load(["src/", "extra.st"], dialect="nj")
     if result.program is None: print(result.render())
 
-Directories expand to the `.st` files below them, sorted by path.  The
-native prelude (`st_runtime.native.prelude_source()`) is parsed as the file
-"<builtin>" and checked with the user's files.  Unreadable or non-UTF-8 files
+Directories expand to the `.st` files below them, sorted by path; a `.xml`
+file named on its own (PLCopen TC6 XML or IEC 61131-10) is read through
+`xml_reader`.  The native prelude (`st_runtime.prelude`, parsed once per
+process and dialect) is the file "<builtin>", checked with the user's
+files.  Unreadable or non-UTF-8 files
 become diagnostics, never exceptions.
 """
 
@@ -14,15 +16,13 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass, field
 
-from . import ast, native
-# Register every native FB before the prelude is read: the standard FBs
-# (TON, R_TRIG, ...) and the PLCopen motion FBs (MC_Power, ...) with AXIS_REF.
-from . import motion as _motion  # noqa: F401
-from . import stdlib as _stdlib  # noqa: F401
+from . import ast, xml_reader
 from .checker import check
+from .checker.limits import file_too_large
 from .checker import codes as _codes  # noqa: F401  (registers E-LOAD-*)
 from .diagnostics import Diagnostic, ERROR, WARNING
 from .parser import parse
+from .prelude import prelude_file
 from .symbols import CheckedProgram
 
 BUILTIN = "<builtin>"
@@ -91,26 +91,43 @@ def read_source(path: str) -> tuple[str | None, Diagnostic | None]:
     return text, None
 
 
-def load_texts(texts: dict[str, str], dialect: str = "iec") -> LoadResult:
-    """Parse and check in-memory sources (path -> text), with the native prelude."""
+def load_texts(texts: dict[str, str], dialect: str = "iec", memory_limit: int | None = None) -> LoadResult:
+    """Parse and check in-memory sources (path -> text), with the native prelude.
+
+    A `.xml` source (PLCopen TC6 or IEC 61131-10) is read as the ST text of
+    `xml_reader`, laid out on the XML file's lines; `sources` keeps the XML.
+    """
     sources: dict[str, str] = {}
-    diagnostics: list[Diagnostic] = []
     files: list[ast.SourceFile] = []
-    prelude = native.prelude_source()
-    for path, text in [(BUILTIN, prelude)] + list(texts.items()):
+    st_of_xml, diagnostics = xml_reader.translate(texts)
+    prelude, parsed, found = prelude_file(dialect)      # parsed once per process and dialect
+    sources[BUILTIN] = prelude
+    diagnostics.extend(found)
+    if parsed is not None:
+        files.append(parsed)
+    for path, text in texts.items():
         sources[path] = text
+        too_large = file_too_large(text)
+        if too_large:
+            diagnostics.append(Diagnostic("E-LIMIT-012", too_large, ast.Pos(path, 1, 1), ERROR))
+            continue
+        if path in st_of_xml:
+            text = st_of_xml[path]
+            if text is None:  # diagnostics from the XML reader already
+                continue
         parsed, found = parse(text, path)
         diagnostics.extend(found)
         if parsed is not None:
             files.append(parsed)
-    program, found = check(files, dialect)
+    program, found = check(files, dialect, memory_limit)
     diagnostics.extend(found)
     program.sources = {p: t for p, t in sources.items() if p != BUILTIN}
     ok = not any(d.is_error for d in diagnostics)
     return LoadResult(program if ok else None, _ordered(diagnostics, list(sources)), sources)
 
 
-def load(paths: list[str], dialect: str = "iec", extra: dict[str, str] | None = None) -> LoadResult:
+def load(paths: list[str], dialect: str = "iec", extra: dict[str, str] | None = None,
+         memory_limit: int | None = None) -> LoadResult:
     """Read, parse and check the files and directories in `paths` as one program.
 
     `extra` adds in-memory sources (name -> ST text) after the files, e.g. the
@@ -125,7 +142,7 @@ def load(paths: list[str], dialect: str = "iec", extra: dict[str, str] | None = 
         else:
             texts[name] = text
     texts.update(extra or {})
-    result = load_texts(texts, dialect)
+    result = load_texts(texts, dialect, memory_limit)
     if diagnostics:
         result.diagnostics = diagnostics + result.diagnostics
         if any(d.is_error for d in diagnostics):

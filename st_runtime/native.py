@@ -30,6 +30,10 @@ The contract between a native FB and the compiled code (`NativeFB`):
 
 from __future__ import annotations
 
+import re
+
+from .dialects import DIALECTS
+
 NATIVE_FBS: dict[str, type] = {}       # upper-case FB name -> Python class
 NATIVE_TYPE_SOURCES: list[str] = []    # ST TYPE ... END_TYPE texts
 
@@ -55,9 +59,29 @@ def fb_declaration(name: str, *, inputs: str = "", outputs: str = "", in_outs: s
 
 
 def native_fb(cls: type) -> type:
-    """Class decorator: register a native FB (its `NAME` and `DECLARATION`)."""
+    """Class decorator: register a native FB (its `NAME` and `DECLARATION`).
+
+    A pin that a dialect names differently (`dialects.Dialect.pins`, e.g.
+    OMRON's `Reset` for CTU's `R`) becomes an alias attribute of the class,
+    so `execute` reads `v_R` whichever name the compiled caller stores to.
+    """
     NATIVE_FBS[cls.NAME.upper()] = cls
+    for dialect in DIALECTS.values():
+        for iec_pin, renamed in dialect.pins.get(cls.NAME.upper(), {}).items():
+            setattr(cls, mangle(renamed), _alias(mangle(iec_pin)))
     return cls
+
+
+def _alias(attr: str) -> property:
+    return property(lambda self: getattr(self, attr), lambda self, value: setattr(self, attr, value))
+
+
+def _renamed_pins(declaration: str, renames: dict[str, str]) -> str:
+    """The declaration text with each `Pin :` renamed (fb_declaration writes `Name : Type;`)."""
+    for iec_pin, renamed in renames.items():
+        declaration = re.sub(rf"(?<![A-Za-z0-9_]){iec_pin}(?=\s*:)", renamed, declaration,
+                             flags=re.IGNORECASE)
+    return declaration
 
 
 def native_types(source: str) -> None:
@@ -66,10 +90,11 @@ def native_types(source: str) -> None:
         NATIVE_TYPE_SOURCES.append(source)
 
 
-def prelude_source() -> str:
-    """All native declarations as one ST text, types first."""
+def prelude_source(dialect: str = "iec") -> str:
+    """All native declarations as one ST text, types first, with the dialect's pin names."""
+    pins = DIALECTS[dialect].pins if dialect in DIALECTS else {}
     parts = list(NATIVE_TYPE_SOURCES)
-    parts.extend(cls.DECLARATION for cls in NATIVE_FBS.values())
+    parts.extend(_renamed_pins(cls.DECLARATION, pins.get(key, {})) for key, cls in NATIVE_FBS.items())
     return "\n".join(parts)
 
 
@@ -78,8 +103,8 @@ class NativeFB:
 
     Subclasses set `NAME` and `DECLARATION` and implement `execute(self, ctx)`.
     The initial values come from the checked declaration; the compiler installs
-    them when it compiles a program (`set_initializers`), and a class used on
-    its own (in a unit test) checks its declaration on first instantiation.
+    them when it compiles a program (`set_initializers`); a class used on its
+    own (a unit test) needs `st_runtime.compiler.install_native_layouts()` first.
     """
 
     NAME: str = ""
@@ -88,7 +113,8 @@ class NativeFB:
     def __init__(self) -> None:
         init = type(self).__dict__.get("_st_initializers")
         if init is None:
-            init = _initializers_from_declaration(type(self))
+            raise RuntimeError(f"native FB {self.NAME or type(self).__name__} has no layout yet: compile a"
+                               " program first, or call st_runtime.compiler.install_native_layouts()")
         for attr, make in init:
             setattr(self, attr, make())
 
@@ -99,14 +125,3 @@ class NativeFB:
     def set_initializers(cls, initializers: list[tuple[str, object]]) -> None:
         """Install (attribute, zero-argument factory) pairs for `__init__`."""
         cls._st_initializers = tuple(initializers)
-
-
-def _initializers_from_declaration(cls: type) -> tuple:
-    """Check the native prelude once and install every native FB's layout."""
-    from .objects import install_native_layouts  # late: objects needs the checker
-
-    install_native_layouts()
-    init = cls.__dict__.get("_st_initializers")
-    if init is None:
-        raise RuntimeError(f"native FB {cls.__name__} is not registered with @native_fb")
-    return init

@@ -21,6 +21,7 @@ from typing import Callable
 
 from .faults import STFault
 from .native import mangle
+from .store_rules import f32, wrap_int
 from .types import (
     SubrangeType,
     InterfaceType,
@@ -199,26 +200,12 @@ def is_aggregate(t: Type) -> bool:
     return _is_aggregate(t)
 
 
-_RULES: tuple = ()
-
-
-def _store_rules() -> tuple:
-    """(f32, wrap_int) of the compiled code, imported once (late: no cycle)."""
-    global _RULES
-    if not _RULES:
-        from .compiler.support import f32, wrap_int
-
-        _RULES = (f32, wrap_int)
-    return _RULES
-
-
 def store_value(t: Type, value):
     """Convert a Python value to what a variable of type `t` stores.
 
     Used for initial values and values coming from outside (API, JSON): wraps
     integers, rounds REAL to float32, truncates strings.
     """
-    f32, wrap_int = _store_rules()
     t = resolve_alias(t)
     if isinstance(t, ElementaryType):
         if t.kind == "bool":
@@ -259,30 +246,3 @@ def native_initializers(pou, make_initial) -> list[tuple[str, Maker]]:
 
 def _none():
     return None
-
-
-_native_layouts_installed = False
-
-
-def install_native_layouts() -> None:
-    """Check the native prelude on its own and install every native layout.
-
-    Needed only when a native FB is instantiated outside a compiled program
-    (unit tests of the library); compiling a program installs them too.
-    """
-    global _native_layouts_installed
-    if _native_layouts_installed:
-        return
-    from .compiler import compile_program  # late import: compiler needs objects
-    from .checker import check
-    from .checker.context import BUILTIN_FILE
-    from .native import prelude_source
-    from .parser import parse
-
-    prelude, diagnostics = parse(prelude_source(), BUILTIN_FILE)
-    program, more = check([prelude], "iec")
-    errors = [d for d in diagnostics + more if d.is_error]
-    if errors:
-        raise RuntimeError("native prelude does not check: " + "; ".join(d.header() for d in errors))
-    compile_program(program)
-    _native_layouts_installed = True

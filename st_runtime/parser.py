@@ -47,12 +47,21 @@ CODES = register({
 
 
 class _Postlex(PostLex):
-    """Lets the contextual lexer see identifiers in every state (see module doc)."""
+    """Lets the contextual lexer see identifiers in every state (see module doc).
+
+    Lark retypes an identifier that spells a keyword terminal before any
+    callback runs, so the test-file keywords become identifiers again here
+    unless a test file is being parsed.
+    """
 
     always_accept = ("IDENT",)
 
+    def __init__(self, grammar: "_Grammar"):
+        self.grammar = grammar
+
     def process(self, stream):
-        return stream
+        for token in stream:
+            yield self.grammar.retype(token)
 
 
 class _Grammar:
@@ -62,11 +71,13 @@ class _Grammar:
         with open(GRAMMAR_PATH, encoding="utf-8") as handle:
             grammar = handle.read()
         self.builder = AstBuilder()
-        self.keywords = _keyword_terminals(grammar)
-        keywords = self.keywords
+        every_keyword = _keyword_terminals(grammar)
+        self.keywords = {w: k for w, k in every_keyword.items() if w not in TEST_KEYWORDS}
+        self.test_keywords = every_keyword
+        self.active = self.keywords          # parse_tests swaps in test_keywords
 
         def reserve_keywords(token):
-            kind = keywords.get(token.value.upper())
+            kind = self.active.get(token.value.upper())
             if kind is not None:
                 token.type = kind
             return token
@@ -76,12 +87,23 @@ class _Grammar:
             parser="lalr",
             lexer="contextual",
             transformer=self.builder,
-            postlex=_Postlex(),
+            postlex=_Postlex(self),
             lexer_callbacks={"IDENT": reserve_keywords},
             maybe_placeholders=True,
-            start=["start", "stmt_list"],
+            start=["start", "stmt_list", "test_file"],
             cache=_cache_path(),
         )
+
+    def retype(self, token):
+        """The token, an identifier again if it spells a test keyword outside a test file."""
+        if token.type in TEST_TERMINALS and self.active is not self.test_keywords:
+            token.type = "IDENT"
+        return token
+
+
+# Reserved only in test files (grammar.lark, block "test files").
+TEST_KEYWORDS = frozenset({"TEST", "END_TEST", "SETUP", "END_SETUP", "TEARDOWN", "END_TEARDOWN"})
+TEST_TERMINALS = frozenset({"TEST", "_END_TEST", "SETUP", "_END_SETUP", "TEARDOWN", "_END_TEARDOWN"})
 
 
 def _keyword_terminals(grammar: str) -> dict[str, str]:
@@ -119,14 +141,7 @@ def grammar() -> _Grammar:
 
 def parse(text: str, path: str) -> tuple[ast.SourceFile | None, list[Diagnostic]]:
     """Parse one file.  Returns (AST, []) or (None, diagnostics); never raises."""
-    try:
-        if not isinstance(text, str):
-            raise TypeError(f"parse() needs str, not {type(text).__name__}")
-        with _lock:
-            return _parse(text, path)
-    except Exception as exc:  # the promise: no traceback for any input
-        return None, [Diagnostic("E-PARSE-099", f"internal parser error: "
-                                 f"{type(exc).__name__}: {exc}", ast.Pos(path, 1, 1))]
+    return _guarded(text, path, "start", "parse")
 
 
 def parse_body(text: str, path: str) -> tuple[tuple[ast.Stmt, ...] | None, list[Diagnostic]]:
@@ -134,11 +149,23 @@ def parse_body(text: str, path: str) -> tuple[tuple[ast.Stmt, ...] | None, list[
 
     Returns (statements, []) or (None, diagnostics); never raises.
     """
+    return _guarded(text, path, "stmt_list", "parse_body")
+
+
+def parse_tests(text: str, path: str) -> tuple[ast.SourceFile | None, list[Diagnostic]]:
+    """Parse a test file (POUs plus SETUP, TEARDOWN and TEST blocks); never raises.
+
+    TEST, SETUP, TEARDOWN and their END_ keywords are reserved only here.
+    """
+    return _guarded(text, path, "test_file", "parse_tests")
+
+
+def _guarded(text: str, path: str, start: str, caller: str):
     try:
         if not isinstance(text, str):
-            raise TypeError(f"parse_body() needs str, not {type(text).__name__}")
+            raise TypeError(f"{caller}() needs str, not {type(text).__name__}")
         with _lock:
-            return _parse(text, path, "stmt_list")
+            return _parse(text, path) if start == "start" else _parse(text, path, start)
     except Exception as exc:  # the promise: no traceback for any input
         return None, [Diagnostic("E-PARSE-099", f"internal parser error: "
                                  f"{type(exc).__name__}: {exc}", ast.Pos(path, 1, 1))]
@@ -147,6 +174,14 @@ def parse_body(text: str, path: str) -> tuple[tuple[ast.Stmt, ...] | None, list[
 def _parse(text: str, path: str, start: str = "start"):
     g = grammar()
     g.builder.reset(path)
+    g.active = g.test_keywords if start == "test_file" else g.keywords
+    try:
+        return _parse_with(g, text, path, start)
+    finally:
+        g.active = g.keywords
+
+
+def _parse_with(g: _Grammar, text: str, path: str, start: str):
     try:
         tree = g.lark.parse(text, start=start)
     except RecursionError:

@@ -11,6 +11,8 @@ and what it found (the token, "keyword 'X'", or "end of file").
 
 from __future__ import annotations
 
+import difflib
+
 from lark import Token
 
 from . import ast
@@ -147,7 +149,7 @@ class Messages:
             name = self._previous_token(token)
             code = "E-PARSE-001"
             message = (f"expected ':=' or '(' after '{name.value}' (an assignment or a call), "
-                       f"found {found}")
+                       f"found {found}{self.keyword_hint(name.value)}")
             pos = ast.Pos(self.path, name.line, name.column)
         elif kind == "close":
             code = "E-PARSE-001"
@@ -161,6 +163,14 @@ class Messages:
             code = "E-PARSE-001"
             message = f"expected {self.expected_list(expected)}, found {found}"
         return Diagnostic(code, message, pos)
+
+    def keyword_hint(self, word: str) -> str:
+        """" (did you mean END_IF?)" when `word` is a misspelt keyword (ENDIF,
+        END_FI, End_Fro); only keywords that end a block or start a
+        statement are offered, the words a typo usually hides."""
+        candidates = [k for k in self.grammar.keywords if k.startswith("END_") or k in _STATEMENT_STARTS]
+        match = difflib.get_close_matches(word.upper(), candidates, n=1, cutoff=0.75)
+        return f" (did you mean {match[0]}?)" if match else ""
 
     def _previous_token(self, token: Token):
         index = self._index.get(id(token))

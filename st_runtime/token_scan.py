@@ -102,6 +102,7 @@ def scan(grammar, text: str, path: str) -> Scan:
             result.tokens.pop()
             result.truncated = True
             break
+        token = grammar.retype(token)
         result.tokens.append(token)
         previous = token
     return result

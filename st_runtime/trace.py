@@ -16,7 +16,8 @@ Two ways to say where values come from:
   tells how to expand arrays (their bounds).  Without it, STObjects expand
   by their layout and a list by 0-based position.
 
-The CSV has a header row: `time` (seconds, exact decimal), `scan`, then one
+The CSV has a header row: `time_s` (seconds, exact decimal: the simulated
+clock during the scan, (k - 1) * period for scan k, as `stgen demo`'s CSV), `scan`, then one
 column per leaf.  Cells: BOOL as TRUE/FALSE, integers in decimal, REAL/LREAL
 in shortest round-trip form, TIME/DATE/TOD/DT as IEC literals, strings as
 they are.  `read_csv` turns each column back into a NumPy array (bool,
@@ -300,7 +301,7 @@ class Trace:
 
     def _write(self, fh) -> None:
         writer = csv.writer(fh, lineterminator="\n")
-        writer.writerow(["time", "scan"] + self.column_names)
+        writer.writerow(["time_s", "scan"] + self.column_names)
         types = [c.type for c in self.columns]
         for t_ns, scan, row in zip(self.times_ns, self.scans, self.rows):
             writer.writerow([_seconds(t_ns), scan] + [_cell(v, t) for v, t in zip(row, types)])
@@ -395,8 +396,8 @@ def read_csv(source) -> dict[str, np.ndarray]:
             rows = list(csv.reader(fh))
     else:
         rows = list(csv.reader(source))
-    if not rows or rows[0][:2] != ["time", "scan"]:
-        raise ValueError("not a trace CSV: the header must start with time,scan")
+    if not rows or rows[0][:2] not in (["time_s", "scan"], ["time", "scan"]):   # "time": before units
+        raise ValueError("not a trace CSV: the header must start with time_s,scan")
     header, body = rows[0], rows[1:]
     columns = list(zip(*body)) if body else [[] for _ in header]
     out: dict[str, np.ndarray] = {}

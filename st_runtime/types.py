@@ -162,6 +162,8 @@ class ArrayType:
 
     @property
     def size(self) -> int:
+        if self.is_open:          # ARRAY[*]: refers to the argument, holds nothing itself
+            return 0
         n = 1
         for lo, hi in self.dims:
             n *= hi - lo + 1

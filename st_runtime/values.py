@@ -421,6 +421,19 @@ def json_members(t) -> list[tuple[str, object]]:
 
 _members = json_members
 
+#: What the JSON of a standard (native) FB shows: its IEC interface. Its
+#: memory (TON's StartTime and Running, a counter's edge memory) stays
+#: readable by an explicit path (`Timer.StartTime`), not in the JSON.
+INTERFACE_KINDS = frozenset({"VAR_INPUT", "VAR_OUTPUT"})
+
+
+def shown_members(t) -> list[tuple[str, object]]:
+    """The members the JSON of a value of type `t` shows: a native FB's
+    inputs and outputs, every other struct or FB's `json_members`."""
+    if isinstance(t, FBType) and t.native is not None:
+        return [(sym.name, sym.type) for sym in t.variables.values() if sym.kind in INTERFACE_KINDS]
+    return json_members(t)
+
 
 def _member_value(obj, name: str):
     if isinstance(obj, dict):
@@ -491,7 +504,7 @@ def to_json(value, t):
         flat = [to_json(v, t.element) for v in _flat_elements(value)]
         return _nest(flat, t.dims)
     if isinstance(t, (StructType, FBType)):
-        return {name: to_json(_member_value(value, name), ft) for name, ft in _members(t)}
+        return {name: to_json(_member_value(value, name), ft) for name, ft in shown_members(t)}
     raise TypeError(f"cannot convert a value of type {t} to JSON")
 
 

@@ -19,15 +19,22 @@ COMMANDS = {
     "generate": "render the platform's POUs as Structured Text",
     "verify": "hold the generated ST against the NumPy reference",
     "demo": "generate, run the study's scenarios, write traces and figures",
+    "test": "run the TEST blocks of ST test files (JUnit XML for CI)",
 }
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The parser of every command, or (`only`) of that one command alone.
+
+    A command's module (with what it imports: NumPy, the renderer, ...) is
+    imported only when its options are needed, so `stgen check` never pays
+    for `stgen demo` (issue 15: start-up time).
+    """
     parser = argparse.ArgumentParser(
         prog="stgen",
         description="Stewart-platform kinematics as IEC 61131-3 ST, proven in a simulated NJ501.",
     )
-    parser.add_argument("--version", action="version", version=f"stgen {_version()}")
+    parser.add_argument("--version", action=_VersionAction)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     one_line_usage_errors(parser, hint=f"commands: {', '.join(COMMANDS)}; ")
@@ -35,12 +42,23 @@ def build_parser() -> argparse.ArgumentParser:
     for name, help_text in COMMANDS.items():
         command_parser = sub.add_parser(name, help=help_text, description=help_text)
         parser.command_parsers[name] = command_parser
-        module = _command_module(name)
+        module = _command_module(name) if only in (None, name) else None
         if module is not None:
             module.add_arguments(command_parser)
             command_parser.set_defaults(handler=module.run)
         one_line_usage_errors(command_parser)
     return parser
+
+
+class _VersionAction(argparse.Action):
+    """`--version`: the installed version, looked up only when asked for."""
+
+    def __init__(self, option_strings, dest, **kwargs):
+        super().__init__(option_strings, dest, nargs=0, help="show the version and exit")
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"stgen {_version()}")
+        parser.exit()
 
 
 def _version() -> str:
@@ -50,6 +68,16 @@ def _version() -> str:
         return version("stgen")
     except PackageNotFoundError:    # run from a source tree that was never installed
         return "(not installed)"
+
+
+def _command_in(argv: list[str]) -> str | None:
+    """The command named by the arguments (the first word that is one), if any."""
+    for word in argv:
+        if word in COMMANDS:
+            return word
+        if not word.startswith("-"):
+            return None
+    return None
 
 
 def one_line_usage_errors(parser: argparse.ArgumentParser, hint: str = "") -> None:
@@ -92,8 +120,9 @@ def _command_module(name: str):
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
     _ARGV[:] = sys.argv[1:] if argv is None else argv
+    command = _command_in(_ARGV)
+    parser = build_parser(only=command) if command else build_parser()
     args, extra = parser.parse_known_args(argv)  # exits 2 on usage errors
     if extra:   # named by the subcommand, whose --help lists what it takes
         command_parser = parser.command_parsers.get(args.command, parser)

@@ -1,6 +1,6 @@
 """Platform configuration: a TOML file read into frozen, validated dataclasses.
 
-Every section and key, with its default (SPEC table 1 for the geometry)::
+Every section and key, with its default (docs/mathematics.md section 1, table for the geometry)::
 
     [geometry]   rb, rp, h0, l0, hb, hp (mm), phi_b_deg, phi_p_deg (degrees)
     [stroke]     min, max (mm)
@@ -150,7 +150,7 @@ class _Section:
 
 @dataclass(frozen=True)
 class GeometryConfig(_Section):
-    """6-6 UPS geometry, SPEC section 1 and table 1 (mm, degrees)."""
+    """6-6 UPS geometry, docs/mathematics.md section 1 and table 1 (mm, degrees)."""
 
     SECTION: ClassVar[str] = "geometry"
 
@@ -191,7 +191,7 @@ def _closest_pair(joints) -> tuple[int, int] | None:
 
 @dataclass(frozen=True)
 class StrokeConfig(_Section):
-    """Usable cylinder travel qi, mm (SPEC table 1: 0 .. 600)."""
+    """Usable cylinder travel qi, mm (docs/mathematics.md section 1, table: 0 .. 600)."""
 
     SECTION: ClassVar[str] = "stroke"
 
@@ -223,7 +223,7 @@ class ActuatorConfig(_Section):
 
 @dataclass(frozen=True)
 class TrajectoryConfig(_Section):
-    """Limits for planned motion of the platform pose (SPEC 4, cycloidal duration).
+    """Limits for planned motion of the platform pose (docs/mathematics.md section 4, cycloidal duration).
 
     Linear limits apply to x, y, z; angular limits to α, β, γ. Defaults (chosen
     to keep the legs well inside :class:`ActuatorConfig`): 100 mm/s,
@@ -242,20 +242,20 @@ class TrajectoryConfig(_Section):
 
 @dataclass(frozen=True)
 class TaskConfig(_Section):
-    """The PLC primary task (SPEC 5): period in seconds, default 1 ms."""
+    """The PLC primary task (docs/mathematics.md section 5): period in seconds, default 1 ms."""
 
     SECTION: ClassVar[str] = "task"
 
     period_s: float = _spec(0.001, _POSITIVE, "primary task period, s")
 
 
-#: p_NR, the study's Newton–Raphson start pose (mm and degrees), SPEC 3.
+#: p_NR, the study's Newton–Raphson start pose (mm and degrees), docs/mathematics.md section 3.
 STUDY_START_POSE = (60.25, 85.0, 230.7, 0.0, 0.0, 3.75)
 
 
 @dataclass(frozen=True)
 class SolverConfig(_Section):
-    """Newton–Raphson forward kinematics, SPEC section 3.
+    """Newton–Raphson forward kinematics, docs/mathematics.md section 3.
 
     ``tolerance`` is Klim (mm and rad: converged when every |Δk| < Klim).  It
     drives the NumPy reference and `stgen verify`'s check at the study's Klim;
@@ -312,12 +312,12 @@ class PlatformConfig:
 
     @classmethod
     def default(cls) -> "PlatformConfig":
-        """The study's platform (SPEC table 1) with the documented default limits."""
+        """The study's platform (docs/mathematics.md section 1, table) with the documented default limits."""
         return cls()
 
 
 def _check_home_pose(config: PlatformConfig) -> None:
-    """The home pose a = 0 must be reachable (SPEC 2) and not singular (SPEC 3)."""
+    """The home pose a = 0 must be reachable (docs/mathematics.md section 2) and not singular (docs/mathematics.md section 3)."""
     import numpy as np
 
     from stgen.reference.kinematics import inverse_kinematics, jacobian

@@ -15,10 +15,10 @@ The WORD an FB reports is ``ERROR_ID_BASE + code`` for every error and
 code    member                  ErrorID    meaning
 ======  ======================  =========  ==========================================
 0       OK                      16#0000    converged / every leg inside its stroke
-1       SINGULAR_JACOBIAN       16#1001    FK: abs(det J) <= Ktol (SPEC 3, step 1)
-2       NOT_CONVERGED           16#1002    FK: total iteration limit reached (SPEC 3)
+1       SINGULAR_JACOBIAN       16#1001    FK: abs(det J) <= Ktol (docs/mathematics.md section 3, step 1)
+2       NOT_CONVERGED           16#1002    FK: total iteration limit reached (docs/mathematics.md section 3)
 3       NON_FINITE              16#1003    a NaN or infinity appeared in the numbers
-4       UNREACHABLE             16#1004    IK: a leg lies outside the stroke (SPEC 2)
+4       UNREACHABLE             16#1004    IK: a leg lies outside the stroke (docs/mathematics.md section 2)
 ======  ======================  =========  ==========================================
 
 Never renumber a member: the numbers are part of the PLC interface.

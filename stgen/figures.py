@@ -1,6 +1,9 @@
-"""PNG figures of a scenario run, laid out like the study's: the platform pose
+"""PNG figures of a scenario run, laid out like the NJ501 study's (docs/mathematics.md,
+Sources; the scenarios are its trajectories of docs/mathematics.md section 4): the platform pose
 over time (positions relative to the start pose, then angles) and the six cylinder positions over time,
-with the error against the NumPy reference underneath. A run of several
+with the error against the NumPy reference underneath; then the cylinder set-points' velocity and
+acceleration against the actuator's limits (issue 8) and the following error (commanded minus
+actual position of every axis). A run of several
 moves has each excursion (out and back to the start pose) shaded and named
 above the top panel ("x +100 mm", ...).
 
@@ -20,6 +23,7 @@ import numpy as np  # noqa: E402
 
 from stgen.scenarios.definitions import PointToPointMotion, describe_move  # noqa: E402
 from stgen.scenarios.runner import ScenarioResult  # noqa: E402
+from stgen.scenarios.setpoint_limits import setpoint_rates  # noqa: E402
 
 POSITION_LABELS = ("x", "y", "z")
 ANGLE_LABELS = ("α (about Z)", "β (about Y)", "γ (about X)")
@@ -49,6 +53,43 @@ def excursions(result: ScenarioResult) -> list[tuple[float, float, str]]:
     return spans
 
 
+def window_max(values: np.ndarray, window: int) -> np.ndarray:
+    """Largest value of each run of ``window`` rows (NaN ignored, 0 for an all-NaN window)."""
+    usable = len(values) // window * window
+    shaped = np.nan_to_num(values[:usable], nan=0.0).reshape((-1, window) + values.shape[1:])
+    return shaped.max(axis=1)
+
+
+def _rate_panels(result: ScenarioResult, axes, shown: slice, time: np.ndarray, window: int) -> None:
+    """|v| and |a| of the set-points handed to MC_SyncMoveAbsolute (window maxima) against the limits."""
+    velocity, acceleration = setpoint_rates(result.setpoint, result.period_s, result.sync)
+    limits = result.limits
+    for axis, values, limit, unit, name in (
+        (axes[0], np.abs(velocity[shown]), limits.velocity_limit, "mm/s", "velocity"),
+        (axes[1], np.abs(acceleration[shown]), limits.acceleration_limit, "mm/s²", "acceleration"),
+    ):
+        peaks = window_max(values, window)
+        for leg in range(6):
+            axis.plot(time[:len(peaks) * window:window], peaks[:, leg], label=f"q{leg + 1}", linewidth=0.8)
+        axis.axhline(limit, color="red", linestyle="--", linewidth=0.8, label=f"limit {limit:g} {unit}")
+        largest = float(np.nanmax(values)) if np.isfinite(values).any() else 0.0
+        axis.set_ylabel(f"|{name}| ({unit})")
+        axis.set_title(f"Cylinder set-point {name} (finite differences at {result.period_s * 1000:g} ms; "
+                       f"max {largest:.3g} {unit} of {limit:g})")
+        axis.set_yscale("symlog", linthresh=1.0)
+        axis.legend(**LEGEND_OUTSIDE)
+
+
+def _following_error_panel(result: ScenarioResult, axis, shown: slice, time: np.ndarray, window: int) -> None:
+    error = result.following_error[shown]
+    peaks = window_max(np.abs(error), window)
+    for leg in range(6):
+        axis.plot(time[:len(peaks) * window:window], peaks[:, leg], label=f"axis {leg + 1}", linewidth=0.8)
+    axis.set_ylabel("|Cmd.Pos − Act.Pos| (mm)")
+    axis.set_title(f"Following error, commanded minus actual (max {np.abs(error).max():.3g} mm)")
+    axis.legend(**LEGEND_OUTSIDE)
+
+
 def scenario_figure(result: ScenarioResult, path: str | Path, dpi: int = 110) -> Path:
     """Write ``path`` (PNG): pose positions, pose angles, cylinder positions, error; returns the path."""
     path = Path(path)
@@ -59,10 +100,11 @@ def scenario_figure(result: ScenarioResult, path: str | Path, dpi: int = 110) ->
     start = result.scenario.start_pose[:3]
     commanded = result.commanded[shown]
     error = result.error[shown].max(axis=1)
-    figure, axes = plt.subplots(4, 1, figsize=(10, 12), sharex=True, constrained_layout=True)
+    figure, axes = plt.subplots(7, 1, figsize=(10, 20), sharex=True, constrained_layout=True)
     figure.suptitle(
         f"{result.scenario.title}\n{result.duration_s:.3f} s simulated, {result.scans:,} scans of "
-        f"{result.period_s * 1000:g} ms, SP_Controller in st_runtime with six simulated axes",
+        f"{result.period_s * 1000:g} ms, SP_Controller in st_runtime with six simulated axes"
+        + (f" (servo lag {result.servo_lag_s * 1000:g} ms)" if result.servo_lag_s > 0 else " (ideal servos)"),
         fontsize=11,
     )
 
@@ -93,8 +135,12 @@ def scenario_figure(result: ScenarioResult, path: str | Path, dpi: int = 110) ->
     axes[3].axhline(1e-6, color="red", linestyle="--", linewidth=0.8, label="limit 1e-6 mm")
     axes[3].set_ylabel("|ST - reference| (mm)")
     axes[3].set_title(f"Largest cylinder error per scan (max {result.max_error_mm:.2e} mm; below 1e-16 drawn at 1e-16)")
-    axes[3].set_xlabel("time (s)")
     axes[3].legend(**LEGEND_OUTSIDE)
+
+    if result.setpoint is not None:
+        _rate_panels(result, axes[4:6], shown, time, window)
+    _following_error_panel(result, axes[6], shown, time, window)
+    axes[6].set_xlabel("time (s)")
 
     for axis in axes:
         axis.grid(True, linewidth=0.3)

@@ -35,7 +35,7 @@ from stgen.reference.linalg import permutation_table
 
 TEMPLATE_DIR = Path(__file__).resolve().parent.parent / "st_templates"
 
-#: Templates of the kinematics POUs (SPEC 1-3), in dependency order.
+#: Templates of the kinematics POUs (docs/mathematics.md sections 1-3), in dependency order.
 KINEMATICS_TEMPLATES = (
     "SP_Constants",
     "SP_Atan2",
@@ -46,11 +46,12 @@ KINEMATICS_TEMPLATES = (
     "SP_ForwardKinematics",
 )
 
-#: Templates of the trajectory FBs (SPEC 4) and the controller program (SPEC 5), in dependency order.
+#: Templates of the trajectory FBs (docs/mathematics.md section 4) and the controller program (docs/mathematics.md section 5), in dependency order.
 CONTROLLER_TEMPLATES = (
     "trajectory/TRJ_Constants",
     "trajectory/TRJ_Cycloidal",
     "trajectory/TRJ_OceanWave",
+    "trajectory/TRJ_Brake",
     "controller/SP_ControllerConstants",
     "controller/SP_ControllerGlobals",
     "controller/SP_Axes",
@@ -62,13 +63,26 @@ CONTROLLER_TEMPLATES = (
 #: the last path component.
 POU_TEMPLATES = KINEMATICS_TEMPLATES + CONTROLLER_TEMPLATES
 
+#: The test benches (``stgen generate --tests``): their results, then one
+#: PROGRAM per bench; vectors from :mod:`stgen.benches`.
+TEST_BENCH_TEMPLATES = (
+    "tests/TB_Globals",
+    "tests/TB_InverseKinematics",
+    "tests/TB_ForwardKinematics",
+    "tests/TB_Determinant",
+    "tests/TB_LuSolve",
+)
+#: The TEST file of the benches (a whole file, not a POU module).
+BENCH_TEST_TEMPLATE = "tests/test_benches"
+BENCH_TEST_FILE = "test_benches.st"
+
 
 def pou_name(template: str) -> str:
     """The POU a template renders: the last component of its path."""
     return template.rsplit("/", 1)[-1]
 
 
-#: How the FK obtains det J (SPEC 3, step 1), a generator option.
+#: How the FK obtains det J (docs/mathematics.md section 3, step 1), a generator option.
 DETERMINANT_METHODS = ("table", "unrolled", "lu")
 
 # Variable usages, named as in Sysmac Studio's variable tables.
@@ -124,6 +138,7 @@ class RenderOptions:
     """
 
     determinant: str = "table"
+    tests: bool = False          # also render the test benches (TEST_BENCH_TEMPLATES)
 
     def __post_init__(self) -> None:
         if self.determinant not in DETERMINANT_METHODS:
@@ -137,6 +152,9 @@ class RenderedProgram:
     """Everything ``stgen generate`` writes: the global constants first, then the POUs."""
 
     pous: tuple[Pou, ...] = field(default_factory=tuple)
+    #: ``stgen generate --tests``: the TEST file that runs the bench PROGRAMs under
+    #: ``stgen test`` (st_templates/tests/test_benches.st.j2); "" otherwise.
+    bench_tests: str = ""
 
     def pou(self, name: str) -> Pou:
         for pou in self.pous:
@@ -285,4 +303,13 @@ def render_program(config: PlatformConfig | None = None, options: RenderOptions 
     options = options if options is not None else RenderOptions()
     env = make_environment()
     context = template_context(config, options)
-    return RenderedProgram(tuple(render_pou(env, template, context) for template in POU_TEMPLATES))
+    templates = POU_TEMPLATES
+    if options.tests:
+        from stgen.benches import bench_vectors
+
+        context["bench"] = bench_vectors(config)
+        templates += TEST_BENCH_TEMPLATES
+    pous = tuple(render_pou(env, template, context) for template in templates)
+    if not options.tests:
+        return RenderedProgram(pous)
+    return RenderedProgram(pous, env.get_template(f"{BENCH_TEST_TEMPLATE}.st.j2").render(context))

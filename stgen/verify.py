@@ -32,8 +32,10 @@ from stgen.render import KINEMATICS_TEMPLATES, RenderOptions, pou_name, render_p
 #: Kinematics POUs (the controller's are not needed here).
 KINEMATICS_POUS = tuple(pou_name(template) for template in KINEMATICS_TEMPLATES)
 
-#: Loop iterations one harness scan may take (a scan runs up to `capacity` cases).
-HARNESS_LOOP_BUDGET = 2_000_000_000
+#: Estimated NJ501 time one harness scan may take (ns): a harness scan runs up
+#: to `capacity` cases, far more than one PLC scan, so the F-PERIOD limit is
+#: lifted to about 11 days; `fk_scan_time` estimates real scans.
+HARNESS_TIME_LIMIT_NS = 10**15
 
 # --------------------------------------------------------------------------- harness programs
 
@@ -184,8 +186,8 @@ class KinematicsRuntime:
     def __init__(self, project, capacity: int) -> None:
         self.project = project
         self.capacity = capacity
-        # One harness scan runs many cases: lift the runaway-loop budget accordingly.
-        self._plc = project.controller(period="1ms", budget=HARNESS_LOOP_BUDGET)
+        # One harness scan runs many cases: lift the time limit accordingly.
+        self._plc = project.controller(period="1ms", time_limit=HARNESS_TIME_LIMIT_NS)
         self._programs = {name: self._plc.add_program(name) for name in ("VerifyIk", "VerifyLinalg", "VerifyFk")}
         self._plc.controller.tasks[0].programs.clear()  # each harness runs only when asked
 
@@ -255,6 +257,80 @@ class KinematicsRuntime:
             parts["done"].append(np.array(program.raw("Done")[:n], dtype=bool))
             parts["ids"].append(np.array(program.raw("ErrorIDs")[:n], dtype=int))
         return FkRun(*(np.concatenate(parts[k]) for k in ("poses", "iterations", "calls", "done", "ids")))
+
+
+@dataclass(frozen=True)
+class FkScanTime:
+    """Estimated NJ501 time of SP_ForwardKinematics calls, one call per scan.
+
+    `calls`: per-scan times with the configured IterationsPerScan;
+    `per_iteration_ns` / `call_overhead_ns`: the worst call is about
+    overhead + k * per_iteration; `fitting`: the largest IterationsPerScan
+    whose worst call, on its own, stays within OMRON's 80 % of the period.
+    """
+
+    calls: object                  # st_runtime.controller.TaskTime
+    iterations_per_scan: int
+    per_iteration_ns: float
+    call_overhead_ns: float
+    fitting: int
+
+    def render(self) -> str:
+        period = self.calls.period_ns
+        return (f"SP_ForwardKinematics on an NJ501 (estimate, FK alone, {period / 1e3:g} us period): "
+                f"{self.per_iteration_ns / 1e3:.1f} us per Newton-Raphson iteration; with IterationsPerScan = "
+                f"{self.iterations_per_scan}: max {self.calls.max_ns / 1e3:.1f} us, "
+                f"p99 {self.calls.p99_ns / 1e3:.1f} us, mean {self.calls.mean_ns / 1e3:.1f} us per scan "
+                f"({100 * self.calls.max_ns / period:.0f} % of the period at most); IterationsPerScan <= "
+                f"{self.fitting} keeps a call within 80 % of the period")
+
+
+def fk_scan_time(project, config: PlatformConfig, poses, starts, max_scans: int = 1000) -> FkScanTime:
+    """SP_ForwardKinematics on the reference IK's cylinder positions of `poses`,
+    called once per scan of the configured period until each solution ends
+    (cases in turn), estimated by the NJ501 cost model."""
+    from st_runtime.api import Instance
+    from st_runtime.controller import LOAD_GUIDELINE, Task, TaskTime
+
+    period_ns = int(round(config.task.period_s * 1e9))
+
+    def scan_times(per_scan: int, cases) -> list[int]:
+        plc = project.controller(period=period_ns, time_limit=HARNESS_TIME_LIMIT_NS)
+        controller = plc.controller
+        fk = project.compiled.new("SP_ForwardKinematics")
+        view = Instance(fk)
+        view["Tolerance"] = config.solver.tolerance
+        view["MaxIterations"] = config.solver.max_iterations
+        view["IterationsPerScan"] = per_scan
+        controller.tasks[0].programs.append(("SP_ForwardKinematics", fk))
+        times: list[int] = []
+        for target, start in cases:
+            view["CylinderPos"] = list(map(float, target))
+            view["StartPose"] = list(map(float, start))
+            view["Execute"] = True
+            for _ in range(max_scans):
+                controller.run(1)
+                if not view["Busy"]:
+                    break
+            times += controller.task_times["Primary"]
+            del controller.task_times["Primary"][:]
+            view["Execute"] = False
+            controller.run(1)
+            del controller.task_times["Primary"][:]
+        return times
+
+    positions = inverse_kinematics(config.geometry, np.asarray(poses, dtype=float).reshape(-1, 6),
+                                   config.stroke).positions
+    cases = list(zip(positions, np.broadcast_to(np.asarray(starts, dtype=float), (len(positions), 6))))
+    task = Task("Primary", period_ns, 1)
+    configured = config.solver.iterations_per_scan
+    calls = TaskTime.of(task, scan_times(configured, cases))
+    one = max(scan_times(1, cases[:3]))       # the first call: setup and k iterations
+    two = max(scan_times(2, cases[:3]))
+    per_iteration = (two - one) / 1000
+    overhead = one / 1000 - per_iteration
+    fitting = max(0, int((LOAD_GUIDELINE * period_ns - overhead) // per_iteration))
+    return FkScanTime(calls, configured, per_iteration, overhead, fitting)
 
 
 def kinematics_sources(config: PlatformConfig | None = None, options: RenderOptions | None = None,
@@ -522,10 +598,11 @@ def check_fk_error_paths(runtime: KinematicsRuntime, config: PlatformConfig) -> 
 
 
 def run_verification(config: PlatformConfig | None = None, poses: int = 10_000, seed: int = 2024,
-                     fk_poses: int = 500, matrices: int = 400) -> list[Check]:
+                     fk_poses: int = 500, matrices: int = 400, timing: list | None = None) -> list[Check]:
     """Every comparison of ``stgen verify``: ``poses`` IK poses (plus a tenth unreachable
     ones), ``matrices`` 6x6 systems per determinant variant, ``fk_poses`` FK solves from
-    p_NR and as many from warm starts."""
+    p_NR and as many from warm starts.  With a ``timing`` list, the estimated NJ501
+    time of the FK calls (`FkScanTime`, up to 50 solves from p_NR) is appended to it."""
     config = config if config is not None else PlatformConfig.default()
     reachable = random_poses(config, poses, seed)
     mixed = random_poses(config, max(1, poses // 10), seed + 1, reachable=False)
@@ -544,6 +621,8 @@ def run_verification(config: PlatformConfig | None = None, poses: int = 10_000, 
                                            iterations_per_scan=1))
     study = check_forward_kinematics(table, config, fk, "p_NR", config.solver.start_pose, tolerance=config.solver.tolerance)
     checks.append(study)  # the study's Klim: it reports 3 to 13 iterations on the NJ501
+    if timing is not None:
+        timing.append(fk_scan_time(table.project, config, fk[:50], config.solver.start_pose))
     checks.append(check_fk_error_paths(table, config))
     from_lu = load_kinematics(config, RenderOptions("lu"))
     check = check_forward_kinematics(from_lu, config, fk, "p_NR, det J from LU", config.solver.start_pose)

@@ -10,6 +10,7 @@ from types import SimpleNamespace
 
 from st_runtime.motion import MotionTask
 from st_runtime.motion.axis_config import AxisConfig
+from st_runtime.motion.types import AXIS_REF_SOURCE
 
 PERIOD_S = 0.001
 
@@ -30,18 +31,30 @@ def make_fb(cls):
     return bench_class()
 
 
+_STRUCT = re.compile(r"(\w+)\s*:\s*STRUCT(.*?)END_STRUCT", re.S)
+
+
+def _struct_layouts() -> dict[str, list[tuple[str, str]]]:
+    """Struct name -> [(member, type)] from the AXIS_REF declaration itself,
+    so the bench always has exactly the members ST sees."""
+    return {name.upper(): _DECL.findall(body) for name, body in _STRUCT.findall(AXIS_REF_SOURCE)}
+
+
+_LAYOUTS = _struct_layouts()
+
+
+def _struct_value(type_name: str):
+    members = {}
+    for name, member_type in _LAYOUTS[type_name.upper()]:
+        if member_type.upper() in _LAYOUTS:
+            members["v_" + name.upper()] = _struct_value(member_type)
+        else:
+            members["v_" + name.upper()] = _DEFAULTS.get(member_type.upper(), 0)
+    return SimpleNamespace(**members)
+
+
 def make_axis_ref():
-    ns = SimpleNamespace
-    return ns(
-        v_STATUS=ns(**{f"v_{s}": False for s in (
-            "DISABLED", "STANDSTILL", "DISCRETE", "CONTINUOUS", "SYNCHRONIZED", "STOPPING", "ERRORSTOP", "HOMING")}),
-        v_DETAILS=ns(v_HOMED=False),
-        v_CMD=ns(v_POS=0.0, v_VEL=0.0),
-        v_ACT=ns(v_POS=0.0, v_VEL=0.0),
-        v_DEV=ns(v_POS=0.0),
-        v_MFAULTLVL=ns(v_ACTIVE=False, v_CODE=0),
-        v_CFG=ns(v_AXNO=0, v_AXENABLE=False),
-    )
+    return _struct_value("AXIS_REF")
 
 
 class Rig:

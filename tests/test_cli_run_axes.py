@@ -57,30 +57,36 @@ def test_program_powers_an_axis_and_moves_it(ramp, capsys):
     csv = ramp / "trace.csv"
     code, out, err = stgen(capsys, "run", ramp / "main.st", "--axes", ramp / "axes.toml",
                            "--program", "Main", "--cycles", "5", "--json",
-                           "--trace", csv, "--watch", "Cyl1.Cmd.Pos", "Cyl1.Status.Synchronized")
+                           "--trace", csv, "--watch", "Cyl1.Cmd.Pos,Cyl1.Status.Discrete")
     assert code == 0, err
     data = json.loads(out)
     assert data["Target"] == 2.0 and data["Commanded"] == 1.5
     assert data["Power"]["Status"] is True and data["Sync"]["Error"] is False
     rows = [line.split(",") for line in csv.read_text().splitlines()]
-    assert rows[0] == ["time", "scan", "Cyl1.Cmd.Pos", "Cyl1.Status.Synchronized"]
+    # Status.Discrete, not Synchronized: MC_SyncMoveAbsolute keeps the axis in
+    # Discrete on the NJ (docs/nj501.md; this test watched Synchronized before issue 8).
+    assert rows[0] == ["time_s", "scan", "Cyl1.Cmd.Pos", "Cyl1.Status.Discrete"]
     assert [float(r[2]) for r in rows[1:]] == [0.0, 0.5, 1.0, 1.5, 2.0]
     assert [r[3] for r in rows[1:]] == ["FALSE", "TRUE", "TRUE", "TRUE", "TRUE"]
 
 
-def test_a_step_above_the_velocity_limit_is_an_axis_error(ramp, capsys):
-    # Scan 2 commands 0.5 mm in a 1 ms scan, 500 mm/s: above a 100 mm/s limit
-    # motion processing of scan 2 puts the axis in ErrorStop (never moved),
-    # and the synchronized move is aborted.
+def test_a_step_above_the_velocity_limit_saturates_at_the_maximum_velocity(ramp, capsys):
+    # Changed in issue 8: this test asserted an axis error (ErrorStop) for a
+    # step above the maximum velocity; OMRON's MC_SyncMoveAbsolute saturates
+    # instead (docs/nj501.md).  Scan 2 asks for 0.5 mm in a 1 ms scan, 500 mm/s, on a
+    # 100 mm/s axis: the command moves 0.1 mm per scan, VelLimit TRUE, no error.
+    # Targets 0.5, 1.0, 1.5, 2.0 in scans 2..5; commands 0.1, 0.2, 0.3, 0.4.
     (ramp / "slow.toml").write_text(AXES.replace("1000.0", "100.0"))
     csv = ramp / "trace.csv"
     code, out, err = stgen(capsys, "run", ramp / "main.st", "--axes", ramp / "slow.toml",
-                           "--program", "Main", "--cycles", "3", "--json",
-                           "--trace", csv, "--watch", "Cyl1.Status.ErrorStop", "Cyl1.Cmd.Pos")
+                           "--program", "Main", "--cycles", "5", "--json", "--trace", csv,
+                           "--watch", "Cyl1.Status.ErrorStop,Cyl1.Details.VelLimit,Cyl1.Cmd.Pos")
     assert code == 0, err
     rows = [line.split(",")[2:] for line in csv.read_text().splitlines()[1:]]
-    assert rows == [["FALSE", "0.0"], ["TRUE", "0.0"], ["TRUE", "0.0"]]
-    assert json.loads(out)["Sync"]["CommandAborted"] is True
+    assert [r[:2] for r in rows] == [["FALSE", "FALSE"]] + [["FALSE", "TRUE"]] * 4
+    assert [float(r[2]) for r in rows] == pytest.approx([0.0, 0.1, 0.2, 0.3, 0.4])
+    data = json.loads(out)
+    assert data["Sync"]["CommandAborted"] is False and data["Sync"]["Error"] is False
 
 
 def test_without_axes_the_axis_is_undeclared(ramp, capsys):

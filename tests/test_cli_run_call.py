@@ -90,7 +90,7 @@ def test_run_json_renders_every_variable(files, capsys):
     assert data == {
         "count": 3, "enable": True, "level": 0.5, "total": 0.75, "name": "pump", "wait": "T#1s500ms",
         "grid": [[1, 2], [3, 4]], "p": {"a": 3, "b": 0.0},
-        "t": data["t"],
+        "t": data["t"], "scans": 3, "time": "T#3ms", "faults": [],
     }
     assert data["t"]["Q"] is True and data["t"]["ET"] == "T#2ms" and data["t"]["PT"] == "T#2ms"
 
@@ -113,10 +113,10 @@ def test_run_faults_go_to_stderr_and_exit_1(files, capsys):
 def test_run_trace_writes_csv(files, capsys, tmp_path):
     out_csv = tmp_path / "out.csv"
     code, _, err = stgen(capsys, "run", files / "counter.st", "--program", "Main", "--cycles", "4",
-                         "--period", "2ms", "--trace", out_csv, "--watch", "count", "p.a", "t.Q")
+                         "--period", "2ms", "--trace", out_csv, "--watch", "count,p.a", "--watch", "t.Q")
     assert code == 0, err
     rows = out_csv.read_text().splitlines()
-    assert rows[0] == "time,scan,count,p.a,t.Q"
+    assert rows[0] == "time_s,scan,count,p.a,t.Q"
     assert rows[1].split(",")[1:] == ["1", "1", "1", "FALSE"]
     assert rows[4].split(",")[1:] == ["4", "4", "4", "TRUE"]
 
@@ -161,13 +161,14 @@ def test_call_fb_until_output(files, capsys):
                            "--set", 'pt="T#5ms"', "--until", "done", "--json")
     assert code == 0, err
     # Scan k runs at (k - 1) ms: ET = 5 ms in scan 6.
-    assert json.loads(out) == {"done": True, "elapsed": "T#5ms", "cycles": 6}
+    assert json.loads(out) == {"done": True, "elapsed": "T#5ms", "cycles": 6, "reached": True}
 
 
 def test_call_fb_max_cycles(files, capsys):
     code, out, err = stgen(capsys, "call", files / "lib.st", "--pou", "Delay", "--set", "start=false",
                            "--until", "done", "--max-cycles", "7")
-    assert code == 0 and json.loads(out)["cycles"] == 7
+    # Not reached: the outputs all the same, "reached": false, exit 1 (issue 15).
+    assert code == 1 and json.loads(out)["cycles"] == 7 and json.loads(out)["reached"] is False
     assert "did not become TRUE" in err
 
 
@@ -221,7 +222,8 @@ def test_json_is_strict_non_finite_reals_are_strings(tmp_path, capsys):
     code, out, err = stgen(capsys, "run", tmp_path / "inf.st", "--program", "Inf", "--json")
     assert code == 0, err
     assert strict_loads(out) == {"zero": 0.0, "up": "Infinity", "down": "-Infinity",
-                                 "undefined": "NaN", "v": [0.0, "Infinity"]}
+                                 "undefined": "NaN", "v": [0.0, "Infinity"],
+                                 "scans": 1, "time": "T#1ms", "faults": []}
     code, out, err = stgen(capsys, "call", tmp_path / "inf.st", "--pou", "Div",
                            "--set", "a=-1", "--set", "b=0", "--json")
     assert code == 0, err
@@ -281,6 +283,7 @@ def test_every_elementary_type_in_run_json(tmp_path, capsys):
         "ud": 165, "ul": 2**64 - 1, "bt": 255, "w": 0xABCD, "dw": 0xDEADBEEF, "lw": 2**64 - 1,
         "r": 0.1, "lr": 0.0015, "t": "T#-2s500ms", "d": "D#2024-02-29", "tod1": "TOD#23:59:59.5",
         "dt1": "DT#2024-02-29-12:30:00.25", "s": "it's $5\n",
+        "scans": 0, "time": "T#0s", "faults": [],
     }
 
 

@@ -177,8 +177,10 @@ def test_unguarded_compilation_gives_the_same_results():
 
 
 def test_native_fb_works_outside_a_compiled_program():
+    from st_runtime.compiler import install_native_layouts
     from st_runtime.stdlib.fbs import TON
 
+    install_native_layouts()
     t = TON()
     assert t.v_IN is False and t.v_PT == 0 and t.v_Q is False
 
@@ -241,6 +243,7 @@ def test_nesting_beyond_python_limits_is_a_diagnostic():
     decls = " ".join(f"i{k} : INT;" for k in range(25))
     with pytest.raises(LoadError) as info:
         load_text(f"PROGRAM Main\nVAR n : DINT; {decls} END_VAR\n{loops}END_PROGRAM\n", "deep.st")
+    # The checker refuses it (st_runtime/checker/limits.py) at the 13th loop: lines 3..27 hold the FORs.
     diagnostic = info.value.diagnostics[-1]
-    assert diagnostic.code == "E-COMPILE-001" and "nested too deeply" in diagnostic.message
-    assert diagnostic.pos.file == "deep.st" and diagnostic.pos.line == 1
+    assert diagnostic.code == "E-LIMIT-004" and "loops nested more than 12 levels deep" in diagnostic.message
+    assert diagnostic.pos.file == "deep.st" and diagnostic.pos.line == 3 + 12

@@ -22,7 +22,7 @@ def test_accepted_snippet_compiles_and_runs(path):
     if result.program is None:
         pytest.skip("not accepted by the checker in this build")
     compiled = compile_program(result.program)
-    controller = Controller(compiled, budget=100_000)
+    controller = Controller(compiled, time_limit_ns=500_000)
     for pou in result.program.pous.values():
         if pou.kind == "PROGRAM":
             controller.add_program(pou.name)

@@ -1,4 +1,4 @@
-"""The simulated controller: tasks, clock, faults, scan budget, I/O hooks, trace."""
+"""The simulated controller: tasks, clock, faults, NJ501 time per scan, I/O hooks, trace."""
 
 from __future__ import annotations
 
@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from st_runtime.api import load_text
+from st_runtime.compiler.cost import PICOSECONDS_PER_UNIT, WEIGHTS
 from st_runtime.controller import Controller
 
 PROGRAMS = """
@@ -103,30 +104,52 @@ END_PROGRAM
 """
 
 
+def _ps(units: int) -> int:
+    """Units of the cost model's weights table as the picoseconds a block charges."""
+    return units * PICOSECONDS_PER_UNIT
+
+
 def test_runaway_loop_ends_the_scan_with_task_period_exceeded():
-    plc = load_text(RUNAWAY, "loop.st").controller(budget=1000)
+    plc = load_text(RUNAWAY, "loop.st").controller()
     main = plc.add_program("Main")
     other = plc.add_program("Other")
     assert plc.run(2) == 2
     assert [(f.code, f.line, f.scan) for f in plc.faults] == [("F-PERIOD", 5, 1), ("F-PERIOD", 5, 2)]
-    assert main["k"] == 2000            # the budget counts loop iterations
+    # By hand from the weights: `scans := scans + 1` is load, load, int_op,
+    # store; each WHILE TRUE iteration charges loop + (load TRUE + branch) and
+    # the body `k := k + 1` (load, load, int_op, store) before it runs.
+    w = WEIGHTS
+    first = _ps(2 * w["load"] + w["int_op"] + w["store"])
+    per_iteration = _ps(w["loop"] + w["load"] + w["branch"] + 2 * w["load"] + w["int_op"] + w["store"])
+    period_ps = 1_000_000_000
+    bodies_run = (period_ps - first) // per_iteration      # the next charge goes below zero
+    assert main["k"] == 2 * bodies_run
     assert main["scans"] == 2 and main["after"] == 0
-    assert other["n"] == 0              # the rest of the scan is abandoned
+    assert other["n"] == 0              # the rest of the task is abandoned
+    assert list(plc.controller.task_times["Primary"]) == [first + (bodies_run + 1) * per_iteration] * 2
 
 
-def test_for_loops_are_charged_to_the_budget():
+def test_for_loops_are_charged_by_their_blocks():
     src = """PROGRAM Main
     VAR i, j : DINT; n : DINT; END_VAR
     FOR i := 1 TO 100 DO FOR j := 1 TO 100 DO n := n + 1; END_FOR; END_FOR;
     END_PROGRAM"""
-    plc = load_text(src).controller(budget=5000)
+    # By hand: the outer FOR's setup (start, end, store); per outer iteration
+    # its loop overhead and the inner FOR's setup; the inner FOR's body is one
+    # block, charged up front: 100 * (loop + load, load, int_op, store).
+    w = WEIGHTS
+    setup = w["load"] + w["load"] + w["store"]
+    inner = 100 * (w["loop"] + 2 * w["load"] + w["int_op"] + w["store"])
+    total_ps = _ps(setup + 100 * (w["loop"] + setup + inner))
+    plc = load_text(src).controller(time_limit=total_ps // 1000 - 1)
     plc.add_program("Main")
     plc.run(1)
     assert [f.code for f in plc.faults] == ["F-PERIOD"]
-    plc = load_text(src).controller(budget=10_100)
+    plc = load_text(src).controller(time_limit=total_ps // 1000 + 1)
     main = plc.add_program("Main")
     plc.run(1)
     assert plc.faults == [] and main["n"] == 10_000
+    assert list(plc.controller.task_times["Primary"]) == [total_ps]
 
 
 def test_io_hooks_run_before_and_after_the_programs():
@@ -167,7 +190,7 @@ def test_trace_records_paths_every_scan(tmp_path):
     assert list(data["t.Q"]) == [False, False, True, True]
     out = tmp_path / "trace.csv"
     trace.write_csv(out)
-    assert out.read_text().splitlines()[0].startswith("time,scan,n")
+    assert out.read_text().splitlines()[0].startswith("time_s,scan,n")
 
 
 def test_empty_controller_and_run_zero_cycles():
@@ -234,7 +257,7 @@ def test_one_ms_primary_task_and_a_four_ms_task_in_program_order():
 
 
 def test_task_period_exceeded_is_named_and_located():
-    plc = load_text(RUNAWAY, "loop.st").controller(budget=100)
+    plc = load_text(RUNAWAY, "loop.st").controller(time_limit="10us")
     plc.add_program("Main")
     plc.run(1)
     record = plc.faults[0]

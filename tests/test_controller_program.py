@@ -37,7 +37,9 @@ def test_power_on_locates_the_start_pose_and_holds_it(sim):
     assert np.allclose(sim.globals["SpSetpointPose"], STUDY_START_POSE, atol=1e-9)
     start_q = inverse_kinematics(CONFIG.geometry, np.array(STUDY_START_POSE)).positions
     assert np.max(np.abs(sim.command_positions() - start_q)) <= 1e-9
-    assert all(axis.state == AxisState.SYNCHRONIZED for axis in sim.axes)
+    # DISCRETE, not SYNCHRONIZED: MC_SyncMoveAbsolute keeps the axis in
+    # Status.Discrete on the NJ (changed in issue 8, docs/nj501.md).
+    assert all(axis.state == AxisState.DISCRETE for axis in sim.axes)
     sim.run(50)  # holding: nothing moves
     assert np.max(np.abs(sim.command_positions() - start_q)) <= 1e-9
     assert sim.globals["SpFaultID"] == 0 and not sim.runtime_faults
@@ -95,10 +97,37 @@ def test_move_command_while_moving_is_refused_as_not_ready(sim):
 
 
 def test_stop_mid_move_stops_all_axes_and_relocates(sim):
+    # Issue 8: SpStop ramps the set-point to rest first (TRJ_Brake, the reference's brake_pose), then MC_Stop.
+    from stgen.reference.brake import brake_duration, brake_pose, setpoint_motion
+    from stgen.scenarios.setpoint_limits import check_setpoint_limits
+
     sim.set_pose("SpTargetPose", (50.0, 0.0, 200.0, 0.0, 0.0, 0.0))
     sim.globals["SpMoveStart"] = True
-    sim.run(500)
+    poses, cylinders = [], []
+    for _ in range(500):
+        sim.run(1)
+        poses.append(sim.globals["SpSetpointPose"])
+        cylinders.append(sim.globals["SpCylinderSetpoint"])
     sim.globals["SpStop"] = True
+    period = CONFIG.task.period_s
+    v0, a0 = setpoint_motion(poses[-3], poses[-2], poses[-1], period)
+    stop_s = brake_duration(v0, a0, CONFIG.trajectory, period)
+    assert 0.3 < stop_s < 1.0 and abs(v0[2]) > 40.0  # a real ramp from a real speed
+    ramp_scans = round(stop_s / period)
+    for _ in range(ramp_scans + 1):  # the ramp's scans (the edge outputs t = 1 ms, the last t = T_S), then MC_Stop
+        sim.run(1)
+        poses.append(sim.globals["SpSetpointPose"])
+        cylinders.append(sim.globals["SpCylinderSetpoint"])
+        assert sim.state == _state(sim, "STOP_RAMP" if len(poses) <= 500 + ramp_scans else "STOPPING")
+    expected = brake_pose(poses[499], v0, a0, stop_s, np.arange(1, ramp_scans + 1) * period)
+    np.testing.assert_allclose(np.array(poses[500:-1]), expected, rtol=0, atol=1e-9)
+    # Continuous: velocity and acceleration of the cylinder set-points inside the actuator limits, pose at rest.
+    check = check_setpoint_limits(np.array(cylinders), period, CONFIG.actuator.max_velocity,
+                                  CONFIG.actuator.max_acceleration)
+    assert check.passed, check.describe()
+    pose_acceleration = np.diff(np.array(poses)[:, :3], n=2, axis=0) / period**2
+    assert np.abs(pose_acceleration).max() <= CONFIG.trajectory.linear_acceleration
+    assert np.array_equal(poses[-1], poses[-2])  # at rest when MC_Stop comes
     sim.run_until(lambda: sim.globals["SpReady"], 200)
     # Holding again: the located pose's IK differs from where the axes stopped by rounding only.
     assert all(abs(axis.cmd_vel) < 1e-6 for axis in sim.axes)
@@ -228,3 +257,52 @@ def test_mc_stop_is_not_given_to_the_axis_that_stopped_itself_in_errorstop(sim):
     stops = sim.program["AxisStop"]
     assert [stop["Execute"] for stop in stops] == [True, True, False, True, True, True]
     assert not any(stop["Error"] for stop in stops)
+
+
+# --------------------------------------------------------------------------- issue 8: supervision and ramped stops
+
+
+def test_command_aborted_sync_is_a_fault_naming_the_axis(sim):
+    # Another command (here an MC_MoveAbsolute started on cylinder 3 from outside the program) aborts
+    # its MC_SyncMoveAbsolute: CommandAborted is a fault the user sees, with the axis, and all six stop.
+    sim.run(5)
+    sim.axes[2].start_move_absolute(sim.axes[2].cmd_pos, 10.0, 100.0, 100.0)
+    sim.run(2)
+    assert sim.globals["SpFaultID"] == sim.codes["SP_FAULT_SYNC_ABORTED"]
+    assert sim.globals["SpFaultAxis"] == 3
+    sim.run_until(lambda: sim.state == _state(sim, "FAULT"), 300)
+
+
+def test_sync_not_active_while_executed_is_a_fault(sim):
+    # MC_SyncMoveAbsolute called with Execute for two scans must be Active (OMRON: one period after Execute).
+    sim.run(5)
+    sim.program["AxisSync[5].Active"] = False
+    sim.run(1)
+    assert sim.globals["SpFaultID"] == sim.codes["SP_FAULT_SYNC_INACTIVE"]
+    assert sim.globals["SpFaultAxis"] == 5
+
+
+def test_trajectory_fault_mid_wave_is_ramped_to_rest_then_stopped(sim):
+    from stgen.scenarios.setpoint_limits import check_setpoint_limits
+
+    command_scenario(sim, AIRY_WAVE)
+    sim.run(1500)  # past the fade-in: the wave moves
+    assert sim.state == _state(sim, "WAVE")
+    sim.program["WaveMotion.Active"] = False  # the wave FB stops delivering poses
+    cylinders, states = [], []
+    for _ in range(3000):
+        sim.run(1)
+        cylinders.append(sim.globals["SpCylinderSetpoint"])
+        states.append(sim.state)
+        if sim.state == _state(sim, "FAULT"):
+            break
+    assert sim.globals["SpFaultID"] == sim.codes["SP_FAULT_TRAJECTORY"]
+    assert states[0] == _state(sim, "FAULT_RAMP") and states[-1] == _state(sim, "FAULT")
+    ramp = [row for row, state in zip(cylinders, states) if state == _state(sim, "FAULT_RAMP")]
+    assert len(ramp) > 10
+    check = check_setpoint_limits(np.array(ramp), CONFIG.task.period_s, CONFIG.actuator.max_velocity,
+                                  CONFIG.actuator.max_acceleration)
+    assert check.passed
+    # At rest before MC_Stop: v ~ (1 - tau)^2 near the end, the last step is below 1e-6 mm (1e-3 mm/s).
+    assert np.abs(np.diff(np.array(ramp[-2:]), axis=0)).max() < 1e-6
+    assert not any(axis.fault_active for axis in sim.axes)

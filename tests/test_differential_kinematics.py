@@ -68,7 +68,7 @@ def test_ik_matches_the_reference_on_10000_reachable_and_1000_mixed_poses(runtim
 
 
 def test_ik_home_pose_gives_the_documented_home_cylinder_position(runtime):
-    """SPEC 2: the home pose puts every cylinder at about 9.9994 mm."""
+    """docs/mathematics.md section 2: the home pose puts every cylinder at about 9.9994 mm."""
     run = runtime.inverse_kinematics(np.zeros((1, 6)))
     assert run.positions[0] == pytest.approx([9.9994] * 6, abs=1e-4)
     assert run.reachable[0] and run.error_ids[0] == 0

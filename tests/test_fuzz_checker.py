@@ -60,7 +60,7 @@ def test_mutated_programs_load_or_explain_and_scans_never_crash(index, data):
         return
     for pou in project.program.pous.values():
         if pou.kind == "PROGRAM" and pou.node is not None:
-            plc = project.controller(budget=10_000)
+            plc = project.controller(time_limit="50us")
             plc.add_program(pou.name)
             plc.run(2)
             for record in plc.faults:

@@ -9,7 +9,8 @@ import pytest
 from stgen.commands.generate import generate
 
 ROOT = Path(__file__).resolve().parent.parent
-CHECKED_IN = {"nj": ROOT / "generated" / "nj501", "iec": ROOT / "generated" / "iec"}
+CHECKED_IN = {"nj": ROOT / "generated" / "nj501", "iec": ROOT / "generated" / "iec",
+              "sysmac-xml": ROOT / "generated" / "sysmac-xml", "plcopen": ROOT / "generated" / "plcopen"}
 
 
 def _files(folder: Path) -> dict[str, str]:

@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from st_runtime.motion.axis import Axis, AxisState, MotionRefused
+from st_runtime.motion.axis import Axis, AxisState, MotionAborted, MotionRefused
 from st_runtime.motion.axis_config import AxisConfig
 from st_runtime.motion.error_ids import ErrorID
 
@@ -56,26 +56,29 @@ def test_motion_on_disabled_axis_is_refused(start):
 def test_sync_position_is_the_command_of_the_same_period():
     axis = powered_axis()
     command = axis.start_sync()
-    assert axis.state == AxisState.SYNCHRONIZED
+    assert axis.state == AxisState.DISCRETE  # changed in issue 8: not SYNCHRONIZED (OMRON, docs/nj501.md)
     command.target = 0.05
     axis.step(DT)
     assert axis.cmd_pos == 0.05 and axis.act_pos == 0.05  # ideal axis
     assert axis.cmd_vel == pytest.approx(50.0)  # 0.05 mm in 1 ms
 
 
-def test_step_at_velocity_limit_is_accepted_and_above_it_faults():
+def test_step_at_velocity_limit_is_accepted_and_above_it_saturates():
+    # Changed in issue 8: a step above the limit faulted the axis (invented
+    # 16#6402); OMRON saturates at the maximum velocity and outputs the rest
+    # in later periods, Details.VelLimit TRUE meanwhile (docs/nj501.md, W507 9-2).
     axis = powered_axis()  # 100 mm/s -> at most 0.1 mm per 1 ms scan
     command = axis.start_sync()
     command.target = 0.1
     axis.step(DT)
-    assert axis.state == AxisState.SYNCHRONIZED
+    assert axis.state == AxisState.DISCRETE and not axis.vel_limit
     command.target = 0.1 + 0.1001  # 100.1 mm/s
     axis.step(DT)
-    assert axis.state == AxisState.ERRORSTOP
-    assert axis.fault_code == ErrorID.VELOCITY_LIMIT_EXCEEDED == 0x6402
-    assert axis.cmd_pos == 0.1  # the refused command is not applied
-    assert axis.cmd_vel == 0.0
-    assert command.aborted
+    assert axis.state == AxisState.DISCRETE and axis.vel_limit
+    assert axis.cmd_pos == pytest.approx(0.2) and axis.cmd_vel == pytest.approx(100.0)
+    axis.step(DT)  # the remaining 0.0001 mm
+    assert axis.cmd_pos == pytest.approx(0.2001) and not axis.vel_limit
+    assert not command.aborted
 
 
 def test_command_beyond_software_limit_faults():
@@ -85,11 +88,11 @@ def test_command_beyond_software_limit_faults():
     axis.step(DT)
     command.target = 0.15  # on the limit: allowed
     axis.step(DT)
-    assert axis.state == AxisState.SYNCHRONIZED
+    assert axis.state == AxisState.DISCRETE
     command.target = 0.1500001
     axis.step(DT)
     assert axis.state == AxisState.ERRORSTOP
-    assert axis.fault_code == ErrorID.SOFT_LIMIT_EXCEEDED
+    assert axis.fault_code == ErrorID.TARGET_POSITIVE_SOFT_LIMIT  # assumed code, see error_ids
     assert axis.cmd_pos == 0.15
 
 
@@ -102,16 +105,19 @@ def test_non_finite_command_faults():
     assert axis.cmd_pos == 0.0
 
 
-def test_acceleration_limit_in_synchronized_motion():
-    # 1000 mm/s^2 over 1 ms: the velocity may change by at most 1 mm/s per scan.
-    axis = powered_axis(max_acceleration=1000.0)
+def test_sync_ignores_the_maximum_acceleration():
+    # Changed in issue 8: this test faulted the axis when the sync velocity
+    # changed faster than max_acceleration (invented 16#6403); OMRON does not
+    # use the maximum acceleration/deceleration for MC_SyncMoveAbsolute.
+    axis = powered_axis(max_acceleration=1000.0)  # at most 1 mm/s per 1 ms scan
     command = axis.start_sync()
-    command.target = 0.001  # 0 -> 1 mm/s: exactly the limit
+    command.target = 0.05  # 0 -> 50 mm/s in one scan: 50,000 mm/s^2
     axis.step(DT)
-    assert axis.state == AxisState.SYNCHRONIZED
-    command.target = 0.001 + 0.0025  # 1 -> 2.5 mm/s: 1.5 mm/s in one scan
+    assert axis.state == AxisState.DISCRETE and axis.cmd_pos == 0.05
+    assert axis.cmd_accdec == pytest.approx(50_000.0)
+    command.target = 0.05  # 50 -> 0 mm/s: OMRON's sign rule, - while |v| falls
     axis.step(DT)
-    assert axis.fault_code == ErrorID.ACCELERATION_LIMIT_EXCEEDED
+    assert axis.cmd_accdec == pytest.approx(-50_000.0)
 
 
 def test_servo_lag_is_the_exact_first_order_response():
@@ -137,7 +143,7 @@ def test_following_error_above_limit_faults_when_the_hand_formula_says():
     axis = powered_axis(servo_lag=tau, following_error_limit=limit)
     command = axis.start_sync()
     for n in range(1, expected_scan + 1):
-        assert axis.state == AxisState.SYNCHRONIZED, n
+        assert axis.state == AxisState.DISCRETE, n
         command.target = step * n
         axis.step(DT)
     assert axis.state == AxisState.ERRORSTOP
@@ -151,9 +157,8 @@ def test_reset_returns_to_standstill_when_powered_and_disabled_when_not():
     command.target = 60.0  # beyond +50
     axis.step(DT)
     assert axis.state == AxisState.ERRORSTOP
-    with pytest.raises(MotionRefused) as refused:
+    with pytest.raises(MotionAborted):  # CommandAborted, not an error (issue 8, docs/nj501.md)
         axis.start_sync()
-    assert refused.value.code == ErrorID.AXIS_IN_ERRORSTOP
     assert axis.reset()
     assert axis.state == AxisState.STANDSTILL and axis.fault_code == ErrorID.NONE
 
@@ -181,34 +186,53 @@ def test_reset_fails_while_the_following_error_is_still_too_large():
     assert axis.state == AxisState.STANDSTILL
 
 
-def test_stop_aborts_synchronized_motion_and_decelerates():
+def test_stop_aborts_synchronized_motion_at_once():
+    # Changed in issue 8: the stop decelerated at its 10,000 mm/s^2; OMRON's
+    # MC_Stop on an axis under MC_SyncMoveAbsolute is an immediate stop, the
+    # deceleration ignored (docs/nj501.md).  A start while Stopping: CommandAborted.
     axis = powered_axis()
     sync = axis.start_sync()
     for n in range(1, 4):
         sync.target = 0.05 * n  # 50 mm/s
         axis.step(DT)
-    stop = axis.start_stop(10000.0)  # 10 mm/s less per 1 ms scan
+    stop = axis.start_stop(10000.0)
     assert sync.aborted and axis.state == AxisState.STOPPING
-    positions = []
-    for _ in range(5):
-        assert not stop.done
-        axis.step(DT)
-        positions.append(axis.cmd_pos)
-    # Speeds 40, 30, 20, 10, 0 mm/s: +0.04, +0.03, +0.02, +0.01, +0.
-    assert positions == pytest.approx([0.19, 0.22, 0.24, 0.25, 0.25], abs=1e-12)
-    assert stop.done and axis.cmd_vel == 0.0
+    axis.step(DT)
+    assert axis.cmd_pos == pytest.approx(0.15) and axis.cmd_vel == 0.0 and stop.done
     assert axis.state == AxisState.STOPPING  # held while MC_Stop's Execute is TRUE
-    with pytest.raises(MotionRefused) as refused:
+    with pytest.raises(MotionAborted):
         axis.start_sync()
-    assert refused.value.code == ErrorID.AXIS_STOPPING
     axis.release_stop(stop)
     assert axis.state == AxisState.STANDSTILL
 
 
-def test_stop_released_early_ends_in_standstill_when_stopped():
+def test_stop_decelerates_a_move_and_deceleration_zero_stops_at_once():
     axis = powered_axis()
-    sync = axis.start_sync()
-    sync.target = 0.02
+    move = axis.start_move_absolute(10.0, 50.0, 0.0, 0.0)  # no max_acceleration: a velocity step
+    for _ in range(3):
+        axis.step(DT)                 # 50 mm/s: 0.05, 0.10, 0.15
+    stop = axis.start_stop(10000.0)   # 10 mm/s less per 1 ms scan
+    assert move.aborted
+    positions = []
+    for _ in range(5):
+        axis.step(DT)
+        positions.append(axis.cmd_pos)
+    # Speeds 40, 30, 20, 10, 0 mm/s: +0.04, +0.03, +0.02, +0.01, +0.
+    assert positions == pytest.approx([0.19, 0.22, 0.24, 0.25, 0.25], abs=1e-12)
+    assert stop.done
+    axis.release_stop(stop)
+    axis.start_move_absolute(10.0, 50.0, 0.0, 0.0)
+    axis.step(DT)                     # 0.30 at 50 mm/s
+    axis.start_stop(0.0)              # Deceleration 0: immediate stop (docs/nj501.md)
+    axis.step(DT)
+    assert axis.cmd_pos == pytest.approx(0.30) and axis.cmd_vel == 0.0
+
+
+def test_stop_released_early_ends_in_standstill_when_stopped():
+    # Changed in issue 8: started from a move, not from a sync (a stop from a
+    # sync is immediate on the NJ, so nothing would be left to release early).
+    axis = powered_axis()
+    axis.start_move_absolute(10.0, 20.0, 0.0, 0.0)
     axis.step(DT)  # 20 mm/s
     stop = axis.start_stop(10000.0)
     axis.release_stop(stop)
@@ -254,9 +278,13 @@ def test_move_absolute_beyond_soft_limit_faults_the_axis():
     axis = powered_axis()
     with pytest.raises(MotionRefused) as refused:
         axis.start_move_absolute(50.5, 10.0, 0.0, 0.0)
-    assert refused.value.code == ErrorID.TARGET_BEYOND_SOFT_LIMIT
+    assert refused.value.code == ErrorID.TARGET_POSITIVE_SOFT_LIMIT == 0x6440
     assert axis.state == AxisState.ERRORSTOP
-    assert axis.fault_code == ErrorID.TARGET_BEYOND_SOFT_LIMIT
+    assert axis.fault_code == ErrorID.TARGET_POSITIVE_SOFT_LIMIT
+    axis.reset()
+    with pytest.raises(MotionRefused) as refused:
+        axis.start_move_absolute(-50.5, 10.0, 0.0, 0.0)
+    assert refused.value.code == ErrorID.TARGET_NEGATIVE_SOFT_LIMIT == 0x6441
 
 
 @pytest.mark.parametrize("velocity, acc", [(0.0, 1.0), (-1.0, 1.0), (100.5, 1.0), (1.0, -1.0), (math.inf, 1.0)])

@@ -64,6 +64,10 @@ def test_toml_axis_tables():
         ({"name": "Ax", "max_velocity": 1, "soft_limit_min": 0, "initial_position": -1},
          "'initial_position' must lie within the software limits"),
         ({"name": "Ax", "max_velocity": 1, "maxvelocity": 2}, "unknown key 'maxvelocity'"),
+        ({"name": "Ax", "max_velocity": 1, "error_deceleration": -1}, "'error_deceleration' must be finite"),
+        ({"name": "Ax", "max_velocity": 1, "in_position_check_time": -1}, "'in_position_check_time'"),
+        ({"name": "Ax", "max_velocity": 1, "following_error_limit": 1, "following_error_warning": 2},
+         "'following_error_warning' must not exceed 'following_error_limit', found 2.0 > 1.0"),
     ],
 )
 def test_invalid_tables_name_key_and_rule(table, fragment):

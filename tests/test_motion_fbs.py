@@ -85,7 +85,8 @@ def test_sync_position_of_scan_k_is_the_command_of_scan_k():
         assert rig.ref().v_CMD.v_POS == 0.01 * k       # and published after it
     assert seen_at_start == pytest.approx([0.0, 0.01, 0.02, 0.03, 0.04])
     assert outputs(sync, "Busy", "Active", "InPosition") == (True, True, True)
-    assert rig.ref().v_STATUS.v_SYNCHRONIZED
+    # Changed in issue 8: Status.Discrete, not Synchronized (OMRON, docs/nj501.md).
+    assert rig.ref().v_STATUS.v_DISCRETE and not rig.ref().v_STATUS.v_SYNCHRONIZED
 
 
 def test_sync_continues_after_execute_falls():
@@ -96,17 +97,20 @@ def test_sync_continues_after_execute_falls():
     assert rig.task.axis("Ax").cmd_pos == 0.1 and sync.v_BUSY
 
 
-def test_sync_velocity_fault_puts_axis_in_errorstop_and_aborts_the_fb():
+def test_sync_step_above_max_velocity_saturates_instead_of_faulting():
+    # Changed in issue 8: a 200 mm/s step put the axis in ErrorStop with an
+    # invented code (16#6402); OMRON saturates the command velocity at the
+    # axis maximum (100 mm/s: 0.1 mm per 1 ms) and outputs the rest later.
     rig, power = powered_rig()
     sync = make_fb(fbs.MC_SyncMoveAbsolute)
     rig.scan(lambda: rig.call(sync, Execute=True, Position=0.1))
     rig.scan(lambda: rig.call(sync, Execute=True, Position=0.3))  # 0.2 mm in 1 ms = 200 mm/s
     ref = rig.ref()
-    assert ref.v_STATUS.v_ERRORSTOP and ref.v_MFAULTLVL.v_ACTIVE
-    assert ref.v_MFAULTLVL.v_CODE == ErrorID.VELOCITY_LIMIT_EXCEEDED
-    assert ref.v_CMD.v_POS == 0.1
+    assert not ref.v_STATUS.v_ERRORSTOP and ref.v_DETAILS.v_VELLIMIT
+    assert ref.v_CMD.v_POS == pytest.approx(0.2) and ref.v_CMD.v_VEL == pytest.approx(100.0)
     rig.scan(lambda: rig.call(sync, Execute=True, Position=0.3))
-    assert outputs(sync, "CommandAborted", "Busy", "Active", "Error") == (True, False, False, False)
+    assert ref.v_CMD.v_POS == pytest.approx(0.3) and not ref.v_DETAILS.v_VELLIMIT
+    assert outputs(sync, "CommandAborted", "Busy", "Active", "Error") == (False, True, True, False)
 
 
 def test_soft_limit_fault_then_reset_back_to_standstill():
@@ -115,11 +119,12 @@ def test_soft_limit_fault_then_reset_back_to_standstill():
     reset = make_fb(fbs.MC_Reset)
     rig.scan(lambda: rig.call(sync, Execute=True, Position=0.1))
     rig.scan(lambda: rig.call(sync, Execute=True, Position=0.16))
-    assert rig.ref().v_MFAULTLVL.v_CODE == ErrorID.SOFT_LIMIT_EXCEEDED
-    # A new start on the faulted axis is refused.
+    assert rig.ref().v_MFAULTLVL.v_CODE == ErrorID.TARGET_POSITIVE_SOFT_LIMIT
+    # A new start on the faulted axis ends with CommandAborted, not Error
+    # (changed in issue 8: it was Error 16#5403, invented; OMRON, docs/nj501.md).
     move = make_fb(fbs.MC_MoveAbsolute)
     rig.scan(lambda: rig.call(move, Execute=True, Position=0.0, Velocity=1.0))
-    assert outputs(move, "Error", "ErrorID") == (True, ErrorID.AXIS_IN_ERRORSTOP)
+    assert outputs(move, "CommandAborted", "Error", "ErrorID", "Busy") == (True, False, 0, False)
     rig.scan(lambda: (rig.call(power, Enable=True), rig.call(reset, Execute=True)))
     assert outputs(reset, "Done", "Busy", "Failure", "Error") == (True, False, False, False)
     ref = rig.ref()
@@ -133,11 +138,17 @@ def test_reset_failure_while_following_error_persists():
     rig.scan(lambda: rig.call(sync, Execute=True, Position=0.05))  # error 0.0452 > 0.03
     assert rig.ref().v_MFAULTLVL.v_CODE == ErrorID.FOLLOWING_ERROR_EXCEEDED
     rig.scan(lambda: rig.call(reset, Execute=True))
-    assert outputs(reset, "Done", "Failure", "ErrorID") == (False, True, ErrorID.RESET_FAILED)
+    # Changed in issue 8: ErrorID was an invented 16#5420; Failure is not an
+    # Error and carries no ErrorID.
+    assert outputs(reset, "Done", "Failure", "Error", "ErrorID") == (False, True, False, 0)
     assert rig.ref().v_STATUS.v_ERRORSTOP
 
 
 def test_stop_aborts_sync_and_axis_ends_in_standstill():
+    # Changed in issue 8: the stop decelerated at 10,000 mm/s^2; on an axis
+    # under MC_SyncMoveAbsolute OMRON's MC_Stop is an immediate stop, its
+    # Deceleration ignored (docs/nj501.md).  A start while Stopping is CommandAborted
+    # (it was Error 16#5404, invented).
     rig, power = powered_rig()
     sync = make_fb(fbs.MC_SyncMoveAbsolute)
     stop = make_fb(fbs.MC_Stop)
@@ -145,21 +156,20 @@ def test_stop_aborts_sync_and_axis_ends_in_standstill():
         rig.scan(lambda k=k: rig.call(sync, Execute=True, Position=0.05 * k))  # 50 mm/s
     rig.scan(lambda: (rig.call(sync, Execute=True, Position=0.2),
                       rig.call(stop, Execute=True, Deceleration=10000.0)))
-    # The stop took the axis in this scan: the sync Position 0.2 was not applied.
-    assert rig.task.axis("Ax").cmd_pos == pytest.approx(0.15 + 0.04)
+    # The stop took the axis in this scan: the sync Position 0.2 was not
+    # applied, and the command stopped at once at 0.15.
+    assert rig.task.axis("Ax").cmd_pos == pytest.approx(0.15)
+    assert rig.ref().v_CMD.v_VEL == 0.0
     assert outputs(stop, "Busy", "Active", "Done") == (True, True, False)
     rig.scan(lambda: (rig.call(sync, Execute=True, Position=0.25), rig.call(stop, Execute=True)))
     assert outputs(sync, "CommandAborted", "Busy", "Active") == (True, False, False)
-    assert rig.ref().v_STATUS.v_STOPPING
-    for _ in range(4):  # 30, 20, 10, 0 mm/s
-        rig.scan(lambda: (rig.call(sync, Execute=True), rig.call(stop, Execute=True)))
     assert outputs(stop, "Done", "Busy", "Active") == (True, False, False)
     assert rig.ref().v_STATUS.v_STOPPING  # held while Execute is TRUE
-    assert rig.task.axis("Ax").cmd_pos == pytest.approx(0.25)
-    # A motion FB is refused while the axis is held in Stopping.
+    assert rig.task.axis("Ax").cmd_pos == pytest.approx(0.15)
+    # A motion FB started while the axis is held in Stopping: CommandAborted.
     move = make_fb(fbs.MC_MoveAbsolute)
     rig.scan(lambda: (rig.call(stop, Execute=True), rig.call(move, Execute=True, Velocity=1.0)))
-    assert outputs(move, "Error", "ErrorID") == (True, ErrorID.AXIS_STOPPING)
+    assert outputs(move, "CommandAborted", "Error", "ErrorID") == (True, False, 0)
     rig.scan(lambda: rig.call(stop, Execute=False))
     assert rig.ref().v_STATUS.v_STANDSTILL
     assert outputs(stop, "Done", "Busy") == (False, False)
@@ -202,9 +212,10 @@ def test_move_absolute_beyond_soft_limit_is_an_error_and_an_axis_fault():
     rig, power = powered_rig()
     move = make_fb(fbs.MC_MoveAbsolute)
     rig.scan(lambda: rig.call(move, Execute=True, Position=51.0, Velocity=10.0))
-    assert outputs(move, "Error", "ErrorID") == (True, ErrorID.TARGET_BEYOND_SOFT_LIMIT)
+    # OMRON's code (changed in issue 8 from an invented 16#5412).
+    assert outputs(move, "Error", "ErrorID") == (True, ErrorID.TARGET_POSITIVE_SOFT_LIMIT)
     assert rig.ref().v_STATUS.v_ERRORSTOP
-    assert rig.ref().v_MFAULTLVL.v_CODE == ErrorID.TARGET_BEYOND_SOFT_LIMIT
+    assert rig.ref().v_MFAULTLVL.v_CODE == 0x6440
 
 
 def test_buffer_mode_other_than_aborting_is_refused():

@@ -49,7 +49,9 @@ def test_position_written_in_scan_k_is_the_command_of_scan_k():
     assert task.axis("Cyl1").cmd_pos == main["Target"]
     assert main["CmdAtStart"] == pytest.approx(0.04)  # what scan 6 read: scan 5's command
     assert main["Sync.Busy"] and main["Sync.Active"] and main["Sync.InPosition"]
-    assert plc.globals["Cyl1.Status.Synchronized"]
+    # Discrete, not Synchronized (changed in issue 8: OMRON's MC_SyncMoveAbsolute
+    # keeps the axis in Status.Discrete, docs/nj501.md).
+    assert plc.globals["Cyl1.Status.Discrete"] and not plc.globals["Cyl1.Status.Synchronized"]
     assert plc.faults == []
     data = trace.to_numpy()
     target, cmd, at_start = data["Target"], data["Cyl1.Cmd.Pos"], data["CmdAtStart"]
@@ -116,16 +118,18 @@ END_PROGRAM
 """
 
 
-def test_velocity_fault_errorstop_then_reset_to_standstill():
-    plc, main, task = make_plc(FAULT_AND_RESET)
-    plc.run(3)                      # powered in scan 2: 0.05, 0.10 at 50 mm/s
-    main["Step"] = 0.15             # 150 mm/s > 100 mm/s
-    plc.run(1)
+def test_soft_limit_fault_errorstop_then_reset_to_standstill():
+    # Changed in issue 8: this test faulted the axis with a step above the
+    # maximum velocity (an invented error, 16#6402); OMRON saturates such a
+    # step (test_motion_omron.py), so the fault is now the software limit.
+    plc, main, task = make_plc(FAULT_AND_RESET, dict(AXIS, soft_limit_max=0.12))
+    plc.run(3)                      # powered in scan 2: 0.05, 0.10
+    plc.run(1)                      # 0.15 > 0.12: not applied, ErrorStop
     assert plc.globals["Cyl1.Status.ErrorStop"] and plc.globals["Cyl1.MFaultLvl.Active"]
-    assert plc.globals["Cyl1.MFaultLvl.Code"] == ErrorID.VELOCITY_LIMIT_EXCEEDED
+    assert plc.globals["Cyl1.MFaultLvl.Code"] == ErrorID.TARGET_POSITIVE_SOFT_LIMIT == 0x6440
     assert plc.globals["Cyl1.Cmd.Pos"] == pytest.approx(0.10)   # the refused step is not applied
     plc.run(1)
-    assert main["FaultSeen"] and main["FaultCode"] == 0x6402
+    assert main["FaultSeen"] and main["FaultCode"] == 0x6440
     # The FB noticed the abort in this scan, with Execute already FALSE: one scan only.
     assert main["Sync.CommandAborted"] and not main["Sync.Busy"]
     plc.run(1)
@@ -140,7 +144,7 @@ def test_velocity_fault_errorstop_then_reset_to_standstill():
 def test_software_limit_fault_in_st():
     plc, main, _ = make_plc(FAULT_AND_RESET, dict(AXIS, soft_limit_max=0.12))
     plc.run(4)  # commands 0.05, 0.10, then 0.15 > 0.12
-    assert plc.globals["Cyl1.MFaultLvl.Code"] == ErrorID.SOFT_LIMIT_EXCEEDED
+    assert plc.globals["Cyl1.MFaultLvl.Code"] == ErrorID.TARGET_POSITIVE_SOFT_LIMIT
     assert plc.globals["Cyl1.Cmd.Pos"] == pytest.approx(0.10)
 
 
@@ -148,8 +152,8 @@ def test_following_error_fault_with_servo_lag():
     # tau = 10 ms, 0.05 mm per scan: the lag grows towards 0.475 mm; limit 0.2 mm.
     plc, main, task = make_plc(FAULT_AND_RESET, dict(AXIS, servo_lag=0.01, following_error_limit=0.2))
     plc.run(30)
-    assert plc.globals["Cyl1.MFaultLvl.Code"] == ErrorID.FOLLOWING_ERROR_EXCEEDED
-    assert main["FaultCode"] == 0x6404 or plc.globals["Cyl1.MFaultLvl.Active"]
+    assert plc.globals["Cyl1.MFaultLvl.Code"] == ErrorID.FOLLOWING_ERROR_EXCEEDED == 0x6448
+    assert main["FaultCode"] == 0x6448 and plc.globals["Cyl1.MFaultLvl.Active"]
 
 
 STOP_DURING_SYNC = """
@@ -174,20 +178,23 @@ END_PROGRAM
 
 
 def test_stop_aborts_synchronized_motion_and_ends_in_standstill():
+    # Changed in issue 8: the stop decelerated at 10,000 mm/s^2 (40, 30, 20,
+    # 10, 0 mm/s); on an axis under MC_SyncMoveAbsolute OMRON's MC_Stop is an
+    # immediate stop and its Deceleration is ignored (docs/nj501.md).
     plc, main, task = make_plc(STOP_DURING_SYNC)
-    plc.run(4)                        # synchronized at 50 mm/s
+    plc.run(4)                        # synchronized at 50 mm/s: 0.05, 0.10, 0.15
     main["StopNow"] = True
     plc.run(1)
     assert main["Halt.Busy"] and plc.globals["Cyl1.Status.Stopping"]
+    assert plc.globals["Cyl1.Cmd.Vel"] == 0.0 and plc.globals["Cyl1.Cmd.Pos"] == pytest.approx(0.15)
     plc.run(1)
     assert main["Sync.CommandAborted"] and not main["Sync.Busy"]
-    plc.run(5)                        # 40, 30, 20, 10, 0 mm/s
     assert main["Halt.Done"] and plc.globals["Cyl1.Status.Stopping"]
-    assert plc.globals["Cyl1.Cmd.Vel"] == 0.0
     main["StopNow"] = False
     plc.run(1)
     assert plc.globals["Cyl1.Status.Standstill"] and main["WasStopping"]
     assert not main["Halt.Done"]
+    assert plc.globals["Cyl1.Cmd.Pos"] == pytest.approx(0.15)
     assert plc.faults == []
 
 

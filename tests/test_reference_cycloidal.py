@@ -1,4 +1,4 @@
-"""Cycloidal point-to-point motion (SPEC 4, [19–28]) against hand calculation."""
+"""Cycloidal point-to-point motion (docs/mathematics.md section 4, [19–28]) against hand calculation."""
 
 from __future__ import annotations
 

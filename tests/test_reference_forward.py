@@ -1,4 +1,4 @@
-"""Newton–Raphson forward kinematics (SPEC 3): accuracy, iteration accounting, every failure."""
+"""Newton–Raphson forward kinematics (docs/mathematics.md section 3): accuracy, iteration accounting, every failure."""
 
 from __future__ import annotations
 

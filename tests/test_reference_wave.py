@@ -1,4 +1,4 @@
-"""Ocean wave (SPEC 4, [29–33]) at phases where the pose is known by hand."""
+"""Ocean wave (docs/mathematics.md section 4, [29–33]) at phases where the pose is known by hand."""
 
 from __future__ import annotations
 
@@ -106,3 +106,42 @@ def test_invalid_components_are_rejected():
         OceanWave((WaveComponent(3.0, 0.0, 100.0, 0.0),))
     with pytest.raises(ValueError):
         OceanWave((WaveComponent(3.0, 10.0, 100.0, 0.0),), wavelength_unit_mm=0.0)
+
+
+# Fade-in (issue 8, docs/mathematics.md section 4): continuity of position, velocity and acceleration.
+
+
+def test_fade_in_duration_of_the_airy_preset_by_hand():
+    from stgen.config import TrajectoryConfig
+    from stgen.reference.wave import fade_in_duration
+
+    # z binds: D0 = A = 3 mm, D3 = A w^3 with w = 2 pi / 10 s. The jerk term 4 pi^2 D0 r^3 gets a third of
+    # (5000 - D3): r = ((5000 - D3) / 3 / (4 pi^2 * 3))^(1/3); every other term allows a larger r (worked out in
+    # the reference's docstring: velocity r <= 16.4, acceleration r <= 3.6).
+    w = 2 * math.pi / 10.0
+    rate = ((5000.0 - 3.0 * w**3) / 3.0 / (4 * math.pi**2 * 3.0)) ** (1.0 / 3.0)
+    assert fade_in_duration(AIRY, TrajectoryConfig()) == pytest.approx(1.0 / rate, rel=1e-12)
+    assert 1.0 / rate == pytest.approx(0.4142, abs=1e-4)
+
+
+def test_fade_in_is_continuous_and_inside_the_limits():
+    from stgen.config import TrajectoryConfig
+    from stgen.reference.wave import fade_in_duration
+
+    limits = TrajectoryConfig()
+    fade = fade_in_duration(RANDOM_5, limits)
+    dt = 1e-4
+    t = np.arange(0, int(2 * fade / dt)) * dt
+    pose = wave_pose(RANDOM_5, t, fade_s=fade)
+    velocity = np.diff(pose, axis=0) / dt
+    acceleration = np.diff(velocity, axis=0) / dt
+    assert pose[0] == pytest.approx(np.zeros(6), abs=1e-15)           # at rest at the centre
+    assert np.abs(velocity[0]).max() < 1e-3 and np.abs(acceleration[0]).max() < 1.0
+    assert np.abs(velocity[:, :3]).max() <= limits.linear_velocity
+    assert np.abs(acceleration[:, :3]).max() <= limits.linear_acceleration
+    # From T_F on, the wave itself, exactly.
+    after = t >= fade
+    assert np.array_equal(pose[after], wave_pose(RANDOM_5, t[after]))
+    # No velocity step at T_F: around it, velocity changes at the wave's own acceleration, |a| <= Σ|A|w^2 = 44.4 mm/s^2.
+    at = int(np.argmax(after))
+    assert np.abs(acceleration[at - 3:at + 3, 2]).max() <= 44.5

@@ -125,7 +125,7 @@ def _constants(program):
 
 
 def test_joint_constants_follow_equations_2_to_4():
-    """Hand formula of SPEC 1 ([2]-[4]), independent of the reference."""
+    """Hand formula of docs/mathematics.md section 1 ([2]-[4]), independent of the reference."""
     g = GeometryConfig()
     constants = _constants(DEFAULT)
     phi_b, phi_p = math.radians(g.phi_b_deg), math.radians(g.phi_p_deg)

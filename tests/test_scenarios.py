@@ -153,15 +153,38 @@ def test_synchronised_move_takes_10_s_and_ends_on_the_target():
 
 
 def test_wave_timeline_lead_in_then_clock_from_zero():
+    # The lead-in goes to the centre pose; the study's waves are centred on the start pose, so it is a zero move,
+    # done on its edge (call 0), and the wave clock starts (t = 0) in the next scan, at rest at the centre.
     (lead_in,) = planned_moves(AIRY_WAVE, CONFIG)
-    duration = lead_in.duration
-    lead = calls_until_done(duration, CONFIG.task.period_s)
-    assert lead == lead_in.calls
-    assert (lead - 1) * 0.001 < duration <= lead * 0.001
-    poses = expected_poses(AIRY_WAVE, CONFIG, command_scan=1, scans=lead + 3)
-    # The lead-in ends on the wave's first pose and the wave starts there: no jump.
-    assert np.array_equal(poses[lead], poses[lead + 1])
-    assert not np.array_equal(poses[lead + 1], poses[lead + 2])
+    assert lead_in.duration == 0.0 and lead_in.calls == 0
+    np.testing.assert_array_equal(lead_in.target, AIRY_WAVE.motion.centre_pose)
+    poses = expected_poses(AIRY_WAVE, CONFIG, command_scan=1, scans=4)
+    assert np.array_equal(poses[0], poses[1])  # the edge, then t = 0: both the centre
+    assert np.array_equal(poses[1], np.asarray(STUDY_START_POSE))
+    assert 0.0 < np.abs(poses[2] - poses[1]).max() < 1e-6  # the fade starts at rest: sigma(tau) ~ tau^3
+
+
+def test_every_setpoint_inside_the_actuator_limits(result):
+    # The set-points handed to MC_SyncMoveAbsolute, every scan and every cylinder, by finite differences at 1 ms.
+    limits = result.limits
+    assert limits.passed, limits.describe()
+    assert limits.max_velocity.max() <= CONFIG.actuator.max_velocity
+    assert limits.max_acceleration.max() <= CONFIG.actuator.max_acceleration
+    assert result.commanded_limits.passed  # and the axes did not saturate them
+
+
+def test_wave_away_from_the_start_pose_leads_in_then_fades_in():
+    # Centre 20 mm below the start: a real cycloidal lead-in (ends at rest, zero acceleration), then the fade.
+    import dataclasses
+
+    centre = (0.0, 0.0, 130.0, 0.0, 0.0, 0.0)
+    scenario = dataclasses.replace(
+        RANDOM_WAVE, motion=dataclasses.replace(RANDOM_WAVE.motion, centre_pose=centre, wave_seconds=3.0))
+    (lead_in,) = planned_moves(scenario, CONFIG)
+    assert lead_in.calls > 100
+    run = run_scenario(scenario, CONFIG)
+    assert run.passed, run.limits.describe()
+    assert run.max_error_mm <= MAX_ERROR_MM
 
 
 def test_calls_until_done_by_hand():

@@ -25,8 +25,15 @@ def test_demo_writes_code_traces_figures_and_passes(tmp_path, short_waves, capsy
     assert cli.main(["demo", "--quick", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     # The summary table has the columns the issue asks for.
-    for column in ("scenario", "duration", "scans", "max error", "faults"):
+    for column in ("scenario", "duration", "scans", "max error", "faults", "max |v|", "max |a|"):
         assert column in out
+    # Issue 8: the set-points' velocity and acceleration per cylinder against the actuator's limits.
+    assert "limit 250 mm/s" in out and "limit 2500 mm/s²" in out and "Cmd.Pos" in out
+    # Two rows (|v|, |a|) per scenario in the limits table, each within its limit.
+    limit_rows = [line for line in out.splitlines() if "mm/s" in line and ("within" in line or "ABOVE" in line)]
+    assert len(limit_rows) == 6 and all("within" in line for line in limit_rows)
+    # Issue 8 section 4: one estimated NJ501 time line per scenario, against the 80 % rule.
+    assert out.count("estimated NJ501 time per scan") == 3
     for name in ("point_to_point", "airy_wave", "random_wave"):
         assert name in out
         assert (tmp_path / f"{name}.png").read_bytes()[:8] == PNG_SIGNATURE
@@ -34,19 +41,29 @@ def test_demo_writes_code_traces_figures_and_passes(tmp_path, short_waves, capsy
             rows = list(csv.reader(stream))
         assert tuple(rows[0]) == HEADER
         assert [int(row[1]) for row in rows[1:4]] == [1, 2, 3]
+        # The time base of stgen run --trace: scan k at (k - 1) * 1 ms.
+        assert [row[0] for row in rows[1:3]] == ["0.0", "0.001"]
+        assert rows[1][3] == "SP_STATE_POWERING"
         errors = [float(row[-1]) for row in rows[1:]]
         assert max(errors) <= 1e-6
     assert "All scenarios passed" in out
-    # The twelve moves' durations as SP_Controller planned them: 2h/v = 10 s, or 6 s for 6 deg at 2 deg/s.
+    # --quick moves a tenth of each displacement at the study's limits: 2h/v = 2*10/20 = 1 s for
+    # 10 mm at 20 mm/s and for 1 deg at 2 deg/s, 0.6 s for 0.6 deg.
     assert "12 moves planned by SP_Controller (SpMoveDuration): " + ", ".join(
-        ["10.000"] * 6 + ["6.000"] * 4 + ["10.000"] * 2) + " s" in out
+        ["1.000"] * 6 + ["0.600"] * 4 + ["1.000"] * 2) + " s" in out
     # The controller code was generated for both targets.
     assert (tmp_path / "generated" / "iec" / "SP_Controller.st").is_file()
     assert (tmp_path / "generated" / "nj501" / "SP_Controller.variables.tsv").is_file()
-    # The twelve point-to-point moves (8 of 10 s, 4 of 6 s, 0.5 s standstill after each) are not
-    # shortened by --quick: 8*10,001 + 4*6,001 + 12*500 = 110,012 scans after the first command.
+    # --quick shortens the point-to-point moves too (8 of 1 s, 4 of 0.6 s, 0.1 s standstill after
+    # each): 8*1,001 + 4*601 + 12*100 = 11,612 scans after the first command, not 110,012.
     with (tmp_path / "point_to_point.csv").open() as stream:
-        assert sum(1 for _ in stream) - 1 > 110_012
+        assert 11_612 < sum(1 for _ in stream) - 1 < 12_000
+
+
+def test_demo_csv_headers_carry_units():
+    for column in ("time_s", "x_mm", "alpha_deg", "gamma_deg", "ref_z_mm", "q1_mm", "ref_q6_mm", "max_error_mm"):
+        assert column in HEADER
+    assert not {"x", "alpha", "q1", "time"} & set(HEADER)
 
 
 def test_demo_exits_1_when_a_scenario_fails(tmp_path, short_waves, monkeypatch, capsys):
@@ -61,3 +78,15 @@ def test_demo_reports_a_bad_config(tmp_path, capsys):
     bad.write_text("[geometry]\nrb = -1.0\n")
     assert cli.main(["demo", "--config", str(bad), "--out", str(tmp_path / "o")]) == 1
     assert "geometry.rb" in capsys.readouterr().err
+
+
+def test_demo_fails_a_scenario_whose_setpoints_exceed_the_actuator_acceleration(tmp_path, short_waves, monkeypatch,
+                                                                                 capsys):
+    # The Airy wave's fade-in accelerates the cylinders at about 110 mm/s^2 (planned within the pose limits,
+    # 500 mm/s^2): an actuator limited to 50 mm/s^2 must fail the scenario, whatever the position error.
+    config = tmp_path / "slow.toml"
+    config.write_text("[actuator]\nmax_acceleration = 50.0\n")
+    monkeypatch.setattr(definitions, "SCENARIOS", (definitions.AIRY_WAVE,))
+    assert cli.main(["demo", "--quick", "--config", str(config), "--out", str(tmp_path / "o")]) == 1
+    out = capsys.readouterr().out
+    assert "ABOVE" in out and "FAILED" in out

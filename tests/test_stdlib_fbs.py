@@ -57,30 +57,8 @@ def test_all_standard_fbs_are_registered_native_fbs():
 
 # --- timers -----------------------------------------------------------------
 
-def test_ton_q_after_pt_of_simulated_time():
-    # IN rises on call 1 at t = 0 ms; ET = t - 0 on calls at t = 0..5 ms, so
-    # ET reaches PT = 5 ms on the 6th call, when Q turns TRUE.
-    clock, ton = Clock(), make(fbs.TON)
-    qs, ets = [], []
-    for _ in range(8):
-        clock.step(ton, IN=True, PT=5 * MS)
-        qs.append(ton.v_Q)
-        ets.append(ton.v_ET // MS)
-    assert ets == [0, 1, 2, 3, 4, 5, 5, 5]          # ET stops at PT
-    assert qs == [False] * 5 + [True] * 3
-    clock.step(ton, IN=False)                        # IN FALSE resets at once
-    assert (ton.v_Q, ton.v_ET) == (False, 0)
-
-
-def test_ton_restarts_after_interruption():
-    # IN TRUE for 3 calls (ET 0,1,2), FALSE once, TRUE again: timing restarts
-    # from 0, so Q needs another 6 calls with PT = 5 ms.
-    clock, ton = Clock(), make(fbs.TON)
-    for _ in range(3):
-        clock.step(ton, IN=True, PT=5 * MS)
-    clock.step(ton, IN=False)
-    qs = [clock.step(ton, IN=True).v_Q for _ in range(6)]
-    assert qs == [False] * 5 + [True]
+# TON, TOF and TP as an ST user calls them: tests/st_unit/test_standard_timers.st
+# (run by tests/test_st_unit_files.py).  The period-dependent case stays here.
 
 
 def test_ton_with_period_of_two_ms():
@@ -89,61 +67,6 @@ def test_ton_with_period_of_two_ms():
     qs = [clock.step(ton, IN=True, PT=5 * MS).v_Q for _ in range(4)]
     assert qs == [False, False, False, True]
     assert ton.v_ET == 5 * MS
-
-
-def test_ton_with_zero_pt_is_immediate():
-    clock, ton = Clock(), make(fbs.TON)
-    assert clock.step(ton, IN=True, PT=0).v_Q is True
-
-
-def test_tof_holds_q_for_pt_after_in_falls():
-    # IN TRUE for 2 calls: Q TRUE at once. IN falls at t = 2 ms (call 3):
-    # ET = 0,1,2 on calls 3..5 keeps Q TRUE; on call 6 (t = 5 ms) ET = 3 = PT
-    # and Q falls.
-    clock, tof = Clock(), make(fbs.TOF)
-    assert clock.step(tof, IN=False, PT=3 * MS).v_Q is False     # never on yet
-    qs = [clock.step(tof, IN=True).v_Q for _ in range(2)]
-    assert qs == [True, True]
-    qs, ets = [], []
-    for _ in range(5):
-        clock.step(tof, IN=False)
-        qs.append(tof.v_Q)
-        ets.append(tof.v_ET // MS)
-    assert qs == [True, True, True, False, False]
-    assert ets == [0, 1, 2, 3, 3]
-
-
-def test_tof_in_again_during_timing_cancels():
-    clock, tof = Clock(), make(fbs.TOF)
-    clock.step(tof, IN=True, PT=3 * MS)
-    clock.step(tof, IN=False)
-    clock.step(tof, IN=False)              # ET = 1 ms
-    clock.step(tof, IN=True)               # back on: Q stays, ET reset
-    assert (tof.v_Q, tof.v_ET) == (True, 0)
-    qs = [clock.step(tof, IN=False).v_Q for _ in range(4)]
-    assert qs == [True, True, True, False]  # full PT again from the new fall
-
-
-def test_tp_pulse_is_pt_long_and_not_retriggerable():
-    # Rising edge on call 1 (t = 0): Q TRUE while ET = 0,1,2; on call 4
-    # (t = 3 ms) ET = PT and Q falls.  IN toggling during the pulse (calls 2
-    # and 3) changes nothing.  ET holds PT while IN stays TRUE (call 5) and
-    # returns to 0 on the first call with IN FALSE after the pulse (call 6).
-    clock, tp = Clock(), make(fbs.TP)
-    ins = [True, False, True, True, True, False, True]
-    qs, ets = [], []
-    for value in ins:
-        clock.step(tp, IN=value, PT=3 * MS)
-        qs.append(tp.v_Q)
-        ets.append(tp.v_ET // MS)
-    assert qs == [True, True, True, False, False, False, True]
-    assert ets == [0, 1, 2, 3, 3, 0, 0]
-
-
-def test_tp_held_input_does_not_start_a_second_pulse():
-    clock, tp = Clock(), make(fbs.TP)
-    qs = [clock.step(tp, IN=True, PT=2 * MS).v_Q for _ in range(6)]
-    assert qs == [True, True, False, False, False, False]
 
 
 # --- edges ------------------------------------------------------------------

@@ -133,7 +133,7 @@ def test_csv_layout_and_round_trip(tmp_path):
     trace.sample(3 * MS, 4)
     text = trace.to_csv_text()
     lines = text.splitlines()
-    assert lines[0] == "time,scan,Count,Speed,Timer.IN,Timer.PT,Timer.Q,Timer.ET,Name"
+    assert lines[0] == "time_s,scan,Count,Speed,Timer.IN,Timer.PT,Timer.Q,Timer.ET,Name"
     assert lines[1] == '0,1,1,0.5,FALSE,T#0s,FALSE,T#1ms,"a,b"'
     assert lines[2] == '0.001,2,2,1.0,FALSE,T#0s,TRUE,T#2ms,"a,b"'
     path = tmp_path / "trace.csv"
@@ -166,7 +166,7 @@ def test_generic_resolver_with_and_without_types():
 
 
 def test_read_csv_rejects_other_files():
-    with pytest.raises(ValueError, match="time,scan"):
+    with pytest.raises(ValueError, match="time_s,scan"):
         read_csv(io.StringIO("a,b\n1,2\n"))
 
 

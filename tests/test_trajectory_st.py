@@ -1,6 +1,6 @@
 """TRJ_Cycloidal and TRJ_OceanWave, rendered and run in st_runtime, scan by scan.
 
-Expected values by hand (SPEC 4 formulas worked out below) and from the NumPy
+Expected values by hand (docs/mathematics.md section 4 formulas worked out below) and from the NumPy
 reference (stgen.reference.cycloidal / wave) on seeded random cases.
 """
 
@@ -47,10 +47,22 @@ VAR
     Heading : LREAL;
     Rest : LREAL;
     Centre : ARRAY[1..6] OF LREAL;
+    Fade : BOOL;
 END_VAR
-Wave(Enable := Enable, RunClock := RunClock, ComponentCount := Count, Amplitude := Amplitude,
+Wave(Enable := Enable, RunClock := RunClock, FadeIn := Fade, ComponentCount := Count, Amplitude := Amplitude,
      WavePeriod := Period, WaveLength := Length, Phase := Phase, WaveLengthUnit := Unit,
      Heading := Heading, RestPosition := Rest, CentrePose := Centre);
+END_PROGRAM
+
+PROGRAM TestBrake
+VAR
+    Stop : TRJ_Brake;
+    Execute : BOOL;
+    Start : ARRAY[1..6] OF LREAL;
+    Velocity : ARRAY[1..6] OF LREAL;
+    Acceleration : ARRAY[1..6] OF LREAL;
+END_VAR
+Stop(Execute := Execute, StartPose := Start, Velocity := Velocity, Acceleration := Acceleration);
 END_PROGRAM
 """
 
@@ -97,7 +109,7 @@ def _run_cycloid(plc, program, scans):
 
 
 def test_cycloid_30_mm_at_20_mm_per_s_takes_3_s_by_hand(project):
-    # SPEC 4 example: 30 mm with 20 mm/s -> T = 2*30/20 = 3 s. Acceleration
+    # docs/mathematics.md section 4 example: 30 mm with 20 mm/s -> T = 2*30/20 = 3 s. Acceleration
     # SQRT(2*pi*30/500) = 0.868 s and jerk (4*pi^2*30/5000)^(1/3) = 0.619 s do not bind.
     plc, program = _cycloid(project, [0, 0, 0, 0, 0, 0], [30, 0, 0, 0, 0, 0], [20, 500, 5000, 10, 50, 500])
     poses, done = _run_cycloid(plc, program, 3002)
@@ -232,7 +244,7 @@ def test_wave_clock_holds_at_zero_until_run(project):
 
 def test_random_wave_with_heading_and_steep_slopes_matches_reference(project):
     # L read in mm (unit 1) so the tilts are large (tens of degrees); heading 30 deg,
-    # a centre pose and a rest position: every term of SPEC 4 shows.
+    # a centre pose and a rest position: every term of docs/mathematics.md section 4 shows.
     wave = OceanWave(RANDOM_5.components, heading_deg=30.0, wavelength_unit_mm=1.0)
     centre = (5.0, -3.0, 150.0, 1.0, 2.0, -1.5)
     plc, program = _wave(project, wave, centre, rest=12.5)
@@ -277,3 +289,92 @@ def test_wave_refuses_invalid_parameters(project, trj_codes, field, value):
     program["Enable"] = False
     plc.scan()
     assert not program["Wave.Error"] and program["Wave.ErrorID"] == 0
+
+
+# --------------------------------------------------------------------------- fade-in (issue 8, docs/mathematics.md section 4)
+
+
+def test_fade_in_matches_reference_and_starts_at_rest(project):
+    from stgen.reference.wave import fade_in_duration
+
+    wave = OceanWave(RANDOM_5.components, heading_deg=30.0)
+    centre = (5.0, -3.0, 150.0, 1.0, 2.0, -1.5)
+    plc, program = _wave(project, wave, centre, rest=12.5)
+    program["Fade"] = True
+    program["Enable"] = True
+    program["RunClock"] = True
+    poses = []
+    for _ in range(1500):
+        plc.scan()
+        poses.append(program["Wave.Pose"])
+    fade = fade_in_duration(wave, TrajectoryConfig())
+    assert program["Wave.FadeDuration"] == pytest.approx(fade, rel=1e-12)
+    assert 0.1 < fade < 1.5  # the run covers the fade and beyond
+    expected = wave_pose(wave, np.arange(1500) * PERIOD, centre, position_mm=12.5, fade_s=fade)
+    assert np.max(np.abs(np.array(poses) - expected)) <= 1e-9
+    # Starts at rest at the centre: the first two calls (t = 0 and 1 ms) hardly move (sigma(tau) ~ tau^3).
+    assert poses[0] == pytest.approx(list(centre), abs=1e-15)
+    assert np.max(np.abs(np.array(poses[1]) - centre)) < 1e-6
+
+
+def test_fade_in_refuses_a_wave_faster_than_the_limits(project, trj_codes):
+    from stgen.reference.wave import fade_in_duration
+
+    # 60 mm at Tw = 1 s: the wave alone moves z at 2*pi*60 = 377 mm/s > 100 mm/s.
+    wave = OceanWave((WaveComponent(60.0, 1.0, 100.0, 0.0),))
+    with pytest.raises(ValueError):
+        fade_in_duration(wave, TrajectoryConfig())
+    plc, program = _wave(project, wave)
+    program["Fade"] = True
+    program["Enable"] = True
+    plc.run(2)
+    assert program["Wave.Error"] and not program["Wave.Active"]
+    assert program["Wave.ErrorID"] == trj_codes["TRJ_ERR_WAVE_LIMIT"]
+
+
+# --------------------------------------------------------------------------- TRJ_Brake (issue 8)
+
+
+def _brake(project, start, velocity, acceleration, scans):
+    plc = project.controller(period="1ms")
+    program = plc.add_program("TestBrake")
+    program["Start"] = list(map(float, start))
+    program["Velocity"] = list(map(float, velocity))
+    program["Acceleration"] = list(map(float, acceleration))
+    program["Execute"] = True
+    poses, done = [], []
+    for _ in range(scans):
+        plc.scan()
+        poses.append(program["Stop.Pose"])
+        done.append(program["Stop.Done"])
+    return program, np.array(poses), np.array(done)
+
+
+def test_brake_from_100_mm_per_s_by_hand(project):
+    # v0 = 100 mm/s in x, a0 = 0, limits 500 mm/s^2 and 5000 mm/s^3: T_S = max(1.5*100/500 = 0.3 s,
+    # SQRT(12*100/5000) = 0.49 s) = 490 periods; stop distance v0*T_S/2 = 24.5 mm; the edge outputs t = 1 ms.
+    program, poses, done = _brake(project, [10, 0, 150, 0, 0, 0], [100, 0, 0, 0, 0, 0], [0] * 6, 492)
+    assert program["Stop.Duration"] == pytest.approx(0.49, abs=1e-12)
+    assert done.tolist().index(True) == 489 and done[489:].all()
+    assert poses[489][0] == pytest.approx(10.0 + 24.5, abs=1e-9)
+    assert poses[0][0] == pytest.approx(10.0 + 0.1, abs=1e-4)  # one period at about 100 mm/s
+    assert poses[-1].tolist() == poses[489].tolist()
+
+
+def test_brake_matches_reference(project):
+    from stgen.reference.brake import brake_duration, brake_pose
+
+    start = (5.0, -3.0, 150.0, 1.0, 2.0, -1.5)
+    velocity = (20.0, -35.0, 60.0, 3.0, -4.0, 1.0)
+    acceleration = (100.0, 50.0, -200.0, 10.0, 5.0, -20.0)
+    duration = brake_duration(velocity, acceleration, TrajectoryConfig(), PERIOD)
+    scans = round(duration / PERIOD) + 3
+    program, poses, _ = _brake(project, start, velocity, acceleration, scans)
+    assert program["Stop.Duration"] == pytest.approx(duration, rel=1e-12)
+    expected = brake_pose(start, velocity, acceleration, duration, np.arange(1, scans + 1) * PERIOD)
+    assert np.max(np.abs(poses - expected)) <= 1e-9
+
+
+def test_brake_refuses_an_acceleration_at_the_limit(project, trj_codes):
+    program, _, _ = _brake(project, [0] * 6, [0] * 6, [0, 0, 500, 0, 0, 0], 2)
+    assert program["Stop.Error"] and program["Stop.ErrorID"] == trj_codes["TRJ_ERR_STOP_LIMIT"]

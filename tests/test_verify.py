@@ -107,3 +107,33 @@ def test_a_wrong_jacobian_entry_fails_the_fk_rows(monkeypatch, capsys):
     assert rows["SP_InverseKinematics"] == ["PASS"]
     assert "FAIL" in rows["SP_ForwardKinematics"]
     assert "iterations, reference" in out and "checks FAILED" in out
+
+
+def test_verify_estimates_the_fk_time_per_scan_and_the_iterations_that_fit(capsys):
+    assert main(["verify", "--poses", "50", "--fk-poses", "5"]) == 0
+    out = capsys.readouterr().out
+    # 80 % of 1 ms at the study's 49.5 us per iteration: 800 / 49.5 = 16.2 -> 16.
+    assert "IterationsPerScan <= 16 keeps a call within 80 % of the period" in out
+    assert "49.6 us per Newton-Raphson iteration" in out or "49.5 us per Newton-Raphson iteration" in out
+
+
+def test_fk_scan_time_follows_the_configured_period():
+    import dataclasses
+
+    import numpy as np
+
+    from stgen.config import PlatformConfig
+    from stgen.render import RenderOptions
+    from stgen.verify import fk_scan_time, load_kinematics, random_poses
+
+    config = PlatformConfig.default()
+    slow = dataclasses.replace(config, task=dataclasses.replace(config.task, period_s=0.002))
+    runtime = load_kinematics(config, RenderOptions("table"))
+    poses = random_poses(config, 3, 7)
+    fast = fk_scan_time(runtime.project, config, poses, config.solver.start_pose)
+    two_ms = fk_scan_time(runtime.project, slow, poses, config.solver.start_pose)
+    assert abs(fast.per_iteration_ns - 49_500) <= 0.01 * 49_500
+    assert fast.fitting == 16 and two_ms.fitting == 32        # 1600 / 49.5 = 32.3
+    # The worst call with the configured 4 iterations: about 4 x 49.5 us.
+    assert fast.calls.max_ns == np.float64(fast.calls.max_ns) and 190_000 < fast.calls.max_ns < 205_000
+    assert fast.calls.fits and fast.calls.load_ok

@@ -3,7 +3,8 @@
     program, diagnostics = check(files, dialect="iec")
 
 Passes, each in its own module: `declarations` (types, POUs, globals),
-`statements`/`expressions`/`calls` (bodies), `recursion`, `nj_rules`.  The
+`statements`/`expressions`/`calls` (bodies), `recursion`, `nj_rules` (identifiers),
+`nj_build` (what Sysmac Studio refuses at Build).  The
 checker never raises on any AST: every problem is a `Diagnostic`, and an
 expression that already produced one has the type `typesys.ERROR`, which is
 compatible with everything (one root cause, one diagnostic).
@@ -44,6 +45,9 @@ from .context import Context, FastSink, Scope
 from .declarations import Declarations
 from .dialects import check_dialect
 from .expressions import ExprChecker
+from .nj_build import check_build_rules
+from .limits import check_files
+from .memory import check_memory
 from .nj_rules import check_identifiers
 from .recursion import check_recursion
 from .statements import StatementChecker
@@ -57,24 +61,34 @@ register({
 })
 
 
-def check(files: list[ast.SourceFile], dialect: str = "iec") -> tuple[CheckedProgram, list[Diagnostic]]:
-    """Check parsed files as one program; `dialect` is "iec" or "nj"."""
+def check(files: list[ast.SourceFile], dialect: str = "iec",
+          memory_limit: int | None = None,
+          open_instances: bool = False) -> tuple[CheckedProgram, list[Diagnostic]]:
+    """Check parsed files as one program; `dialect` is "iec" or "nj".
+
+    `memory_limit`: bytes a variable, a POU instance or the project may need
+    (default `memory.DEFAULT_LIMIT`). `open_instances` lets code read and
+    write every variable of an FB instance from outside (`stgen test`:
+    STruC++'s tests see inside instances, st_runtime/testing/lowering.py).
+    """
     files = [f for f in files if f is not None]
     # The checker walks expressions recursively; a generated sum of 720
     # products (an unrolled Leibniz determinant) is 720 levels deep.
     old_limit = sys.getrecursionlimit()
     sys.setrecursionlimit(max(old_limit, RECURSION_LIMIT))
     try:
-        return _check(files, dialect)
+        return _check(files, dialect, memory_limit, open_instances)
     finally:
         sys.setrecursionlimit(old_limit)
 
 
-def _check(files, dialect):
+def _check(files, dialect, memory_limit=None, open_instances=False):
     program = CheckedProgram(files=list(files))
-    ctx = Context(program, FastSink(), dialect if dialect in DIALECTS else "iec")
+    ctx = Context(program, FastSink(), dialect if dialect in DIALECTS else "iec", open_instances)
     program.dialect = ctx.dialect
     try:
+        if not check_files(ctx, files):       # structural limits first (limits.py)
+            return program, list(ctx.sink.items)
         Declarations(ctx).run(files)
         for info in program.pous.values():
             if info.node is None or info.native is not None:
@@ -87,7 +101,10 @@ def _check(files, dialect):
                     StatementChecker(ex).block(method.node.body)
         check_recursion(ctx)
         check_dialect(ctx, files)
+        if not any(d.code == "E-REC-001" for d in ctx.sink.items):   # sizes need acyclic types
+            check_memory(ctx, memory_limit)
         check_identifiers(ctx, files)
+        check_build_rules(ctx, files)
     except RecursionError:
         ctx.error("E-LIMIT-001", "the program is nested too deeply to be checked "
                   "(expressions or statements nested hundreds of levels)", _where(files))

@@ -20,6 +20,7 @@ from .stores import check_store, in_out_problem, is_variable_path, root_name
 _PIN_KINDS = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
 
 
+
 class CallChecker:
     def __init__(self, ex):
         self.ex = ex
@@ -284,6 +285,10 @@ class CallChecker:
                 formal_seen = True
                 sym = pou.variables.get(key(arg.name))
                 if sym is None or sym.kind not in _PIN_KINDS:
+                    foreign = self.ctx.foreign_pin(pou.name, arg.name)
+                    if foreign is not None:
+                        self._refuse("E-PIN-001", foreign, arg)
+                        continue
                     pins = ", ".join(s.name for s in pou.variables.values() if s.kind in _PIN_KINDS)
                     self._refuse("E-CALL-002", f"{pou.name} has no parameter '{arg.name}' "
                                  f"(parameters: {pins or 'none'})", arg)

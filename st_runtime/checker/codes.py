@@ -74,6 +74,14 @@ CHECKER_CODES = register({
     "W-NJ-003": "identifier contains two consecutive underscores: rejected by an OMRON NJ",
     "W-NJ-004": "identifier equals an NJ instruction name: rejected by an OMRON NJ",
     "W-NJ-005": "identifier starts with 'P_': rejected by an OMRON NJ",
+    # Sysmac Studio Build rules (st_runtime/dialects.py NJ_RULES, docs/nj501.md)
+    "E-NJ-006": "an element of an array or a member of a structure that is a variable of a function block instance (Inst.Arr[i]): refused at Build",
+    "E-NJ-007": "a CASE label is not an integer literal or an enumerator (e.g. a constant's name)",
+    "E-NJ-008": "an initial value is not a literal (e.g. a constant's name)",
+    "W-NJ-006": "an element or member of a function block instance's variable (Inst.Arr[i]): Sysmac Studio refuses it at Build",
+    "W-NJ-007": "a CASE label is not an integer literal or an enumerator: Sysmac Studio expects integer constants",
+    "W-NJ-008": "an initial value is not a literal: Sysmac Studio's variable tables take literals",
+    "E-PIN-001": "a standard FB pin is named as another dialect names it (OMRON's Reset for IEC's R of CTU, and the reverse)",
     # the rest of IEC 61131-3 (issue 13)
     "E-DECL-013": "R_EDGE / F_EDGE on something other than a BOOL input of a function block or program",
     "E-DECL-014": "a subrange type whose base is not an integer type or whose limits are not lower <= upper inside the base",

@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 
 from .. import ast
 from ..ast import key
+from ..dialects import DIALECTS, Dialect
 from ..diagnostics import ERROR, Diagnostic, DiagnosticSink
 from ..symbols import CheckedProgram, PouInfo, Symbol
 
@@ -32,6 +33,7 @@ class Context:
     program: CheckedProgram
     sink: DiagnosticSink
     dialect: str = "iec"
+    open_instances: bool = False     # `stgen test`: every FB variable visible from outside
     # upper-case name -> declaration, for lazy type resolution
     type_decls: dict[str, ast.TypeDecl] = field(default_factory=dict)
     pou_decls: dict[str, ast.Pou] = field(default_factory=dict)
@@ -43,6 +45,26 @@ class Context:
     calls: dict[str, list[tuple[str, ast.Pos]]] = field(default_factory=dict)
     namespaces: set = field(default_factory=set)     # upper-case "A", "A.B"
     direct_types: dict = field(default_factory=dict)  # "%MW1" -> type declared AT it
+
+    @property
+    def rules(self) -> Dialect:
+        """What the dialect refuses and how it names pins (st_runtime/dialects.py)."""
+        return DIALECTS[self.dialect]
+
+    def nj_rule(self, rule: str, message: str, pos: ast.Pos) -> None:
+        """Report OMRON NJ rule `rule`: an error where the dialect refuses it, else a warning."""
+        code = self.rules.nj_code(rule)
+        (self.error if code.startswith("E") else self.warning)(code, message, pos)
+
+    def foreign_pin(self, fb: str, name: str) -> str | None:
+        """The E-PIN-001 message when `name` is not a pin of standard FB `fb` in this
+        dialect but another dialect's name for one of its pins, else None."""
+        found = self.rules.foreign_pin(fb, name)
+        if found is None:
+            return None
+        other, mine = found
+        return (f"{fb} has no pin '{name}' under --dialect {self.dialect}: that is the "
+                f"{other} dialect's name; here the pin is '{mine}' (st_runtime/dialects.py)")
 
     def error(self, code: str, message: str, pos: ast.Pos) -> None:
         self.sink.error(code, message, pos)

@@ -395,13 +395,18 @@ class ExprChecker:
                         next(iter(setter.variables.values())).type
                     return self.record(e, t)
             if sym is None:
-                self.ctx.error("E-TYPE-009", f"function block {base.name} has no variable "
-                               f"'{e.name}'", e.pos)
+                foreign = self.ctx.foreign_pin(base.name, e.name)
+                if foreign is not None:
+                    self.ctx.error("E-PIN-001", foreign, e.pos)
+                else:
+                    self.ctx.error("E-TYPE-009", f"function block {base.name} has no variable "
+                                   f"'{e.name}'", e.pos)
                 return self.record(e, ts.ERROR)
             # IEC 61131-3 2nd ed. Table 2.5.2.1a / 3rd ed. 6.6.3.2: an in-out may
             # be read outside the instance (`IF FB1.INOUT THEN`), not assigned.
             inside = isinstance(e.base, ast.Name) and key(e.base.name) == "THIS"
-            if sym.kind not in ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT") and not inside:
+            if sym.kind not in ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT") and not inside \
+                    and not self.ctx.open_instances:
                 self.ctx.error("E-TYPE-009", f"'{e.name}' is a {sym.kind} of {base.name}: only "
                                f"inputs, outputs and in-outs are visible outside the instance", e.pos)
                 return self.record(e, ts.ERROR)

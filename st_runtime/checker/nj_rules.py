@@ -95,8 +95,6 @@ def _declared_names(files):
 
 
 def check_identifiers(ctx: Context, files) -> None:
-    prefix = "E-NJ-" if ctx.dialect == "nj" else "W-NJ-"
-    report = ctx.error if ctx.dialect == "nj" else ctx.warning
     for name, pos in _declared_names(files):
         for rule, message in identifier_problems(name):
-            report(prefix + rule, message, pos)
+            ctx.nj_rule(rule, message, pos)

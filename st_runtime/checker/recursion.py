@@ -2,12 +2,14 @@
 
 IEC 61131-3 and OMRON NJ forbid recursion.  The graph has an edge A -> B when
 POU A calls function B, calls an instance of FB type B, or declares an
-instance of FB type B (an FB that contains itself, directly or through other
-FBs, would be infinitely large).  Each cycle is reported once.
+instance of FB type B, directly or inside a STRUCT (an FB that contains
+itself, directly or through other FBs and STRUCTs, would be infinitely
+large).  Each cycle is reported once.
 """
 
 from __future__ import annotations
 
+from .. import types as T
 from ..ast import key
 from .context import Context
 from .declarations import _INSTANCE_KINDS, fb_type_of
@@ -17,14 +19,41 @@ def _edges(ctx: Context) -> dict[str, list[tuple[str, object, str]]]:
     graph: dict[str, list[tuple[str, object, str]]] = {k: [] for k in ctx.program.pous}
     for k, info in ctx.program.pous.items():
         for sym in info.variables.values():
+            if sym.kind not in _INSTANCE_KINDS or sym.decl is None:
+                continue
             fb = fb_type_of(sym.type)
-            if fb is not None and sym.kind in _INSTANCE_KINDS and sym.decl is not None:
+            if fb is not None:
                 graph[k].append((key(fb.name), sym.decl.pos, "declares an instance of"))
+            for struct, inner in _fbs_inside_structs(sym.type):
+                how = f"declares a {struct} holding an instance of"
+                graph[k].append((key(inner.name), sym.decl.pos, how))
     for caller, calls in ctx.calls.items():
         for callee, pos in calls:
             if caller in graph and callee in graph:
                 graph[caller].append((callee, pos, "calls"))
     return graph
+
+
+def _fbs_inside_structs(t) -> list[tuple[str, object]]:
+    """(struct name, FB type) of every FB instance held, at any depth, inside the
+    STRUCT (or array of STRUCT) `t`: a STRUCT member of an FB type F makes the
+    declaring POU contain an F as surely as an F variable does (issue 15: an FB
+    F with an input of STRUCT S whose member is an F recursed forever at run
+    time).  Iterative; STRUCT-STRUCT cycles are refused elsewhere (E-DECL-005)
+    and skipped here."""
+    found = []
+    seen: set[int] = set()
+    work = [(t, None)]
+    while work:
+        t, outer = work.pop()
+        while isinstance(t, T.ArrayType):
+            t = t.element
+        if isinstance(t, T.FBType) and outer is not None:
+            found.append((outer, t))
+        elif isinstance(t, T.StructType) and id(t) not in seen:
+            seen.add(id(t))
+            work.extend((member, outer or t.name) for _, member in t.fields.values())
+    return found
 
 
 def _components(graph) -> list[list[str]]:

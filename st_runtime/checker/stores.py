@@ -69,7 +69,7 @@ def check_store(ex, target, what: str = "assignment"):
         ex.ctx.error("E-ASSIGN-003", f"{what}: '{sym.name}' is the control variable of an "
                      f"enclosing FOR loop", target.pos)
         return ts.ERROR
-    member = _fb_member(ex, target)
+    member = None if ex.ctx.open_instances else _fb_member(ex, target)
     if member is not None:
         fb, var = member
         ex.ctx.error("E-ASSIGN-004", f"{what}: '{var.name}' is a {var.kind} of function block "
@@ -88,7 +88,7 @@ def in_out_problem(ex, target, sym) -> str | None:
                 f"their POU)")
     if any(sym is loop_var for loop_var in ex.loop_vars):
         return f"'{sym.name}', the control variable of an enclosing FOR loop"
-    member = _fb_member(ex, target)
+    member = None if ex.ctx.open_instances else _fb_member(ex, target)
     if member is not None:
         fb, var = member
         return (f"'{var.name}', a {var.kind} of function block {fb.name} (only its inputs may be "

@@ -18,8 +18,8 @@ Semantic choices (each has a test in tests/test_semantics*.py):
 * A runtime fault abandons the statement it happens in (at any nesting
   level); the POU goes on with the next statement.
 * FOR evaluates its bounds once.  When the body cannot change the control
-  variable it runs over a Python `range` (the iteration count is charged to
-  the scan budget up front); otherwise, and for a global control variable,
+  variable it runs over a Python `range` (its estimated NJ501 time is
+  charged per iteration, or up front when its body is one basic block); otherwise, and for a global control variable,
   it runs as a loop that tests the variable each time, as a PLC does.
   After a normal end the variable holds the first value past the end.  (A
   `range` FOR up to the type's maximum ends; on a PLC its variable would
@@ -93,6 +93,7 @@ class CompileUnit:
         }
         self.makers = 0
         self.guard_statements = True
+        self.charge_costs = True
         self.initial = InitialValues(program, self.classes)
         self.calls = Calls(self)
         self.sources: dict[str, str] = {}
@@ -149,15 +150,17 @@ class CompileUnit:
         exec(code, self.namespace)  # the source is generated; ST text only as repr literals
 
 
-def compile_program(program, guard_statements: bool = True) -> CompiledProgram:
+def compile_program(program, guard_statements: bool = True, charge_costs: bool = True) -> CompiledProgram:
     """Translate a CheckedProgram; raises CompileError on unsupported input.
 
     `guard_statements=False` leaves out the per-statement fault handlers (a
-    fault then abandons the whole scan); only the benchmark uses it, to show
-    what the handlers cost.
+    fault then abandons the whole scan); `charge_costs=False` leaves out the
+    NJ501 execution-time charges (no F-PERIOD, a runaway loop never ends).
+    Only the benchmarks use them, to show what the handlers and charges cost.
     """
     unit = CompileUnit(program)
     unit.guard_statements = guard_statements
+    unit.charge_costs = charge_costs
     _make_classes(unit)
     _make_initializers(unit)
     for address, t, init in program.image_inits:      # `AT %QX0.1 : BOOL := 1;`
@@ -367,3 +370,28 @@ def _install_init(unit: CompileUnit, key: str, members: list) -> None:
     out.ensure_body(mark)
     unit.run_source("init:" + key, out.source())
     unit.classes[key].__init__ = unit.namespace[pyname]
+
+
+_native_layouts_installed = False
+
+
+def install_native_layouts() -> None:
+    """Check and compile the native prelude on its own, which installs every
+    native FB's layout (`NativeFB.set_initializers`).
+
+    Needed only to instantiate a native FB outside a compiled program (a unit
+    test of the library); compiling any program installs them too.
+    """
+    global _native_layouts_installed
+    if _native_layouts_installed:
+        return
+    from ..checker import check      # the checker is not the compiler's: only here
+    from ..prelude import prelude_file
+
+    _text, prelude, diagnostics = prelude_file()
+    program, more = check([prelude] if prelude is not None else [], "iec")
+    errors = [d for d in diagnostics + more if d.is_error]
+    if errors:
+        raise RuntimeError("native prelude does not check: " + "; ".join(d.header() for d in errors))
+    compile_program(program)
+    _native_layouts_installed = True

@@ -12,11 +12,22 @@ allows 20.)  In CPython 3.11+ a `try` costs nothing until something is raised
 (zero-cost exception tables): benchmarks/bench_runtime.py shows the same
 times with and without the guards.
 
-Scan budget.  A FOR loop charges its iteration count to `_ctx.budget` once,
-before it starts (its bounds are evaluated once, so the count is known);
-WHILE, REPEAT and FOR loops that may leave early (EXIT, RETURN) charge one
-unit per iteration.  When the budget goes negative the scan ends with
-`ScanOverrun` (F-PERIOD), which the per-statement handlers let through.
+Execution time.  Every basic block of the ST source (a run of assignments
+and calls, with the IF condition, CASE selector or FOR bounds that ends it)
+adds its estimated NJ501 time (cost.py, picoseconds) to the local
+`_spent` once, at its start (a local: the cheapest charge Python has); an
+ELSIF or CASE branch also charges the tests it took to reach it.  Each
+compiled POU body flushes `_spent` into `_ctx.budget` when it returns
+(`finally`), so a caller sees its callees' time in `_ctx.budget` and the
+time left is always `_ctx.budget - _spent`.  A loop charges its overhead,
+its test and its body's first block once per iteration and checks there:
+when nothing is left the scan ends with `ScanOverrun` (F-PERIOD), which the
+per-statement handlers let through.  A FOR whose body is one block and
+cannot leave early charges all its iterations once, before it starts (its
+bounds are evaluated once, so the count is known).  Straight-line code is
+checked by the controller after the program.  The charges come from the ST
+text only, so any change of the Python generated for it leaves them as
+they are.
 """
 
 from __future__ import annotations
@@ -25,6 +36,7 @@ from .. import ast
 from ..objects import is_aggregate
 from ..types import resolve_alias
 from .calls import copy_statement
+from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
 from .pysrc import Emitter, pyliteral, pyident
@@ -40,6 +52,8 @@ class BodyCompiler(ExprCompiler):
         self.method = method
         self.body = body
         self.out = Emitter()
+        self.cost = CostModel(program)
+        self._head_costs: dict[int, float] = {}
         if not method:
             self._add_return_variable()
 
@@ -66,16 +80,23 @@ class BodyCompiler(ExprCompiler):
         o.indent()
         for item in self.scope.prologue:
             o.line(self._prologue_line(item))
-        if self.method and self.scope.epilogue:
+        charge = self.unit.charge_costs
+        if charge:
+            o.line("_spent = 0")        # this call's own charges (ps), flushed into _ctx.budget on exit
+        if (self.method and self.scope.epilogue) or charge:
             o.line("try:")
             o.indent()
             mark = o.mark()
             self.statements(self.body)
             o.ensure_body(mark)
+            if not self.method:
+                o.line(self._return_statement())
             o.dedent()
             o.line("finally:")
             o.indent()
-            for line in self.scope.epilogue:
+            if charge:
+                o.line("_ctx.budget -= _spent")
+            for line in self.scope.epilogue if self.method else ():
                 o.line(line)
             o.dedent()
         else:
@@ -116,9 +137,91 @@ class BodyCompiler(ExprCompiler):
 
     # --------------------------------------------------------- statements
 
-    def statements(self, body) -> None:
-        for stmt in body:
-            self.statement(stmt)
+    def statements(self, body, lead: float = 0, check: str | None = None, charge: bool = True,
+                   first_charged: bool = False) -> None:
+        """Compile `body` block by block, each block charged once at its start.
+
+        `lead`: units charged with the first block (a loop's overhead and
+        test, the tests an ELSIF took); `check`: the place of the loop whose
+        iteration this is (the first charge then tests for an overrun);
+        `charge=False`: the caller has charged the whole body already;
+        `first_charged`: the caller has charged the first block.
+        """
+        first = True
+        for simple, compound in _blocks(body):
+            units = sum(self.cost.simple(st) for st in simple) + (self._head_cost(compound) if compound else 0)
+            if first:
+                units += lead
+            if charge and not (first and first_charged):
+                self._charge(units, check if first else None)
+            first = False
+            for stmt in simple:
+                self.statement(stmt)
+            if compound is not None:
+                self.statement(compound)
+
+    def _head_cost(self, s) -> float:
+        """What a compound statement charges with the block before it: what it
+        evaluates on entry, and what every one of its branches charges first."""
+        known = self._head_costs.get(id(s))
+        if known is not None:       # memo: nested IFs would otherwise be walked once per ancestor
+            return known
+        units = 0
+        if isinstance(s, ast.If):
+            units = self.cost.condition(s.branches[0].condition) + self._if_entries(s)[1]
+        elif isinstance(s, ast.Case):
+            units = self.cost.expr(s.selector) + self._case_entries(s)[1]
+        elif isinstance(s, ast.For):
+            units = self.cost.for_setup(s)
+        self._head_costs[id(s)] = units
+        return units
+
+    def _first_block(self, body) -> float:
+        simple, compound = _blocks(body)[0]
+        return sum(self.cost.simple(st) for st in simple) + (self._head_cost(compound) if compound else 0)
+
+    def _shared(self, tests: list, bodies: list, exhaustive: bool) -> tuple[list, float]:
+        """(lead of each branch, units every branch charges first).
+
+        Branch i is reached after `tests[i]` units of tests; when some branch
+        always runs (an ELSE), what they all charge first moves before the
+        statement (one charge instead of one per branch; the sum per path is
+        unchanged)."""
+        shared = min(t + self._first_block(b) for t, b in zip(tests, bodies)) if exhaustive else 0
+        return [t - shared for t in tests], shared
+
+    def _if_entries(self, s) -> tuple[list, float]:
+        """Leads of the IF's branches (then ELSE) and the shared first charge."""
+        tests = [0.0]
+        for branch in s.branches[1:]:       # the first test is charged before the IF
+            tests.append(tests[-1] + self.cost.condition(branch.condition))
+        bodies = [b.body for b in s.branches]
+        if s.else_body:
+            tests.append(tests[-1])
+            bodies.append(s.else_body)
+        return self._shared(tests, bodies, bool(s.else_body))
+
+    def _case_entries(self, s) -> tuple[list, float]:
+        """Leads of the CASE's clauses (then ELSE): the labels compared to reach each."""
+        tests, bodies, labels = [], [], 0
+        for clause in s.clauses:
+            labels += self.cost.case_labels(clause)
+            tests.append(labels * self.cost.w["branch"])
+            bodies.append(clause.body)
+        if s.else_body:
+            tests.append(labels * self.cost.w["branch"])
+            bodies.append(s.else_body)
+        return self._shared(tests, bodies, bool(s.else_body))
+
+    def _charge(self, units: float, check: str | None = None, times: str | None = None) -> None:
+        """Charge `units` (times `times`, Python source) to the scan's time; test if `check`."""
+        if not self.unit.charge_costs:
+            return
+        ps = picoseconds(units)
+        if ps:
+            self.out.line(f"_spent += {ps if times is None else f'{times} * {ps}'}")
+        if check:
+            self.out.line(f"if _ctx.budget < _spent: _overrun({check})")
 
     def statement(self, stmt) -> None:
         if isinstance(stmt, ast.Empty):
@@ -164,10 +267,10 @@ class BodyCompiler(ExprCompiler):
         self.guard(node, lambda: self.out.line(f"{tmp} = {code}"), lambda: [f"{tmp} = {on_fault}"])
         return tmp, True
 
-    def block(self, body) -> None:
+    def block(self, body, lead: float = 0) -> None:
         self.out.indent()
         mark = self.out.mark()
-        self.statements(body or ())
+        self.statements(body or (), lead)
         self.out.ensure_body(mark)
         self.out.dedent()
 
@@ -190,26 +293,41 @@ class BodyCompiler(ExprCompiler):
     def s_If(self, s):
         """A fault in a condition abandons the whole IF (no branch runs)."""
         o = self.out
+        leads, _ = self._if_entries(s)
         if len(s.branches) == 1:
             test, guarded = self.guarded_value(s, self.expr(s.branches[0].condition), "None")
             o.line(f"if {test}:")
-            self.block(s.branches[0].body)
+            self.block(s.branches[0].body, leads[0])
             if s.else_body:
                 o.line(f"elif {test} is not None:" if guarded else "else:")
-                self.block(s.else_body)
+                self.block(s.else_body, leads[1])
             return
-        # IF/ELSIF chain: the index of the branch taken, conditions evaluated in order.
+        # IF/ELSIF chain: the index of the branch taken, conditions evaluated in order,
+        # as flat if/elif lines (a nested conditional expression would add one level
+        # of parentheses per ELSIF to CPython's 200).
         n = len(s.branches)
-        chooser = str(n)
-        for i in range(n - 1, -1, -1):
-            chooser = f"{i} if {self.expr(s.branches[i].condition)} else ({chooser})"
-        which, _ = self.guarded_value(s, chooser, "-1")
+        conditions = [self.expr(branch.condition) for branch in s.branches]
+        which = self.temp()
+
+        def choose():
+            for i, condition in enumerate(conditions):
+                o.line(f"{'if' if i == 0 else 'elif'} {condition}:")
+                o.indent()
+                o.line(f"{which} = {i}")
+                o.dedent()
+            o.line("else:")
+            o.indent()
+            o.line(f"{which} = {n}")
+            o.dedent()
+
+        self.guard(s, choose, lambda: [f"{which} = -1"])
+        # The first test is charged before the IF; the later ones by the branch that took them.
         for i, branch in enumerate(s.branches):
             o.line(f"{'if' if i == 0 else 'elif'} {which} == {i}:")
-            self.block(branch.body)
+            self.block(branch.body, leads[i])
         if s.else_body:
             o.line(f"elif {which} == {n}:")
-            self.block(s.else_body)
+            self.block(s.else_body, leads[n])
 
     def s_Case(self, s):
         """A fault in the selector abandons the whole CASE."""
@@ -220,7 +338,8 @@ class BodyCompiler(ExprCompiler):
         self.out.indent()
         t = self.ty(s.selector)
         first = True
-        for clause in s.clauses:
+        leads, _ = self._case_entries(s)     # labels compared to reach a clause, charged by that clause
+        for index, clause in enumerate(s.clauses):
             singles: list[str] = []
             tests: list[str] = []
             for label in clause.labels:
@@ -236,13 +355,13 @@ class BodyCompiler(ExprCompiler):
                 tests.insert(0, f"{selector} in ({', '.join(singles)},)")
             self.out.line(f"{'if' if first else 'elif'} {' or '.join(tests) or 'False'}:")
             first = False
-            self.block(clause.body)
+            self.block(clause.body, leads[index])
         if s.else_body:
             if first:
                 self.out.line("if True:")
             else:
                 self.out.line("else:")
-            self.block(s.else_body)
+            self.block(s.else_body, leads[-1])
         self.out.dedent()
 
     def _label(self, label):
@@ -287,9 +406,18 @@ class BodyCompiler(ExprCompiler):
             o.line(f"if {rng} is not None:")
             o.indent()
         early = _leaves_early(s.body)
+        # A loop that runs its whole count is bounded: its overhead and its
+        # body's first block (which every iteration runs) are charged and
+        # tested up front for all iterations, its other blocks per iteration
+        # without a test, and the total is tested when it ends.  One that may
+        # leave early charges and tests per iteration.
+        straight = len(_blocks(s.body)) == 1 and _blocks(s.body)[0][1] is None
         if not early and count != 0:
-            o.line(f"_ctx.budget -= {count if count is not None else f'len({rng})'}")
-            o.line(f"if _ctx.budget < 0: _overrun({where})")
+            units = self.cost.loop() + self._first_block(s.body)
+            if count is None:
+                self._charge(units, where, f"len({rng})")
+            else:
+                self._charge(units * count, where)
         saved = self.known_ranges.get(key)
         lo_r, hi_r = self.static_range(s.start), self.static_range(s.end)
         if lo_r and hi_r and const_step:
@@ -307,11 +435,11 @@ class BodyCompiler(ExprCompiler):
         else:
             o.line(f"for {target.target} in {rng}:")
         o.indent()
-        if early:
-            o.line("_ctx.budget -= 1")
-            o.line(f"if _ctx.budget < 0: _overrun({where})")
         body_mark = o.mark()
-        self.statements(s.body)
+        if early:
+            self.statements(s.body, self.cost.loop(), where)
+        else:
+            self.statements(s.body, first_charged=True)
         o.ensure_body(body_mark)
         o.dedent()
         self._place_loop_code(self.loops.pop(), mark, body_mark)
@@ -329,6 +457,8 @@ class BodyCompiler(ExprCompiler):
             if bounds[0] <= min(ends) and max(ends) <= bounds[1]:
                 var_t = None          # the final value cannot leave the type: no wrap
         o.line(target.store(final if var_t is None else self.convert(final, None, var_t)))
+        if not early and not straight:
+            self._charge(0, where)          # what the body's blocks charged, tested once
         o.dedent()
         if not const_range:
             o.dedent()
@@ -411,9 +541,8 @@ class BodyCompiler(ExprCompiler):
         o.indent()
         o.line(f"while {test}:")
         o.indent()
-        self._charge(s)
         self.loops.append(_Loop(key, assigned, "WHILE", [increment]))
-        self.statements(s.body)
+        self.statements(s.body, self.cost.loop() + self.cost.w["compare"], self.where(s))
         self.loops.pop()
         o.line(increment)
         o.dedent()
@@ -430,9 +559,8 @@ class BodyCompiler(ExprCompiler):
             o.line("while True:")
             o.indent()
             self.guard(s, lambda: o.line(f"if not ({cond}): break"), lambda: ["break"])
-        self._charge(s)
         self.loops.append(_Loop("", set(), "WHILE"))
-        self.statements(s.body)
+        self.statements(s.body, self.cost.loop() + self.cost.condition(s.condition), self.where(s))
         self.loops.pop()
         o.dedent()
 
@@ -449,15 +577,10 @@ class BodyCompiler(ExprCompiler):
         self.guard(s, lambda: o.line(f"if {cond}: break"), lambda: ["break"])
         o.dedent()
         o.line(f"{first} = False")
-        self._charge(s)
         self.loops.append(_Loop("", set(), "WHILE"))
-        self.statements(s.body)
+        self.statements(s.body, self.cost.loop() + self.cost.condition(s.condition), self.where(s))
         self.loops.pop()
         o.dedent()
-
-    def _charge(self, s) -> None:
-        self.out.line("_ctx.budget -= 1")
-        self.out.line(f"if _ctx.budget < 0: _overrun({self.where(s)})")
 
     def s_Exit(self, s):
         self.out.line("break")
@@ -485,6 +608,29 @@ class _Loop:
         self.on_continue = list(on_continue)     # statements CONTINUE runs first (an increment)
         self.hoisted: dict[str, str] = {}     # Python expression -> temp computed before the loop
         self.scaled: dict[str, list] = {}     # `i * k` -> [placeholder, uses]: once per iteration
+
+
+_COMPOUND = (ast.If, ast.Case, ast.For, ast.While, ast.Repeat)
+
+
+def _blocks(body) -> list[tuple[list, object]]:
+    """`body` as basic blocks: (simple statements, the compound statement that ends them or None).
+
+    An empty body is one empty block (a loop still charges its iterations).
+    """
+    blocks: list[tuple[list, object]] = []
+    simple: list = []
+    for stmt in body or ():
+        if isinstance(stmt, ast.Empty):
+            continue
+        if isinstance(stmt, _COMPOUND):
+            blocks.append((simple, stmt))
+            simple = []
+        else:
+            simple.append(stmt)
+    if simple or not blocks:
+        blocks.append((simple, None))
+    return blocks
 
 
 def _cannot_fault(code: str) -> bool:

@@ -1,4 +1,5 @@
-"""Simulation of one PLCopen servo axis, advanced one task period at a time.
+"""Simulation of one PLCopen servo axis, advanced one task period at a time,
+following OMRON's NJ motion kernel where its behaviour is documented.
 
 The axis has the PLCopen states (Disabled, Standstill, DiscreteMotion,
 ContinuousMotion, SynchronizedMotion, Stopping, ErrorStop, Homing), a command
@@ -9,15 +10,25 @@ its command exactly).
 
 Motion FBs call `start_*` during the user programs; the motion processing
 calls `step(dt)` once per primary period after them.  So a Position given to
-MC_SyncMoveAbsolute in scan k becomes the command position of scan k.
+MC_SyncMoveAbsolute in scan k becomes the command of scan k.
 
-Motion processing checks every new command position before applying it:
-software limits, the per-scan step against the maximum velocity, and (for
-synchronized motion, when configured) the change of velocity against the
-maximum acceleration.  A refused command puts the axis in ErrorStop, the
-command position holds where it was (an immediate stop of the command), and
-the actual position settles onto it.  After the servo moved, the following
-error is checked against its limit.
+What follows OMRON (sources in docs/nj501.md, "OMRON's motion kernel"):
+
+* MC_SyncMoveAbsolute puts the axis in Status.Discrete (not Synchronized).  A
+  Position too far for one period is not an error: the command moves by the
+  maximum velocity x period, the rest follows in later periods, and
+  Details.VelLimit is TRUE meanwhile; maximum acceleration/deceleration are not
+  used (W507 9-2 for synchronized control; SPEC 7 for MC_SyncMoveAbsolute).
+* A motion command started while the axis has an error (ErrorStop) or while
+  MC_Stop holds it (Stopping) ends with CommandAborted (`MotionAborted`), not
+  with an error.
+* MC_Stop on an axis under MC_SyncMoveAbsolute stops it at once (its
+  Deceleration is ignored); Deceleration = 0 is an immediate stop too.
+* An axis error puts the axis in ErrorStop.  The command then stops at once,
+  or decelerates at `error_deceleration` when one is configured; Status.ErrorStop
+  is TRUE all along, and MC_Reset fails while the command still decelerates.
+* Following error above `following_error_limit`: error 16#6448; above
+  `following_error_warning`: observation 16#644C, the axis goes on.
 
 Simplifications (documented, not hidden): profiles are trapezoidal without
 jerk limitation (the arrival scan of a move may brake by up to twice its
@@ -77,6 +88,11 @@ class MotionRefused(Exception):
         self.code = code
 
 
+class MotionAborted(Exception):
+    """A motion FB started while the axis has an error or MC_Stop holds it:
+    the FB ends with CommandAborted, not Error (SPEC 7, MC_SyncMoveAbsolute)."""
+
+
 @dataclass(eq=False, slots=True)
 class MotionCommand:
     """One started motion; the FB that started it watches `done`/`aborted`.
@@ -109,15 +125,21 @@ class Axis:
         self.cmd_pos = config.initial_position
         self.act_pos = config.initial_position
         self.cmd_vel = 0.0
+        self.cmd_accdec = 0.0   # OMRON sign: + while |velocity| grows, - while it falls
         self.act_vel = 0.0
         self.fault_code = ErrorID.NONE
+        self.observation_code = ErrorID.NONE
+        self.vel_limit = False       # Details.VelLimit: the sync command is saturated
+        self.in_pos_waiting = False  # Details.InPosWaiting: a move waits for in-position
+        self._in_pos_wait_s = 0.0
         self.command: MotionCommand | None = None
         # Per-period constants of the checks and the servo (see _set_period).
         self._soft_min = config.soft_limit_min
         self._soft_max = config.soft_limit_max
         self._following_limit = config.following_error_limit
+        self._following_warning = config.following_error_warning
         self._dt = 0.0
-        self._max_step = self._max_dv = 0.0
+        self._max_step = self._step_slack = 0.0
         self._lag_gain = 1.0
 
     # ------------------------------------------------------------ queries
@@ -133,16 +155,30 @@ class Axis:
     def fault_active(self) -> bool:
         return self.state == AxisState.ERRORSTOP
 
+    @property
+    def decelerating_for_error(self) -> bool:
+        """In ErrorStop with the command still moving (error_deceleration > 0)."""
+        return self.state == AxisState.ERRORSTOP and self.cmd_vel != 0.0
+
+    @property
+    def idle(self) -> bool:
+        """Details.Idle: no command value is being produced (and no move waits
+        for in-position)."""
+        command = self.command
+        busy = command is not None and not command.done and not command.reached
+        return not (busy or self.in_pos_waiting or self.decelerating_for_error)
+
     # ------------------------------------------------ requests from FBs
     def request_power(self, on: bool) -> None:
         """MC_Power's Enable; applied by the next motion processing."""
         self.power_requested = bool(on)
 
     def start_sync(self) -> MotionCommand:
-        """MC_SyncMoveAbsolute: take the axis into synchronized motion."""
+        """MC_SyncMoveAbsolute: the axis follows Position every period, in
+        Status.Discrete (SPEC 7)."""
         self._check_can_move()
         command = MotionCommand("sync", target=self.cmd_pos)
-        self._take(command, AxisState.SYNCHRONIZED)
+        self._take(command, AxisState.DISCRETE)
         return command
 
     def start_move_absolute(
@@ -155,21 +191,30 @@ class Axis:
             raise MotionRefused(ErrorID.PARAMETER_OUT_OF_RANGE)
         acc = self._rate(acceleration)
         dec = self._rate(deceleration)
-        if not self.config.within_soft_limits(position):
-            self.fault(ErrorID.TARGET_BEYOND_SOFT_LIMIT)
-            raise MotionRefused(ErrorID.TARGET_BEYOND_SOFT_LIMIT)
+        beyond = self._soft_limit_code(position)
+        if beyond is not None:
+            self.fault(beyond)
+            raise MotionRefused(beyond)
         command = MotionCommand("move", target=position, velocity=velocity,
                                 acceleration=acc, deceleration=dec)
         self._take(command, AxisState.DISCRETE)
         return command
 
     def start_stop(self, deceleration: float) -> MotionCommand:
-        """MC_Stop: decelerate to zero velocity, then hold the axis in Stopping."""
+        """MC_Stop: decelerate to zero velocity, then hold the axis in Stopping.
+
+        Deceleration = 0, or an axis under MC_SyncMoveAbsolute, is an
+        immediate stop: the command position holds where it is (SPEC 7).
+        """
+        if self.state == AxisState.ERRORSTOP:
+            raise MotionAborted()
         if not self.powered:
             raise MotionRefused(ErrorID.AXIS_DISABLED)
-        if self.state == AxisState.ERRORSTOP:
-            raise MotionRefused(ErrorID.AXIS_IN_ERRORSTOP)
-        command = MotionCommand("stop", deceleration=self._rate(deceleration))
+        if not (math.isfinite(deceleration) and deceleration >= 0):
+            raise MotionRefused(ErrorID.PARAMETER_OUT_OF_RANGE)
+        under_sync = self.command is not None and self.command.kind == "sync"
+        rate = math.inf if deceleration == 0 or under_sync else deceleration
+        command = MotionCommand("stop", deceleration=rate)
         self._take(command, AxisState.STOPPING)
         return command
 
@@ -189,95 +234,133 @@ class Axis:
         return command
 
     def reset(self) -> bool:
-        """MC_Reset: clear ErrorStop.  False when the cause persists."""
+        """MC_Reset: clear the axis error and observation.  False (Failure)
+        while the command still decelerates for the error (SPEC 7), or while
+        the following error is still above its limit (the simulator's own
+        rule: the error would come back at once)."""
         if self.state != AxisState.ERRORSTOP:
+            self.observation_code = ErrorID.NONE
             return True
+        if self.cmd_vel != 0.0:
+            return False
         limit = self.config.following_error_limit
         if limit > 0 and abs(self.following_error) > limit:
             return False
-        self.fault_code = ErrorID.NONE
-        self.cmd_vel = 0.0
+        self.fault_code = self.observation_code = ErrorID.NONE
         self.state = AxisState.STANDSTILL if self.powered else AxisState.DISABLED
         return True
 
     def fault(self, code: ErrorID) -> None:
-        """Enter ErrorStop with `code` (the first fault's code is kept)."""
+        """Enter ErrorStop with `code` (the first fault's code is kept).
+
+        The command stops at once, or decelerates at `error_deceleration`."""
         if self.state == AxisState.ERRORSTOP:
             return
         self._abort_command()
         self.state = AxisState.ERRORSTOP
         self.fault_code = code
-        self.cmd_vel = 0.0
+        if self.config.error_deceleration <= 0:
+            self.cmd_vel = 0.0
 
     # --------------------------------------------------- motion processing
     def step(self, dt: float) -> None:
         """Advance one period of `dt` seconds: command, servo, checks.
 
-        Runs for every axis every scan, so the common case (a command within
-        all limits) takes a short path; any doubt goes to `_check_command`.
+        Runs for every axis every scan, so the common case (a sync Position
+        within one period's reach) takes a short path.
         """
         if self.power_requested != self.powered:
             self._apply_power()
         if not self.powered:
             # Servo off: nothing drives the axis; the command follows the actual position.
             self.cmd_pos = self.act_pos
-            self.cmd_vel = self.act_vel = 0.0
+            self.cmd_vel = self.act_vel = self.cmd_accdec = 0.0
+            self.vel_limit = False
             return
         if dt != self._dt:
             self._set_period(dt)
-        old_cmd, old_act = self.cmd_pos, self.act_pos
+        old_cmd, old_act, old_vel = self.cmd_pos, self.act_pos, self.cmd_vel
         command = self.command
         if command is None:
-            new_cmd = old_cmd
+            new_cmd = self._error_stop_position(dt) if self.state == AxisState.ERRORSTOP else old_cmd
         elif command.kind == "sync":
-            new_cmd = command.target
-            delta = new_cmd - old_cmd
-            max_step = self._max_step
-            if not (self._soft_min <= new_cmd <= self._soft_max and -max_step <= delta <= max_step
-                    and (self._max_dv == 0 or abs(delta / dt - self.cmd_vel) <= self._max_dv)):
-                new_cmd = self._checked(new_cmd, old_cmd, dt)
+            new_cmd = self._sync_position(command.target, old_cmd, dt)
         else:
             new_cmd = self._next_command_position(dt)
             if new_cmd != old_cmd:
                 new_cmd = self._checked(new_cmd, old_cmd, dt)
         self.cmd_pos = new_cmd
-        self.cmd_vel = (new_cmd - old_cmd) / dt
+        self.cmd_vel = new_vel = (new_cmd - old_cmd) / dt
+        if new_vel != old_vel:
+            magnitude = abs(new_vel - old_vel) / dt
+            self.cmd_accdec = magnitude if abs(new_vel) > abs(old_vel) else -magnitude
+        else:
+            self.cmd_accdec = 0.0
         if self._lag_gain == 1.0:
             self.act_pos = new_cmd  # ideal axis: exactly the command
         else:
             self.act_pos = old_act + (new_cmd - old_act) * self._lag_gain
         self.act_vel = (self.act_pos - old_act) / dt
+        deviation = abs(new_cmd - self.act_pos)
         limit = self._following_limit
-        if limit > 0 and abs(new_cmd - self.act_pos) > limit:
+        if limit > 0 and deviation > limit:
             self.fault(ErrorID.FOLLOWING_ERROR_EXCEEDED)
+        warning = self._following_warning
+        if warning > 0 and deviation > warning and self.observation_code == ErrorID.NONE:
+            self.observation_code = ErrorID.FOLLOWING_ERROR_WARNING
         if self.command is not None and self.command.reached:
-            self._complete_commands()
+            self._complete_commands(dt)
+
+    def _sync_position(self, target: float, old_cmd: float, dt: float) -> float:
+        """This period's command for a sync Position: the target, or one
+        maximum-velocity step towards it (Details.VelLimit)."""
+        delta = target - old_cmd
+        if -self._step_slack <= delta <= self._step_slack and self._soft_min <= target <= self._soft_max:
+            self.vel_limit = False
+            return target
+        refusal = self._target_code(target)
+        if refusal is not None:
+            self.fault(refusal)
+            return self._error_stop_position(dt)
+        if -self._step_slack <= delta <= self._step_slack:
+            self.vel_limit = False
+            return target
+        self.vel_limit = True
+        return old_cmd + math.copysign(self._max_step, delta)
 
     def _checked(self, new_cmd: float, old_cmd: float, dt: float) -> float:
-        """`new_cmd` if it passes every check, else fault and hold `old_cmd`."""
-        refusal = self._check_command(new_cmd, old_cmd, dt)
+        """`new_cmd` if it passes every check, else fault and stop."""
+        refusal = self._target_code(new_cmd)
         if refusal is None:
             return new_cmd
         self.fault(refusal)
-        return old_cmd
+        return self._error_stop_position(dt)
+
+    def _error_stop_position(self, dt: float) -> float:
+        """The command in ErrorStop: held, or one step of `error_deceleration`
+        less speed in the direction it was moving."""
+        rate = self.config.error_deceleration
+        speed = abs(self.cmd_vel)
+        if rate <= 0 or speed == 0.0:
+            return self.cmd_pos
+        new_speed = max(speed - rate * dt, 0.0)
+        return self.cmd_pos + math.copysign(new_speed * dt, self.cmd_vel)
 
     def _set_period(self, dt: float) -> None:
         """Cache what the checks and the servo need for periods of `dt`."""
         cfg = self.config
         self._dt = dt
-        self._max_step = cfg.max_velocity * dt * (1 + _LIMIT_SLACK)
-        self._max_dv = cfg.max_acceleration * dt * (1 + _LIMIT_SLACK)
+        self._max_step = cfg.max_velocity * dt
+        self._step_slack = self._max_step * (1 + _LIMIT_SLACK)
         tau = cfg.servo_lag
         self._lag_gain = 1.0 if tau == 0 else 1.0 - math.exp(-dt / tau)
 
     # ------------------------------------------------------------ internals
     def _check_can_move(self) -> None:
+        if self.state in (AxisState.ERRORSTOP, AxisState.STOPPING):
+            raise MotionAborted()
         if not self.powered:
             raise MotionRefused(ErrorID.AXIS_DISABLED)
-        if self.state == AxisState.ERRORSTOP:
-            raise MotionRefused(ErrorID.AXIS_IN_ERRORSTOP)
-        if self.state == AxisState.STOPPING:
-            raise MotionRefused(ErrorID.AXIS_STOPPING)
 
     def _rate(self, value: float) -> float:
         """An Acceleration/Deceleration input: 0 means the axis maximum (none: a step)."""
@@ -296,6 +379,7 @@ class Axis:
         if self.command is not None and not self.command.done:
             self.command.aborted = True
         self.command = None
+        self.vel_limit = self.in_pos_waiting = False
 
     def _finish(self, state: AxisState) -> None:
         self.command.done = True
@@ -319,8 +403,6 @@ class Axis:
         command = self.command
         if command is None:
             return self.cmd_pos
-        if command.kind == "sync":
-            return command.target
         if command.kind == "move":
             return self._trapezoid_step(command, dt)
         if command.kind == "stop":
@@ -352,28 +434,34 @@ class Axis:
             c.reached = True
         return self.cmd_pos + math.copysign(new_speed * dt, self.cmd_vel)
 
-    def _check_command(self, new_cmd: float, old_cmd: float, dt: float) -> ErrorID | None:
-        cfg = self.config
-        if not math.isfinite(new_cmd):
+    def _target_code(self, position: float) -> ErrorID | None:
+        """Why a command position may not be applied, or None."""
+        if not math.isfinite(position):
             return ErrorID.COMMAND_NOT_FINITE
-        if not cfg.within_soft_limits(new_cmd):
-            return ErrorID.SOFT_LIMIT_EXCEEDED
-        step = abs(new_cmd - old_cmd)
-        if step > cfg.max_velocity * dt * (1 + _LIMIT_SLACK):
-            return ErrorID.VELOCITY_LIMIT_EXCEEDED
-        if self.state == AxisState.SYNCHRONIZED and cfg.max_acceleration > 0:
-            new_vel = (new_cmd - old_cmd) / dt
-            if abs(new_vel - self.cmd_vel) > cfg.max_acceleration * dt * (1 + _LIMIT_SLACK):
-                return ErrorID.ACCELERATION_LIMIT_EXCEEDED
+        return self._soft_limit_code(position)
+
+    def _soft_limit_code(self, position: float) -> ErrorID | None:
+        if position > self.config.soft_limit_max:
+            return ErrorID.TARGET_POSITIVE_SOFT_LIMIT
+        if position < self.config.soft_limit_min:
+            return ErrorID.TARGET_NEGATIVE_SOFT_LIMIT
         return None
 
-    def _complete_commands(self) -> None:
+    def _complete_commands(self, dt: float) -> None:
         c = self.command
-        if c is None or not c.reached:
-            return
         if c.kind == "move":
             if abs(self.act_pos - c.target) <= self.config.in_position_range:
+                self.in_pos_waiting = False
+                self._in_pos_wait_s = 0.0
                 self._finish(AxisState.STANDSTILL)
+                return
+            # Reached, waiting for in-position (Details.InPosWaiting); error
+            # 16#6447 once that takes longer than the in-position check time.
+            self._in_pos_wait_s = self._in_pos_wait_s + dt if self.in_pos_waiting else dt
+            self.in_pos_waiting = True
+            check = self.config.in_position_check_time
+            if check > 0 and self._in_pos_wait_s > check * (1 + _LIMIT_SLACK):
+                self.fault(ErrorID.IN_POSITION_CHECK_TIME_EXCEEDED)
         elif c.kind == "stop":
             c.done = True
             if c.released:

@@ -7,10 +7,13 @@ table per axis, e.g. in TOML:
     name = "Cylinder1"
     soft_limit_min = 0.0          # software limits; leave both out for none
     soft_limit_max = 600.0
-    max_velocity = 200.0          # per-scan step check: |dPos| / period
-    max_acceleration = 0.0        # 0: not checked
+    max_velocity = 200.0          # MC_SyncMoveAbsolute saturates at it (Details.VelLimit)
+    max_acceleration = 0.0        # Acceleration/Deceleration 0 of MC_MoveAbsolute; 0: a step
     in_position_range = 0.01      # Done / InPosition window
-    following_error_limit = 5.0   # 0: not checked
+    in_position_check_time = 0.0  # s; longer InPosWaiting: error 16#6447; 0: no time limit
+    following_error_limit = 5.0   # error 16#6448 above it; 0: not checked
+    following_error_warning = 0.0 # observation 16#644C above it (no stop); 0: not checked
+    error_deceleration = 0.0      # command deceleration in ErrorStop; 0: immediate stop
     servo_lag = 0.0               # first-order lag time constant in s; 0: ideal axis
     initial_position = 0.0        # actual position when the simulation starts
 
@@ -42,7 +45,10 @@ class AxisConfig:
     soft_limit_max: float = math.inf
     max_acceleration: float = 0.0
     in_position_range: float = 0.01
+    in_position_check_time: float = 0.0
     following_error_limit: float = 0.0
+    following_error_warning: float = 0.0
+    error_deceleration: float = 0.0
     servo_lag: float = 0.0
     initial_position: float = 0.0
 
@@ -60,7 +66,10 @@ _NUMERIC_KEYS = (
     "soft_limit_max",
     "max_acceleration",
     "in_position_range",
+    "in_position_check_time",
     "following_error_limit",
+    "following_error_warning",
+    "error_deceleration",
     "servo_lag",
     "initial_position",
 )
@@ -140,10 +149,16 @@ def _check_rules(c: AxisConfig, where: str) -> None:
 
     if not (c.max_velocity > 0 and math.isfinite(c.max_velocity)):
         fail("max_velocity", "a positive finite number", c.max_velocity)
-    for key in ("max_acceleration", "following_error_limit", "servo_lag"):
+    for key in ("max_acceleration", "following_error_limit", "following_error_warning",
+                "error_deceleration", "in_position_check_time", "servo_lag"):
         value = getattr(c, key)
         if not (value >= 0 and math.isfinite(value)):
             fail(key, "finite and >= 0 (0 disables it)", value)
+    if 0 < c.following_error_limit < c.following_error_warning:
+        raise AxisConfigError(
+            f"{where}: key 'following_error_warning' must not exceed 'following_error_limit',"
+            f" found {c.following_error_warning!r} > {c.following_error_limit!r}"
+        )
     if not (c.in_position_range > 0 and math.isfinite(c.in_position_range)):
         fail("in_position_range", "a positive finite number", c.in_position_range)
     if not c.soft_limit_min < c.soft_limit_max:

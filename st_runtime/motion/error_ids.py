@@ -1,16 +1,31 @@
 """ErrorIDs of the simulated axes and motion FBs: one table, one docstring each.
 
-The codes are WORDs in the style of the OMRON NJ: instruction errors (bad
-parameters, wrong axis state) in the 16#54xx range, axis errors detected by
-motion processing (limits, following error) in the 16#64xx range.  They are
-this simulator's own numbers, not OMRON's catalogue; what matters is that each
-cause has its own stable code that ST can compare against.
+On the NJ an ErrorID (and `MFaultLvl.Code`, `Obsr.Code`) is the upper four hex
+digits of the event code: event 16#64480000 is ErrorID 16#6448.  Each member
+says where its code comes from:
+
+* **OMRON** -- the code and its meaning are OMRON's, with the source;
+* **simulator's own** -- the simulator reports a case for which no OMRON code
+  was found; the number is ours, kept stable so that ST can compare against it,
+  and it may coincide with an unrelated OMRON code.  Do not rely on it on a
+  real controller.
+
+Sources (see docs/nj501.md, "OMRON's motion kernel"):
+
+[W503] NJ-series Troubleshooting Manual (W503), event tables, as quoted with
+       page numbers in a public event-code table (GitHub code index, file id
+       59678352956: 16#644C0000 p.3-549, 16#64480000 p.3-527, 16#64470000
+       p.3-526, 16#64410000 p.3-645); event classification (first digit 5: user
+       software error, 6: observation of user settings), W503 p.1-11,
+       https://www.easymanua.ls/omron/nj-series/manual/438985?p=37
+[SPEC7] the project's summary of the Sysmac Studio help pages of
+       MC_SyncMoveAbsolute, MC_Stop and MC_Reset (../shared/SPEC.md section 7).
 
 An instruction error is reported on the FB (`Error`, `ErrorID`) and leaves the
-axis as it was, except `TARGET_BEYOND_SOFT_LIMIT`, which also puts the axis in
-ErrorStop (as a command beyond the software limits does on the NJ).  An axis
-error puts the axis in ErrorStop with `MFaultLvl.Active` and `MFaultLvl.Code`;
-the FB that was moving the axis ends with `CommandAborted`.
+axis as it was, except where a member says it also puts the axis in ErrorStop.
+An axis error puts the axis in ErrorStop with `MFaultLvl.Active` and
+`MFaultLvl.Code`; the FB that was moving the axis ends with `CommandAborted`.
+An observation (`Obsr.Active`, `Obsr.Code`) does not stop the axis.
 """
 
 from __future__ import annotations
@@ -24,57 +39,63 @@ class ErrorID(IntEnum):
 
     # --- instruction errors (reported on the FB) ---------------------------
     AXIS_NOT_ASSIGNED = 0x5401
-    """The AXIS_REF given to the FB is not bound to a configured axis
-    (`Cfg.AxEnable` is FALSE: e.g. a local AXIS_REF variable)."""
+    """Simulator's own: the AXIS_REF given to the FB is not bound to a
+    configured axis (`Cfg.AxEnable` is FALSE: e.g. a local AXIS_REF
+    variable).  Sysmac Studio only accepts axis variables there."""
 
     AXIS_DISABLED = 0x5402
-    """A motion FB was started on an axis whose servo is off (Disabled)."""
-
-    AXIS_IN_ERRORSTOP = 0x5403
-    """A motion FB was started while the axis is in ErrorStop; MC_Reset first."""
-
-    AXIS_STOPPING = 0x5404
-    """A motion FB was started while MC_Stop holds the axis (state Stopping)."""
+    """Simulator's own: a motion FB was started on an axis whose servo is
+    off (Disabled)."""
 
     AXIS_MOVING = 0x5405
-    """MC_Home was started while the axis is moving (it needs Standstill)."""
+    """Simulator's own: MC_Home was started while the axis is moving (the
+    simulation homes an absolute encoder at standstill only)."""
 
     PARAMETER_OUT_OF_RANGE = 0x5410
-    """A numeric input is out of range: Velocity <= 0 or above the axis
-    maximum, a negative Acceleration/Deceleration, or a value that is not
-    finite."""
+    """Simulator's own: a numeric input is out of range: Velocity <= 0 or
+    above the axis maximum, a negative Acceleration/Deceleration, or a value
+    that is not finite."""
 
     BUFFER_MODE_NOT_SUPPORTED = 0x5411
-    """BufferMode other than _mcAborting (the only mode simulated)."""
+    """Simulator's own: BufferMode other than _mcAborting (the only mode
+    simulated)."""
 
-    TARGET_BEYOND_SOFT_LIMIT = 0x5412
-    """MC_MoveAbsolute target position outside the software limits; the
-    axis also goes to ErrorStop with this code."""
+    RE_EXECUTION_DISABLED = 0x543B
+    """OMRON [SPEC7] (Motion Control Instruction Re-execution Disabled):
+    a rising edge of Execute on an MC_SyncMoveAbsolute that is still Busy.
+    Assumed (not confirmed): the axis also goes to ErrorStop with this code."""
 
-    RESET_FAILED = 0x5420
-    """MC_Reset could not clear the error because its cause persists (the
-    following error is still above its limit)."""
+    # --- axis errors (axis -> ErrorStop) ------------------------------------
+    TARGET_POSITIVE_SOFT_LIMIT = 0x6440
+    """OMRON (Target Position Positive Software Limit Exceeded; name by
+    symmetry with 16#6441 [W503]): the target of MC_MoveAbsolute lies above
+    the positive software limit (Error on the FB, axis in ErrorStop).  Assumed:
+    also a Position of MC_SyncMoveAbsolute above the limit (the command is not
+    applied); no source found for what a streamed position raises."""
 
-    # --- axis errors (motion processing; axis -> ErrorStop) ----------------
-    SOFT_LIMIT_EXCEEDED = 0x6401
-    """The command position (e.g. the Position of MC_SyncMoveAbsolute) lies
-    outside the software limits; the command is not applied."""
+    TARGET_NEGATIVE_SOFT_LIMIT = 0x6441
+    """OMRON [W503 p.3-645] (Target Position Negative Software Limit
+    Exceeded): as TARGET_POSITIVE_SOFT_LIMIT, below the negative limit."""
 
-    VELOCITY_LIMIT_EXCEEDED = 0x6402
-    """The command position moved by more than max velocity x period in one
-    scan (|dPos| / period > max velocity); the command is not applied."""
+    IN_POSITION_CHECK_TIME_EXCEEDED = 0x6447
+    """OMRON [W503 p.3-526] (In-position Check Time Exceeded): MC_MoveAbsolute
+    reached its target but the actual position stayed outside the in-position
+    range for longer than the in-position check time."""
 
-    ACCELERATION_LIMIT_EXCEEDED = 0x6403
-    """The command velocity changed by more than max acceleration x period
-    in one scan (checked for synchronized motion when a maximum acceleration
-    is configured); the command is not applied."""
-
-    FOLLOWING_ERROR_EXCEEDED = 0x6404
-    """|command position - actual position| exceeds the following-error
-    limit after the servo has moved."""
+    FOLLOWING_ERROR_EXCEEDED = 0x6448
+    """OMRON [W503 p.3-527] (Following Error Limit Exceeded): |command
+    position - actual position| exceeds the following-error limit."""
 
     COMMAND_NOT_FINITE = 0x6405
-    """The command position is NaN or infinite; the command is not applied."""
+    """Simulator's own: the Position of MC_SyncMoveAbsolute is NaN or
+    infinite (a REAL cannot hold it on the NJ); the command is not applied."""
+
+    # --- observations (no stop) ---------------------------------------------
+    FOLLOWING_ERROR_WARNING = 0x644C
+    """OMRON [W503 p.3-549] (Following Error Warning), an observation:
+    |command position - actual position| exceeds the following-error warning
+    value.  The axis goes on; `Obsr.Active`/`Obsr.Code` show it until
+    MC_Reset."""
 
 
 def describe(code: int) -> str:
@@ -103,4 +124,3 @@ def _member_docs() -> dict[ErrorID, str]:
 
 
 _DOCS = _member_docs()
-

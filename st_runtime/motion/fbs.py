@@ -17,7 +17,10 @@ Execute-type FBs follow the PLCopen output rules:
   taking `Position` every call until it is aborted).
 
 An axis error (ErrorStop) during a command ends it with `CommandAborted`; the
-cause is on the axis (`MFaultLvl.Code`).  Inputs that the simulation does not
+cause is on the axis (`MFaultLvl.Code`).  A command started while the axis has
+an error or while MC_Stop holds it ends with `CommandAborted` too, not with
+`Error` (SPEC 7, documented for MC_SyncMoveAbsolute; the simulator applies it
+to every motion FB).  Inputs that the simulation does not
 model are accepted and ignored: `Jerk` (profiles are trapezoidal) and
 `Direction` (linear axes).  `BufferMode` must be `_mcAborting`.
 """
@@ -26,7 +29,7 @@ from __future__ import annotations
 
 from ..native import NativeFB, fb_declaration, native_fb
 from . import types as _types  # noqa: F401  (registers AXIS_REF before the FBs)
-from .axis import Axis, MotionCommand, MotionRefused
+from .axis import Axis, MotionAborted, MotionCommand, MotionRefused
 from .error_ids import ErrorID
 from .motion_task import motion_of
 from .types import BUFFER_MODE_ABORTING
@@ -70,6 +73,7 @@ class _ExecuteFB(_AxisFB):
 
     FINAL_OUTPUTS = ("v_DONE", "v_COMMANDABORTED", "v_ERROR")
     ACTIVE_OUTPUT = True  # the FB has an `Active` output
+    ACTIVE_AT_START = True  # `Active` in the call of the rising edge (else one period later)
 
     def __init__(self) -> None:
         super().__init__()
@@ -98,8 +102,12 @@ class _ExecuteFB(_AxisFB):
         except MotionRefused as refused:
             self._fail(refused.code)
             return
+        except MotionAborted:
+            self._command = None
+            self._end("v_COMMANDABORTED")
+            return
         self.v_BUSY = True
-        if self.ACTIVE_OUTPUT:
+        if self.ACTIVE_OUTPUT and self.ACTIVE_AT_START:
             self.v_ACTIVE = True
         self._follow(axis, first_call=True)
 
@@ -186,9 +194,11 @@ class MC_Power(_AxisFB):
 class MC_Reset(_ExecuteFB):
     """Clear the axis error (ErrorStop -> Standstill if powered, else Disabled).
 
-    Completes in the call of the rising edge.  If the cause persists (the
-    following error is still above its limit) `Failure` is TRUE and `ErrorID`
-    says RESET_FAILED.  Resetting an axis without error is simply Done.
+    Completes in the call of the rising edge.  `Failure` (ErrorID 0) while
+    the axis still decelerates for its error (SPEC 7, OMRON's MC_Reset), or
+    while the following error is still above its limit (the simulator's own
+    rule).  Resetting an axis without error is Done and clears an observation
+    (`Obsr`).
     """
 
     NAME = "MC_Reset"
@@ -206,7 +216,6 @@ class MC_Reset(_ExecuteFB):
             self._end("v_DONE")
         else:
             self._end("v_FAILURE")
-            self.v_ERRORID = int(ErrorID.RESET_FAILED)
 
 
 @native_fb
@@ -233,8 +242,11 @@ class MC_Stop(_ExecuteFB):
 
     Aborts whatever moves the axis (that FB ends with CommandAborted).  `Done`
     once the command velocity is zero; when `Execute` is FALSE (and the axis
-    has stopped) the axis goes to Standstill.  Deceleration 0 uses the axis's
-    maximum acceleration, or stops the command at once if none is configured.
+    has stopped) the axis goes to Standstill.  An immediate stop (the command
+    position holds where it is) when Deceleration is 0 or when the axis is
+    under MC_SyncMoveAbsolute, whose Deceleration is then ignored (SPEC 7,
+    OMRON's MC_Stop): a controlled stop from synchronous motion must be ramped
+    by the program first.  On an axis with an error: CommandAborted.
     """
 
     NAME = "MC_Stop"
@@ -260,7 +272,7 @@ class MC_MoveAbsolute(_ExecuteFB):
 
     Acceleration/Deceleration 0 use the axis's maximum acceleration (a
     velocity step if none is configured).  A Position outside the software
-    limits is an Error (TARGET_BEYOND_SOFT_LIMIT) and puts the axis in
+    limits is an Error (16#6440 above, 16#6441 below) and puts the axis in
     ErrorStop.  Done once the command is at the target and the actual
     position is within the in-position range.
     """
@@ -283,15 +295,27 @@ class MC_MoveAbsolute(_ExecuteFB):
 
 @native_fb
 class MC_SyncMoveAbsolute(_ExecuteFB):
-    """Cyclic synchronous absolute positioning: `Position` is the axis command
-    of every scan in which the FB is called, from the rising edge of Execute
-    until another command (e.g. MC_Stop) or an axis error aborts it.
+    """Cyclic synchronous absolute positioning: `Position` is the target of
+    every period in which the FB is called, from the rising edge of Execute
+    until another command (e.g. MC_Stop) or an axis error aborts it.  Never
+    `Done`.  Follows OMRON's help page as summarised in SPEC 7:
 
-    The Position given in scan k is applied by the motion processing of scan k
-    (after the programs), where the software limits, the velocity limit
-    (|dPos| / period) and, if configured, the acceleration limit are checked.
-    `InPosition`: the actual position is within the in-position range of the
-    Position applied in the previous motion processing.  Never `Done`.
+    * the axis is in Status.Discrete while the FB drives it;
+    * the Position given in scan k is the target of the motion processing of
+      scan k; one too far for one period is not an error: the command moves at
+      the axis maximum velocity, the rest follows in later periods, and
+      Details.VelLimit is TRUE meanwhile (maximum acceleration/deceleration
+      are not used);
+    * `Busy` in the call of the rising edge, `Active` from the next call;
+    * started while the axis has an error or MC_Stop holds it: CommandAborted;
+    * a new rising edge while Busy: Error 16#543B (re-execution disabled), and
+      (assumed) the axis goes to ErrorStop with that code;
+    * `InPosition`: the actual position is within the in-position range of
+      the target (the Position that motion processing worked to), not of the
+      saturated Cmd.Pos.
+
+    A Position beyond the software limits is an axis error, 16#6440/16#6441
+    (assumed: no source found for what a streamed position raises).
     """
 
     NAME = "MC_SyncMoveAbsolute"
@@ -300,6 +324,7 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
         inputs="Execute : BOOL; Position : LREAL; Direction : _eMC_DIRECTION; BufferMode : _eMC_BUFFER_MODE;",
         outputs="InPosition : BOOL; " + MOVE_OUTPUTS)
     FINAL_OUTPUTS = ("v_COMMANDABORTED", "v_ERROR")
+    ACTIVE_AT_START = False
 
     def _begin(self, axis: Axis) -> MotionCommand:
         _check_buffer_mode(self.v_BUFFERMODE)
@@ -319,9 +344,18 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
                 return
         super().execute(ctx)
 
+    def _start(self, axis: Axis | None) -> None:
+        command = self._command
+        if self.v_BUSY and command is not None and not command.aborted and axis is not None:
+            self._fail(ErrorID.RE_EXECUTION_DISABLED)
+            axis.fault(ErrorID.RE_EXECUTION_DISABLED)
+            return
+        super()._start(axis)
+
     def _poll(self, axis: Axis, command: MotionCommand, first_call: bool) -> None:
-        applied = command.target  # what the last motion processing commanded
-        self.v_INPOSITION = (not first_call) and abs(axis.act_pos - applied) <= axis.config.in_position_range
+        if not first_call:
+            self.v_ACTIVE = True
+            self.v_INPOSITION = abs(axis.act_pos - command.target) <= axis.config.in_position_range
         command.target = float(self.v_POSITION)
 
     def _end(self, output: str) -> None:

@@ -1,18 +1,45 @@
 """The axis variable type ST sees: `AXIS_REF`, declared as ST TYPE text.
 
-Members follow the OMRON NJ axis variable (`_sAXIS_REF`) for what a program
-reads; the member type names drop OMRON's leading underscore, which the NJ
-forbids in user identifiers.  The motion task writes the members (feedback in
-before the programs, and again after motion processing); ST only reads them.
+Members are those of OMRON's NJ axis variable (`_sAXIS_REF`) that the
+simulator can confirm, and no others: a program that uses a member the NJ does
+not have fails the checker here as it fails Build in Sysmac Studio (there is
+no `Dev` member: the following error is `Cmd.Pos - Act.Pos`).  The member type
+names drop OMRON's leading underscore, which the NJ forbids in user
+identifiers.  The motion task writes the members (feedback in before the
+programs, and again after motion processing); ST only reads them.
 
-    Axis.Cmd.Pos / Axis.Cmd.Vel         command position / velocity
-    Axis.Act.Pos / Axis.Act.Vel         actual position / velocity
-    Axis.Dev.Pos                        following error (Cmd.Pos - Act.Pos)
+Sources (docs/nj501.md, "OMRON's motion kernel"):
+* member lists of Status, Details, DrvStatus and the event structure
+  (`_sMC_REF_EVENT`: Active, Code WORD) as Sysmac data types: GitHub code index
+  file id 48709232398;
+* the whole axis variable member by member (Cfg, Scale, Status, Details, Dir,
+  DrvStatus, Cmd, Act, MFaultLvl) in a public OPC UA client for NJ/NX axes:
+  GitHub code index file id 36696277754;
+* Cmd members and meanings (Pos, Vel, AccDec with its sign rule, Jerk, Trq):
+  W507 p.6-28, https://easymanua.ls/omron/nx701-1/manual?p=180.
+* `Obsr` (axis observation, e.g. 16#644C): not found in the two public lists;
+  kept, not refused, because OMRON has observation-level axis events and the
+  common motion variable has `_MC_COM.Obsr.Active` in a real Sysmac project
+  (GitHub code index file id 59319135740).  Unconfirmed.
+
+Left out because their types are not confirmed: `Cfg.AxType`, `Scale.Units`,
+`Scale.CountMode` (OMRON enumerations).  `Cfg.AxEnable` is a BOOL here; on the
+NJ it may be an enumeration (unconfirmed).
+
+    Axis.Cmd.Pos / .Vel / .AccDec       command position / velocity / acc.-dec.
+    Axis.Act.Pos / .Vel                 actual position / velocity
     Axis.Status.Disabled ... .Homing    PLCopen state, exactly one TRUE
-    Axis.Details.Homed                  home defined
+                                        (.Ready: TRUE at Standstill, assumed)
+    Axis.Details.Idle / .InPosWaiting / .Homed / .VelLimit
+    Axis.Dir.Posi / .Nega               command velocity direction
+    Axis.DrvStatus.ServoOn / .Ready / .MainPower
     Axis.MFaultLvl.Active / .Code       axis error (ErrorStop) and its ErrorID
+    Axis.Obsr.Active / .Code            axis observation (no stop)
     Axis.Cfg.AxNo / Axis.Cfg.AxEnable   which simulated axis this variable is
                                         (AxEnable FALSE: not bound to any axis)
+
+Members the simulation does not model hold 0/FALSE: Cmd.Jerk, Cmd.Trq,
+Act.Trq, Act.TimeStamp, Details.InHome, Status.Coordinated, the drive inputs.
 
 Also the enumerations of the motion FB inputs, with OMRON's names:
 `_eMC_BUFFER_MODE` and `_eMC_DIRECTION`.
@@ -26,28 +53,58 @@ from .axis import Axis, AxisState
 AXIS_REF_SOURCE = """
 TYPE
     AXIS_REF_STA : STRUCT
+        Ready : BOOL;
         Disabled : BOOL;
         Standstill : BOOL;
         Discrete : BOOL;
         Continuous : BOOL;
         Synchronized : BOOL;
+        Homing : BOOL;
         Stopping : BOOL;
         ErrorStop : BOOL;
-        Homing : BOOL;
+        Coordinated : BOOL;
     END_STRUCT;
     AXIS_REF_DET : STRUCT
+        Idle : BOOL;
+        InPosWaiting : BOOL;
         Homed : BOOL;
+        InHome : BOOL;
+        VelLimit : BOOL;
+    END_STRUCT;
+    AXIS_REF_DIR : STRUCT
+        Posi : BOOL;
+        Nega : BOOL;
+    END_STRUCT;
+    AXIS_REF_STA_DRV : STRUCT
+        ServoOn : BOOL;
+        Ready : BOOL;
+        MainPower : BOOL;
+        P_OT : BOOL;
+        N_OT : BOOL;
+        HomeSw : BOOL;
+        Home : BOOL;
+        ImdStop : BOOL;
+        Latch1 : BOOL;
+        Latch2 : BOOL;
+        DrvAlarm : BOOL;
+        DrvWarning : BOOL;
+        ILA : BOOL;
+        CSP : BOOL;
+        CSV : BOOL;
+        CST : BOOL;
     END_STRUCT;
     AXIS_REF_CMD_DATA : STRUCT
         Pos : LREAL;
         Vel : LREAL;
+        AccDec : LREAL;
+        Jerk : LREAL;
+        Trq : LREAL;
     END_STRUCT;
     AXIS_REF_ACT_DATA : STRUCT
         Pos : LREAL;
         Vel : LREAL;
-    END_STRUCT;
-    AXIS_REF_DEV_DATA : STRUCT
-        Pos : LREAL;
+        Trq : LREAL;
+        TimeStamp : ULINT;
     END_STRUCT;
     MC_REF_EVENT : STRUCT
         Active : BOOL;
@@ -56,15 +113,25 @@ TYPE
     AXIS_REF_CFG : STRUCT
         AxNo : UINT;
         AxEnable : BOOL;
+        NodeAddress : UINT;
+    END_STRUCT;
+    AXIS_REF_SCALE : STRUCT
+        Num : UDINT;
+        Den : LREAL;
+        MaxPos : LREAL;
+        MinPos : LREAL;
     END_STRUCT;
     AXIS_REF : STRUCT
+        Cfg : AXIS_REF_CFG;
+        Scale : AXIS_REF_SCALE;
         Status : AXIS_REF_STA;
         Details : AXIS_REF_DET;
+        Dir : AXIS_REF_DIR;
+        DrvStatus : AXIS_REF_STA_DRV;
         Cmd : AXIS_REF_CMD_DATA;
         Act : AXIS_REF_ACT_DATA;
-        Dev : AXIS_REF_DEV_DATA;
         MFaultLvl : MC_REF_EVENT;
-        Cfg : AXIS_REF_CFG;
+        Obsr : MC_REF_EVENT;
     END_STRUCT;
     _eMC_BUFFER_MODE : (_mcAborting := 0, _mcBuffered := 1, _mcBlendingLow := 2,
         _mcBlendingPrevious := 3, _mcBlendingNext := 4, _mcBlendingHigh := 5);
@@ -103,33 +170,51 @@ class AxisRefWriter:
     """Copies the simulation state of one axis into its AXIS_REF value.
 
     Runs twice per scan for every axis, so it keeps the member structs at hand
-    (struct identities never change) and rewrites the Status, Details and
-    MFaultLvl members only when the state, homing or fault code changed.
+    (struct identities never change) and rewrites the Status, Details, Dir,
+    DrvStatus, MFaultLvl and Obsr members only when what they show changed.
     """
 
-    __slots__ = ("axis", "ref", "_cmd", "_act", "_dev", "_status", "_details", "_fault", "_shown")
+    __slots__ = ("axis", "ref", "_cmd", "_act", "_status", "_details", "_dir", "_drive",
+                 "_fault", "_obsr", "_shown")
 
     def __init__(self, axis: Axis, ref):
         self.axis = axis
         self.ref = ref
-        self._cmd, self._act, self._dev = ref.v_CMD, ref.v_ACT, ref.v_DEV
-        self._status, self._details, self._fault = ref.v_STATUS, ref.v_DETAILS, ref.v_MFAULTLVL
-        self._shown = None  # (state, homed, fault code) last written
+        self._cmd, self._act = ref.v_CMD, ref.v_ACT
+        self._status, self._details, self._dir = ref.v_STATUS, ref.v_DETAILS, ref.v_DIR
+        self._drive, self._fault, self._obsr = ref.v_DRVSTATUS, ref.v_MFAULTLVL, ref.v_OBSR
+        self._shown = None  # what the flag members showed when last written
 
     def write(self) -> None:
         axis = self.axis
         cmd, act = self._cmd, self._act
         cmd.v_POS = axis.cmd_pos
-        cmd.v_VEL = axis.cmd_vel
+        cmd.v_VEL = velocity = axis.cmd_vel
+        cmd.v_ACCDEC = axis.cmd_accdec
         act.v_POS = axis.act_pos
         act.v_VEL = axis.act_vel
-        self._dev.v_POS = axis.cmd_pos - axis.act_pos
-        shown = (axis.state, axis.homed, axis.fault_code)
+        shown = (axis.state, axis.homed, axis.fault_code, axis.observation_code, axis.vel_limit,
+                 axis.in_pos_waiting, axis.idle, axis.powered, (velocity > 0) - (velocity < 0))
         if shown != self._shown:
             self._shown = shown
-            status = self._status
-            for state, attr in _STATUS_ATTR.items():
-                setattr(status, attr, state == axis.state)
-            self._details.v_HOMED = axis.homed
-            self._fault.v_ACTIVE = axis.state == AxisState.ERRORSTOP
-            self._fault.v_CODE = int(axis.fault_code)
+            self._write_flags(axis, shown[-1])
+
+    def _write_flags(self, axis: Axis, direction: int) -> None:
+        status = self._status
+        for state, attr in _STATUS_ATTR.items():
+            setattr(status, attr, state == axis.state)
+        status.v_READY = axis.state == AxisState.STANDSTILL
+        details = self._details
+        details.v_IDLE = axis.idle
+        details.v_INPOSWAITING = axis.in_pos_waiting
+        details.v_HOMED = axis.homed
+        details.v_VELLIMIT = axis.vel_limit
+        self._dir.v_POSI = direction > 0
+        self._dir.v_NEGA = direction < 0
+        drive = self._drive
+        drive.v_SERVOON = axis.powered
+        drive.v_READY = drive.v_MAINPOWER = True
+        self._fault.v_ACTIVE = axis.state == AxisState.ERRORSTOP
+        self._fault.v_CODE = int(axis.fault_code)
+        self._obsr.v_ACTIVE = axis.observation_code != 0
+        self._obsr.v_CODE = int(axis.observation_code)

@@ -11,9 +11,13 @@ declares a variable of that name: then the count goes to stderr).  The JSON is
 strict: a non-finite REAL/LREAL is the string "NaN", "Infinity" or
 "-Infinity" (and `--set X='"Infinity"'` gives one).
 
-Exit 0 on success, 1 on diagnostics or runtime faults, 2 on usage errors.
-An `--until` output still FALSE after `--max-cycles` scans is no fault: the
-outputs are printed, stderr says so, and the exit status stays 0.
+With `--until`, the JSON also says whether the output became TRUE:
+"reached" (true/false, last; to stderr instead when the POU declares a
+variable of that name).
+
+Exit 0 on success, 1 on diagnostics, runtime faults or an `--until` output
+still FALSE after `--max-cycles` scans (the outputs are printed all the same,
+with "reached": false, and stderr says so), 2 on usage errors.
 """
 
 from __future__ import annotations
@@ -25,24 +29,26 @@ import sys
 from st_runtime.api import CallError, LoadError, load
 from st_runtime.values import JsonValueError, json_text
 
-from .run import MAX_FAULT_LINES, kind_hint, period_option, source_problem
+from .run import DIALECT_HELP, MAX_FAULT_LINES, kind_hint, period_option, source_problem
 
 
 def add_arguments(parser) -> None:
     parser.add_argument("paths", nargs="+", metavar="FILE_OR_DIR",
-                        help="ST files, or directories whose .st files form one program")
+                        help="ST files, PLCopen TC6 or IEC 61131-10 .xml files, or directories whose .st files form one program")
     parser.add_argument("--pou", required=True, metavar="NAME", help="the FUNCTION or FUNCTION_BLOCK")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=JSON",
                         help="an input value as JSON, e.g. 'Pose=[0,0,150,0,0,0]'")
     parser.add_argument("--until", metavar="OUTPUT", help="BOOL output that ends the calls when TRUE")
     parser.add_argument("--max-cycles", type=int, default=1000, metavar="N",
                         help="most scans for an FB with --until (default 1000)")
-    parser.add_argument("--period", default="1ms", help="scan period for FB calls (default 1ms)")
+    parser.add_argument("--period", default="1ms", metavar="TIME",
+                        help="scan period for FB calls: a duration with its unit, 1ms, 250us or"
+                             " T#2ms (default 1ms)")
     parser.add_argument("--json", action="store_true",
                         help="print the outputs as one strict JSON object (the default; a"
                              ' non-finite REAL/LREAL is the string "NaN", "Infinity" or'
                              ' "-Infinity", which --set also accepts)')
-    parser.add_argument("--dialect", choices=("iec", "nj", "codesys"), default="iec")
+    parser.add_argument("--dialect", choices=("iec", "nj", "codesys"), default="iec", help=DIALECT_HELP)
 
 
 def usage(message: str) -> int:
@@ -58,21 +64,66 @@ def _finite_float(text: str) -> float:
     return value
 
 
+#: Digits of the longest JSON integer a --set may hold: LREAL's largest value
+#: written out has 309; Python refuses 4,300 in its own words.
+MAX_INT_DIGITS = 1000
+#: Nesting of a --set JSON value (an ST value nests arrays and structs, never this deep).
+MAX_JSON_DEPTH = 64
+
+
+def _bounded_int(text: str) -> int:
+    """A JSON integer of at most MAX_INT_DIGITS digits (100,000 digits took
+    Python's own wording to the user)."""
+    if len(text.lstrip("-")) > MAX_INT_DIGITS:
+        raise ValueError(f"a number of {len(text.lstrip('-')):,} digits is beyond any ST number")
+    return int(text)
+
+
+def _check_json(value) -> None:
+    """Refuse what JSON allows and no ST value holds: nesting beyond
+    MAX_JSON_DEPTH, and strings with a lone UTF-16 surrogate ("\\ud800")."""
+    work = [(value, 1)]
+    while work:
+        item, depth = work.pop()
+        if depth > MAX_JSON_DEPTH:
+            raise ValueError(f"nested more than {MAX_JSON_DEPTH} levels deep")
+        if isinstance(item, str):
+            try:
+                item.encode("utf-8")
+            except UnicodeEncodeError as exc:
+                raise ValueError(f"the string holds a lone UTF-16 surrogate (\\u{ord(item[exc.start]):04x}),"
+                                 " which is no character") from None
+        elif isinstance(item, list):
+            work.extend((x, depth + 1) for x in item)
+        elif isinstance(item, dict):
+            work.extend((x, depth + 1) for pair in item.items() for x in pair)
+
+
+def _shown(text: str, width: int = 40) -> str:
+    return repr(text if len(text) <= width else text[:width] + "...")
+
+
 def parse_sets(items: list[str]) -> dict:
     inputs = {}
     for item in items:
         name, sep, text = item.partition("=")
         if not sep or not name.strip():
-            raise ValueError(f"--set {item!r}: expected NAME=JSON")
-        if name.strip().upper() in (key.upper() for key in inputs):
-            raise ValueError(f"--set {name.strip()}: given twice")
+            raise ValueError(f"--set {_shown(item)}: expected NAME=JSON")
+        name = name.strip()
+        shown_name = name if len(name) <= 60 else name[:60] + "..."
+        if name.upper() in (key.upper() for key in inputs):
+            raise ValueError(f"--set {shown_name}: given twice")
         try:
-            inputs[name.strip()] = json.loads(text, parse_float=_finite_float)
+            value = json.loads(text, parse_float=_finite_float, parse_int=_bounded_int)
+            _check_json(value)
         except json.JSONDecodeError as exc:
-            raise ValueError(f"--set {name.strip()}: not JSON ({exc.msg}): {text!r}; "
+            raise ValueError(f"--set {shown_name}: not JSON ({exc.msg}): {_shown(text)}; "
                              "strings need quotes, e.g. 'PT=\"T#1s\"'") from None
+        except RecursionError:
+            raise ValueError(f"--set {shown_name}: nested more than {MAX_JSON_DEPTH} levels deep") from None
         except ValueError as exc:
-            raise ValueError(f"--set {name.strip()}: {exc}") from None
+            raise ValueError(f"--set {shown_name}: {exc}") from None
+        inputs[name] = value
     return inputs
 
 
@@ -103,14 +154,19 @@ def run(args) -> int:
     except CallError as exc:
         hint = kind_hint(project, args.pou, "stgen run --program runs it")
         return usage(f"{exc}{hint}" if str(exc).startswith("no FUNCTION") else str(exc))
-    print(json_text(result["outputs"]))
-    if "CYCLES" in project.program.pous[args.pou.upper()].variables:
+    outputs = dict(result["outputs"])
+    declared = project.program.pous[args.pou.upper()].variables
+    if args.until and "REACHED" not in declared:
+        outputs["reached"] = result["reached"]
+    print(json_text(outputs))
+    if "CYCLES" in declared:
         print(f"stgen call: {result['cycles']} cycle(s); the \"cycles\" above is {args.pou}'s own",
               file=sys.stderr)
     faults = result["faults"]
     for record in faults[:MAX_FAULT_LINES]:
         print(record.render(), file=sys.stderr)
-    if args.until and not result.get("reached", True):
+    missed = bool(args.until) and not result["reached"]
+    if missed:
         print(f"stgen call: {args.until} did not become TRUE within {args.max_cycles} cycles",
               file=sys.stderr)
-    return 1 if faults else 0
+    return 1 if faults or missed else 0

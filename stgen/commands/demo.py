@@ -9,12 +9,21 @@
    (+100 mm in x, y, z at 20 mm/s, +6°, +6°, +10° in α, β, γ at 2°/s, each
    out and back to (0, 0, 150, 0, 0, 0), twelve commands in one run), the
    Airy wave and the random wave;
-3. prints a summary table (scenario, duration, scans, max error, faults), the
-   durations SP_Controller planned for the moves, and writes for each scenario ``DIR/<scenario>.csv`` (every scan) and
-   ``DIR/<scenario>.png`` (pose and cylinder positions over time).
+3. prints a summary table (scenario, duration, scans, max error, faults),
+   a table of the largest |v| and |a| of every cylinder's set-point (what
+   SP_Controller hands to MC_SyncMoveAbsolute, finite differences at the task
+   period) against the actuator's limits, and Cmd.Pos after any saturation by
+   the axis; the durations SP_Controller planned for the moves; the estimated
+   NJ501 time of SP_Controller per scan (max, p99, mean against the period and
+   OMRON's 80 % rule; st_runtime/compiler/cost.py); and writes for each
+   scenario ``DIR/<scenario>.csv`` (every scan) and ``DIR/<scenario>.png``
+   (pose, cylinder positions, error, velocity and acceleration, following
+   error over time).
 
-``--quick`` shortens the waves to 10 s. Exit 1 if any scenario fails (error
-above 1e-6 mm or any fault).
+``--quick`` shortens every scenario: waves of 5 s, point-to-point moves of a
+tenth of each displacement with 0.1 s of standstill after each (a few MB of
+CSV in all). Exit 1 if any scenario fails (error above 1e-6 mm, any fault, or
+a set-point velocity or acceleration above the actuator's limit in any scan).
 """
 
 from __future__ import annotations
@@ -26,13 +35,20 @@ from pathlib import Path
 from stgen.commands.config_option import add_config_argument, config_from_args
 from stgen.exports.folder import ForeignFileError
 
-QUICK_WAVE_SECONDS = 10.0
+#: ``--quick``: seconds of wave, fraction of each point-to-point move, standstill after a move.
+QUICK_WAVE_SECONDS = 5.0
+QUICK_MOVE_FRACTION = 0.1
+QUICK_SETTLE_SECONDS = 0.1
+#: The demo's axes trail their commands by a first-order lag, so the figures' following-error panel shows a
+#: real servo (the commanded positions, compared with the reference, do not depend on it).
+DEMO_SERVO_LAG_S = 0.002
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out", metavar="DIR", default="demo", help="output folder (default: ./demo)")
     parser.add_argument("--quick", action="store_true",
-                        help=f"waves of {QUICK_WAVE_SECONDS:g} s instead of 60 s")
+                        help=f"every scenario shortened: waves of {QUICK_WAVE_SECONDS:g} s instead of 60 s,"
+                             f" point-to-point moves of {QUICK_MOVE_FRACTION:g} of each displacement")
     add_config_argument(parser)
 
 
@@ -61,7 +77,8 @@ def run(args: argparse.Namespace) -> int:
 
     from st_runtime.api import LoadError
 
-    scenarios = [s.with_wave_seconds(QUICK_WAVE_SECONDS) if args.quick else s for s in SCENARIOS]
+    scenarios = [s.shortened(QUICK_WAVE_SECONDS, QUICK_MOVE_FRACTION, QUICK_SETTLE_SECONDS) if args.quick
+                 else s for s in SCENARIOS]
     try:
         results = _run_all(scenarios, config, console)
     except LoadError as error:
@@ -77,11 +94,15 @@ def run(args: argparse.Namespace) -> int:
         print(f"stgen demo: error: cannot write {error.filename or out}: {error.strerror}", file=sys.stderr)
         return 1
     console.print(_summary(results, config))
+    console.print(_limits_table(results, config))
     for result in results:
         if len(result.move_durations_s) > 1:
             durations = ", ".join(f"{d:.3f}" for d in result.move_durations_s)
             console.print(f"{result.scenario.name}: {len(result.move_durations_s)} moves planned by SP_Controller "
                           f"(SpMoveDuration): {durations} s", soft_wrap=True)
+    for result in results:
+        if result.nj_time is not None:
+            console.print(f"{result.scenario.name}: SP_Controller {_nj_time(result.nj_time)}", soft_wrap=True)
     console.print(f"Traces and figures in {out}/")
     failed = [r.scenario.name for r in results if not r.passed]
     if failed:
@@ -117,7 +138,7 @@ def _run_all(scenarios, config, console):
             def report(done, total, task=task):
                 progress.update(task, completed=done, total=total, sim=f"{done * period:.1f} s")
 
-            results.append(run_scenario(scenario, config, progress=report))
+            results.append(run_scenario(scenario, config, progress=report, servo_lag_s=DEMO_SERVO_LAG_S))
     return results
 
 
@@ -129,12 +150,22 @@ def _write_outputs(result, out: Path) -> None:
     scenario_figure(result, out / f"{result.scenario.name}.png")
 
 
+def _nj_time(t) -> str:
+    """One line: the estimated NJ501 time per scan against the period and the 80 % rule."""
+    pct = 100 / t.period_ns
+    rule = "within" if t.load_ok else "[red]above[/]"
+    return (f"estimated NJ501 time per scan: max {t.max_ns / 1e3:.1f} us ({t.max_ns * pct:.1f} %), "
+            f"p99 {t.p99_ns / 1e3:.1f} us, mean {t.mean_ns / 1e3:.1f} us ({t.mean_ns * pct:.1f} %) of "
+            f"{t.period_ns / 1e3:g} us; {rule} OMRON's 80 % guideline")
+
+
 def _summary(results, config):
     from rich.table import Table
 
     table = Table(title=f"Scenarios: SP_Controller + 6 axes, {config.task.period_s * 1000:g} ms scans, vs NumPy reference")
     for column, justify in (("scenario", "left"), ("duration", "right"), ("scans", "right"),
-                            ("max error", "right"), ("faults", "right"), ("real time", "right"), ("result", "left")):
+                            ("max error", "right"), ("faults", "right"), ("max |v|", "right"), ("max |a|", "right"),
+                            ("real time", "right"), ("result", "left")):
         table.add_column(column, justify=justify, no_wrap=True)
     for result in results:
         table.add_row(
@@ -143,7 +174,34 @@ def _summary(results, config):
             f"{result.scans:,}",
             f"{result.max_error_mm:.2e} mm",
             str(result.fault_count),
+            f"{result.limits.max_velocity.max():.1f} mm/s",
+            f"{result.limits.max_acceleration.max():.1f} mm/s²",
             f"{result.realtime_factor:.1f}x",
             "[green]pass[/]" if result.passed else "[red]FAIL[/]",
         )
+    return table
+
+
+def _limits_table(results, config):
+    """Per scenario and cylinder: the largest |v| and |a| of the set-points against the actuator's limits."""
+    from rich.table import Table
+
+    actuator = config.actuator
+    table = Table(title=f"Cylinder set-points handed to MC_SyncMoveAbsolute, every scan: largest |v| (limit "
+                        f"{actuator.max_velocity:g} mm/s) and |a| (limit {actuator.max_acceleration:g} mm/s²)")
+    table.add_column("scenario", no_wrap=True)
+    table.add_column("", no_wrap=True)
+    for leg in range(1, 7):
+        table.add_column(f"q{leg}", justify="right", no_wrap=True)
+    table.add_column("Cmd.Pos", justify="right", no_wrap=True)
+    table.add_column("", no_wrap=True)
+    for result in results:
+        for label, values, limit, after in (
+            ("|v| mm/s", result.limits.max_velocity, actuator.max_velocity, result.commanded_limits.max_velocity),
+            ("|a| mm/s²", result.limits.max_acceleration, actuator.max_acceleration,
+             result.commanded_limits.max_acceleration),
+        ):
+            inside = bool((values <= limit).all())
+            table.add_row(result.scenario.name, label, *(f"{v:.1f}" for v in values), f"{after.max():.1f}",
+                          "[green]within[/]" if inside else "[red]ABOVE[/]")
     return table

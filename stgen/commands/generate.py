@@ -1,8 +1,9 @@
-"""``stgen generate [--config FILE] [--target nj|iec] [--determinant table|unrolled|lu] --out DIR``.
+"""``stgen generate [--config FILE] [--target nj|iec|sysmac-xml|plcopen] [--determinant table|unrolled|lu] [--tests] --out DIR``.
 
 Renders the platform's POUs from ``st_templates/`` and writes them for one
-target: ``nj`` (Sysmac Studio bodies and variable tables) or ``iec`` (plain
-IEC 61131-3 files). A configuration that cannot be read or is invalid is
+target: ``nj`` (Sysmac Studio bodies and variable tables), ``iec`` (plain
+IEC 61131-3 files), ``sysmac-xml`` (one IEC 61131-10 XML file that Sysmac
+Studio 1.30+ imports) or ``plcopen`` (one PLCopen TC6 XML 2.01 file). A configuration that cannot be read or is invalid is
 reported as ``file[:line:col]: key: rule`` with exit status 1.
 
 The folder is kept in step with the configuration: generated files of an
@@ -20,12 +21,12 @@ from pathlib import Path
 
 from stgen.commands.config_option import add_config_argument, config_from_args
 from stgen.config import PlatformConfig
-from stgen.exports import iec, sysmac
+from stgen.exports import iec, plcopen_xml, sysmac, sysmac_xml
 from stgen.exports.folder import FolderUpdate, ForeignFileError
 from stgen.render import DETERMINANT_METHODS, RenderedProgram, RenderError, RenderOptions, render_program
 
 #: Target name -> writer(program, out_dir) -> FolderUpdate.
-TARGETS = {"nj": sysmac.write, "iec": iec.write}
+TARGETS = {"nj": sysmac.write, "iec": iec.write, "sysmac-xml": sysmac_xml.write, "plcopen": plcopen_xml.write}
 
 
 def write_program(program: RenderedProgram, out_dir: str | Path, target: str = "nj") -> FolderUpdate:
@@ -45,11 +46,17 @@ def generate(out_dir: str | Path, target: str = "nj", config: PlatformConfig | N
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_config_argument(parser)
     parser.add_argument("--target", choices=sorted(TARGETS), default="nj",
-                        help="nj: Sysmac Studio bodies + variable tables; iec: plain IEC 61131-3 files (default: nj)")
+                        help="nj: Sysmac Studio bodies + variable tables; iec: plain IEC 61131-3 files; "
+                             "sysmac-xml: one IEC 61131-10 XML file for Sysmac Studio 1.30+; "
+                             "plcopen: one PLCopen TC6 XML 2.01 file (default: nj)")
     parser.add_argument("--determinant", choices=DETERMINANT_METHODS, default="table",
                         help="Leibniz determinant as a permutation table loop, fully unrolled, "
                              "or the FK's det J from the LU diagonal (default: table)")
     parser.add_argument("--out", metavar="DIR", required=True, help="output folder (created if missing)")
+    parser.add_argument("--tests", action="store_true",
+                        help="also the test benches: one PROGRAM per bench (TB_...) with vectors from the "
+                             "NumPy reference and results in TB_Globals; with --target iec also "
+                             "test_benches.st for stgen test")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -61,7 +68,8 @@ def run(args: argparse.Namespace) -> int:
               file=sys.stderr)
         return 2
     try:
-        update = generate(args.out, args.target, config, RenderOptions(determinant=args.determinant))
+        update = generate(args.out, args.target, config, RenderOptions(determinant=args.determinant,
+                                                                          tests=args.tests))
     except (RenderError, ForeignFileError) as error:
         print(f"stgen generate: error: {error}", file=sys.stderr)
         return 1

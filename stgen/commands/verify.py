@@ -3,7 +3,9 @@
 Renders the kinematics for the configuration, runs them in st_runtime and
 holds every result against the NumPy reference (see :mod:`stgen.verify`).
 Prints one row per check: POU, what was compared, cases, max error and its
-limit, the FK iteration counts, PASS or FAIL (with the first problems).
+limit, the FK iteration counts, PASS or FAIL (with the first problems); then
+the estimated NJ501 time of SP_ForwardKinematics per scan and which
+IterationsPerScan fits the configured period.
 Exit status 0 when every check passes, 1 otherwise or for a bad
 configuration.
 """
@@ -77,7 +79,9 @@ def run(args: argparse.Namespace) -> int:
 
     started = time.perf_counter()
     try:
-        checks = run_verification(config, poses=args.poses, seed=args.seed, fk_poses=min(args.fk_poses, args.poses))
+        timing: list = []
+        checks = run_verification(config, poses=args.poses, seed=args.seed, fk_poses=min(args.fk_poses, args.poses),
+                                  timing=timing)
     except LoadError as error:
         print(f"stgen verify: error: the rendered kinematics do not load:\n{error.render()}", file=sys.stderr)
         return 1
@@ -85,6 +89,8 @@ def run(args: argparse.Namespace) -> int:
         print(f"stgen verify: error: {error}", file=sys.stderr)
         return 1
     print(format_table(checks))
+    for estimate in timing:
+        print("\n" + estimate.render())
     failed = [c for c in checks if not c.passed]
     verdict = "all checks passed" if not failed else f"{len(failed)} of {len(checks)} checks FAILED"
     print(f"\n{verdict} ({time.perf_counter() - started:.1f} s)")

@@ -11,7 +11,8 @@ from pathlib import Path
 
 from stgen.exports import GENERATED_BANNER
 from stgen.exports.folder import FolderUpdate, write_files
-from stgen.render import EXTERNAL, GLOBAL, IN_OUT, INPUT, INTERNAL, OUTPUT, Pou, RenderedProgram, Variable
+from stgen.render import (BENCH_TEST_FILE, EXTERNAL, GLOBAL, IN_OUT, INPUT, INTERNAL, OUTPUT, Pou,
+                          RenderedProgram, Variable)
 
 #: (keyword, usage, constant) in the order the sections are written.
 _SECTIONS = (
@@ -109,6 +110,8 @@ def files(program: RenderedProgram) -> dict[str, str]:
         listing.append(f"- `{name}`: {_kind_label(pou)}")
     globals_ = ", ".join(f"`{p.name}.st`" for p in program.pous if p.kind == "VAR_GLOBAL")
     texts["README.md"] = README.format(listing="\n".join(listing), globals=globals_)
+    if program.bench_tests:   # stgen generate --tests: the benches' TEST file, for stgen test
+        texts[BENCH_TEST_FILE] = f"{GENERATED_BANNER}\n{program.bench_tests.lstrip()}"
     return texts
 
 

@@ -117,7 +117,21 @@ the header comment) and `<POU>.variables.tsv` its variables, tab-separated.
 |---|---|
 {listing}
 
-## Bringing them in, in this order
+## Bringing them in
+
+**Sysmac Studio 1.30 or later: one import.** `stgen generate --target
+sysmac-xml --out DIR` writes `{xml_file}` (checked in as
+`generated/sysmac-xml/{xml_file}`): one IEC 61131-10 XML file with every POU
+below (its variables and ST body, in dependency order) and the global
+variables, Constant and Network Publish set. Import it into the project that
+holds the NJ501 and its six axes with Sysmac Studio's XML import (1.30 and
+later; the menu entry is given in the Sysmac Studio Operation Manual, W504,
+of your version). The axis variables ({axes}) are not in the file: Sysmac
+Studio creates them with the axes, as in step 1 below. Then do steps 3 and 4
+below: the file format carries no task assignment.
+
+**Older Sysmac Studio versions (no XML import): the files of this folder,
+in this order.**
 
 1. **Global variables.** Open *Programming > Data > Global Variables*. Open
    `{global_table}` in a spreadsheet, copy the rows below the header and paste
@@ -143,8 +157,10 @@ the header comment) and `<POU>.variables.tsv` its variables, tab-separated.
      clear where it says `FALSE` (the controller's command and status
      variables, which `SP_Controller` reads and writes).
    - Algorithm: paste the whole of `<POU>.st` into the ST editor.
-3. Assign the program `SP_Controller` to the primary periodic task
-   (*Configurations and Setup > Task Settings*, period as configured).
+3. Assign the program `SP_Controller` to the primary periodic task:
+   *Configurations and Setup > Task Settings*, *Program Assignment
+   Settings*, add `SP_Controller` under the primary periodic task (period
+   as configured, e.g. 1 ms).
 4. *Project > Check All Programs* and *Build*.
 
 ## Commanding the controller
@@ -172,10 +188,39 @@ before pasting and reorder the spreadsheet's columns if it differs: a row
 pasted with shifted columns is only caught at *Build*. Array initial values
 use Sysmac Studio's `[a, b, ...]` form, row-major for two dimensions.
 
-The code respects the NJ rules of SPEC section 5: LREAL for all kinematics,
+The code respects the NJ rules of docs/mathematics.md section 5: LREAL for all kinematics,
 no recursion, no pointers, identifiers of at most 127 bytes without leading,
 trailing or double underscores and not named like an instruction, and its own
 quadrant-correct ATAN2 (`SP_Atan2`), as the NJ has none.
+"""
+
+
+BENCH_README = """
+## Test benches (`stgen generate --tests`)
+
+The `TB_...` programs prove on the controller that the downloaded POUs
+compute what the NumPy reference computes: each holds vectors the reference
+computed (constants in its table), runs a few cases a scan (the FK bench one
+FB call of IterationsPerScan Newton steps, about 0.2 ms at 49.5 us a step,
+docs/nj501.md) and reports in the global variables of `TB_Globals` (already in
+`{global_table}`).
+
+1. Bring in `TB_Globals` and the `TB_...` programs like the POUs above, after
+   them.
+2. Assign the `TB_...` programs to the primary periodic task (*Task Settings*,
+   program assignment); they command no axis, so `SP_Controller` may stay
+   unassigned or powered off meanwhile.
+3. Transfer and switch to RUN mode. Within a few hundred scans every
+   `Tb...Done` is TRUE.
+4. Read the results in a Watch Tab: `Tb...Pass` TRUE (no failed case),
+   `Tb...Failures` the failed cases, `Tb...WorstError` the largest difference
+   (IK mm, FK mm and deg, determinant and LU relative), `Tb...CasesRun`.
+
+Each bench starts once, from its initial values (`NextCase` = 0); to run it
+again, transfer the project again or cycle the power (non-retained variables
+start from their initial values, W501 on the Retain attribute; not tried on
+a controller). `stgen generate --target iec --tests` writes the same benches
+with `test_benches.st`, which `stgen test` runs in the simulation.
 """
 
 
@@ -207,6 +252,7 @@ def files(program: RenderedProgram) -> dict[str, str]:
         texts[table] = pou_table(pou)
         listing.append(f"| `{body}`, `{table}` | {KIND_NAMES[pou.kind]} `{pou.name}` |")
     texts["README.md"] = README.format(
+        xml_file="StewartPlatform.xml",
         listing="\n".join(listing),
         axes=", ".join(f"`{v.name}`" for v in system_created(globals_)) or "none",
         global_table=GLOBAL_TABLE,
@@ -215,6 +261,8 @@ def files(program: RenderedProgram) -> dict[str, str]:
         commands=interface_table(globals_, COMMAND_PREFIX),
         status=interface_table(globals_, STATUS_PREFIX),
     )
+    if program.bench_tests:    # stgen generate --tests
+        texts["README.md"] += BENCH_README.format(global_table=GLOBAL_TABLE)
     return texts
 
 

@@ -1,4 +1,4 @@
-"""NumPy reference for the Stewart-platform kinematics (SPEC sections 1–4).
+"""NumPy reference for the Stewart-platform kinematics (docs/mathematics.md sections 1–4).
 
 The generated ST is proven against these functions. Modules, one job each:
 

@@ -1,4 +1,4 @@
-"""Cycloidal point-to-point motion (SPEC section 4, [19–28]).
+"""Cycloidal point-to-point motion (docs/mathematics.md section 4, [19–28]).
 
 h = pf − p0, τ = (t − t0)/T, σ(τ) = τ − sin(2πτ)/(2π), p = p0 + h·σ(τ).
 Peaks per coordinate: velocity 2h/T, acceleration 2πh/T², jerk 4π²h/T³.
@@ -30,7 +30,7 @@ def _limits_per_coordinate(limits: TrajectoryConfig) -> tuple[np.ndarray, np.nda
 
 
 def cycloidal_duration(displacement, limits: TrajectoryConfig) -> float | np.ndarray:
-    """Smallest T keeping every coordinate of ``h[..., 6]`` inside its limits (SPEC 4).
+    """Smallest T keeping every coordinate of ``h[..., 6]`` inside its limits (docs/mathematics.md section 4).
 
     T = max over the six coordinates of 2|h|/v_max, √(2π|h|/a_max) and
     ∛(4π²|h|/j_max), so all coordinates share T and start and stop together.
@@ -47,6 +47,15 @@ def cycloidal_duration(displacement, limits: TrajectoryConfig) -> float | np.nda
     )
     longest = durations.max(axis=(0, -1))
     return float(longest) if longest.ndim == 0 else longest
+
+
+def executed_duration(duration: float, period: float) -> float:
+    """T as TRJ_Cycloidal runs it: a move shorter than one task period is output at once (T = 0).
+
+    Such a move is tiny: the jerk limit keeps |h| <= j_max·T³/(4π²), 1.3e-7 mm at
+    5000 mm/s³ and T < 1 ms.
+    """
+    return 0.0 if duration < period else duration
 
 
 def _progress(duration: float, t, t0: float) -> np.ndarray:

@@ -1,4 +1,4 @@
-"""Forward kinematics by Newton–Raphson, step for step as the ST FB does it (SPEC 3, [13–18, 34–36]).
+"""Forward kinematics by Newton–Raphson, step for step as the ST FB does it (docs/mathematics.md section 3, [13–18, 34–36]).
 
 Per iteration, at the current estimate a (mm and radians):
 

@@ -1,4 +1,4 @@
-"""Joint positions and the platform rotation (SPEC section 1, equations [2-4], [6,7]).
+"""Joint positions and the platform rotation (docs/mathematics.md section 1, equations [2-4], [6,7]).
 
 Angles inside this module are radians; the configuration stores the pair
 angles in degrees (``phi_b_deg``, ``phi_p_deg``).

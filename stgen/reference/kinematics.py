@@ -1,8 +1,8 @@
-"""Inverse kinematics, the FK residual and its analytic Jacobian (SPEC sections 2 and 3).
+"""Inverse kinematics, the FK residual and its analytic Jacobian (docs/mathematics.md sections 2 and 3).
 
 Poses are arrays ``[..., 6]`` = (x, y, z, α, β, γ). The public IK takes
 degrees (the interface unit); :func:`residual` and :func:`jacobian` take
-radians because Newton–Raphson iterates in radians (SPEC 3).
+radians because Newton–Raphson iterates in radians (docs/mathematics.md section 3).
 """
 
 from __future__ import annotations
@@ -48,7 +48,7 @@ class InverseKinematicsResult:
     """Cylinder positions of many poses.
 
     ``positions[..., 6]``: qi = li − l0 in mm [12]; ``leg_lengths[..., 6]``: li;
-    ``in_stroke[..., 6]``: True where stroke.min <= qi <= stroke.max (SPEC 2);
+    ``in_stroke[..., 6]``: True where stroke.min <= qi <= stroke.max (docs/mathematics.md section 2);
     ``status[...]``: :class:`ErrorCode` values per pose (OK, UNREACHABLE, NON_FINITE).
     """
 
@@ -68,7 +68,7 @@ def inverse_kinematics(
 ) -> InverseKinematicsResult:
     """Cylinder positions qi = |R·Pi + di| − l0 [5–12] for poses ``[..., 6]`` in mm and degrees.
 
-    ``stroke`` defaults to :class:`StrokeConfig` defaults (SPEC table 1). A leg
+    ``stroke`` defaults to :class:`StrokeConfig` defaults (docs/mathematics.md section 1, table). A leg
     outside the stroke is reported in ``in_stroke``, never clipped.
     """
     stroke = stroke if stroke is not None else StrokeConfig()

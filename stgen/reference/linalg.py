@@ -1,10 +1,10 @@
-"""Determinant and linear solve exactly as the ST function blocks compute them (SPEC 3).
+"""Determinant and linear solve exactly as the ST function blocks compute them (docs/mathematics.md section 3).
 
 * :func:`leibniz_det`: the Leibniz formula over a constant permutation/sign
-  table (SPEC 3, step 1), no recursion.
+  table (docs/mathematics.md section 3, step 1), no recursion.
 * :func:`lu_doolittle` and :func:`lu_solve`: Doolittle LU (L unit lower
   triangular) with partial pivoting, then forward and back substitution
-  (SPEC 3, step 2).
+  (docs/mathematics.md section 3, step 2).
 
 The operation order is part of the contract, so that the ST (LREAL = IEEE
 double) can reproduce these numbers bit for bit; it is spelled out in each

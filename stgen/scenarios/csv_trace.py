@@ -1,11 +1,16 @@
 """A scenario run as CSV: one row per scan, what was commanded next to the reference.
 
-Columns: ``time_s`` (end of the scan), ``scan``, ``state`` (SpState),
-``fault_id`` (SpFaultID), the pose set-point ``x, y, z, alpha, beta, gamma``
-(mm, deg), the reference pose ``ref_x .. ref_gamma``, the commanded cylinder
-positions ``q1 .. q6`` (mm), the reference IK ``ref_q1 .. ref_q6`` and
-``max_error_mm`` (largest |q - ref_q| of the scan). Floats in shortest
-round-trip form (``repr``), so the file holds exactly the simulated values.
+Every column that has a unit says it in its name. Columns: ``time_s`` (the
+simulated clock during the scan, (k - 1) * period for scan k, as ``stgen run
+--trace`` writes it), ``scan``, ``state`` (SpState) and ``state_name``
+(``SP_STATE_MOVING``, ...), ``fault_id`` (SpFaultID), the pose set-point
+``x_mm, y_mm, z_mm, alpha_deg, beta_deg, gamma_deg``, the reference pose
+``ref_x_mm .. ref_gamma_deg``, the commanded cylinder positions ``q1_mm ..
+q6_mm`` (the axes' Cmd.Pos), the reference IK ``ref_q1_mm .. ref_q6_mm``, the
+set-points SP_Controller handed to MC_SyncMoveAbsolute ``sp_q1_mm ..
+sp_q6_mm`` (equal to q unless an axis saturated them) and ``max_error_mm``
+(largest |q - ref_q| of the scan). Floats in shortest round-trip form
+(``repr``), so the file holds exactly the simulated values.
 """
 
 from __future__ import annotations
@@ -15,13 +20,14 @@ from pathlib import Path
 
 from stgen.scenarios.runner import ScenarioResult
 
-POSE_NAMES = ("x", "y", "z", "alpha", "beta", "gamma")
+POSE_COLUMNS = ("x_mm", "y_mm", "z_mm", "alpha_deg", "beta_deg", "gamma_deg")
 HEADER = (
-    ("time_s", "scan", "state", "fault_id")
-    + POSE_NAMES
-    + tuple(f"ref_{name}" for name in POSE_NAMES)
-    + tuple(f"q{leg}" for leg in range(1, 7))
-    + tuple(f"ref_q{leg}" for leg in range(1, 7))
+    ("time_s", "scan", "state", "state_name", "fault_id")
+    + POSE_COLUMNS
+    + tuple(f"ref_{name}" for name in POSE_COLUMNS)
+    + tuple(f"q{leg}_mm" for leg in range(1, 7))
+    + tuple(f"ref_q{leg}_mm" for leg in range(1, 7))
+    + tuple(f"sp_q{leg}_mm" for leg in range(1, 7))
     + ("max_error_mm",)
 )
 
@@ -37,11 +43,13 @@ def write_trace_csv(result: ScenarioResult, path: str | Path) -> Path:
         writer.writerow(HEADER)
         for row in range(result.scans):
             writer.writerow(
-                [repr(float(time[row])), row + 1, int(result.state[row]), int(result.fault_id[row])]
+                [repr(float(time[row])), row + 1, int(result.state[row]),
+                 result.state_names.get(int(result.state[row]), ""), int(result.fault_id[row])]
                 + [repr(float(v)) for v in result.setpoint_pose[row]]
                 + [repr(float(v)) for v in result.expected_pose[row]]
                 + [repr(float(v)) for v in result.commanded[row]]
                 + [repr(float(v)) for v in result.expected[row]]
+                + [repr(float(v)) for v in result.setpoint[row]]
                 + [repr(float(error[row]))]
             )
     return path

@@ -1,4 +1,4 @@
-"""The study's motions as scenarios for SP_Controller (issue 5, SPEC 4).
+"""The study's motions as scenarios for SP_Controller (issue 5, docs/mathematics.md section 4).
 
 * ``point_to_point``: the study's point-to-point moves, each a single
   coordinate from the start pose (0, 0, 150, 0, 0, 0): +100 mm in X, in Y and
@@ -11,7 +11,7 @@
   ∛(4π²·100/5000) = 0.7 s for 100 mm, likewise for 10° at 50 °/s², 500 °/s³).
 * ``airy_wave``: the study's regular wave (A = 3 mm, Tw = 10 s, L = 100 m,
   φ = 10°) around the centre pose (0, 0, 150, 0, 0, 0), 60 s.
-* ``random_wave``: the five-component random wave of SPEC 4 around the same
+* ``random_wave``: the five-component random wave of docs/mathematics.md section 4 around the same
   centre, 60 s.
 
 A wave scenario starts with the controller's lead-in (a cycloidal move with
@@ -105,6 +105,19 @@ class Scenario:
             return self
         return dataclasses.replace(self, motion=dataclasses.replace(self.motion, wave_seconds=seconds))
 
+    def shortened(self, wave_seconds: float, move_fraction: float, settle_seconds: float) -> "Scenario":
+        """A quick version: a wave of ``wave_seconds``; point-to-point moves of
+        ``move_fraction`` of each displacement (same limits, so shorter moves)
+        with ``settle_seconds`` of standstill after each."""
+        if isinstance(self.motion, WaveMotion):
+            return self.with_wave_seconds(wave_seconds)
+        start = self.start_pose
+        targets = tuple(tuple(a + move_fraction * (b - a) for a, b in zip(start, target))
+                        for target in self.motion.targets)
+        return dataclasses.replace(self, motion=PointToPointMotion(targets=targets),
+                                   settle_seconds=settle_seconds,
+                                   title=f"{self.title} (quick: {move_fraction:g} of each move)")
+
 
 #: The study's limits of the point-to-point moves: 20 mm/s and 2 °/s (acceleration and jerk: the defaults).
 STUDY_MOVE_LIMITS = TrajectoryConfig(linear_velocity=20.0, angular_velocity=2.0)
@@ -135,7 +148,7 @@ AIRY_WAVE = Scenario(
 
 RANDOM_WAVE = Scenario(
     name="random_wave",
-    title="Random wave of five components (SPEC 4)",
+    title="Random wave of five components (docs/mathematics.md section 4)",
     start_pose=STUDY_START_POSE,
     motion=WaveMotion(wave=RANDOM_5, centre_pose=STUDY_START_POSE, wave_seconds=60.0),
 )

@@ -12,9 +12,11 @@ run. The first command's rising edge is seen in scan ``command_scan``
   the reference computes it, and the controller is back in STANDBY);
 * a point-to-point motion holds that pose for ``settle_seconds``; the next
   move's edge is the scan after, and it starts from the pose held;
-* a wave's only move is the lead-in to ``wave_pose(wave, 0, centre)``; the
-  wave clock starts in the scan after the lead-in's last call: scan
-  ``command_scan + n + 1 + m`` commands ``wave_pose(wave, m·dt, centre)``.
+* a wave's only move is the lead-in to ``wave_pose(wave, 0, centre, fade_s=T_F)``
+  (the centre pose: the wave fades in from rest); the wave clock starts in the
+  scan after the lead-in's last call: scan ``command_scan + n + 1 + m`` commands
+  ``wave_pose(wave, m·dt, centre, fade_s=T_F)``, T_F from ``fade_in_duration``
+  with the scenario's limits.
 
 Cylinder positions come from the reference IK of those poses.
 """
@@ -26,9 +28,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from stgen.config import PlatformConfig
-from stgen.reference.cycloidal import cycloidal_duration, cycloidal_pose
+from stgen.reference.cycloidal import cycloidal_duration, cycloidal_pose, executed_duration
 from stgen.reference.kinematics import inverse_kinematics
-from stgen.reference.wave import wave_pose
+from stgen.reference.wave import fade_in_duration, wave_pose
 from stgen.scenarios.definitions import PointToPointMotion, Scenario, WaveMotion
 
 
@@ -54,12 +56,27 @@ def calls_until_done(duration: float, period: float) -> int:
     return calls
 
 
-def move_targets(scenario: Scenario) -> list[np.ndarray]:
+def move_targets(scenario: Scenario, config: PlatformConfig | None = None) -> list[np.ndarray]:
     """The targets of the scenario's cycloidal moves: the moves, or the wave's pose at t = 0 (the lead-in)."""
     motion = scenario.motion
     if isinstance(motion, PointToPointMotion):
         return [np.asarray(target, dtype=float) for target in motion.targets]
-    return [wave_pose(motion.wave, 0.0, motion.centre_pose)]
+    return [wave_pose(motion.wave, 0.0, motion.centre_pose, fade_s=wave_fade_duration(scenario, config))]
+
+
+def scenario_limits(scenario: Scenario, config: PlatformConfig | None):
+    """The trajectory limits SP_Controller runs the scenario with: the scenario's, else the configuration's."""
+    if scenario.limits is not None:
+        return scenario.limits
+    return config.trajectory if config is not None else PlatformConfig.default().trajectory
+
+
+def wave_fade_duration(scenario: Scenario, config: PlatformConfig | None) -> float:
+    """T_F of a wave scenario (0 for a point-to-point motion)."""
+    motion = scenario.motion
+    if not isinstance(motion, WaveMotion):
+        return 0.0
+    return fade_in_duration(motion.wave, scenario_limits(scenario, config))
 
 
 def settle_scans(scenario: Scenario, config: PlatformConfig) -> int:
@@ -72,13 +89,13 @@ def settle_scans(scenario: Scenario, config: PlatformConfig) -> int:
 def planned_moves(scenario: Scenario, config: PlatformConfig) -> list[PlannedMove]:
     """Every cycloidal move of the scenario, in order, each from where the previous ended."""
     period = config.task.period_s
-    limits = scenario.limits if scenario.limits is not None else config.trajectory
+    limits = scenario_limits(scenario, config)
     hold = settle_scans(scenario, config)
     start = np.asarray(scenario.start_pose, dtype=float)
     edge = 0
     moves = []
-    for target in move_targets(scenario):
-        duration = float(cycloidal_duration(target - start, limits))
+    for target in move_targets(scenario, config):
+        duration = executed_duration(float(cycloidal_duration(target - start, limits)), period)
         calls = calls_until_done(duration, period)
         # SP_Controller starts the next move from the set-point this last call output.
         end = cycloidal_pose(start, target, duration, calls * period)
@@ -114,7 +131,8 @@ def expected_poses(scenario: Scenario, config: PlatformConfig, command_scan: int
     if isinstance(motion, WaveMotion):
         wave_calls = since_first - moves[0].calls - 1  # m: the wave clock runs from the scan after the lead-in
         riding = wave_calls >= 0
-        poses[riding] = wave_pose(motion.wave, wave_calls[riding].astype(float) * period, motion.centre_pose)
+        poses[riding] = wave_pose(motion.wave, wave_calls[riding].astype(float) * period, motion.centre_pose,
+                                  fade_s=wave_fade_duration(scenario, config))
     return poses
 
 

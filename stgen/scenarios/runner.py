@@ -22,6 +22,7 @@ import numpy as np
 from stgen.config import PlatformConfig
 from stgen.scenarios.definitions import PointToPointMotion, Scenario, WaveMotion
 from stgen.scenarios.expected import expected_cylinders, expected_poses, motion_scans, planned_moves
+from stgen.scenarios.setpoint_limits import SetpointLimitCheck, check_setpoint_limits
 from stgen.scenarios.simulation import ControllerSimulation
 
 #: Largest allowed |commanded - reference| cylinder position, mm (issue 5).
@@ -43,7 +44,7 @@ class ScenarioResult:
     scenario: Scenario
     period_s: float
     command_scans: tuple[int, ...]  # scan of every command's rising edge (1-based)
-    commanded: np.ndarray          # axis command positions, mm
+    commanded: np.ndarray          # axis command positions (Cmd.Pos, after any saturation by the axis), mm
     expected: np.ndarray           # reference IK of the reference trajectory, mm
     setpoint_pose: np.ndarray      # SpSetpointPose, mm and deg
     expected_pose: np.ndarray      # reference trajectory, mm and deg
@@ -52,9 +53,16 @@ class ScenarioResult:
     refusal_id: np.ndarray         # SpRefusalID
     axis_fault: np.ndarray         # True where some axis is in ErrorStop
     following_error: np.ndarray    # command - actual position of every axis, mm
+    setpoint: np.ndarray = None    # SpCylinderSetpoint: the Position handed to MC_SyncMoveAbsolute, mm
+    sync: np.ndarray = None        # True where SP_Controller executed MC_SyncMoveAbsolute in that scan
+    limits: SetpointLimitCheck = None  # velocity and acceleration of ``setpoint`` against the actuator
+    commanded_limits: SetpointLimitCheck = None  # the same of ``commanded`` (Cmd.Pos), reported apart
     runtime_faults: list = field(default_factory=list)
     wall_seconds: float = 0.0
+    servo_lag_s: float = 0.0      # first-order lag of Act.Pos behind Cmd.Pos of the simulated axes
     move_durations_s: tuple[float, ...] = ()  # SpMoveDuration after each move's edge (a wave: the lead-in)
+    nj_time: object = None         # estimated NJ501 time per scan (st_runtime.controller.TaskTime)
+    state_names: dict[int, str] = field(default_factory=dict)  # SpState value -> SP_STATE_xxx name
 
     @property
     def command_scan(self) -> int:
@@ -72,8 +80,9 @@ class ScenarioResult:
 
     @property
     def time_s(self) -> np.ndarray:
-        """End of every scan, s."""
-        return np.arange(1, self.scans + 1) * self.period_s
+        """The simulated clock during every scan, s: (k - 1) * period for scan k,
+        the time the program's timers see and `stgen run --trace` writes."""
+        return np.arange(self.scans) * self.period_s
 
     @property
     def error(self) -> np.ndarray:
@@ -104,7 +113,8 @@ class ScenarioResult:
 
     @property
     def passed(self) -> bool:
-        return self.max_error_mm <= MAX_ERROR_MM and self.fault_count == 0 and self.refused_commands == 0
+        return (self.max_error_mm <= MAX_ERROR_MM and self.fault_count == 0 and self.refused_commands == 0
+                and (self.limits is None or self.limits.passed))
 
 
 class _Recorder:
@@ -115,8 +125,13 @@ class _Recorder:
 
         self.sim = sim
         self.globals_obj = sim.globals.obj
-        self.attrs = {name: mangle(name) for name in ("SpSetpointPose", "SpState", "SpFaultID", "SpRefusalID")}
+        self.attrs = {name: mangle(name) for name in
+                      ("SpSetpointPose", "SpCylinderSetpoint", "SpState", "SpFaultID", "SpRefusalID")}
+        self.program_obj = sim.program.obj
+        self.sync_attr = mangle("SyncExecute")
         self.commanded = np.empty((capacity, 6))
+        self.setpoint = np.empty((capacity, 6))
+        self.sync = np.empty(capacity, dtype=bool)
         self.pose = np.empty((capacity, 6))
         self.state = np.empty(capacity, dtype=np.int64)
         self.fault_id = np.empty(capacity, dtype=np.int64)
@@ -131,6 +146,8 @@ class _Recorder:
         self.commanded[row] = [axis.cmd_pos for axis in axes]
         g = self.globals_obj
         self.pose[row] = getattr(g, self.attrs["SpSetpointPose"])
+        self.setpoint[row] = getattr(g, self.attrs["SpCylinderSetpoint"])
+        self.sync[row] = getattr(self.program_obj, self.sync_attr)
         self.state[row] = getattr(g, self.attrs["SpState"])
         self.fault_id[row] = getattr(g, self.attrs["SpFaultID"])
         self.refusal_id[row] = getattr(g, self.attrs["SpRefusalID"])
@@ -238,6 +255,9 @@ def run_scenario(
 
     count = recorder.count
     poses = expected_poses(scenario, config, first, count)
+    sync = recorder.sync[:count]
+    actuator = config.actuator
+    period = config.task.period_s
     return ScenarioResult(
         scenario=scenario,
         period_s=config.task.period_s,
@@ -251,7 +271,16 @@ def run_scenario(
         refusal_id=recorder.refusal_id[:count],
         axis_fault=recorder.axis_fault[:count],
         following_error=recorder.following_error[:count],
+        setpoint=recorder.setpoint[:count],
+        sync=sync,
+        limits=check_setpoint_limits(recorder.setpoint[:count], period, actuator.max_velocity,
+                                     actuator.max_acceleration, sync),
+        commanded_limits=check_setpoint_limits(recorder.commanded[:count], period, actuator.max_velocity,
+                                               actuator.max_acceleration, sync),
         runtime_faults=list(sim.runtime_faults),
         wall_seconds=wall,
+        servo_lag_s=servo_lag_s,
         move_durations_s=tuple(durations),
+        nj_time=sim.plc.controller.time_report()[0],
+        state_names={value: name for name, value in sim.codes.items() if name.startswith("SP_STATE_")},
     )

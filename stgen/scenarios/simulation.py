@@ -6,13 +6,15 @@ limits = the stroke, maximum velocity = the actuator's, an ideal servo (the
 actual position equals the command) unless a servo lag is given, starting
 where the IK of the start pose puts them.
 
-The acceleration of the synchronised command is not checked by the axes
-(``max_acceleration = 0``): starting the wave clock after the lead-in is a
-velocity step, as in the study (the lead-in ends at rest, the wave does not
-start at rest). Measured at the default platform: the Airy wave's start
-changes a leg's speed by 0.59 mm/s in one scan, the random wave's by
-8.5 mm/s (8,500 mm/s² over 1 ms, above the actuator's 2,500 mm/s²). The
-controller itself checks stroke and per-scan step.
+The acceleration of the synchronised command is not limited by the axes
+(``max_acceleration = 0``; OMRON's MC_SyncMoveAbsolute does not use it
+either): the program must keep the set-points inside the actuator's velocity
+and acceleration, and every scenario checks that
+(:mod:`stgen.scenarios.setpoint_limits`). The study's start of the wave (a
+lead-in ending at rest, then the wave at full speed) was a velocity step of
+8.5 mm/s in one scan (8,486 mm/s² on a cylinder, random wave); the wave now
+fades in from rest (TRJ_OceanWave, docs/mathematics.md section 4). The controller itself checks
+stroke and per-scan step.
 """
 
 from __future__ import annotations

@@ -1,0 +1,139 @@
+"""Structural limits: what the checker accepts, the compiler compiles and the
+controller runs (issue 15: never an internal RecursionError after `check`).
+
+ST compiles to Python source, and CPython bounds that source: at most 200
+nested parentheses in an expression, 100 indentation levels, 20 statically
+nested blocks (loops and `try`), and its own compiler recursion for long
+`elif` chains.  The limits below keep every accepted POU inside those bounds
+with a margin (measured: an expression of 196 nested operators, 96 nested IFs
+and 17 nested loops still compile; an IF with 200 branches does, CASE with
+4,000 clauses does not), and each one that is exceeded is one diagnostic
+naming the construct, at its position.  The walk is iterative, so a POU
+nested 100,000 levels deep costs time linear in its size, never a
+RecursionError.
+
+| code | limit |
+|---|---|
+| E-LIMIT-002 | expressions (operators, calls, indexes) and types (ARRAY OF ...) nested at most MAX_EXPRESSION_DEPTH levels |
+| E-LIMIT-003 | statements nested at most MAX_BLOCK_DEPTH levels (IF, CASE, FOR, WHILE, REPEAT) |
+| E-LIMIT-004 | loops nested at most MAX_LOOP_DEPTH levels |
+| E-LIMIT-005 | at most MAX_ELSIF ELSIF branches in one IF |
+| E-LIMIT-006 | at most MAX_CASE_CLAUSES clauses in one CASE |
+| E-LIMIT-007 | at most MAX_STATEMENTS statements in one POU |
+| E-LIMIT-012 | at most MAX_FILE_LINES lines and MAX_FILE_BYTES characters in one source file (the loader, before parsing) |
+"""
+
+from __future__ import annotations
+
+from .. import ast
+from ..diagnostics import register
+
+MAX_EXPRESSION_DEPTH = 64
+MAX_BLOCK_DEPTH = 40
+MAX_LOOP_DEPTH = 12
+MAX_ELSIF = 150
+MAX_CASE_CLAUSES = 1_500
+MAX_STATEMENTS = 100_000
+#: A source file is read whole and parsed at some 10,000 to 30,000 lines a second: beyond
+#: these, the parse alone would take seconds and hundreds of MB (1,000,000 statements: 54 s).
+MAX_FILE_LINES = 100_000
+MAX_FILE_BYTES = 16 * 2**20
+
+register({
+    "E-LIMIT-002": f"an expression or a type is nested more than {MAX_EXPRESSION_DEPTH} levels deep",
+    "E-LIMIT-003": f"statements are nested more than {MAX_BLOCK_DEPTH} levels deep",
+    "E-LIMIT-004": f"loops are nested more than {MAX_LOOP_DEPTH} levels deep",
+    "E-LIMIT-005": f"an IF has more than {MAX_ELSIF} ELSIF branches",
+    "E-LIMIT-006": f"a CASE has more than {MAX_CASE_CLAUSES} clauses",
+    "E-LIMIT-007": f"a POU has more than {MAX_STATEMENTS} statements",
+    "E-LIMIT-012": f"a source file has more than {MAX_FILE_LINES:,} lines or {MAX_FILE_BYTES:,} bytes",
+})
+
+
+def file_too_large(text: str) -> str | None:
+    """Why `text` is too large to parse (E-LIMIT-012), or None."""
+    lines = text.count("\n") + 1
+    if lines > MAX_FILE_LINES:
+        return f"{lines:,} lines: a source file has at most {MAX_FILE_LINES:,} (split it into several files)"
+    if len(text) > MAX_FILE_BYTES:
+        return f"{len(text):,} characters: a source file has at most {MAX_FILE_BYTES:,} (split it)"
+    return None
+
+_BLOCKS = (ast.If, ast.Case, ast.For, ast.While, ast.Repeat)
+_LOOPS = (ast.For, ast.While, ast.Repeat)
+_STATEMENTS = _BLOCKS + (ast.Assign, ast.CallStmt, ast.Exit, ast.Continue, ast.Return, ast.Empty)
+# Nodes that hold statements or expressions but add no nesting of their own.
+_TRANSPARENT = (ast.IfBranch, ast.CaseClause, ast.CaseRange, ast.Arg, ast.Pou, ast.VarBlock, ast.VarDecl,
+                ast.ArrayInit, ast.ArrayInitItem, ast.StructInit, ast.FieldInit, ast.TypeDecl,
+                ast.Configuration, ast.TaskDecl, ast.ProgramInstance, ast.StructType, ast.EnumType, ast.EnumValue)
+
+
+def _children(node):
+    """The child nodes of `node`, in field order (tuples flattened)."""
+    for name in node.__slots__:
+        value = getattr(node, name, None)
+        if isinstance(value, ast.Node):
+            yield value
+        elif isinstance(value, tuple):
+            for item in value:
+                if isinstance(item, ast.Node):
+                    yield item
+
+
+def check_files(ctx, files) -> bool:
+    """Check the limits of every POU, type and global block of `files`; True
+    when all are within them (otherwise nothing else should walk them)."""
+    ok = True
+    for source in files:
+        for item in source.items:
+            ok = check_limits(ctx, item, getattr(item, "name", None) or source.path) and ok
+    return ok
+
+
+def check_limits(ctx, pou, name: str) -> bool:
+    """Report every limit `pou` (a POU, a type or a VAR_GLOBAL block named
+    `name`) exceeds, one diagnostic per kind at the first place; True when it
+    is within all of them."""
+    found: set[str] = set()
+
+    def report(code: str, message: str, node) -> None:
+        if code not in found:
+            found.add(code)
+            ctx.error(code, f"{message} in {name}", node.pos)
+
+    statements = 0
+    # (node, statement depth, loop depth, expression depth)
+    stack = [(pou, 0, 0, 0)]
+    while stack:
+        node, blocks, loops, depth = stack.pop()
+        if isinstance(node, _STATEMENTS):
+            statements += 1
+            depth = 0
+            if isinstance(node, _BLOCKS):
+                blocks += 1
+                if blocks > MAX_BLOCK_DEPTH:
+                    report("E-LIMIT-003", f"statements nested more than {MAX_BLOCK_DEPTH} levels deep"
+                           f" ({type(node).__name__.upper()} here)", node)
+                    continue
+            if isinstance(node, _LOOPS):
+                loops += 1
+                if loops > MAX_LOOP_DEPTH:
+                    report("E-LIMIT-004", f"loops nested more than {MAX_LOOP_DEPTH} levels deep", node)
+                    continue
+            if isinstance(node, ast.If) and len(node.branches) - 1 > MAX_ELSIF:
+                report("E-LIMIT-005", f"IF with {len(node.branches) - 1} ELSIF branches (at most {MAX_ELSIF};"
+                       " a CASE takes many more)", node)
+            if isinstance(node, ast.Case) and len(node.clauses) > MAX_CASE_CLAUSES:
+                report("E-LIMIT-006", f"CASE with {len(node.clauses)} clauses (at most {MAX_CASE_CLAUSES})", node)
+        elif not isinstance(node, _TRANSPARENT):
+            depth += 1
+            if depth > MAX_EXPRESSION_DEPTH:
+                what = ("type" if isinstance(node, (ast.NamedType, ast.StringType, ast.ArrayType, ast.Subrange))
+                        else "expression")
+                report("E-LIMIT-002", f"{what} nested more than {MAX_EXPRESSION_DEPTH} levels deep"
+                       " (split it with intermediate variables or types)", node)
+                continue
+        stack.extend((child, blocks, loops, depth) for child in _children(node))
+    if statements > MAX_STATEMENTS:
+        report("E-LIMIT-007", f"{statements} statements (at most {MAX_STATEMENTS}; split the POU)", pou)
+    return not found

@@ -1,0 +1,167 @@
+"""The memory model: how many bytes each variable needs, from its type, and a
+diagnostic where a variable, a POU instance or the whole project needs more
+than a limit (issue 15: `ARRAY[0..9999999] OF ARRAY[0..999] OF LREAL` or
+`STRING[2000000000]` passed the checker and then allocated until the process
+died).
+
+Sizes follow OMRON's allocation rules for NJ/NX variables (NJ-series CPU Unit
+Software User's Manual W501, appendix "Variable memory allocation", and the
+NJ/NX Built-in EtherNet/IP Port User's Manual W506, A-47: the table of
+alignments and amounts per data type):
+
+| type | alignment | bytes |
+|---|---|---|
+| BOOL | 2 | 2 (a BOOL array: 2 bytes per 16 elements, rounded up) |
+| BYTE, USINT, SINT | 1 | 1 |
+| WORD, UINT, INT | 2 | 2 |
+| DWORD, UDINT, DINT, REAL | 4 | 4 |
+| LWORD, ULINT, LINT, LREAL, TIME, DATE, TOD, DT | 8 | 8 |
+| STRING[n] (n characters) | 1 | n + 1 (the NULL) |
+| enumeration | 4 | 4 |
+| array | of its element | element bytes x elements |
+| structure | largest of its members | members at multiples of their alignment, rounded up to the structure's |
+
+Assumed (OMRON gives no rule we found): WSTRING[n] as 2(n + 1) bytes with
+alignment 2; an FB instance laid out like a structure of its own variables
+(VAR_IN_OUT as an 8-byte reference). The runtime's own memory per element
+is larger (Python objects), so the default limit is well below what would
+exhaust a machine.
+
+Limits: every variable, every POU instance (its variables) and the project
+(globals plus one instance of every PROGRAM) must fit in `limit` bytes
+(default DEFAULT_LIMIT, configurable through `check(..., memory_limit=)`).
+Under `--dialect nj`, where STRING[n] means n bytes with the NULL as in
+Sysmac Studio, n is at most NJ_STRING_MAX_BYTES (the NJ's largest STRING,
+1,986 bytes including the NULL: devicewise's OMRON NJ/NX
+driver notes, https://docs.devicewise.com/Content/Products/GatewayDevelopersGuide/Devices/DeviceTypes/Omron/Omron-NJ-or-NX-supported-access.htm;
+not found in an OMRON manual). The NJ's limits on elements per array
+dimension and on total variable memory per CPU model were not found: not
+checked.
+"""
+
+from __future__ import annotations
+
+from .. import types as T
+from ..diagnostics import register
+
+#: Bytes a variable, a POU instance or the project may need by default (64 MiB).
+DEFAULT_LIMIT = 64 * 2**20
+#: The NJ's largest STRING: 1,986 bytes including the terminating NULL.
+NJ_STRING_MAX_BYTES = 1986
+
+register({
+    "E-LIMIT-008": "a variable needs more memory than the limit",
+    "E-LIMIT-009": "a POU instance needs more memory than the limit",
+    "E-LIMIT-010": "the project's variables need more memory than the limit",
+    "E-LIMIT-011": "a STRING longer than the NJ's 1,986 bytes (--dialect nj)",
+})
+
+_ELEMENTARY = {"bool": (2, 2), "time": (8, 8), "date": (8, 8), "tod": (8, 8), "dt": (8, 8)}
+# Variables an instance stores (VAR_EXTERNAL is the global's, VAR_TEMP lives during a call only).
+_STORED = ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "RETURN")
+_REFERENCE = (8, 8)
+
+
+class MemoryModel:
+    """Bytes and alignment of types, memoised (a type is laid out once)."""
+
+    def __init__(self) -> None:
+        self._layouts: dict[int, tuple[int, int]] = {}
+
+    def layout(self, t) -> tuple[int, int]:
+        """(bytes, alignment) of a value of type `t`."""
+        t = T.resolve_alias(t)
+        known = self._layouts.get(id(t))
+        if known is not None:
+            return known
+        self._layouts[id(t)] = (0, 1)       # a cycle (refused elsewhere) counts nothing
+        result = self._compute(t)
+        self._layouts[id(t)] = result
+        return result
+
+    def _compute(self, t) -> tuple[int, int]:
+        if isinstance(t, T.ElementaryType):
+            if t.kind in _ELEMENTARY:
+                return _ELEMENTARY[t.kind]
+            size = max(1, t.bits // 8)
+            return size, size
+        if isinstance(t, T.StringType):
+            return ((t.length + 1) * 2, 2) if t.wide else (t.length + 1, 1)
+        if isinstance(t, T.EnumType):
+            return 4, 4
+        if isinstance(t, T.ArrayType):
+            element = T.resolve_alias(t.element)
+            if isinstance(element, T.ElementaryType) and element.kind == "bool":
+                return 2 * ((t.size - 1) // 16 + 1), 2
+            size, align = self.layout(element)
+            return size * t.size, align
+        if isinstance(t, T.StructType):
+            return _pack(self.layout(member) for _, member in t.fields.values())
+        if isinstance(t, T.FBType):
+            return _pack(_REFERENCE if sym.kind == "VAR_IN_OUT" else self.layout(sym.type)
+                         for sym in t.variables.values() if sym.kind in _STORED)
+        return 0, 1
+
+
+def _pack(members) -> tuple[int, int]:
+    """Members in order, each at a multiple of its alignment; the whole
+    rounded up to the largest alignment (OMRON's structure rule)."""
+    offset, largest = 0, 1
+    for size, align in members:
+        offset = -(-offset // align) * align + size
+        largest = max(largest, align)
+    return -(-offset // largest) * largest, largest
+
+
+def check_memory(ctx, limit: int | None = None) -> None:
+    """Report each variable, POU instance and the project beyond `limit`
+    bytes, and (dialect nj) each STRING beyond the NJ's largest."""
+    limit = DEFAULT_LIMIT if limit is None else limit
+    program = ctx.program
+    model = MemoryModel()
+
+    def variable_bytes(sym, owner: str) -> int:
+        size = _REFERENCE[0] if sym.kind == "VAR_IN_OUT" else model.layout(sym.type)[0]
+        if sym.decl is not None:
+            if size > limit:
+                ctx.error("E-LIMIT-008", f"{owner}{sym.name} needs {size:,} bytes ({sym.type}), above the"
+                          f" memory limit of {limit:,} bytes", sym.decl.pos)
+            if ctx.dialect == "nj":
+                _nj_strings(ctx, sym)
+        return size
+
+    reported = len(ctx.sink.items)
+    total = 0
+    for sym in program.globals.values():
+        total += variable_bytes(sym, "global ")
+    for info in program.pous.values():
+        if info.node is None:
+            continue
+        stored = [s for s in info.variables.values() if s.kind in _STORED]
+        instance = sum(variable_bytes(s, f"{info.name}.") for s in stored)
+        if instance > limit and not any(variable_bytes_over(model, s, limit) for s in stored):
+            ctx.error("E-LIMIT-009", f"an instance of {info.name} needs {instance:,} bytes, above the memory"
+                      f" limit of {limit:,} bytes", info.node.pos)
+        if info.kind == "PROGRAM":
+            total += instance
+    if total > limit and len(ctx.sink.items) == reported:     # not already said variable by variable
+        first = next((info.node.pos for info in program.pous.values() if info.node is not None), None)
+        if first is not None:
+            ctx.error("E-LIMIT-010", f"the project's variables need {total:,} bytes (globals and one"
+                      f" instance of each PROGRAM), above the memory limit of {limit:,} bytes", first)
+
+
+def variable_bytes_over(model: MemoryModel, sym, limit: int) -> bool:
+    """Whether this one variable is already beyond the limit (reported on its own)."""
+    return sym.kind != "VAR_IN_OUT" and model.layout(sym.type)[0] > limit
+
+
+def _nj_strings(ctx, sym) -> None:
+    """E-LIMIT-011 for a STRING (or an array of them) beyond the NJ's largest."""
+    t = T.resolve_alias(sym.type)
+    while isinstance(t, T.ArrayType):
+        t = T.resolve_alias(t.element)
+    # In Sysmac Studio STRING[n] reserves n bytes, the NULL included (W501: "STRING[11]" for 10 characters).
+    if isinstance(t, T.StringType) and not t.wide and t.length > NJ_STRING_MAX_BYTES:
+        ctx.error("E-LIMIT-011", f"{sym.name}: {t} is longer than the NJ's largest STRING,"
+                  f" STRING[{NJ_STRING_MAX_BYTES}] ({NJ_STRING_MAX_BYTES:,} bytes with the NULL)", sym.decl.pos)
