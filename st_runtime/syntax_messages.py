@@ -31,7 +31,7 @@ _STATEMENT_STARTS = frozenset({"IF", "CASE", "FOR", "WHILE", "REPEAT", "EXIT", "
                                "RETURN", "IDENT"})
 _BINARY_OPERATORS = frozenset({"AMP", "AND", "OR", "XOR", "EQ", "NE", "LT", "GT", "LE", "GE",
                                "PLUS", "MINUS", "STAR", "SLASH", "MOD", "POW"})
-_AFTER_STATEMENT_NAME = {"_ASSIGN", "_LPAR", "_DOT", "_LSQB"}
+_AFTER_STATEMENT_NAME = {"_ASSIGN", "_LPAR", "_DOT", "_LSQB", "CARET", "SET_RESET"}   # (^ and S= / R=: issue 13)
 _EXPRESSION_STARTS = frozenset({
     "IDENT", "INT", "BASED_INT", "REAL_NUMBER", "TIME_LIT", "DATE_LIT", "TOD_LIT",
     "DT_LIT", "TYPED_LIT", "SSTRING", "DSTRING", "TRUE", "FALSE", "MINUS", "PLUS", "NOT",
