@@ -33,6 +33,7 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass, field
 
+from .process_image import ImageView
 from .controller import DEFAULT_BUDGET, Controller
 from .ast import Pos
 from .diagnostics import Diagnostic
@@ -296,6 +297,12 @@ class Plc:
     @property
     def globals(self) -> Instance:
         return Instance(self.controller.globals, self.compiled.checked.dialect)
+
+    @property
+    def image(self) -> ImageView:
+        """The process image: `plc.image["%IX0.0"] = True`, `plc.image["%QW3"]`
+        (a bit as BOOL, a B/W/D/L address as an unsigned integer)."""
+        return ImageView(self.compiled.image)
 
     def run(self, cycles: int = 1) -> int:
         return self.controller.run(cycles)

@@ -66,18 +66,37 @@ class Subrange(Node):
 
 
 @dataclass(frozen=True, slots=True)
-class ArrayType(Node):
-    """`ARRAY[lo..hi, ...] OF element` (up to three dimensions)."""
+class SubrangeType(Node):
+    """`INT (0..100)`: an integer type limited to a range."""
 
-    ranges: tuple[Subrange, ...]
+    base: str
+    range: Subrange
+
+
+@dataclass(frozen=True, slots=True)
+class RefType(Node):
+    """`REF_TO INT` (3rd ed. 6.4.4.10); `POINTER TO INT` in the codesys dialect."""
+
+    target: TypeRef
+    pointer: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class ArrayType(Node):
+    """`ARRAY[lo..hi, ...] OF element` (up to three dimensions); a range of
+    None is `*` (ARRAY[*] in a VAR_IN_OUT: the bounds come with the argument)."""
+
+    ranges: tuple[Subrange | None, ...]
     element: TypeRef
 
 
 @dataclass(frozen=True, slots=True)
 class StructType(Node):
-    """`STRUCT ... END_STRUCT`, only inside a TYPE declaration."""
+    """`STRUCT ... END_STRUCT` (or `UNION ... END_UNION`: the members share
+    their storage), only inside a TYPE declaration."""
 
     members: tuple[VarDecl, ...]
+    union: bool = False
 
 
 @dataclass(frozen=True, slots=True)
@@ -93,8 +112,8 @@ class EnumType(Node):
     values: tuple[EnumValue, ...]
 
 
-TypeRef = Union[NamedType, StringType, ArrayType]
-TypeSpec = Union[NamedType, StringType, ArrayType, StructType, EnumType]
+TypeRef = Union[NamedType, StringType, ArrayType, SubrangeType, RefType]
+TypeSpec = Union[NamedType, StringType, ArrayType, SubrangeType, StructType, EnumType]
 
 
 # --------------------------------------------------------------- expressions
@@ -190,6 +209,35 @@ class Binary(Node):
 
 
 @dataclass(frozen=True, slots=True)
+class Deref(Node):
+    """`r^`: the variable a reference refers to."""
+
+    base: Expr
+
+
+@dataclass(frozen=True, slots=True)
+class BitAccess(Node):
+    """`x.3`: bit 3 of an integer or bit-string variable (CODESYS, NJ); with a
+    `size` the 3rd edition's partial access `x.%X3`, `w.%B1`, `d.%W0` (6.5.5.2)."""
+
+    base: Expr
+    bit: int
+    size: str = ""          # "" (x.3) | X | B | W | D | L
+
+
+@dataclass(frozen=True, slots=True)
+class DirectVar(Node):
+    """`%IX0.0`, `%QW3` used in code: a place of the process image (6.5.5)."""
+
+    address: str
+
+
+@dataclass(frozen=True, slots=True)
+class NullLiteral(Node):
+    """NULL: a reference (or interface variable) that refers to nothing."""
+
+
+@dataclass(frozen=True, slots=True)
 class Arg(Node):
     """One argument of a call.
 
@@ -214,6 +262,7 @@ class Call(Node):
 
     callee: Expr
     args: tuple[Arg, ...]
+    trailing_comma: bool = False    # `F(a, b,)`: CODESYS accepts it, IEC does not
 
 
 Expr = Union[
@@ -229,6 +278,7 @@ Expr = Union[
 class Assign(Node):
     target: Expr
     value: Expr
+    mode: str = ":="     # CODESYS "S=" (set the BOOL when value) / "R=" (reset)
 
 
 @dataclass(frozen=True, slots=True)
@@ -352,6 +402,8 @@ class VarDecl(Node):
     name: str
     type: TypeRef
     init: Initializer | None = None
+    edge: str | None = None     # "R_EDGE" | "F_EDGE" on an FB's BOOL input
+    location: str | None = None  # "%IX0.0": a located variable (AT ...)
 
 
 VAR_KINDS = (
@@ -375,15 +427,34 @@ class TypeDecl(Node):
     name: str
     spec: TypeSpec
     init: Initializer | None = None
+    namespace: str = ""      # "A.B" inside NAMESPACE A.B (3rd ed. 6.9)
+
+
+@dataclass(frozen=True, slots=True)
+class Method(Node):
+    """`METHOD PUBLIC Area : LREAL ... END_METHOD` (IEC 61131-3 3rd ed. 6.6.5)."""
+
+    name: str
+    var_blocks: tuple[VarBlock, ...]
+    body: tuple[Stmt, ...]
+    return_type: TypeRef | None = None
+    access: str | None = None             # PUBLIC | PRIVATE | PROTECTED | INTERNAL
+    modifiers: tuple[str, ...] = ()       # ABSTRACT, FINAL, OVERRIDE
 
 
 @dataclass(frozen=True, slots=True)
 class Pou(Node):
-    kind: str  # "PROGRAM" | "FUNCTION" | "FUNCTION_BLOCK"
+    kind: str  # "PROGRAM" | "FUNCTION" | "FUNCTION_BLOCK" | "INTERFACE"
     name: str
     var_blocks: tuple[VarBlock, ...]
     body: tuple[Stmt, ...]
     return_type: TypeRef | None = None  # FUNCTION only
+    # 3rd edition object orientation (FUNCTION_BLOCK; INTERFACE: extends, methods)
+    extends: tuple[str, ...] = ()
+    implements: tuple[str, ...] = ()
+    methods: tuple[Method, ...] = ()
+    modifiers: tuple[str, ...] = ()       # ABSTRACT, FINAL
+    namespace: str = ""                   # "A.B" inside NAMESPACE A.B (3rd ed. 6.9)
 
 
 @dataclass(frozen=True, slots=True)

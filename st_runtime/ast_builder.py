@@ -12,6 +12,8 @@ does not stop the parse.
 
 from __future__ import annotations
 
+import dataclasses
+
 from lark import Transformer, v_args
 
 from . import ast
@@ -68,6 +70,13 @@ def _statements(items) -> tuple:
     return tuple(out)
 
 
+_TRAILING = object()          # the marker of a trailing comma in an argument list
+
+
+class _ArgsWithComma(tuple):
+    """Arguments written with a trailing comma (`F(a, b,)`)."""
+
+
 @v_args(inline=True)
 class AstBuilder(Transformer):
     def __init__(self) -> None:
@@ -106,9 +115,87 @@ class AstBuilder(Transformer):
         return ast.Pou("FUNCTION", str(name), tuple(rest[:-1]), rest[-1],
                        return_type, pos=self._pos(kw))
 
-    def fb_decl(self, kw, name, *rest):
-        return ast.Pou("FUNCTION_BLOCK", str(name), tuple(rest[:-1]), rest[-1],
+    def fb_decl(self, kw, *items):
+        modifiers = tuple(i[1] for i in items if isinstance(i, tuple) and i and i[0] == "modifier")
+        rest = [i for i in items if not (isinstance(i, tuple) and i and i[0] == "modifier")]
+        name, extends, implements = rest[0], rest[1], rest[2]
+        parts = [p for i in rest[3:-1] for p in (i if isinstance(i, list) else [i])]
+        blocks = tuple(i for i in parts if type(i) is ast.VarBlock)
+        methods = tuple(i for i in parts if type(i) is ast.Method)
+        return ast.Pou("FUNCTION_BLOCK", str(name), blocks, rest[-1], None,
+                       extends or (), implements or (), methods, modifiers, pos=self._pos(kw))
+
+    def interface_decl(self, kw, name, extends, *methods):
+        return ast.Pou("INTERFACE", str(name), (), (), None, extends or (), (), tuple(methods),
                        pos=self._pos(kw))
+
+    def extends_clause(self, *names):
+        return tuple(str(n) for n in names)
+
+    implements_clause = extends_clause
+
+    def pou_modifier(self, token):
+        return ("modifier", str(token).upper())
+
+    def qualified_name(self, *parts):
+        return ".".join(str(p) for p in parts)
+
+    def qualified_type(self, *parts):
+        return ast.NamedType(".".join(str(p) for p in parts), pos=self._pos(parts[0]))
+
+    def namespace_decl(self, kw, *rest):
+        rest = [r for r in rest if r is not None and not (hasattr(r, "type") and r.type == "INTERNAL")]
+        name, items = rest[0], rest[1:]
+        out = []
+        for item in items:
+            for one in (item if isinstance(item, list) else [item]):
+                if type(one) in (ast.Pou, ast.TypeDecl):
+                    inner = f"{name}.{one.namespace}" if one.namespace else name
+                    one = dataclasses.replace(one, namespace=inner)
+                out.append(one)
+        return out
+
+    def using_directive(self, *names):
+        return []          # names stay reachable by their short names (flattened)
+
+    def property_decl(self, kw, *items):
+        """A PROPERTY becomes up to two Methods: the getter (its result is the
+        property) and the setter (its one input is the property)."""
+        words = [i[1] for i in items if isinstance(i, tuple) and i and i[0] == "modifier"]
+        rest = [i for i in items if not (isinstance(i, tuple) and i and i[0] == "modifier")]
+        name, type_ref, getter, setter = rest
+        access = next((w for w in words if w in ("PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL")), None)
+        modifiers = tuple(w for w in words if w not in ("PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL"))
+        methods = []
+        if getter is not None:
+            methods.append(ast.Method(str(name), getter[0], getter[1], type_ref, access,
+                                      modifiers + ("GET",), pos=self._pos(name)))
+        if setter is not None:
+            value = ast.VarBlock("VAR_INPUT", (ast.VarDecl(str(name), type_ref, pos=self._pos(name)),),
+                                 pos=self._pos(name))
+            methods.append(ast.Method(str(name), (value,) + setter[0], setter[1], None, access,
+                                      modifiers + ("SET",), pos=self._pos(name)))
+        return methods
+
+    def property_get(self, kw, *rest):
+        return tuple(rest[:-1]), rest[-1]
+
+    property_set = property_get
+
+    def action_decl(self, kw, name, body):
+        return ast.Method(str(name), (), body, None, "PUBLIC", ("ACTION",), pos=self._pos(name))
+
+    def method_modifier(self, token):
+        return ("modifier", str(token).upper())
+
+    def method_decl(self, kw, *items):
+        words = [i[1] for i in items if isinstance(i, tuple) and i and i[0] == "modifier"]
+        rest = [i for i in items if not (isinstance(i, tuple) and i and i[0] == "modifier")]
+        access = next((w for w in words if w in ("PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL")), None)
+        modifiers = tuple(w for w in words if w not in ("PUBLIC", "PRIVATE", "PROTECTED", "INTERNAL"))
+        name, return_type = rest[0], rest[1]
+        return ast.Method(str(name), tuple(rest[2:-1]), rest[-1], return_type, access, modifiers,
+                          pos=self._pos(name))
 
     # ---------------------------------------------------------- declarations
 
@@ -129,8 +216,13 @@ class AstBuilder(Transformer):
         return token.type
 
     def var_decl(self, *args):
-        type_ref, init = args[-2], args[-1]
-        return [ast.VarDecl(str(tok), type_ref, init, pos=self._pos(tok)) for tok in args[:-2]]
+        location, type_ref, edge, init = args[-4:]
+        location = None if location is None else str(location).upper()
+        return [ast.VarDecl(str(tok), type_ref, init, edge, location, pos=self._pos(tok))
+                for tok in args[:-4]]
+
+    def edge(self, token):
+        return str(token).upper()
 
     def bare_array_init(self, *items):
         items = tuple(i if type(i) is ast.ArrayInitItem else ast.ArrayInitItem(i, pos=i.pos)
@@ -170,6 +262,9 @@ class AstBuilder(Transformer):
     def array_type(self, kw, *rest):
         return ast.ArrayType(tuple(rest[:-1]), rest[-1], pos=self._pos(kw))
 
+    def open_range(self, star):
+        return None
+
     def subrange(self, lo, hi):
         return ast.Subrange(lo, hi, pos=lo.pos)
 
@@ -187,6 +282,9 @@ class AstBuilder(Transformer):
         for group in decls:
             members.extend(group)
         return ast.StructType(tuple(members), pos=self._pos(kw))
+
+    def union_type(self, kw, *decls):
+        return ast.StructType(tuple(m for group in decls for m in group), True, pos=self._pos(kw))
 
     def enum_type(self, *args):
         values = args[:-1]  # the last child is the optional base type (ignored)
@@ -244,8 +342,11 @@ class AstBuilder(Transformer):
     def assign_stmt(self, target, value):
         return ast.Assign(target, value, pos=target.pos)
 
+    def set_reset_stmt(self, target, op, value):
+        return ast.Assign(target, value, str(op).upper(), pos=target.pos)
+
     def call_stmt(self, callee, args):
-        call = ast.Call(callee, args or (), pos=callee.pos)
+        call = ast.Call(callee, tuple(args or ()), type(args) is _ArgsWithComma, pos=callee.pos)
         return ast.CallStmt(call, pos=callee.pos)
 
     def if_stmt(self, kw, condition, body, *rest):
@@ -316,7 +417,39 @@ class AstBuilder(Transformer):
         return ast.Unary(_OPERATORS[op.type], operand, pos=self._pos(op))
 
     def call(self, callee, args):
-        return ast.Call(callee, args or (), pos=callee.pos)
+        return ast.Call(callee, tuple(args or ()), type(args) is _ArgsWithComma, pos=callee.pos)
+
+    def subrange_type(self, base, subrange):
+        return ast.SubrangeType(str(base), subrange, pos=self._pos(base))
+
+    def ref_type(self, kw, target):
+        return ast.RefType(target, pos=self._pos(kw))
+
+    def pointer_type(self, kw, target):
+        return ast.RefType(target, True, pos=self._pos(kw))
+
+    def deref(self, base, caret):
+        return ast.Deref(base, pos=base.pos)
+
+    def bit_access(self, base, bit):
+        return ast.BitAccess(base, int(str(bit).replace("_", "")), pos=base.pos)
+
+    def partial_access(self, base, token):
+        text = str(token)
+        return ast.BitAccess(base, int(text[2:]), text[1].upper(), pos=base.pos)
+
+    def direct_var(self, token):
+        return ast.DirectVar(str(token).upper(), pos=self._pos(token))
+
+    def unnamed_located(self, address, type_ref, init):
+        """`AT %IX1.1 : BOOL;` (no name: the code writes %IX1.1 itself)."""
+        return [ast.VarDecl("", type_ref, init, None, str(address).upper(), pos=self._pos(address))]
+
+    def null_literal(self, token):
+        return ast.NullLiteral(pos=self._pos(token))
+
+    def keyword_callee(self, token):
+        return ast.Name(str(token), pos=self._pos(token))
 
     def name(self, token):
         return ast.Name(str(token), pos=self._pos(token))
@@ -328,7 +461,14 @@ class AstBuilder(Transformer):
         return ast.Index(base, indices, pos=base.pos)
 
     def arg_list(self, *args):
+        if args and args[-1] is None:
+            return args[:-1]
+        if args and args[-1] is _TRAILING:
+            return _ArgsWithComma(args[:-1])
         return args
+
+    def trailing_comma(self):
+        return _TRAILING
 
     def positional_arg(self, value):
         return ast.Arg(None, value, pos=value.pos)

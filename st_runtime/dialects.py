@@ -102,4 +102,7 @@ class Dialect:
 
 IEC = Dialect("iec")
 NJ = Dialect("nj", frozenset(NJ_RULES), OMRON_PINS)
-DIALECTS: Mapping[str, Dialect] = MappingProxyType({d.name: d for d in (IEC, NJ)})
+# CODESYS/TwinCAT: IEC pin names and NJ rules as warnings; the constructs it
+# adds are in checker/dialects.py (CONSTRUCTS).
+CODESYS = Dialect("codesys")
+DIALECTS: Mapping[str, Dialect] = MappingProxyType({d.name: d for d in (IEC, NJ, CODESYS)})

@@ -24,6 +24,7 @@ FAULT_CODES: dict[str, str] = {
     "F-MATH": "math error in a standard function (e.g. SQRT of a negative value)",
     "F-CONVERT": "value cannot be converted (out of range or not finite)",
     "F-NULL-REF": "VAR_IN_OUT used before the caller passed a variable",
+    "F-SUBRANGE": "a value stored in a subrange variable (INT (0..100)) lies outside its range",
 }
 
 

@@ -23,6 +23,9 @@ from .faults import STFault
 from .native import mangle
 from .store_rules import f32, wrap_int
 from .types import (
+    SubrangeType,
+    InterfaceType,
+    RefType,
     ArrayType,
     ElementaryType,
     EnumType,
@@ -49,6 +52,12 @@ class AttrRef:
         self.obj = obj
         self.attr = attr
 
+    def __eq__(self, other) -> bool:      # REF(x) = REF(x): the same variable
+        return type(other) is AttrRef and other.obj is self.obj and other.attr == self.attr
+
+    def __hash__(self) -> int:
+        return hash((id(self.obj), self.attr))
+
     def get(self):
         return getattr(self.obj, self.attr)
 
@@ -64,6 +73,12 @@ class ItemRef:
     def __init__(self, seq: list, index: int):
         self.seq = seq
         self.index = index
+
+    def __eq__(self, other) -> bool:
+        return type(other) is ItemRef and other.seq is self.seq and other.index == self.index
+
+    def __hash__(self) -> int:
+        return hash((id(self.seq), self.index))
 
     def get(self):
         return self.seq[self.index]
@@ -110,6 +125,8 @@ class STObject:
                 mine._assign(theirs)
             elif isinstance(mine, list):
                 assign_list(mine, theirs)
+            elif isinstance(mine, bytearray):      # a UNION's shared bytes: copied
+                mine[:] = theirs
             else:
                 setattr(self, attr, theirs)
 
@@ -144,6 +161,9 @@ def st_vars_of(obj) -> dict:
 def default_value(t: Type, classes: dict[str, type]) -> Maker:
     """A maker of the default initial value of type `t` (no initializer)."""
     t = resolve_alias(t)
+    if isinstance(t, SubrangeType):
+        low = t.lo
+        return lambda: low
     if isinstance(t, ElementaryType):
         value = _ELEMENTARY_DEFAULTS[t.kind]
         return lambda: value
@@ -161,6 +181,8 @@ def default_value(t: Type, classes: dict[str, type]) -> Maker:
         return proto.copy
     if isinstance(t, (StructType, FBType)):
         return classes[t.name.upper()]
+    if isinstance(t, (InterfaceType, RefType)):
+        return lambda: None          # refers to nothing (NULL)
     raise TypeError(f"no default value for {t}")
 
 

@@ -33,7 +33,7 @@ CODES = register({
     "E-PARSE-002": "missing ';' at the end of a statement or declaration",
     "E-PARSE-003": "a block (IF, CASE, FOR, WHILE, REPEAT, VAR, POU, ...) is not closed",
     "E-PARSE-004": "an expression was expected",
-    "E-PARSE-005": "unterminated comment",
+    "E-PARSE-005": "unterminated comment or pragma",
     "E-PARSE-006": "unterminated string literal",
     "E-PARSE-007": "a character that cannot appear in Structured Text",
     "E-PARSE-008": "the file ends in the middle of a declaration or statement",

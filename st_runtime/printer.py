@@ -96,7 +96,17 @@ def format_expr(expr) -> str:
         indices = ", ".join(format_expr(i) for i in expr.indices)
         return f"{_postfix_base(expr.base)}[{indices}]"
     if kind is ast.Call:
-        return f"{_postfix_base(expr.callee)}({_format_args(expr.args)})"
+        comma = "," if expr.trailing_comma else ""
+        return f"{_postfix_base(expr.callee)}({_format_args(expr.args)}{comma})"
+    if kind is ast.Deref:
+        return f"{_postfix_base(expr.base)}^"
+    if kind is ast.BitAccess:
+        size = f"%{expr.size}" if expr.size else ""
+        return f"{_postfix_base(expr.base)}.{size}{expr.bit}"
+    if kind is ast.NullLiteral:
+        return "NULL"
+    if kind is ast.DirectVar:
+        return expr.address
     raise TypeError(f"not an expression node: {kind.__name__}")
 
 
@@ -117,7 +127,7 @@ def _format_binary(expr: ast.Binary) -> str:
 
 def _postfix_base(expr) -> str:
     text = format_expr(expr)
-    return text if type(expr) in (ast.Name, ast.Member, ast.Index) else f"({text})"
+    return text if type(expr) in (ast.Name, ast.Member, ast.Index, ast.Deref, ast.BitAccess, ast.DirectVar) else f"({text})"
 
 
 def _format_real(expr: ast.RealLiteral) -> str:
@@ -169,7 +179,7 @@ def _stmt_lines(stmt, indent: str) -> list[str]:
     kind = type(stmt)
     inner = indent + INDENT
     if kind is ast.Assign:
-        return [f"{indent}{format_expr(stmt.target)} := {format_expr(stmt.value)};"]
+        return [f"{indent}{format_expr(stmt.target)} {stmt.mode} {format_expr(stmt.value)};"]
     if kind is ast.CallStmt:
         return [f"{indent}{format_expr(stmt.call)};"]
     if kind is ast.If:
@@ -242,8 +252,13 @@ def format_type(type_ref) -> str:
             return word
         return f"{word}[{format_expr(type_ref.length)}]"
     if kind is ast.ArrayType:
-        ranges = ", ".join(f"{format_expr(r.lo)}..{format_expr(r.hi)}" for r in type_ref.ranges)
+        ranges = ", ".join("*" if r is None else f"{format_expr(r.lo)}..{format_expr(r.hi)}"
+                           for r in type_ref.ranges)
         return f"ARRAY[{ranges}] OF {format_type(type_ref.element)}"
+    if kind is ast.RefType:
+        return ("POINTER TO " if type_ref.pointer else "REF_TO ") + format_type(type_ref.target)
+    if kind is ast.SubrangeType:
+        return f"{type_ref.base} ({format_expr(type_ref.range.lo)}..{format_expr(type_ref.range.hi)})"
     raise TypeError(f"not a type reference: {kind.__name__}")
 
 
@@ -266,7 +281,11 @@ def _format_init_item(item: ast.ArrayInitItem) -> str:
 
 def _decl_line(decl: ast.VarDecl, indent: str) -> str:
     init = "" if decl.init is None else f" := {format_initializer(decl.init)}"
-    return f"{indent}{decl.name} : {format_type(decl.type)}{init};"
+    edge = "" if decl.edge is None else f" {decl.edge}"
+    at = "" if decl.location is None else f" AT {decl.location}"
+    if not decl.name:                      # an unnamed located variable
+        return f"{indent}AT {decl.location} : {format_type(decl.type)}{init};"
+    return f"{indent}{decl.name}{at} : {format_type(decl.type)}{edge}{init};"
 
 
 def _var_block_lines(block: ast.VarBlock, indent: str) -> list[str]:
@@ -281,7 +300,8 @@ def _type_spec(spec, indent: str) -> str:
     kind = type(spec)
     if kind is ast.StructType:
         members = [_decl_line(m, indent + INDENT) for m in spec.members]
-        return "\n".join(["STRUCT", *members, f"{indent}END_STRUCT"])
+        word = "UNION" if spec.union else "STRUCT"
+        return "\n".join([word, *members, f"{indent}END_{word}"])
     if kind is ast.EnumType:
         values = []
         for value in spec.values:
@@ -297,14 +317,63 @@ def _type_decl_lines(decl: ast.TypeDecl, indent: str) -> list[str]:
 
 
 def _pou_lines(pou: ast.Pou) -> list[str]:
-    header = f"{pou.kind} {pou.name}"
+    header = " ".join([pou.kind, *pou.modifiers, pou.name])
     if pou.return_type is not None:
         header += f" : {format_type(pou.return_type)}"
+    if pou.extends:
+        header += " EXTENDS " + ", ".join(pou.extends)
+    if pou.implements:
+        header += " IMPLEMENTS " + ", ".join(pou.implements)
     lines = [header]
     for block in pou.var_blocks:
         lines.extend(_var_block_lines(block, ""))
+    methods = list(pou.methods)
+    while methods:
+        method = methods.pop(0)
+        if "GET" in method.modifiers or "SET" in method.modifiers:
+            pair = [method]
+            if methods and "SET" in methods[0].modifiers and "GET" in method.modifiers \
+                    and methods[0].name == method.name:
+                pair.append(methods.pop(0))
+            lines.extend(_property_lines(pair, INDENT))
+        else:
+            lines.extend(_method_lines(method, INDENT))
     lines.extend(_body(pou.body, INDENT))
     lines.append(f"END_{pou.kind}")
+    return lines
+
+
+def _property_lines(accessors: list, indent: str) -> list[str]:
+    first = accessors[0]
+    words = ["PROPERTY", *([first.access] if first.access else []),
+             *[m for m in first.modifiers if m not in ("GET", "SET")], first.name]
+    prop_type = first.return_type if "GET" in first.modifiers else first.var_blocks[0].decls[0].type
+    lines = [f"{indent}{' '.join(words)} : {format_type(prop_type)}"]
+    for accessor in accessors:
+        word = "GET" if "GET" in accessor.modifiers else "SET"
+        blocks = accessor.var_blocks if word == "GET" else accessor.var_blocks[1:]
+        lines.append(f"{indent}{word}")
+        for block in blocks:
+            lines.extend(_var_block_lines(block, indent + INDENT))
+        lines.extend(_body(accessor.body, indent + INDENT + INDENT))
+        lines.append(f"{indent}END_{word}")
+    lines.append(f"{indent}END_PROPERTY")
+    return lines
+
+
+def _method_lines(method: ast.Method, indent: str) -> list[str]:
+    if "ACTION" in method.modifiers:
+        return [f"{indent}ACTION {method.name}:", *_body(method.body, indent + INDENT),
+                f"{indent}END_ACTION"]
+    words = ["METHOD", *([method.access] if method.access else []), *method.modifiers, method.name]
+    header = indent + " ".join(words)
+    if method.return_type is not None:
+        header += f" : {format_type(method.return_type)}"
+    lines = [header]
+    for block in method.var_blocks:
+        lines.extend(_var_block_lines(block, indent))
+    lines.extend(_body(method.body, indent + INDENT))
+    lines.append(f"{indent}END_METHOD")
     return lines
 
 
@@ -338,11 +407,18 @@ def format_source(file: ast.SourceFile) -> str:
 
     for item in file.items:
         kind = type(item)
+        if kind is ast.TypeDecl and item.namespace:
+            flush_types()
+            chunks.append("\n".join([f"NAMESPACE {item.namespace}", "TYPE",
+                                     *_type_decl_lines(item, INDENT), "END_TYPE", "END_NAMESPACE"]))
+            continue
         if kind is ast.TypeDecl:
             pending_types.extend(_type_decl_lines(item, INDENT))
             continue
         flush_types()
-        if kind is ast.Pou:
+        if kind is ast.Pou and item.namespace:
+            chunks.append("\n".join([f"NAMESPACE {item.namespace}", *_pou_lines(item), "END_NAMESPACE"]))
+        elif kind is ast.Pou:
             chunks.append("\n".join(_pou_lines(item)))
         elif kind is ast.VarBlock:
             chunks.append("\n".join(_var_block_lines(item, "")))

@@ -37,6 +37,35 @@ class PouInfo:
     return_type: Type | None = None
     file: str = "<builtin>"
     native: object = None                       # Python class/function for native POUs
+    # 3rd edition object orientation.  A METHOD is a PouInfo of kind "METHOD"
+    # whose `owner` is its FUNCTION_BLOCK (or INTERFACE); `methods` holds an
+    # FB's methods by upper-case name, inherited ones included.
+    owner: "PouInfo | None" = None
+    parent: "PouInfo | None" = None             # the FB this one EXTENDS
+    methods: dict = field(default_factory=dict)
+    interfaces: tuple = ()                      # PouInfos of the INTERFACEs implemented
+    access: str | None = None                   # METHOD: PUBLIC | PRIVATE | PROTECTED | INTERNAL
+    modifiers: tuple = ()                       # ABSTRACT, FINAL, OVERRIDE
+
+    def descends_from(self, other: "PouInfo") -> bool:
+        """This FB is `other` or extends it (directly or not)."""
+        info = self
+        while info is not None:
+            if info is other:
+                return True
+            info = info.parent
+        return False
+
+    def implements(self, interface: "PouInfo") -> bool:
+        info = self
+        while info is not None:
+            if any(i is interface or i.extends_interface(interface) for i in info.interfaces):
+                return True
+            info = info.parent
+        return False
+
+    def extends_interface(self, interface: "PouInfo") -> bool:
+        return any(i is interface or i.extends_interface(interface) for i in self.interfaces)
 
     def of_kind(self, *kinds: str) -> list[Symbol]:
         return [s for s in self.variables.values() if s.kind in kinds]
@@ -88,6 +117,15 @@ class CheckedProgram:
     dialect: str = "iec"                                           # "iec" or "nj", as checked
     # Added by the checker: id(For) -> the Symbol of its control variable.
     for_vars: dict[int, Symbol] = field(default_factory=dict)
+    # id(Call) -> the operator expression a call such as ADD(a, b) stands for.
+    lowered: dict[int, ast.Expr] = field(default_factory=dict)
+    dialect: str = "iec"                                           # --dialect checked under
+    # id(Member) -> (getter, setter) PouInfos of a PROPERTY read or written there.
+    properties: dict[int, tuple] = field(default_factory=dict)
+    # (Address, type, initializer) of unnamed located variables (`AT %QX0.1 : BOOL := 1;`)
+    image_inits: list = field(default_factory=list)
+    # id(Call) -> (EN expression or None, ENO Arg or None, the call without them).
+    enables: dict[int, tuple] = field(default_factory=dict)
 
     def type_of(self, expr: ast.Node) -> Type:
         return self.expr_types[id(expr)]

@@ -31,7 +31,7 @@ _STATEMENT_STARTS = frozenset({"IF", "CASE", "FOR", "WHILE", "REPEAT", "EXIT", "
                                "RETURN", "IDENT"})
 _BINARY_OPERATORS = frozenset({"AMP", "AND", "OR", "XOR", "EQ", "NE", "LT", "GT", "LE", "GE",
                                "PLUS", "MINUS", "STAR", "SLASH", "MOD", "POW"})
-_AFTER_STATEMENT_NAME = {"_ASSIGN", "_LPAR", "_DOT", "_LSQB"}
+_AFTER_STATEMENT_NAME = {"_ASSIGN", "_LPAR", "_DOT", "_LSQB", "CARET", "SET_RESET"}   # (^ and S= / R=: issue 13)
 _EXPRESSION_STARTS = frozenset({
     "IDENT", "INT", "BASED_INT", "REAL_NUMBER", "TIME_LIT", "DATE_LIT", "TOD_LIT",
     "DT_LIT", "TYPED_LIT", "SSTRING", "DSTRING", "TRUE", "FALSE", "MINUS", "PLUS", "NOT",
@@ -41,6 +41,8 @@ _NAMES = {
     "REAL_NUMBER": "real number", "TIME_LIT": "TIME literal", "DATE_LIT": "DATE literal",
     "TOD_LIT": "TIME_OF_DAY literal", "DT_LIT": "DATE_AND_TIME literal",
     "TYPED_LIT": "typed literal", "SSTRING": "string", "DSTRING": "wide string",
+    "_AT": "'AT'", "_AT_ADDRESS": "'AT'", "SET_RESET": "'S=' or 'R='", "PARTIAL": "partial access (%X3, %B0)",
+    "DIRECT_VAR": "direct address (%IX0.0, %QW3, %MD10, %I*)",
     "$END": "end of file",
 }
 GLUE = frozenset({"_THEN", "_DO", "_OF", "_TO", "_ASSIGN", "_COLON", "_LPAR"})

@@ -75,6 +75,12 @@ def scan(grammar, text: str, path: str) -> Scan:
                     "of the file", pos))
                 result.truncated = True
                 break
+            if char == "{":
+                result.diagnostics.append(Diagnostic(
+                    "E-PARSE-005", "unterminated pragma: '{' has no closing '}' "
+                    "(pragmas do not nest)", pos))
+                result.truncated = True
+                break
             if exc.pos_in_stream != bad_run_end:
                 shown = char if char.isprintable() else f"U+{ord(char):04X}"
                 result.diagnostics.append(Diagnostic(

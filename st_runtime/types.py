@@ -53,6 +53,35 @@ class ElementaryType:
         return (1 << (self.bits - 1)) - 1 if self.signed else (1 << self.bits) - 1
 
 
+@dataclass(frozen=True, slots=True)
+class SubrangeType(ElementaryType):
+    """`INT (0..100)` (IEC 61131-3 6.4.4.4): the integer type with a narrower range.
+
+    It is its base type everywhere (same name, kind, width) except for the
+    range: `min`/`max` are the limits, every store outside them is an
+    F-SUBRANGE fault, a constant outside them is refused, and the default
+    initial value is the lower limit (6.4.2).
+    """
+
+    lo: int = 0
+    hi: int = 0
+
+    def __str__(self) -> str:
+        return f"{self.name} ({self.lo}..{self.hi})"
+
+    @property
+    def min(self) -> int:
+        return self.lo
+
+    @property
+    def max(self) -> int:
+        return self.hi
+
+
+def subrange_of(base: ElementaryType, lo: int, hi: int) -> SubrangeType:
+    return SubrangeType(base.name, base.kind, base.bits, base.signed, lo, hi)
+
+
 def _elementary() -> dict[str, ElementaryType]:
     table = [
         ElementaryType("BOOL", "bool", 1),
@@ -148,11 +177,18 @@ class ArrayType:
     element: "Type"
 
     def __str__(self) -> str:
-        ranges = ", ".join(f"{lo}..{hi}" for lo, hi in self.dims)
+        ranges = ", ".join("*" if lo is None else f"{lo}..{hi}" for lo, hi in self.dims)
         return f"ARRAY[{ranges}] OF {self.element}"
 
     @property
+    def is_open(self) -> bool:
+        """ARRAY[*]: the bounds are the argument's, known at run time only."""
+        return any(lo is None for lo, _ in self.dims)
+
+    @property
     def size(self) -> int:
+        if self.is_open:          # ARRAY[*]: refers to the argument, holds nothing itself
+            return 0
         n = 1
         for lo, hi in self.dims:
             n *= hi - lo + 1
@@ -165,6 +201,7 @@ class StructType:
 
     name: str
     fields: dict[str, tuple[str, "Type"]] = field(default_factory=dict)
+    union: bool = False      # UNION: every member starts at byte 0 of one storage
 
     def __str__(self) -> str:
         return self.name
@@ -190,6 +227,43 @@ class FBType:
     # Upper-case variable name -> Symbol (see symbols.py), filled by the checker.
     variables: dict = field(default_factory=dict)
     native: object = None  # the Python class for native FBs
+    info: object = None    # its PouInfo (methods, base FB, interfaces)
+
+    def __str__(self) -> str:
+        return self.name
+
+
+@dataclass(frozen=True, slots=True)
+class RefType:
+    """`REF_TO T` (or codesys `POINTER TO T`): refers to a variable of type T,
+    or to nothing (NULL).  At run time an elementary target is a Ref object
+    (`get`/`set`), an array/struct/FB target the object itself, NULL None."""
+
+    target: "Type"
+    pointer: bool = False
+
+    def __str__(self) -> str:
+        return ("POINTER TO " if self.pointer else "REF_TO ") + str(self.target)
+
+
+@dataclass(frozen=True, slots=True)
+class NullType:
+    """The type of NULL: stores into any reference or interface variable."""
+
+    def __str__(self) -> str:
+        return "NULL"
+
+
+NULL = NullType()
+
+
+@dataclass(eq=False, slots=True)
+class InterfaceType:
+    """An INTERFACE (3rd ed. 6.6.6): a variable of it refers to an FB instance
+    that implements it (or holds nothing: NULL); `info` is its PouInfo."""
+
+    name: str
+    info: object = None
 
     def __str__(self) -> str:
         return self.name
@@ -206,7 +280,8 @@ class AliasType:
         return self.name
 
 
-Type = Union[ElementaryType, StringType, ArrayType, StructType, EnumType, FBType]
+Type = Union[ElementaryType, StringType, ArrayType, StructType, EnumType, FBType, InterfaceType,
+             RefType, NullType]
 
 
 def resolve_alias(t: "Type | AliasType") -> Type:

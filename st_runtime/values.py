@@ -482,6 +482,10 @@ def to_json(value, t):
     keyed by declared name.
     """
     t = resolve_alias(t)
+    if type(t).__name__ == "InterfaceType":    # a reference: what it refers to
+        return None if value is None else type(value)._st_name
+    if type(t).__name__ == "RefType":          # NULL, or "REF" (the target is shown where it lives)
+        return None if value is None else "REF"
     if isinstance(t, ElementaryType):
         kind = t.kind
         if kind == "bool":

@@ -17,7 +17,7 @@ from st_runtime.loader import load_texts
 
 CORPUS = Path(__file__).parent / "corpus"
 HEADER = re.compile(r"\(\* expect: (?P<code>[EW]-[A-Z]+-\d{3}) line (?P<line>\d+)"
-                    r"(?: dialect (?P<dialect>iec|nj))? \*\)")
+                    r"(?: dialect (?P<dialect>iec|nj|codesys))? \*\)")
 
 REJECT = sorted((CORPUS / "reject").glob("*.st"))
 ACCEPT = sorted((CORPUS / "accept").glob("*.st"))
@@ -46,8 +46,15 @@ def test_reject(path: Path):
     assert not others, f"cascade or unrelated errors: {others}"
 
 
+def accept_dialect(text: str) -> str:
+    """An accept file opening with `(* dialect codesys ...` is checked in that dialect."""
+    m = re.match(r"\(\* dialect (iec|nj|codesys)\b", text)
+    return m[1] if m else "iec"
+
+
 @pytest.mark.parametrize("path", ACCEPT, ids=lambda p: p.stem)
 def test_accept_passes_checker(path: Path):
-    result = load_texts({path.name: path.read_text(encoding="utf-8")}, "iec")
+    text = path.read_text(encoding="utf-8")
+    result = load_texts({path.name: text}, accept_dialect(text))
     assert not result.errors, "; ".join(d.header() for d in result.errors)
     assert result.program is not None

@@ -35,7 +35,7 @@ CASES = [
     (["check", "{d}/missing.st"], 2, "no such file or directory: '{d}/missing.st'"),
     (["check", "{d}/empty"], 2, "no .st file in '{d}/empty'"),
     (["check", "{d}/bin.st"], 1, "{d}/bin.st:1:9: error[E-LOAD-003]: '{d}/bin.st' is not UTF-8 text"),
-    (["check", "{d}/main.st", "--dialect", "codesys"], 2, "argument --dialect: invalid choice"),
+    (["check", "{d}/main.st", "--dialect", "twincat"], 2, "argument --dialect: invalid choice"),
     (["run", "{d}/missing.st", "--program", "Main"], 2, "no such file or directory"),
     (["run", "{d}/empty", "--program", "Main"], 2, "no .st file in '{d}/empty'"),
     (["run", "{d}/bin.st", "--program", "Main"], 1, "error[E-LOAD-003]"),

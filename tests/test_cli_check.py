@@ -57,7 +57,7 @@ def test_missing_path_is_a_usage_error(tmp_path, capsys):
 def test_bad_dialect_is_a_usage_error(tmp_path, capsys):
     (tmp_path / "good.st").write_text(GOOD)
     try:
-        main(["check", str(tmp_path / "good.st"), "--dialect", "codesys"])
+        main(["check", str(tmp_path / "good.st"), "--dialect", "twincat"])
     except SystemExit as exc:
         assert exc.code == 2
     else:

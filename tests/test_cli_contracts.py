@@ -167,7 +167,7 @@ def test_dialect_has_help_everywhere(capsys, command):
     with pytest.raises(SystemExit):
         main([command, "--help"])
     help_text = " ".join(capsys.readouterr().out.split())
-    assert "--dialect {iec,nj}" in help_text and "OMRON NJ/Sysmac Studio" in help_text
+    assert "--dialect {iec,nj,codesys}" in help_text and "OMRON NJ/Sysmac Studio" in help_text
 
 
 @pytest.mark.parametrize("typo, keyword", [("ENDIF", "END_IF"), ("END_FI", "END_IF"), ("end_fro", "END_FOR")])

@@ -43,6 +43,7 @@ from ..symbols import CheckedProgram
 from . import codes  # noqa: F401  (registers the codes)
 from .context import Context, FastSink, Scope
 from .declarations import Declarations
+from .dialects import check_dialect
 from .expressions import ExprChecker
 from .nj_build import check_build_rules
 from .limits import check_files
@@ -51,7 +52,7 @@ from .nj_rules import check_identifiers
 from .recursion import check_recursion
 from .statements import StatementChecker
 
-DIALECTS = ("iec", "nj")
+DIALECTS = ("iec", "nj", "codesys")
 RECURSION_LIMIT = 30_000
 
 register({
@@ -94,7 +95,12 @@ def _check(files, dialect, memory_limit=None, open_instances=False):
                 continue
             ex = ExprChecker(ctx, Scope(ctx, info))
             StatementChecker(ex).block(info.node.body)
+            for method in info.methods.values():
+                if method.owner is info and info.kind == "FUNCTION_BLOCK":
+                    ex = ExprChecker(ctx, Scope(ctx, method))
+                    StatementChecker(ex).block(method.node.body)
         check_recursion(ctx)
+        check_dialect(ctx, files)
         if not any(d.code == "E-REC-001" for d in ctx.sink.items):   # sizes need acyclic types
             check_memory(ctx, memory_limit)
         check_identifiers(ctx, files)

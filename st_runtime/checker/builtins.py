@@ -73,6 +73,10 @@ def _table() -> dict[str, Builtin]:
     add("REPLACE", [Param("IN1", "STRING"), Param("IN2", "STRING"), Param("L", "ANY_INT"),
                     Param("P", "ANY_INT")], "STRING")
     add("FIND", [Param("IN1", "STRING"), Param("IN2", "STRING")], "INT")
+    from ..stdlib.bcd import BCD_FUNCTIONS
+
+    for name, (category, result, _fn) in BCD_FUNCTIONS.items():
+        add(name, [Param("IN", category)], result)
     return table
 
 
@@ -128,7 +132,7 @@ def in_category(t, category: str) -> bool:
         return ts.is_string(t)
     if category == "BOOL":
         return ts.is_bool(t)
-    return False
+    return T.ELEMENTARY.get(category) is t      # a parameter of one named type
 
 
 # Elementary types that take part in `A_TO_B` conversions, by their spellings.

@@ -11,6 +11,8 @@ from .. import types as T
 from ..ast import key
 from ..symbols import CallTarget, PouInfo
 from . import builtins as B
+from .oo import find_method, interface_methods, may_call
+from .operator_calls import OPERATOR_FUNCTIONS, lower, ordered_inputs
 from . import typesys as ts
 from .expressions import start_pos
 from .stores import check_store, in_out_problem, is_variable_path, root_name
@@ -27,7 +29,55 @@ class CallChecker:
 
     # ------------------------------------------------------------ dispatch
     def check_call(self, call: ast.Call, expected=None, statement: bool = False):
+        enable = self._enable_args(call)
+        if enable is None:
+            return self._dispatch(call, expected, statement)
+        en, eno, inner = enable
+        if en is not None and en.value is not None:
+            self.ex.check_value(en.value, T.BOOL, "EN")
+        if eno is not None and eno.value is not None:
+            t = check_store(self.ex, eno.value, "ENO")
+            if t is not ts.ERROR:
+                self.ex.require_assignable(T.BOOL, t, eno.value.pos, "ENO")
+        t = self._dispatch(inner, expected, statement)
+        self.program.enables[id(call)] = (en.value if en is not None else None, eno, inner)
+        return self.ex.record(call, t) if id(inner) in self.program.expr_types else t
+
+    def _enable_args(self, call: ast.Call):
+        """(EN arg, ENO arg, the call without them) when the call gives EN or ENO.
+
+        IEC 61131-3 6.6.1.2: every function and FB has the BOOL input EN and
+        output ENO; with EN FALSE the body is not executed and ENO is FALSE.
+        A callee that declares its own EN / ENO keeps them as ordinary pins.
+        """
+        en = next((a for a in call.args if a.name and key(a.name) == "EN" and a.direction == "in"), None)
+        eno = next((a for a in call.args if a.name and key(a.name) == "ENO" and a.direction == "out"), None)
+        if en is None and eno is None:
+            return None
         callee = call.callee
+        pou = None
+        if isinstance(callee, ast.Name) and self._not_a_variable(callee):
+            pou = self.program.pous.get(key(callee.name))
+        else:
+            t = self.ex.infer(callee)
+            if isinstance(t, T.FBType):
+                pou = self.program.pous.get(key(t.name))
+        if pou is not None and ("EN" in pou.variables or "ENO" in pou.variables):
+            return None
+        rest = tuple(a for a in call.args if a is not en and a is not eno)
+        return en, eno, ast.Call(callee, rest, pos=call.pos)
+
+    def _dispatch(self, call: ast.Call, expected=None, statement: bool = False):
+        callee = call.callee
+        short = self._namespaced(callee)
+        if short is not None:       # NS.F(x): the function F of namespace NS
+            inner = ast.Call(short, call.args, call.trailing_comma, pos=call.pos)
+            self.program.lowered[id(call)] = inner
+            t = self._dispatch(inner, expected, statement)
+            return self.ex.record(call, t) if id(inner) in self.program.expr_types else t
+        method = self._method_target(callee)
+        if method is not None:
+            return self._method_call(call, method[0], method[1], statement)
         if isinstance(callee, ast.Name) and self._not_a_variable(callee):
             k = key(callee.name)
             pou = self.program.pous.get(k)
@@ -41,6 +91,17 @@ class CallChecker:
                     msg = f"'{callee.name}' is a PROGRAM: programs are run by tasks, not called"
                 self.ctx.error("E-CALL-001", msg, callee.pos)
                 return self._give_up(call)
+            if k in ("__NEW", "__DELETE"):
+                self.ctx.error("E-CALL-013", f"{callee.name}: dynamic memory (CODESYS __NEW / "
+                               f"__DELETE) is not supported; declare the instance or array as a "
+                               f"variable instead", callee.pos)
+                return self.ex.record(call, ts.ERROR)     # (its argument is a type: not typed)
+            if k in ("LOWER_BOUND", "UPPER_BOUND"):
+                return self._bound(call, k)
+            if k in ("REF", "ADR") and (k == "REF" or self.ctx.dialect == "codesys"):
+                return self._reference(call, k)
+            if k in OPERATOR_FUNCTIONS:
+                return self._operator_call(call, k, OPERATOR_FUNCTIONS[k], expected)
             if k in B.STANDARD_FUNCTIONS:
                 return self._standard(call, B.STANDARD_FUNCTIONS[k], expected)
             conv = B.conversion(k)
@@ -60,6 +121,105 @@ class CallChecker:
             return self._give_up(call)
         return self._fb_call(call, t, statement)
 
+    # ---------------------------------------------------------- array bounds
+    def _bound(self, call, name: str):
+        """LOWER_BOUND(A, n) / UPPER_BOUND(A, n) (3rd ed. 6.5.3): a bound of dimension n."""
+        args = [a.value for a in call.args if a.direction != "out"]
+        if len(args) != 2 or len(call.args) != 2:
+            self.ctx.error("E-CALL-009" if len(call.args) < 2 else "E-CALL-006",
+                           f"{name}: expected an array and a dimension number, found "
+                           f"{len(call.args)} argument(s)", call.pos)
+            return self._give_up(call)
+        t = self.ex.infer(args[0])
+        self.ex.infer(args[1], T.DINT)
+        dim = self.ex.constant(args[1])
+        if t is ts.ERROR:
+            return self.ex.record(call, ts.ERROR)
+        if not isinstance(t, T.ArrayType):
+            self.ctx.error("E-TYPE-006", f"{name}: expected an array, found {t}", start_pos(args[0]))
+            return self.ex.record(call, ts.ERROR)
+        if not isinstance(dim, int) or isinstance(dim, bool) or not 1 <= dim <= len(t.dims):
+            self.ctx.error("E-TYPE-008", f"{name}: expected a constant dimension 1..{len(t.dims)}, "
+                           f"found {dim if isinstance(dim, int) else 'a non-constant value'}",
+                           start_pos(args[1]))
+            return self.ex.record(call, ts.ERROR)
+        self.program.call_targets[id(call)] = CallTarget("bound", name)
+        return self.ex.record(call, T.DINT)
+
+    # --------------------------------------------------------- references
+    def _reference(self, call, name: str):
+        """REF(x) (3rd ed. 6.6.1.7; ADR(x) in the codesys dialect): a reference to x."""
+        args = call.args
+        if len(args) != 1 or args[0].direction == "out" or args[0].value is None:
+            self.ctx.error("E-CALL-009" if not args else "E-CALL-006",
+                           f"{name}: expected one variable, found {len(args)} argument(s)", call.pos)
+            return self._give_up(call)
+        value = args[0].value
+        t = check_store(self.ex, value, f"{name}(...)")
+        if t is ts.ERROR:
+            return self.ex.record(call, ts.ERROR)
+        self.program.call_targets[id(call)] = CallTarget("ref", name)
+        return self.ex.record(call, T.RefType(t, name == "ADR"))
+
+    def _namespaced(self, callee):
+        """Name(F) for a callee `NS.Sub.F` whose prefix is a NAMESPACE, else None."""
+        parts = []
+        e = callee
+        while isinstance(e, ast.Member):
+            parts.append(e.name)
+            e = e.base
+        if not parts or not isinstance(e, ast.Name) or self.ex.scope.lookup(e.name) is not None:
+            return None
+        space = ".".join([e.name, *reversed(parts[1:])])
+        if key(space) not in self.ctx.namespaces:
+            return None
+        node = self.ctx.pou_decls.get(key(parts[0]))
+        if node is None or key(node.namespace) != key(space):
+            self.ctx.error("E-DECL-001", f"NAMESPACE {space} declares no POU '{parts[0]}'", callee.pos)
+            return None
+        return ast.Name(parts[0], pos=callee.pos)
+
+    # ------------------------------------------------------------ methods
+    def _method_target(self, callee):
+        """("super" | "virtual" | "interface" | "self", method PouInfo) or None."""
+        fb = self.ex.scope.fb
+        if isinstance(callee, ast.Member) and isinstance(callee.base, ast.Name) \
+                and key(callee.base.name) == "SUPER" and self.ex.scope.lookup("SUPER") is None:
+            parent = fb.parent if fb is not None else None
+            m = find_method(parent, callee.name)
+            if m is None:
+                self.ctx.error("E-DECL-016", f"SUPER.{callee.name}: " + (
+                    f"{fb.name} extends no FB with a method {callee.name}" if fb is not None
+                    else "SUPER is only valid inside a FUNCTION_BLOCK or its methods"), callee.pos)
+                return None
+            return "super", m
+        if isinstance(callee, ast.Member):
+            t = self.ex.infer(callee.base)
+            if isinstance(t, T.FBType) and key(callee.name) not in t.variables:
+                m = find_method(t.info, callee.name)
+                return ("virtual", m) if m is not None else None
+            if isinstance(t, T.InterfaceType):
+                m = interface_methods(t.info).get(key(callee.name))
+                return ("interface", m) if m is not None else None
+            return None
+        if isinstance(callee, ast.Name) and fb is not None and self.ex.scope.lookup(callee.name) is None:
+            m = find_method(fb, callee.name)
+            return ("self", m) if m is not None else None
+        return None
+
+    def _method_call(self, call, how: str, method: PouInfo, statement: bool):
+        name = f"{method.owner.name}.{method.name}"
+        if not may_call(method, self.ex.scope.fb):
+            self.ctx.error("E-CALL-012", f"method {name} is {method.access}: it may be called "
+                           + ("only inside " + method.owner.name if method.access == "PRIVATE"
+                              else f"only inside {method.owner.name} and the FBs extending it"),
+                           call.callee.pos)
+        if how == "super" and "ABSTRACT" in method.modifiers:
+            self.ctx.error("E-DECL-016", f"SUPER.{method.name}: the method of {method.owner.name} "
+                           f"is ABSTRACT (it has no body to call)", call.callee.pos)
+        self.program.call_targets[id(call)] = CallTarget("method", how, method)
+        return self._bind_and_type(call, method, f"method {name}", statement)
+
     def _not_a_variable(self, name: ast.Name) -> bool:
         sym = self.ex.scope.lookup(name.name)
         # Inside a FUNCTION its own name is its result variable; a call of it
@@ -77,11 +237,15 @@ class CallChecker:
     def _user_function(self, call, pou: PouInfo, statement: bool):
         self.program.call_targets[id(call)] = CallTarget("function", key(pou.name), pou)
         self.ctx.add_call_edge(self.ex.scope.pou_key, key(pou.name), call.pos)
+        return self._bind_and_type(call, pou, f"function {pou.name}", statement)
+
+    def _bind_and_type(self, call, pou: PouInfo, what: str, statement: bool):
+        """Bind the arguments of a function or method call; its result type."""
         self._bind(call, pou, is_function=True)
         if pou.return_type is None:
             if not statement:
-                self.ctx.error("E-TYPE-016", f"function {pou.name} returns no value and cannot "
-                               f"be used in an expression", call.pos)
+                self.ctx.error("E-TYPE-016", f"{what} returns no value and cannot be used in "
+                               f"an expression", call.pos)
                 return self.ex.record(call, ts.ERROR)
             return ts.ERROR
         return self.ex.record(call, pou.return_type)
@@ -190,6 +354,10 @@ class CallChecker:
             self.ctx.error("E-CALL-007", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
                            f"writable variable, found {problem}", start_pos(value))
             return
+        if isinstance(sym.type, T.ArrayType) and sym.type.is_open and isinstance(t, T.ArrayType) \
+                and len(t.dims) == len(sym.type.dims) and (ts.same_type(t.element, sym.type.element)
+                                                           or t.element is sym.type.element):
+            return                  # ARRAY[*]: any bounds, same rank and element type
         if not (ts.same_type(t, sym.type) or t is sym.type):
             self.ctx.error("E-CALL-011", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
                            f"variable of type {sym.type}, found {t} (in-out parameters are passed "
@@ -203,6 +371,26 @@ class CallChecker:
     def _infer_arg(self, arg) -> None:
         if arg.value is not None:
             self.ex.infer(arg.value)
+
+    # ------------------------------------- operators in call form (ADD, GT)
+    def _operator_call(self, call, name: str, fn, expected):
+        values, problem = ordered_inputs(name, fn, call.args)
+        if problem:
+            self.ctx.error(problem[0], problem[1], call.pos)
+            return self._give_up(call)
+        for i, (value, want) in enumerate(zip(values, fn.operands), start=1):
+            wanted = T.ELEMENTARY.get(want)
+            t = self.ex.infer(value, wanted)
+            if t is ts.ERROR:
+                return self._give_up(call)
+            if not (ts.is_num(t) if want == "ANY_NUM" else t is wanted):
+                self.ctx.error("E-TYPE-004", f"{name}: argument IN{i}: expected "
+                               f"{B.describe(want) if want == 'ANY_NUM' else want}, found {t}",
+                               start_pos(value))
+                return self._give_up(call)
+        lowered = lower(fn, values, call.pos)
+        self.program.lowered[id(call)] = lowered
+        return self.ex.record(call, self.ex.infer(lowered, expected), self.ex.constant(lowered))
 
     # ------------------------------------------------- standard functions
     def _standard(self, call, fn: B.Builtin, expected):
@@ -329,7 +517,7 @@ class CallChecker:
             return True
         category = param.category
         hint = {"BOOL": T.BOOL, "ANY_INT": T.DINT, "STRING": T.StringType(),
-                "ANY_NUM": None}.get(category)
+                "ANY_NUM": None}.get(category, T.ELEMENTARY.get(category))
         t = self.ex.infer(arg.value, hint, strict=category == "BOOL")
         if t is ts.ERROR:
             return False
@@ -348,7 +536,7 @@ class CallChecker:
             return T.StringType()
         if fn.result == "ANY_INT":
             return expected if ts.is_int(expected) else T.DINT
-        return ts.ERROR
+        return T.ELEMENTARY.get(fn.result, ts.ERROR)
 
     # --------------------------------------------------------- conversions
     def _conversion(self, call, name, src, dst):

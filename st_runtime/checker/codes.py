@@ -84,4 +84,13 @@ CHECKER_CODES = register({
     "W-NJ-007": "a CASE label is not an integer literal or an enumerator: Sysmac Studio expects integer constants",
     "W-NJ-008": "an initial value is not a literal: Sysmac Studio's variable tables take literals",
     "E-PIN-001": "a standard FB pin is named as another dialect names it (OMRON's Reset for IEC's R of CTU, and the reverse)",
+    # the rest of IEC 61131-3 (issue 13)
+    "E-DECL-013": "R_EDGE / F_EDGE on something other than a BOOL input of a function block or program",
+    "E-DECL-014": "a subrange type whose base is not an integer type or whose limits are not lower <= upper inside the base",
+    "E-DECL-015": "a located variable (AT %IX0.0) with an invalid address, in the wrong place, or of a type whose width differs from the address's size",
+    "E-DECL-016": "object orientation: an unknown or wrong base / interface, a missing or FINAL-overridden method, an ABSTRACT FB instantiated",
+    "E-DECL-017": "a UNION member that is not BOOL, an integer, a bit string or a real",
+    "E-DIALECT-001": "a construct the chosen --dialect does not accept (the message names the dialects that do)",
+    "E-CALL-012": "a method is called from where its access specifier (PRIVATE, PROTECTED) does not allow it",
+    "E-CALL-013": "dynamic memory (__NEW, __DELETE) is not supported by the runtime",
 })

@@ -43,6 +43,8 @@ class Context:
     symbol_values: dict[int, object] = field(default_factory=dict)
     # call graph for the recursion check: caller -> [(callee, pos)]
     calls: dict[str, list[tuple[str, ast.Pos]]] = field(default_factory=dict)
+    namespaces: set = field(default_factory=set)     # upper-case "A", "A.B"
+    direct_types: dict = field(default_factory=dict)  # "%MW1" -> type declared AT it
 
     @property
     def rules(self) -> Dialect:
@@ -81,10 +83,16 @@ class Scope:
     def __init__(self, ctx: Context, pou: PouInfo | None = None):
         self.ctx = ctx
         self.pou = pou
+        # An FB's body and its methods also see the FB's variables and THIS.
+        self.fb = pou.owner if pou is not None and pou.kind == "METHOD" else (
+            pou if pou is not None and pou.kind == "FUNCTION_BLOCK" else None)
+        self._this = None
 
     @property
     def pou_key(self) -> str | None:
-        return key(self.pou.name) if self.pou is not None else None
+        if self.pou is None or self.pou.kind == "METHOD":
+            return None          # (methods stay out of the recursion check's call graph)
+        return key(self.pou.name)
 
     def lookup(self, name: str) -> Symbol | None:
         k = key(name)
@@ -92,7 +100,19 @@ class Scope:
             sym = self.pou.variables.get(k)
             if sym is not None:
                 return sym
+            if self.fb is not None:
+                sym = self.fb.variables.get(k)
+                if sym is not None:
+                    return sym
+                if k == "THIS" and self.fb.owner is None and self.fb.kind == "FUNCTION_BLOCK":
+                    if self._this is None:
+                        self._this = Symbol("THIS", self.ctx.program.types[key(self.fb.name)], "THIS")
+                    return self._this
         return self.ctx.program.globals.get(k)
 
     def is_local(self, sym: Symbol) -> bool:
-        return self.pou is not None and self.pou.variables.get(key(sym.name)) is sym
+        if self.pou is None:
+            return False
+        k = key(sym.name)
+        return self.pou.variables.get(k) is sym or (
+            self.fb is not None and self.fb.variables.get(k) is sym)

@@ -12,6 +12,7 @@ import difflib
 
 from .. import ast
 from .. import native
+from ..process_image import parse_address, type_fits
 from .. import types as T
 from ..ast import key
 from ..symbols import PouInfo, Symbol
@@ -20,6 +21,7 @@ from . import typesys as ts
 from .constfold import NOT_CONSTANT
 from .context import BUILTIN_FILE, Context, Scope
 from .expressions import ExprChecker
+from .oo import ObjectModel
 
 _INSTANCE_KINDS = ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP")
 
@@ -41,12 +43,18 @@ class Declarations:
         self._resolving: set[str] = set()
         self._names: dict[str, ast.Pos] = {}
         self.configurations: list[ast.Configuration] = []
+        self.objects = ObjectModel(self)
+        self._interfaces_done: set[int] = set()
 
     # ------------------------------------------------------------- driver
     def run(self, files: list[ast.SourceFile]) -> None:
         for f in files:
             for item in f.items:
                 self._collect(item)
+                space = getattr(item, "namespace", "")
+                while space:            # NAMESPACE A.B declares A and A.B
+                    self.ctx.namespaces.add(key(space))
+                    space = space.rpartition(".")[0]
         self._create_pous()
         # Global constants first: types may use them (ARRAY[1..N_LEGS]); types
         # are resolved on demand while globals are declared, the rest after.
@@ -56,7 +64,9 @@ class Declarations:
         for k in list(self.ctx.type_decls):
             self.type_named(k)
         for k, node in self.ctx.pou_decls.items():
-            self._interface(self.program.pous[k], node)
+            self.ensure_interface(self.program.pous[k])
+        for k, node in self.ctx.pou_decls.items():
+            self.objects.check_contracts(self.program.pous[k], node)
         for config in self.configurations:
             self._configuration(config)
 
@@ -113,8 +123,10 @@ class Declarations:
     def _create_pous(self) -> None:
         for k, node in self.ctx.pou_decls.items():
             info = PouInfo(node.name, node.kind, node, file=node.pos.file)
+            if node.kind == "INTERFACE":
+                self.program.types[k] = T.InterfaceType(node.name, info)
             if node.kind == "FUNCTION_BLOCK":
-                fb = T.FBType(node.name)
+                fb = T.FBType(node.name, info=info)
                 fb.variables = info.variables
                 if node.pos.file == BUILTIN_FILE and k in native.NATIVE_FBS:
                     fb.native = info.native = native.NATIVE_FBS[k]
@@ -154,11 +166,17 @@ class Declarations:
                     self.ctx.error("E-DECL-002", f"duplicate member '{member.name}' in struct "
                                    f"{decl.name}", member.pos)
                     continue
+                if spec.union and mt is not ts.ERROR and not (
+                        isinstance(mt, T.ElementaryType) and mt.kind in ("bool", "int", "bits", "real")):
+                    self.ctx.error("E-DECL-017", f"UNION {decl.name}: member '{member.name}' is "
+                                   f"{mt}; expected BOOL, an integer, a bit string or a real "
+                                   f"(they share bytes)", member.pos)
+                    continue
                 if member.init is not None and mt is not ts.ERROR:
                     self.initializer(member.init, mt, self.global_ex,
                                      f"initial value of member '{member.name}'")
                 fields[mk] = (member.name, mt)
-            return T.StructType(decl.name, fields)
+            return T.StructType(decl.name, fields, spec.union)
         if isinstance(spec, ast.EnumType):
             return self._enum(decl, spec)
         return self.resolve(spec, self.global_ex)
@@ -189,6 +207,11 @@ class Declarations:
 
     def resolve(self, ref, ex: ExprChecker):
         """A declared type reference as a semantic type (ERROR after a report)."""
+        if isinstance(ref, ast.NamedType) and "." in ref.name:
+            short = self.qualified(ref.name, ref.pos)
+            if short is None:
+                return ts.ERROR
+            ref = ast.NamedType(short, pos=ref.pos)
         if isinstance(ref, ast.NamedType):
             k = key(ref.name)
             if k == "STRING":
@@ -212,6 +235,11 @@ class Declarations:
                 hint = f" (did you mean {close[0]}?)" if close else ""
                 self.ctx.error("E-DECL-004", f"unknown type '{ref.name}'{hint}", ref.pos)
             return ts.ERROR
+        if isinstance(ref, ast.SubrangeType):
+            return self._subrange(ref, ex)
+        if isinstance(ref, ast.RefType):
+            target = self.resolve(ref.target, ex)
+            return ts.ERROR if target is ts.ERROR else T.RefType(target, ref.pointer)
         if isinstance(ref, ast.StringType):
             if ref.length is None:
                 return T.StringType(wide=ref.wide)
@@ -227,6 +255,9 @@ class Declarations:
             dims = []
             ok = True
             for sub in ref.ranges:
+                if sub is None:          # ARRAY[*]
+                    dims.append((None, None))
+                    continue
                 lo = self._const_int(sub.lo, ex, "array lower bound")
                 hi = self._const_int(sub.hi, ex, "array upper bound")
                 if lo is None or hi is None:
@@ -243,6 +274,33 @@ class Declarations:
                 return ts.ERROR
             return T.ArrayType(tuple(dims), element)
         return ts.ERROR
+
+    def qualified(self, name: str, pos) -> str | None:
+        """`NS.Name` -> "Name" when Name is declared in namespace NS."""
+        space, _, short = name.rpartition(".")
+        item = self.ctx.type_decls.get(key(short)) or self.ctx.pou_decls.get(key(short))
+        if key(space) not in self.ctx.namespaces or item is None or key(item.namespace) != key(space):
+            self.ctx.error("E-DECL-004", f"unknown type '{name}'" + (
+                "" if key(space) in self.ctx.namespaces else f" (no NAMESPACE {space})"), pos)
+            return None
+        return short
+
+    def _subrange(self, ref: ast.SubrangeType, ex: ExprChecker):
+        """`INT (0..100)`: an integer base, constant limits inside it, lo <= hi."""
+        base = T.ELEMENTARY.get(key(ref.base))
+        if base is None or base.kind != "int":
+            self.ctx.error("E-DECL-014", f"subrange of '{ref.base}': expected an integer type "
+                           f"(SINT ... ULINT) before the range", ref.pos)
+            return ts.ERROR
+        lo = self._const_int(ref.range.lo, ex, "subrange lower limit")
+        hi = self._const_int(ref.range.hi, ex, "subrange upper limit")
+        if lo is None or hi is None:
+            return ts.ERROR
+        if not (base.min <= lo <= hi <= base.max):
+            self.ctx.error("E-DECL-014", f"subrange {lo}..{hi} of {base}: expected "
+                           f"{base.min} <= lower <= upper <= {base.max}", ref.range.pos)
+            return ts.ERROR
+        return T.subrange_of(base, lo, hi)
 
     def _const_int(self, e, ex: ExprChecker, what: str):
         t = ex.infer(e, T.DINT)
@@ -261,6 +319,15 @@ class Declarations:
         kind = kind or block.kind
         k = key(decl.name)
         t = self.resolve(decl.type, ex)
+        if not decl.name:                     # `AT %IX1.1 : BOOL;`: a place, no symbol
+            self._located(decl, kind, t, pou)
+            address = parse_address(decl.location)[0]
+            if address is not None and t is not ts.ERROR:
+                self.ctx.direct_types[address.text] = t
+                if decl.init is not None:
+                    self.initializer(decl.init, t, ex, f"initial value of {decl.location}")
+                    self.program.image_inits.append((address, t, decl.init))
+            return None
         if k in table:
             first = table[k].decl.pos if table[k].decl is not None else None
             where = f" (first declared at {first})" if first is not None else ""
@@ -272,6 +339,21 @@ class Declarations:
             self.ctx.error("E-DECL-009", f"FUNCTION {pou.name} declares '{decl.name}' of function "
                            f"block type {fb_type_of(t).name}: functions keep no state; use a "
                            f"FUNCTION_BLOCK", decl.pos)
+        if decl.location is not None:
+            self._located(decl, kind, t, pou)
+        if isinstance(t, T.ArrayType) and t.is_open and kind != "VAR_IN_OUT":
+            self.ctx.error("E-DECL-006", f"'{decl.name}' : {t}: ARRAY[*] is only for a VAR_IN_OUT "
+                           f"(the bounds come with the argument)", decl.pos)
+        fb_node = self.ctx.pou_decls.get(key(t.name)) if isinstance(t, T.FBType) else None
+        if fb_node is not None and "ABSTRACT" in fb_node.modifiers:
+            self.ctx.error("E-DECL-016", f"'{decl.name}': {t.name} is ABSTRACT and cannot be "
+                           f"instantiated (declare an FB that extends it)", decl.pos)
+        if decl.edge and (kind != "VAR_INPUT" or pou is None or pou.kind == "FUNCTION"
+                          or (t is not ts.ERROR and not ts.is_bool(t))):
+            self.ctx.error("E-DECL-013", f"'{decl.name}' is declared {decl.edge}: expected a BOOL "
+                           f"VAR_INPUT of a FUNCTION_BLOCK or PROGRAM, found a {t} {kind}"
+                           + (f" of FUNCTION {pou.name}" if pou is not None and pou.kind == "FUNCTION" else ""),
+                           decl.pos)
         constant = block.constant
         if kind == "VAR_EXTERNAL":
             glob = self.program.globals.get(k)
@@ -307,6 +389,28 @@ class Declarations:
                            f"found none", decl.pos)
         table[k] = sym
         return sym
+
+    def _located(self, decl: ast.VarDecl, kind: str, t, pou) -> None:
+        """`x AT %IW3 : INT` (IEC 61131-3 6.5.5): a valid address of the type's width,
+        in a PROGRAM, a configuration or the globals; an FB may only say `%I*`."""
+        address, problem = parse_address(decl.location)
+        where = f"'{decl.name}' AT {decl.location}" if decl.name else decl.location
+        if problem is not None:
+            self.ctx.error("E-DECL-015", f"{where}: {problem}", decl.pos)
+        elif kind not in ("VAR", "VAR_GLOBAL", "VAR_INPUT", "VAR_OUTPUT"):
+            self.ctx.error("E-DECL-015", f"{where}: a {kind} cannot be located (VAR, VAR_GLOBAL, "
+                           f"VAR_INPUT or VAR_OUTPUT can)", decl.pos)
+        elif pou is not None and pou.kind == "FUNCTION":
+            self.ctx.error("E-DECL-015", f"{where}: a FUNCTION keeps no variables between calls "
+                           f"and cannot have located ones", decl.pos)
+        elif address is not None and pou is not None and pou.kind == "FUNCTION_BLOCK":
+            self.ctx.error("E-DECL-015", f"{where}: in a FUNCTION_BLOCK only %I*, %Q* or %M* "
+                           f"(a place chosen by the configuration), found a full address", decl.pos)
+        elif address is not None and t is not ts.ERROR and not type_fits(address, t):
+            self.ctx.error("E-DECL-015", f"{where}: a {address.size} address holds "
+                           f"{address.bits} bit(s); expected a type of that width, found {t}", decl.pos)
+        elif address is not None and t is not ts.ERROR:
+            self.ctx.direct_types.setdefault(address.text, t)    # `%IW1` in code reads as t
 
     def _default_init(self, ref):
         if isinstance(ref, ast.NamedType):
@@ -383,9 +487,28 @@ class Declarations:
         return count
 
     # --------------------------------------------------------------- POUs
+    def ensure_interface(self, info: PouInfo) -> None:
+        """Declare a POU's variables once (a base FB before the FBs extending it)."""
+        if id(info) in self._interfaces_done or info.node is None:
+            return
+        self._interfaces_done.add(id(info))
+        self._interface(info, info.node)
+
+    def method_interface(self, info: PouInfo, node: ast.Method) -> None:
+        """A METHOD's result and variables (its FB's come from the scope)."""
+        ex = ExprChecker(self.ctx, Scope(self.ctx, info))
+        if node.return_type is not None:
+            info.return_type = self.resolve(node.return_type, ex)
+            info.variables[key(node.name)] = Symbol(node.name, info.return_type, "RETURN", None)
+        for block in node.var_blocks:
+            for decl in block.decls:
+                self.declare(decl, block, info.variables, ex, info)
+
     def _interface(self, info: PouInfo, node: ast.Pou) -> None:
         scope = Scope(self.ctx, info)
         ex = ExprChecker(self.ctx, scope)
+        if node.kind in ("FUNCTION_BLOCK", "INTERFACE"):
+            self.objects.inherit(info, node)
         if node.kind == "FUNCTION" and node.return_type is not None:
             rt = self.resolve(node.return_type, ex)
             info.return_type = rt
@@ -400,3 +523,5 @@ class Declarations:
                 continue
             for decl in block.decls:
                 self.declare(decl, block, info.variables, ex, info)
+        if node.methods:
+            self.objects.declare_methods(info, node)

@@ -29,6 +29,8 @@ from __future__ import annotations
 import difflib
 import math
 
+from .oo import assignable_reference, find_property, may_call
+from ..process_image import PLAIN_TYPES, parse_address
 from .. import ast
 from .. import types as T
 from ..ast import key
@@ -94,6 +96,9 @@ def _range(t) -> str:
     return f"{t.min}..{t.max}" if isinstance(t, T.ElementaryType) else "?"
 
 
+# The part a bit access selects: `x.3` and `x.%X3` a BOOL, `.%B1` a BYTE, ...
+PARTS = {"": T.BOOL, "X": T.BOOL, "B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}
+
 class ExprChecker:
     """Types expressions inside one scope."""
 
@@ -111,6 +116,10 @@ class ExprChecker:
 
     # ------------------------------------------------------------ recording
     def record(self, e, t, value=NOT_CONSTANT):
+        if isinstance(t, T.SubrangeType):
+            # A subrange variable reads as its base type; its limits are
+            # checked where it is stored (the compiler reads the symbol's type).
+            t = T.ELEMENTARY[t.name]
         self.program.expr_types[id(e)] = t
         if value is not NOT_CONSTANT and value is not None and t is not ts.ERROR:
             self.program.constants[id(e)] = ts.coerce_constant(value, t)
@@ -147,6 +156,22 @@ class ExprChecker:
     def require_assignable(self, src, dst, pos, what: str) -> bool:
         if src is ts.ERROR or dst is ts.ERROR:
             return True
+        if isinstance(dst, (T.RefType, T.InterfaceType)) and src is T.NULL:
+            return True
+        if isinstance(dst, T.RefType):
+            if isinstance(src, T.RefType) and (src.target is dst.target or ts.same_type(src.target, dst.target)
+                                               or str(src.target) == str(dst.target)):
+                return True
+            self.ctx.error("E-TYPE-004", f"{what}: expected {dst}, found {src}"
+                           + ("; take a reference with REF(...)" if not isinstance(src, T.RefType) else ""),
+                           pos)
+            return False
+        if isinstance(dst, T.InterfaceType):
+            if assignable_reference(src, dst):
+                return True     # the variable now refers to that instance (no copy)
+            self.ctx.error("E-TYPE-004", f"{what}: expected an instance of an FB that implements "
+                           f"{dst}, found {src}", pos)
+            return False
         if isinstance(src, T.FBType) or isinstance(dst, T.FBType):
             self.ctx.error("E-TYPE-016", f"{what}: function block instances cannot be copied "
                            f"(found {src}, expected {dst})", pos)
@@ -179,6 +204,10 @@ class ExprChecker:
         Returns None when it cannot be folded (e.g. `1.5 MOD 2`): the caller
         then types it operator by operator and reports what is wrong.
         """
+        if ts.is_bool(expected) and isinstance(e, ast.IntLiteral) and e.value in (0, 1):
+            # IEC 61131-3 6.3.2: a BOOL literal is 0, 1, TRUE or FALSE (Annex F
+            # writes `BOOL := 0`); only the bare digit, not `1 - 0`.
+            return self.record(e, T.BOOL, bool(e.value))
         values: dict[int, object] = {}
         try:
             value = self._fold_exact(e, values)
@@ -355,6 +384,17 @@ class ExprChecker:
             return self.record(e, entry[1])
         if isinstance(base, T.FBType):
             sym = base.variables.get(k)
+            if sym is None and base.info is not None:
+                getter, setter = find_property(base.info, e.name)
+                if getter is not None or setter is not None:       # a PROPERTY
+                    accessor = getter or setter
+                    if not may_call(accessor, self.scope.fb):
+                        self.ctx.error("E-CALL-012", f"property {base.name}.{e.name} is "
+                                       f"{accessor.access}", e.pos)
+                    self.program.properties[id(e)] = (getter, setter)
+                    t = getter.return_type if getter is not None else \
+                        next(iter(setter.variables.values())).type
+                    return self.record(e, t)
             if sym is None:
                 foreign = self.ctx.foreign_pin(base.name, e.name)
                 if foreign is not None:
@@ -363,14 +403,54 @@ class ExprChecker:
                     self.ctx.error("E-TYPE-009", f"function block {base.name} has no variable "
                                    f"'{e.name}'", e.pos)
                 return self.record(e, ts.ERROR)
-            if sym.kind not in ("VAR_INPUT", "VAR_OUTPUT") and not self.ctx.open_instances:
+            # IEC 61131-3 2nd ed. Table 2.5.2.1a / 3rd ed. 6.6.3.2: an in-out may
+            # be read outside the instance (`IF FB1.INOUT THEN`), not assigned.
+            inside = isinstance(e.base, ast.Name) and key(e.base.name) == "THIS"
+            if sym.kind not in ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT") and not inside \
+                    and not self.ctx.open_instances:
                 self.ctx.error("E-TYPE-009", f"'{e.name}' is a {sym.kind} of {base.name}: only "
-                               f"inputs and outputs are visible outside the instance", e.pos)
+                               f"inputs, outputs and in-outs are visible outside the instance", e.pos)
                 return self.record(e, ts.ERROR)
             return self.record(e, sym.type)
         self.ctx.error("E-TYPE-009", f"'.{e.name}': expected a struct or function block "
                        f"instance, found {base}", e.pos)
         return self.record(e, ts.ERROR)
+
+    def _Deref(self, e, expected):
+        base = self.infer(e.base)
+        if base is ts.ERROR:
+            return self.record(e, ts.ERROR)
+        if not isinstance(base, T.RefType):
+            self.ctx.error("E-TYPE-001", f"^: expected a reference (REF_TO or POINTER TO), "
+                           f"found {base}", e.pos)
+            return self.record(e, ts.ERROR)
+        return self.record(e, base.target)
+
+    def _BitAccess(self, e, expected):
+        base = self.infer(e.base)
+        if base is ts.ERROR:
+            return self.record(e, ts.ERROR)
+        part = PARTS[e.size]
+        width = part.bits
+        if not (ts.is_int(base) or ts.is_bits(base)) or (e.bit + 1) * width > base.bits:
+            self.ctx.error("E-TYPE-009", f".{'%' + e.size if e.size else ''}{e.bit}: expected an "
+                           f"integer or bit string holding part {e.bit} of {width} bit(s), "
+                           f"found {base}", e.pos)
+            return self.record(e, ts.ERROR)
+        return self.record(e, part)
+
+    def _DirectVar(self, e, expected):
+        """`%IX0.0` in code: the type declared AT it, else the plain type of its size."""
+        address, problem = parse_address(e.address)
+        if address is None:
+            self.ctx.error("E-DECL-015", problem or f"{e.address}: %I* has no place in the "
+                           f"process image to read", e.pos)
+            return self.record(e, ts.ERROR)
+        t = self.ctx.direct_types.get(address.text) or T.ELEMENTARY[PLAIN_TYPES[address.size]]
+        return self.record(e, t)
+
+    def _NullLiteral(self, e, expected):
+        return self.record(e, T.NULL)
 
     def _Index(self, e, expected):
         base = self.infer(e.base)
@@ -391,7 +471,7 @@ class ExprChecker:
                 self.ctx.error("E-TYPE-007", f"array index: expected an integer, found {t}", index.pos)
                 continue
             value = self.constant(index)
-            if isinstance(value, int) and not lo <= value <= hi:
+            if isinstance(value, int) and lo is not None and not lo <= value <= hi:
                 where = f" of dimension {n}" if len(base.dims) > 1 else ""
                 self.ctx.error("E-TYPE-008", f"index {value} is out of bounds {lo}..{hi}{where}", index.pos)
         return self.record(e, base.element)
@@ -535,6 +615,10 @@ class ExprChecker:
     def _comparison(self, e, lt, rt):
         def comparable(t):
             return isinstance(t, (T.ElementaryType, T.StringType, T.EnumType))
+
+        references = (T.RefType, T.NullType, T.InterfaceType)
+        if e.op in ("=", "<>") and isinstance(lt, references) and isinstance(rt, references):
+            return T.BOOL       # the same variable / instance, or both NULL
 
         for t in (lt, rt):
             if not comparable(t):

@@ -31,6 +31,12 @@ class StatementChecker:
 
     # ------------------------------------------------------------ simple
     def _Assign(self, s: ast.Assign) -> None:
+        if s.mode != ":=":          # S= / R=: a BOOL set or reset when the value is TRUE
+            target = check_store(self.ex, s.target, s.mode)
+            if target is not ts.ERROR:
+                self.ex.require_assignable(T.BOOL, target, s.target.pos, s.mode)
+            self.ex.check_value(s.value, T.BOOL, s.mode)
+            return
         target = check_store(self.ex, s.target)
         if target is ts.ERROR:
             if s.value is not None:

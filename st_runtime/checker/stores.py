@@ -10,13 +10,23 @@ from . import typesys as ts
 
 def root_name(e) -> ast.Name | None:
     """The variable at the root of `a.b[i].c`, or None if `e` is no variable path."""
-    while isinstance(e, (ast.Member, ast.Index)):
+    while isinstance(e, (ast.Member, ast.Index, ast.Deref, ast.BitAccess)):
         e = e.base
     return e if isinstance(e, ast.Name) else None
 
 
+def through_reference(e) -> bool:
+    """`r^`, `r^.x`, `a[i]^`: the path writes what a reference refers to."""
+    while isinstance(e, (ast.Member, ast.Index, ast.Deref, ast.BitAccess)):
+        if isinstance(e, ast.Deref):
+            return True
+        e = e.base
+    return False
+
+
 def is_variable_path(e) -> bool:
-    return isinstance(e, (ast.Name, ast.Member, ast.Index)) and root_name(e) is not None
+    return isinstance(e, (ast.Name, ast.Member, ast.Index, ast.Deref, ast.BitAccess)) \
+        and root_name(e) is not None
 
 
 def check_store(ex, target, what: str = "assignment"):
@@ -25,14 +35,22 @@ def check_store(ex, target, what: str = "assignment"):
     Returns the target's type (ERROR after a report, so that the value is not
     also reported).
     """
+    if isinstance(target, ast.DirectVar):     # a place of the process image
+        return ex.infer(target)
     if not is_variable_path(target):
         ex.infer(target)
         ex.ctx.error("E-TYPE-014", f"{what}: expected a variable on the left, found "
                      f"{_describe(target)}", target.pos)
         return ts.ERROR
     t = ex.infer(target)
-    if t is ts.ERROR:
-        return ts.ERROR
+    accessors = ex.program.properties.get(id(target))
+    if accessors is not None and t is not ts.ERROR:
+        if accessors[1] is None:
+            ex.ctx.error("E-ASSIGN-004", f"{what}: property '{target.name}' has no SET", target.pos)
+            return ts.ERROR
+        return t
+    if t is ts.ERROR or through_reference(target):
+        return t                   # (the referenced variable was writable where REF took it)
     root = root_name(target)
     sym = ex.program.name_refs.get(id(root))
     if not hasattr(sym, "kind"):  # an enumeration value
@@ -81,10 +99,11 @@ def in_out_problem(ex, target, sym) -> str | None:
 def _fb_member(ex, target):
     """(FBType, Symbol) when the path writes a non-input variable of an FB instance."""
     e = target
-    while isinstance(e, (ast.Member, ast.Index)):
+    while isinstance(e, (ast.Member, ast.Index, ast.BitAccess)):
         if isinstance(e, ast.Member):
             base_t = ex.program.expr_types.get(id(e.base))
-            if isinstance(base_t, T.FBType):
+            this = isinstance(e.base, ast.Name) and ast.key(e.base.name) == "THIS"
+            if isinstance(base_t, T.FBType) and not this:
                 var = base_t.variables.get(ast.key(e.name))
                 if var is not None and var.kind != "VAR_INPUT":
                     return base_t, var

@@ -42,10 +42,12 @@ from ..native import NATIVE_FBS
 from ..objects import AttrRef, ItemRef, NullRef, STObject, assign_list, native_initializers
 from ..types import StructType, fit_string, resolve_alias
 from .. import values
+from ..process_image import ProcessImage, located_property, parse_address, union_property
 from . import support
 from .calls import Calls
 from .initial import CompileError, Initial, InitialValues
 from .pysrc import Emitter, pyliteral, safe_name, pyident
+from .scope import edge_inputs, edge_slot
 from .statements import BodyCompiler
 
 __all__ = ["compile_program", "CompiledProgram", "CompileError"]
@@ -63,6 +65,7 @@ class CompiledProgram:
     globals: object = None
     python_sources: dict[str, str] = field(default_factory=dict)  # POU upper name -> source
     namespace: dict = field(default_factory=dict)
+    image: ProcessImage = field(default_factory=ProcessImage)    # %I, %Q, %M (located variables)
 
     def pou(self, name: str):
         return self.checked.pous[name.upper()]
@@ -86,7 +89,8 @@ class CompileUnit:
             "_index_fault": support.index_fault, "_index_fault_n": support.index_fault_n,
             "_overrun": support.overrun, "_for_range": support.for_range,
             "_truncate": functools.partial(fit_string, dialect=program.dialect),
-            "_AttrRef": AttrRef, "_ItemRef": ItemRef,
+            "_subrange": support.subrange, "_method": support.bound_method, "_deref": support.deref,
+            "_ArrayView": support.ArrayView, "_setbit": support.set_bit, "_AttrRef": AttrRef, "_ItemRef": ItemRef,
             "_setattr": setattr, "_assign_list": assign_list, "_FAULTS": _FAULTS,
             "_INF": math.inf, "_NAN": math.nan,
         }
@@ -97,6 +101,7 @@ class CompileUnit:
         self.calls = Calls(self)
         self.sources: dict[str, str] = {}
         self.constant_ranges: dict[int, tuple | None] = {}   # id(Symbol) -> element range
+        self.image = ProcessImage()
 
     def register_maker(self, maker) -> str:
         self.makers += 1
@@ -122,8 +127,15 @@ class CompileUnit:
         return pyname
 
     def bind_conversion(self, name: str, pos) -> str:
-        from ..stdlib.conversions import CONVERSIONS
+        from ..checker.dialects import TIME_UNIT_NS
+        from ..stdlib.conversions import CONVERSIONS, time_scaled
 
+        unit = TIME_UNIT_NS.get(getattr(self.program, "dialect", "iec"), 1)
+        scaled = time_scaled(name, unit)
+        if scaled is not None:          # this dialect's TIME counts ms, say
+            pyname = safe_name(f"_cv_{name.upper()}_{unit}")
+            self.namespace[pyname] = scaled
+            return pyname
         fn = CONVERSIONS.get(name.upper())
         if fn is None:
             raise CompileError(f"conversion {name} is not implemented", pos)
@@ -154,12 +166,18 @@ def compile_program(program, guard_statements: bool = True, charge_costs: bool =
     unit.charge_costs = charge_costs
     _make_classes(unit)
     _make_initializers(unit)
+    for address, t, init in program.image_inits:      # `AT %QX0.1 : BOOL := 1;`
+        unit.image.set(address, resolve_alias(t).kind, unit.initial.of(t, init, init.pos).const)
     globals_obj = unit.classes["<GLOBALS>"]()
     unit.namespace["_G"] = globals_obj
     functions = {}
     for key, pou in program.pous.items():
-        if pou.node is None or pou.native is not None:
+        if pou.node is None or pou.native is not None or pou.kind == "INTERFACE":
             continue
+        if pou.kind == "FUNCTION_BLOCK":
+            _compile_methods(unit, key, pou)
+            if not pou.node.body and pou.parent is not None:
+                continue         # an FB that only extends keeps its base's body
         if pou.kind == "FUNCTION":
             pyname = safe_name("_fn_" + key)
             unit.run_source(key, BodyCompiler(program, pou, unit, method=False).function_source(pyname),
@@ -171,7 +189,29 @@ def compile_program(program, guard_statements: bool = True, charge_costs: bool =
                             pou.node.pos)
             unit.classes[key].execute = unit.namespace[pyname]
     classes = {k: v for k, v in unit.classes.items() if k != "<GLOBALS>"}
-    return CompiledProgram(program, classes, functions, globals_obj, unit.sources, unit.namespace)
+    return CompiledProgram(program, classes, functions, globals_obj, unit.sources, unit.namespace,
+                           unit.image)
+
+
+def method_attr(name: str, accessor: str = "") -> str:
+    """The class attribute of a METHOD: `m` + the mangled name (no ST text in
+    Python); a PROPERTY's getter / setter: `mg` / `ms` + the mangled name."""
+    return {"": "m", "GET": "mg", "SET": "ms"}[accessor] + pyident(name)
+
+
+def _compile_methods(unit: CompileUnit, key: str, pou) -> None:
+    """Each own METHOD is a Python function `(self, _ctx, inputs...)` set on the
+    FB's class; derived classes inherit or override it (dynamic dispatch)."""
+    for method in pou.methods.values():
+        if method.owner is not pou or "ABSTRACT" in method.modifiers:
+            continue
+        pyname = safe_name(f"_m_{key}_{method.name.upper()}" + "".join(
+            "_" + w for w in ("GET", "SET") if w in method.modifiers))
+        compiler = BodyCompiler(unit.program, method, unit, method=False)
+        unit.run_source(f"{key}.{method.name.upper()}", compiler.function_source(pyname),
+                        method.node.pos)
+        accessor = next((w for w in ("GET", "SET") if w in method.modifiers), "")
+        setattr(unit.classes[key], method_attr(method.name, accessor), unit.namespace[pyname])
 
 
 # ------------------------------------------------------------------ classes
@@ -186,12 +226,19 @@ def _make_classes(unit: CompileUnit) -> None:
     program = unit.program
     for key, t in program.types.items():
         t = resolve_alias(t)
-        if isinstance(t, StructType) and t.name.upper() == key:
+        if isinstance(t, StructType) and t.name.upper() == key and t.union:
+            layout = {k: (name, ft) for k, (name, ft) in t.fields.items()}
+            cls = _new_class(t.name, ("_bytes",), layout)
+            for name, ft in t.fields.values():      # the members share `_bytes`
+                setattr(cls, pyident(name), union_property(resolve_alias(ft)))
+            size = max([max(resolve_alias(ft).bits // 8, 1) for _, ft in t.fields.values()] or [1])
+            unit.classes[key] = _union_storage(cls, size)
+        elif isinstance(t, StructType) and t.name.upper() == key:
             slots = tuple(pyident(name) for name, _ in t.fields.values())
             layout = {k: (name, ft) for k, (name, ft) in t.fields.items()}
             unit.classes[key] = _new_class(t.name, slots, layout)
-    for key, pou in program.pous.items():
-        if pou.kind == "FUNCTION":
+    for key, pou in _bases_first(program):
+        if pou.kind in ("FUNCTION", "INTERFACE"):
             continue
         if pou.node is None or pou.native is not None:
             native = pou.native or NATIVE_FBS.get(key)
@@ -204,19 +251,70 @@ def _make_classes(unit: CompileUnit) -> None:
             unit.classes[key] = native
             continue
         variables = _instance_variables(pou)
-        slots = tuple(pyident(s.name) for s in variables)
+        inherited = pou.parent.variables if pou.parent is not None else {}
+        slots = tuple(pyident(s.name) for s in variables
+                      if located_at(s) is None and inherited.get(s.name.upper()) is not s) + \
+            tuple(edge_slot(s) for s in edge_inputs(pou) if inherited.get(s.name.upper()) is not s)
         layout = {s.name.upper(): (s.name, s.type) for s in variables}
-        unit.classes[key] = _new_class(pou.name, slots, layout, pou.kind)
+        base = unit.classes[pou.parent.name.upper()] if pou.parent is not None else STObject
+        unit.classes[key] = _new_class(pou.name, slots, layout, pou.kind, base)
         unit.classes[key]._st_kinds = {s.name.upper(): s.kind for s in variables}
         unit.classes[key]._st_constants = frozenset(s.name.upper() for s in variables if s.constant)
+        _locate_variables(unit, unit.classes[key], variables)
     gl = [s for s in program.globals.values()]
     unit.classes["<GLOBALS>"] = _new_class(
-        "Globals", tuple(pyident(s.name) for s in gl), {s.name.upper(): (s.name, s.type) for s in gl})
+        "Globals", tuple(pyident(s.name) for s in gl if located_at(s) is None),
+        {s.name.upper(): (s.name, s.type) for s in gl})
+    _locate_variables(unit, unit.classes["<GLOBALS>"], gl)
     unit.classes["<GLOBALS>"]._st_constants = frozenset(s.name.upper() for s in gl if s.constant)
 
 
-def _new_class(name: str, slots: tuple, layout: dict, kind: str = "STRUCT") -> type:
-    cls = type(safe_name("ST_" + name.upper()), (STObject,), {
+def located_at(symbol):
+    """The process-image Address of a located variable, None otherwise (and for %I*)."""
+    if symbol.decl is None or symbol.decl.location is None:
+        return None
+    return parse_address(symbol.decl.location)[0]
+
+
+def _locate_variables(unit: CompileUnit, cls: type, variables) -> None:
+    """A located variable is a property that reads and writes the process image."""
+    for symbol in variables:
+        address = located_at(symbol)
+        if address is not None:
+            setattr(cls, pyident(symbol.name), located_property(unit.image, address,
+                                                               resolve_alias(symbol.type)))
+
+
+def _union_storage(cls: type, size: int) -> type:
+    """A UNION class whose instances first get their zeroed shared bytes."""
+    def __new__(klass, *args, **kwargs):
+        obj = object.__new__(klass)
+        obj._bytes = bytearray(size)
+        return obj
+
+    cls.__new__ = __new__
+    return cls
+
+
+def _bases_first(program) -> list:
+    """The POUs with every FB after the FB it extends (classes derive from their base's)."""
+    ordered, placed = [], set()
+
+    def place(key, pou):
+        if key in placed:
+            return
+        placed.add(key)
+        if pou.parent is not None:
+            place(pou.parent.name.upper(), pou.parent)
+        ordered.append((key, pou))
+
+    for key, pou in program.pous.items():
+        place(key, pou)
+    return ordered
+
+
+def _new_class(name: str, slots: tuple, layout: dict, kind: str = "STRUCT", base=STObject) -> type:
+    cls = type(safe_name("ST_" + name.upper()), (base,), {
         "__slots__": slots, "_st_name": name, "_st_vars": layout, "_st_kind": kind,
     })
     return cls
@@ -233,7 +331,7 @@ def _make_initializers(unit: CompileUnit) -> None:
                        for fkey, (name, ft) in t.fields.items()]
             _install_init(unit, key, members)
     for key, pou in program.pous.items():
-        if pou.kind == "FUNCTION":
+        if pou.kind in ("FUNCTION", "INTERFACE"):
             continue
         if pou.node is None or pou.native is not None:
             cls = unit.classes[key]
@@ -242,6 +340,7 @@ def _make_initializers(unit: CompileUnit) -> None:
             continue
         members = [(pyident(s.name), _unconnected(s) if s.kind == "VAR_IN_OUT" else initial.of_symbol(s))
                    for s in _instance_variables(pou)]
+        members += [(edge_slot(s), Initial(const=False)) for s in edge_inputs(pou)]
         _install_init(unit, key, members)
     members = [(pyident(s.name), initial.of_symbol(s)) for s in program.globals.values()]
     _install_init(unit, "<GLOBALS>", members)

@@ -17,7 +17,7 @@ Conventions of the generated code:
 from __future__ import annotations
 
 from ..objects import is_aggregate
-from ..types import ArrayType, ElementaryType, FBType, StructType, resolve_alias
+from ..types import BOOL, ArrayType, ElementaryType, FBType, StructType, resolve_alias
 from .exprs import elementary, is_real
 from .initial import CompileError
 from .pysrc import pyliteral, safe_name, pyident
@@ -80,6 +80,9 @@ class Calls:
     def argument(self, ec, symbol, arg) -> str:
         """Python source passing `arg` to parameter `symbol`."""
         if symbol.kind == "VAR_IN_OUT":
+            open_array = isinstance(symbol.type, ArrayType) and symbol.type.is_open
+            if open_array and not ec.ty(arg.value).is_open:      # ARRAY[*]: bounds travel along
+                return f"_ArrayView({ec.aggregate(arg.value)}, {pyliteral(ec.ty(arg.value).dims)})"
             if is_aggregate(symbol.type):
                 return ec.aggregate(arg.value)
             return ec.lvalue(arg.value).ref()
@@ -104,10 +107,21 @@ class Calls:
 
     def call_statement(self, ec, call) -> list[str]:
         """Python statements for a call used as a statement."""
+        enable = ec.program.enables.get(id(call))
+        if enable is not None:
+            en, eno, inner = enable
+            flag = ec.temp()
+            lines = [f"{flag} = {ec.expr(en) if en is not None else 'True'}", f"if {flag}:"]
+            lines += ["    " + line for line in self.call_statement(ec, inner)]
+            if eno is not None:
+                lines.append(self._store_eno(ec, eno, flag, statement=True))
+            return lines
+        if id(call) in ec.program.lowered:
+            return [self.call_expr(ec, call)]
         target = self.target(ec, call)
         if target.kind == "fb":
             return self.fb_call(ec, call, target)
-        if target.kind == "function" and target.pou is not None and target.pou.outputs:
+        if target.kind in ("function", "method") and target.pou is not None and target.pou.outputs:
             return self.user_call_with_outputs(ec, call, target)
         return [self.call_expr(ec, call)]
 
@@ -147,11 +161,38 @@ class Calls:
 
     # ------------------------------------------------------- expressions
 
+    def _store_eno(self, ec, eno, flag: str, statement: bool) -> str:
+        place = ec.lvalue(eno.value)
+        value = ec.convert(f"(not {flag})" if eno.negated else flag, BOOL, place.type)
+        return place.store(value) if statement else place.store_expr(value)
+
+    def enabled_call_expr(self, ec, call, enable) -> str:
+        """`F(EN := c, ..., ENO => ok)`: with c FALSE, F is not called, its value
+        is its type's initial value and ok is FALSE (IEC 61131-3 6.6.1.2)."""
+        en, eno, inner = enable
+        if en is None:
+            code = self.call_expr(ec, inner)
+            return code if eno is None else f"({code}, {self._store_eno(ec, eno, 'True', False)})[0]"
+        initial = self.unit.initial.of(ec.ty(inner), None, inner.pos)
+        default = ec.literal(initial.const, ec.ty(inner)) if initial.is_const \
+            else self.unit.register_maker(initial.maker) + "()"
+        flag, result = ec.temp(), ec.temp()
+        chosen = f"({self.call_expr(ec, inner)} if ({flag} := {ec.expr(en)}) else {default})"
+        if eno is None:
+            return chosen
+        return f"({result} := {chosen}, {self._store_eno(ec, eno, flag, False)}, {result})[-1]"
+
     def call_expr(self, ec, call) -> str:
+        enable = ec.program.enables.get(id(call))
+        if enable is not None:
+            return self.enabled_call_expr(ec, call, enable)
+        lowered = ec.program.lowered.get(id(call))
+        if lowered is not None:      # ADD(a, b) and the like: the operator's expression
+            return ec.expr(lowered)
         target = self.target(ec, call)
         if target.kind == "conversion":
             return self.conversion(ec, call, target)
-        if target.kind == "function" and target.pou is not None and target.pou.node is not None:
+        if target.kind in ("function", "method") and target.pou is not None and target.pou.node is not None:
             code, outputs = self.user_call(ec, call, target)
             if not target.pou.outputs:
                 return code
@@ -170,6 +211,16 @@ class Calls:
             return f"({tmp} := {code}, {', '.join(stores)}, {tmp}[0])[-1]"
         if target.kind == "function":
             return self.standard(ec, call, target)
+        if target.kind == "bound":               # LOWER_BOUND / UPPER_BOUND
+            array, dim = call.args[0].value, ec.constant_of(call.args[1].value)
+            t = ec.ty(array)
+            side = 0 if target.name == "LOWER_BOUND" else 1
+            if not t.is_open:
+                return pyliteral(t.dims[dim - 1][side])
+            return f"{ec.aggregate(array)}.dims[{dim - 1}][{side}]"
+        if target.kind == "ref":                 # REF(x) / ADR(x)
+            value = call.args[0].value
+            return ec.aggregate(value) if is_aggregate(ec.ty(value)) else ec.lvalue(value).ref()
         raise CompileError("an FB instance call is a statement, not a value", call.pos)
 
     def user_call(self, ec, call, target):
@@ -185,8 +236,27 @@ class Calls:
                 args.append(self.default_argument(ec, symbol))
             else:
                 args.append(self.argument(ec, symbol, arg))
+        if target.kind == "method":
+            return self.method_callee(ec, call, target, args), outputs
         name = safe_name("_fn_" + pou.name.upper())
         return f"{name}({', '.join(args)})", outputs
+
+    def method_callee(self, ec, call, target, args: list) -> str:
+        """`obj.mNAME(_ctx, ...)`: Python's attribute lookup on the instance's
+        class is the dynamic dispatch (a derived FB's class overrides)."""
+        from . import method_attr
+
+        method = target.pou
+        attr = method_attr(method.name)
+        how = target.name
+        if how == "super":       # the base's own method, whatever the instance's class
+            owner = self.unit.register_constant(self.unit.classes[method.owner.name.upper()])
+            return f"{owner}.{attr}(self, {', '.join(args)})"
+        if how == "self":
+            return f"self.{attr}({', '.join(args)})"
+        if how == "interface":   # the variable may refer to no instance
+            return f"_method({ec.expr(call.callee.base)}, {attr!r})({', '.join(args)})"
+        return f"{ec.aggregate(call.callee.base)}.{attr}({', '.join(args)})"
 
     def conversion(self, ec, call, target) -> str:
         if len(call.args) != 1 or call.args[0].direction == "out":

@@ -13,7 +13,9 @@ from dataclasses import dataclass
 
 from .. import ast
 from ..objects import is_aggregate, store_value
+from ..process_image import ImageCell, parse_address
 from ..types import (
+    SubrangeType,
     ArrayType,
     ElementaryType,
     FBType,
@@ -45,6 +47,7 @@ class LValue:
     name: str = ""
     obj: str = ""
     key: str = ""
+    inner: "LValue | None" = None     # kind "bit": the integer holding the bit `key`
 
     @property
     def target(self) -> str:
@@ -57,17 +60,39 @@ class LValue:
         raise AssertionError("a ref has no Python target")
 
     def read(self) -> str:
+        if self.kind == "prop":            # a PROPERTY: its getter
+            return f"{self.obj}.{self.name}(_ctx)"
         if self.kind == "ref":
             return f"{self.name}.get()"
+        if self.kind == "bit":
+            width = self.type.bits
+            shift = int(self.key) * width
+            if width == 1:
+                return f"({self.inner.read()} >> {shift} & 1 == 1)"
+            return f"({self.inner.read()} >> {shift} & {(1 << width) - 1})"
         return self.target
 
+    def _with_bit(self, value: str) -> str:
+        t = self.inner.type
+        width = self.type.bits
+        return (f"_setbit({self.inner.read()}, {int(self.key) * width}, {width}, {value}, "
+                f"{t.bits}, {bool(t.signed)})")
+
     def store(self, value: str) -> str:
+        if self.kind == "prop":            # its setter
+            return f"{self.obj}.{self.key}(_ctx, {value})"
         if self.kind == "ref":
             return f"{self.name}.set({value})"
+        if self.kind == "bit":
+            return self.inner.store(self._with_bit(value))
         return f"{self.target} = {value}"
 
     def store_expr(self, value: str) -> str:
         """An expression that stores `value` (inside a larger expression)."""
+        if self.kind == "bit":
+            return self.inner.store_expr(self._with_bit(value))
+        if self.kind == "prop":
+            return self.store(value)
         if self.kind == "local":
             return f"({self.name} := {value})"
         if self.kind == "attr":
@@ -321,19 +346,58 @@ class ExprCompiler:
     def x_Call(self, e):
         return self.unit.calls.call_expr(self, e)
 
+    def x_Deref(self, e):
+        return self.lvalue(e).read()
+
+    def x_BitAccess(self, e):
+        return self.lvalue(e).read()
+
+    def x_DirectVar(self, e):
+        return self.lvalue(e).read()
+
+    def x_NullLiteral(self, e):
+        return "None"
+
     # ----------------------------------------------------------- places
 
     def lvalue(self, e) -> LValue:
         """Where a Name/Member/Index expression lives."""
         if isinstance(e, ast.Name):
             return self.scope.lvalue_of_name(self, e)
+        if isinstance(e, ast.Member) and id(e) in self.program.properties:
+            from . import method_attr      # (compiler/__init__ imports this module)
+
+            getter, setter = self.program.properties[id(e)]
+            base = self.aggregate(e.base)
+            return LValue("prop", self.ty(e), obj=base,
+                          name=method_attr(getter.name, "GET") if getter else "",
+                          key=method_attr(setter.name, "SET") if setter else "")
         if isinstance(e, ast.Member):
             base_t = self.ty(e.base)
             base = self.aggregate(e.base)
             t = self.member_type(base_t, e.name, e)
+            fb = resolve_alias(base_t) if base_t is not None else None
+            if isinstance(fb, FBType) and not is_aggregate(t) and \
+                    getattr(fb.variables.get(e.name.upper()), "kind", None) == "VAR_IN_OUT":
+                # An elementary in-out read from outside: the Ref the last call connected.
+                return LValue("ref", t, name=f"{base}.{pyident(e.name)}")
             return LValue("attr", t, obj=base, key=pyident(e.name))
         if isinstance(e, ast.Index):
             return self.index_lvalue(e)
+        if isinstance(e, ast.DirectVar):      # an ImageCell: get/set like a Ref
+            t = self.ty(e)
+            cell = ImageCell(self.unit.image, parse_address(e.address)[0], t)
+            return LValue("ref", t, name=self.unit.register_constant(cell))
+        if isinstance(e, ast.BitAccess):
+            inner = self.lvalue(e.base)
+            inner.type = elementary(inner.type) or inner.type
+            return LValue("bit", self.ty(e), key=str(e.bit), inner=inner)
+        if isinstance(e, ast.Deref):
+            # What a reference refers to: a Ref (elementary) or the object itself;
+            # `_deref` faults on NULL.
+            t = self.ty(e)
+            target = f"_deref({self.expr(e.base)})"
+            return LValue("local", t, name=target) if is_aggregate(t) else LValue("ref", t, name=target)
         self.fail("this expression cannot be assigned or referenced", e)
 
     def aggregate(self, e) -> str:
@@ -362,6 +426,10 @@ class ExprCompiler:
         if len(e.indices) != len(arr_t.dims):
             self.fail(f"{len(arr_t.dims)} indices expected, found {len(e.indices)}", e)
         base = self.aggregate(e.base)
+        if arr_t.is_open:        # ARRAY[*]: an _ArrayView, its bounds known at run time
+            indices = ", ".join(self.expr(i) for i in e.indices)
+            key = f"{base}.offset(({indices},), {_describe(e.base)!r}, {self.where(e)})"
+            return LValue("item", arr_t.element, obj=f"{base}.seq", key=key)
         name = _describe(e.base)
         checks: list[str] = []
         terms: list[str] = []
@@ -495,6 +563,8 @@ class ExprCompiler:
                     sb = int_bounds(src_r)
                     if sb is not None and bounds[0] <= sb[0] and sb[1] <= bounds[1]:
                         return value
+            if isinstance(e, SubrangeType):
+                return f"_subrange({value}, {e.lo}, {e.hi})"
             bits = 64 if e.kind in ("time", "date", "tod", "dt") else e.bits
             signed = e.signed or e.kind in ("time", "date", "tod", "dt")
             mask = (1 << bits) - 1

@@ -63,7 +63,7 @@ def walk(node):
 
 
 def root_name(e) -> str | None:
-    while isinstance(e, (ast.Member, ast.Index)):
+    while isinstance(e, (ast.Member, ast.Index, ast.Deref, ast.BitAccess)):
         e = e.base
     return e.name.upper() if isinstance(e, ast.Name) else None
 
@@ -100,6 +100,13 @@ class Usage:
 
     def _call(self, program, call, calls) -> None:
         target = program.call_targets.get(id(call))
+        if target is not None and target.kind == "ref" and call.args:
+            name = root_name(call.args[0].value)       # REF(x): x must stay addressable
+            if name:
+                self.assigned.add(name)
+                if isinstance(call.args[0].value, ast.Name):
+                    self.referenced.add(name)
+            return
         variables = {}
         if target is not None and target.pou is not None:
             variables = target.pou.variables
@@ -125,6 +132,31 @@ class Usage:
                         self.referenced.add(name)
 
 
+def edge_inputs(pou) -> list:
+    """The FB's BOOL inputs declared R_EDGE / F_EDGE (IEC 61131-3 6.5.1.2)."""
+    return [s for s in pou.variables.values()
+            if s.kind == "VAR_INPUT" and s.decl is not None and s.decl.edge]
+
+
+def edge_slot(symbol) -> str:
+    """The hidden slot holding an edge input's value at the previous call."""
+    return "_edge" + pyident(symbol.name)
+
+
+def edge_input_lines(symbol, name: str) -> list[str]:
+    """Inside the body an edge input reads TRUE only on its edge.
+
+    As an R_TRIG / F_TRIG whose memory starts FALSE (the standard's F_TRIG
+    keeps M := NOT CLK with M initially 1: the same thing).  The instance
+    keeps the raw input (what a caller reads as `fb.CLK`) and, in a hidden
+    slot, the raw value of the previous call.
+    """
+    memory = edge_slot(symbol)
+    edge = f"self.{name} and not self.{memory}" if symbol.decl.edge == "R_EDGE" \
+        else f"self.{memory} and not self.{name}"
+    return [f"{name} = {edge}", f"self.{memory} = self.{name}"]
+
+
 class Scope:
     def __init__(self, program, pou, method: bool, usage: Usage, globals_name: str = "_G"):
         self.program = program
@@ -140,8 +172,21 @@ class Scope:
 
     # ------------------------------------------------------------ layout
 
+    def _shares_instance(self) -> bool:
+        """Whether code other than this body may change the instance's variables
+        while it runs (its methods, THIS): then nothing is cached in locals."""
+        pou = self.pou
+        if "THIS" in self.usage.used:
+            return True
+        while pou is not None and pou.kind == "FUNCTION_BLOCK":
+            if pou.methods:
+                return True
+            pou = pou.parent
+        return False
+
     def _plan(self) -> None:
         u = self.usage
+        no_cache = self.method and self._shares_instance()
         for key, symbol in self.pou.variables.items():
             name = pyident(symbol.name)
             aggregate = is_aggregate(symbol.type)
@@ -158,12 +203,18 @@ class Scope:
                     self.params.append(name)
                 continue
             referenced = key in u.referenced
+            if self.method and symbol.decl is not None and symbol.decl.edge:
+                self.places[key] = VarPlace(symbol, "local", name)
+                self.prologue.extend(edge_input_lines(symbol, name))
+                continue
             if self.method and kind != "VAR_TEMP":
                 if aggregate:
                     self.places[key] = VarPlace(symbol, "alias", name)
                     if key in u.used:
                         self.prologue.append(f"{name} = self.{name}")
-                elif referenced or u.count.get(key, 0) < CACHE_THRESHOLD:
+                elif referenced or no_cache or u.count.get(key, 0) < CACHE_THRESHOLD or \
+                        (symbol.decl is not None and symbol.decl.location is not None):
+                    # (A located variable is never cached: others may share its bits.)
                     # Passed by reference, or used too rarely to repay a load and a store.
                     self.places[key] = VarPlace(symbol, "self", name)
                 else:
@@ -195,6 +246,18 @@ class Scope:
         place = self.places.get(key)
         if place is not None:
             return place
+        owner = self.pou.owner if self.pou.kind == "METHOD" else (
+            self.pou if self.pou.kind == "FUNCTION_BLOCK" else None)
+        if key == "THIS" and owner is not None:
+            return VarPlace(None, "this", "self")
+        if self.pou.kind == "METHOD" and key in owner.variables:
+            # A METHOD reaches its FB's variables through the instance.
+            symbol = owner.variables[key]
+            name = pyident(symbol.name)
+            how = "ref" if symbol.kind == "VAR_IN_OUT" and not is_aggregate(symbol.type) else "self"
+            place = VarPlace(symbol, how, f"self.{name}" if how == "ref" else name)
+            self.places[key] = place
+            return place
         symbol = self.program.globals.get(key)
         if symbol is not None:
             place = VarPlace(symbol, "global", pyident(symbol.name))
@@ -220,6 +283,8 @@ class Scope:
 
     def lvalue_of_name(self, ec, e) -> LValue:
         place = self.place_of(e)
+        if place.how == "this":
+            return LValue("local", ec.ty(e), name="self")
         t = place.symbol.type
         how = place.how
         if how in ("local", "alias"):

@@ -74,6 +74,8 @@ class BodyCompiler(ExprCompiler):
         """`def pyname(self, _ctx)` or `def pyname(_ctx, inputs...)`."""
         o = self.out
         params = ["self", "_ctx"] if self.method else ["_ctx"] + self.scope.params
+        if not self.method and self.pou.owner is not None:
+            params = ["self"] + params          # a METHOD: its instance first
         o.line(f"def {pyname}({', '.join(params)}):")
         o.indent()
         for item in self.scope.prologue:
@@ -274,6 +276,9 @@ class BodyCompiler(ExprCompiler):
 
     def s_Assign(self, s):
         target = self.lvalue(s.target)
+        if s.mode != ":=":
+            self.out.line(f"if {self.expr(s.value)}: {target.store(repr(s.mode == 'S='))}")
+            return
         t = resolve_alias(target.type)
         if is_aggregate(t):
             self.out.line(copy_statement(target.read(), self.aggregate(s.value), t))

@@ -69,3 +69,56 @@ def for_range(start: int, end: int, step: int, where: tuple) -> range:
     if step < 0:
         return range(start, end - 1, step)
     raise ScanOverrun(where)  # BY 0 loops forever on a PLC: period exceeded
+
+
+def subrange(value: int, lo: int, hi: int) -> int:
+    """A value stored in a subrange variable: F-SUBRANGE outside its limits."""
+    if lo <= value <= hi:
+        return value
+    raise STFault("F-SUBRANGE", f"{value} is outside the subrange {lo}..{hi}")
+
+
+def bound_method(instance, attr: str):
+    """A method of the instance an interface variable refers to; F-NULL-REF
+    when it refers to none."""
+    if instance is None:
+        raise STFault("F-NULL-REF", "method call through an interface variable that "
+                      "refers to no instance")
+    return getattr(instance, attr)
+
+
+def deref(reference):
+    """`r^`: what a reference refers to; F-NULL-REF for NULL."""
+    if reference is None:
+        raise STFault("F-NULL-REF", "dereference of NULL (the reference refers to nothing)")
+    return reference
+
+
+def set_bit(word: int, shift: int, width: int, value, bits: int, signed: bool) -> int:
+    """`x.3 := v` / `x.%B1 := v`: the integer with `width` bits at `shift`
+    replaced by v, in its type's range."""
+    mask = (1 << width) - 1
+    word &= (1 << bits) - 1
+    word = word & ~(mask << shift) | (int(value) & mask) << shift
+    if signed and word >= 1 << (bits - 1):
+        word -= 1 << bits
+    return word
+
+
+class ArrayView:
+    """An array passed to an ARRAY[*] in-out: the caller's flat list and its bounds."""
+
+    __slots__ = ("seq", "dims")
+
+    def __init__(self, seq: list, dims: tuple):
+        self.seq = seq
+        self.dims = dims
+
+    def offset(self, indices: tuple, name: str, where) -> int:
+        flat = 0
+        for i, (lo, hi) in zip(indices, self.dims):
+            if not lo <= i <= hi:
+                return index_fault_n(indices, self.dims, name, where) if len(indices) > 1 \
+                    else index_fault(i, lo, hi, name, where)
+            flat = flat * (hi - lo + 1) + (i - lo)
+        return flat

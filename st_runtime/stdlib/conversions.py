@@ -253,6 +253,24 @@ def _table() -> dict[str, Callable]:
 CONVERSIONS: dict[str, Callable] = _table()
 
 
+def time_scaled(name: str, unit_ns: int) -> Callable | None:
+    """`name` when a TIME's number counts `unit_ns` nanoseconds (1 ms: 10**6),
+    or None when the conversion does not turn a TIME into a number or back."""
+    parts = split_conversion_name(name)
+    if parts is None or unit_ns == 1:
+        return None
+    src, dst = parts
+    base = CONVERSIONS[name.upper()]
+    numeric = ("int", "bits", "real")
+    if src == "TIME" and _kind(dst) in numeric:
+        if _kind(dst) == "real":
+            return lambda ns: base(ns) / unit_ns
+        return lambda ns: base(ns // unit_ns if ns >= 0 else -(-ns // unit_ns))
+    if dst == "TIME" and _kind(src) in numeric:
+        return lambda v: base(v * unit_ns)
+    return None
+
+
 def canonical(name: str) -> str:
     name = name.upper()
     return _CANONICAL.get(name, name)

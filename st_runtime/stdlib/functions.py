@@ -39,6 +39,7 @@ from functools import reduce
 from typing import Callable
 
 from ..faults import FAULT_CODES, STFault
+from .bcd import BCD_FUNCTIONS
 from .conversions import CONVERSIONS, conversion  # noqa: F401  (re-exported)
 
 FAULT_CODES.setdefault("F-STRING", "string function position or length out of range")
@@ -296,6 +297,7 @@ FUNCTIONS: dict[str, Callable] = {
     if name.isupper() and callable(fn) and not name.startswith("_")
     and name not in ("CONVERSIONS", "FAULT_CODES", "FUNCTIONS")
 }
+FUNCTIONS.update({name: fn for name, (_, _, fn) in BCD_FUNCTIONS.items()})
 
 
 def _strict(name: str, fn: Callable, bad: Callable[[float], bool]) -> Callable:

@@ -48,7 +48,7 @@ def add_arguments(parser) -> None:
                         help="print the outputs as one strict JSON object (the default; a"
                              ' non-finite REAL/LREAL is the string "NaN", "Infinity" or'
                              ' "-Infinity", which --set also accepts)')
-    parser.add_argument("--dialect", choices=("iec", "nj"), default="iec", help=DIALECT_HELP)
+    parser.add_argument("--dialect", choices=("iec", "nj", "codesys"), default="iec", help=DIALECT_HELP)
 
 
 def usage(message: str) -> int:

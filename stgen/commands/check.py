@@ -21,7 +21,7 @@ from .sources import DIALECT_HELP, source_problem
 def add_arguments(parser) -> None:
     parser.add_argument("paths", nargs="+", metavar="FILE_OR_DIR",
                         help="ST files, PLCopen TC6 or IEC 61131-10 .xml files, or directories whose .st files are checked together")
-    parser.add_argument("--dialect", choices=("iec", "nj"), default="iec", help=DIALECT_HELP)
+    parser.add_argument("--dialect", choices=("iec", "nj", "codesys"), default="iec", help=DIALECT_HELP)
     parser.add_argument("--memory-limit", type=_bytes, default=None, metavar="BYTES",
                         help="most bytes a variable, a POU instance or the project may need"
                              " (default 64 MiB; suffixes k, M, G: 512k, 16M)")

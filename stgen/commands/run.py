@@ -69,7 +69,7 @@ def add_arguments(parser) -> None:
     parser.add_argument("--watch", action="append", metavar="PATH[,PATH...]", default=[],
                         help="variables to trace, one per --watch or a comma-separated list:"
                              " --watch x --watch fb.Q, or --watch x,fb.Q,Axis.Cmd.Pos,a[3],m[1,2]")
-    parser.add_argument("--dialect", choices=("iec", "nj"), default="iec", help=DIALECT_HELP)
+    parser.add_argument("--dialect", choices=("iec", "nj", "codesys"), default="iec", help=DIALECT_HELP)
     parser.add_argument("--stop-on-fault", action="store_true", help="stop at the first runtime fault")
     parser.add_argument("--axes", metavar="FILE.toml",
                         help="simulate servo axes: one [[axis]] table per axis (name, max_velocity;"
@@ -306,7 +306,8 @@ def interrupted(scans_done: int, cycles: int, trace_file, between_scans: bool) -
 
 
 def write_sets(items: list[str], program, plc) -> str | None:
-    """Store each `--set PATH=JSON` in the program instance, else in the globals;
+    """Store each `--set PATH=JSON` in the program instance, else in the globals
+    (a direct address such as %IX0.0 or %IW2 in the process image);
     the usage error of the first that cannot be stored."""
     from .call import parse_sets
 
@@ -315,6 +316,12 @@ def write_sets(items: list[str], program, plc) -> str | None:
     except ValueError as exc:
         return str(exc)
     for path, value in values.items():
+        if path.strip().startswith("%"):       # a direct address: the process image
+            try:
+                plc.image[path] = value
+            except (KeyError, ValueError) as exc:
+                return f"--set {exc.args[0] if exc.args else exc}"
+            continue
         root = re.split(r"[.\[]", path, maxsplit=1)[0].strip()
         try:
             program[root]

@@ -9,7 +9,8 @@ import os
 
 #: One help text for `--dialect` in every command that loads ST.
 DIALECT_HELP = ("rules to check against: iec (IEC 61131-3; OMRON NJ identifier rules are"
-                " warnings, the default) or nj (OMRON NJ/Sysmac Studio: those rules are errors)")
+                " warnings, the default), nj (OMRON NJ/Sysmac Studio: those rules are errors)"
+                " or codesys (CODESYS/TwinCAT extensions: POINTER TO, x.3, S=, PROPERTY, ...)")
 
 
 def source_problem(paths: list[str]) -> str | None:
