@@ -39,7 +39,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import fold, unguard, unroll
+from .optimise import cse, fold, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -86,7 +86,7 @@ class BodyCompiler(ExprCompiler):
             o.line("try:")
             o.indent()
             mark = o.mark()
-            self.statements(self.body)
+            self._body()
             o.ensure_body(mark)
             if not self.method:
                 o.line(self._return_statement())
@@ -100,12 +100,19 @@ class BodyCompiler(ExprCompiler):
             o.dedent()
         else:
             mark = o.mark()
-            self.statements(self.body)
+            self._body()
             o.ensure_body(mark)
             if not self.method:
                 o.line(self._return_statement())
         o.dedent()
         return o.source()
+
+    def _body(self) -> None:
+        """The body's statements; twice when a whole-body region applies (cse.body_region)."""
+        if not (self.opt.cse and self.unit.guard_statements and cse.worth_a_region(self, self.body)):
+            self.statements(self.body)
+            return
+        cse.emit_region(self, lambda: self.statements(self.body))
 
     def _prologue_line(self, item) -> str:
         if isinstance(item, str):

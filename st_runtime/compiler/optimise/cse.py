@@ -14,6 +14,10 @@ array, no callee runs, no VAR_IN_OUT alias is written).  So:
   expression would have computed again (left-to-right partial products of
   the Leibniz terms are shared; nothing is reassociated).
 
+A region also covers a whole POU body that qualifies and reads at least
+`BODY_READS` array elements at literal indices (an unrolled loop written out
+in the ST, such as the unrolled Leibniz determinant).
+
 A new shared result is defined only in straight-line code of the region
 (`straight`): code that is skipped would leave the name unset.  The element
 reads may fault (an unconnected VAR_IN_OUT); the region then does not run:
@@ -23,6 +27,7 @@ the caller emits `if <reads succeeded>: <region> else: <the loop as before>`.
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 
 from ... import ast
 from ..scope import walk
@@ -88,3 +93,71 @@ def region_allowed(compiler, body) -> bool:
 def _is_local(compiler, name) -> bool:
     place = compiler.scope.places.get(name.name.upper())
     return place is not None and place.how == "local"
+
+
+BODY_READS = 8
+_TEMP = re.compile(r"\b_t\d+\b")
+
+
+def inline_single_uses(region, lines: list[str], start: int) -> None:
+    """Put back a shared result used only once into its use (a name stored and read once
+    costs more than it saves).  Exact: its operands are fixed for the region, and it
+    cannot raise, so computing it at its use gives the same value."""
+    shared = {name: text for text, name in region.shared.items()}
+    uses: dict[str, list[int]] = {}
+    for i in range(start, len(lines)):
+        for match in _TEMP.finditer(lines[i]):
+            if match.group() in shared:
+                uses.setdefault(match.group(), []).append(i)
+    removed = set()
+    for name, where in uses.items():            # in order of first occurrence: the definition
+        if len(where) != 2:
+            continue
+        definition, use = where
+        head = lines[definition].lstrip()
+        if not head.startswith(f"{name} = "):
+            continue
+        text = head[len(name) + 3:]
+        lines[use] = re.sub(rf"\b{name}\b", lambda _: text, lines[use], count=1)
+        # a later inlining may read this line again: keep `where` lists pointing at it
+        removed.add(definition)
+    lines[start:] = [line for i, line in enumerate(lines[start:], start) if i not in removed]
+
+
+def worth_a_region(compiler, body) -> bool:
+    """Whether a whole body qualifies for a region and reads enough elements at literal indices."""
+    reads = sum(1 for node in walk(body) if isinstance(node, ast.Index)
+                and all(isinstance(i, ast.IntLiteral) for i in node.indices))
+    return reads >= BODY_READS and region_allowed(compiler, body)
+
+
+def emit_region(compiler, compile_body) -> None:
+    """`compile_body()` once in a region and once as before, chosen by whether the reads fault."""
+    o = compiler.out
+    region = compiler.region = Region(compiler.temp)
+    flag = compiler.temp()
+    mark = o.mark()
+    o.line(f"if {flag}:")
+    o.indent()
+    inner = o.mark()
+    try:
+        compile_body()
+    finally:
+        compiler.region = None
+    inline_single_uses(region, o.lines, inner)
+    o.ensure_body(inner)
+    o.dedent()
+    reads = [f"{name} = {code}" for code, name in region.reads.items()]
+    o.insert(mark, ["try:"] + ["    " + line for line in reads + [f"{flag} = True"]]
+             + ["except _FAULTS:", f"    {flag} = False"])
+    o.line("else:")
+    o.indent()
+    inner = o.mark()
+    saved = compiler.opt        # the path that never runs unless a read faults: kept small
+    compiler.opt = replace(saved, unroll=False, cse=False)
+    try:
+        compile_body()
+    finally:
+        compiler.opt = saved
+    o.ensure_body(inner)
+    o.dedent()
