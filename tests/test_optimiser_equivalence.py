@@ -177,20 +177,21 @@ def test_switches_parse():
         Optimisations.only("fast")
 
 
-def test_1000_fk_solves_are_bit_identical_with_and_without_the_passes(monkeypatch):
+@pytest.mark.parametrize("variant, count", [("table", 1000), ("unrolled", 200), ("lu", 200)])
+def test_fk_solves_are_bit_identical_with_and_without_the_passes(monkeypatch, variant, count):
     from stgen.config import PlatformConfig
     from stgen.reference import inverse_kinematics
     from stgen.render import RenderOptions
     from stgen.verify import fk_solver, load_kinematics, random_poses
 
     config = PlatformConfig.default()
-    poses = random_poses(config, 1000, seed=17)
+    poses = random_poses(config, count, seed=17)
     positions = inverse_kinematics(config.geometry, poses, config.stroke).positions
     start = np.asarray(config.solver.start_pose)
     runs = []
     for setting in ("none", "all"):
         monkeypatch.setenv("ST_RUNTIME_OPTIMISE", setting)
-        runtime = load_kinematics(config, RenderOptions("table"), capacity=1000)
+        runtime = load_kinematics(config, RenderOptions(variant), capacity=count)
         runs.append(runtime.forward_kinematics(positions, start, fk_solver(config)))
     off, on = runs
     assert off.done.all()

@@ -144,14 +144,8 @@ def emit_region(compiler, compile_body) -> None:
         compile_body()
     finally:
         compiler.region = None
-    inline_single_uses(region, o.lines, inner)
     o.ensure_body(inner)
-    o.dedent()
-    reads = [f"{name} = {code}" for code, name in region.reads.items()]
-    o.insert(mark, ["try:"] + ["    " + line for line in reads + [f"{flag} = True"]]
-             + ["except _FAULTS:", f"    {flag} = False"])
-    o.line("else:")
-    o.indent()
+    close_region(o, region, mark, flag)
     inner = o.mark()
     saved = compiler.opt        # the path that never runs unless a read faults: kept small
     compiler.opt = replace(saved, unroll=False, cse=False)
@@ -161,3 +155,15 @@ def emit_region(compiler, compile_body) -> None:
         compiler.opt = saved
     o.ensure_body(inner)
     o.dedent()
+
+
+def close_region(o, region, mark: int, flag: str) -> None:
+    """End the region's `if flag:` block (begun at `mark`): single uses put back, the
+    element reads put before it (a fault there sets `flag` False), and `else:` opened."""
+    inline_single_uses(region, o.lines, mark + 1)
+    o.dedent()
+    reads = [f"{name} = {code}" for code, name in region.reads.items()]
+    o.insert(mark, ["try:"] + ["    " + line for line in reads + [f"{flag} = True"]]
+             + ["except _FAULTS:", f"    {flag} = False"])
+    o.line("else:")
+    o.indent()

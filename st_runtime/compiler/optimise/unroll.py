@@ -61,7 +61,7 @@ def _unrolled_size(compiler, body) -> int:
 def emit(compiler, s, key: str, values: range, after) -> bool:
     """Write the unrolled loop; True when the loop as before must follow (in an `else:`
     block the caller fills), because the region's element reads may fault."""
-    from .cse import Region, inline_single_uses, region_allowed
+    from .cse import Region, close_region, region_allowed
 
     o = compiler.out
     outer = compiler.region
@@ -87,12 +87,5 @@ def emit(compiler, s, key: str, values: range, after) -> bool:
     if region is None:
         return False
     compiler.region = None
-    inline_single_uses(region, o.lines, mark + 1)
-    o.dedent()
-    # Read the region's elements before it; a fault there means the loop runs as before.
-    reads = [f"{name} = {code}" for code, name in region.reads.items()]
-    o.insert(mark, ["try:"] + ["    " + line for line in reads + [f"{flag} = True"]]
-             + ["except _FAULTS:", f"    {flag} = False"])
-    o.line("else:")
-    o.indent()
+    close_region(o, region, mark, flag)      # a fault in its reads: the loop runs as before
     return True
