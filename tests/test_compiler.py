@@ -91,7 +91,8 @@ def test_hoisted_row_offsets_follow_the_outer_loop():
     assert main["tt"] == [[11, 21, 31], [12, 22, 32], [13, 23, 33], [14, 24, 34]]
 
 
-def test_constant_tables_skip_checks_but_variable_tables_do_not():
+def test_constant_tables_skip_checks_but_variable_tables_do_not(monkeypatch):
+    monkeypatch.setenv("ST_RUNTIME_OPTIMISE", "none")   # the loop as written (unrolled, no index is left)
     src = """PROGRAM Main
     VAR CONSTANT perm : ARRAY[1..3] OF INT := [3, 1, 2]; END_VAR
     VAR table : ARRAY[1..3] OF INT := [3, 1, 7]; v : ARRAY[1..3] OF INT := [10, 20, 30];
@@ -238,7 +239,8 @@ def test_deeply_nested_statements_compile():
     assert main["x"] == 1 and main["n"] == 2 ** 12
 
 
-def test_nesting_beyond_python_limits_is_a_diagnostic():
+def test_nesting_beyond_python_limits_is_a_diagnostic(monkeypatch):
+    monkeypatch.setenv("ST_RUNTIME_OPTIMISE", "none")   # unrolling would take the inner loops away
     loops = "".join(f"FOR i{k} := 1 TO 2 DO\n" for k in range(25)) + "n := n + 1;\n" + "END_FOR;\n" * 25
     decls = " ".join(f"i{k} : INT;" for k in range(25))
     with pytest.raises(LoadError) as info:

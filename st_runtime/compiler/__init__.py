@@ -46,11 +46,12 @@ from ..process_image import ProcessImage, located_property, parse_address, union
 from . import support
 from .calls import Calls
 from .initial import CompileError, Initial, InitialValues
+from .optimise import Optimisations
 from .pysrc import Emitter, pyliteral, safe_name, pyident
 from .scope import edge_inputs, edge_slot
 from .statements import BodyCompiler
 
-__all__ = ["compile_program", "CompiledProgram", "CompileError"]
+__all__ = ["compile_program", "CompiledProgram", "CompileError", "Optimisations"]
 
 register({"E-COMPILE-001": "a construct the checker accepted but the runtime cannot execute"})
 
@@ -153,15 +154,19 @@ class CompileUnit:
         exec(code, self.namespace)  # the source is generated; ST text only as repr literals
 
 
-def compile_program(program, guard_statements: bool = True, charge_costs: bool = True) -> CompiledProgram:
+def compile_program(program, guard_statements: bool = True, charge_costs: bool = True,
+                    optimise: Optimisations | None = None) -> CompiledProgram:
     """Translate a CheckedProgram; raises CompileError on unsupported input.
 
     `guard_statements=False` leaves out the per-statement fault handlers (a
     fault then abandons the whole scan); `charge_costs=False` leaves out the
     NJ501 execution-time charges (no F-PERIOD, a runaway loop never ends).
     Only the benchmarks use them, to show what the handlers and charges cost.
+    `optimise` switches the exact optimisation passes (optimise/); None takes
+    `Optimisations.from_environment()` (all, unless ST_RUNTIME_OPTIMISE says).
     """
     unit = CompileUnit(program)
+    unit.optimise = optimise if optimise is not None else Optimisations.from_environment()
     unit.guard_statements = guard_statements
     unit.charge_costs = charge_costs
     _make_classes(unit)

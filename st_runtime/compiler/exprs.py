@@ -26,6 +26,7 @@ from ..types import (
     string_size,
 )
 from .initial import CompileError
+from .optimise import Optimisations, fold
 from .pysrc import pyliteral, pyident
 
 # Python source of the comparison/arithmetic operators that map one to one.
@@ -152,6 +153,9 @@ class ExprCompiler:
         self.temp_count = 0
         self.known_ranges: dict[str, tuple[int, int]] = {}   # upper var name -> range
         self.loops: list = []      # FOR loops being compiled, innermost last (hoisting)
+        self.opt = getattr(unit, "optimise", None) or Optimisations.none()
+        self.unrolled: dict[str, int] = {}   # FOR variable -> its value in this unrolled copy
+        self.region = None                   # optimise.cse.Region while one is compiled
 
     # ------------------------------------------------------------ helpers
 
@@ -196,6 +200,12 @@ class ExprCompiler:
             return expr.nanoseconds
         if isinstance(expr, ast.Unary) and expr.op == "-" and isinstance(expr.operand, (ast.IntLiteral, ast.RealLiteral)):
             return -expr.operand.value
+        if isinstance(expr, ast.Name) and self.unrolled:
+            return self.unrolled.get(expr.name.upper())
+        if isinstance(expr, ast.Binary) and self.unrolled and expr.op in ("+", "-", "*"):
+            return fold.constant_integer(self, expr)     # `Row - 1` in an unrolled copy
+        if isinstance(expr, ast.Index) and self.opt.fold:
+            return fold.constant_element(self, expr)
         return None
 
     def literal(self, value, t) -> str:
@@ -283,6 +293,8 @@ class ExprCompiler:
         return pyliteral(self.unit.initial.enum_value(e.type_name, e.value_name, e.pos))
 
     def x_Name(self, e):
+        if e.name.upper() in self.unrolled:
+            return self.literal(self.unrolled[e.name.upper()], self.ty(e))
         ref = self.program.name_refs.get(id(e))
         if isinstance(ref, int) and not isinstance(ref, bool):
             return pyliteral(ref)      # an enumeration value
@@ -298,7 +310,12 @@ class ExprCompiler:
         return self.lvalue(e).read()
 
     def x_Index(self, e):
-        return self.lvalue(e).read()
+        if self.opt.fold:
+            value = fold.constant_element(self, e)
+            if value is not None:
+                return self.literal(value, self.ty(e))
+        code = self.lvalue(e).read()
+        return self.region.read(code) if self.region is not None else code
 
     def x_Unary(self, e):
         operand = self.expr(e.operand)
@@ -323,7 +340,9 @@ class ExprCompiler:
             return f"_time_mul({left}, float({right}))" if elementary(lt).kind == "time" \
                 else f"_time_mul({right}, float({left}))"
         if op in _PLAIN_OPS:
-            return f"({left} {_PLAIN_OPS[op]} {right})"
+            shared = self.region.binary(op, left, right, self.out, e is not self.region.whole) \
+                if self.region is not None else None
+            return shared or f"({left} {_PLAIN_OPS[op]} {right})"
         if op == "/":
             if is_int_like(t):
                 if is_real(rt):   # TIME / REAL: nearest ns, zero is F-DIV-ZERO (values.time_div)

@@ -39,6 +39,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
+from .optimise import cse, fold, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -87,7 +88,7 @@ class BodyCompiler(ExprCompiler):
             o.line("try:")
             o.indent()
             mark = o.mark()
-            self.statements(self.body)
+            self._body()
             o.ensure_body(mark)
             if not self.method:
                 o.line(self._return_statement())
@@ -101,12 +102,19 @@ class BodyCompiler(ExprCompiler):
             o.dedent()
         else:
             mark = o.mark()
-            self.statements(self.body)
+            self._body()
             o.ensure_body(mark)
             if not self.method:
                 o.line(self._return_statement())
         o.dedent()
         return o.source()
+
+    def _body(self) -> None:
+        """The body's statements; twice when a whole-body region applies (cse.body_region)."""
+        if not (self.opt.cse and self.unit.guard_statements and cse.worth_a_region(self, self.body)):
+            self.statements(self.body)
+            return
+        cse.emit_region(self, lambda: self.statements(self.body))
 
     def _prologue_line(self, item) -> str:
         if isinstance(item, str):
@@ -149,7 +157,7 @@ class BodyCompiler(ExprCompiler):
         """
         first = True
         for simple, compound in _blocks(body):
-            units = sum(self.cost.simple(st) for st in simple) + (self._head_cost(compound) if compound else 0)
+            units = sum(self._simple_cost(st) for st in simple) + (self._head_cost(compound) if compound else 0)
             if first:
                 units += lead
             if charge and not (first and first_charged):
@@ -159,6 +167,13 @@ class BodyCompiler(ExprCompiler):
                 self.statement(stmt)
             if compound is not None:
                 self.statement(compound)
+
+    def _simple_cost(self, st) -> float:
+        """cost.simple, memoised: an unrolled loop compiles its body once per iteration."""
+        known = self._head_costs.get(id(st))
+        if known is None:
+            known = self._head_costs[id(st)] = self.cost.simple(st)
+        return known
 
     def _head_cost(self, s) -> float:
         """What a compound statement charges with the block before it: what it
@@ -178,7 +193,7 @@ class BodyCompiler(ExprCompiler):
 
     def _first_block(self, body) -> float:
         simple, compound = _blocks(body)[0]
-        return sum(self.cost.simple(st) for st in simple) + (self._head_cost(compound) if compound else 0)
+        return sum(self._simple_cost(st) for st in simple) + (self._head_cost(compound) if compound else 0)
 
     def _shared(self, tests: list, bodies: list, exhaustive: bool) -> tuple[list, float]:
         """(lead of each branch, units every branch charges first).
@@ -231,10 +246,37 @@ class BodyCompiler(ExprCompiler):
             raise CompileError(f"statement {type(stmt).__name__} is not supported by the runtime", stmt.pos)
         if isinstance(stmt, (ast.Assign, ast.CallStmt)):
             self.guard(stmt, lambda: method(stmt))
+        elif isinstance(stmt, ast.If) and self.opt.fold and self._folded_if(stmt):
+            return
+        elif self.region is not None:       # code that may be skipped defines no shared values
+            outer = self.region.straight
+            self.region.straight, self.region.enclosing_straight = False, outer
+            try:
+                method(stmt)
+            finally:
+                self.region.straight = outer
         else:
             # Compound statements guard their own conditions and bounds, so
             # Python blocks nest only as deep as the ST loops do.
             method(stmt)
+
+    def _folded_if(self, s) -> bool:
+        """An IF whose conditions are constants: only the branch taken, with its lead (fold.py)."""
+        conditions = [fold.constant_condition(self, b.condition) for b in s.branches]
+        taken = None
+        for i, value in enumerate(conditions):
+            if value is None:
+                return False
+            if value:
+                taken = i
+                break
+        leads, _ = self._if_entries(s)
+        if taken is None and s.else_body:
+            taken = len(s.branches)
+        if taken is not None:
+            body = s.branches[taken].body if taken < len(s.branches) else s.else_body
+            self.statements(body or (), leads[taken])
+        return True
 
     def guard(self, node, emit, on_fault=lambda: ()) -> None:
         """Emit `emit()` inside `try`; a fault is recorded, then `on_fault()` lines run."""
@@ -242,12 +284,22 @@ class BodyCompiler(ExprCompiler):
         if not self.unit.guard_statements:
             emit()
             return
-        o.line("try:")
-        o.indent()
-        mark = o.mark()
-        emit()
-        o.ensure_body(mark)
-        o.dedent()
+        if self.opt.unguard and isinstance(node, ast.Assign):
+            mark = o.mark()
+            emit()
+            if unguard.cannot_fault(o.lines[mark:]):
+                return
+            o.lines[mark:] = ["    " + line for line in o.lines[mark:]]
+            o.insert(mark, ["try:"])
+            if len(o.lines) == mark + 1:
+                o.line("    pass")
+        else:
+            o.line("try:")
+            o.indent()
+            mark = o.mark()
+            emit()
+            o.ensure_body(mark)
+            o.dedent()
         o.line("except _FAULTS as _e:")
         o.indent()
         o.line(f"_ctx.fault(_e, {self.where(node)})")
@@ -283,6 +335,8 @@ class BodyCompiler(ExprCompiler):
         if is_aggregate(t):
             self.out.line(copy_statement(target.read(), self.aggregate(s.value), t))
             return
+        if self.region is not None:
+            self.region.whole = s.value
         value = self.convert(self.expr(s.value), self.ty(s.value), t, s.value)
         self.out.line(target.store(value))
 
@@ -424,6 +478,18 @@ class BodyCompiler(ExprCompiler):
             self.known_ranges[key] = (lo_r[0], hi_r[1]) if step_value > 0 else (hi_r[0], lo_r[1])
         else:
             self.known_ranges.pop(key, None)
+        fallback = False
+        if const_range and not early and self.opt.unroll and unroll.can_unroll(self, s.body, place, count, assigned, key):
+            fallback = unroll.emit(self, s, key, range(self.constant_of(s.start), self.constant_of(s.end)
+                                                        + (1 if step_value > 0 else -1), step_value),
+                                   lambda: self._after_for(target, var_t, final, lo_r, hi_r, step_value,
+                                                           not straight, where))
+            if not fallback:
+                if saved is None:
+                    self.known_ranges.pop(key, None)
+                else:
+                    self.known_ranges[key] = saved
+                return
         self.loops.append(_Loop(key, assigned, "FOR"))
         mark = o.mark()
         if target.kind == "ref":
@@ -451,17 +517,23 @@ class BodyCompiler(ExprCompiler):
         # the test (IEC: FOR is a WHILE loop that increments by BY).
         o.line("else:")
         o.indent()
-        bounds = int_bounds(var_t)
-        if lo_r and hi_r and const_step and bounds:
-            ends = (lo_r[0], lo_r[1], hi_r[0] + step_value, hi_r[1] + step_value)
-            if bounds[0] <= min(ends) and max(ends) <= bounds[1]:
-                var_t = None          # the final value cannot leave the type: no wrap
-        o.line(target.store(final if var_t is None else self.convert(final, None, var_t)))
-        if not early and not straight:
-            self._charge(0, where)          # what the body's blocks charged, tested once
+        self._after_for(target, var_t, final, lo_r, hi_r, step_value if const_step else None,
+                        not early and not straight, where)
         o.dedent()
         if not const_range:
             o.dedent()
+        if fallback:        # the loop as before, when the unrolled copy's reads fault
+            o.dedent()
+
+    def _after_for(self, target, var_t, final, lo_r, hi_r, step_value, test: bool, where) -> None:
+        bounds = int_bounds(var_t)
+        if lo_r and hi_r and step_value is not None and bounds:
+            ends = (lo_r[0], lo_r[1], hi_r[0] + step_value, hi_r[1] + step_value)
+            if bounds[0] <= min(ends) and max(ends) <= bounds[1]:
+                var_t = None          # the final value cannot leave the type: no wrap
+        self.out.line(target.store(final if var_t is None else self.convert(final, None, var_t)))
+        if test:
+            self._charge(0, where)          # what the body's blocks charged, tested once
 
     def _for_range(self, s, step: int | None, where: str) -> tuple[str, int | None, str]:
         """Emit the loop's range; (range source, iteration count if known, final value source).

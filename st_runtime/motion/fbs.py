@@ -131,9 +131,12 @@ class _ExecuteFB(_AxisFB):
         self.v_ERRORID = int(code)
 
     def _clear_outputs(self) -> None:
+        # Called every scan an idle FB is called: write only what is set (same state, fewer stores).
         for output in self.FINAL_OUTPUTS:
-            setattr(self, output, False)
-        self.v_ERRORID = 0
+            if getattr(self, output):
+                setattr(self, output, False)
+        if self.v_ERRORID:
+            self.v_ERRORID = 0
 
     # hooks
     def _begin(self, axis: Axis) -> MotionCommand:  # pragma: no cover - abstract

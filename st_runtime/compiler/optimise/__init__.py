@@ -1,0 +1,61 @@
+"""Optimisation passes of the ST-to-Python compiler, each exact by construction.
+
+Each pass has its own switch (`Optimisations`), so the equivalence tests can
+run a program with and without it and compare results, faults and instance
+states bit for bit:
+
+* `fold` (fold.py): reads of `VAR CONSTANT` array elements at constant
+  indices become literals, and IF conditions made only of constants choose
+  their branch at compile time.
+* `unroll` (unroll.py): a FOR with constant bounds, a body that cannot leave
+  early and a control variable no one else can see is unrolled (up to
+  `UNROLL_CAP` statements), its variable a constant in each copy.
+* `cse` (cse.py): in an unrolled loop whose body stores only plain locals and
+  calls nothing, array elements read at constant indices are read once,
+  before the loop, and a `+ - *` of such values, literals or earlier shared
+  results is computed once and reused.  Operands keep their order and
+  grouping (no reassociation), so every result is the same float.
+* `unguard` (unguard.py): no `try` around an assignment whose Python code
+  cannot raise (a local set from locals and literals with `+ - *`).
+
+None of them changes the NJ execution-time charges (cost.py): those come from
+the ST text, and an unrolled loop charges what the loop charged, at the same
+checks.  `ST_RUNTIME_OPTIMISE` (environment) picks the default: `none`, `all`
+or a comma-separated list of pass names; unset means all.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, fields
+
+UNROLL_CAP = 8000   # statements unrolled loops may produce in one POU (iterations x body statements)
+
+
+@dataclass(frozen=True)
+class Optimisations:
+    fold: bool = True
+    unroll: bool = True
+    cse: bool = True
+    unguard: bool = True
+
+    @classmethod
+    def none(cls) -> "Optimisations":
+        return cls(**{f.name: False for f in fields(cls)})
+
+    @classmethod
+    def only(cls, *names: str) -> "Optimisations":
+        known = {f.name for f in fields(cls)}
+        unknown = set(names) - known
+        if unknown:
+            raise ValueError(f"unknown optimisation(s) {sorted(unknown)}; known: {sorted(known)}")
+        return cls(**{name: name in names for name in known})
+
+    @classmethod
+    def from_environment(cls) -> "Optimisations":
+        value = os.environ.get("ST_RUNTIME_OPTIMISE", "all").strip().lower()
+        if value in ("", "all"):
+            return cls()
+        if value == "none":
+            return cls.none()
+        return cls.only(*(name.strip() for name in value.split(",") if name.strip()))

@@ -1,0 +1,169 @@
+"""Reuse inside an unrolled loop: array reads and `+ - *` results computed once.
+
+A `Region` is active while an unrolled loop (unroll.py) is compiled, when its
+body stores only plain Python locals (`how == "local"`) and calls nothing:
+then no array element can change while the region runs (no store reaches an
+array, no callee runs, no VAR_IN_OUT alias is written).  So:
+
+* an element read at a constant index (`v_MATRIX[7]`) is read once, into a
+  name set before the region (`reads`);
+* a `+`, `-` or `*` whose operands are such names, literals or earlier
+  shared results is computed once, where first needed, and reused
+  (`shared`).  The text of the operation is its key: the same operands in
+  the same order and grouping, so the reused value is the value the
+  expression would have computed again (left-to-right partial products of
+  the Leibniz terms are shared; nothing is reassociated).
+
+A region also covers a whole POU body that qualifies and reads at least
+`BODY_READS` array elements at literal indices (an unrolled loop written out
+in the ST, such as the unrolled Leibniz determinant).
+
+A new shared result is defined only in straight-line code of the region
+(`straight`): code that is skipped would leave the name unset.  The element
+reads may fault (an unconnected VAR_IN_OUT); the region then does not run:
+the caller emits `if <reads succeeded>: <region> else: <the loop as before>`.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import replace
+
+from ... import ast
+from ..scope import walk
+
+_READ = re.compile(r"[A-Za-z_]\w*\[\d+\]")
+_NUMBER = re.compile(r"-?\(?-?\d[\d.e+-]*\)?")
+
+
+class Region:
+    def __init__(self, temp):
+        self.temp = temp
+        self.reads: dict[str, str] = {}      # `v_A[7]` -> name read before the region
+        self.shared: dict[str, str] = {}     # `(x * y)` -> name holding it
+        self.names: set[str] = set()         # names that hold a value fixed for the region
+        self.straight = True
+        self.whole = None                    # the value expression of the assignment being compiled
+        self.enclosing_straight = True       # `straight` outside the compound statement being compiled
+
+    def read(self, code: str) -> str:
+        if not _READ.fullmatch(code):
+            return code
+        name = self.reads.get(code)
+        if name is None:
+            name = self.reads[code] = self.temp()
+            self.names.add(name)
+        return name
+
+    def fixed(self, code: str) -> bool:
+        return code in self.names or bool(_NUMBER.fullmatch(code))
+
+    def binary(self, op: str, left: str, right: str, out, define: bool = True) -> str | None:
+        """The name of the shared `left op right`, or None when it cannot be shared.
+
+        `define=False`: reuse only (the whole value of an assignment, which is
+        stored at once and, when it repeats, found by the next use's lookup)."""
+        if op not in ("+", "-", "*") or not (self.fixed(left) and self.fixed(right)):
+            return None
+        text = f"({left} {op} {right})"
+        name = self.shared.get(text)
+        if name is None:
+            if not self.straight or not define:
+                return None
+            name = self.shared[text] = self.temp()
+            self.names.add(name)
+            out.line(f"{name} = {text}")
+        return name
+
+
+def region_allowed(compiler, body) -> bool:
+    """Whether `body` stores only plain locals and calls nothing (see the module docstring)."""
+    for node in walk(body):
+        if isinstance(node, (ast.Call, ast.CallStmt)):
+            return False
+        if isinstance(node, ast.Assign):
+            if not isinstance(node.target, ast.Name) or not _is_local(compiler, node.target):
+                return False
+        elif isinstance(node, ast.For):
+            if not _is_local(compiler, ast.Name(node.variable, pos=node.pos)):
+                return False
+    return True
+
+
+def _is_local(compiler, name) -> bool:
+    place = compiler.scope.places.get(name.name.upper())
+    return place is not None and place.how == "local"
+
+
+BODY_READS = 8
+_TEMP = re.compile(r"\b_t\d+\b")
+
+
+def inline_single_uses(region, lines: list[str], start: int) -> None:
+    """Put back a shared result used only once into its use (a name stored and read once
+    costs more than it saves).  Exact: its operands are fixed for the region, and it
+    cannot raise, so computing it at its use gives the same value."""
+    shared = {name: text for text, name in region.shared.items()}
+    uses: dict[str, list[int]] = {}
+    for i in range(start, len(lines)):
+        for match in _TEMP.finditer(lines[i]):
+            if match.group() in shared:
+                uses.setdefault(match.group(), []).append(i)
+    removed = set()
+    for name, where in uses.items():            # in order of first occurrence: the definition
+        if len(where) != 2:
+            continue
+        definition, use = where
+        head = lines[definition].lstrip()
+        if not head.startswith(f"{name} = "):
+            continue
+        text = head[len(name) + 3:]
+        lines[use] = re.sub(rf"\b{name}\b", lambda _: text, lines[use], count=1)
+        # a later inlining may read this line again: keep `where` lists pointing at it
+        removed.add(definition)
+    lines[start:] = [line for i, line in enumerate(lines[start:], start) if i not in removed]
+
+
+def worth_a_region(compiler, body) -> bool:
+    """Whether a whole body qualifies for a region and reads enough elements at literal indices."""
+    reads = sum(1 for node in walk(body) if isinstance(node, ast.Index)
+                and all(isinstance(i, ast.IntLiteral) for i in node.indices))
+    return reads >= BODY_READS and region_allowed(compiler, body)
+
+
+def emit_region(compiler, compile_body) -> None:
+    """`compile_body()` once in a region and once as before, chosen by whether the reads fault."""
+    o = compiler.out
+    region = compiler.region = Region(compiler.temp)
+    flag = compiler.temp()
+    mark = o.mark()
+    o.line(f"if {flag}:")
+    o.indent()
+    inner = o.mark()
+    try:
+        compile_body()
+    finally:
+        compiler.region = None
+    o.ensure_body(inner)
+    close_region(o, region, mark, flag)
+    inner = o.mark()
+    saved = compiler.opt        # the path that never runs unless a read faults: kept small
+    compiler.opt = replace(saved, unroll=False, cse=False)
+    try:
+        compile_body()
+    finally:
+        compiler.opt = saved
+    o.ensure_body(inner)
+    o.dedent()
+
+
+def close_region(o, region, mark: int, flag: str) -> None:
+    """End the region's `if flag:` block (begun at `mark`): single uses put back, the
+    element reads put before it (a fault there sets `flag` False), and `else:` opened."""
+    inline_single_uses(region, o.lines, mark + 1)
+    o.dedent()
+    reads = [f"{name} = {code}" for code, name in region.reads.items()]
+    o.insert(mark, ["try:"] + ["    " + line for line in reads + [f"{flag} = True"]]
+             + ["except _FAULTS:", f"    {flag} = False"])
+    o.line("else:")
+    o.indent()

@@ -1,0 +1,116 @@
+"""Constant folding: `VAR CONSTANT` array elements and constant IF conditions.
+
+`PERMUTATION[3, 2]` of a CONSTANT array with constant indices is the
+element's initial value (a constant can never change), so the compiler
+writes the literal instead of an indexed read.  Inside an unrolled loop the
+control variable is a constant too (unroll.py), which is what makes the
+Leibniz table's reads constant.  An IF whose conditions are all constant
+(`PERMUTATION_SIGN[7] > 0`) compiles to the branch taken only; the branch
+charges what it charged before (its lead, statements.py).
+"""
+
+from __future__ import annotations
+
+import operator
+
+from ... import ast
+from ...types import ArrayType, resolve_alias
+from ..initial import CompileError
+
+_COMPARE = {"=": operator.eq, "<>": operator.ne, "<": operator.lt, "<=": operator.le,
+            ">": operator.gt, ">=": operator.ge}
+_INT_OPS = {"+": operator.add, "-": operator.sub, "*": operator.mul}
+
+
+def constant_element(compiler, e: ast.Index):
+    """The value of `e` when it reads a CONSTANT array at constant, in-range indices; else None."""
+    if not isinstance(e.base, ast.Name):
+        return None
+    cache = compiler.__dict__.setdefault("_constant_arrays", {})
+    key = id(e)
+    if key not in cache:
+        cache[key] = _constant_array(compiler, e)
+    found = cache[key]
+    if found is None:
+        return None
+    t, values = found
+    offset, stride = 0, 1
+    for index, (lo, hi) in reversed(list(zip(e.indices, t.dims))):
+        value = compiler.constant_of(index)
+        if not _is_int(value) or not lo <= value <= hi:
+            return None                         # out of range: left to the runtime's fault
+        offset += (value - lo) * stride
+        stride *= hi - lo + 1
+    if offset >= len(values):
+        return None
+    value = values[offset]
+    return value if isinstance(value, (int, float)) else None
+
+
+def _constant_array(compiler, e):
+    """(array type, flat initial values) when `e` indexes a whole CONSTANT array, else None."""
+    try:
+        place = compiler.scope.place_of(e.base)
+    except CompileError:
+        return None
+    symbol = place.symbol
+    if symbol.kind == "VAR_EXTERNAL":           # the global's declaration holds the values
+        symbol = compiler.program.globals.get(e.base.name.upper(), symbol)
+    t = resolve_alias(symbol.type)
+    if symbol.init is None or not symbol.constant or not isinstance(t, ArrayType) \
+            or isinstance(resolve_alias(t.element), ArrayType) or len(e.indices) != len(t.dims):
+        return None
+    values = _flat_values(compiler, symbol)
+    return None if values is None else (t, values)
+
+
+def _flat_values(compiler, symbol):
+    cache = compiler.unit.__dict__.setdefault("constant_values", {})
+    if id(symbol) not in cache:
+        value = compiler.unit.initial.of_symbol(symbol).maker()
+        cache[id(symbol)] = list(value) if isinstance(value, list) else None
+    return cache[id(symbol)]
+
+
+def constant_condition(compiler, e):
+    """True/False when `e` is a condition made of constants only (comparisons,
+    AND/OR/XOR/NOT of BOOLs, integer + - *), else None."""
+    value = _evaluate(compiler, e)
+    return value if isinstance(value, bool) else None
+
+
+def constant_integer(compiler, e):
+    """An integer + - * of constants (exact, as intermediate integers are here), else None."""
+    value = _evaluate(compiler, e)
+    return value if _is_int(value) else None
+
+
+def _evaluate(compiler, e):
+    # constant_of asks constant_integer about a Binary: only the checker's folding here.
+    value = compiler.folded(e) if isinstance(e, ast.Binary) else compiler.constant_of(e)
+    if value is not None:
+        return value
+    if isinstance(e, ast.Unary) and e.op.upper() == "NOT":
+        inner = _evaluate(compiler, e.operand)
+        return (not inner) if isinstance(inner, bool) else None
+    if not isinstance(e, ast.Binary):
+        return None
+    op = e.op.upper()
+    left = _evaluate(compiler, e.left)
+    if left is None:
+        return None
+    right = _evaluate(compiler, e.right)
+    if right is None or type(left) is not type(right) or not isinstance(left, (bool, int)):
+        return None
+    if op in _COMPARE:
+        return _COMPARE[op](left, right)
+    if isinstance(left, bool):
+        return {"AND": left and right, "&": left and right, "OR": left or right,
+                "XOR": left != right}.get(op)
+    if op in _INT_OPS:          # exact: intermediate integers are exact in this runtime
+        return _INT_OPS[op](left, right)
+    return None
+
+
+def _is_int(value) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool)

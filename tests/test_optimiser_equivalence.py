@@ -1,0 +1,201 @@
+"""The optimisation passes (st_runtime/compiler/optimise) change nothing a program can see.
+
+Every snippet of the accept corpus and the example PLC are compiled twice,
+with every pass off and with every pass on, and run scan by scan: the faults
+(code, file, line, column, scan), the time charged per scan and the state of
+every instance and of the globals must be equal bit for bit.  The same for a
+seeded differential of 1,000 FK solves (the Leibniz-table kinematics:
+poses, iteration counts, flags), and for F-PERIOD cut at many budgets inside
+the unrolled determinant (the fault lands on the same statement, the state
+left behind is the same).  `ST_RUNTIME_OPTIMISE=none` runs the rest of the
+suite without the passes.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from st_runtime import loader
+from st_runtime.compiler import Optimisations, compile_program
+from st_runtime.compiler.optimise import unguard
+from st_runtime.controller import Controller
+from st_runtime.objects import STObject
+
+ROOT = Path(__file__).resolve().parent.parent
+CORPUS = sorted((ROOT / "tests" / "corpus" / "accept").glob("*.st"))
+OFF, ON = Optimisations.none(), Optimisations()
+
+
+def snapshot(value, seen=None):
+    """Instance state as nested tuples; floats by their bits (-0.0 and NaN payloads count)."""
+    seen = set() if seen is None else seen
+    if isinstance(value, float):
+        return ("f", value.hex() if not math.isnan(value) else "nan")
+    if isinstance(value, (bool, int, str, bytes)) or value is None:
+        return value
+    if isinstance(value, (list, tuple)):
+        return tuple(snapshot(v, seen) for v in value)
+    if isinstance(value, STObject):
+        if id(value) in seen:
+            return ("cycle",)
+        seen.add(id(value))
+        return (type(value).__name__,) + tuple(
+            (slot, snapshot(getattr(value, slot, None), seen)) for slot in type(value).__slots__)
+    return type(value).__name__          # references, native helpers: identity only
+
+
+def run_both(program, scans: int, budget_ns: int = 500_000):
+    """(faults, states, times) of `scans` scans with the passes off and on."""
+    outcomes = []
+    for optimise in (OFF, ON):
+        compiled = compile_program(program, optimise=optimise)
+        controller = Controller(compiled, time_limit_ns=budget_ns)
+        for pou in program.pous.values():
+            if pou.kind == "PROGRAM":
+                controller.add_program(pou.name)
+        states = []
+        for _ in range(scans):
+            controller.run(1)
+            states.append((snapshot(compiled.globals),
+                           tuple((k, snapshot(v)) for k, v in sorted(controller.instances.items()))))
+        faults = [(f.code, f.file, f.line, f.col, f.scan) for f in controller.faults]
+        outcomes.append((faults, states))
+    return outcomes
+
+
+@pytest.mark.parametrize("path", CORPUS, ids=[p.stem for p in CORPUS])
+def test_corpus_snippet_runs_the_same_with_and_without_the_passes(path):
+    result = loader.load([str(path)])
+    if result.program is None:
+        pytest.skip("not accepted by the checker in this build")
+    off, on = run_both(result.program, 3)
+    assert on == off
+
+
+def test_example_plc_runs_the_same_with_and_without_the_passes():
+    result = loader.load([str(p) for p in sorted((ROOT / "examples" / "plc").glob("*.st"))])
+    off, on = run_both(result.program, 50)
+    assert on == off
+
+
+LEIBNIZ = """
+FUNCTION_BLOCK Det3
+VAR_OUTPUT D : LREAL; END_VAR
+VAR_IN_OUT M : ARRAY[1..3, 1..3] OF LREAL; END_VAR
+VAR CONSTANT
+    P : ARRAY[1..6, 1..3] OF USINT := [1,2,3, 1,3,2, 2,1,3, 2,3,1, 3,1,2, 3,2,1];
+    S : ARRAY[1..6] OF SINT := [1, -1, -1, 1, 1, -1];
+END_VAR
+VAR T : INT; X : LREAL; END_VAR
+D := 0.0;
+FOR T := 1 TO 6 DO
+    X := M[1, P[T, 1]] * M[2, P[T, 2]] * M[3, P[T, 3]];
+    IF S[T] > 0 THEN D := D + X; ELSE D := D - X; END_IF;
+END_FOR;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR A : ARRAY[1..3, 1..3] OF LREAL := [2.5, -1.0, 0.1, 3.0, 7.0, -2.0, 0.3, 1.0e10, 4.0];
+    F : Det3; G : Det3; K : INT; Out : LREAL; END_VAR
+FOR K := 1 TO 3 DO A[K, K] := A[K, K] * 1.0000001; END_FOR;
+F(M := A);
+Out := F.D;
+END_PROGRAM
+"""
+
+
+def _text_program(text: str):
+    from st_runtime import api
+
+    return api.load_text(text).program
+
+
+def test_the_passes_fire_on_a_leibniz_table():
+    """The table reads become literals, the loop unrolled, the products shared, no try left."""
+    program = _text_program(LEIBNIZ)
+    source = compile_program(program, optimise=ON).python_sources["DET3"]
+    unrolled, fallback = source.split("for v_T")      # the copies, then the loop as before
+    assert "v_P[" not in unrolled and "v_S[" not in unrolled and "v_P[" in fallback
+    lines = source.splitlines()
+    adds = [i for i, line in enumerate(lines) if line.strip() == "v_D = (v_D + v_X)"]
+    assert len(adds) == 4                   # 3 unrolled copies (S = +1) and the loop as before
+    assert not any(lines[i - 1].strip() == "try:" for i in adds)   # + of locals cannot raise: no handler
+    plain = compile_program(program, optimise=OFF).python_sources["DET3"]
+    assert "for v_T" in plain and "v_P[" in plain
+    assert source.count("_t") > plain.count("_t")
+
+
+class _Context:
+    """What a compiled body needs of the controller: a budget and a fault log."""
+
+    def __init__(self):
+        self.budget = 10**12
+        self.faults = []
+
+    def fault(self, exc, where):
+        self.faults.append((type(exc).__name__, getattr(exc, "code", None), where))
+
+
+def test_an_unconnected_in_out_faults_the_same_in_the_unrolled_loop():
+    """The checker requires M at every call, so only a direct run of the body can leave it
+    unconnected: the unrolled copy's reads fault, and the loop as before runs and faults."""
+    program = _text_program(LEIBNIZ)
+    outcomes = []
+    for optimise in (OFF, ON):
+        compiled = compile_program(program, optimise=optimise)
+        instance, context = compiled.new("Det3"), _Context()
+        type(instance).execute(instance, context)
+        outcomes.append((context.faults, context.budget, snapshot(instance)))
+    assert outcomes[0] == outcomes[1]
+    # Each of the 6 iterations: the product's read of M faults (line 12); the rest runs.
+    assert [(code, where[2]) for _, code, where in outcomes[1][0]] == [("F-NULL-REF", 12)] * 6
+
+
+@pytest.mark.parametrize("budget_ns", [200, 1_000, 2_000, 3_000, 4_000, 6_000, 10_000, 50_000])
+def test_f_period_lands_on_the_same_statement(budget_ns):
+    program = _text_program(LEIBNIZ)
+    off, on = run_both(program, 2, budget_ns)
+    assert on == off
+
+
+def test_unguard_keeps_the_handler_where_python_can_raise():
+    assert unguard.cannot_fault(["    v_A = (v_B + (v_C * 2.5))", "v_D = -v_A"])
+    assert not unguard.cannot_fault(["v_A = (v_B / v_C)"])          # ZeroDivisionError
+    assert not unguard.cannot_fault(["v_A = (v_B ** v_C)"])         # 0.0 ** -1
+    assert not unguard.cannot_fault(["v_A = self.v_B"])
+    assert not unguard.cannot_fault(["v_A = _f32(v_B)"])
+    assert not unguard.cannot_fault(["v_A[3] = v_B"])
+    assert not unguard.cannot_fault([])
+
+
+def test_switches_parse():
+    assert Optimisations.only("fold") == Optimisations(fold=True, unroll=False, cse=False, unguard=False)
+    with pytest.raises(ValueError):
+        Optimisations.only("fast")
+
+
+@pytest.mark.parametrize("variant, count", [("table", 1000), ("unrolled", 200), ("lu", 200)])
+def test_fk_solves_are_bit_identical_with_and_without_the_passes(monkeypatch, variant, count):
+    from stgen.config import PlatformConfig
+    from stgen.reference import inverse_kinematics
+    from stgen.render import RenderOptions
+    from stgen.verify import fk_solver, load_kinematics, random_poses
+
+    config = PlatformConfig.default()
+    poses = random_poses(config, count, seed=17)
+    positions = inverse_kinematics(config.geometry, poses, config.stroke).positions
+    start = np.asarray(config.solver.start_pose)
+    runs = []
+    for setting in ("none", "all"):
+        monkeypatch.setenv("ST_RUNTIME_OPTIMISE", setting)
+        runtime = load_kinematics(config, RenderOptions(variant), capacity=count)
+        runs.append(runtime.forward_kinematics(positions, start, fk_solver(config)))
+    off, on = runs
+    assert off.done.all()
+    assert np.array_equal(off.poses.view(np.uint64), on.poses.view(np.uint64))
+    assert np.array_equal(off.iterations, on.iterations)
+    assert np.array_equal(off.calls, on.calls)
+    assert np.array_equal(off.error_ids, on.error_ids)
