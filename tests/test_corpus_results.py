@@ -12,8 +12,7 @@ the first step when there are several; else a global).  Values are written
 in ST: TRUE/FALSE, integers (16#FF too), reals, 'strings', enum names and
 TIME literals as the API shows them (`T#1s`).  The expected values were
 worked out by hand from the IEC 61131-3 rules, next to nothing but the
-snippet.  A snippet with neither comment counts against UNANNOTATED_MAX,
-which may only go down.
+snippet.  Every snippet carries one comment or the other.
 """
 
 from __future__ import annotations
@@ -29,10 +28,6 @@ ACCEPT = sorted((Path(__file__).parent / "corpus" / "accept").glob("*.st"))
 
 EXPECT = re.compile(r"\(\*\s*expect:\s*(?P<body>.+?)\s+after\s+(?P<scans>\d+)\s+scans?\s*\*\)", re.S)
 NO_RESULT = re.compile(r"\(\*\s*no-result:\s*(?P<why>.+?)\s*\*\)", re.S)
-
-# Snippets still without an expectation or a reason; lower it as they get one.
-UNANNOTATED_MAX = 75
-
 
 ESCAPES = {"$": "$", "'": "'", "L": "\n", "N": "\n", "R": "\r", "T": "\t", "P": "\f"}
 
@@ -132,7 +127,7 @@ def test_every_snippet_says_its_result_or_why_not():
     missing = [p.name for p in ACCEPT
                if not EXPECT.search(p.read_text(encoding="utf-8"))
                and not NO_RESULT.search(p.read_text(encoding="utf-8"))]
-    assert len(missing) <= UNANNOTATED_MAX, f"{len(missing)} snippets without expect/no-result"
+    assert missing == [], "snippets without (* expect: ... *) or (* no-result: ... *)"
 
 
 def test_a_wrong_expectation_fails():
