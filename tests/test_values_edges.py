@@ -224,3 +224,95 @@ def test_to_json_nests_three_dimensions_and_names_enum_values():
     assert to_json(7, gear) == 7          # a number no name has stays a number
     with pytest.raises(TypeError, match="cannot convert a value of type"):
         to_json(1, object())
+
+
+# --------------------------------------------------------------------- JSON
+
+from st_runtime.api import load_text  # noqa: E402
+from st_runtime.values import JsonValueError, from_json, json_text  # noqa: E402
+
+E = T.ELEMENTARY
+COLOR = T.EnumType("Color", {"RED": ("Red", 0), "GREEN": ("Green", 1), "BLUE": ("Blue", 2)})
+POINT = T.StructType("Point", {"X": ("x", E["LREAL"]), "N": ("n", E["INT"])})
+
+
+@pytest.mark.parametrize("data, t, stored", [
+    (True, E["BOOL"], True), (1, E["BOOL"], True), (0, E["BOOL"], False),
+    (-32768, E["INT"], -32768), (32767, E["INT"], 32767), (255, E["BYTE"], 255), (3.0, E["INT"], 3),
+    (math.inf, E["REAL"], math.inf), ("-Infinity", E["LREAL"], -math.inf), (0.1, E["REAL"], to_real32(0.1)),
+    ("abcd", T.StringType(4), "abcd"), ("green", COLOR, 1), (2, COLOR, 2),
+    ({"x": 1.5}, POINT, {"X": 1.5, "N": 0}),
+])
+def test_from_json_accepts(data, t, stored):
+    value = from_json(data, t)
+    assert value == stored and type(value) is type(stored)
+
+
+def test_from_json_nan_name():
+    assert math.isnan(from_json("NaN", E["REAL"]))
+
+
+@pytest.mark.parametrize("data, t, message", [
+    (2, E["BOOL"], "value: expected BOOL (true or false), got 2"),
+    ("x", E["BOOL"], "value: expected BOOL (true or false), got string 'x'"),
+    (None, E["BOOL"], "value: expected BOOL (true or false), got null"),
+    ([1, 2], E["BOOL"], "value: expected BOOL (true or false), got a list of 2"),
+    ({}, E["BOOL"], "value: expected BOOL (true or false), got an object"),
+    (True, E["INT"], "value: expected INT integer, got true"),
+    (False, E["WORD"], "value: expected WORD integer, got false"),
+    (1.5, E["INT"], "value: expected INT integer, got 1.5"),
+    (256, E["BYTE"], "value: 256 is outside the range of BYTE (0..255)"),
+    (-32769, E["INT"], "value: -32769 is outside the range of INT (-32768..32767)"),
+    (32768, E["INT"], "value: 32768 is outside the range of INT (-32768..32767)"),
+    ("x", E["REAL"], 'value: expected REAL number (or "NaN", "Infinity", "-Infinity"), got string \'x\''),
+    (None, E["LREAL"], "value: expected LREAL number, got null"),
+    (False, E["REAL"], "value: expected REAL number, got false"),
+    (1e39, E["REAL"], "value: 1e+39 is outside the range of REAL"),
+    (5, E["TIME"], 'value: expected TIME literal string such as "T#1s500ms", got 5'),
+    (5, E["DATE"], 'value: expected DATE literal string such as "D#2024-01-31", got 5'),
+    (5, E["TOD"], 'value: expected TIME_OF_DAY literal string such as "TOD#12:30:00", got 5'),
+    (5, E["DT"], 'value: expected DATE_AND_TIME literal string such as "DT#2024-01-31-12:30:00", got 5'),
+    ("1x", E["TIME"], "value: '1x' is not a TIME literal (expected e.g. T#1s500ms)"),
+    (5, T.StringType(4), "value: expected STRING[4] string, got 5"),
+    ("abcde", T.StringType(4), "value: string of 5 bytes exceeds STRING[4]"),
+    ("Purple", COLOR, "value: expected a value of Color (Red, Green, Blue), got string 'Purple'"),
+    (7, COLOR, "value: expected a value of Color, got 7"),
+    (True, COLOR, "value: expected a value of Color, got true"),
+    (5, POINT, "value: expected an object for Point, got 5"),
+    ({"q": 1}, POINT, "value: Point has no member 'q' (members: x, n)"),
+    ({"n": "a"}, POINT, "value.n: expected INT integer, got string 'a'"),
+    ([[1, 2], [3]], T.ArrayType(((1, 2), (0, 1)), E["INT"]),
+     "value[2]: expected a list of 2 elements (0..1), got a list of 1"),
+    ([[1, "a"], [3, 4]], T.ArrayType(((1, 2), (0, 1)), E["INT"]), "value[1, 1]: expected INT integer, got string 'a'"),
+    (5, T.ArrayType(((1, 2),), E["INT"]), "value: expected a list of 2 elements (1..2), got 5"),
+])
+def test_from_json_refuses_with_the_path_and_what_was_expected(data, t, message):
+    with pytest.raises(JsonValueError) as error:
+        from_json(data, t)
+    assert str(error.value) == message
+
+
+def test_from_json_an_integer_beyond_the_double_range_is_out_of_range():
+    with pytest.raises(JsonValueError) as error:
+        from_json(10**400, E["LREAL"])
+    assert str(error.value).endswith(" is outside the range of LREAL")
+
+
+def test_from_json_a_type_json_cannot_give():
+    with pytest.raises(JsonValueError, match="value: values of type .* cannot be given as JSON"):
+        from_json(1, object())
+
+
+def test_json_text_writes_non_finite_reals_as_strings_at_any_depth():
+    data = {"a": [math.nan, math.inf, -math.inf, 1.5], "b": {"c": math.inf}, "d": "x", "e": 2}
+    assert json_text(data) == ('{"a": ["NaN", "Infinity", "-Infinity", 1.5], "b": {"c": "Infinity"}, '
+                               '"d": "x", "e": 2}')
+
+
+def test_instance_json_leaves_out_external_and_in_out_variables_only():
+    src = ("VAR_GLOBAL g : INT := 4; END_VAR\n"
+           "PROGRAM Main\nVAR_EXTERNAL g : INT; END_VAR\nVAR a : INT := 1; END_VAR\n"
+           "VAR b : BOOL := TRUE; END_VAR\nEND_PROGRAM\n")
+    plc = load_text(src).controller()
+    main = plc.add_program("Main")
+    assert main.to_json() == {"a": 1, "b": True}
