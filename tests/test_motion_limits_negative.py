@@ -9,22 +9,11 @@ docs/nj501.md ("OMRON's motion kernel") and SPEC section 7.
 
 import pytest
 
-from st_runtime.motion.axis import Axis, AxisState, MotionRefused
-from st_runtime.motion.axis_config import AxisConfig
+from st_runtime.motion.axis import AxisState, MotionRefused
 from st_runtime.motion.error_ids import ErrorID
+from test_motion_axis import DT, powered_axis  # 1 ms; 100 mm/s, soft limits +-50
+from test_motion_omron import SATURATING
 from test_motion_st import AXIS, make_plc
-
-DT = 0.001  # 1 ms primary period
-
-
-def powered_axis(**overrides) -> Axis:
-    settings = dict(name="Ax", max_velocity=100.0, soft_limit_min=-50.0, soft_limit_max=50.0)
-    settings.update(overrides)
-    axis = Axis(AxisConfig(**settings))
-    axis.request_power(True)
-    axis.step(DT)
-    assert axis.state == AxisState.STANDSTILL
-    return axis
 
 
 def test_negative_step_at_velocity_limit_is_accepted_and_above_it_saturates():
@@ -183,19 +172,8 @@ def test_following_error_counts_a_negative_lag():
     assert axis.fault_code == ErrorID.FOLLOWING_ERROR_EXCEEDED
 
 
-SATURATING_NEGATIVE = """
-PROGRAM Main
-VAR
-    Power : MC_Power;
-    Sync : MC_SyncMoveAbsolute;
-    Goal : LREAL := -1.0;
-END_VAR
-Power(Axis := Cyl1, Enable := TRUE);
-IF Power.Status THEN
-    Sync(Axis := Cyl1, Execute := TRUE, Position := Goal);
-END_IF;
-END_PROGRAM
-"""
+SATURATING_NEGATIVE = SATURATING.replace("Goal : LREAL := 1.0;", "Goal : LREAL := -1.0;")
+assert "-1.0" in SATURATING_NEGATIVE
 
 
 def test_st_sync_to_a_negative_far_target_saturates_with_vellimit():
