@@ -316,3 +316,20 @@ def test_instance_json_leaves_out_external_and_in_out_variables_only():
     plc = load_text(src).controller()
     main = plc.add_program("Main")
     assert main.to_json() == {"a": 1, "b": True}
+
+
+def test_fb_instance_json_leaves_out_its_in_out():
+    # An FB instance stores its VAR_IN_OUT slot (a reference, unset here);
+    # the JSON view shows only the values the FB owns.
+    from st_runtime.api import Instance
+
+    project = load_text("FUNCTION_BLOCK F\nVAR_IN_OUT io : INT; END_VAR\n"
+                        "VAR_OUTPUT o : INT := 3; END_VAR\nEND_FUNCTION_BLOCK\n")
+    assert Instance(project.compiled.new("F")).to_json() == {"o": 3}
+
+
+def test_from_json_names_the_index_of_a_short_innermost_list():
+    cube = T.ArrayType(((1, 2), (1, 2), (1, 1)), E["INT"])
+    with pytest.raises(JsonValueError) as error:
+        from_json([[[1], [2]], [[3], [4, 5]]], cube)
+    assert str(error.value) == "value[2, 2]: expected a list of 1 elements (1..1), got a list of 2"

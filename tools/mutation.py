@@ -10,8 +10,9 @@ with a `[tool.mutmut]` table written there that mutates only that module and run
 only the test files relevant to it (MODULES below): mutmut then picks, per mutant,
 the tests among those that executed the mutated function.  The result is a table
 of killed / survived / timeout / no-tests per module and the mutation score
-killed / (killed + survived + no tests), written to build/mutation/report.txt and
-printed; `--survivors` lists the surviving mutant names (see them with
+killed / (killed + survived + no tests), printed and collected with the
+other modules' last scores in build/mutation/report.txt; `--survivors` lists
+the surviving mutant names (see one with
 `cd build/mutation/<module> && ../../../.venv/bin/mutmut show NAME`).
 
 Not part of the default test run: it takes minutes per module on two cores.
@@ -134,12 +135,14 @@ def main(argv: list[str] | None = None) -> int:
                 subprocess.run([sys.executable, "-m", "mutmut", "run", "--max-children", str(args.max_children)],
                                cwd=work, check=False, stdout=log, stderr=subprocess.STDOUT)
         status = results(work)
+        (work / "score.txt").write_text(score_line(name, status) + "\n")
         lines.append(score_line(name, status))
         if args.survivors:
             lines += [f"    {m}: {s}" for m, s in sorted(status.items()) if s != "killed"]
-    report = "\n".join(lines)
-    print(report)
-    (SCRATCH / "report.txt").write_text(report + "\n")
+    print("\n".join(lines))
+    # The table of every module run so far (each run keeps its own score.txt).
+    scores = [(SCRATCH / n / "score.txt") for n in MODULES]
+    (SCRATCH / "report.txt").write_text("".join(p.read_text() for p in scores if p.exists()))
     return 0
 
 
