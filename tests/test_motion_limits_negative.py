@@ -7,6 +7,8 @@ software limit errors 16#6440 / 16#6441, the sign of Cmd.AccDec) are cited in
 docs/nj501.md ("OMRON's motion kernel") and SPEC section 7.
 """
 
+import math
+
 import pytest
 
 from st_runtime.motion.axis import AxisState, MotionRefused
@@ -188,3 +190,21 @@ def test_st_sync_to_a_negative_far_target_saturates_with_vellimit():
     assert [r[1] for r in rows] == [False] + [True] * 9 + [False, False]
     assert rows[5][2] == pytest.approx(-100.0)
     assert plc.faults == [] and not main["Sync.Error"]
+
+
+def test_actual_velocity_and_zero_accdec_at_constant_negative_speed():
+    # Survivors of the motion mutation run: Act.Vel = (Act.Pos - previous) / period,
+    # and Cmd.AccDec is 0 while the command velocity stays the same.
+    axis = powered_axis()
+    command = axis.start_sync()
+    for n in (1, 2):
+        command.target = -0.05 * n     # -50 mm/s both periods
+        axis.step(DT)
+    assert axis.act_vel == pytest.approx(-50.0)
+    assert axis.cmd_vel == pytest.approx(-50.0)
+    assert axis.cmd_accdec == 0.0
+    lagged = powered_axis(servo_lag=0.01)   # act moves -0.05 (1 - e^-0.1) in 1 ms
+    sync = lagged.start_sync()
+    sync.target = -0.05
+    lagged.step(DT)
+    assert lagged.act_vel == pytest.approx(-0.05 * (1 - math.exp(-0.1)) / DT)

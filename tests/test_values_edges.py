@@ -333,3 +333,9 @@ def test_from_json_names_the_index_of_a_short_innermost_list():
     with pytest.raises(JsonValueError) as error:
         from_json([[[1], [2]], [[3], [4, 5]]], cube)
     assert str(error.value) == "value[2, 2]: expected a list of 1 elements (1..1), got a list of 2"
+
+
+def test_globals_json_has_every_global():
+    # The globals' class keeps no variable kinds: all of them are shown.
+    plc = load_text("VAR_GLOBAL g : INT := 4; h : BOOL; END_VAR\nPROGRAM Main\nEND_PROGRAM\n").controller()
+    assert plc.globals.to_json() == {"g": 4, "h": False}
