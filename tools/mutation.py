@@ -116,7 +116,9 @@ def score_line(name: str, status: dict[str, str]) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("modules", nargs="*", choices=[*MODULES, []], help="modules to mutate")
+    # `[]` among the choices: argparse checks the empty default of nargs="*" against them.
+    parser.add_argument("modules", nargs="*", choices=[*MODULES, []], metavar="MODULE",
+                        help=f"modules to mutate: {', '.join(MODULES)}")
     parser.add_argument("--all", action="store_true", help="every module")
     parser.add_argument("--max-children", type=int, default=2)
     parser.add_argument("--survivors", action="store_true", help="list surviving mutants")
