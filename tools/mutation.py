@@ -1,0 +1,152 @@
+"""Mutation testing of the named modules with mutmut, one module at a time.
+
+    .venv/bin/pip install -e '.[test,mutation]'
+    .venv/bin/python tools/mutation.py values            # one module
+    .venv/bin/python tools/mutation.py --all             # every module (hours)
+    .venv/bin/python tools/mutation.py values --max-children 2
+
+Each module runs in its own scratch copy of the project (build/mutation/<module>/),
+with a `[tool.mutmut]` table written there that mutates only that module and runs
+only the test files relevant to it (MODULES below): mutmut then picks, per mutant,
+the tests among those that executed the mutated function.  The result is a table
+of killed / survived / timeout / no-tests per module and the mutation score
+killed / (killed + survived + no tests), printed and collected with the
+other modules' last scores in build/mutation/report.txt; `--survivors` lists
+the surviving mutant names (see one with
+`cd build/mutation/<module> && ../../../.venv/bin/mutmut show NAME`).
+
+Not part of the default test run: it takes minutes per module on two cores.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+SCRATCH = ROOT / "build" / "mutation"
+
+# module name -> (files or folders to mutate, test files that exercise them)
+MODULES: dict[str, tuple[list[str], list[str]]] = {
+    "values": (["st_runtime/values.py"],
+               ["tests/test_values.py", "tests/test_values_edges.py", "tests/test_controller_api.py",
+                "tests/test_semantics.py", "tests/test_operators_runtime.py",
+                "tests/test_semantics_random.py", "tests/test_stdlib_functions.py"]),
+    "compiler": (["st_runtime/compiler/*"],
+                 ["tests/test_compiler.py", "tests/test_semantics.py", "tests/test_operators_runtime.py",
+                  "tests/test_semantics_random.py", "tests/test_compiler_corpus.py"]),
+    "stdlib": (["st_runtime/stdlib/*"],
+               ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
+                "tests/test_operators_runtime.py"]),
+    "motion": (["st_runtime/motion/*"],
+               ["tests/test_motion_axis.py", "tests/test_motion_fbs.py", "tests/test_motion_omron.py",
+                "tests/test_motion_config.py", "tests/test_motion_invariants.py", "tests/test_motion_st.py",
+                "tests/test_motion_limits_negative.py"]),
+    "checker": (["st_runtime/checker/*"],
+                ["tests/test_checker_rules.py", "tests/test_checker_typing.py", "tests/test_checker_program.py",
+                 "tests/test_checker_loader.py", "tests/test_checker_corpus.py"]),
+    "reference": (["stgen/reference/*"],
+                  ["tests/test_reference_brake.py", "tests/test_reference_cycloidal.py",
+                   "tests/test_reference_error_codes.py", "tests/test_reference_forward.py",
+                   "tests/test_reference_geometry.py", "tests/test_reference_kinematics.py",
+                   "tests/test_reference_linalg.py", "tests/test_reference_wave.py",
+                   "tests/test_differential_kinematics.py", "tests/test_differential_linalg.py"]),
+}
+
+COPY = ["st_runtime", "stgen", "st_templates", "tests", "examples", "generated", "README.md"]
+
+
+def toml_list(items: list[str]) -> str:
+    return "[" + ", ".join(json.dumps(i) for i in items) + "]"
+
+
+def prepare(name: str) -> Path:
+    """A scratch copy of the project whose pyproject configures mutmut for `name`."""
+    targets, tests = MODULES[name]
+    work = SCRATCH / name
+    if work.exists():
+        shutil.rmtree(work)
+    work.mkdir(parents=True)
+    for item in COPY:
+        src = ROOT / item
+        if src.is_dir():
+            shutil.copytree(src, work / item, ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+        elif src.exists():
+            shutil.copy2(src, work / item)
+    tests = [t for t in tests if (ROOT / t).exists()]
+    pyproject = (ROOT / "pyproject.toml").read_text()
+    pyproject = pyproject.split("\n[tool.mutmut]")[0]
+    pyproject += ("\n[tool.mutmut]\n"
+                  'source_paths = ["st_runtime", "stgen"]\n'
+                  f"only_mutate = {toml_list(targets)}\n"
+                  f"pytest_add_cli_args_test_selection = {toml_list(tests)}\n"
+                  'pytest_add_cli_args = ["-p", "no:cacheprovider", "-q", "-x"]\n'
+                  'also_copy = ["st_templates", "examples", "generated", "README.md"]\n')
+    (work / "pyproject.toml").write_text(pyproject)
+    return work
+
+
+def results(work: Path) -> dict[str, str]:
+    """mutant name -> status, from `mutmut results --all true`."""
+    out = subprocess.run([sys.executable, "-m", "mutmut", "results", "--all", "true"], cwd=work,
+                         capture_output=True, text=True).stdout
+    status = {}
+    for line in out.splitlines():
+        if ":" in line:
+            mutant, _, state = line.strip().rpartition(":")
+            if mutant:
+                status[mutant.strip()] = state.strip()
+    return status
+
+
+def score_line(name: str, status: dict[str, str]) -> str:
+    counts: dict[str, int] = {}
+    for state in status.values():
+        counts[state] = counts.get(state, 0) + 1
+    killed = counts.get("killed", 0)
+    judged = killed + counts.get("survived", 0) + counts.get("no tests", 0)
+    score = 100.0 * killed / judged if judged else float("nan")
+    rest = ", ".join(f"{k} {v}" for k, v in sorted(counts.items()))
+    return f"{name:10s} score {score:5.1f} %  ({rest})"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    # `[]` among the choices: argparse checks the empty default of nargs="*" against them.
+    parser.add_argument("modules", nargs="*", choices=[*MODULES, []], metavar="MODULE",
+                        help=f"modules to mutate: {', '.join(MODULES)}")
+    parser.add_argument("--all", action="store_true", help="every module")
+    parser.add_argument("--max-children", type=int, default=2)
+    parser.add_argument("--survivors", action="store_true", help="list surviving mutants")
+    parser.add_argument("--report-only", action="store_true", help="report an earlier run")
+    args = parser.parse_args(argv)
+    names = list(MODULES) if args.all else args.modules
+    if not names:
+        parser.error("name a module or pass --all")
+    lines = []
+    for name in names:
+        work = SCRATCH / name
+        if not args.report_only:
+            work = prepare(name)
+            print(f"{name}: mutmut run in {work} (progress in {work / 'mutmut.log'})", flush=True)
+            with open(work / "mutmut.log", "w") as log:
+                subprocess.run([sys.executable, "-m", "mutmut", "run", "--max-children", str(args.max_children)],
+                               cwd=work, check=False, stdout=log, stderr=subprocess.STDOUT)
+        status = results(work)
+        (work / "score.txt").write_text(score_line(name, status) + "\n")
+        lines.append(score_line(name, status))
+        if args.survivors:
+            lines += [f"    {m}: {s}" for m, s in sorted(status.items()) if s != "killed"]
+    print("\n".join(lines))
+    # The table of every module run so far (each run keeps its own score.txt).
+    scores = [(SCRATCH / n / "score.txt") for n in MODULES]
+    (SCRATCH / "report.txt").write_text("".join(p.read_text() for p in scores if p.exists()))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
