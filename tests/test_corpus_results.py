@@ -23,6 +23,7 @@ from pathlib import Path
 import pytest
 
 from st_runtime.api import load_text
+from test_checker_corpus import accept_dialect
 
 ACCEPT = sorted((Path(__file__).parent / "corpus" / "accept").glob("*.st"))
 
@@ -98,7 +99,7 @@ def read(plc, programs: dict, path: str):
 def check_snippet(text: str, name: str = "snippet.st") -> int:
     """Run the snippet and assert its expectations; the number of values checked."""
     expected = expectations(text)
-    project = load_text(text, name)
+    project = load_text(text, name, accept_dialect(text))
     plc = project.controller()
     programs = {pou.name.upper(): plc.add_program(pou.name)
                 for pou in project.program.pous.values() if pou.kind == "PROGRAM"}

@@ -96,7 +96,8 @@ def test_subrange_stores_are_checked_and_start_at_the_lower_limit():
     # then -3 faults twice.
     assert (main["Level"], main["Setting"], main["Lift"]) == (90, 14, -2)
     faults = [(f.code, f.line) for f in plc.faults]
-    assert faults == [("F-SUBRANGE", 20), ("F-SUBRANGE", 18), ("F-SUBRANGE", 20)]
+    # Lines of the Lift (22) and Level (20) stores; the two expect comments are lines 3-4.
+    assert faults == [("F-SUBRANGE", 22), ("F-SUBRANGE", 20), ("F-SUBRANGE", 22)]
 
 
 def test_subrange_refuses_an_outside_value_from_the_api():

@@ -274,7 +274,7 @@ def test_from_json_nan_name():
     (5, E["DT"], 'value: expected DATE_AND_TIME literal string such as "DT#2024-01-31-12:30:00", got 5'),
     ("1x", E["TIME"], "value: '1x' is not a TIME literal (expected e.g. T#1s500ms)"),
     (5, T.StringType(4), "value: expected STRING[4] string, got 5"),
-    ("abcde", T.StringType(4), "value: string of 5 bytes exceeds STRING[4]"),
+    ("abcde", T.StringType(4), "value: string of 5 characters exceeds STRING[4]"),
     ("Purple", COLOR, "value: expected a value of Color (Red, Green, Blue), got string 'Purple'"),
     (7, COLOR, "value: expected a value of Color, got 7"),
     (True, COLOR, "value: expected a value of Color, got true"),
