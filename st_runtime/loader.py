@@ -121,35 +121,44 @@ def read_source(path: str) -> tuple[str | None, Diagnostic | None]:
     return text, None
 
 
-def load_texts(texts: dict[str, str], dialect: str = "iec", memory_limit: int | None = None) -> LoadResult:
-    """Parse and check in-memory sources (path -> text), with the native prelude.
+def parse_texts(texts: dict[str, str], dialect: str = "iec", parser_for=None):
+    """Parse in-memory sources (path -> text) after the dialect's native prelude.
 
-    A `.xml` source (PLCopen TC6 or IEC 61131-10) is read as the ST text of
-    `xml_reader`, laid out on the XML file's lines; `sources` keeps the XML.
+    Returns (prelude text, [(path, parsed file)], diagnostics), the prelude
+    first as "<builtin>". A `.xml` source (PLCopen TC6 or IEC 61131-10) is
+    parsed as the ST text of `xml_reader`, laid out on the XML file's lines;
+    a source above the size limit is E-LIMIT-012 and not parsed.
+    `parser_for(path, st_text, from_xml)` picks the parse function of a
+    source (default `parse`; `stgen test` parses test files with its own).
     """
-    sources: dict[str, str] = {}
-    files: list[ast.SourceFile] = []
     st_of_xml, diagnostics = xml_reader.translate(texts)
     prelude, parsed, found = prelude_file(dialect)      # parsed once per process and dialect
-    sources[BUILTIN] = prelude
     diagnostics.extend(found)
-    if parsed is not None:
-        files.append(parsed)
+    files = [(BUILTIN, parsed)] if parsed is not None else []
     for path, text in texts.items():
-        sources[path] = text
         too_large = file_too_large(text)
         if too_large:
             diagnostics.append(Diagnostic("E-LIMIT-012", too_large, ast.Pos(path, 1, 1), ERROR))
             continue
-        if path in st_of_xml:
+        from_xml = path in st_of_xml
+        if from_xml:
             text = st_of_xml[path]
             if text is None:  # diagnostics from the XML reader already
                 continue
-        parsed, found = parse(text, path)
+        parse_file = parser_for(path, text, from_xml) if parser_for is not None else parse
+        parsed, found = parse_file(text, path)
         diagnostics.extend(found)
         if parsed is not None:
-            files.append(parsed)
-    program, found = check(files, dialect, memory_limit)
+            files.append((path, parsed))
+    return prelude, files, diagnostics
+
+
+def load_texts(texts: dict[str, str], dialect: str = "iec", memory_limit: int | None = None) -> LoadResult:
+    """Parse (`parse_texts`) and check in-memory sources (path -> text), with the native prelude;
+    `sources` keeps the text of each, an XML file's XML."""
+    prelude, parsed, diagnostics = parse_texts(texts, dialect)
+    sources = {BUILTIN: prelude, **texts}
+    program, found = check([file for _, file in parsed], dialect, memory_limit)
     diagnostics.extend(found)
     program.sources = {p: t for p, t in sources.items() if p != BUILTIN}
     ok = not any(d.is_error for d in diagnostics)

@@ -28,8 +28,7 @@ import re
 import time
 from dataclasses import dataclass, field
 
-from .. import ast, loader, native, xml_reader
-from ..prelude import prelude_file
+from .. import ast, loader, native
 from ..checker import check
 from ..controller import Controller, DEFAULT_PERIOD_NS
 from ..diagnostics import Diagnostic, register
@@ -159,25 +158,20 @@ def _matches(name: str, pattern: str) -> bool:
 
 
 def _parse_all(texts: dict[str, str], dialect: str, run: TestRun):
-    """Parse as `loader.load_texts` does (a `.xml` file through `xml_reader`),
-    test files with the test grammar."""
-    plain, tests = [], []
-    st_of_xml, found = xml_reader.translate(texts)
+    """Parse as `loader.load_texts` does (`loader.parse_texts`), test files
+    with the test grammar: (plain files, test files)."""
+    test_paths = set()
+
+    def parser_for(path: str, text: str, from_xml: bool):
+        if from_xml or not is_test_source(text):
+            return parse
+        test_paths.add(path)
+        return parse_tests
+
+    _prelude, parsed, found = loader.parse_texts(texts, dialect, parser_for)
     run.diagnostics.extend(found)
-    prelude, parsed, found = prelude_file(dialect)       # parsed once per process and dialect
-    run.diagnostics.extend(found)
-    if parsed is not None:
-        plain.append(parsed)
-    for path, text in texts.items():
-        if path in st_of_xml:
-            text = st_of_xml[path]
-            if text is None:      # the XML reader has said why
-                continue
-        test_file = path not in st_of_xml and is_test_source(text)
-        parsed, found = (parse_tests if test_file else parse)(text, path)
-        run.diagnostics.extend(found)
-        if parsed is not None:
-            (tests if test_file else plain).append(parsed)
+    plain = [file for path, file in parsed if path not in test_paths]
+    tests = [file for path, file in parsed if path in test_paths]
     return plain, tests
 
 
