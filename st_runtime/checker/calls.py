@@ -98,7 +98,9 @@ class CallChecker:
                 return self.ex.record(call, ts.ERROR)     # (its argument is a type: not typed)
             if k in ("LOWER_BOUND", "UPPER_BOUND"):
                 return self._bound(call, k)
-            if k in ("REF", "ADR") and (k == "REF" or self.ctx.dialect == "codesys"):
+            if k in ("REF", "ADR"):
+                if k == "ADR" and not self.ctx.accepts("ADR", callee.pos):
+                    return self.ex.record(call, ts.ERROR)
                 return self._reference(call, k)
             if k in OPERATOR_FUNCTIONS:
                 return self._operator_call(call, k, OPERATOR_FUNCTIONS[k], expected)
