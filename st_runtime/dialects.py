@@ -122,6 +122,9 @@ CONSTRUCTS: Mapping[str, Construct] = MappingProxyType({
                            "IEC 61131-3 3rd ed. 6.9; the NJ has namespaces, set in Sysmac Studio and "
                            "written \\\\NS\\Name (W501 6-7)"),
     "SET_RESET": Construct("S= / R=", frozenset({"codesys"}), _CODESYS_ONLY),
+    "ENUM_DOT": Construct("an enumeration value written Type.Value", frozenset({"codesys"}),
+                          "CODESYS online help, Enumerations: a value qualified by its type "
+                          "with a dot (E_Color.Red); IEC 61131-3 writes E_Color#Red"),
     "BIT_ACCESS": Construct("bit access x.3", frozenset({"codesys", "nj"}),
                             "CODESYS; the NJ specifies bits of integer variables the same "
                             "way (W501, section to be confirmed); not in IEC 61131-3"),

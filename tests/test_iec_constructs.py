@@ -308,3 +308,14 @@ def test_direct_variables_in_code_use_the_image():
     assert plc.image["%MW2"] == 301               # %IW1 reads as Level's INT
     assert main["Sum"] == 300 - 5
     assert plc.faults == []
+
+
+def test_codesys_enum_value_with_a_dot():
+    # State starts Amber (1): CASE takes Amber -> Next := Red, Code := 2;
+    # Next = Red adds 10: 12.  Scan 2: Red -> Green, Code 1.  Scan 3: Green -> Amber, 3.
+    plc, main = run("codesys_enum_dot.st", 1, dialect="codesys")
+    assert (main["State"], main["Code"]) == ("Red", 12)
+    plc.run(1)
+    assert (main["State"], main["Code"]) == ("Green", 1)
+    plc.run(1)
+    assert (main["State"], main["Code"]) == ("Amber", 3)
