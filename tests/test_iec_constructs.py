@@ -319,3 +319,14 @@ def test_codesys_enum_value_with_a_dot():
     assert (main["State"], main["Code"]) == ("Green", 1)
     plc.run(1)
     assert (main["State"], main["Code"]) == ("Amber", 3)
+
+
+def test_own_standard_fb_replaces_the_built_in():
+    # The project's R_TRIG counts calls and copies CLK: after 3 scans with
+    # CLK TRUE, Q is TRUE every scan (3 highs); the built-in would give one edge.
+    plc, main = run("own_standard_fb.st", 3)
+    assert (main["Highs"], main["Edge.Calls"]) == (3, 3)
+    from st_runtime.loader import load_texts
+    text = (ACCEPT / "own_standard_fb.st").read_text()
+    found = [(d.code, d.pos.line) for d in load_texts({"f.st": text}, "iec").diagnostics]
+    assert ("W-DECL-001", 3) in found and not any(c.startswith("E-") for c, _ in found)

@@ -95,13 +95,31 @@ class Declarations:
             if self._declare_name(item.name, item.pos):
                 self.ctx.type_decls[key(item.name)] = item
         elif isinstance(item, ast.Pou):
-            if self._declare_name(item.name, item.pos):
+            if self._replaces_standard_fb(item) or self._declare_name(item.name, item.pos):
                 self.ctx.pou_decls[key(item.name)] = item
         elif isinstance(item, ast.VarBlock):
             self.global_blocks.append(item)
         elif isinstance(item, ast.Configuration):
             self.global_blocks.extend(item.globals)
             self.configurations.append(item)
+
+    def _replaces_standard_fb(self, item: ast.Pou) -> bool:
+        """A project's own FUNCTION_BLOCK named like a built-in one (TON, CTU, MC_Power)
+        replaces it, with W-DECL-001: toolchains ship these as ST libraries (MATIEC's
+        lib/*.txt, STruC++'s libs/sources), and a project built with them declares them.
+        Whether IEC 61131-3 reserves the standard FB names was not confirmed from a
+        source at hand, hence a warning, not silence.  A standard function stays
+        E-DECL-003: its overloads (ANY_NUM ...) cannot be replaced by one POU."""
+        k = key(item.name)
+        first = self._names.get(k)
+        builtin = self.ctx.pou_decls.get(k)
+        if item.kind != "FUNCTION_BLOCK" or first is None or first.file != BUILTIN_FILE \
+                or builtin is None or builtin.kind != "FUNCTION_BLOCK" or item.pos.file == BUILTIN_FILE:
+            return False
+        self._names[k] = item.pos
+        self.ctx.warning("W-DECL-001", f"'{item.name}' replaces the built-in standard function "
+                         f"block of that name in this project", item.pos)
+        return True
 
     def _declare_name(self, name: str, pos: ast.Pos) -> bool:
         k = key(name)
