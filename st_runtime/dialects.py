@@ -122,6 +122,10 @@ CONSTRUCTS: Mapping[str, Construct] = MappingProxyType({
                            "IEC 61131-3 3rd ed. 6.9; the NJ has namespaces, set in Sysmac Studio and "
                            "written \\\\NS\\Name (W501 6-7)"),
     "SET_RESET": Construct("S= / R=", frozenset({"codesys"}), _CODESYS_ONLY),
+    "INPUT_WRITE": Construct("writing a VAR_INPUT inside its own POU", frozenset({"codesys"}),
+                             "CODESYS compiles it (OSCAT BASIC 3.35, built with CODESYS, writes "
+                             "inputs: BINOM's K, REPLACE_CHARS's SRC); iec and nj keep inputs "
+                             "read-only inside the POU (E-ASSIGN-002)"),
     "ENUM_DOT": Construct("an enumeration value written Type.Value", frozenset({"codesys"}),
                           "CODESYS online help, Enumerations: a value qualified by its type "
                           "with a dot (E_Color.Red); IEC 61131-3 writes E_Color#Red"),

@@ -330,3 +330,12 @@ def test_own_standard_fb_replaces_the_built_in():
     text = (ACCEPT / "own_standard_fb.st").read_text()
     found = [(d.code, d.pos.line) for d in load_texts({"f.st": text}, "iec").diagnostics]
     assert ("W-DECL-001", 3) in found and not any(c.startswith("E-") for c, _ in found)
+
+
+def test_codesys_pou_writes_its_inputs():
+    # Clamp10(25): X is cut to 10, returns 20; Clamp10(4) = 8; the caller's Big
+    # stays 25 (an input is a copy).  Countdown from 10 by 3: 7, 4, 1, -2 (4 steps),
+    # and the instance's N keeps -2.  SumTo(2) loops I over its input: 2+3+4 = 9.
+    plc, main = run("codesys_input_written.st", 1, dialect="codesys")
+    assert [main[n] for n in ("Big", "A", "B", "C")] == [25, 20, 8, 9]
+    assert (main["Down.Steps"], main["Down.N"]) == (4, -2)
