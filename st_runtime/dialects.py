@@ -126,6 +126,9 @@ CONSTRUCTS: Mapping[str, Construct] = MappingProxyType({
                              "CODESYS compiles it (OSCAT BASIC 3.35, built with CODESYS, writes "
                              "inputs: BINOM's K, REPLACE_CHARS's SRC); iec and nj keep inputs "
                              "read-only inside the POU (E-ASSIGN-002)"),
+    "SUPER_BODY": Construct("SUPER^() (the base FB's body)", frozenset({"codesys"}),
+                            "CODESYS online help, SUPER: SUPER^() calls the body of the base "
+                            "function block; IEC 61131-3 3rd ed. has SUPER.method() only"),
     "ENUM_DOT": Construct("an enumeration value written Type.Value", frozenset({"codesys"}),
                           "CODESYS online help, Enumerations: a value qualified by its type "
                           "with a dot (E_Color.Red); IEC 61131-3 writes E_Color#Red"),

@@ -339,3 +339,13 @@ def test_codesys_pou_writes_its_inputs():
     plc, main = run("codesys_input_written.st", 1, dialect="codesys")
     assert [main[n] for n in ("Big", "A", "B", "C")] == [25, 20, 8, 9]
     assert (main["Down.Steps"], main["Down.N"]) == (4, -2)
+
+
+def test_codesys_super_body_runs_the_base_body():
+    # Step 2.  Scan 1: SUPER^() -> Count 2 (Slow).  Scan 2: Count 4 -> Fast,
+    # so SUPER^() again -> 6.  Scan 3: 8, then 10.  Mode.Fast names the value
+    # although a variable Mode of type Mode is in scope.
+    plc, main = run("codesys_super_body.st", 1, dialect="codesys")
+    assert (main["T.Count"], main["T.Mode"]) == (2, "Slow")
+    plc.run(2)
+    assert (main["T.Count"], main["T.Mode"], main["T.Calls"]) == (10, "Fast", 3)

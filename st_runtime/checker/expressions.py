@@ -373,8 +373,7 @@ class ExprChecker:
         return f" (did you mean '{candidates[close[0]]}'?)" if close else ""
 
     def _Member(self, e, expected):
-        if isinstance(e.base, ast.Name) and self.scope.lookup(e.base.name) is None \
-                and isinstance(self.program.types.get(key(e.base.name)), T.EnumType):
+        if isinstance(e.base, ast.Name) and self._enum_type_before_dot(e):
             if not self.ctx.accepts("ENUM_DOT", e.pos):          # CODESYS's E_Color.Red
                 return self.record(e, ts.ERROR)
             return self._EnumLiteral(ast.EnumLiteral(e.base.name, e.name, pos=e.pos), expected, e)
@@ -423,6 +422,18 @@ class ExprChecker:
         self.ctx.error("E-TYPE-009", f"'.{e.name}': expected a struct or function block "
                        f"instance, found {base}", e.pos)
         return self.record(e, ts.ERROR)
+
+    def _enum_type_before_dot(self, e: ast.Member) -> bool:
+        """`Light.Red` names an enumeration value: `Light` is an enumeration type and
+        no variable, or a variable of an enumeration type (which has no members)
+        spelled like the type, whose values include `Red` (`state : State :=
+        State.Idle` in a case-insensitive language)."""
+        enum = self.program.types.get(key(e.base.name))
+        if not isinstance(enum, T.EnumType):
+            return False
+        sym = self.scope.lookup(e.base.name)
+        return sym is None or (isinstance(T.resolve_alias(sym.type), T.EnumType)
+                               and key(e.name) in enum.values)
 
     def _Deref(self, e, expected):
         base = self.infer(e.base)
