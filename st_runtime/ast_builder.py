@@ -522,6 +522,16 @@ class AstBuilder(Transformer):
         return ast.StringLiteral(self._decode(decode_string, token, ""), True,
                                  pos=self._pos(token))
 
+    def typed_string_literal(self, token):
+        """STRING#'ABC' is 'ABC'; WSTRING#"ABC" is "ABC" (the prefix only repeats the type)."""
+        prefix, _, body = str(token).partition("#")
+        quoted = token.update(value=body)
+        wide = prefix.upper() == "WSTRING"
+        if wide != body.startswith('"'):
+            self._error(BAD_LITERAL, f"{prefix.upper()}# takes a string in "
+                        + ('"double quotes"' if wide else "'single quotes'"), self._pos(token))
+        return self.wstring_literal(quoted) if wide else self.string_literal(quoted)
+
     def bool_literal(self, token):
         return ast.BoolLiteral(token.type == "TRUE", pos=self._pos(token))
 

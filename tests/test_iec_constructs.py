@@ -349,3 +349,11 @@ def test_codesys_super_body_runs_the_base_body():
     assert (main["T.Count"], main["T.Mode"]) == (2, "Slow")
     plc.run(2)
     assert (main["T.Count"], main["T.Mode"], main["T.Calls"]) == (10, "Fast", 3)
+
+
+def test_typed_string_literals():
+    # STRING#'ABC' is 'ABC'; '$'' is a quote and '$"' a double quote (table 6):
+    # Joined = 'ABC' + '-' + "'D'" = ABC-'D' (7 characters).
+    plc, main = run("typed_string_literals.st", 1)
+    assert (main["Plain"], main["Wide"], main["Joined"]) == ("ABC", 'x"y', "ABC-'D'")
+    assert (main["Same"], main["Size"]) == (True, 7)
