@@ -109,7 +109,8 @@ class AstBuilder(Transformer):
         return ast.SourceFile(self.path, tuple(flat), pos=ast.Pos(self.path, 1, 1))
 
     def program_decl(self, kw, name, *rest):
-        return ast.Pou("PROGRAM", str(name), tuple(rest[:-1]), rest[-1], pos=self._pos(kw))
+        body, sfc = _body_or_sfc(rest[-1])
+        return ast.Pou("PROGRAM", str(name), tuple(rest[:-1]), body, sfc=sfc, pos=self._pos(kw))
 
     def function_decl(self, kw, name, return_type, *rest):
         return ast.Pou("FUNCTION", str(name), tuple(rest[:-1]), rest[-1],
@@ -122,8 +123,45 @@ class AstBuilder(Transformer):
         parts = [p for i in rest[3:-1] for p in (i if isinstance(i, list) else [i])]
         blocks = tuple(i for i in parts if type(i) is ast.VarBlock)
         methods = tuple(i for i in parts if type(i) is ast.Method)
-        return ast.Pou("FUNCTION_BLOCK", str(name), blocks, rest[-1], None,
-                       extends or (), implements or (), methods, modifiers, pos=self._pos(kw))
+        body, sfc = _body_or_sfc(rest[-1])
+        return ast.Pou("FUNCTION_BLOCK", str(name), blocks, body, None,
+                       extends or (), implements or (), methods, modifiers, sfc=sfc, pos=self._pos(kw))
+
+    # ------------------------------------------------------------------ SFC
+    def sfc(self, *elements):
+        return ast.Sfc(tuple(e for e in elements if type(e) is ast.Step),
+                       tuple(e for e in elements if type(e) is ast.Transition),
+                       tuple(e for e in elements if type(e) is ast.Method), pos=elements[0].pos)
+
+    def sfc_step(self, kw, name, *actions):
+        return ast.Step(str(name), kw.type == "INITIAL_STEP", tuple(actions), pos=self._pos(kw))
+
+    def action_association(self, action, qualifier=None, *rest):
+        word = str(qualifier).upper() if qualifier is not None else "N"
+        pos = self._pos(action)
+        if word not in SFC_QUALIFIERS:
+            self._error("E-PARSE-014", f"unknown action qualifier '{qualifier}' (IEC 61131-3: "
+                        f"{', '.join(SFC_QUALIFIERS)})", self._pos(qualifier))
+        timed = word in SFC_TIMED_QUALIFIERS
+        time = rest[0] if timed and rest else None
+        more = rest[1:] if timed else rest
+        if timed and time is None:
+            self._error("E-PARSE-014", f"action qualifier {word} needs a duration: "
+                        f"{action}({word}, T#5s)", pos)
+        indicator = None
+        if len(more) == 1 and type(more[0]) is ast.Name:
+            indicator = more[0].name
+        elif more:
+            self._error("E-PARSE-014", f"action {action}({word}, ...): expected "
+                        + ("a duration and " if timed else "") + "at most an indicator variable", pos)
+        return ast.ActionAssociation(str(action), word, time, indicator, pos=pos)
+
+    def sfc_transition(self, kw, name, sources, targets, condition):
+        return ast.Transition(sources, targets, condition, str(name) if name is not None else None,
+                              pos=self._pos(kw))
+
+    def sfc_steps(self, *names):
+        return tuple(str(n) for n in names)
 
     def interface_decl(self, kw, name, extends, *methods):
         return ast.Pou("INTERFACE", str(name), (), (), None, extends or (), (), tuple(methods),
@@ -575,3 +613,13 @@ class AstBuilder(Transformer):
     def test_case(self, kw, name, *rest):
         title = self._decode(decode_string, name, "")
         return ast.TestCase(title, tuple(rest[:-1]), rest[-1], pos=self._pos(kw))
+
+
+# IEC 61131-3 3rd ed. table 60 (action qualifiers); the timed ones take a duration.
+SFC_QUALIFIERS = ("N", "R", "S", "P", "L", "D", "SD", "DS", "SL", "P1", "P0")
+SFC_TIMED_QUALIFIERS = frozenset({"L", "D", "SD", "DS", "SL"})
+
+
+def _body_or_sfc(body):
+    """(statements, None) for a statement body, ((), Sfc) for a chart."""
+    return ((), body) if type(body) is ast.Sfc else (body, None)

@@ -339,7 +339,30 @@ def _pou_lines(pou: ast.Pou) -> list[str]:
         else:
             lines.extend(_method_lines(method, INDENT))
     lines.extend(_body(pou.body, INDENT))
+    if pou.sfc is not None:
+        lines.extend(_sfc_lines(pou.sfc, INDENT))
     lines.append(f"END_{pou.kind}")
+    return lines
+
+
+def _sfc_lines(sfc: ast.Sfc, indent: str) -> list[str]:
+    """Steps, then transitions, then actions (the chart does not depend on their order)."""
+    lines = []
+    for step in sfc.steps:
+        lines.append(f"{indent}{'INITIAL_STEP' if step.initial else 'STEP'} {step.name}:")
+        for a in step.actions:
+            args = [a.qualifier] + ([format_expr(a.time)] if a.time is not None else []) \
+                + ([a.indicator] if a.indicator else [])
+            lines.append(f"{indent}{INDENT}{a.action}({', '.join(args)});")
+        lines.append(f"{indent}END_STEP")
+    for t in sfc.transitions:
+        steps = [s[0] if len(s) == 1 else f"({', '.join(s)})" for s in (t.sources, t.targets)]
+        name = f" {t.name}" if t.name else ""
+        lines.append(f"{indent}TRANSITION{name} FROM {steps[0]} TO {steps[1]} := "
+                     f"{format_expr(t.condition)};")
+        lines.append(f"{indent}END_TRANSITION")
+    for action in sfc.actions:
+        lines.extend(_method_lines(action, indent))
     return lines
 
 

@@ -71,6 +71,8 @@ class Messages:
         value = getattr(term.pattern, "value", None) if term else None
         if value is None:
             return kind.strip("_").lower()
+        if kind.strip("_") in self.grammar.contextual or kind in self.grammar.contextual:
+            value = value.removesuffix("\\b")         # /STEP\b/i: the word STEP
         return f"'{value.upper() if value.isalpha() or '_' in value else value}'"
 
     def expected_list(self, expected: set[str]) -> str:

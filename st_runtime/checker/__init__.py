@@ -93,6 +93,11 @@ def _check(files, dialect, memory_limit=None, open_instances=False):
         for info in program.pous.values():
             if info.node is None or info.native is not None:
                 continue
+            if getattr(info.node, "sfc", None) is not None:
+                ctx.error("E-SFC-001", f"{info.node.kind} {info.node.name}: its body is a "
+                          f"Sequential Function Chart (steps, transitions, actions), read but not "
+                          f"run by st_runtime; write the body as statements", info.node.sfc.pos)
+                continue
             ex = ExprChecker(ctx, Scope(ctx, info))
             StatementChecker(ex).block(info.node.body)
             for method in info.methods.values():
