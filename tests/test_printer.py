@@ -186,10 +186,9 @@ def test_generated_nj_bodies_parse(path: Path):
 
 
 def test_round_trip_sfc_chart():
-    # A chart the checker refuses (E-SFC-001) still parses and prints back:
-    # steps with qualified actions (N, P, L with a duration), named and
-    # unnamed transitions, actions.
-    path = Path(__file__).parent / "corpus" / "reject" / "sfc_body_not_run.st"
+    # Steps with qualified actions (N, P, L with a duration), named and
+    # unnamed transitions, actions print back as they were written.
+    path = Path(__file__).parent / "corpus" / "accept" / "sfc_filler.st"
     original = parse_ok(path.read_text(encoding="utf-8"), path.name)
     printed = format_source(original)
     assert "Blink(L, T#2s);" in printed and "TRANSITION Done FROM Fill TO Idle" in printed

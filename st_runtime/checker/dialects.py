@@ -35,6 +35,8 @@ def _constructs(item):
     if getattr(item, "namespace", ""):
         yield "NAMESPACE", item.pos
     if isinstance(item, ast.Pou):
+        if item.sfc is not None:
+            yield "SFC", item.sfc.pos
         if item.kind == "INTERFACE":
             yield "INTERFACE", item.pos
         if item.extends and item.kind == "FUNCTION_BLOCK":
