@@ -49,3 +49,21 @@ def test_adr_under_iec_names_the_dialect_that_accepts_it():
     assert found == [("E-DIALECT-001", 3, refusal("ADR", "iec"))]
     assert "--dialect codesys" in found[0][2]
     assert codes(ADR_CALL, "codesys") == []
+
+
+CODESYS_ONLY = {
+    "enum_dot": ("TYPE Light : (Red, Green); END_TYPE\nPROGRAM Main\nVAR L : Light; END_VAR\n"
+                 "L := Light.Red;\nEND_PROGRAM\n", "E-DIALECT-001"),
+    "super_body": ("FUNCTION_BLOCK B\nVAR_OUTPUT N : INT; END_VAR\nN := N + 1;\nEND_FUNCTION_BLOCK\n"
+                   "FUNCTION_BLOCK D EXTENDS B\nSUPER^();\nEND_FUNCTION_BLOCK\n", "E-DIALECT-001"),
+    "input_write": ("FUNCTION F : INT\nVAR_INPUT X : INT; END_VAR\nX := 1;\nF := X;\nEND_FUNCTION\n",
+                    "E-ASSIGN-002"),
+}
+
+
+def test_codesys_constructs_are_refused_under_nj_naming_codesys():
+    for name, (text, code) in CODESYS_ONLY.items():
+        errors = [(c, m) for c, _, m in codes(text, "nj") if c.startswith("E-")]
+        # (under nj the EXTENDS and the ^ of SUPER^() are refused as well)
+        assert any(c == code and "--dialect codesys" in m for c, m in errors), (name, errors)
+        assert not [c for c, _, _ in codes(text, "codesys") if c.startswith("E-")], name
