@@ -60,3 +60,16 @@ def test_sequence_divergence_priority_stored_and_final_scans():
     # Scan 8: Go again: Wait -> (A, B); Leave's final scan; A.T restarts.
     assert rows[7] == [6, 6, 3, 2, True, False, True, False, "T#0s"]
     assert plc.faults == []
+
+
+def test_chart_in_a_function_block():
+    # Dark holds for Dark.T >= 2 ms (the value of the scan before): scans 1-3,
+    # Bright on scans 4-5 (Bright.T >= 1 ms ends it), Dark 6-8, Bright 9-10,
+    # Dark 11-12.  Light follows Bright.X, with Shine's final scan writing
+    # FALSE; Count (P1) runs on the activation scan and its final scan: 2 a flash.
+    plc, main = start("sfc_in_function_block.st", "Main")
+    plc.run(4)
+    assert (main["Lit"], main["B.Light"], main["B.Flashes"]) == (1, True, 1)
+    plc.run(8)
+    assert (main["Lit"], main["B.Light"], main["B.Flashes"]) == (4, False, 4)
+    assert (main["B.Dark.X"], main["B.Bright.T"]) == (True, "T#1ms")

@@ -16,8 +16,9 @@ a fault in a transition condition points at it).  One scan of a chart:
    deactivation, L while active for at most the time, D after the time; an
    action's body runs while Q is TRUE and once more on Q's falling edge
    (the standard's final scan; PLCnext's help, "Action and Action Qualifier
-   in SFC", quotes the rule).  An association naming no ACTION is a Boolean
-   variable set to Q.
+   in SFC", quotes the rule), so a P, P1 or P0 action's body runs on two
+   scans, the second with Q FALSE.  An association naming no ACTION is a
+   Boolean variable set to Q.
 
 The order (transitions, steps, then actions) is MATIEC's.  The stored timed
 qualifiers SD, DS and SL are not run (E-SFC-001).  `S.T` counts up to
