@@ -130,8 +130,8 @@ CONSTRUCTS: Mapping[str, Construct] = MappingProxyType({
                             "CODESYS online help, SUPER: SUPER^() calls the body of the base "
                             "function block; IEC 61131-3 3rd ed. has SUPER.method() only"),
     "SFC": Construct("a Sequential Function Chart body (INITIAL_STEP, TRANSITION)", frozenset({"iec"}),
-                     "IEC 61131-3 3rd ed. 6.7 (textual form); Sysmac Studio programs in LD and ST "
-                     "(W501 6-2, no SFC), CODESYS edits SFC graphically (its textual form is not "
+                     "IEC 61131-3 3rd ed. 6.7 (textual form); W501 lists ladder and ST as the NJ's "
+                     "languages (no SFC; section to be confirmed), CODESYS edits SFC graphically (its textual form is not "
                      "documented as accepted; to be confirmed)"),
     "ENUM_DOT": Construct("an enumeration value written Type.Value", frozenset({"codesys"}),
                           "CODESYS online help, Enumerations: a value qualified by its type "
