@@ -508,6 +508,18 @@ class ProgramInstance(Node):
     name: str
     task: str | None
     program_type: str
+    # `PROGRAM G : Gravel (Start := %IX0.0, Lamp => %QX4.0)` (3rd ed. 6.8.2, table 62)
+    connections: tuple[Arg, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class ConfigInit(Node):
+    """`Res.Prog.Inst.Var AT %QX1.0 : BOOL := TRUE;` in VAR_CONFIG (3rd ed. 6.8.2)."""
+
+    path: tuple[str, ...]
+    type: TypeRef
+    init: Initializer | None = None
+    location: str | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -518,6 +530,7 @@ class Configuration(Node):
     globals: tuple[VarBlock, ...]
     tasks: tuple[TaskDecl, ...]
     programs: tuple[ProgramInstance, ...]
+    config_inits: tuple[ConfigInit, ...] = ()
 
 
 Item = Union[Pou, TypeDecl, VarBlock, Configuration]

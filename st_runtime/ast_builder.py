@@ -334,7 +334,7 @@ class AstBuilder(Transformer):
     # --------------------------------------------------------- configuration
 
     def configuration(self, kw, name, *elements):
-        globals_, tasks, programs = [], [], []
+        globals_, tasks, programs, inits = [], [], [], []
         stack = list(elements)
         while stack:
             element = stack.pop(0)
@@ -344,10 +344,20 @@ class AstBuilder(Transformer):
                 globals_.append(element)
             elif type(element) is ast.TaskDecl:
                 tasks.append(element)
+            elif isinstance(element, list):          # VAR_CONFIG ... END_VAR
+                inits.extend(element)
             else:
                 programs.append(element)
         return ast.Configuration(str(name), tuple(globals_), tuple(tasks), tuple(programs),
-                                 pos=self._pos(kw))
+                                 tuple(inits), pos=self._pos(kw))
+
+    def var_config(self, *inits):
+        return list(inits)
+
+    def config_init(self, *parts):
+        *path, location, type_ref, init = parts
+        return ast.ConfigInit(tuple(str(p) for p in path), type_ref, init,
+                              str(location) if location is not None else None, pos=self._pos(path[0]))
 
     def resource(self, kw, name, processor, *elements):
         return _Resource(elements)
@@ -368,9 +378,9 @@ class AstBuilder(Transformer):
     def task_param(self, name, value):
         return (str(name), value)
 
-    def program_config(self, kw, name, task, program_type):
+    def program_config(self, kw, name, task, program_type, connections=None):
         return ast.ProgramInstance(str(name), str(task) if task is not None else None,
-                                   str(program_type), pos=self._pos(kw))
+                                   str(program_type), tuple(connections or ()), pos=self._pos(kw))
 
     # ------------------------------------------------------------ statements
 

@@ -413,7 +413,16 @@ def _configuration_lines(config: ast.Configuration) -> list[str]:
         lines.append(f"{INDENT}TASK {task.name}({', '.join(params)});")
     for program in config.programs:
         with_task = f" WITH {program.task}" if program.task else ""
-        lines.append(f"{INDENT}PROGRAM {program.name}{with_task} : {program.program_type};")
+        connections = f" ({_format_args(program.connections)})" if program.connections else ""
+        lines.append(f"{INDENT}PROGRAM {program.name}{with_task} : {program.program_type}"
+                     f"{connections};")
+    if config.config_inits:
+        lines.append(f"{INDENT}VAR_CONFIG")
+        for init in config.config_inits:
+            at = f" AT {init.location}" if init.location else ""
+            value = f" := {format_initializer(init.init)}" if init.init is not None else ""
+            lines.append(f"{INDENT}{INDENT}{'.'.join(init.path)}{at} : {format_type(init.type)}{value};")
+        lines.append(f"{INDENT}END_VAR")
     lines.append("END_CONFIGURATION")
     return lines
 

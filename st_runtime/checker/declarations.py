@@ -18,6 +18,7 @@ from ..ast import key
 from ..symbols import PouInfo, Symbol
 from . import builtins as B
 from . import typesys as ts
+from .configuration import check_config_inits, check_connections
 from .constfold import NOT_CONSTANT
 from .context import BUILTIN_FILE, Context, Scope
 from .expressions import ExprChecker
@@ -89,6 +90,10 @@ class Declarations:
                 names = ", ".join(t.name for t in config.tasks) or "none"
                 self.ctx.error("E-DECL-001", f"program instance {inst.name}: undeclared task "
                                f"'{inst.task}' (tasks: {names})", inst.pos)
+            info = self.program.pous.get(key(inst.program_type))
+            if info is not None and info.kind == "PROGRAM":
+                check_connections(self.ctx, inst, info, ex)
+        check_config_inits(self, config, ex)
 
     def _collect(self, item) -> None:
         if isinstance(item, ast.TypeDecl):
