@@ -494,6 +494,7 @@ class Pou(Node):
     modifiers: tuple[str, ...] = ()       # ABSTRACT, FINAL
     namespace: str = ""                   # "A.B" inside NAMESPACE A.B (3rd ed. 6.9)
     sfc: Sfc | None = None                # a body in SFC (then `body` is empty)
+    access: tuple[AccessPath, ...] = ()   # a PROGRAM's VAR_ACCESS
 
 
 @dataclass(frozen=True, slots=True)
@@ -510,6 +511,16 @@ class ProgramInstance(Node):
     program_type: str
     # `PROGRAM G : Gravel (Start := %IX0.0, Lamp => %QX4.0)` (3rd ed. 6.8.2, table 62)
     connections: tuple[Arg, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class AccessPath(Node):
+    """`Name : Prog.Var : INT READ_ONLY;` in VAR_ACCESS (3rd ed. 6.8.2, table 62)."""
+
+    name: str
+    path: Expr
+    type: TypeRef
+    read_write: bool = False
 
 
 @dataclass(frozen=True, slots=True)
@@ -531,6 +542,7 @@ class Configuration(Node):
     tasks: tuple[TaskDecl, ...]
     programs: tuple[ProgramInstance, ...]
     config_inits: tuple[ConfigInit, ...] = ()
+    access: tuple[AccessPath, ...] = ()
 
 
 Item = Union[Pou, TypeDecl, VarBlock, Configuration]

@@ -110,7 +110,9 @@ class AstBuilder(Transformer):
 
     def program_decl(self, kw, name, *rest):
         body, sfc = _body_or_sfc(rest[-1])
-        return ast.Pou("PROGRAM", str(name), tuple(rest[:-1]), body, sfc=sfc, pos=self._pos(kw))
+        blocks = tuple(r for r in rest[:-1] if type(r) is ast.VarBlock)
+        access = tuple(a for r in rest[:-1] if type(r) is _Access for a in r)
+        return ast.Pou("PROGRAM", str(name), blocks, body, sfc=sfc, access=access, pos=self._pos(kw))
 
     def function_decl(self, kw, name, return_type, *rest):
         return ast.Pou("FUNCTION", str(name), tuple(rest[:-1]), rest[-1],
@@ -334,7 +336,7 @@ class AstBuilder(Transformer):
     # --------------------------------------------------------- configuration
 
     def configuration(self, kw, name, *elements):
-        globals_, tasks, programs, inits = [], [], [], []
+        globals_, tasks, programs, inits, access = [], [], [], [], []
         stack = list(elements)
         while stack:
             element = stack.pop(0)
@@ -344,12 +346,22 @@ class AstBuilder(Transformer):
                 globals_.append(element)
             elif type(element) is ast.TaskDecl:
                 tasks.append(element)
+            elif isinstance(element, _Access):       # VAR_ACCESS ... END_VAR
+                access.extend(element)
             elif isinstance(element, list):          # VAR_CONFIG ... END_VAR
                 inits.extend(element)
             else:
                 programs.append(element)
         return ast.Configuration(str(name), tuple(globals_), tuple(tasks), tuple(programs),
-                                 tuple(inits), pos=self._pos(kw))
+                                 tuple(inits), tuple(access), pos=self._pos(kw))
+
+    def var_access(self, *paths):
+        return _Access(paths)
+
+    def access_path(self, name, path, type_ref, direction):
+        return ast.AccessPath(str(name), path, type_ref,
+                              direction is not None and direction.type == "READ_WRITE",
+                              pos=self._pos(name))
 
     def var_config(self, *inits):
         return list(inits)
@@ -633,3 +645,7 @@ SFC_TIMED_QUALIFIERS = frozenset({"L", "D", "SD", "DS", "SL"})
 def _body_or_sfc(body):
     """(statements, None) for a statement body, ((), Sfc) for a chart."""
     return ((), body) if type(body) is ast.Sfc else (body, None)
+
+
+class _Access(tuple):
+    """The paths of one VAR_ACCESS block, until the POU or configuration takes them."""

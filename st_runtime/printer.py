@@ -327,6 +327,7 @@ def _pou_lines(pou: ast.Pou) -> list[str]:
     lines = [header]
     for block in pou.var_blocks:
         lines.extend(_var_block_lines(block, ""))
+    lines.extend(_access_lines(pou.access, ""))
     methods = list(pou.methods)
     while methods:
         method = methods.pop(0)
@@ -400,6 +401,16 @@ def _method_lines(method: ast.Method, indent: str) -> list[str]:
     return lines
 
 
+def _access_lines(paths, indent: str) -> list[str]:
+    if not paths:
+        return []
+    lines = [f"{indent}VAR_ACCESS"]
+    for a in paths:
+        lines.append(f"{indent}{INDENT}{a.name} : {format_expr(a.path)} : {format_type(a.type)}"
+                     f"{' READ_WRITE' if a.read_write else ' READ_ONLY'};")
+    return lines + [f"{indent}END_VAR"]
+
+
 def _configuration_lines(config: ast.Configuration) -> list[str]:
     lines = [f"CONFIGURATION {config.name}"]
     for block in config.globals:
@@ -423,6 +434,7 @@ def _configuration_lines(config: ast.Configuration) -> list[str]:
             value = f" := {format_initializer(init.init)}" if init.init is not None else ""
             lines.append(f"{INDENT}{INDENT}{'.'.join(init.path)}{at} : {format_type(init.type)}{value};")
         lines.append(f"{INDENT}END_VAR")
+    lines.extend(_access_lines(config.access, INDENT))
     lines.append("END_CONFIGURATION")
     return lines
 

@@ -1,8 +1,9 @@
-"""A CONFIGURATION's program connections and VAR_CONFIG (IEC 61131-3 3rd ed. 6.8.2).
+"""A CONFIGURATION's program connections, VAR_CONFIG and VAR_ACCESS (IEC 61131-3 3rd ed. 6.8.2).
 
-Both are checked, not applied: st_runtime checks configurations but does not
+They are checked, not applied: st_runtime checks configurations but does not
 run them (`stgen run --program` picks the program), so a connection or a
-VAR_CONFIG value changes nothing at run time.
+VAR_CONFIG value changes nothing at run time, and an access path (a name
+for remote access, also declared in a PROGRAM) is read by nothing.
 """
 
 from __future__ import annotations
@@ -40,30 +41,71 @@ def check_connections(ctx, inst: ast.ProgramInstance, info, ex) -> None:
 
 def check_config_inits(decls, config: ast.Configuration, ex) -> None:
     """`Res.Prog.Inst.Var : TYPE := value;`: the path names a variable of a program
-    instance of this configuration (leading resource names are skipped), of that type."""
-    ctx = decls.ctx
-    instances = {key(p.name): p for p in config.programs}
+    instance of this configuration (leading resource names are skipped), of that type;
+    VAR_ACCESS paths of the configuration likewise."""
     for init in config.config_inits:
-        what = f"VAR_CONFIG {'.'.join(init.path)}"
-        start = next((i for i, part in enumerate(init.path[:-1]) if key(part) in instances), None)
-        if start is None:
-            names = ", ".join(p.name for p in config.programs) or "none"
-            ctx.error("E-DECL-001", f"{what}: the path names no program instance of "
-                      f"{config.name} (instances: {names})", init.pos)
+        declared = _path_of_type(decls, config, init.path, init.type, ex,
+                                 f"VAR_CONFIG {'.'.join(init.path)}", init.pos)
+        if declared is not None and init.init is not None:
+            decls.initializer(init.init, declared, ex, f"VAR_CONFIG {'.'.join(init.path)}")
+    for access in config.access:
+        parts = _parts(access.path)
+        if parts is None:
+            decls.ctx.error("E-TYPE-014", f"VAR_ACCESS {access.name}: expected a path "
+                            f"Resource.Program.Variable", access.path.pos)
             continue
-        info = decls.program.pous.get(key(instances[key(init.path[start])].program_type))
-        if info is None or info.kind != "PROGRAM":
-            continue                                    # reported with the instance
-        found = _variable_type(ctx, info, init.path[start + 1:], what, init.pos)
-        if found is None:
-            continue
-        declared = decls.resolve(init.type, ex)
-        if declared is ts.ERROR:
+        _path_of_type(decls, config, parts, access.type, ex, f"VAR_ACCESS {access.name}", access.pos)
+
+
+def check_program_access(decls, paths, ex) -> None:
+    """A PROGRAM's VAR_ACCESS: each path is a variable of the program, of the declared
+    type; a READ_WRITE path must be writable."""
+    for access in paths:
+        what = f"VAR_ACCESS {access.name}"
+        found = check_store(ex, access.path, what) if access.read_write else ex.infer(access.path)
+        declared = decls.resolve(access.type, ex)
+        if found is ts.ERROR or declared is ts.ERROR:
             continue
         if not ts.same_type(T.resolve_alias(declared), T.resolve_alias(found)):
-            ctx.error("E-TYPE-004", f"{what}: declared {declared}, the variable is {found}", init.pos)
-        elif init.init is not None:
-            decls.initializer(init.init, declared, ex, what)
+            decls.ctx.error("E-TYPE-004", f"{what}: declared {declared}, the variable is {found}",
+                            access.pos)
+
+
+def _parts(path) -> tuple[str, ...] | None:
+    """`A.B.C` as ("A", "B", "C"), or None for any other expression."""
+    parts = []
+    while isinstance(path, ast.Member):
+        parts.append(path.name)
+        path = path.base
+    if not isinstance(path, ast.Name):
+        return None
+    return (path.name, *reversed(parts))
+
+
+def _path_of_type(decls, config, path, type_ref, ex, what: str, pos):
+    """The declared type when `path` names a program instance's variable of that type,
+    else None (after a report)."""
+    ctx = decls.ctx
+    instances = {key(p.name): p for p in config.programs}
+    start = next((i for i, part in enumerate(path[:-1]) if key(part) in instances), None)
+    if start is None:
+        names = ", ".join(p.name for p in config.programs) or "none"
+        ctx.error("E-DECL-001", f"{what}: the path names no program instance of "
+                  f"{config.name} (instances: {names})", pos)
+        return None
+    info = decls.program.pous.get(key(instances[key(path[start])].program_type))
+    if info is None or info.kind != "PROGRAM":
+        return None                                     # reported with the instance
+    found = _variable_type(ctx, info, path[start + 1:], what, pos)
+    if found is None:
+        return None
+    declared = decls.resolve(type_ref, ex)
+    if declared is ts.ERROR:
+        return None
+    if not ts.same_type(T.resolve_alias(declared), T.resolve_alias(found)):
+        ctx.error("E-TYPE-004", f"{what}: declared {declared}, the variable is {found}", pos)
+        return None
+    return declared
 
 
 def _variable_type(ctx, info, parts, what: str, pos):

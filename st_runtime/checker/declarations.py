@@ -18,7 +18,7 @@ from ..ast import key
 from ..symbols import PouInfo, Symbol
 from . import builtins as B
 from . import typesys as ts
-from .configuration import check_config_inits, check_connections
+from .configuration import check_config_inits, check_connections, check_program_access
 from .constfold import NOT_CONSTANT
 from .context import BUILTIN_FILE, Context, Scope
 from .expressions import ExprChecker
@@ -70,6 +70,10 @@ class Declarations:
             self.objects.check_contracts(self.program.pous[k], node)
         for config in self.configurations:
             self._configuration(config)
+        for k, node in self.ctx.pou_decls.items():
+            if getattr(node, "access", ()):
+                info = self.program.pous[k]
+                check_program_access(self, node.access, ExprChecker(self.ctx, Scope(self.ctx, info)))
 
     def _configuration(self, config: ast.Configuration) -> None:
         """Program instances name a declared PROGRAM and a declared TASK."""
