@@ -93,7 +93,7 @@ class Messages:
         if len(kinds & _BINARY_OPERATORS) > 4:
             kinds -= _BINARY_OPERATORS
             first.append("operator")
-        words = first + sorted(self.describe_kind(k) for k in kinds)
+        words = first + sorted({self.describe_kind(k) for k in kinds})   # _AT, _AT_ADDRESS: one 'AT'
         if len(words) > 6:
             words = words[:6] + ["..."]
         if len(words) == 1:
