@@ -133,6 +133,10 @@ CONSTRUCTS: Mapping[str, Construct] = MappingProxyType({
                      "IEC 61131-3 3rd ed. 6.7 (textual form); W501 lists ladder and ST as the NJ's "
                      "languages (no SFC; section to be confirmed), CODESYS edits SFC graphically (its textual form is not "
                      "documented as accepted; to be confirmed)"),
+    "EDGE_NAME": Construct("a variable named R_EDGE or F_EDGE (IEC 61131-3 keywords)",
+                           frozenset({"codesys"}),
+                           "IEC 61131-3 lists R_EDGE and F_EDGE as keywords; CODESYS compiles "
+                           "them as names (OSCAT BASIC's MANUAL_1 declares R_EDGE : BOOL)"),
     "ENUM_DOT": Construct("an enumeration value written Type.Value", frozenset({"codesys"}),
                           "CODESYS online help, Enumerations: a value qualified by its type "
                           "with a dot (E_Color.Red); IEC 61131-3 writes E_Color#Red"),

@@ -66,6 +66,8 @@ def _constructs(item):
             yield "TRAILING_COMMA", node.pos
         elif kind is ast.StructType and node.union:
             yield "UNION", node.pos
+        elif kind is ast.VarDecl and node.name.upper() in ("R_EDGE", "F_EDGE"):
+            yield "EDGE_NAME", node.pos
         elif kind is ast.NullLiteral:
             yield "NULL", node.pos
         elif kind is ast.BitAccess and not node.size:      # x.%X3 is the standard's
