@@ -42,24 +42,21 @@ SURGE_AMPLITUDE_MM, SURGE_PERIOD_S = 300.0, 4.0
 ROLL_AMPLITUDE_DEG, ROLL_RATE_DEG_S = 26.0, 12.0
 
 
-def _surge(t):
-    w = 2.0 * np.pi / SURGE_PERIOD_S
-    zero = np.zeros((len(t), 6))
-    value, rate, acceleration = zero.copy(), zero.copy(), zero.copy()
-    value[:, 0] = -SURGE_AMPLITUDE_MM * np.cos(w * t)
-    rate[:, 0] = SURGE_AMPLITUDE_MM * w * np.sin(w * t)
-    acceleration[:, 0] = SURGE_AMPLITUDE_MM * w * w * np.cos(w * t)
-    return value, rate, acceleration
+def _starting_at_rest(coordinate: int, amplitude: float, omega: float):
+    """Coordinate ``coordinate`` = −amplitude·cos(ωt) (at rest at t = 0), the others zero: a
+    :data:`~stgen.scenarios.track.Trajectory` (value, rate, acceleration)."""
+    def trajectory(t):
+        value, rate, acceleration = (np.zeros((len(t), 6)) for _ in range(3))
+        value[:, coordinate] = -amplitude * np.cos(omega * t)
+        rate[:, coordinate] = amplitude * omega * np.sin(omega * t)
+        acceleration[:, coordinate] = amplitude * omega * omega * np.cos(omega * t)
+        return value, rate, acceleration
+
+    return trajectory
 
 
-def _roll(t):
-    w = ROLL_RATE_DEG_S / ROLL_AMPLITUDE_DEG  # rad/s: peak rate = amplitude * w
-    zero = np.zeros((len(t), 6))
-    value, rate, acceleration = zero.copy(), zero.copy(), zero.copy()
-    value[:, 5] = -ROLL_AMPLITUDE_DEG * np.cos(w * t)
-    rate[:, 5] = ROLL_AMPLITUDE_DEG * w * np.sin(w * t)
-    acceleration[:, 5] = ROLL_AMPLITUDE_DEG * w * w * np.cos(w * t)
-    return value, rate, acceleration
+_surge = _starting_at_rest(0, SURGE_AMPLITUDE_MM, 2.0 * np.pi / SURGE_PERIOD_S)
+_roll = _starting_at_rest(5, ROLL_AMPLITUDE_DEG, ROLL_RATE_DEG_S / ROLL_AMPLITUDE_DEG)  # peak rate = amplitude·ω
 
 
 @dataclass(frozen=True)

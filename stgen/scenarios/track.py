@@ -22,8 +22,7 @@ import numpy as np
 
 from stgen.config import PlatformConfig
 from stgen.scenarios.actuators import actuator_positions
-from stgen.scenarios.runner import CHUNK_SCANS, POWER_ON_SCANS, Progress, ScenarioResult, _Recorder
-from stgen.scenarios.setpoint_limits import check_setpoint_limits
+from stgen.scenarios.runner import CHUNK_SCANS, POWER_ON_SCANS, Progress, ScenarioResult, _Recorder, recorded_result
 from stgen.scenarios.simulation import ControllerSimulation
 
 #: t [n] -> (value, rate, acceleration), each [n, 6] (mm, degrees, s), as :mod:`stgen.reference.study_motions`.
@@ -103,31 +102,5 @@ def run_track_scenario(scenario: TrackScenario, config: PlatformConfig, progress
     expected_pose[edge - 1:] = upper[: count - edge + 1]
     base_pose[edge - 1:] = base[: count - edge + 1]
     expected = actuator_positions(config, expected_pose, base_pose if stream_base else None)
-    sync = recorder.sync[:count]
-    actuator = config.actuator
-    setpoint = recorder.setpoint[:count]
-    result = ScenarioResult(
-        scenario=scenario,
-        period_s=period,
-        command_scans=(edge,),
-        commanded=recorder.commanded[:count],
-        expected=expected,
-        setpoint_pose=recorder.pose[:count],
-        expected_pose=expected_pose,
-        state=recorder.state[:count],
-        fault_id=recorder.fault_id[:count],
-        refusal_id=recorder.refusal_id[:count],
-        axis_fault=recorder.axis_fault[:count],
-        following_error=recorder.following_error[:count],
-        setpoint=setpoint,
-        sync=sync,
-        limits=check_setpoint_limits(setpoint, period, actuator.max_velocity, actuator.max_acceleration, sync),
-        commanded_limits=check_setpoint_limits(recorder.commanded[:count], period, actuator.max_velocity,
-                                               actuator.max_acceleration, sync),
-        runtime_faults=list(sim.runtime_faults),
-        wall_seconds=wall,
-        servo_lag_s=servo_lag_s,
-        nj_time=sim.plc.controller.time_report()[0],
-        state_names={value: name for name, value in sim.codes.items() if name.startswith("SP_STATE_")},
-    )
+    result = recorded_result(sim, recorder, scenario, (edge,), expected_pose, expected, wall, servo_lag_s)
     return TrackRun(result, base_pose, edge)
