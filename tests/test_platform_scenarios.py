@@ -167,3 +167,35 @@ def test_standby_compensates_a_rolling_deck_until_a_limit_breaks_then_faults_nam
     assert g["SpFaultDetail"] == code and g["SpFaultAxis"] == code & 0xF
     held = actuator_positions(config, upper, np.where(np.arange(6) == 5, base - 0.01, base))
     assert np.abs(np.asarray(g["SpCylinderSetpoint"]) - held).max() <= PLATFORM_MAX_ERROR
+
+
+def _stream(sim, poses) -> None:
+    sim.globals["SpTrackStart"] = True
+    for pose in poses:
+        sim.set_pose("SpTrackPose", pose)
+        sim.run(1)
+
+
+def test_a_stream_released_holds_its_last_pose_in_standby():
+    config = _crank()
+    sim = _power_on(config, (0.0,) * 6)
+    poses = [np.array([0.05 * k, 0.0, 0.0, 0.0, 0.0, 0.0]) for k in range(50)]
+    _stream(sim, poses)
+    assert sim.state_name == "SP_STATE_TRACK"
+    sim.globals["SpTrackStart"] = False
+    sim.run(20)
+    assert sim.state_name == "SP_STATE_STANDBY" and sim.globals["SpFaultID"] == 0
+    assert np.abs(sim.command_positions() - actuator_positions(config, poses[-1])).max() <= PLATFORM_MAX_ERROR
+
+
+def test_spstop_in_a_stream_ramps_to_rest_then_stops():
+    config = _crank()
+    sim = _power_on(config, (0.0,) * 6)
+    _stream(sim, [np.array([0.05 * k, 0.0, 0.0, 0.0, 0.0, 0.0]) for k in range(50)])
+    sim.globals["SpStop"] = True
+    sim.run(1)
+    assert sim.state_name == "SP_STATE_STOP_RAMP"
+    sim.run_until(lambda: sim.state_name == "SP_STATE_STANDBY", 3000)
+    assert sim.globals["SpFaultID"] == 0
+    # Ramped to rest from 50 mm/s at the configured 500 mm/s^2: past the last streamed x = 2.45 mm.
+    assert sim.globals["SpSetpointPose"][0] > 2.45
