@@ -27,7 +27,7 @@ def test_demo_runs_the_platform_scenarios(tmp_path, two_short_platform_runs, cap
     out = capsys.readouterr().out
     assert "Platform variants" in out and "γ/ψ/tilt°" in out and "start|a|" in out
     rows = [line for line in out.splitlines()
-            if line.strip().startswith(("moving_base_motion", "crank_surge")) and "simulated" not in line]
+            if line.strip().startswith(("moving_base_motion ", "crank_surge ")) and "━" not in line]
     assert len(rows) == 2 and all("hold" in row and "pass" in row for row in rows)
     for name, axis in (("moving_base_motion", "q1_mm"), ("crank_surge", "theta1_deg")):
         assert (tmp_path / f"{name}.png").read_bytes()[:8] == PNG_SIGNATURE
@@ -40,6 +40,7 @@ def test_demo_runs_the_platform_scenarios(tmp_path, two_short_platform_runs, cap
         assert max(float(row[-1]) for row in table[1:]) <= platform_report.PLATFORM_MAX_ERROR
         # 0.3 s streamed at 1 ms: 301 set-points after power-on and the hold.
         assert sum(row[3] == "SP_STATE_TRACK" for row in table[1:]) == 301
+    assert out.count("estimated NJ501 time per scan") == 2
     assert "All scenarios passed" in out
 
 

@@ -114,7 +114,7 @@ def run(args: argparse.Namespace) -> int:
             durations = ", ".join(f"{d:.3f}" for d in result.move_durations_s)
             console.print(f"{result.scenario.name}: {len(result.move_durations_s)} moves planned by SP_Controller "
                           f"(SpMoveDuration): {durations} s", soft_wrap=True)
-    for result in results:
+    for result in results + [run.result for run in platform_runs]:
         if result.nj_time is not None:
             console.print(f"{result.scenario.name}: SP_Controller {_nj_time(result.nj_time)}", soft_wrap=True)
     summary = update.summary()

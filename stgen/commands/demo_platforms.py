@@ -76,7 +76,7 @@ def summary_table(runs):
         motion = run.motion_limits
         table.add_row(
             run.name, f"{run.result.max_error_mm:.0e}", pose,
-            f"{limits.actuator_range[0]:.2f}..{limits.actuator_range[1]:.2f} {run.unit}", _joints(limits),
+            f"{limits.actuator_range[0]:.1f}..{limits.actuator_range[1]:.1f} {run.unit}", _joints(limits),
             f"{motion.max_velocity.max():.1f}", f"{motion.max_acceleration.max():.1f}",
             f"{run.start_step.max_acceleration.max():.0f}",
             "[green]pass[/]" if run.passed else "[red]FAIL[/]",
