@@ -31,33 +31,24 @@ from stgen.reference.moving_base import legs, spherical_tilt, universal_joint_an
 from stgen.reference.rates import crank_rates, leg_rates
 from stgen.reference.variant_fk import variant_forward_kinematics
 from stgen.render import render_program
-from stgen.verify import _FK_HARNESS, HARNESS_TIME_LIMIT_NS, Check, KinematicsRuntime
+from stgen.verify import HARNESS_TIME_LIMIT_NS, Check, KinematicsRuntime
 
 #: The IK harnesses, ST files beside this package (their array sizes: the global constant VERIFY_CASES).
 HARNESS_DIR = Path(__file__).resolve().parent / "harnesses"
-IK_HARNESSES = {True: "VerifyVariantIkCrank.st", False: "VerifyVariantIkMovingBase.st"}
+#: The harnesses by platform kind (crank?): IK, then FK.
+HARNESSES = {True: ("VerifyVariantIkCrank.st", "VerifyVariantFkCrank.st"),
+             False: ("VerifyVariantIkMovingBase.st", "VerifyVariantFkMovingBase.st")}
 
 
-def variant_ik_sources(config: PlatformConfig, capacity: int) -> dict[str, str]:
-    """The IK harness of ``config``'s kind and the constant VERIFY_CASES = ``capacity``."""
+def variant_harness_sources(config: PlatformConfig, capacity: int) -> dict[str, str]:
+    """The IK and FK harnesses of ``config``'s kind and the constant VERIFY_CASES = ``capacity``."""
+    ik, fk = HARNESSES[config.is_crank]
     return {
-        "VerifyVariantIk.st": (HARNESS_DIR / IK_HARNESSES[config.is_crank]).read_text(encoding="utf-8"),
+        "VerifyVariantIk.st": (HARNESS_DIR / ik).read_text(encoding="utf-8"),
+        "VerifyVariantFk.st": (HARNESS_DIR / fk).read_text(encoding="utf-8"),
         "VerifyCases.st": f"VAR_GLOBAL CONSTANT\n    VERIFY_CASES : DINT := {int(capacity)};\nEND_VAR\n",
     }
 
-
-def variant_fk_harness(capacity: int, measured: str, moving_base: bool) -> str:
-    """The default platform's FK harness (:data:`stgen.verify._FK_HARNESS`) for a variant: the
-    measured input named ``measured`` and, on a moving base, the base pose of each case."""
-    text = _FK_HARNESS.replace("PROGRAM VerifyFk", "PROGRAM VerifyVariantFk").replace("CylinderPos", measured)
-    if moving_base:
-        text = text.replace("    StartPose : ARRAY[1..6] OF LREAL;",
-                            "    Bases : ARRAY[1..{n}, 1..6] OF LREAL;\n    Base : ARRAY[1..6] OF LREAL;\n"
-                            "    StartPose : ARRAY[1..6] OF LREAL;")
-        text = text.replace("        StartPose[Leg] := Starts[Item, Leg];",
-                            "        Base[Leg] := Bases[Item, Leg];\n        StartPose[Leg] := Starts[Item, Leg];")
-        text = text.replace("StartPose := StartPose,", "BasePose := Base, StartPose := StartPose,")
-    return text.format(n=capacity)
 
 #: Tolerances of the comparisons: mm and degrees.
 IK_LIMIT = 1e-9
@@ -73,10 +64,8 @@ class VariantRuntime(KinematicsRuntime):
 
         program = render_program(config)
         sources = {f"{pou.name}.st": pou_text(pou) for pou in program.pous}
-        sources.update(variant_ik_sources(config, capacity))
+        sources.update(variant_harness_sources(config, capacity))
         names = ["VerifyVariantIk", "VerifyVariantFk"]
-        sources["VerifyVariantFk.st"] = variant_fk_harness(
-            capacity, "CrankAngle" if config.is_crank else "CylinderPos", config.moving_base)
         self.config = config
         self.capacity = capacity
         self.project = api.load_sources(sources)
