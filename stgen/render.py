@@ -82,9 +82,9 @@ BENCH_TEST_TEMPLATE = "tests/test_benches"
 BENCH_TEST_FILE = "test_benches.st"
 
 
-#: Templates of the platform variants (docs/mathematics.md sections 6.1, 6.2): the kinematics only, the variant's
-#: own SP_InverseKinematics in a folder named after the variant; the controller program is
-#: not rendered for them yet.
+#: Templates of the platform variants (docs/mathematics.md sections 6.1, 6.2): the variant's own
+#: kinematics POUs (in a folder named after the variant), then the trajectories and SP_Controller,
+#: whose variant conditionals read crank angles (crank) or take the base pose (moving base).
 CRANK_TEMPLATES = (
     "SP_Constants",
     "SP_Atan2",
@@ -93,7 +93,7 @@ CRANK_TEMPLATES = (
     "SP_Jacobian",
     "crank/SP_InverseKinematics",
     "SP_ForwardKinematics",
-)
+) + CONTROLLER_TEMPLATES
 MOVING_BASE_TEMPLATES = (
     "SP_Constants",
     "SP_Atan2",
@@ -102,7 +102,7 @@ MOVING_BASE_TEMPLATES = (
     "moving_base/SP_Jacobian",
     "moving_base/SP_InverseKinematics",
     "SP_ForwardKinematics",
-)
+) + CONTROLLER_TEMPLATES
 
 
 def program_templates(config: PlatformConfig) -> tuple[str, ...]:

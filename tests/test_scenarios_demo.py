@@ -10,7 +10,7 @@ import pytest
 
 from stgen import cli
 from stgen.commands import demo
-from stgen.scenarios import definitions, runner
+from stgen.scenarios import definitions, platforms, runner
 from stgen.scenarios.csv_trace import HEADER
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
@@ -19,6 +19,7 @@ PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 @pytest.fixture()
 def short_waves(monkeypatch):
     monkeypatch.setattr(demo, "QUICK_WAVE_SECONDS", 0.3)
+    monkeypatch.setattr(platforms, "PLATFORM_SCENARIOS", ())  # tests/test_platform_demo.py runs those
 
 
 def test_demo_writes_code_traces_figures_and_passes(tmp_path, short_waves, capsys):

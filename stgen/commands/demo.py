@@ -18,7 +18,14 @@
    OMRON's 80 % rule; st_runtime/compiler/cost.py); and writes for each
    scenario ``DIR/<scenario>.csv`` (every scan) and ``DIR/<scenario>.png``
    (pose, cylinder positions, error, velocity and acceleration, following
-   error over time), and says which files it wrote.
+   error over time), and says which files it wrote;
+4. runs the platform variants' scenarios on their example platforms
+   (:mod:`stgen.commands.demo_platforms`): the moving-base study's two 10 s
+   motions and two test poses, the crank signals (surge, roll), each with a
+   row in a further table (error against the reference at 1e-9, whether the
+   stroke or crank angle, joint angles and tilt hold on every scan, the
+   extremes, the set-points' velocity and acceleration, a stream's start
+   step) and its own ``DIR/<scenario>.csv`` and ``.png``.
 
 DIR is written as ``stgen generate`` writes its folder (:mod:`stgen.exports.folder`):
 a file there that stgen did not write (or changed since) is never
@@ -27,8 +34,8 @@ symbolic link (``DIR/generated`` and the files in DIR included); a second demo
 into the same DIR refuses while the first runs.
 
 ``--quick`` shortens every scenario: waves of 5 s, point-to-point moves of a
-tenth of each displacement with 0.1 s of standstill after each (a few MB of
-CSV in all). Exit 1 if any scenario fails (error above 1e-6 mm, any fault, or
+tenth of each displacement with 0.1 s of standstill after each, 1 s of each
+streamed platform motion (a few MB of CSV in all). Exit 1 if any scenario fails (error above 1e-6 mm, any fault, or
 a set-point velocity or acceleration above the actuator's limit in any scan).
 """
 
@@ -75,14 +82,23 @@ def run(args: argparse.Namespace) -> int:
 
     scenarios = [s.shortened(QUICK_WAVE_SECONDS, QUICK_MOVE_FRACTION, QUICK_SETTLE_SECONDS) if args.quick
                  else s for s in SCENARIOS]
+    from stgen.commands import demo_platforms
+
+    platform_items = demo_platforms.platform_scenarios(args.quick)
     try:
         with OwnedFolder(out) as folder:
-            folder.check(_output_names(scenarios))  # refuse before the long runs, not after
+            # refuse before the long runs, not after
+            folder.check(_output_names(scenarios) + demo_platforms.output_names(platform_items))
             results = _generate_and_run(config, scenarios, out, console)
             if results is None:
                 return 1
+            platform_runs = _run_platforms(platform_items, console)
+            if platform_runs is None:
+                return 1
             for result in results:
                 _stage_outputs(result, folder)
+            for run in platform_runs:
+                demo_platforms.stage_outputs(run, folder)
             update = folder.commit()
     except OSError as error:
         print(f"stgen demo: error: cannot write {error.filename or out}: {error.strerror}", file=sys.stderr)
@@ -92,18 +108,19 @@ def run(args: argparse.Namespace) -> int:
         return 1
     console.print(_summary(results, config))
     console.print(_limits_table(results, config))
+    console.print(demo_platforms.summary_table(platform_runs))
     for result in results:
         if len(result.move_durations_s) > 1:
             durations = ", ".join(f"{d:.3f}" for d in result.move_durations_s)
             console.print(f"{result.scenario.name}: {len(result.move_durations_s)} moves planned by SP_Controller "
                           f"(SpMoveDuration): {durations} s", soft_wrap=True)
-    for result in results:
+    for result in results + [run.result for run in platform_runs]:
         if result.nj_time is not None:
             console.print(f"{result.scenario.name}: SP_Controller {_nj_time(result.nj_time)}", soft_wrap=True)
     summary = update.summary()
     console.print(f"Wrote {len(update.written)} traces and figures in {out}/: "
                   + ", ".join(p.name for p in update.written) + (f"; {summary}" if summary else ""), soft_wrap=True)
-    failed = [r.scenario.name for r in results if not r.passed]
+    failed = [r.scenario.name for r in results if not r.passed] + [r.name for r in platform_runs if not r.passed]
     if failed:
         console.print(f"[bold red]FAILED:[/] {', '.join(failed)}")
         return 1
@@ -127,6 +144,22 @@ def _generate_and_run(config, scenarios, out: Path, console):
         print(f"stgen demo: error: the generated controller does not load:\n{error.render()}", file=sys.stderr)
     except (TimeoutError, ValueError) as error:  # no STANDBY after power-on; a start pose outside the stroke
         print(f"stgen demo: error: {error}", file=sys.stderr)
+    return None
+
+
+def _run_platforms(items, console):
+    """The platform variants' scenarios on their example platforms; ``None`` (reported) if they cannot run."""
+    from st_runtime.api import LoadError
+
+    from stgen.commands import demo_platforms
+    from stgen.config import ConfigError
+
+    try:
+        return demo_platforms.run_all(items, console, DEMO_SERVO_LAG_S)
+    except LoadError as error:
+        print(f"stgen demo: error: a platform variant's controller does not load:\n{error.render()}", file=sys.stderr)
+    except (ConfigError, OSError, TimeoutError, ValueError) as error:
+        print(f"stgen demo: error: platform scenarios: {error}", file=sys.stderr)
     return None
 
 

@@ -31,6 +31,7 @@ from stgen.config import PlatformConfig
 from stgen.reference.cycloidal import cycloidal_duration, cycloidal_pose, executed_duration
 from stgen.reference.kinematics import inverse_kinematics
 from stgen.reference.wave import fade_in_duration, wave_pose
+from stgen.scenarios.actuators import actuator_positions
 from stgen.scenarios.definitions import PointToPointMotion, Scenario, WaveMotion
 
 
@@ -137,5 +138,8 @@ def expected_poses(scenario: Scenario, config: PlatformConfig, command_scan: int
 
 
 def expected_cylinders(poses: np.ndarray, config: PlatformConfig) -> np.ndarray:
-    """Reference IK of every pose: cylinder positions q_i, mm."""
+    """Reference IK of every pose: cylinder positions q_i, mm (a platform variant: its actuator
+    coordinates, the base at rest at the world origin, :mod:`stgen.scenarios.actuators`)."""
+    if not config.is_default_kind:
+        return actuator_positions(config, poses)
     return np.asarray(inverse_kinematics(config.geometry, poses, config.stroke).positions, dtype=float)

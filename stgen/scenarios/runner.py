@@ -255,17 +255,29 @@ def run_scenario(
 
     count = recorder.count
     poses = expected_poses(scenario, config, first, count)
+    return recorded_result(sim, recorder, scenario, tuple(command_scans), poses, expected_cylinders(poses, config),
+                           wall, servo_lag_s, tuple(durations))
+
+
+def recorded_result(sim: ControllerSimulation, recorder: _Recorder, scenario, command_scans: tuple[int, ...],
+                    expected_pose: np.ndarray, expected: np.ndarray, wall: float, servo_lag_s: float,
+                    move_durations: tuple[float, ...] = ()) -> ScenarioResult:
+    """The :class:`ScenarioResult` of a finished run: what ``recorder`` took, the reference
+    (``expected_pose`` and its axis positions ``expected``, one row per recorded scan) and the
+    set-points' velocity and acceleration against the actuator's limits."""
+    count = recorder.count
+    config = sim.config
     sync = recorder.sync[:count]
     actuator = config.actuator
     period = config.task.period_s
     return ScenarioResult(
         scenario=scenario,
-        period_s=config.task.period_s,
-        command_scans=tuple(command_scans),
+        period_s=period,
+        command_scans=command_scans,
         commanded=recorder.commanded[:count],
-        expected=expected_cylinders(poses, config),
+        expected=expected,
         setpoint_pose=recorder.pose[:count],
-        expected_pose=poses,
+        expected_pose=expected_pose,
         state=recorder.state[:count],
         fault_id=recorder.fault_id[:count],
         refusal_id=recorder.refusal_id[:count],
@@ -280,7 +292,7 @@ def run_scenario(
         runtime_faults=list(sim.runtime_faults),
         wall_seconds=wall,
         servo_lag_s=servo_lag_s,
-        move_durations_s=tuple(durations),
+        move_durations_s=move_durations,
         nj_time=sim.plc.controller.time_report()[0],
         state_names={value: name for name, value in sim.codes.items() if name.startswith("SP_STATE_")},
     )
