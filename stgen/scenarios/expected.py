@@ -18,6 +18,9 @@ run. The first command's rising edge is seen in scan ``command_scan``
   ``wave_pose(wave, m·dt, centre, fade_s=T_F)``, T_F from ``fade_in_duration``
   with the scenario's limits.
 
+A path or a playback (:mod:`stgen.scenarios.path_scenarios`): the planning
+pass, then its lead-in, then the motion, then its end pose held.
+
 Cylinder positions come from the reference IK of those poses.
 """
 
@@ -31,6 +34,7 @@ from stgen.config import PlatformConfig
 from stgen.reference.cycloidal import cycloidal_duration, cycloidal_pose, executed_duration
 from stgen.reference.kinematics import inverse_kinematics
 from stgen.reference.wave import fade_in_duration, wave_pose
+from stgen.scenarios import path_scenarios
 from stgen.scenarios.definitions import PointToPointMotion, Scenario, WaveMotion
 
 
@@ -61,6 +65,8 @@ def move_targets(scenario: Scenario, config: PlatformConfig | None = None) -> li
     motion = scenario.motion
     if isinstance(motion, PointToPointMotion):
         return [np.asarray(target, dtype=float) for target in motion.targets]
+    if path_scenarios.is_planned(motion):
+        return [path_scenarios.first_pose(motion, config)]
     return [wave_pose(motion.wave, 0.0, motion.centre_pose, fade_s=wave_fade_duration(scenario, config))]
 
 
@@ -92,7 +98,7 @@ def planned_moves(scenario: Scenario, config: PlatformConfig) -> list[PlannedMov
     limits = scenario_limits(scenario, config)
     hold = settle_scans(scenario, config)
     start = np.asarray(scenario.start_pose, dtype=float)
-    edge = 0
+    edge = lead_in_delay(scenario, config)
     moves = []
     for target in move_targets(scenario, config):
         duration = executed_duration(float(cycloidal_duration(target - start, limits)), period)
@@ -105,6 +111,20 @@ def planned_moves(scenario: Scenario, config: PlatformConfig) -> list[PlannedMov
     return moves
 
 
+def lead_in_delay(scenario: Scenario, config: PlatformConfig) -> int:
+    """Scans from the command's edge to the first move's edge: K - 1 after a planning pass, else 0."""
+    if path_scenarios.is_planned(scenario.motion):
+        return path_scenarios.planning_calls(scenario.motion, config) - 1
+    return 0
+
+
+def command_edges(scenario: Scenario, config: PlatformConfig) -> list[int]:
+    """Scans from the first command's edge to each command's edge (a path or playback: one command)."""
+    if path_scenarios.is_planned(scenario.motion):
+        return [0]
+    return [move.edge for move in planned_moves(scenario, config)]
+
+
 def motion_scans(scenario: Scenario, config: PlatformConfig) -> int:
     """Scans from the first command's edge to the end of the scenario (edge included)."""
     moves = planned_moves(scenario, config)
@@ -113,6 +133,8 @@ def motion_scans(scenario: Scenario, config: PlatformConfig) -> int:
     motion = scenario.motion
     if isinstance(motion, WaveMotion):
         return after_last + int(round(motion.wave_seconds / config.task.period_s))
+    if path_scenarios.is_planned(motion):
+        after_last += path_scenarios.run_calls(motion, config) + 1
     return after_last + settle_scans(scenario, config)
 
 
@@ -133,6 +155,12 @@ def expected_poses(scenario: Scenario, config: PlatformConfig, command_scan: int
         riding = wave_calls >= 0
         poses[riding] = wave_pose(motion.wave, wave_calls[riding].astype(float) * period, motion.centre_pose,
                                   fade_s=wave_fade_duration(scenario, config))
+    if path_scenarios.is_planned(motion):
+        # m: the motion's clock runs from the scan after the lead-in; past its last call the end pose is held.
+        run_calls = since_first - moves[0].edge - moves[0].calls - 1
+        running = run_calls >= 0
+        last = path_scenarios.run_calls(motion, config)
+        poses[running] = path_scenarios.motion_poses(motion, config, np.minimum(run_calls[running], last))
     return poses
 
 
