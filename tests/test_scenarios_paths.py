@@ -222,6 +222,11 @@ def test_stop_during_a_path_ramps_to_rest_within_the_limits():
             states.append(sim.state_name)
 
     scan(int(0.3 * motion_duration(motion, CONFIG) / PERIOD))  # well into the path, at speed
+    # A second SpPathStart in motion is refused (not ready); the path goes on.
+    sim.globals["SpPathStart"] = True
+    scan(1)
+    release_planned(sim)
+    assert sim.globals["SpRefusalID"] == sim.codes["SP_REFUSED_NOT_READY"] and states[-1] == "SP_STATE_PATH"
     sim.globals["SpStop"] = True
     scan(1)
     sim.globals["SpStop"] = False
@@ -238,3 +243,12 @@ def test_stop_during_a_path_ramps_to_rest_within_the_limits():
     assert np.abs(q[stop] - q[stop - 1]).max() > 1e-3
     ramp_end = len(states) - 1 - states[::-1].index("SP_STATE_STOP_RAMP")
     assert np.abs(q[ramp_end] - q[ramp_end - 1]).max() < 1e-4
+
+
+def test_controller_with_a_playback_table_keeps_the_nj_rules(tmp_path, sea_csv, capsys):
+    from stgen.cli import main
+
+    out = tmp_path / "iec"
+    assert main(["generate", "--target", "iec", "--playback", sea_csv, "--out", str(out)]) == 0
+    assert main(["check", "--dialect", "nj", str(out)]) == 0
+    assert "18 file(s), 0 error(s), 0 warning(s)" in capsys.readouterr().err
