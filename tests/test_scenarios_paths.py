@@ -95,6 +95,8 @@ def test_path_through_the_controller_matches_the_reference(scenario):
     slack = plan.extremes()["acceleration_max"].max() * PERIOD
     assert np.all(np.abs(velocity - planned) <= slack), (velocity, planned)
     assert np.all(planned <= CONFIG.actuator.max_velocity)
+    # Even the planning scans (200 samples each) stay below 80 % of the period by the cost model.
+    assert result.nj_time.max_ns <= 0.8 * result.nj_time.period_ns
 
 
 def test_playback_of_a_recorded_sea_state_matches_the_reference(sea_csv):
@@ -105,6 +107,7 @@ def test_playback_of_a_recorded_sea_state_matches_the_reference(sea_csv):
     # The whole recording was played: 12 s at 1 ms, calls t = 0 .. 12.000 s.
     playing = result.state == _states(result, "SP_STATE_PLAYBACK")[0]
     assert np.count_nonzero(playing) == 12_001
+    assert result.nj_time.max_ns <= 0.8 * result.nj_time.period_ns
 
 
 # --- refusals before motion ---------------------------------------------------------------------
