@@ -11,7 +11,7 @@ import pytest
 
 from stgen import cli
 from stgen.commands import demo
-from stgen.scenarios import definitions, path_scenarios, runner
+from stgen.scenarios import definitions, runner
 from stgen.scenarios.csv_trace import HEADER
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
@@ -26,12 +26,8 @@ def short_waves(monkeypatch):
 
 @pytest.fixture()
 def no_paths(monkeypatch):
-    """No path or playback scenario (one short run is enough); the sea-state CSV is still written."""
-    def sea_state_only(quick, scratch):
-        path_scenarios.write_sea_state_csv(scratch / demo.SEA_STATE_CSV, 1.0)
-        return []
-
-    monkeypatch.setattr(demo, "_path_scenarios", sea_state_only)
+    """No path or playback scenario (one short run is enough)."""
+    monkeypatch.setattr(demo, "_path_scenarios", lambda quick, scratch: [])
 
 
 def test_demo_writes_code_traces_figures_and_passes(tmp_path, short_waves, capsys):

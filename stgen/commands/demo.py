@@ -97,7 +97,9 @@ def run(args: argparse.Namespace) -> int:
                 return 1
             for result in results:
                 _stage_outputs(result, folder)
-            folder.stage_with(SEA_STATE_CSV, lambda temp: shutil.copyfile(Path(scratch) / SEA_STATE_CSV, temp))
+            sea_state = Path(scratch) / SEA_STATE_CSV
+            if sea_state.is_file():  # the recorded motion the playback played, beside its trace
+                folder.stage_with(SEA_STATE_CSV, lambda temp: shutil.copyfile(sea_state, temp))
             update = folder.commit()
     except OSError as error:
         print(f"stgen demo: error: cannot write {error.filename or out}: {error.strerror}", file=sys.stderr)
