@@ -113,13 +113,19 @@ def shortened_path(scenario: Scenario, fraction: float) -> Scenario:
                                title=f"{scenario.title} (quick: {fraction:g} of the curve)")
 
 
+#: PlanSamples of the quick paths (the planning pass is the costliest part of a short run).
+QUICK_PLAN_SAMPLES = 2001
+
+
 def quick_path(scenario: Scenario, fraction: float) -> Scenario:
-    """``fraction`` of the curve, starting at the path's first pose (no lead-in): for ``stgen demo --quick``."""
+    """``fraction`` of the curve, starting at the path's first pose (no lead-in), planned on
+    :data:`QUICK_PLAN_SAMPLES` points: for ``stgen demo --quick``."""
     short = shortened_path(scenario, fraction)
     if not isinstance(short.motion, PathMotion):
         return short
     start = tuple(float(v) for v in first_pose(short.motion, None))
-    return dataclasses.replace(short, start_pose=start)
+    return dataclasses.replace(short, start_pose=start,
+                               motion=dataclasses.replace(short.motion, plan_samples=QUICK_PLAN_SAMPLES))
 
 
 #: The recorded motion of the playback scenario: a JONSWAP sea state (stgen.scenarios.sea_state) at 10 Hz.
