@@ -86,7 +86,8 @@ def test_path_through_the_controller_matches_the_reference(scenario):
     assert np.abs(result.setpoint_pose[-1] - end).max() < 1e-9
     # Rates as planned: along the path the set-point's finite differences reach the planned leg
     # velocity extremes (reference plan at the task period) to within one period of acceleration.
-    plan = plan_path(motion.spec, CONFIG, plan_samples=motion.plan_samples)
+    plan = plan_path(motion.spec, dataclasses.replace(CONFIG, trajectory=scenario.limits),
+                     plan_samples=motion.plan_samples)
     running = result.state == _states(result, "SP_STATE_PATH")[0]
     rows = np.flatnonzero(running)
     q = result.commanded[rows[0] - 1:rows[-1] + 1]

@@ -26,6 +26,7 @@ Cylinder positions come from the reference IK of those poses.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -75,6 +76,11 @@ def scenario_limits(scenario: Scenario, config: PlatformConfig | None):
     if scenario.limits is not None:
         return scenario.limits
     return config.trajectory if config is not None else PlatformConfig.default().trajectory
+
+
+def commanded_config(scenario: Scenario, config: PlatformConfig) -> PlatformConfig:
+    """``config`` with the trajectory limits SP_Controller runs the scenario with."""
+    return dataclasses.replace(config, trajectory=scenario_limits(scenario, config))
 
 
 def wave_fade_duration(scenario: Scenario, config: PlatformConfig | None) -> float:
@@ -134,7 +140,7 @@ def motion_scans(scenario: Scenario, config: PlatformConfig) -> int:
     if isinstance(motion, WaveMotion):
         return after_last + int(round(motion.wave_seconds / config.task.period_s))
     if path_scenarios.is_planned(motion):
-        after_last += path_scenarios.run_calls(motion, config) + 1
+        after_last += path_scenarios.run_calls(motion, commanded_config(scenario, config)) + 1
     return after_last + settle_scans(scenario, config)
 
 
@@ -159,8 +165,9 @@ def expected_poses(scenario: Scenario, config: PlatformConfig, command_scan: int
         # m: the motion's clock runs from the scan after the lead-in; past its last call the end pose is held.
         run_calls = since_first - moves[0].edge - moves[0].calls - 1
         running = run_calls >= 0
-        last = path_scenarios.run_calls(motion, config)
-        poses[running] = path_scenarios.motion_poses(motion, config, np.minimum(run_calls[running], last))
+        planned = commanded_config(scenario, config)  # TRJ_Path plans with the limits written to SpLinear...
+        last = path_scenarios.run_calls(motion, planned)
+        poses[running] = path_scenarios.motion_poses(motion, planned, np.minimum(run_calls[running], last))
     return poses
 
 

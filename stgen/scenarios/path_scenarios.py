@@ -20,7 +20,7 @@ follows, and the reference poses of every scan:
 The four path scenarios use the curves of ``stgen plan``'s figures
 (:data:`stgen.reference.paths.STUDY_PATHS`) at roll = pitch = 35°
 (:data:`~stgen.reference.paths.STUDY_TILT`), centre (0, 0, 240) mm, blend law
-b = 0.1, the shortest duration: epitrochoid R = 60, r = 20, d = 30 mm;
+b = 0.1, the shortest duration (limits :data:`PATH_LIMITS`): epitrochoid R = 60, r = 20, d = 30 mm;
 epicycloid R = 60, r = 20 mm; hypocycloid R = 100, r = 25 mm (each closed,
 φ_end = 2π); Archimedean spiral a = 10 mm, b = 5 mm/rad, three turns.
 """
@@ -34,7 +34,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from stgen.config import PlatformConfig
+from stgen.config import PlatformConfig, TrajectoryConfig
 from stgen.reference.paths import PLAN_SAMPLES, STUDY_PATHS, STUDY_TILT, PathSpec, describe, plan_path, sample
 from stgen.reference.playback import PlaybackTable, evaluate, read_playback_csv
 from stgen.scenarios.definitions import STUDY_START_POSE, Scenario
@@ -80,9 +80,15 @@ def is_planned(motion) -> bool:
     return isinstance(motion, PlannedMotion)
 
 
+#: Limits of the path scenarios: the defaults, but 9 deg/s for alpha, beta, gamma (they only bind in the
+#: lead-in; TRJ_Path keeps the orientation fixed). 35 deg at the default 10 deg/s is 7,000 task periods
+#: exactly, a tie on Done that the last bit of the located pose decides; 70/9 s is off the grid.
+PATH_LIMITS = TrajectoryConfig(angular_velocity=9.0)
+
+
 def path_scenario(spec: PathSpec, name: str, plan_samples: int = PLAN_SAMPLES) -> Scenario:
     return Scenario(name=name, title=f"Path: {describe(spec)}", start_pose=STUDY_START_POSE,
-                    motion=PathMotion(spec, plan_samples), settle_seconds=END_HOLD_SECONDS)
+                    motion=PathMotion(spec, plan_samples), limits=PATH_LIMITS, settle_seconds=END_HOLD_SECONDS)
 
 
 #: Start pose of the playback scenario: the study's, 0.37 mm higher. A lead-in of a whole number of task
