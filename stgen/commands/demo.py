@@ -76,7 +76,7 @@ def run(args: argparse.Namespace) -> int:
 
     console = Console()
     if not console.is_terminal:  # a log file or a pipe: room for the whole table
-        console = Console(width=110)
+        console = Console(width=120)
     config = config_from_args(args, "demo")
     if config is None:
         return 1
