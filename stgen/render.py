@@ -66,6 +66,8 @@ POU_TEMPLATES = KINEMATICS_TEMPLATES + CONTROLLER_TEMPLATES
 
 #: Rendered only with a playback table (``stgen generate --playback FILE.csv``).
 PLAYBACK_TEMPLATES = ("trajectory/TRJ_PlaybackTable", "trajectory/TRJ_Playback")
+#: The first template rendered after the playback's (SP_Controller plays the table).
+PLAYBACK_CALLER = "controller/SP_ControllerConstants"
 
 
 #: The test benches (``stgen generate --tests``): their results, then one
@@ -428,7 +430,9 @@ def render_program(config: PlatformConfig | None = None, options: RenderOptions 
     env = make_environment()
     context = template_context(config, options)
     if options.playback is not None:
-        templates += PLAYBACK_TEMPLATES
+        # Before the controller, which plays the table (dependency order).
+        at = templates.index(PLAYBACK_CALLER) if PLAYBACK_CALLER in templates else len(templates)
+        templates = templates[:at] + PLAYBACK_TEMPLATES + templates[at:]
     if options.tests:
         from stgen.benches import bench_vectors
 

@@ -21,7 +21,8 @@ import numpy as np
 
 from stgen.config import PlatformConfig
 from stgen.scenarios.definitions import PointToPointMotion, Scenario, WaveMotion
-from stgen.scenarios.expected import expected_cylinders, expected_poses, motion_scans, planned_moves
+from stgen.scenarios import path_scenarios
+from stgen.scenarios.expected import command_edges, expected_cylinders, expected_poses, motion_scans
 from stgen.scenarios.setpoint_limits import SetpointLimitCheck, check_setpoint_limits
 from stgen.scenarios.simulation import ControllerSimulation
 
@@ -186,6 +187,8 @@ def command_scenario(sim: ControllerSimulation, scenario: Scenario, move: int = 
         command_move(sim, motion.targets[move])
     elif isinstance(motion, WaveMotion):
         command_wave(sim, motion)
+    elif path_scenarios.is_planned(motion):
+        path_scenarios.command_planned(sim, motion)
     else:  # pragma: no cover - a new motion kind without a command
         raise TypeError(f"unknown motion {motion!r}")
 
@@ -194,6 +197,7 @@ def release_commands(sim: ControllerSimulation) -> None:
     """SpMoveStart and SpWaveStart back to FALSE, so the next command is a new edge."""
     sim.globals["SpMoveStart"] = False
     sim.globals["SpWaveStart"] = False
+    path_scenarios.release_planned(sim)
 
 
 def apply_limits(sim: ControllerSimulation, scenario: Scenario) -> None:
@@ -231,7 +235,7 @@ def run_scenario(
     ``servo_lag_s``: the axes' servo lag (0: ideal axes, the actual position is the command).
     """
     config = config if config is not None else PlatformConfig.default()
-    sim = ControllerSimulation(config, scenario.start_pose, servo_lag_s)
+    sim = ControllerSimulation(config, scenario.start_pose, servo_lag_s, path_scenarios.playback_table(scenario))
     after_command = motion_scans(scenario, config)
     recorder = _Recorder(sim, POWER_ON_SCANS + after_command)
     sim.plc.controller.add_observer(recorder)
@@ -242,8 +246,8 @@ def run_scenario(
     first = sim.scan_count + 1
     total = first - 1 + after_command
     command_scans, durations = [], []
-    for index, move in enumerate(planned_moves(scenario, config)):
-        edge = first + move.edge
+    for index, offset in enumerate(command_edges(scenario, config)):
+        edge = first + offset
         _run_to(sim, edge - 1, total, progress)
         command_scenario(sim, scenario, index)
         sim.run(1)

@@ -75,18 +75,20 @@ class ControllerSimulation:
 
     ``globals`` reads and writes the command/status variables by name
     (``sim.globals["SpPowerOn"] = True``); ``axes`` are the simulated axes
-    (``st_runtime.motion.axis.Axis``), in cylinder order.
+    (``st_runtime.motion.axis.Axis``), in cylinder order. ``playback``: a
+    :class:`~stgen.reference.playback.PlaybackTable` the controller is rendered with (SpPlaybackStart).
     """
 
     def __init__(
         self, config: PlatformConfig | None = None, start_pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), servo_lag_s: float = 0.0,
         base_pose=None,
+        playback=None,
     ):
         from st_runtime.motion.motion_task import MotionTask
 
         self.config = config if config is not None else PlatformConfig.default()
         self.motion = MotionTask.from_tables(axis_tables(self.config, start_pose, servo_lag_s, base_pose))
-        project = load_controller(self.config)
+        project = load_controller(self.config, playback)
         period_ns = round(self.config.task.period_s * 1e9)
         self.plc = project.controller(period=period_ns)
         self.program = self.plc.add_program(CONTROLLER_PROGRAM)
