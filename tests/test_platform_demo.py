@@ -8,7 +8,7 @@ import csv
 import pytest
 
 from stgen import cli
-from stgen.commands import demo_platforms
+from stgen.commands import demo, demo_platforms
 from stgen.scenarios import definitions, platform_report, platforms
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
@@ -20,6 +20,7 @@ def two_short_platform_runs(monkeypatch):
     monkeypatch.setattr(platforms, "PLATFORM_SCENARIOS", tuple(
         platforms.platform_scenario(name) for name in ("moving_base_motion", "crank_surge")))
     monkeypatch.setattr(demo_platforms, "QUICK_STREAM_SECONDS", 0.3)
+    monkeypatch.setattr(demo, "_path_scenarios", lambda quick, scratch: [])  # tests/test_scenarios_paths.py
 
 
 def test_demo_runs_the_platform_scenarios(tmp_path, two_short_platform_runs, capsys):

@@ -199,3 +199,17 @@ def test_spstop_in_a_stream_ramps_to_rest_then_stops():
     assert sim.globals["SpFaultID"] == 0
     # Ramped to rest from 50 mm/s at the configured 500 mm/s^2: past the last streamed x = 2.45 mm.
     assert sim.globals["SpSetpointPose"][0] > 2.45
+
+
+@pytest.mark.parametrize("platform", ["moving", "crank"])
+@pytest.mark.parametrize("command", ["SpPathStart", "SpPlaybackStart"])
+def test_a_path_or_playback_on_a_variant_is_refused_and_nothing_moves(platform, command):
+    # TRJ_Path and TRJ_Playback plan with linear legs on a fixed base; a variant refuses them.
+    config = _moving() if platform == "moving" else _crank()
+    sim = _power_on(config, (0.0,) * 6)
+    before = sim.command_positions()
+    sim.globals[command] = True
+    sim.run(3)
+    assert sim.globals["SpRefusalID"] == sim.codes["SP_REFUSED_PLATFORM"] == 0x1322
+    sim.run(20)
+    assert sim.state_name == "SP_STATE_STANDBY" and np.array_equal(sim.command_positions(), before)

@@ -235,7 +235,7 @@ def run_scenario(
     ``servo_lag_s``: the axes' servo lag (0: ideal axes, the actual position is the command).
     """
     config = config if config is not None else PlatformConfig.default()
-    sim = ControllerSimulation(config, scenario.start_pose, servo_lag_s, path_scenarios.playback_table(scenario))
+    sim = ControllerSimulation(config, scenario.start_pose, servo_lag_s, playback=path_scenarios.playback_table(scenario))
     after_command = motion_scans(scenario, config)
     recorder = _Recorder(sim, POWER_ON_SCANS + after_command)
     sim.plc.controller.add_observer(recorder)
