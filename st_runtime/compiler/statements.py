@@ -479,11 +479,14 @@ class BodyCompiler(ExprCompiler):
         else:
             self.known_ranges.pop(key, None)
         fallback = False
-        if const_range and not early and self.opt.unroll and unroll.can_unroll(self, s.body, place, count, assigned, key):
+        returns = early and not _has_own_exit(s.body)       # leaves only by RETURN
+        if (const_range and (returns or not early) and self.opt.unroll
+                and unroll.can_unroll(self, s.body, place, count, assigned, key)):
             fallback = unroll.emit(self, s, key, range(self.constant_of(s.start), self.constant_of(s.end)
                                                         + (1 if step_value > 0 else -1), step_value),
                                    lambda: self._after_for(target, var_t, final, lo_r, hi_r, step_value,
-                                                           not straight, where))
+                                                           not early and not straight, where),
+                                   returns=early, where=where)
             if not fallback:
                 if saved is None:
                     self.known_ranges.pop(key, None)

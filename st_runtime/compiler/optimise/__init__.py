@@ -15,6 +15,10 @@ states bit for bit:
   before the loop, and a `+ - *` of such values, literals or earlier shared
   results is computed once and reused.  Operands keep their order and
   grouping (no reassociation), so every result is the same float.
+* `fuse` (fuse.py): in a CSE region's straight code, a store that no one
+  can see before the variable is set again is put into its one use, runs of
+  `D := D + x` become one expression (same operations, same order), and
+  temporaries share Python names (fewer than 256 locals).
 * `unguard` (unguard.py): no `try` around an assignment whose Python code
   cannot raise (a local set from locals and literals with `+ - *`).
 
@@ -38,6 +42,7 @@ class Optimisations:
     unroll: bool = True
     cse: bool = True
     unguard: bool = True
+    fuse: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
