@@ -201,3 +201,106 @@ def test_fk_solves_are_bit_identical_with_and_without_the_passes(monkeypatch, va
     assert np.array_equal(off.iterations, on.iterations)
     assert np.array_equal(off.calls, on.calls)
     assert np.array_equal(off.error_ids, on.error_ids)
+
+
+# A FOR whose body leaves only by RETURN (the LU elimination's shape): unrolled,
+# its inner loops get constant bounds; a zero pivot returns from inside a copy.
+ELIMINATE = """
+FUNCTION Eliminate : BOOL
+VAR_IN_OUT M : ARRAY[1..4, 1..4] OF LREAL; END_VAR
+VAR_OUTPUT Product : LREAL; END_VAR
+VAR K : INT; Row : INT; Col : INT; END_VAR
+Product := 1.0;
+FOR K := 1 TO 4 DO
+    IF M[K, K] = 0.0 THEN
+        Eliminate := FALSE;
+        RETURN;
+    END_IF;
+    FOR Row := K + 1 TO 4 DO
+        M[Row, K] := M[Row, K] / M[K, K];
+        FOR Col := K + 1 TO 4 DO
+            M[Row, Col] := M[Row, Col] - M[Row, K] * M[K, Col];
+        END_FOR;
+    END_FOR;
+    Product := Product * M[K, K];
+END_FOR;
+Eliminate := TRUE;
+END_FUNCTION
+PROGRAM Main
+VAR A : ARRAY[1..4, 1..4] OF LREAL := [4.0, 1.5, -2.0, 0.1, 2.0, 3.0, 1.0, 7.0,
+                                       2.0, 0.75, 5.0, 1.0, -1.0, 2.5, 3.5, 9.0];
+    S : ARRAY[1..4, 1..4] OF LREAL := [1.0, 2.0, 3.0, 4.0, 2.0, 4.0, 6.0, 8.0,
+                                       0.5, 1.0, 2.0, 3.0, 1.0, 1.0, 1.0, 1.0];
+    Ok : BOOL; Singular : BOOL; P : LREAL; Q : LREAL; Calls : INT; END_VAR
+Calls := Calls + 1;
+A[1, 1] := A[1, 1] + 0.125;
+Ok := Eliminate(M := A, Product => P);
+Singular := Eliminate(M := S, Product => Q);
+END_PROGRAM
+"""
+
+
+def test_a_loop_left_by_return_is_unrolled():
+    program = _text_program(ELIMINATE)
+    source = compile_program(program, optimise=ON).python_sources["ELIMINATE"]
+    assert "for v_K" not in source and "for v_ROW" not in source and "for v_COL" not in source
+    assert source.count("return ") >= 5          # one per unrolled copy, and the end
+    assert "for v_K" in compile_program(program, optimise=OFF).python_sources["ELIMINATE"]
+
+
+@pytest.mark.parametrize("budget_ns", [300, 1_000, 2_000, 3_000, 5_000, 8_000, 500_000])
+def test_a_loop_left_by_return_runs_and_faults_the_same(budget_ns):
+    off, on = run_both(_text_program(ELIMINATE), 3, budget_ns)
+    assert on == off
+
+
+def test_the_singular_matrix_returns_from_the_unrolled_copy():
+    """Hand-worked: S's second row is twice the first, so after K = 1 its pivot M[2, 2] is 0."""
+    program = _text_program(ELIMINATE)
+    compiled = compile_program(program, optimise=ON)
+    controller = Controller(compiled, time_limit_ns=500_000)
+    controller.add_program("Main")
+    controller.run(1)
+    main = controller.instances["Main"]
+    assert main.v_OK is True and main.v_SINGULAR is False
+    assert main.v_Q == 1.0                      # Product after K = 1 (M[1, 1] = 1.0), then RETURN
+    assert main.v_S[1 * 4 + 1] == 0.0           # M[2, 2] - 2 * M[1, 2] = 4 - 4
+
+
+def test_fuse_skips_only_stores_no_one_can_see():
+    from st_runtime.compiler.optimise import fuse
+
+    lines = ["if _t1:", "    v_P = ((_t2 * _t3) * _t4)", "    v_D = (v_D + v_P)",
+             "    v_P = ((_t2 * _t5) * _t6)", "    v_D = (v_D - v_P)"]
+    fuse.substitute(lines, 1)
+    assert lines[1:] == ["    v_D = (v_D + ((_t2 * _t3) * _t4))",      # set again below: skipped
+                         "    v_P = ((_t2 * _t5) * _t6)", "    v_D = (v_D - v_P)"]   # the last one stays
+    fuse.merge(lines, 1)
+    assert lines[1] == "    v_D = (v_D + ((_t2 * _t3) * _t4))"       # a store of v_P between: no merge
+    checked = ["    v_P = (_t2 * _t3)", "    v_D = (v_D + v_P)",
+               "    if _ctx.budget < _spent: _overrun(('X', 'x.st', 3, 1))", "    v_P = (_t4 * _t5)"]
+    before = list(checked)
+    fuse.substitute(checked, 0)
+    assert checked == before            # an overrun check sees v_P: the store stays
+    reading = ["    v_P = (_t2 * _t3)", "    v_D = (v_D + v_P)", "    v_Q = (v_P * 2.0)", "    v_P = _t4"]
+    fuse.substitute(reading, 0)
+    assert reading[0] == "    v_P = (_t2 * _t3)"          # read again before it is set
+    division = ["    v_P = (_t2 / _t3)", "    v_D = (v_D + v_P)", "    v_P = _t4"]
+    fuse.substitute(division, 0)
+    assert division[0] == "    v_P = (_t2 / _t3)"         # may raise: not pure
+
+
+def test_fuse_merges_in_order_and_renames_only_inside_straight_code():
+    from st_runtime.compiler.optimise import fuse
+
+    lines = ["    v_D = (v_D + _t1)", "    v_D = (v_D - (_t2 * _t3))", "    v_D = (v_D * v_D)"]
+    fuse.merge(lines, 0)
+    assert lines == ["    v_D = ((v_D + _t1) - (_t2 * _t3))", "    v_D = (v_D * v_D)"]   # reads D: stays
+    names = iter(["_t90", "_t91", "_t92"])
+    body = ["    _t5 = (_t1 * _t2)", "    v_A = (_t5 * _t3)", "    _t6 = (_t1 * _t4)", "    v_B = (_t6 * _t6)"]
+    fuse.rename(body, 0, lambda: next(names))
+    assert body == ["    _t90 = (_t1 * _t2)", "    v_A = (_t90 * _t3)", "    _t90 = (_t1 * _t4)",
+                    "    v_B = (_t90 * _t90)"]        # _t1.._t4 are read before they are set: kept
+    looped = ["    for v_I in _k1:", "        _t5 = (_t1 * v_I)", "        v_A = _t5"]
+    fuse.rename(looped, 0, lambda: "_t99")
+    assert looped[1] == "        _t5 = (_t1 * v_I)"

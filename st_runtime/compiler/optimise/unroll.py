@@ -27,7 +27,7 @@ from . import UNROLL_CAP
 def can_unroll(compiler, body, place, count: int | None, assigned: set[str], key: str) -> bool:
     """Whether the FOR can be unrolled; takes its size from the POU's budget of
     `UNROLL_CAP` unrolled statements (nested unrolled loops multiply)."""
-    if count is None or count <= 0 or place.how != "local" or key in assigned:
+    if count is None or count < 0 or place.how != "local" or key in assigned:
         return False
     if any(isinstance(node, (ast.Exit, ast.Continue)) for node in walk(body)):
         return False
