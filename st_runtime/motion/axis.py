@@ -284,7 +284,13 @@ class Axis:
         if command is None:
             new_cmd = self._error_stop_position(dt) if self.state == AxisState.ERRORSTOP else old_cmd
         elif command.kind == "sync":
-            new_cmd = self._sync_position(command.target, old_cmd, dt)
+            target = command.target     # _sync_position's first case, inlined (every scan)
+            slack = self._step_slack
+            if -slack <= target - old_cmd <= slack and self._soft_min <= target <= self._soft_max:
+                self.vel_limit = False
+                new_cmd = target
+            else:
+                new_cmd = self._sync_position(target, old_cmd, dt)
         else:
             new_cmd = self._next_command_position(dt)
             if new_cmd != old_cmd:

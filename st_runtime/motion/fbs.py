@@ -72,6 +72,7 @@ class _ExecuteFB(_AxisFB):
     """
 
     FINAL_OUTPUTS = ("v_DONE", "v_COMMANDABORTED", "v_ERROR")
+    AFTER_CALL = False  # `_after_call` acts on a remembered command (MC_Stop)
     ACTIVE_OUTPUT = True  # the FB has an `Active` output
     ACTIVE_AT_START = True  # `Active` in the call of the rising edge (else one period later)
 
@@ -84,6 +85,11 @@ class _ExecuteFB(_AxisFB):
         execute = bool(self.v_EXECUTE)
         if not execute and not self.v_BUSY:
             self._clear_outputs()  # a held (or one-call) final output ends
+            if self._command is None or not self.AFTER_CALL:
+                # Idle (the call of most scans): nothing starts or runs, `_after_call`
+                # has nothing to do, so the axis need not be looked up.
+                self._previous_execute = False
+                return
         axis = self._axis(ctx)
         if execute and not self._previous_execute:
             self._clear_outputs()
@@ -186,9 +192,10 @@ class MC_Power(_AxisFB):
             self.v_ERRORID = int(ErrorID.AXIS_NOT_ASSIGNED) if self.v_ENABLE else 0
             return
         enable = bool(self.v_ENABLE)
-        axis.request_power(enable)
-        self.v_STATUS = axis.powered
-        self.v_BUSY = enable != axis.powered
+        axis.power_requested = enable       # axis.request_power, inlined (every scan)
+        powered = axis.powered
+        self.v_STATUS = powered
+        self.v_BUSY = enable != powered
         self.v_ERROR = False
         self.v_ERRORID = 0
 
@@ -261,6 +268,8 @@ class MC_Stop(_ExecuteFB):
     def _begin(self, axis: Axis) -> MotionCommand:
         _check_buffer_mode(self.v_BUFFERMODE)
         return axis.start_stop(float(self.v_DECELERATION))
+
+    AFTER_CALL = True
 
     def _after_call(self, axis: Axis | None, execute: bool) -> None:
         if not execute and self._command is not None and axis is not None:
@@ -343,7 +352,10 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
             axis = self._axis(ctx)
             if axis is not None:
                 self._previous_execute = execute
-                self._poll(axis, command, False)
+                # _poll(axis, command, False), inlined (every scan of every axis)
+                self.v_ACTIVE = True
+                self.v_INPOSITION = abs(axis.act_pos - command.target) <= axis.config.in_position_range
+                command.target = float(self.v_POSITION)
                 return
         super().execute(ctx)
 

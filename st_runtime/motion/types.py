@@ -193,8 +193,12 @@ class AxisRefWriter:
         cmd.v_ACCDEC = axis.cmd_accdec
         act.v_POS = axis.act_pos
         act.v_VEL = axis.act_vel
-        shown = (axis.state, axis.homed, axis.fault_code, axis.observation_code, axis.vel_limit,
-                 axis.in_pos_waiting, axis.idle, axis.powered, (velocity > 0) - (velocity < 0))
+        command = axis.command      # axis.idle, inlined (twice a scan for every axis)
+        state, waiting = axis.state, axis.in_pos_waiting
+        idle = not ((command is not None and not command.done and not command.reached) or waiting
+                    or (state == AxisState.ERRORSTOP and velocity != 0.0))
+        shown = (state, axis.homed, axis.fault_code, axis.observation_code, axis.vel_limit,
+                 waiting, idle, axis.powered, (velocity > 0) - (velocity < 0))
         if shown != self._shown:
             self._shown = shown
             self._write_flags(axis, shown[-1])
