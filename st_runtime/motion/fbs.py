@@ -27,6 +27,8 @@ model are accepted and ignored: `Jerk` (profiles are trapezoidal) and
 
 from __future__ import annotations
 
+from operator import attrgetter
+
 from ..native import NativeFB, fb_declaration, native_fb
 from . import types as _types  # noqa: F401  (registers AXIS_REF before the FBs)
 from .axis import Axis, MotionAborted, MotionCommand, MotionRefused
@@ -136,8 +138,14 @@ class _ExecuteFB(_AxisFB):
         self._end("v_ERROR")
         self.v_ERRORID = int(code)
 
+    def __init_subclass__(cls, **kwargs) -> None:
+        super().__init_subclass__(**kwargs)
+        cls._final_values = attrgetter(*cls.FINAL_OUTPUTS, "v_ERRORID")
+
     def _clear_outputs(self) -> None:
         # Called every scan an idle FB is called: write only what is set (same state, fewer stores).
+        if not any(self._final_values(self)):
+            return
         for output in self.FINAL_OUTPUTS:
             if getattr(self, output):
                 setattr(self, output, False)
