@@ -174,7 +174,7 @@ def test_unguard_keeps_the_handler_where_python_can_raise():
 
 def test_switches_parse():
     assert Optimisations.only("fold") == Optimisations(fold=True, unroll=False, cse=False, unguard=False,
-                                                       fuse=False)
+                                                       fuse=False, gather=False)
     with pytest.raises(ValueError):
         Optimisations.only("fast")
 
@@ -304,3 +304,41 @@ def test_fuse_merges_in_order_and_renames_only_inside_straight_code():
     looped = ["    for v_I in _k1:", "        _t5 = (_t1 * v_I)", "        v_A = _t5"]
     fuse.rename(looped, 0, lambda: "_t99")
     assert looped[1] == "        _t5 = (_t1 * v_I)"
+
+
+def test_gather_reads_the_same_attributes_in_the_same_order():
+    from operator import attrgetter
+
+    from st_runtime.compiler.optimise import gather
+
+    bound = {}
+
+    def register(value):
+        bound[f"_k{len(bound)}"] = value
+        return f"_k{len(bound) - 1}"
+
+    lines = ["v_A = self.v_A", "v_B = self.v_B", "v_C = self.v_C", "v_D = self.v_D",
+             "v_G1 = _G.v_G1", "v_G2 = _G.v_G2",              # a short run: as it was
+             "v_T = [0]", "v_E = self.v_E"]
+    out = gather.prologue(lines, register)
+    assert out == ["v_A, v_B, v_C, v_D = _k0(self)", "v_G1 = _G.v_G1", "v_G2 = _G.v_G2",
+                   "v_T = [0]", "v_E = self.v_E"]
+    assert isinstance(bound["_k0"], attrgetter)
+
+    class Owner:
+        v_A, v_B, v_C, v_D = 1, 2.5, [3], "x"
+
+    assert bound["_k0"](Owner()) == (1, 2.5, [3], "x")
+    program = _text_program(GATHERED)
+    source = compile_program(program, optimise=ON).python_sources["MAIN"]
+    assert source.splitlines()[1].startswith("    v_A, v_B, v_C, v_D, v_I = _k")    # the prologue: one call
+    off, on = run_both(program, 3)
+    assert on == off
+
+
+GATHERED = """
+PROGRAM Main
+VAR A, B, C, D : ARRAY[1..3] OF LREAL := [1.5, 2.5, 3.5]; I : INT; END_VAR
+FOR I := 1 TO 3 DO A[I] := A[I] + B[I] * C[I] - D[I]; B[I] := A[I]; END_FOR;
+END_PROGRAM
+"""

@@ -39,7 +39,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import cse, fold, unguard, unroll
+from .optimise import cse, fold, gather, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -79,8 +79,11 @@ class BodyCompiler(ExprCompiler):
             params = ["self"] + params          # a METHOD: its instance first
         o.line(f"def {pyname}({', '.join(params)}):")
         o.indent()
-        for item in self.scope.prologue:
-            o.line(self._prologue_line(item))
+        prologue = [self._prologue_line(item) for item in self.scope.prologue]
+        if self.opt.gather:
+            prologue = gather.prologue(prologue, self.unit.register_constant)
+        for line in prologue:
+            o.line(line)
         charge = self.unit.charge_costs
         if charge:
             o.line("_spent = 0")        # this call's own charges (ps), flushed into _ctx.budget on exit

@@ -19,6 +19,8 @@ states bit for bit:
   can see before the variable is set again is put into its one use, runs of
   `D := D + x` become one expression (same operations, same order), and
   temporaries share Python names (fewer than 256 locals).
+* `gather` (gather.py): a body's prologue loads its variables with one
+  `operator.attrgetter` call per run instead of one load each.
 * `unguard` (unguard.py): no `try` around an assignment whose Python code
   cannot raise (a local set from locals and literals with `+ - *`).
 
@@ -43,6 +45,7 @@ class Optimisations:
     cse: bool = True
     unguard: bool = True
     fuse: bool = True
+    gather: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
