@@ -173,8 +173,8 @@ def test_unguard_keeps_the_handler_where_python_can_raise():
 
 
 def test_switches_parse():
-    assert Optimisations.only("fold") == Optimisations(fold=True, unroll=False, cse=False, unguard=False,
-                                                       fuse=False, gather=False)
+    assert Optimisations.only("fold") == replace(Optimisations.none(), fold=True)
+    assert Optimisations.only("fold").unroll is False and Optimisations().inline is True
     with pytest.raises(ValueError):
         Optimisations.only("fast")
 
@@ -342,3 +342,31 @@ VAR A, B, C, D : ARRAY[1..3] OF LREAL := [1.5, 2.5, 3.5]; I : INT; END_VAR
 FOR I := 1 TO 3 DO A[I] := A[I] + B[I] * C[I] - D[I]; B[I] := A[I]; END_FOR;
 END_PROGRAM
 """
+
+
+SPECIAL_ARGUMENTS = """
+PROGRAM Main
+VAR X : ARRAY[1..7] OF LREAL; R : ARRAY[1..28] OF LREAL; I : INT; Z : LREAL; END_VAR
+X[1] := 0.5; X[2] := -3.0; X[3] := 1.0 / Z; X[4] := -1.0 / Z; X[5] := Z / Z; X[6] := -0.0; X[7] := 1.0E300;
+FOR I := 1 TO 7 DO
+    R[I] := SIN(X[I]); R[I + 7] := COS(X[I]); R[I + 14] := TAN(X[I]); R[I + 21] := SQRT(X[I]);
+END_FOR;
+END_PROGRAM
+"""
+
+
+def test_inlined_math_functions_match_the_library_on_special_arguments():
+    program = _text_program(SPECIAL_ARGUMENTS)
+    assert "_m_sin(" in compile_program(program, optimise=ON).python_sources["MAIN"]
+    off, on = run_both(program, 1)
+    assert on == off
+    compiled = compile_program(program, optimise=ON)
+    controller = Controller(compiled, time_limit_ns=500_000)
+    controller.add_program("Main")
+    controller.run(1)
+    r = controller.instances["Main"].v_R
+    # IEEE 754 / OMRON: SIN, COS, TAN of +-inf and NaN are NaN; SQRT below zero is NaN;
+    # SQRT(-0.0) = -0.0, SQRT(+inf) = +inf.
+    assert all(math.isnan(r[i]) for i in (2, 3, 4, 9, 10, 11, 16, 17, 18, 22, 24, 25))
+    assert r[21] == math.sqrt(0.5) and r[0] == math.sin(0.5) and r[7 + 6] == math.cos(1.0e300)
+    assert math.copysign(1.0, r[26]) == -1.0 and r[26] == 0.0 and r[23] == math.inf

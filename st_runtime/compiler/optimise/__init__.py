@@ -21,6 +21,9 @@ states bit for bit:
   temporaries share Python names (fewer than 256 locals).
 * `gather` (gather.py): a body's prologue loads its variables with one
   `operator.attrgetter` call per run instead of one load each.
+* `inline` (calls.py, `_GUARDED`): SIN, COS, TAN and SQRT call Python's
+  math function directly where the library's wrapper would only call it
+  (a finite argument; SQRT: not below zero), the wrapper otherwise.
 * `unguard` (unguard.py): no `try` around an assignment whose Python code
   cannot raise (a local set from locals and literals with `+ - *`).
 
@@ -46,6 +49,7 @@ class Optimisations:
     unguard: bool = True
     fuse: bool = True
     gather: bool = True
+    inline: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
