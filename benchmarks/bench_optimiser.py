@@ -10,11 +10,14 @@ ratios measured side by side mean much):
 1. One Newton-Raphson iteration of SP_ForwardKinematics per determinant
    variant (bench_fk.py's method: N seeded reachable poses solved in one
    scan, time / iterations, best of R, process CPU time), against the
-   NJ501's 49.5 us per iteration (SPEC 3; a reference line, not a test).
+   NJ501's 49.5 us per iteration (docs/mathematics.md section 3; a reference
+   line, not a test).
 2. The whole controller on the random wave (bench_wave_realtime.py's
    run): real-time factor, best of R.
 3. Load time (parse + check + compile) of generated/iec, best of R.
-4. A differential check: `--fk-check` seeded FK solves (default 10,000)
+4. With --opcodes: the bytecode instructions one FK iteration and one
+   controller scan execute (sys.settrace), a count the load does not change.
+5. A differential check: `--fk-check` seeded FK solves (default 10,000)
    with both builds; poses, iteration counts and flags must be equal bit for
    bit (the suite runs 1,000: tests/test_optimiser_equivalence.py).
 
@@ -99,6 +102,55 @@ def controller_factor(seconds: float, rounds: int) -> tuple[dict, dict]:
     return factors, cpu_factors
 
 
+def count_opcodes(run) -> int:
+    """Bytecode instructions executed by `run()` (sys.settrace with opcode events): a count that
+    does not depend on the machine's load, to read beside the times."""
+    count = 0
+
+    def local(frame, event, arg):
+        nonlocal count
+        if event == "opcode":
+            count += 1
+        return local
+
+    def tracer(frame, event, arg):
+        frame.f_trace_opcodes = True
+        return local
+
+    sys.settrace(tracer)
+    try:
+        run()
+    finally:
+        sys.settrace(None)
+    return count
+
+
+def opcodes_per_iteration(variant, positions, start, solver) -> dict:
+    counts = {}
+    for name in BUILDS:
+        with build(name):
+            runtime = load_kinematics(bench_fk.CONFIG, RenderOptions(variant), capacity=len(positions))
+        runtime.forward_kinematics(positions, start, solver)            # warm
+        result = {}
+        ops = count_opcodes(lambda: result.setdefault("fk", runtime.forward_kinematics(positions, start, solver)))
+        counts[name] = ops / int(result["fk"].iterations.sum())
+    return counts
+
+
+def opcodes_per_scan(scans: int = 200) -> dict:
+    config = PlatformConfig.default()
+    scenario = RANDOM_WAVE.with_wave_seconds(5.0)
+    counts = {}
+    for name in BUILDS:
+        with build(name):
+            sim = ControllerSimulation(config, scenario.start_pose)
+        sim.power_on()
+        command_scenario(sim, scenario)
+        sim.run(2500)                     # into the wave
+        counts[name] = count_opcodes(lambda: sim.run(scans)) / scans
+    return counts
+
+
 def load_average() -> str:
     """The 1-minute load average (7 agents share 2 cores: absolute times are inflated)."""
     try:
@@ -146,6 +198,8 @@ def main() -> int:
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--seconds", type=float, default=20.0, help="seconds of random wave (default 20)")
     parser.add_argument("--fk-check", type=int, default=10_000)
+    parser.add_argument("--opcodes", action="store_true",
+                        help="also count the bytecode instructions per FK iteration and per controller scan")
     args = parser.parse_args()
 
     config = PlatformConfig.default()
@@ -173,6 +227,14 @@ def main() -> int:
     print(f"\nLoad (parse + check + compile) of generated/iec, best of {args.rounds}")
     print(f"  passes off {load['none']:.3f} s, passes on {load['all']:.3f} s, ratio {load['all'] / load['none']:.2f}x"
           f"   ({load_average()})")
+
+    if args.opcodes:
+        print("\nBytecode instructions executed (independent of the load), passes off / on")
+        for variant in ("table", "lu"):
+            c = opcodes_per_iteration(variant, positions[:20], start, solver)
+            print(f"  FK iteration, {variant:<9} {c['none']:>9,.0f} / {c['all']:>9,.0f}   ratio {c['none'] / c['all']:.2f}x")
+        c = opcodes_per_scan()
+        print(f"  controller scan          {c['none']:>9,.0f} / {c['all']:>9,.0f}   ratio {c['none'] / c['all']:.2f}x")
 
     if args.fk_check:
         differing = fk_differential(args.fk_check)
