@@ -86,7 +86,8 @@ class _ExecuteFB(_AxisFB):
     def execute(self, ctx) -> None:
         execute = bool(self.v_EXECUTE)
         if not execute and not self.v_BUSY:
-            self._clear_outputs()  # a held (or one-call) final output ends
+            if any(self._final_values(self)):
+                self._clear_outputs()  # a held (or one-call) final output ends
             if self._command is None or not self.AFTER_CALL:
                 # Idle (the call of most scans): nothing starts or runs, `_after_call`
                 # has nothing to do, so the axis need not be looked up.
@@ -193,7 +194,12 @@ class MC_Power(_AxisFB):
         outputs="Status : BOOL; Busy : BOOL; Error : BOOL; ErrorID : WORD;")
 
     def execute(self, ctx) -> None:
-        axis = self._axis(ctx)
+        bound, ref = self._bound, self.v_AXIS       # _axis(ctx), its cached case inlined
+        if bound is not None and bound[0] is ref and ref.v_CFG.v_AXENABLE \
+                and ref.v_CFG.v_AXNO == bound[1].axis_no:
+            axis = bound[1]
+        else:
+            axis = self._axis(ctx)
         if axis is None:
             self.v_STATUS = self.v_BUSY = False
             self.v_ERROR = bool(self.v_ENABLE)
@@ -357,7 +363,12 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
         execute = bool(self.v_EXECUTE)
         if (self.v_BUSY and command is not None and not command.aborted
                 and (self._previous_execute or not execute)):
-            axis = self._axis(ctx)
+            bound, ref = self._bound, self.v_AXIS   # _axis(ctx), its cached case inlined
+            if bound is not None and bound[0] is ref and ref.v_CFG.v_AXENABLE \
+                    and ref.v_CFG.v_AXNO == bound[1].axis_no:
+                axis = bound[1]
+            else:
+                axis = self._axis(ctx)
             if axis is not None:
                 self._previous_execute = execute
                 # _poll(axis, command, False), inlined (every scan of every axis)
