@@ -194,12 +194,7 @@ class MC_Power(_AxisFB):
         outputs="Status : BOOL; Busy : BOOL; Error : BOOL; ErrorID : WORD;")
 
     def execute(self, ctx) -> None:
-        bound, ref = self._bound, self.v_AXIS       # _axis(ctx), its cached case inlined
-        if bound is not None and bound[0] is ref and ref.v_CFG.v_AXENABLE \
-                and ref.v_CFG.v_AXNO == bound[1].axis_no:
-            axis = bound[1]
-        else:
-            axis = self._axis(ctx)
+        axis = self._axis(ctx)
         if axis is None:
             self.v_STATUS = self.v_BUSY = False
             self.v_ERROR = bool(self.v_ENABLE)
