@@ -45,22 +45,28 @@ def resolve_axis(ref, ctx) -> Axis | None:
     return motion.axis_by_number(ref.v_CFG.v_AXNO)
 
 
+_UNBOUND = object()  # `_AxisFB._bound_ref` while no AXIS_REF value is resolved
+
+
 class _AxisFB(NativeFB):
     """A native FB with an `Axis` in-out; remembers which axis it resolved."""
 
     def __init__(self) -> None:
         super().__init__()
-        self._bound: tuple | None = None  # (AXIS_REF value, Axis) last resolved
+        # The AXIS_REF value last resolved, its axis and that axis's number (fixed per Axis).
+        self._bound_ref, self._bound_axis, self._bound_no = _UNBOUND, None, -1
 
     def _axis(self, ctx) -> Axis | None:
         ref = self.v_AXIS
-        bound = self._bound
-        if bound is not None and bound[0] is ref:
+        if ref is self._bound_ref:
             cfg = ref.v_CFG
-            if cfg.v_AXENABLE and cfg.v_AXNO == bound[1].axis_no:
-                return bound[1]
+            if cfg.v_AXENABLE and cfg.v_AXNO == self._bound_no:
+                return self._bound_axis
         axis = resolve_axis(ref, ctx)
-        self._bound = (ref, axis) if axis is not None else None
+        if axis is None:
+            self._bound_ref, self._bound_axis, self._bound_no = _UNBOUND, None, -1
+        else:
+            self._bound_ref, self._bound_axis, self._bound_no = ref, axis, axis.axis_no
         return axis
 
 
@@ -84,15 +90,15 @@ class _ExecuteFB(_AxisFB):
         self._command: MotionCommand | None = None
 
     def execute(self, ctx) -> None:
-        execute = bool(self.v_EXECUTE)
-        if not execute and not self.v_BUSY:
+        if not self.v_EXECUTE and not self.v_BUSY:
             if any(self._final_values(self)):
                 self._clear_outputs()  # a held (or one-call) final output ends
-            if self._command is None or not self.AFTER_CALL:
+            if not self.AFTER_CALL or self._command is None:
                 # Idle (the call of most scans): nothing starts or runs, `_after_call`
                 # has nothing to do, so the axis need not be looked up.
                 self._previous_execute = False
                 return
+        execute = bool(self.v_EXECUTE)
         axis = self._axis(ctx)
         if execute and not self._previous_execute:
             self._clear_outputs()
@@ -358,10 +364,10 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
         execute = bool(self.v_EXECUTE)
         if (self.v_BUSY and command is not None and not command.aborted
                 and (self._previous_execute or not execute)):
-            bound, ref = self._bound, self.v_AXIS   # _axis(ctx), its cached case inlined
-            if bound is not None and bound[0] is ref and ref.v_CFG.v_AXENABLE \
-                    and ref.v_CFG.v_AXNO == bound[1].axis_no:
-                axis = bound[1]
+            ref = self.v_AXIS   # _axis(ctx), its cached case inlined
+            cfg = ref.v_CFG if ref is self._bound_ref else None
+            if cfg is not None and cfg.v_AXENABLE and cfg.v_AXNO == self._bound_no:
+                axis = self._bound_axis
             else:
                 axis = self._axis(ctx)
             if axis is not None:
