@@ -63,6 +63,25 @@ def test_sync_position_is_the_command_of_the_same_period():
     assert axis.cmd_vel == pytest.approx(50.0)  # 0.05 mm in 1 ms
 
 
+def test_a_streamed_sync_on_an_ideal_axis_follows_the_hand_formulas_bit_for_bit():
+    # Each period: Cmd.Pos = Act.Pos = the target p_k; Cmd.Vel = (p_k - p_k-1) / dt;
+    # Act.Vel likewise; Cmd.AccDec = |v_k - v_k-1| / dt, + while |v| grows, - while it
+    # falls, 0 when v holds (W507 p.6-28).  Exact: the same operations give the same bits.
+    axis = powered_axis()
+    command = axis.start_sync()
+    previous_pos, previous_vel = 0.0, 0.0
+    for target in (0.01, 0.03, 0.05, 0.07, 0.06, 0.06, -0.02, -0.1, -0.15, -0.15):
+        command.target = target
+        axis.step(DT)
+        vel = (target - previous_pos) / DT
+        magnitude = abs(vel - previous_vel) / DT
+        accdec = 0.0 if vel == previous_vel else (magnitude if abs(vel) > abs(previous_vel) else -magnitude)
+        assert (axis.cmd_pos, axis.act_pos, axis.cmd_vel, axis.act_vel) == (target, target, vel, vel)
+        assert axis.cmd_accdec == accdec and not axis.vel_limit
+        assert axis.state == AxisState.DISCRETE and axis.fault_code == ErrorID.NONE
+        previous_pos, previous_vel = target, vel
+
+
 def test_step_at_velocity_limit_is_accepted_and_above_it_saturates():
     # Changed in issue 8: a step above the limit faulted the axis (invented
     # 16#6402); OMRON saturates at the maximum velocity and outputs the rest

@@ -247,6 +247,20 @@ def test_reset_fails_while_the_axis_decelerates_for_its_error():
     assert main["Reset.Done"] and plc.globals["Cyl1.Status.Standstill"]
 
 
+def test_details_idle_is_false_while_the_command_decelerates_for_an_error():
+    # As above: 16#6448 in scan 7 at 50 mm/s, then 10 mm/s less per period:
+    # Cmd.Vel 50, 40, 30, 20, 10, 0 in scans 7..12.  Details.Idle: "no command
+    # value is being produced" - FALSE while the error deceleration still moves
+    # the command (and before, under MC_SyncMoveAbsolute), TRUE once it stands.
+    plc, main, task = make_plc(LAGGING_RAMP, dict(AXIS, servo_lag=TAU, following_error_limit=0.2,
+                                                  error_deceleration=10_000.0))
+    rows = per_scan(plc, "Cyl1.Cmd.Vel", "Cyl1.Details.Idle", "Cyl1.Status.ErrorStop")
+    plc.run(13)
+    assert [r[0] for r in rows[6:12]] == pytest.approx([50.0, 40.0, 30.0, 20.0, 10.0, 0.0])
+    assert [r[1] for r in rows[1:13]] == [False] * 10 + [True, True]
+    assert [r[2] for r in rows[6:13]] == [True] * 7
+
+
 IN_POSITION_MOVE = """
 PROGRAM Main
 VAR

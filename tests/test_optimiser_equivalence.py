@@ -14,6 +14,7 @@ suite without the passes.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -116,7 +117,7 @@ def _text_program(text: str):
 def test_the_passes_fire_on_a_leibniz_table():
     """The table reads become literals, the loop unrolled, the products shared, no try left."""
     program = _text_program(LEIBNIZ)
-    source = compile_program(program, optimise=ON).python_sources["DET3"]
+    source = compile_program(program, optimise=replace(ON, fuse=False)).python_sources["DET3"]
     unrolled, fallback = source.split("for v_T")      # the copies, then the loop as before
     assert "v_P[" not in unrolled and "v_S[" not in unrolled and "v_P[" in fallback
     lines = source.splitlines()
@@ -172,7 +173,8 @@ def test_unguard_keeps_the_handler_where_python_can_raise():
 
 
 def test_switches_parse():
-    assert Optimisations.only("fold") == Optimisations(fold=True, unroll=False, cse=False, unguard=False)
+    assert Optimisations.only("fold") == replace(Optimisations.none(), fold=True)
+    assert Optimisations.only("fold").unroll is False and Optimisations().inline is True
     with pytest.raises(ValueError):
         Optimisations.only("fast")
 
@@ -199,3 +201,172 @@ def test_fk_solves_are_bit_identical_with_and_without_the_passes(monkeypatch, va
     assert np.array_equal(off.iterations, on.iterations)
     assert np.array_equal(off.calls, on.calls)
     assert np.array_equal(off.error_ids, on.error_ids)
+
+
+# A FOR whose body leaves only by RETURN (the LU elimination's shape): unrolled,
+# its inner loops get constant bounds; a zero pivot returns from inside a copy.
+ELIMINATE = """
+FUNCTION Eliminate : BOOL
+VAR_IN_OUT M : ARRAY[1..4, 1..4] OF LREAL; END_VAR
+VAR_OUTPUT Product : LREAL; END_VAR
+VAR K : INT; Row : INT; Col : INT; END_VAR
+Product := 1.0;
+FOR K := 1 TO 4 DO
+    IF M[K, K] = 0.0 THEN
+        Eliminate := FALSE;
+        RETURN;
+    END_IF;
+    FOR Row := K + 1 TO 4 DO
+        M[Row, K] := M[Row, K] / M[K, K];
+        FOR Col := K + 1 TO 4 DO
+            M[Row, Col] := M[Row, Col] - M[Row, K] * M[K, Col];
+        END_FOR;
+    END_FOR;
+    Product := Product * M[K, K];
+END_FOR;
+Eliminate := TRUE;
+END_FUNCTION
+PROGRAM Main
+VAR A : ARRAY[1..4, 1..4] OF LREAL := [4.0, 1.5, -2.0, 0.1, 2.0, 3.0, 1.0, 7.0,
+                                       2.0, 0.75, 5.0, 1.0, -1.0, 2.5, 3.5, 9.0];
+    S : ARRAY[1..4, 1..4] OF LREAL := [1.0, 2.0, 3.0, 4.0, 2.0, 4.0, 6.0, 8.0,
+                                       0.5, 1.0, 2.0, 3.0, 1.0, 1.0, 1.0, 1.0];
+    Ok : BOOL; Singular : BOOL; P : LREAL; Q : LREAL; Calls : INT; END_VAR
+Calls := Calls + 1;
+A[1, 1] := A[1, 1] + 0.125;
+Ok := Eliminate(M := A, Product => P);
+Singular := Eliminate(M := S, Product => Q);
+END_PROGRAM
+"""
+
+
+def test_a_loop_left_by_return_is_unrolled():
+    program = _text_program(ELIMINATE)
+    source = compile_program(program, optimise=ON).python_sources["ELIMINATE"]
+    assert "for v_K" not in source and "for v_ROW" not in source and "for v_COL" not in source
+    assert source.count("return ") >= 5          # one per unrolled copy, and the end
+    assert "for v_K" in compile_program(program, optimise=OFF).python_sources["ELIMINATE"]
+
+
+@pytest.mark.parametrize("budget_ns", [300, 1_000, 2_000, 3_000, 5_000, 8_000, 500_000])
+def test_a_loop_left_by_return_runs_and_faults_the_same(budget_ns):
+    off, on = run_both(_text_program(ELIMINATE), 3, budget_ns)
+    assert on == off
+
+
+def test_the_singular_matrix_returns_from_the_unrolled_copy():
+    """Hand-worked: S's second row is twice the first, so after K = 1 its pivot M[2, 2] is 0."""
+    program = _text_program(ELIMINATE)
+    compiled = compile_program(program, optimise=ON)
+    controller = Controller(compiled, time_limit_ns=500_000)
+    controller.add_program("Main")
+    controller.run(1)
+    main = controller.instances["Main"]
+    assert main.v_OK is True and main.v_SINGULAR is False
+    assert main.v_Q == 1.0                      # Product after K = 1 (M[1, 1] = 1.0), then RETURN
+    assert main.v_S[1 * 4 + 1] == 0.0           # M[2, 2] - 2 * M[1, 2] = 4 - 4
+
+
+def test_fuse_skips_only_stores_no_one_can_see():
+    from st_runtime.compiler.optimise import fuse
+
+    lines = ["if _t1:", "    v_P = ((_t2 * _t3) * _t4)", "    v_D = (v_D + v_P)",
+             "    v_P = ((_t2 * _t5) * _t6)", "    v_D = (v_D - v_P)"]
+    fuse.substitute(lines, 1)
+    assert lines[1:] == ["    v_D = (v_D + ((_t2 * _t3) * _t4))",      # set again below: skipped
+                         "    v_P = ((_t2 * _t5) * _t6)", "    v_D = (v_D - v_P)"]   # the last one stays
+    fuse.merge(lines, 1)
+    assert lines[1] == "    v_D = (v_D + ((_t2 * _t3) * _t4))"       # a store of v_P between: no merge
+    checked = ["    v_P = (_t2 * _t3)", "    v_D = (v_D + v_P)",
+               "    if _ctx.budget < _spent: _overrun(('X', 'x.st', 3, 1))", "    v_P = (_t4 * _t5)"]
+    before = list(checked)
+    fuse.substitute(checked, 0)
+    assert checked == before            # an overrun check sees v_P: the store stays
+    reading = ["    v_P = (_t2 * _t3)", "    v_D = (v_D + v_P)", "    v_Q = (v_P * 2.0)", "    v_P = _t4"]
+    fuse.substitute(reading, 0)
+    assert reading[0] == "    v_P = (_t2 * _t3)"          # read again before it is set
+    division = ["    v_P = (_t2 / _t3)", "    v_D = (v_D + v_P)", "    v_P = _t4"]
+    fuse.substitute(division, 0)
+    assert division[0] == "    v_P = (_t2 / _t3)"         # may raise: not pure
+
+
+def test_fuse_merges_in_order_and_renames_only_inside_straight_code():
+    from st_runtime.compiler.optimise import fuse
+
+    lines = ["    v_D = (v_D + _t1)", "    v_D = (v_D - (_t2 * _t3))", "    v_D = (v_D * v_D)"]
+    fuse.merge(lines, 0)
+    assert lines == ["    v_D = ((v_D + _t1) - (_t2 * _t3))", "    v_D = (v_D * v_D)"]   # reads D: stays
+    names = iter(["_t90", "_t91", "_t92"])
+    body = ["    _t5 = (_t1 * _t2)", "    v_A = (_t5 * _t3)", "    _t6 = (_t1 * _t4)", "    v_B = (_t6 * _t6)"]
+    fuse.rename(body, 0, lambda: next(names))
+    assert body == ["    _t90 = (_t1 * _t2)", "    v_A = (_t90 * _t3)", "    _t90 = (_t1 * _t4)",
+                    "    v_B = (_t90 * _t90)"]        # _t1.._t4 are read before they are set: kept
+    looped = ["    for v_I in _k1:", "        _t5 = (_t1 * v_I)", "        v_A = _t5"]
+    fuse.rename(looped, 0, lambda: "_t99")
+    assert looped[1] == "        _t5 = (_t1 * v_I)"
+
+
+def test_gather_reads_the_same_attributes_in_the_same_order():
+    from operator import attrgetter
+
+    from st_runtime.compiler.optimise import gather
+
+    bound = {}
+
+    def register(value):
+        bound[f"_k{len(bound)}"] = value
+        return f"_k{len(bound) - 1}"
+
+    lines = ["v_A = self.v_A", "v_B = self.v_B", "v_C = self.v_C", "v_D = self.v_D",
+             "v_G1 = _G.v_G1", "v_G2 = _G.v_G2",              # a short run: as it was
+             "v_T = [0]", "v_E = self.v_E"]
+    out = gather.prologue(lines, register)
+    assert out == ["v_A, v_B, v_C, v_D = _k0(self)", "v_G1 = _G.v_G1", "v_G2 = _G.v_G2",
+                   "v_T = [0]", "v_E = self.v_E"]
+    assert isinstance(bound["_k0"], attrgetter)
+
+    class Owner:
+        v_A, v_B, v_C, v_D = 1, 2.5, [3], "x"
+
+    assert bound["_k0"](Owner()) == (1, 2.5, [3], "x")
+    program = _text_program(GATHERED)
+    source = compile_program(program, optimise=ON).python_sources["MAIN"]
+    assert source.splitlines()[1].startswith("    v_A, v_B, v_C, v_D, v_I = _k")    # the prologue: one call
+    off, on = run_both(program, 3)
+    assert on == off
+
+
+GATHERED = """
+PROGRAM Main
+VAR A, B, C, D : ARRAY[1..3] OF LREAL := [1.5, 2.5, 3.5]; I : INT; END_VAR
+FOR I := 1 TO 3 DO A[I] := A[I] + B[I] * C[I] - D[I]; B[I] := A[I]; END_FOR;
+END_PROGRAM
+"""
+
+
+SPECIAL_ARGUMENTS = """
+PROGRAM Main
+VAR X : ARRAY[1..7] OF LREAL; R : ARRAY[1..28] OF LREAL; I : INT; Z : LREAL; END_VAR
+X[1] := 0.5; X[2] := -3.0; X[3] := 1.0 / Z; X[4] := -1.0 / Z; X[5] := Z / Z; X[6] := -0.0; X[7] := 1.0E300;
+FOR I := 1 TO 7 DO
+    R[I] := SIN(X[I]); R[I + 7] := COS(X[I]); R[I + 14] := TAN(X[I]); R[I + 21] := SQRT(X[I]);
+END_FOR;
+END_PROGRAM
+"""
+
+
+def test_inlined_math_functions_match_the_library_on_special_arguments():
+    program = _text_program(SPECIAL_ARGUMENTS)
+    assert "_m_sin(" in compile_program(program, optimise=ON).python_sources["MAIN"]
+    off, on = run_both(program, 1)
+    assert on == off
+    compiled = compile_program(program, optimise=ON)
+    controller = Controller(compiled, time_limit_ns=500_000)
+    controller.add_program("Main")
+    controller.run(1)
+    r = controller.instances["Main"].v_R
+    # IEEE 754 / OMRON: SIN, COS, TAN of +-inf and NaN are NaN; SQRT below zero is NaN;
+    # SQRT(-0.0) = -0.0, SQRT(+inf) = +inf.
+    assert all(math.isnan(r[i]) for i in (2, 3, 4, 9, 10, 11, 16, 17, 18, 22, 24, 25))
+    assert r[21] == math.sqrt(0.5) and r[0] == math.sin(0.5) and r[7 + 6] == math.cos(1.0e300)
+    assert math.copysign(1.0, r[26]) == -1.0 and r[26] == 0.0 and r[23] == math.inf

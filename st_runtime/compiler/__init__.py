@@ -94,7 +94,8 @@ class CompileUnit:
             "_subrange": support.subrange, "_method": support.bound_method, "_deref": support.deref,
             "_ArrayView": support.ArrayView, "_setbit": support.set_bit, "_AttrRef": AttrRef, "_ItemRef": ItemRef,
             "_setattr": setattr, "_assign_list": assign_list, "_FAULTS": _FAULTS,
-            "_INF": math.inf, "_NAN": math.nan,
+            "_INF": math.inf, "_NAN": math.nan, "_NINF": -math.inf,
+            "_m_sin": math.sin, "_m_cos": math.cos, "_m_tan": math.tan, "_m_sqrt": math.sqrt,
         }
         self.makers = 0
         self.guard_statements = True

@@ -25,6 +25,17 @@ from .pysrc import pyliteral, safe_name, pyident
 # Standard functions that map to a Python builtin or to their argument.
 _INLINE = {"ABS": "abs"}
 
+# Optimisations.inline: the math function itself where the library's wrapper
+# (stdlib/functions.py) would only call it, with the wrapper kept for the rest:
+# SIN/COS/TAN raise ValueError only for an infinite argument (the wrapper gives
+# NaN), SQRT returns NaN below zero.  `{x}` is the argument, evaluated once.
+_GUARDED = {
+    "SIN": ("_m_sin", "_NINF < {x} < _INF"),
+    "COS": ("_m_cos", "_NINF < {x} < _INF"),
+    "TAN": ("_m_tan", "_NINF < {x} < _INF"),
+    "SQRT": ("_m_sqrt", "{x} >= 0.0"),
+}
+
 
 class Calls:
     def __init__(self, unit):
@@ -307,6 +318,10 @@ class Calls:
             t = elementary(ec.ty(ordered[0].value)) or generic
             codes.append(pyliteral(t.bits if isinstance(t, ElementaryType) else 64))
         fn = self.unit.bind_function(name, call.pos)
+        if name in _GUARDED and len(codes) == 1 and ec.opt.inline:
+            fast, test = _GUARDED[name]
+            tmp = ec.temp()
+            return f"({fast}({tmp}) if {test.format(x=f'({tmp} := {codes[0]})')} else {fn}({tmp}))"
         return f"{fn}({', '.join(codes)})"
 
 

@@ -91,7 +91,17 @@ class InitialValues:
     # ------------------------------------------------------------ values
 
     def of_symbol(self, symbol) -> Initial:
-        return self.of(symbol.type, symbol.init, symbol.decl.pos if symbol.decl else ast.NOWHERE)
+        t = resolve_alias(symbol.type)
+        if not (symbol.init is not None and isinstance(t, ArrayType) and not is_aggregate(resolve_alias(t.element))):
+            return self.of(symbol.type, symbol.init, symbol.decl.pos if symbol.decl else ast.NOWHERE)
+        # An initialised array of elementary values depends on nothing but its symbol: flattened
+        # once, though the class, the range analysis and the fold pass all ask (the Leibniz table).
+        cache = self.__dict__.setdefault("_arrays", {})
+        found = cache.get(id(symbol))
+        if found is None or found[0] is not symbol:
+            found = cache[id(symbol)] = (symbol, self.of(symbol.type, symbol.init,
+                                                         symbol.decl.pos if symbol.decl else ast.NOWHERE))
+        return found[1]
 
     def of(self, t: Type, init, pos) -> Initial:
         """The initial value of a variable of type `t` with initializer `init`."""

@@ -39,7 +39,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import cse, fold, unguard, unroll
+from .optimise import cse, fold, gather, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -79,8 +79,11 @@ class BodyCompiler(ExprCompiler):
             params = ["self"] + params          # a METHOD: its instance first
         o.line(f"def {pyname}({', '.join(params)}):")
         o.indent()
-        for item in self.scope.prologue:
-            o.line(self._prologue_line(item))
+        prologue = [self._prologue_line(item) for item in self.scope.prologue]
+        if self.opt.gather:
+            prologue = gather.prologue(prologue, self.unit.register_constant)
+        for line in prologue:
+            o.line(line)
         charge = self.unit.charge_costs
         if charge:
             o.line("_spent = 0")        # this call's own charges (ps), flushed into _ctx.budget on exit
@@ -479,11 +482,14 @@ class BodyCompiler(ExprCompiler):
         else:
             self.known_ranges.pop(key, None)
         fallback = False
-        if const_range and not early and self.opt.unroll and unroll.can_unroll(self, s.body, place, count, assigned, key):
+        returns = early and not _has_own_exit(s.body)       # leaves only by RETURN
+        if (const_range and (returns or not early) and self.opt.unroll
+                and unroll.can_unroll(self, s.body, place, count, assigned, key)):
             fallback = unroll.emit(self, s, key, range(self.constant_of(s.start), self.constant_of(s.end)
                                                         + (1 if step_value > 0 else -1), step_value),
                                    lambda: self._after_for(target, var_t, final, lo_r, hi_r, step_value,
-                                                           not straight, where))
+                                                           not early and not straight, where),
+                                   returns=early, where=where)
             if not fallback:
                 if saved is None:
                     self.known_ranges.pop(key, None)

@@ -279,12 +279,39 @@ class Axis:
             return
         if dt != self._dt:
             self._set_period(dt)
-        old_cmd, old_act, old_vel = self.cmd_pos, self.act_pos, self.cmd_vel
         command = self.command
+        if command is not None and command.kind == "sync" and self._lag_gain == 1.0:
+            # An ideal axis following a sync Position within one period's reach (every scan of
+            # a stream): the general path below, less what cannot happen in it.  The actual
+            # position becomes the command, so the deviation is 0.0 (NaN for an infinite one)
+            # and neither following-error check can fire.
+            target, old_cmd = command.target, self.cmd_pos
+            slack = self._step_slack
+            if -slack <= target - old_cmd <= slack and self._soft_min <= target <= self._soft_max:
+                self.vel_limit = False
+                self.act_vel = (target - self.act_pos) / dt
+                self.cmd_pos = self.act_pos = target
+                old_vel = self.cmd_vel
+                self.cmd_vel = new_vel = (target - old_cmd) / dt
+                if new_vel != old_vel:
+                    magnitude = abs(new_vel - old_vel) / dt
+                    self.cmd_accdec = magnitude if abs(new_vel) > abs(old_vel) else -magnitude
+                else:
+                    self.cmd_accdec = 0.0
+                if command.reached:
+                    self._complete_commands(dt)
+                return
+        old_cmd, old_act, old_vel = self.cmd_pos, self.act_pos, self.cmd_vel
         if command is None:
             new_cmd = self._error_stop_position(dt) if self.state == AxisState.ERRORSTOP else old_cmd
         elif command.kind == "sync":
-            new_cmd = self._sync_position(command.target, old_cmd, dt)
+            target = command.target     # _sync_position's first case, inlined (every scan)
+            slack = self._step_slack
+            if -slack <= target - old_cmd <= slack and self._soft_min <= target <= self._soft_max:
+                self.vel_limit = False
+                new_cmd = target
+            else:
+                new_cmd = self._sync_position(target, old_cmd, dt)
         else:
             new_cmd = self._next_command_position(dt)
             if new_cmd != old_cmd:

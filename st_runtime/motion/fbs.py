@@ -27,6 +27,8 @@ model are accepted and ignored: `Jerk` (profiles are trapezoidal) and
 
 from __future__ import annotations
 
+from operator import attrgetter
+
 from ..native import NativeFB, fb_declaration, native_fb
 from . import types as _types  # noqa: F401  (registers AXIS_REF before the FBs)
 from .axis import Axis, MotionAborted, MotionCommand, MotionRefused
@@ -43,22 +45,28 @@ def resolve_axis(ref, ctx) -> Axis | None:
     return motion.axis_by_number(ref.v_CFG.v_AXNO)
 
 
+_UNBOUND = object()  # `_AxisFB._bound_ref` while no AXIS_REF value is resolved
+
+
 class _AxisFB(NativeFB):
     """A native FB with an `Axis` in-out; remembers which axis it resolved."""
 
     def __init__(self) -> None:
         super().__init__()
-        self._bound: tuple | None = None  # (AXIS_REF value, Axis) last resolved
+        # The AXIS_REF value last resolved, its axis and that axis's number (fixed per Axis).
+        self._bound_ref, self._bound_axis, self._bound_no = _UNBOUND, None, -1
 
     def _axis(self, ctx) -> Axis | None:
         ref = self.v_AXIS
-        bound = self._bound
-        if bound is not None and bound[0] is ref:
+        if ref is self._bound_ref:
             cfg = ref.v_CFG
-            if cfg.v_AXENABLE and cfg.v_AXNO == bound[1].axis_no:
-                return bound[1]
+            if cfg.v_AXENABLE and cfg.v_AXNO == self._bound_no:
+                return self._bound_axis
         axis = resolve_axis(ref, ctx)
-        self._bound = (ref, axis) if axis is not None else None
+        if axis is None:
+            self._bound_ref, self._bound_axis, self._bound_no = _UNBOUND, None, -1
+        else:
+            self._bound_ref, self._bound_axis, self._bound_no = ref, axis, axis.axis_no
         return axis
 
 
@@ -72,6 +80,7 @@ class _ExecuteFB(_AxisFB):
     """
 
     FINAL_OUTPUTS = ("v_DONE", "v_COMMANDABORTED", "v_ERROR")
+    AFTER_CALL = False  # `_after_call` acts on a remembered command (MC_Stop)
     ACTIVE_OUTPUT = True  # the FB has an `Active` output
     ACTIVE_AT_START = True  # `Active` in the call of the rising edge (else one period later)
 
@@ -81,9 +90,15 @@ class _ExecuteFB(_AxisFB):
         self._command: MotionCommand | None = None
 
     def execute(self, ctx) -> None:
+        if not self.v_EXECUTE and not self.v_BUSY:
+            if any(self._final_values(self)):
+                self._clear_outputs()  # a held (or one-call) final output ends
+            if not self.AFTER_CALL or self._command is None:
+                # Idle (the call of most scans): nothing starts or runs, `_after_call`
+                # has nothing to do, so the axis need not be looked up.
+                self._previous_execute = False
+                return
         execute = bool(self.v_EXECUTE)
-        if not execute and not self.v_BUSY:
-            self._clear_outputs()  # a held (or one-call) final output ends
         axis = self._axis(ctx)
         if execute and not self._previous_execute:
             self._clear_outputs()
@@ -130,8 +145,14 @@ class _ExecuteFB(_AxisFB):
         self._end("v_ERROR")
         self.v_ERRORID = int(code)
 
+    def __init_subclass__(cls, **kwargs) -> None:
+        super().__init_subclass__(**kwargs)
+        cls._final_values = attrgetter(*cls.FINAL_OUTPUTS, "v_ERRORID")
+
     def _clear_outputs(self) -> None:
         # Called every scan an idle FB is called: write only what is set (same state, fewer stores).
+        if not any(self._final_values(self)):
+            return
         for output in self.FINAL_OUTPUTS:
             if getattr(self, output):
                 setattr(self, output, False)
@@ -186,9 +207,10 @@ class MC_Power(_AxisFB):
             self.v_ERRORID = int(ErrorID.AXIS_NOT_ASSIGNED) if self.v_ENABLE else 0
             return
         enable = bool(self.v_ENABLE)
-        axis.request_power(enable)
-        self.v_STATUS = axis.powered
-        self.v_BUSY = enable != axis.powered
+        axis.power_requested = enable       # axis.request_power, inlined (every scan)
+        powered = axis.powered
+        self.v_STATUS = powered
+        self.v_BUSY = enable != powered
         self.v_ERROR = False
         self.v_ERRORID = 0
 
@@ -261,6 +283,8 @@ class MC_Stop(_ExecuteFB):
     def _begin(self, axis: Axis) -> MotionCommand:
         _check_buffer_mode(self.v_BUFFERMODE)
         return axis.start_stop(float(self.v_DECELERATION))
+
+    AFTER_CALL = True
 
     def _after_call(self, axis: Axis | None, execute: bool) -> None:
         if not execute and self._command is not None and axis is not None:
@@ -340,10 +364,18 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
         execute = bool(self.v_EXECUTE)
         if (self.v_BUSY and command is not None and not command.aborted
                 and (self._previous_execute or not execute)):
-            axis = self._axis(ctx)
+            ref = self.v_AXIS   # _axis(ctx), its cached case inlined
+            cfg = ref.v_CFG if ref is self._bound_ref else None
+            if cfg is not None and cfg.v_AXENABLE and cfg.v_AXNO == self._bound_no:
+                axis = self._bound_axis
+            else:
+                axis = self._axis(ctx)
             if axis is not None:
                 self._previous_execute = execute
-                self._poll(axis, command, False)
+                # _poll(axis, command, False), inlined (every scan of every axis)
+                self.v_ACTIVE = True
+                self.v_INPOSITION = abs(axis.act_pos - command.target) <= axis.config.in_position_range
+                command.target = float(self.v_POSITION)
                 return
         super().execute(ctx)
 

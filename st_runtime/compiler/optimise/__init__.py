@@ -15,6 +15,15 @@ states bit for bit:
   before the loop, and a `+ - *` of such values, literals or earlier shared
   results is computed once and reused.  Operands keep their order and
   grouping (no reassociation), so every result is the same float.
+* `fuse` (fuse.py): in a CSE region's straight code, a store that no one
+  can see before the variable is set again is put into its one use, runs of
+  `D := D + x` become one expression (same operations, same order), and
+  temporaries share Python names (fewer than 256 locals).
+* `gather` (gather.py): a body's prologue loads its variables with one
+  `operator.attrgetter` call per run instead of one load each.
+* `inline` (calls.py, `_GUARDED`): SIN, COS, TAN and SQRT call Python's
+  math function directly where the library's wrapper would only call it
+  (a finite argument; SQRT: not below zero), the wrapper otherwise.
 * `unguard` (unguard.py): no `try` around an assignment whose Python code
   cannot raise (a local set from locals and literals with `+ - *`).
 
@@ -38,6 +47,9 @@ class Optimisations:
     unroll: bool = True
     cse: bool = True
     unguard: bool = True
+    fuse: bool = True
+    gather: bool = True
+    inline: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

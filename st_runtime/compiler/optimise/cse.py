@@ -31,6 +31,7 @@ from dataclasses import replace
 
 from ... import ast
 from ..scope import walk
+from . import fuse
 
 _READ = re.compile(r"[A-Za-z_]\w*\[\d+\]")
 _NUMBER = re.compile(r"-?\(?-?\d[\d.e+-]*\)?")
@@ -145,7 +146,7 @@ def emit_region(compiler, compile_body) -> None:
     finally:
         compiler.region = None
     o.ensure_body(inner)
-    close_region(o, region, mark, flag)
+    close_region(o, region, mark, flag, compiler.opt.fuse)
     inner = o.mark()
     saved = compiler.opt        # the path that never runs unless a read faults: kept small
     compiler.opt = replace(saved, unroll=False, cse=False)
@@ -157,10 +158,15 @@ def emit_region(compiler, compile_body) -> None:
     o.dedent()
 
 
-def close_region(o, region, mark: int, flag: str) -> None:
+def close_region(o, region, mark: int, flag: str, tidy: bool = False) -> None:
     """End the region's `if flag:` block (begun at `mark`): single uses put back, the
-    element reads put before it (a fault there sets `flag` False), and `else:` opened."""
+    element reads put before it (a fault there sets `flag` False), and `else:` opened.
+    `tidy`: the lines go through fuse.py (stores no one sees skipped, temporaries renamed)."""
     inline_single_uses(region, o.lines, mark + 1)
+    if tidy:
+        fuse.substitute(o.lines, mark + 1)
+        fuse.merge(o.lines, mark + 1)
+        fuse.rename(o.lines, mark + 1, region.temp)
     o.dedent()
     reads = [f"{name} = {code}" for code, name in region.reads.items()]
     o.insert(mark, ["try:"] + ["    " + line for line in reads + [f"{flag} = True"]]

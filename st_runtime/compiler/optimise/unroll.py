@@ -1,14 +1,20 @@
 """Loop unrolling: a FOR with constant bounds written out iteration by iteration.
 
 Only when the unrolled loop behaves exactly as the loop: the bounds and step
-are constants (so is the iteration count), the body cannot leave early (no
-EXIT, RETURN) nor skip (CONTINUE), the control variable is a Python local of
+are constants (so is the iteration count), the body cannot leave the loop
+alone (no EXIT) nor skip (CONTINUE), the control variable is a Python local of
 this body that the body does not assign (so nothing else can see it while
 the loop runs), and the statements unrolled in the POU stay within `UNROLL_CAP`.
 Each copy of the body sees the variable as a constant (fold.py); after the
 last copy the variable gets the value the loop leaves in it.  The charges are
 the loop's: the up-front charge and test stay before it, the body's later
 blocks charge in each copy, and the final test stays after it.
+
+A body with RETURN (it leaves the whole POU, which a Python `return` in the
+unrolled copy does too) charges and tests per iteration as its loop does:
+each copy charges the loop overhead with its first block and tests there
+(LU elimination: `FOR K := 1 TO SIZE` with a RETURN for a singular pivot,
+whose inner loops `FOR Row := K + 1 TO SIZE` get constant bounds in each copy).
 """
 
 from __future__ import annotations
@@ -21,9 +27,9 @@ from . import UNROLL_CAP
 def can_unroll(compiler, body, place, count: int | None, assigned: set[str], key: str) -> bool:
     """Whether the FOR can be unrolled; takes its size from the POU's budget of
     `UNROLL_CAP` unrolled statements (nested unrolled loops multiply)."""
-    if count is None or count <= 0 or place.how != "local" or key in assigned:
+    if count is None or count < 0 or place.how != "local" or key in assigned:
         return False
-    if any(isinstance(node, (ast.Exit, ast.Continue, ast.Return)) for node in walk(body)):
+    if any(isinstance(node, (ast.Exit, ast.Continue)) for node in walk(body)):
         return False
     need = count * max(_unrolled_size(compiler, body), 1)
     left = getattr(compiler, "unroll_left", UNROLL_CAP)
@@ -58,15 +64,18 @@ def _unrolled_size(compiler, body) -> int:
     return total
 
 
-def emit(compiler, s, key: str, values: range, after) -> bool:
+def emit(compiler, s, key: str, values: range, after, returns: bool = False, where: str = "") -> bool:
     """Write the unrolled loop; True when the loop as before must follow (in an `else:`
-    block the caller fills), because the region's element reads may fault."""
+    block the caller fills), because the region's element reads may fault.
+    `returns`: the body has a RETURN; each copy charges and tests at `where` as
+    an iteration of the loop does."""
     from .cse import Region, close_region, region_allowed
 
     o = compiler.out
     outer = compiler.region
     region = None
-    if outer is None and compiler.opt.cse and compiler.unit.guard_statements and region_allowed(compiler, s.body):
+    if (outer is None and not returns and compiler.opt.cse and compiler.unit.guard_statements
+            and region_allowed(compiler, s.body)):
         region = compiler.region = Region(compiler.temp)
         flag = compiler.temp()
         mark = o.mark()
@@ -77,7 +86,10 @@ def emit(compiler, s, key: str, values: range, after) -> bool:
     try:
         for value in values:
             compiler.unrolled[key] = value
-            compiler.statements(s.body, first_charged=True)
+            if returns:
+                compiler.statements(s.body, compiler.cost.loop(), where)
+            else:
+                compiler.statements(s.body, first_charged=True)
         compiler.unrolled.pop(key, None)
         after()
     finally:
@@ -87,5 +99,5 @@ def emit(compiler, s, key: str, values: range, after) -> bool:
     if region is None:
         return False
     compiler.region = None
-    close_region(o, region, mark, flag)      # a fault in its reads: the loop runs as before
+    close_region(o, region, mark, flag, compiler.opt.fuse)      # a fault in its reads: the loop runs as before
     return True
