@@ -228,3 +228,23 @@ def test_lexers_made_on_demand_parse_as_lark_own_contextual_lexer(monkeypatch):
     eager = {path: parser.parse(text, path) for path, text in texts.items()}
     assert parser.grammar().lark.parser.lexer.lexer.__class__ is ContextualLexer
     assert eager == lazy
+
+
+# ------------------------------------------------------------------ load path
+
+
+def test_loads_that_share_generated_code_keep_their_own_behaviour():
+    """The compiler reuses the code compiled for an identical generated source
+    (the prelude's initializers): a different body is never given another's."""
+    from st_runtime.api import load_text
+    from st_runtime.compiler import _CODE
+
+    def f_of(body: str):
+        return load_text(f"FUNCTION F : INT\nVAR_INPUT a : INT; END_VAR\n{body}\nEND_FUNCTION\n")
+
+    plus, times = f_of("F := a + 1;"), f_of("F := a * 3;")
+    assert plus.call("F", {"a": 5})["outputs"]["return"] == 6
+    assert times.call("F", {"a": 5})["outputs"]["return"] == 15
+    again = f_of("F := a + 1;")
+    assert again.call("F", {"a": 7})["outputs"]["return"] == 8
+    assert len(_CODE) > 0
