@@ -6,14 +6,16 @@ the LALR tables of the grammar (`grammar_cache`) and the parsed native
 prelude (`prelude`).
 
 Where: `$ST_RUNTIME_CACHE_DIR` when set (an empty value turns the cache
-off), else `$XDG_CACHE_HOME/st_runtime`, else `~/.cache/st_runtime`.
+off), else `$XDG_CACHE_HOME/st_runtime` or `~/.cache/st_runtime`, else (a
+read-only home) `st_runtime-<uid>` in the temp dir, if it is this user's.
 
 Why it is safe to read back:
 
 * the directory is used only when it belongs to the current user and no
   one else may write to it (created mode 0700; on POSIX its owner and mode
-  are checked every time), never a shared place like /tmp, where another
-  user could plant a file (Lark's own `cache=True` writes to /tmp);
+  are checked every time, and a default location must not be a symbolic
+  link), never a file straight in a shared place like /tmp, where another
+  user could plant one (Lark's own `cache=True` reads its pickle there);
 * every entry is written whole or not at all (a temporary file in the same
   directory, then `os.replace`), so a reader never sees half a file, and a
   file that is not a regular file owned by the user is ignored;
@@ -40,21 +42,33 @@ FORMAT = "1"
 def directory() -> str | None:
     """The cache directory (created if needed), or None when there is no safe one."""
     chosen = os.environ.get("ST_RUNTIME_CACHE_DIR")
-    if chosen == "":
+    if chosen is not None:
+        return _usable(chosen, follow=True) if chosen else None
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    if os.path.isabs(base) and _usable(os.path.join(base, "st_runtime"), follow=False):
+        return os.path.join(base, "st_runtime")
+    getuid = getattr(os, "getuid", None)
+    if getuid is None:
         return None
-    if chosen is None:
-        base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-        if not os.path.isabs(base):
-            return None
-        chosen = os.path.join(base, "st_runtime")
+    import tempfile  # a read-only home: a private folder of this user in the temp dir
+
+    return _usable(os.path.join(tempfile.gettempdir(), f"st_runtime-{getuid()}"), follow=False)
+
+
+def _usable(folder: str, follow: bool) -> str | None:
+    """`folder`, created (mode 0700) if missing, when it is a private directory of this user.
+
+    A default location must not be a symbolic link (`follow` False): in a
+    shared temp dir another user could point one anywhere.
+    """
     try:
-        os.makedirs(chosen, mode=0o700, exist_ok=True)
-        info = os.stat(chosen)
+        os.makedirs(folder, mode=0o700, exist_ok=True)
+        info = os.stat(folder) if follow else os.lstat(folder)
     except OSError:
         return None
     if not stat.S_ISDIR(info.st_mode) or not _private(info):
         return None
-    return chosen
+    return folder
 
 
 def read(name: str) -> bytes | None:

@@ -248,3 +248,19 @@ def test_loads_that_share_generated_code_keep_their_own_behaviour():
     again = f_of("F := a + 1;")
     assert again.call("F", {"a": 7})["outputs"]["return"] == 8
     assert len(_CODE) > 0
+
+
+def test_a_read_only_home_falls_back_to_a_private_folder_in_the_temp_dir(tmp_path, monkeypatch):
+    if not hasattr(os, "getuid"):
+        pytest.skip("POSIX only")
+    blocker = tmp_path / "home_is_a_file"
+    blocker.write_text("")
+    monkeypatch.delenv("ST_RUNTIME_CACHE_DIR", raising=False)
+    monkeypatch.setenv("XDG_CACHE_HOME", str(blocker))
+    monkeypatch.setattr("tempfile.tempdir", str(tmp_path))
+    fallback = tmp_path / f"st_runtime-{os.getuid()}"
+    assert user_cache.directory() == str(fallback)
+    assert stat.S_IMODE(fallback.stat().st_mode) == 0o700
+    fallback.rmdir()
+    fallback.symlink_to(tmp_path)                 # planted by someone: not followed
+    assert user_cache.directory() is None
