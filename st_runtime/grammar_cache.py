@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import hashlib
 import io
+import re
 import sys
 from copy import copy
 
@@ -84,7 +85,8 @@ class LazyContextualLexer(ContextualLexer):
         if lexer is None:
             wanted = accepts | set(self._conf.ignore) | self._always_accept
             by_name = self._conf.terminals_by_name
-            lexer = self.BasicLexer(self._copy_conf([by_name[n] for n in wanted if n in by_name]))
+            terminals = _live([by_name[n] for n in wanted if n in by_name])
+            lexer = self.BasicLexer(self._copy_conf(terminals))
             self._by_accepts[accepts] = lexer
         return lexer
 
@@ -93,6 +95,40 @@ class LazyContextualLexer(ContextualLexer):
         conf.terminals = terminals
         conf.skip_validation = not validate   # per-state lexers: checked once already
         return conf
+
+
+#: A regular expression of this form (IDENT's) matches at every place where a
+#: word of letters, digits and '_' starting with a letter or '_' begins.
+_WORD = re.compile(r"\[A-Za-z_\](?:\[[^\]\\]*\]\*)?")
+
+
+def _order(terminal):
+    """Lark's order of a lexer's alternatives (BasicLexer.__init__): the first that matches wins."""
+    return (-terminal.priority, -terminal.pattern.max_width, -len(terminal.pattern.value), terminal.name)
+
+
+def _live(terminals: list) -> list:
+    """`terminals` without the keyword alternatives that can never match first.
+
+    A case-insensitive keyword ("IF"i) placed after a regular expression that
+    matches wherever a word begins (IDENT, which the postlexer adds to every
+    state) never wins: where the keyword matches, that expression matches
+    too, and Python's alternation takes the first alternative that matches.
+    The keyword then comes from IDENT and the keyword callback, as it always
+    did; dropping its dead alternative only makes the state's regular
+    expression shorter to compile (two thirds of the terminals are keywords).
+    Lark folds a keyword into the expression instead (`_create_unless`) when
+    its flags are a subset of the expression's: such keywords are kept.
+    """
+    words = [t for t in terminals if t.pattern.type == "re" and _WORD.fullmatch(t.pattern.value)]
+
+    def dead(t) -> bool:
+        value = t.pattern.value
+        return (t.pattern.type == "str" and value[:1].isalpha() and value.replace("_", "").isalnum()
+                and any(_order(w) < _order(t) and not set(t.pattern.flags) <= set(w.pattern.flags)
+                        for w in words))
+
+    return [t for t in terminals if not dead(t)]
 
 
 class _LexersOnDemand(dict):
