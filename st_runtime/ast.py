@@ -443,6 +443,44 @@ class Method(Node):
 
 
 @dataclass(frozen=True, slots=True)
+class ActionAssociation(Node):
+    """`Fill(N);` in a step: an action with its qualifier (IEC 61131-3 3rd ed. 6.7.4.5)."""
+
+    action: str
+    qualifier: str = "N"                  # N R S L D P SD DS SL P1 P0
+    time: Expr | None = None              # L, D, SD, DS, SL: the duration
+    indicator: str | None = None          # an indicator variable (table 59)
+
+
+@dataclass(frozen=True, slots=True)
+class Step(Node):
+    """`INITIAL_STEP Start: ... END_STEP` or `STEP Fill: ... END_STEP` (6.7.2)."""
+
+    name: str
+    initial: bool
+    actions: tuple[ActionAssociation, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class Transition(Node):
+    """`TRANSITION FROM (A, B) TO C := cond; END_TRANSITION` (6.7.3)."""
+
+    sources: tuple[str, ...]
+    targets: tuple[str, ...]
+    condition: Expr
+    name: str | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Sfc(Node):
+    """A POU body written as a Sequential Function Chart in its textual form (6.7)."""
+
+    steps: tuple[Step, ...]
+    transitions: tuple[Transition, ...]
+    actions: tuple[Method, ...]           # ACTION name: ... END_ACTION (modifiers ("ACTION",))
+
+
+@dataclass(frozen=True, slots=True)
 class Pou(Node):
     kind: str  # "PROGRAM" | "FUNCTION" | "FUNCTION_BLOCK" | "INTERFACE"
     name: str
@@ -455,6 +493,8 @@ class Pou(Node):
     methods: tuple[Method, ...] = ()
     modifiers: tuple[str, ...] = ()       # ABSTRACT, FINAL
     namespace: str = ""                   # "A.B" inside NAMESPACE A.B (3rd ed. 6.9)
+    sfc: Sfc | None = None                # a body in SFC (then `body` is empty)
+    access: tuple[AccessPath, ...] = ()   # a PROGRAM's VAR_ACCESS
 
 
 @dataclass(frozen=True, slots=True)
@@ -469,6 +509,28 @@ class ProgramInstance(Node):
     name: str
     task: str | None
     program_type: str
+    # `PROGRAM G : Gravel (Start := %IX0.0, Lamp => %QX4.0)` (3rd ed. 6.8.2, table 62)
+    connections: tuple[Arg, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class AccessPath(Node):
+    """`Name : Prog.Var : INT READ_ONLY;` in VAR_ACCESS (3rd ed. 6.8.2, table 62)."""
+
+    name: str
+    path: Expr
+    type: TypeRef
+    read_write: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class ConfigInit(Node):
+    """`Res.Prog.Inst.Var AT %QX1.0 : BOOL := TRUE;` in VAR_CONFIG (3rd ed. 6.8.2)."""
+
+    path: tuple[str, ...]
+    type: TypeRef
+    init: Initializer | None = None
+    location: str | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -479,6 +541,8 @@ class Configuration(Node):
     globals: tuple[VarBlock, ...]
     tasks: tuple[TaskDecl, ...]
     programs: tuple[ProgramInstance, ...]
+    config_inits: tuple[ConfigInit, ...] = ()
+    access: tuple[AccessPath, ...] = ()
 
 
 Item = Union[Pou, TypeDecl, VarBlock, Configuration]

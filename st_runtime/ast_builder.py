@@ -109,7 +109,10 @@ class AstBuilder(Transformer):
         return ast.SourceFile(self.path, tuple(flat), pos=ast.Pos(self.path, 1, 1))
 
     def program_decl(self, kw, name, *rest):
-        return ast.Pou("PROGRAM", str(name), tuple(rest[:-1]), rest[-1], pos=self._pos(kw))
+        body, sfc = _body_or_sfc(rest[-1])
+        blocks = tuple(r for r in rest[:-1] if type(r) is ast.VarBlock)
+        access = tuple(a for r in rest[:-1] if type(r) is _Access for a in r)
+        return ast.Pou("PROGRAM", str(name), blocks, body, sfc=sfc, access=access, pos=self._pos(kw))
 
     def function_decl(self, kw, name, return_type, *rest):
         return ast.Pou("FUNCTION", str(name), tuple(rest[:-1]), rest[-1],
@@ -122,8 +125,45 @@ class AstBuilder(Transformer):
         parts = [p for i in rest[3:-1] for p in (i if isinstance(i, list) else [i])]
         blocks = tuple(i for i in parts if type(i) is ast.VarBlock)
         methods = tuple(i for i in parts if type(i) is ast.Method)
-        return ast.Pou("FUNCTION_BLOCK", str(name), blocks, rest[-1], None,
-                       extends or (), implements or (), methods, modifiers, pos=self._pos(kw))
+        body, sfc = _body_or_sfc(rest[-1])
+        return ast.Pou("FUNCTION_BLOCK", str(name), blocks, body, None,
+                       extends or (), implements or (), methods, modifiers, sfc=sfc, pos=self._pos(kw))
+
+    # ------------------------------------------------------------------ SFC
+    def sfc(self, *elements):
+        return ast.Sfc(tuple(e for e in elements if type(e) is ast.Step),
+                       tuple(e for e in elements if type(e) is ast.Transition),
+                       tuple(e for e in elements if type(e) is ast.Method), pos=elements[0].pos)
+
+    def sfc_step(self, kw, name, *actions):
+        return ast.Step(str(name), kw.type == "INITIAL_STEP", tuple(actions), pos=self._pos(kw))
+
+    def action_association(self, action, qualifier=None, *rest):
+        word = str(qualifier).upper() if qualifier is not None else "N"
+        pos = self._pos(action)
+        if word not in SFC_QUALIFIERS:
+            self._error("E-PARSE-014", f"unknown action qualifier '{qualifier}' (IEC 61131-3: "
+                        f"{', '.join(SFC_QUALIFIERS)})", self._pos(qualifier))
+        timed = word in SFC_TIMED_QUALIFIERS
+        time = rest[0] if timed and rest else None
+        more = rest[1:] if timed else rest
+        if timed and time is None:
+            self._error("E-PARSE-014", f"action qualifier {word} needs a duration: "
+                        f"{action}({word}, T#5s)", pos)
+        indicator = None
+        if len(more) == 1 and type(more[0]) is ast.Name:
+            indicator = more[0].name
+        elif more:
+            self._error("E-PARSE-014", f"action {action}({word}, ...): expected "
+                        + ("a duration and " if timed else "") + "at most an indicator variable", pos)
+        return ast.ActionAssociation(str(action), word, time, indicator, pos=pos)
+
+    def sfc_transition(self, kw, name, sources, targets, condition):
+        return ast.Transition(sources, targets, condition, str(name) if name is not None else None,
+                              pos=self._pos(kw))
+
+    def sfc_steps(self, *names):
+        return tuple(str(n) for n in names)
 
     def interface_decl(self, kw, name, extends, *methods):
         return ast.Pou("INTERFACE", str(name), (), (), None, extends or (), (), tuple(methods),
@@ -296,7 +336,7 @@ class AstBuilder(Transformer):
     # --------------------------------------------------------- configuration
 
     def configuration(self, kw, name, *elements):
-        globals_, tasks, programs = [], [], []
+        globals_, tasks, programs, inits, access = [], [], [], [], []
         stack = list(elements)
         while stack:
             element = stack.pop(0)
@@ -306,10 +346,30 @@ class AstBuilder(Transformer):
                 globals_.append(element)
             elif type(element) is ast.TaskDecl:
                 tasks.append(element)
+            elif isinstance(element, _Access):       # VAR_ACCESS ... END_VAR
+                access.extend(element)
+            elif isinstance(element, list):          # VAR_CONFIG ... END_VAR
+                inits.extend(element)
             else:
                 programs.append(element)
         return ast.Configuration(str(name), tuple(globals_), tuple(tasks), tuple(programs),
-                                 pos=self._pos(kw))
+                                 tuple(inits), tuple(access), pos=self._pos(kw))
+
+    def var_access(self, *paths):
+        return _Access(paths)
+
+    def access_path(self, name, path, type_ref, direction):
+        return ast.AccessPath(str(name), path, type_ref,
+                              direction is not None and direction.type == "READ_WRITE",
+                              pos=self._pos(name))
+
+    def var_config(self, *inits):
+        return list(inits)
+
+    def config_init(self, *parts):
+        *path, location, type_ref, init = parts
+        return ast.ConfigInit(tuple(str(p) for p in path), type_ref, init,
+                              str(location) if location is not None else None, pos=self._pos(path[0]))
 
     def resource(self, kw, name, processor, *elements):
         return _Resource(elements)
@@ -330,9 +390,9 @@ class AstBuilder(Transformer):
     def task_param(self, name, value):
         return (str(name), value)
 
-    def program_config(self, kw, name, task, program_type):
+    def program_config(self, kw, name, task, program_type, connections=None):
         return ast.ProgramInstance(str(name), str(task) if task is not None else None,
-                                   str(program_type), pos=self._pos(kw))
+                                   str(program_type), tuple(connections or ()), pos=self._pos(kw))
 
     # ------------------------------------------------------------ statements
 
@@ -522,6 +582,16 @@ class AstBuilder(Transformer):
         return ast.StringLiteral(self._decode(decode_string, token, ""), True,
                                  pos=self._pos(token))
 
+    def typed_string_literal(self, token):
+        """STRING#'ABC' is 'ABC'; WSTRING#"ABC" is "ABC" (the prefix only repeats the type)."""
+        prefix, _, body = str(token).partition("#")
+        quoted = token.update(value=body)
+        wide = prefix.upper() == "WSTRING"
+        if wide != body.startswith('"'):
+            self._error(BAD_LITERAL, f"{prefix.upper()}# takes a string in "
+                        + ('"double quotes"' if wide else "'single quotes'"), self._pos(token))
+        return self.wstring_literal(quoted) if wide else self.string_literal(quoted)
+
     def bool_literal(self, token):
         return ast.BoolLiteral(token.type == "TRUE", pos=self._pos(token))
 
@@ -565,3 +635,17 @@ class AstBuilder(Transformer):
     def test_case(self, kw, name, *rest):
         title = self._decode(decode_string, name, "")
         return ast.TestCase(title, tuple(rest[:-1]), rest[-1], pos=self._pos(kw))
+
+
+# IEC 61131-3 3rd ed. table 60 (action qualifiers); the timed ones take a duration.
+SFC_QUALIFIERS = ("N", "R", "S", "P", "L", "D", "SD", "DS", "SL", "P1", "P0")
+SFC_TIMED_QUALIFIERS = frozenset({"L", "D", "SD", "DS", "SL"})
+
+
+def _body_or_sfc(body):
+    """(statements, None) for a statement body, ((), Sfc) for a chart."""
+    return ((), body) if type(body) is ast.Sfc else (body, None)
+
+
+class _Access(tuple):
+    """The paths of one VAR_ACCESS block, until the POU or configuration takes them."""

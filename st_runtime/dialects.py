@@ -1,7 +1,19 @@
-"""Dialects as data: what each dialect refuses, and how it names standard FB pins.
+"""Dialects as data: one table the checker, the compiler and the runtime consult.
 
-The checker and the native prelude consult `DIALECTS[name]`; no other module
-asks which dialect is active.  A reader can check every OMRON rule below
+`DIALECTS[name]` says, for `iec` (IEC 61131-3 3rd edition, strict), `nj`
+(OMRON NJ/NX, Sysmac Studio) and `codesys` (CODESYS / TwinCAT):
+
+* `CONSTRUCTS`: which dialects accept each construct outside the common core
+  (METHOD, POINTER TO, S=, ...), each row with its source.  A construct used
+  under a dialect that refuses it is E-DIALECT-001, naming the dialects that
+  would accept it (`accepting`);
+* `time_unit_ns`: what one unit of a number is when a TIME converts to or
+  from it (TIME_TO_DINT, ...);
+* `string_unit` / `string_max_bytes`: what the n of STRING[n] counts, and the
+  largest STRING the target holds;
+* `errors` and `pins`: OMRON's Build rules and pin names (below).
+
+No other module asks which dialect is active (`if dialect == ...`).  A reader can check every OMRON rule below
 against its source (docs/nj501.md, "What Sysmac Studio builds", has one row
 per rule with its test).
 
@@ -72,10 +84,90 @@ OMRON_PINS: Mapping[str, Mapping[str, str]] = MappingProxyType({
 
 
 @dataclass(frozen=True)
+class Construct:
+    """A construct outside the common core: which dialects accept it, and the source."""
+
+    what: str
+    accepted_by: frozenset
+    source: str
+
+
+# Sysmac Studio's POUs are programs, function blocks and functions (NJ-series
+# CPU Unit Software User's Manual W501, 6-2 "POUs"); the manual describes no
+# METHOD, INTERFACE, inheritance, REF_TO or pointer.  This is an absence, not
+# an explicit statement of OMRON's: to be confirmed against Sysmac Studio.
+_NJ_NO_OO = "W501 6-2 lists programs, FBs and functions only (no OO; absence, to be confirmed)"
+_CODESYS_ONLY = "CODESYS extension, not in IEC 61131-3"
+
+CONSTRUCTS: Mapping[str, Construct] = MappingProxyType({
+    "METHOD": Construct("METHOD", frozenset({"iec", "codesys"}), _NJ_NO_OO),
+    "INTERFACE": Construct("INTERFACE", frozenset({"iec", "codesys"}), _NJ_NO_OO),
+    "EXTENDS": Construct("EXTENDS", frozenset({"iec", "codesys"}), _NJ_NO_OO),
+    "IMPLEMENTS": Construct("IMPLEMENTS", frozenset({"iec", "codesys"}), _NJ_NO_OO),
+    "REF_TO": Construct("REF_TO", frozenset({"iec", "codesys"}), _NJ_NO_OO),
+    "DEREF": Construct("the dereference ^", frozenset({"iec", "codesys"}), _NJ_NO_OO),
+    "NULL": Construct("NULL", frozenset({"iec", "codesys"}), _NJ_NO_OO),
+    "POINTER": Construct("POINTER TO", frozenset({"codesys"}),
+                         "CODESYS extension; IEC 61131-3 3rd ed. has REF_TO instead"),
+    "ADR": Construct("ADR()", frozenset({"codesys"}),
+                     "CODESYS extension; IEC 61131-3 3rd ed. has REF() instead"),
+    "TRAILING_COMMA": Construct("a comma after the last argument", frozenset({"codesys"}),
+                                "CODESYS accepts it; IEC 61131-3's grammar does not"),
+    "UNION": Construct("UNION", frozenset({"codesys", "nj"}),
+                       "CODESYS; the NJ has union data types (W501 6-7-2 lists union data type "
+                       "names); not in IEC 61131-3"),
+    "PROPERTY": Construct("PROPERTY", frozenset({"codesys"}), _CODESYS_ONLY),
+    "ACTION": Construct("ACTION", frozenset({"codesys"}), _CODESYS_ONLY),
+    "NAMESPACE": Construct("NAMESPACE", frozenset({"iec"}),
+                           "IEC 61131-3 3rd ed. 6.9; the NJ has namespaces, set in Sysmac Studio and "
+                           "written \\\\NS\\Name (W501 6-7)"),
+    "SET_RESET": Construct("S= / R=", frozenset({"codesys"}), _CODESYS_ONLY),
+    "INPUT_WRITE": Construct("writing a VAR_INPUT inside its own POU", frozenset({"codesys"}),
+                             "CODESYS compiles it (OSCAT BASIC 3.35, built with CODESYS, writes "
+                             "inputs: BINOM's K, REPLACE_CHARS's SRC); iec and nj keep inputs "
+                             "read-only inside the POU (E-ASSIGN-002)"),
+    "SUPER_BODY": Construct("SUPER^() (the base FB's body)", frozenset({"codesys"}),
+                            "CODESYS online help, SUPER: SUPER^() calls the body of the base "
+                            "function block; IEC 61131-3 3rd ed. has SUPER.method() only"),
+    "SFC": Construct("a Sequential Function Chart body (INITIAL_STEP, TRANSITION)", frozenset({"iec"}),
+                     "IEC 61131-3 3rd ed. 6.7 (textual form); W501 lists ladder and ST as the NJ's "
+                     "languages (no SFC; section to be confirmed), CODESYS edits SFC graphically (its textual form is not "
+                     "documented as accepted; to be confirmed)"),
+    "EDGE_NAME": Construct("a variable named R_EDGE or F_EDGE (IEC 61131-3 keywords)",
+                           frozenset({"codesys"}),
+                           "IEC 61131-3 lists R_EDGE and F_EDGE as keywords; CODESYS compiles "
+                           "them as names (OSCAT BASIC's MANUAL_1 declares R_EDGE : BOOL)"),
+    "ENUM_DOT": Construct("an enumeration value written Type.Value", frozenset({"codesys"}),
+                          "CODESYS online help, Enumerations: a value qualified by its type "
+                          "with a dot (E_Color.Red); IEC 61131-3 writes E_Color#Red"),
+    "BIT_ACCESS": Construct("bit access x.3", frozenset({"codesys", "nj"}),
+                            "CODESYS; the NJ specifies bits of integer variables the same "
+                            "way (W501, section to be confirmed); not in IEC 61131-3"),
+})
+
+
+def accepting(construct: str) -> str:
+    """`--dialect a or --dialect b`: the dialects that accept `construct`."""
+    return " or ".join(f"--dialect {d}" for d in sorted(CONSTRUCTS[construct].accepted_by))
+
+
+def refusal(construct: str, dialect: str) -> str:
+    """The E-DIALECT-001 message: `construct` under `dialect`, and who accepts it."""
+    return (f"{CONSTRUCTS[construct].what} is not accepted by --dialect {dialect}; "
+            f"{accepting(construct)} accepts it")
+
+
+@dataclass(frozen=True)
 class Dialect:
     name: str
     errors: frozenset = frozenset()
     pins: Mapping[str, Mapping[str, str]] = field(default_factory=dict)
+    time_unit_ns: int = 1
+    string_unit: str = "character"
+    string_max_bytes: int | None = None
+
+    def accepts(self, construct: str) -> bool:
+        return self.name in CONSTRUCTS[construct].accepted_by
 
     def nj_code(self, rule: str) -> str:
         """`E-NJ-<rule>` when this dialect refuses it, `W-NJ-<rule>` otherwise."""
@@ -100,9 +192,21 @@ class Dialect:
         return None
 
 
+# time_unit_ns: the NJ counts nanoseconds (W501, TIME data type; its
+# TimeToNanoSec / NanoSecToTime); CODESYS and TwinCAT count milliseconds (TIME
+# is a 32-bit count of ms: TIME_TO_DINT(T#1s) = 1000).  IEC 61131-3 leaves it
+# to the implementation; `iec` keeps the NJ's nanoseconds.
+# string_unit: what the n of STRING[n] counts, the same in the checker, the
+# compiled code and values from outside (`--set`, the API):
+# * iec (and codesys): characters (IEC 61131-3 STRING: single-byte characters);
+# * nj: bytes of UTF-8. OMRON sizes NJ strings in bytes, NULL-terminated
+#   (myOMRON knowledge base 1668, https://www.myomron.com/index.php?action=kb&article=1668:
+#   "define the STRING in the Sysmac NJ one byte longer"); that the bytes are
+#   UTF-8 was not confirmed by a source at hand (assumed, docs/nj501.md).
+# string_max_bytes: the NJ's largest STRING is STRING[1986], the NULL included
+# (docs/nj501.md, memory model rows).
 IEC = Dialect("iec")
-NJ = Dialect("nj", frozenset(NJ_RULES), OMRON_PINS)
-# CODESYS/TwinCAT: IEC pin names and NJ rules as warnings; the constructs it
-# adds are in checker/dialects.py (CONSTRUCTS).
-CODESYS = Dialect("codesys")
+NJ = Dialect("nj", frozenset(NJ_RULES), OMRON_PINS, string_unit="byte", string_max_bytes=1986)
+# CODESYS/TwinCAT: IEC pin names and NJ rules as warnings.
+CODESYS = Dialect("codesys", time_unit_ns=1_000_000)
 DIALECTS: Mapping[str, Dialect] = MappingProxyType({d.name: d for d in (IEC, NJ, CODESYS)})

@@ -42,6 +42,7 @@ CODES = register({
     "E-PARSE-011": "a VAR block other than VAR_GLOBAL outside a POU",
     "E-PARSE-012": "an unknown TASK parameter",
     "E-PARSE-013": "too many syntax errors: the rest of the file was not read",
+    "E-PARSE-014": "an SFC action association with an unknown qualifier, a missing duration (L, D, SD, DS, SL) or extra arguments",
     "E-PARSE-099": "internal parser error (a bug: please report it)",
 })
 
@@ -74,6 +75,7 @@ class _Grammar:
         every_keyword = _keyword_terminals(grammar)
         self.keywords = {w: k for w, k in every_keyword.items() if w not in TEST_KEYWORDS}
         self.test_keywords = every_keyword
+        self.contextual = _contextual_terminals(grammar)
         self.active = self.keywords          # parse_tests swaps in test_keywords
 
         def reserve_keywords(token):
@@ -112,6 +114,18 @@ def reserved_words() -> frozenset[str]:
 
 
 _reserved: frozenset[str] | None = None
+
+
+def _contextual_terminals(grammar: str) -> frozenset[str]:
+    """Terminals written `NAME.2: /WORD\\b/i`: keywords only where the parser takes them
+    (`STEP` in a chart, `GET` in a PROPERTY); elsewhere the word is an identifier."""
+    found = set()
+    for line in grammar.splitlines():
+        name, sep, rest = line.partition(":")
+        rest = rest.strip()
+        if sep and "." in name and rest.startswith("/") and rest.endswith("\\b/i"):
+            found.add(name.split(".")[0].strip())
+    return frozenset(found)
 
 
 def _keyword_terminals(grammar: str) -> dict[str, str]:

@@ -327,6 +327,7 @@ def _pou_lines(pou: ast.Pou) -> list[str]:
     lines = [header]
     for block in pou.var_blocks:
         lines.extend(_var_block_lines(block, ""))
+    lines.extend(_access_lines(pou.access, ""))
     methods = list(pou.methods)
     while methods:
         method = methods.pop(0)
@@ -339,7 +340,30 @@ def _pou_lines(pou: ast.Pou) -> list[str]:
         else:
             lines.extend(_method_lines(method, INDENT))
     lines.extend(_body(pou.body, INDENT))
+    if pou.sfc is not None:
+        lines.extend(_sfc_lines(pou.sfc, INDENT))
     lines.append(f"END_{pou.kind}")
+    return lines
+
+
+def _sfc_lines(sfc: ast.Sfc, indent: str) -> list[str]:
+    """Steps, then transitions, then actions (the chart does not depend on their order)."""
+    lines = []
+    for step in sfc.steps:
+        lines.append(f"{indent}{'INITIAL_STEP' if step.initial else 'STEP'} {step.name}:")
+        for a in step.actions:
+            args = [a.qualifier] + ([format_expr(a.time)] if a.time is not None else []) \
+                + ([a.indicator] if a.indicator else [])
+            lines.append(f"{indent}{INDENT}{a.action}({', '.join(args)});")
+        lines.append(f"{indent}END_STEP")
+    for t in sfc.transitions:
+        steps = [s[0] if len(s) == 1 else f"({', '.join(s)})" for s in (t.sources, t.targets)]
+        name = f" {t.name}" if t.name else ""
+        lines.append(f"{indent}TRANSITION{name} FROM {steps[0]} TO {steps[1]} := "
+                     f"{format_expr(t.condition)};")
+        lines.append(f"{indent}END_TRANSITION")
+    for action in sfc.actions:
+        lines.extend(_method_lines(action, indent))
     return lines
 
 
@@ -377,6 +401,16 @@ def _method_lines(method: ast.Method, indent: str) -> list[str]:
     return lines
 
 
+def _access_lines(paths, indent: str) -> list[str]:
+    if not paths:
+        return []
+    lines = [f"{indent}VAR_ACCESS"]
+    for a in paths:
+        lines.append(f"{indent}{INDENT}{a.name} : {format_expr(a.path)} : {format_type(a.type)}"
+                     f"{' READ_WRITE' if a.read_write else ' READ_ONLY'};")
+    return lines + [f"{indent}END_VAR"]
+
+
 def _configuration_lines(config: ast.Configuration) -> list[str]:
     lines = [f"CONFIGURATION {config.name}"]
     for block in config.globals:
@@ -390,7 +424,17 @@ def _configuration_lines(config: ast.Configuration) -> list[str]:
         lines.append(f"{INDENT}TASK {task.name}({', '.join(params)});")
     for program in config.programs:
         with_task = f" WITH {program.task}" if program.task else ""
-        lines.append(f"{INDENT}PROGRAM {program.name}{with_task} : {program.program_type};")
+        connections = f" ({_format_args(program.connections)})" if program.connections else ""
+        lines.append(f"{INDENT}PROGRAM {program.name}{with_task} : {program.program_type}"
+                     f"{connections};")
+    if config.config_inits:
+        lines.append(f"{INDENT}VAR_CONFIG")
+        for init in config.config_inits:
+            at = f" AT {init.location}" if init.location else ""
+            value = f" := {format_initializer(init.init)}" if init.init is not None else ""
+            lines.append(f"{INDENT}{INDENT}{'.'.join(init.path)}{at} : {format_type(init.type)}{value};")
+        lines.append(f"{INDENT}END_VAR")
+    lines.extend(_access_lines(config.access, INDENT))
     lines.append("END_CONFIGURATION")
     return lines
 

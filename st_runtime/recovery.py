@@ -123,8 +123,12 @@ class _Recovery:
             result.add(kind)
         return result or set(candidates)
 
-    @staticmethod
-    def _feed(state, token: Token):
+    def _feed(self, state, token: Token):
+        # The basic lexer used here makes `Step` the keyword STEP everywhere; the
+        # parser's contextual lexer makes it one only where the state takes it.
+        if token.type in self.grammar.contextual \
+                and token.type not in state.parse_conf.states[state.position]:
+            token = Token.new_borrow_pos("IDENT", token.value, token)
         return state.feed_token(token, token.type == "$END")
 
     def _accepts_run(self, state, inserted: list[Token], start: int, limit: int = LOOKAHEAD,

@@ -89,7 +89,8 @@ class CallTarget:
 
     kind: "function" (user or standard function: `name` is its upper-case
     name), "fb" (an FB instance call: `fb_type` is the FBType), or
-    "conversion" (`A_TO_B`).  `generic_type` is the type a generic standard
+    "conversion" (`A_TO_B`), "super_body" (CODESYS's `SUPER^()`: `name` is the
+    base FB).  `generic_type` is the type a generic standard
     function was instantiated at (e.g. LREAL for MAX on LREAL operands).
     """
 

@@ -71,6 +71,8 @@ class Messages:
         value = getattr(term.pattern, "value", None) if term else None
         if value is None:
             return kind.strip("_").lower()
+        if kind.strip("_") in self.grammar.contextual or kind in self.grammar.contextual:
+            value = value.removesuffix("\\b")         # /STEP\b/i: the word STEP
         return f"'{value.upper() if value.isalpha() or '_' in value else value}'"
 
     def expected_list(self, expected: set[str]) -> str:
@@ -91,7 +93,7 @@ class Messages:
         if len(kinds & _BINARY_OPERATORS) > 4:
             kinds -= _BINARY_OPERATORS
             first.append("operator")
-        words = first + sorted(self.describe_kind(k) for k in kinds)
+        words = first + sorted({self.describe_kind(k) for k in kinds})   # _AT, _AT_ADDRESS: one 'AT'
         if len(words) > 6:
             words = words[:6] + ["..."]
         if len(words) == 1:

@@ -11,6 +11,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Union
 
+from .dialects import DIALECTS
+
 
 @dataclass(frozen=True, slots=True)
 class ElementaryType:
@@ -144,14 +146,9 @@ class StringType:
         return f"{base}[{self.length}]"
 
 
-#: What the n of STRING[n] counts, per dialect, the same in the checker, the
-#: compiled code and values from outside (`--set`, the API):
-#: * iec: characters (IEC 61131-3 STRING: a string of single-byte characters);
-#: * nj: bytes of UTF-8. OMRON sizes NJ strings in bytes, NULL-terminated
-#:   (myOMRON knowledge base 1668, https://www.myomron.com/index.php?action=kb&article=1668:
-#:   "define the STRING in the Sysmac NJ one byte longer"); that the bytes are
-#:   UTF-8 was not confirmed by a source at hand (assumed, docs/nj501.md).
-STRING_UNITS = {"iec": "character", "nj": "byte"}
+#: What the n of STRING[n] counts, per dialect (st_runtime/dialects.py, `string_unit`,
+#: has the sources), the same in the checker, the compiled code and values from outside.
+STRING_UNITS = {name: d.string_unit for name, d in DIALECTS.items()}
 
 
 def string_size(text: str, dialect: str = "iec") -> int:

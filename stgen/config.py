@@ -277,7 +277,8 @@ class ActuatorConfig(_Section):
 
     Defaults (not in the study; a typical ball-screw cylinder of this size):
     250 mm/s and 2500 mm/s². At the 1 ms default period a cylinder may then
-    move at most 0.25 mm per scan.
+    move at most 0.25 mm per scan. On a crank platform (docs/mathematics.md section 6.1) the
+    actuator is the crank: the same keys in degrees/s and degrees/s².
     """
 
     SECTION: ClassVar[str] = "actuator"

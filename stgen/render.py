@@ -66,6 +66,8 @@ POU_TEMPLATES = KINEMATICS_TEMPLATES + CONTROLLER_TEMPLATES
 
 #: Rendered only with a playback table (``stgen generate --playback FILE.csv``).
 PLAYBACK_TEMPLATES = ("trajectory/TRJ_PlaybackTable", "trajectory/TRJ_Playback")
+#: The first template rendered after the playback's (SP_Controller plays the table).
+PLAYBACK_CALLER = "controller/SP_ControllerConstants"
 
 
 #: The test benches (``stgen generate --tests``): their results, then one
@@ -82,9 +84,9 @@ BENCH_TEST_TEMPLATE = "tests/test_benches"
 BENCH_TEST_FILE = "test_benches.st"
 
 
-#: Templates of the platform variants (docs/mathematics.md sections 6.1, 6.2): the kinematics only, the variant's
-#: own SP_InverseKinematics in a folder named after the variant; the controller program is
-#: not rendered for them yet.
+#: Templates of the platform variants (docs/mathematics.md sections 6.1, 6.2): the variant's own
+#: kinematics POUs (in a folder named after the variant), then the trajectories and SP_Controller,
+#: whose variant conditionals read crank angles (crank) or take the base pose (moving base).
 CRANK_TEMPLATES = (
     "SP_Constants",
     "SP_Atan2",
@@ -93,7 +95,7 @@ CRANK_TEMPLATES = (
     "SP_Jacobian",
     "crank/SP_InverseKinematics",
     "SP_ForwardKinematics",
-)
+) + CONTROLLER_TEMPLATES
 MOVING_BASE_TEMPLATES = (
     "SP_Constants",
     "SP_Atan2",
@@ -102,7 +104,7 @@ MOVING_BASE_TEMPLATES = (
     "moving_base/SP_Jacobian",
     "moving_base/SP_InverseKinematics",
     "SP_ForwardKinematics",
-)
+) + CONTROLLER_TEMPLATES
 
 
 def program_templates(config: PlatformConfig) -> tuple[str, ...]:
@@ -428,7 +430,9 @@ def render_program(config: PlatformConfig | None = None, options: RenderOptions 
     env = make_environment()
     context = template_context(config, options)
     if options.playback is not None:
-        templates += PLAYBACK_TEMPLATES
+        # Before the controller, which plays the table (dependency order).
+        at = templates.index(PLAYBACK_CALLER) if PLAYBACK_CALLER in templates else len(templates)
+        templates = templates[:at] + PLAYBACK_TEMPLATES + templates[at:]
     if options.tests:
         from stgen.benches import bench_vectors
 

@@ -19,6 +19,7 @@ cases in one scan, and every output is compared with the reference:
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 
@@ -30,100 +31,24 @@ from stgen.reference.moving_base import legs, spherical_tilt, universal_joint_an
 from stgen.reference.rates import crank_rates, leg_rates
 from stgen.reference.variant_fk import variant_forward_kinematics
 from stgen.render import render_program
-from stgen.verify import _FK_HARNESS, HARNESS_TIME_LIMIT_NS, Check, KinematicsRuntime
+from stgen.verify import HARNESS_TIME_LIMIT_NS, Check, KinematicsRuntime
 
-_CRANK_IK = """
-PROGRAM VerifyVariantIk
-VAR
-    CaseCount : DINT;
-    Poses : ARRAY[1..{n}, 1..6] OF LREAL;
-    Angles : ARRAY[1..{n}, 1..6] OF LREAL;
-    InRange : ARRAY[1..{n}, 1..6] OF BOOL;
-    ErrorIDs : ARRAY[1..{n}] OF WORD;
-    ErrorLegs : ARRAY[1..{n}] OF INT;
-    Pose : ARRAY[1..6] OF LREAL;
-    Angle : ARRAY[1..6] OF LREAL;
-    Flags : ARRAY[1..6] OF BOOL;
-    Ik : SP_InverseKinematics;
-    Item : DINT;
-    Leg : DINT;
-END_VAR
-FOR Item := 1 TO CaseCount DO
-    FOR Leg := 1 TO 6 DO
-        Pose[Leg] := Poses[Item, Leg];
-    END_FOR;
-    Ik(Pose := Pose);
-    Angle := Ik.CrankAngle;
-    Flags := Ik.LegInRange;
-    FOR Leg := 1 TO 6 DO
-        Angles[Item, Leg] := Angle[Leg];
-        InRange[Item, Leg] := Flags[Leg];
-    END_FOR;
-    ErrorIDs[Item] := Ik.ErrorID;
-    ErrorLegs[Item] := Ik.ErrorLeg;
-END_FOR;
-END_PROGRAM
-"""
+#: The IK harnesses, ST files beside this package (their array sizes: the global constant VERIFY_CASES).
+HARNESS_DIR = Path(__file__).resolve().parent / "harnesses"
+#: The harnesses by platform kind (crank?): IK, then FK.
+HARNESSES = {True: ("VerifyVariantIkCrank.st", "VerifyVariantFkCrank.st"),
+             False: ("VerifyVariantIkMovingBase.st", "VerifyVariantFkMovingBase.st")}
 
-_MOVING_IK = """
-PROGRAM VerifyVariantIk
-VAR
-    CaseCount : DINT;
-    Poses : ARRAY[1..{n}, 1..6] OF LREAL;
-    Bases : ARRAY[1..{n}, 1..6] OF LREAL;
-    Positions : ARRAY[1..{n}, 1..6] OF LREAL;
-    Gammas : ARRAY[1..{n}, 1..6] OF LREAL;
-    Psis : ARRAY[1..{n}, 1..6] OF LREAL;
-    Tilts : ARRAY[1..{n}, 1..6] OF LREAL;
-    ErrorIDs : ARRAY[1..{n}] OF WORD;
-    ErrorLegs : ARRAY[1..{n}] OF INT;
-    Pose : ARRAY[1..6] OF LREAL;
-    Base : ARRAY[1..6] OF LREAL;
-    Values : ARRAY[1..6] OF LREAL;
-    Ik : SP_InverseKinematics;
-    Item : DINT;
-    Leg : DINT;
-END_VAR
-FOR Item := 1 TO CaseCount DO
-    FOR Leg := 1 TO 6 DO
-        Pose[Leg] := Poses[Item, Leg];
-        Base[Leg] := Bases[Item, Leg];
-    END_FOR;
-    Ik(Pose := Pose, BasePose := Base);
-    Values := Ik.CylinderPos;
-    FOR Leg := 1 TO 6 DO
-        Positions[Item, Leg] := Values[Leg];
-    END_FOR;
-    Values := Ik.UniversalGamma;
-    FOR Leg := 1 TO 6 DO
-        Gammas[Item, Leg] := Values[Leg];
-    END_FOR;
-    Values := Ik.UniversalPsi;
-    FOR Leg := 1 TO 6 DO
-        Psis[Item, Leg] := Values[Leg];
-    END_FOR;
-    Values := Ik.SphericalTilt;
-    FOR Leg := 1 TO 6 DO
-        Tilts[Item, Leg] := Values[Leg];
-    END_FOR;
-    ErrorIDs[Item] := Ik.ErrorID;
-    ErrorLegs[Item] := Ik.ErrorLeg;
-END_FOR;
-END_PROGRAM
-"""
 
-def variant_fk_harness(capacity: int, measured: str, moving_base: bool) -> str:
-    """The default platform's FK harness (:data:`stgen.verify._FK_HARNESS`) for a variant: the
-    measured input named ``measured`` and, on a moving base, the base pose of each case."""
-    text = _FK_HARNESS.replace("PROGRAM VerifyFk", "PROGRAM VerifyVariantFk").replace("CylinderPos", measured)
-    if moving_base:
-        text = text.replace("    StartPose : ARRAY[1..6] OF LREAL;",
-                            "    Bases : ARRAY[1..{n}, 1..6] OF LREAL;\n    Base : ARRAY[1..6] OF LREAL;\n"
-                            "    StartPose : ARRAY[1..6] OF LREAL;")
-        text = text.replace("        StartPose[Leg] := Starts[Item, Leg];",
-                            "        Base[Leg] := Bases[Item, Leg];\n        StartPose[Leg] := Starts[Item, Leg];")
-        text = text.replace("StartPose := StartPose,", "BasePose := Base, StartPose := StartPose,")
-    return text.format(n=capacity)
+def variant_harness_sources(config: PlatformConfig, capacity: int) -> dict[str, str]:
+    """The IK and FK harnesses of ``config``'s kind and the constant VERIFY_CASES = ``capacity``."""
+    ik, fk = HARNESSES[config.is_crank]
+    return {
+        "VerifyVariantIk.st": (HARNESS_DIR / ik).read_text(encoding="utf-8"),
+        "VerifyVariantFk.st": (HARNESS_DIR / fk).read_text(encoding="utf-8"),
+        "VerifyCases.st": f"VAR_GLOBAL CONSTANT\n    VERIFY_CASES : DINT := {int(capacity)};\nEND_VAR\n",
+    }
+
 
 #: Tolerances of the comparisons: mm and degrees.
 IK_LIMIT = 1e-9
@@ -139,10 +64,8 @@ class VariantRuntime(KinematicsRuntime):
 
         program = render_program(config)
         sources = {f"{pou.name}.st": pou_text(pou) for pou in program.pous}
-        sources["VerifyVariantIk.st"] = (_CRANK_IK if config.is_crank else _MOVING_IK).format(n=capacity)
+        sources.update(variant_harness_sources(config, capacity))
         names = ["VerifyVariantIk", "VerifyVariantFk"]
-        sources["VerifyVariantFk.st"] = variant_fk_harness(
-            capacity, "CrankAngle" if config.is_crank else "CylinderPos", config.moving_base)
         self.config = config
         self.capacity = capacity
         self.project = api.load_sources(sources)

@@ -7,13 +7,15 @@ import pytest
 
 from stgen import cli
 from stgen.commands import demo
-from stgen.scenarios import definitions
+from stgen.scenarios import definitions, platforms
 
 
 @pytest.fixture()
 def one_short_wave(monkeypatch):
     monkeypatch.setattr(demo, "QUICK_WAVE_SECONDS", 0.2)
     monkeypatch.setattr(definitions, "SCENARIOS", (definitions.AIRY_WAVE,))
+    monkeypatch.setattr(platforms, "PLATFORM_SCENARIOS", ())
+    monkeypatch.setattr(demo, "_path_scenarios", lambda quick, scratch: [])  # no path or playback either
 
 
 def test_a_symlink_in_d_to_a_file_outside_is_refused_before_any_run(tmp_path, capsys):

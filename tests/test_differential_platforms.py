@@ -89,3 +89,19 @@ def test_a_kind_not_rendered_is_refused():
 def test_default_output_has_no_variant_constants():
     constants = render_program().pou("SP_Constants")
     assert not [v for v in constants.variables if v.name.startswith(("ERR_LEG_", "SP_CRANK", "SP_TILT"))]
+
+
+@pytest.mark.parametrize("name", ["crank", "moving"])
+def test_the_harness_st_files_check_clean_with_the_variant_folder(name, tmp_path, capsys):
+    """stgen/harnesses/*.st are ST files (not Python strings): with VERIFY_CASES and the generated
+    folder they pass `stgen check --dialect nj` without an error or a warning."""
+    from stgen.cli import main
+    from stgen.verify_variants import variant_harness_sources
+
+    config = CRANK if name == "crank" else MOVING
+    for file, text in variant_harness_sources(config, 10).items():
+        (tmp_path / file).write_text(text, encoding="utf-8")
+    folder = EXAMPLES.parent / "generated" / ("crank_iec" if name == "crank" else "moving_base_iec")
+    assert main(["check", "--dialect", "nj", str(tmp_path), str(folder)]) == 0
+    out = capsys.readouterr()
+    assert "0 error(s), 0 warning(s)" in out.out + out.err

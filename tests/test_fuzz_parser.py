@@ -28,13 +28,15 @@ TYPE END_TYPE STRUCT END_STRUCT VAR VAR_INPUT VAR_OUTPUT VAR_IN_OUT VAR_TEMP VAR
 VAR_EXTERNAL END_VAR CONSTANT RETAIN ARRAY OF STRING WSTRING IF THEN ELSIF ELSE END_IF
 CASE END_CASE FOR TO BY DO END_FOR WHILE END_WHILE REPEAT UNTIL END_REPEAT EXIT CONTINUE
 RETURN NOT AND OR XOR MOD TRUE FALSE R_EDGE F_EDGE METHOD END_METHOD INTERFACE END_INTERFACE EXTENDS IMPLEMENTS PUBLIC PRIVATE ABSTRACT FINAL THIS SUPER REF_TO NULL POINTER ACTION END_ACTION PROPERTY END_PROPERTY GET END_GET SET END_SET UNION END_UNION NAMESPACE END_NAMESPACE USING CONFIGURATION RESOURCE ON TASK WITH
-END_RESOURCE END_CONFIGURATION""".split()
+END_RESOURCE END_CONFIGURATION INITIAL_STEP STEP END_STEP TRANSITION FROM END_TRANSITION VAR_CONFIG VAR_ACCESS READ_ONLY READ_WRITE""".split()
 PUNCTUATION = [";", ":", ":=", "=>", ",", ".", "..", "(", ")", "[", "]", "**", "*", "/",
                "+", "-", "<=", ">=", "<>", "<", ">", "=", "&", "#", "(*", "*)", "/*", "*/",
                "//", "'", '"', "$", "\n", "{", "}"]
 ATOMS = ["x", "Speed", "INT", "LREAL", "TON", "0", "1", "16#FF", "2#102", "1.5E-3",
          "T#1s", "T#5x", "INT#-5", "Color#Red", "'it$'s'", "'$Q'", "D#2024-02-30",
-         "TOD#25:00:00", "\"w\"", "{attribute 'hide'}", "AT", "%IX0.0", "%QW3", "%I*", "%IX0.9", "^", "REF(x)", "S=", ".%X3", ",)"]
+         "TOD#25:00:00", "\"w\"", "{attribute 'hide'}", "AT", "%IX0.0", "%QW3", "%I*", "%IX0.9", "^", "REF(x)", "S=", ".%X3", ",)",
+         "STRING#'a'", 'WSTRING#"w"', "STRING#\"x\"", "SUPER^()", "Color.Red", "Act(N);", "Act(L, T#1s);",
+         "FROM (A, B) TO C"]
 
 SETTINGS = settings(max_examples=int(os.environ.get("ST_FUZZ_EXAMPLES", "200")), deadline=None,
                     suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])

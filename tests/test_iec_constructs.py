@@ -308,3 +308,52 @@ def test_direct_variables_in_code_use_the_image():
     assert plc.image["%MW2"] == 301               # %IW1 reads as Level's INT
     assert main["Sum"] == 300 - 5
     assert plc.faults == []
+
+
+def test_codesys_enum_value_with_a_dot():
+    # State starts Amber (1): CASE takes Amber -> Next := Red, Code := 2;
+    # Next = Red adds 10: 12.  Scan 2: Red -> Green, Code 1.  Scan 3: Green -> Amber, 3.
+    plc, main = run("codesys_enum_dot.st", 1, dialect="codesys")
+    assert (main["State"], main["Code"]) == ("Red", 12)
+    plc.run(1)
+    assert (main["State"], main["Code"]) == ("Green", 1)
+    plc.run(1)
+    assert (main["State"], main["Code"]) == ("Amber", 3)
+
+
+def test_own_standard_fb_replaces_the_built_in():
+    # The project's R_TRIG counts calls and copies CLK: after 3 scans with
+    # CLK TRUE, Q is TRUE every scan (3 highs); the built-in would give one edge.
+    plc, main = run("own_standard_fb.st", 3)
+    assert (main["Highs"], main["Edge.Calls"]) == (3, 3)
+    from st_runtime.loader import load_texts
+    text = (ACCEPT / "own_standard_fb.st").read_text()
+    found = [(d.code, d.pos.line) for d in load_texts({"f.st": text}, "iec").diagnostics]
+    assert ("W-DECL-001", 3) in found and not any(c.startswith("E-") for c, _ in found)
+
+
+def test_codesys_pou_writes_its_inputs():
+    # Clamp10(25): X is cut to 10, returns 20; Clamp10(4) = 8; the caller's Big
+    # stays 25 (an input is a copy).  Countdown from 10 by 3: 7, 4, 1, -2 (4 steps),
+    # and the instance's N keeps -2.  SumTo(2) loops I over its input: 2+3+4 = 9.
+    plc, main = run("codesys_input_written.st", 1, dialect="codesys")
+    assert [main[n] for n in ("Big", "A", "B", "C")] == [25, 20, 8, 9]
+    assert (main["Down.Steps"], main["Down.N"]) == (4, -2)
+
+
+def test_codesys_super_body_runs_the_base_body():
+    # Step 2.  Scan 1: SUPER^() -> Count 2 (Slow).  Scan 2: Count 4 -> Fast,
+    # so SUPER^() again -> 6.  Scan 3: 8, then 10.  Mode.Fast names the value
+    # although a variable Mode of type Mode is in scope.
+    plc, main = run("codesys_super_body.st", 1, dialect="codesys")
+    assert (main["T.Count"], main["T.Mode"]) == (2, "Slow")
+    plc.run(2)
+    assert (main["T.Count"], main["T.Mode"], main["T.Calls"]) == (10, "Fast", 3)
+
+
+def test_typed_string_literals():
+    # STRING#'ABC' is 'ABC'; '$'' is a quote and '$"' a double quote (table 6):
+    # Joined = 'ABC' + '-' + "'D'" = ABC-'D' (7 characters).
+    plc, main = run("typed_string_literals.st", 1)
+    assert (main["Plain"], main["Wide"], main["Joined"]) == ("ABC", 'x"y', "ABC-'D'")
+    assert (main["Same"], main["Size"]) == (True, 7)

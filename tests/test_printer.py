@@ -183,3 +183,15 @@ def test_generated_nj_bodies_parse(path: Path):
     body, diagnostics = parse_body(text, path.name)
     assert not diagnostics, "\n".join(d.render(text) for d in diagnostics)
     assert body
+
+
+def test_round_trip_sfc_chart():
+    # Steps with qualified actions (N, P, L with a duration), named and
+    # unnamed transitions, actions print back as they were written.
+    path = Path(__file__).parent / "corpus" / "accept" / "sfc_filler.st"
+    original = parse_ok(path.read_text(encoding="utf-8"), path.name)
+    printed = format_source(original)
+    assert "Blink(L, T#2s);" in printed and "TRANSITION Done FROM Fill TO Idle" in printed
+    again = parse_ok(printed, path.name)
+    assert again == original
+    assert format_source(again) == printed

@@ -1,6 +1,7 @@
 """``stgen demo``: generated code, summary table, CSV traces and PNG figures, exit status.
 
-The waves are shortened here (the full 60 s runs are in test_scenarios.py)."""
+The waves, paths and the sea state are shortened here (the full runs are in test_scenarios.py and
+test_scenarios_paths.py)."""
 
 from __future__ import annotations
 
@@ -10,7 +11,7 @@ import pytest
 
 from stgen import cli
 from stgen.commands import demo
-from stgen.scenarios import definitions, runner
+from stgen.scenarios import definitions, platforms, runner
 from stgen.scenarios.csv_trace import HEADER
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
@@ -19,6 +20,15 @@ PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 @pytest.fixture()
 def short_waves(monkeypatch):
     monkeypatch.setattr(demo, "QUICK_WAVE_SECONDS", 0.3)
+    monkeypatch.setattr(platforms, "PLATFORM_SCENARIOS", ())  # tests/test_platform_demo.py runs those
+    monkeypatch.setattr(demo, "QUICK_PATH_FRACTION", 0.02)
+    monkeypatch.setattr(demo, "QUICK_SEA_STATE_SECONDS", 1.0)
+
+
+@pytest.fixture()
+def no_paths(monkeypatch):
+    """No path or playback scenario (one short run is enough)."""
+    monkeypatch.setattr(demo, "_path_scenarios", lambda quick, scratch: [])
 
 
 def test_demo_writes_code_traces_figures_and_passes(tmp_path, short_waves, capsys):
@@ -31,10 +41,13 @@ def test_demo_writes_code_traces_figures_and_passes(tmp_path, short_waves, capsy
     assert "limit 250 mm/s" in out and "limit 2500 mm/s²" in out and "Cmd.Pos" in out
     # Two rows (|v|, |a|) per scenario in the limits table, each within its limit.
     limit_rows = [line for line in out.splitlines() if "mm/s" in line and ("within" in line or "ABOVE" in line)]
-    assert len(limit_rows) == 6 and all("within" in line for line in limit_rows)
+    assert len(limit_rows) == 16 and all("within" in line for line in limit_rows)
     # Issue 8 section 4: one estimated NJ501 time line per scenario, against the 80 % rule.
-    assert out.count("estimated NJ501 time per scan") == 3
-    for name in ("point_to_point", "airy_wave", "random_wave"):
+    assert out.count("estimated NJ501 time per scan") == 8
+    # Issue 12: the four path families and the playback of the recorded sea state, written beside the traces.
+    assert (tmp_path / "sea_state_10hz.csv").read_text().startswith("t,x,y,z,alpha,beta,gamma\n")
+    for name in ("point_to_point", "airy_wave", "random_wave", "path_epitrochoid", "path_epicycloid",
+                 "path_hypocycloid", "path_spiral", "playback"):
         assert name in out
         assert (tmp_path / f"{name}.png").read_bytes()[:8] == PNG_SIGNATURE
         with (tmp_path / f"{name}.csv").open() as stream:
@@ -66,7 +79,7 @@ def test_demo_csv_headers_carry_units():
     assert not {"x", "alpha", "q1", "time"} & set(HEADER)
 
 
-def test_demo_exits_1_when_a_scenario_fails(tmp_path, short_waves, monkeypatch, capsys):
+def test_demo_exits_1_when_a_scenario_fails(tmp_path, short_waves, no_paths, monkeypatch, capsys):
     monkeypatch.setattr(runner, "MAX_ERROR_MM", 0.0)  # nothing can pass an error limit of zero
     monkeypatch.setattr(definitions, "SCENARIOS", (definitions.AIRY_WAVE,))  # one short run is enough
     assert cli.main(["demo", "--quick", "--out", str(tmp_path)]) == 1
@@ -80,8 +93,8 @@ def test_demo_reports_a_bad_config(tmp_path, capsys):
     assert "geometry.rb" in capsys.readouterr().err
 
 
-def test_demo_fails_a_scenario_whose_setpoints_exceed_the_actuator_acceleration(tmp_path, short_waves, monkeypatch,
-                                                                                 capsys):
+def test_demo_fails_a_scenario_whose_setpoints_exceed_the_actuator_acceleration(tmp_path, short_waves, no_paths,
+                                                                                 monkeypatch, capsys):
     # The Airy wave's fade-in accelerates the cylinders at about 110 mm/s^2 (planned within the pose limits,
     # 500 mm/s^2): an actuator limited to 50 mm/s^2 must fail the scenario, whatever the position error.
     config = tmp_path / "slow.toml"

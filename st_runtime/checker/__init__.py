@@ -44,6 +44,7 @@ from . import codes  # noqa: F401  (registers the codes)
 from .context import Context, FastSink, Scope
 from .declarations import Declarations
 from .dialects import check_dialect
+from .sfc import lower_charts
 from .expressions import ExprChecker
 from .nj_build import check_build_rules
 from .limits import check_files
@@ -89,7 +90,8 @@ def _check(files, dialect, memory_limit=None, open_instances=False):
     try:
         if not check_files(ctx, files):       # structural limits first (limits.py)
             return program, list(ctx.sink.items)
-        Declarations(ctx).run(files)
+        program.files = lower_charts(ctx, files)     # a chart body becomes statements (sfc.py)
+        Declarations(ctx).run(program.files)
         for info in program.pous.values():
             if info.node is None or info.native is not None:
                 continue

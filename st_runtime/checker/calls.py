@@ -75,6 +75,9 @@ class CallChecker:
             self.program.lowered[id(call)] = inner
             t = self._dispatch(inner, expected, statement)
             return self.ex.record(call, t) if id(inner) in self.program.expr_types else t
+        if isinstance(callee, ast.Deref) and isinstance(callee.base, ast.Name) \
+                and key(callee.base.name) == "SUPER" and self.ex.scope.lookup("SUPER") is None:
+            return self._super_body(call, statement)
         method = self._method_target(callee)
         if method is not None:
             return self._method_call(call, method[0], method[1], statement)
@@ -98,7 +101,9 @@ class CallChecker:
                 return self.ex.record(call, ts.ERROR)     # (its argument is a type: not typed)
             if k in ("LOWER_BOUND", "UPPER_BOUND"):
                 return self._bound(call, k)
-            if k in ("REF", "ADR") and (k == "REF" or self.ctx.dialect == "codesys"):
+            if k in ("REF", "ADR"):
+                if k == "ADR" and not self.ctx.accepts("ADR", callee.pos):
+                    return self.ex.record(call, ts.ERROR)
                 return self._reference(call, k)
             if k in OPERATOR_FUNCTIONS:
                 return self._operator_call(call, k, OPERATOR_FUNCTIONS[k], expected)
@@ -206,6 +211,28 @@ class CallChecker:
             m = find_method(fb, callee.name)
             return ("self", m) if m is not None else None
         return None
+
+    def _super_body(self, call, statement: bool):
+        """CODESYS's `SUPER^()` in the body of a derived FB: run the base FB's body
+        on this instance (CODESYS online help, SUPER: "SUPER^() calls the body of
+        the base function block")."""
+        if not self.ctx.accepts("SUPER_BODY", call.callee.pos):
+            return ts.ERROR
+        fb, pou = self.ex.scope.fb, self.ex.scope.pou
+        if fb is None or pou is not fb or fb.parent is None:
+            self.ctx.error("E-DECL-016", "SUPER^(): only in the body of a FUNCTION_BLOCK that "
+                           "EXTENDS another", call.callee.pos)
+            return ts.ERROR
+        if call.args:
+            self.ctx.error("E-CALL-006", "SUPER^() takes no arguments (the base body runs on "
+                           "this instance's variables)", call.args[0].pos)
+            return ts.ERROR
+        if not statement:
+            self.ctx.error("E-TYPE-016", "SUPER^() returns no value and cannot be used in an "
+                           "expression", call.pos)
+            return ts.ERROR
+        self.program.call_targets[id(call)] = CallTarget("super_body", fb.parent.name, fb.parent)
+        return ts.ERROR            # a statement: no value
 
     def _method_call(self, call, how: str, method: PouInfo, statement: bool):
         name = f"{method.owner.name}.{method.name}"

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 from .. import ast
 from ..ast import key
-from ..dialects import DIALECTS, Dialect
+from ..dialects import DIALECTS, Dialect, refusal
 from ..diagnostics import ERROR, Diagnostic, DiagnosticSink
 from ..symbols import CheckedProgram, PouInfo, Symbol
 
@@ -50,6 +50,14 @@ class Context:
     def rules(self) -> Dialect:
         """What the dialect refuses and how it names pins (st_runtime/dialects.py)."""
         return DIALECTS[self.dialect]
+
+    def accepts(self, construct: str, pos: ast.Pos) -> bool:
+        """Whether the dialect accepts `construct` (st_runtime/dialects.py CONSTRUCTS);
+        if not, E-DIALECT-001 naming the dialects that would."""
+        if self.rules.accepts(construct):
+            return True
+        self.error("E-DIALECT-001", refusal(construct, self.dialect), pos)
+        return False
 
     def nj_rule(self, rule: str, message: str, pos: ast.Pos) -> None:
         """Report OMRON NJ rule `rule`: an error where the dialect refuses it, else a warning."""

@@ -18,6 +18,7 @@ from ..ast import key
 from ..symbols import PouInfo, Symbol
 from . import builtins as B
 from . import typesys as ts
+from .configuration import check_config_inits, check_connections, check_program_access
 from .constfold import NOT_CONSTANT
 from .context import BUILTIN_FILE, Context, Scope
 from .expressions import ExprChecker
@@ -69,6 +70,10 @@ class Declarations:
             self.objects.check_contracts(self.program.pous[k], node)
         for config in self.configurations:
             self._configuration(config)
+        for k, node in self.ctx.pou_decls.items():
+            if getattr(node, "access", ()):
+                info = self.program.pous[k]
+                check_program_access(self, node.access, ExprChecker(self.ctx, Scope(self.ctx, info)))
 
     def _configuration(self, config: ast.Configuration) -> None:
         """Program instances name a declared PROGRAM and a declared TASK."""
@@ -89,19 +94,41 @@ class Declarations:
                 names = ", ".join(t.name for t in config.tasks) or "none"
                 self.ctx.error("E-DECL-001", f"program instance {inst.name}: undeclared task "
                                f"'{inst.task}' (tasks: {names})", inst.pos)
+            info = self.program.pous.get(key(inst.program_type))
+            if info is not None and info.kind == "PROGRAM":
+                check_connections(self.ctx, inst, info, ex)
+        check_config_inits(self, config, ex)
 
     def _collect(self, item) -> None:
         if isinstance(item, ast.TypeDecl):
             if self._declare_name(item.name, item.pos):
                 self.ctx.type_decls[key(item.name)] = item
         elif isinstance(item, ast.Pou):
-            if self._declare_name(item.name, item.pos):
+            if self._replaces_standard_fb(item) or self._declare_name(item.name, item.pos):
                 self.ctx.pou_decls[key(item.name)] = item
         elif isinstance(item, ast.VarBlock):
             self.global_blocks.append(item)
         elif isinstance(item, ast.Configuration):
             self.global_blocks.extend(item.globals)
             self.configurations.append(item)
+
+    def _replaces_standard_fb(self, item: ast.Pou) -> bool:
+        """A project's own FUNCTION_BLOCK named like a built-in one (TON, CTU, MC_Power)
+        replaces it, with W-DECL-001: toolchains ship these as ST libraries (MATIEC's
+        lib/*.txt, STruC++'s libs/sources), and a project built with them declares them.
+        Whether IEC 61131-3 reserves the standard FB names was not confirmed from a
+        source at hand, hence a warning, not silence.  A standard function stays
+        E-DECL-003: its overloads (ANY_NUM ...) cannot be replaced by one POU."""
+        k = key(item.name)
+        first = self._names.get(k)
+        builtin = self.ctx.pou_decls.get(k)
+        if item.kind != "FUNCTION_BLOCK" or first is None or first.file != BUILTIN_FILE \
+                or builtin is None or builtin.kind != "FUNCTION_BLOCK" or item.pos.file == BUILTIN_FILE:
+            return False
+        self._names[k] = item.pos
+        self.ctx.warning("W-DECL-001", f"'{item.name}' replaces the built-in standard function "
+                         f"block of that name in this project", item.pos)
+        return True
 
     def _declare_name(self, name: str, pos: ast.Pos) -> bool:
         k = key(name)

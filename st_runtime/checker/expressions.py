@@ -308,22 +308,25 @@ class ExprChecker:
         t = {"DATE": T.DATE, "TOD": T.TOD, "DT": T.DT}.get(e.kind, T.DT)
         return self.record(e, t, e.nanoseconds)
 
-    def _EnumLiteral(self, e, expected):
+    def _EnumLiteral(self, e, expected, written=None):
+        """`Color#Red`; `written` is the node to type when the value was written
+        otherwise (CODESYS's `Color.Red`)."""
         t = self.program.types.get(key(e.type_name))
+        node = e if written is None else written
         if not isinstance(t, T.EnumType):
             if t is None:
                 self.ctx.error("E-DECL-004", f"unknown enumeration type '{e.type_name}'", e.pos)
             else:
                 self.ctx.error("E-TYPE-015", f"'{e.type_name}#{e.value_name}': expected an "
                                f"enumeration type before '#', found {t}", e.pos)
-            return self.record(e, ts.ERROR)
+            return self.record(node, ts.ERROR)
         entry = t.values.get(key(e.value_name))
         if entry is None:
             names = ", ".join(n for n, _ in t.values.values())
             self.ctx.error("E-TYPE-015", f"'{e.value_name}' is not a value of {t.name} "
                            f"(values: {names})", e.pos)
-            return self.record(e, ts.ERROR)
-        return self.record(e, t, entry[1])
+            return self.record(node, ts.ERROR)
+        return self.record(node, t, entry[1])
 
     # ------------------------------------------------------------- names
     def _Name(self, e, expected):
@@ -370,6 +373,10 @@ class ExprChecker:
         return f" (did you mean '{candidates[close[0]]}'?)" if close else ""
 
     def _Member(self, e, expected):
+        if isinstance(e.base, ast.Name) and self._enum_type_before_dot(e):
+            if not self.ctx.accepts("ENUM_DOT", e.pos):          # CODESYS's E_Color.Red
+                return self.record(e, ts.ERROR)
+            return self._EnumLiteral(ast.EnumLiteral(e.base.name, e.name, pos=e.pos), expected, e)
         base = self.infer(e.base)
         if base is ts.ERROR:
             return self.record(e, ts.ERROR)
@@ -415,6 +422,18 @@ class ExprChecker:
         self.ctx.error("E-TYPE-009", f"'.{e.name}': expected a struct or function block "
                        f"instance, found {base}", e.pos)
         return self.record(e, ts.ERROR)
+
+    def _enum_type_before_dot(self, e: ast.Member) -> bool:
+        """`Light.Red` names an enumeration value: `Light` is an enumeration type and
+        no variable, or a variable of an enumeration type (which has no members)
+        spelled like the type, whose values include `Red` (`state : State :=
+        State.Idle` in a case-insensitive language)."""
+        enum = self.program.types.get(key(e.base.name))
+        if not isinstance(enum, T.EnumType):
+            return False
+        sym = self.scope.lookup(e.base.name)
+        return sym is None or (isinstance(T.resolve_alias(sym.type), T.EnumType)
+                               and key(e.name) in enum.values)
 
     def _Deref(self, e, expected):
         base = self.infer(e.base)

@@ -42,12 +42,13 @@ checked.
 from __future__ import annotations
 
 from .. import types as T
+from ..dialects import DIALECTS
 from ..diagnostics import register
 
 #: Bytes a variable, a POU instance or the project may need by default (64 MiB).
 DEFAULT_LIMIT = 64 * 2**20
 #: The NJ's largest STRING: 1,986 bytes including the terminating NULL.
-NJ_STRING_MAX_BYTES = 1986
+NJ_STRING_MAX_BYTES = DIALECTS["nj"].string_max_bytes
 
 register({
     "E-LIMIT-008": "a variable needs more memory than the limit",
@@ -126,7 +127,7 @@ def check_memory(ctx, limit: int | None = None) -> None:
             if size > limit:
                 ctx.error("E-LIMIT-008", f"{owner}{sym.name} needs {size:,} bytes ({sym.type}), above the"
                           f" memory limit of {limit:,} bytes", sym.decl.pos)
-            if ctx.dialect == "nj":
+            if ctx.rules.string_max_bytes is not None:
                 _nj_strings(ctx, sym)
         return size
 

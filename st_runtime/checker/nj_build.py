@@ -135,6 +135,9 @@ def _is_literal(ctx: Context, e, integer_only: bool) -> bool:
             return False
     if isinstance(e, ast.IntLiteral) or isinstance(e, ast.EnumLiteral):
         return True
+    if isinstance(e, ast.Member):      # CODESYS's Light.Red: an enumerator, typed as one
+        return isinstance(ctx.program.expr_types.get(id(e)), T.EnumType) \
+            and id(e) in ctx.program.constants
     if isinstance(e, ast.Name):        # an enumerator is an int in name_refs, a variable a Symbol
         ref = ctx.program.name_refs.get(id(e))
         return isinstance(ref, int) and not isinstance(ref, bool)

@@ -93,7 +93,8 @@ class StatementChecker:
                            f"variable, found {sym.type}", s.pos)
         elif sym.constant:
             self.ctx.error("E-ASSIGN-001", f"FOR control variable '{sym.name}' is CONSTANT", s.pos)
-        elif sym.kind == "VAR_INPUT" and self.ex.scope.is_local(sym):
+        elif sym.kind == "VAR_INPUT" and self.ex.scope.is_local(sym) \
+                and not self.ctx.rules.accepts("INPUT_WRITE"):
             self.ctx.error("E-ASSIGN-002", f"FOR control variable '{sym.name}' is a VAR_INPUT and "
                            f"read-only", s.pos)
         else:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from .. import ast
 from .. import types as T
+from ..dialects import accepting
 from . import typesys as ts
 
 
@@ -61,9 +62,10 @@ def check_store(ex, target, what: str = "assignment"):
         ex.ctx.error("E-ASSIGN-001", f"{what}: '{sym.name}' is CONSTANT and cannot be written",
                      target.pos)
         return ts.ERROR
-    if sym.kind == "VAR_INPUT" and ex.scope.is_local(sym):
+    if sym.kind == "VAR_INPUT" and ex.scope.is_local(sym) and not ex.ctx.rules.accepts("INPUT_WRITE"):
         ex.ctx.error("E-ASSIGN-002", f"{what}: '{sym.name}' is a VAR_INPUT of "
-                     f"{ex.scope.pou.name} and is read-only inside it", target.pos)
+                     f"{ex.scope.pou.name} and is read-only inside it "
+                     f"({accepting('INPUT_WRITE')} accepts writing it)", target.pos)
         return ts.ERROR
     if any(sym is loop_var for loop_var in ex.loop_vars):
         ex.ctx.error("E-ASSIGN-003", f"{what}: '{sym.name}' is the control variable of an "

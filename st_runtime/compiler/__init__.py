@@ -36,6 +36,7 @@ import math
 from dataclasses import dataclass, field
 
 from .. import ast
+from ..dialects import DIALECTS
 from ..diagnostics import register
 from ..faults import STFault
 from ..native import NATIVE_FBS
@@ -128,10 +129,9 @@ class CompileUnit:
         return pyname
 
     def bind_conversion(self, name: str, pos) -> str:
-        from ..checker.dialects import TIME_UNIT_NS
         from ..stdlib.conversions import CONVERSIONS, time_scaled
 
-        unit = TIME_UNIT_NS.get(getattr(self.program, "dialect", "iec"), 1)
+        unit = DIALECTS[getattr(self.program, "dialect", "iec")].time_unit_ns
         scaled = time_scaled(name, unit)
         if scaled is not None:          # this dialect's TIME counts ms, say
             pyname = safe_name(f"_cv_{name.upper()}_{unit}")

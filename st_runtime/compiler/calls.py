@@ -121,6 +121,9 @@ class Calls:
         target = self.target(ec, call)
         if target.kind == "fb":
             return self.fb_call(ec, call, target)
+        if target.kind == "super_body":          # SUPER^(): the base's body on this instance
+            owner = self.unit.register_constant(self.unit.classes[target.name.upper()])
+            return [f"{owner}.execute(self, _ctx)"]
         if target.kind in ("function", "method") and target.pou is not None and target.pou.outputs:
             return self.user_call_with_outputs(ec, call, target)
         return [self.call_expr(ec, call)]

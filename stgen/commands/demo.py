@@ -8,7 +8,11 @@
    position against the NumPy reference: the study's point-to-point moves
    (+100 mm in x, y, z at 20 mm/s, +6°, +6°, +10° in α, β, γ at 2°/s, each
    out and back to (0, 0, 150, 0, 0, 0), twelve commands in one run), the
-   Airy wave and the random wave;
+   Airy wave and the random wave; then the four path families (issue 12:
+   epitrochoid, epicycloid, hypocycloid, Archimedean spiral at roll = pitch
+   = 35 deg, each planned by SP_Controller before it moves, lead-in, path) and
+   the playback of a recorded JONSWAP sea state (``DIR/sea_state_10hz.csv``,
+   60 s at 10 Hz, played at the task period);
 3. prints a summary table (scenario, duration, scans, max error, faults),
    a table of the largest |v| and |a| of every cylinder's set-point (what
    SP_Controller hands to MC_SyncMoveAbsolute, finite differences at the task
@@ -18,7 +22,14 @@
    OMRON's 80 % rule; st_runtime/compiler/cost.py); and writes for each
    scenario ``DIR/<scenario>.csv`` (every scan) and ``DIR/<scenario>.png``
    (pose, cylinder positions, error, velocity and acceleration, following
-   error over time), and says which files it wrote.
+   error over time), and says which files it wrote;
+4. runs the platform variants' scenarios on their example platforms
+   (:mod:`stgen.commands.demo_platforms`): the moving-base study's two 10 s
+   motions and two test poses, the crank signals (surge, roll), each with a
+   row in a further table (error against the reference at 1e-9, whether the
+   stroke or crank angle, joint angles and tilt hold on every scan, the
+   extremes, the set-points' velocity and acceleration, a stream's start
+   step) and its own ``DIR/<scenario>.csv`` and ``.png``.
 
 DIR is written as ``stgen generate`` writes its folder (:mod:`stgen.exports.folder`):
 a file there that stgen did not write (or changed since) is never
@@ -27,15 +38,18 @@ symbolic link (``DIR/generated`` and the files in DIR included); a second demo
 into the same DIR refuses while the first runs.
 
 ``--quick`` shortens every scenario: waves of 5 s, point-to-point moves of a
-tenth of each displacement with 0.1 s of standstill after each (a few MB of
-CSV in all). Exit 1 if any scenario fails (error above 1e-6 mm, any fault, or
+tenth of each displacement with 0.1 s of standstill after each, a quarter
+of each path from its first pose, 5 s of sea state, 1 s of each streamed
+platform motion (a few MB of CSV in all). Exit 1 if any scenario fails (error above 1e-6 mm, any fault, or
 a set-point velocity or acceleration above the actuator's limit in any scan).
 """
 
 from __future__ import annotations
 
 import argparse
+import shutil
 import sys
+import tempfile
 from pathlib import Path
 
 from stgen.commands.config_option import add_config_argument, config_from_args
@@ -48,6 +62,13 @@ QUICK_SETTLE_SECONDS = 0.1
 #: The demo's axes trail their commands by a first-order lag, so the figures' following-error panel shows a
 #: real servo (the commanded positions, compared with the reference, do not depend on it).
 DEMO_SERVO_LAG_S = 0.002
+#: Seconds of recorded sea state the playback plays; ``--quick``: the share of each path's curve and the
+#: seconds of sea state.
+SEA_STATE_SECONDS = 60.0
+QUICK_PATH_FRACTION = 0.25
+QUICK_SEA_STATE_SECONDS = 5.0
+#: The recorded motion the playback plays, written into DIR beside the traces.
+SEA_STATE_CSV = "sea_state_10hz.csv"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -63,7 +84,7 @@ def run(args: argparse.Namespace) -> int:
 
     console = Console()
     if not console.is_terminal:  # a log file or a pipe: room for the whole table
-        console = Console(width=110)
+        console = Console(width=120)
     config = config_from_args(args, "demo")
     if config is None:
         return 1
@@ -75,14 +96,27 @@ def run(args: argparse.Namespace) -> int:
 
     scenarios = [s.shortened(QUICK_WAVE_SECONDS, QUICK_MOVE_FRACTION, QUICK_SETTLE_SECONDS) if args.quick
                  else s for s in SCENARIOS]
+    from stgen.commands import demo_platforms
+
+    platform_items = demo_platforms.platform_scenarios(args.quick)
     try:
-        with OwnedFolder(out) as folder:
-            folder.check(_output_names(scenarios))  # refuse before the long runs, not after
+        with OwnedFolder(out) as folder, tempfile.TemporaryDirectory(prefix="stgen-demo-") as scratch:
+            scenarios += _path_scenarios(args.quick, Path(scratch))
+            # refuse before the long runs, not after
+            folder.check(_output_names(scenarios) + [SEA_STATE_CSV] + demo_platforms.output_names(platform_items))
             results = _generate_and_run(config, scenarios, out, console)
             if results is None:
                 return 1
+            platform_runs = _run_platforms(platform_items, console)
+            if platform_runs is None:
+                return 1
             for result in results:
                 _stage_outputs(result, folder)
+            for run in platform_runs:
+                demo_platforms.stage_outputs(run, folder)
+            sea_state = Path(scratch) / SEA_STATE_CSV
+            if sea_state.is_file():  # the recorded motion the playback played, beside its trace
+                folder.stage_with(SEA_STATE_CSV, lambda temp: shutil.copyfile(sea_state, temp))
             update = folder.commit()
     except OSError as error:
         print(f"stgen demo: error: cannot write {error.filename or out}: {error.strerror}", file=sys.stderr)
@@ -92,23 +126,34 @@ def run(args: argparse.Namespace) -> int:
         return 1
     console.print(_summary(results, config))
     console.print(_limits_table(results, config))
+    console.print(demo_platforms.summary_table(platform_runs))
     for result in results:
         if len(result.move_durations_s) > 1:
             durations = ", ".join(f"{d:.3f}" for d in result.move_durations_s)
             console.print(f"{result.scenario.name}: {len(result.move_durations_s)} moves planned by SP_Controller "
                           f"(SpMoveDuration): {durations} s", soft_wrap=True)
-    for result in results:
+    for result in results + [run.result for run in platform_runs]:
         if result.nj_time is not None:
             console.print(f"{result.scenario.name}: SP_Controller {_nj_time(result.nj_time)}", soft_wrap=True)
     summary = update.summary()
     console.print(f"Wrote {len(update.written)} traces and figures in {out}/: "
                   + ", ".join(p.name for p in update.written) + (f"; {summary}" if summary else ""), soft_wrap=True)
-    failed = [r.scenario.name for r in results if not r.passed]
+    failed = [r.scenario.name for r in results if not r.passed] + [r.name for r in platform_runs if not r.passed]
     if failed:
         console.print(f"[bold red]FAILED:[/] {', '.join(failed)}")
         return 1
     console.print("[bold green]All scenarios passed.[/]")
     return 0
+
+
+def _path_scenarios(quick: bool, scratch: Path) -> list:
+    """The path scenarios and the sea-state playback (its CSV written to ``scratch``), shortened under --quick."""
+    from stgen.scenarios.path_scenarios import PATH_SCENARIOS, quick_path, sea_state_scenario, write_sea_state_csv
+
+    seconds = QUICK_SEA_STATE_SECONDS if quick else SEA_STATE_SECONDS
+    write_sea_state_csv(scratch / SEA_STATE_CSV, seconds)
+    paths = [quick_path(s, QUICK_PATH_FRACTION) for s in PATH_SCENARIOS] if quick else list(PATH_SCENARIOS)
+    return paths + [sea_state_scenario(scratch / SEA_STATE_CSV, seconds)]
 
 
 def _output_names(scenarios) -> list[str]:
@@ -127,6 +172,22 @@ def _generate_and_run(config, scenarios, out: Path, console):
         print(f"stgen demo: error: the generated controller does not load:\n{error.render()}", file=sys.stderr)
     except (TimeoutError, ValueError) as error:  # no STANDBY after power-on; a start pose outside the stroke
         print(f"stgen demo: error: {error}", file=sys.stderr)
+    return None
+
+
+def _run_platforms(items, console):
+    """The platform variants' scenarios on their example platforms; ``None`` (reported) if they cannot run."""
+    from st_runtime.api import LoadError
+
+    from stgen.commands import demo_platforms
+    from stgen.config import ConfigError
+
+    try:
+        return demo_platforms.run_all(items, console, DEMO_SERVO_LAG_S)
+    except LoadError as error:
+        print(f"stgen demo: error: a platform variant's controller does not load:\n{error.render()}", file=sys.stderr)
+    except (ConfigError, OSError, TimeoutError, ValueError) as error:
+        print(f"stgen demo: error: platform scenarios: {error}", file=sys.stderr)
     return None
 
 

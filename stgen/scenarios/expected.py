@@ -18,11 +18,15 @@ run. The first command's rising edge is seen in scan ``command_scan``
   ``wave_pose(wave, m·dt, centre, fade_s=T_F)``, T_F from ``fade_in_duration``
   with the scenario's limits.
 
+A path or a playback (:mod:`stgen.scenarios.path_scenarios`): the planning
+pass, then its lead-in, then the motion, then its end pose held.
+
 Cylinder positions come from the reference IK of those poses.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,6 +35,8 @@ from stgen.config import PlatformConfig
 from stgen.reference.cycloidal import cycloidal_duration, cycloidal_pose, executed_duration
 from stgen.reference.kinematics import inverse_kinematics
 from stgen.reference.wave import fade_in_duration, wave_pose
+from stgen.scenarios import path_scenarios
+from stgen.scenarios.actuators import actuator_positions
 from stgen.scenarios.definitions import PointToPointMotion, Scenario, WaveMotion
 
 
@@ -61,6 +67,8 @@ def move_targets(scenario: Scenario, config: PlatformConfig | None = None) -> li
     motion = scenario.motion
     if isinstance(motion, PointToPointMotion):
         return [np.asarray(target, dtype=float) for target in motion.targets]
+    if path_scenarios.is_planned(motion):
+        return [path_scenarios.first_pose(motion, config)]
     return [wave_pose(motion.wave, 0.0, motion.centre_pose, fade_s=wave_fade_duration(scenario, config))]
 
 
@@ -69,6 +77,11 @@ def scenario_limits(scenario: Scenario, config: PlatformConfig | None):
     if scenario.limits is not None:
         return scenario.limits
     return config.trajectory if config is not None else PlatformConfig.default().trajectory
+
+
+def commanded_config(scenario: Scenario, config: PlatformConfig) -> PlatformConfig:
+    """``config`` with the trajectory limits SP_Controller runs the scenario with."""
+    return dataclasses.replace(config, trajectory=scenario_limits(scenario, config))
 
 
 def wave_fade_duration(scenario: Scenario, config: PlatformConfig | None) -> float:
@@ -92,7 +105,7 @@ def planned_moves(scenario: Scenario, config: PlatformConfig) -> list[PlannedMov
     limits = scenario_limits(scenario, config)
     hold = settle_scans(scenario, config)
     start = np.asarray(scenario.start_pose, dtype=float)
-    edge = 0
+    edge = lead_in_delay(scenario, config)
     moves = []
     for target in move_targets(scenario, config):
         duration = executed_duration(float(cycloidal_duration(target - start, limits)), period)
@@ -105,6 +118,20 @@ def planned_moves(scenario: Scenario, config: PlatformConfig) -> list[PlannedMov
     return moves
 
 
+def lead_in_delay(scenario: Scenario, config: PlatformConfig) -> int:
+    """Scans from the command's edge to the first move's edge: K - 1 after a planning pass, else 0."""
+    if path_scenarios.is_planned(scenario.motion):
+        return path_scenarios.planning_calls(scenario.motion, config) - 1
+    return 0
+
+
+def command_edges(scenario: Scenario, config: PlatformConfig) -> list[int]:
+    """Scans from the first command's edge to each command's edge (a path or playback: one command)."""
+    if path_scenarios.is_planned(scenario.motion):
+        return [0]
+    return [move.edge for move in planned_moves(scenario, config)]
+
+
 def motion_scans(scenario: Scenario, config: PlatformConfig) -> int:
     """Scans from the first command's edge to the end of the scenario (edge included)."""
     moves = planned_moves(scenario, config)
@@ -113,6 +140,8 @@ def motion_scans(scenario: Scenario, config: PlatformConfig) -> int:
     motion = scenario.motion
     if isinstance(motion, WaveMotion):
         return after_last + int(round(motion.wave_seconds / config.task.period_s))
+    if path_scenarios.is_planned(motion):
+        after_last += path_scenarios.run_calls(motion, commanded_config(scenario, config)) + 1
     return after_last + settle_scans(scenario, config)
 
 
@@ -133,9 +162,19 @@ def expected_poses(scenario: Scenario, config: PlatformConfig, command_scan: int
         riding = wave_calls >= 0
         poses[riding] = wave_pose(motion.wave, wave_calls[riding].astype(float) * period, motion.centre_pose,
                                   fade_s=wave_fade_duration(scenario, config))
+    if path_scenarios.is_planned(motion):
+        # m: the motion's clock runs from the scan after the lead-in; past its last call the end pose is held.
+        run_calls = since_first - moves[0].edge - moves[0].calls - 1
+        running = run_calls >= 0
+        planned = commanded_config(scenario, config)  # TRJ_Path plans with the limits written to SpLinear...
+        last = path_scenarios.run_calls(motion, planned)
+        poses[running] = path_scenarios.motion_poses(motion, planned, np.minimum(run_calls[running], last))
     return poses
 
 
 def expected_cylinders(poses: np.ndarray, config: PlatformConfig) -> np.ndarray:
-    """Reference IK of every pose: cylinder positions q_i, mm."""
+    """Reference IK of every pose: cylinder positions q_i, mm (a platform variant: its actuator
+    coordinates, the base at rest at the world origin, :mod:`stgen.scenarios.actuators`)."""
+    if not config.is_default_kind:
+        return actuator_positions(config, poses)
     return np.asarray(inverse_kinematics(config.geometry, poses, config.stroke).positions, dtype=float)

@@ -48,13 +48,16 @@ def controller_sources(config: PlatformConfig | None = None) -> tuple[tuple[str,
     return tuple(iec_sources(render_controller_program(config)).items())
 
 
-def load_controller(config: PlatformConfig | None = None):
+def load_controller(config: PlatformConfig | None = None, playback=None):
     """Parse, check and compile the controller program (the axis variables are
     declared by SP_Axes, named as the simulated axes must be: :data:`AXIS_NAMES`).
 
     Not cached: the compiled program holds the global variables, so every
-    simulation loads its own.
+    simulation loads its own. ``playback``: a playback table to render with
+    (``stgen generate --playback``; its sources are not cached).
     """
     from st_runtime import api
 
+    if playback is not None:
+        return api.load_sources(iec_sources(render_controller_program(config, render.RenderOptions(playback=playback))))
     return api.load_sources(dict(controller_sources(config)))

@@ -21,7 +21,8 @@ import numpy as np
 
 from stgen.config import PlatformConfig
 from stgen.scenarios.definitions import PointToPointMotion, Scenario, WaveMotion
-from stgen.scenarios.expected import expected_cylinders, expected_poses, motion_scans, planned_moves
+from stgen.scenarios import path_scenarios
+from stgen.scenarios.expected import command_edges, expected_cylinders, expected_poses, motion_scans
 from stgen.scenarios.setpoint_limits import SetpointLimitCheck, check_setpoint_limits
 from stgen.scenarios.simulation import ControllerSimulation
 
@@ -186,6 +187,8 @@ def command_scenario(sim: ControllerSimulation, scenario: Scenario, move: int = 
         command_move(sim, motion.targets[move])
     elif isinstance(motion, WaveMotion):
         command_wave(sim, motion)
+    elif path_scenarios.is_planned(motion):
+        path_scenarios.command_planned(sim, motion)
     else:  # pragma: no cover - a new motion kind without a command
         raise TypeError(f"unknown motion {motion!r}")
 
@@ -194,6 +197,7 @@ def release_commands(sim: ControllerSimulation) -> None:
     """SpMoveStart and SpWaveStart back to FALSE, so the next command is a new edge."""
     sim.globals["SpMoveStart"] = False
     sim.globals["SpWaveStart"] = False
+    path_scenarios.release_planned(sim)
 
 
 def apply_limits(sim: ControllerSimulation, scenario: Scenario) -> None:
@@ -231,7 +235,7 @@ def run_scenario(
     ``servo_lag_s``: the axes' servo lag (0: ideal axes, the actual position is the command).
     """
     config = config if config is not None else PlatformConfig.default()
-    sim = ControllerSimulation(config, scenario.start_pose, servo_lag_s)
+    sim = ControllerSimulation(config, scenario.start_pose, servo_lag_s, playback=path_scenarios.playback_table(scenario))
     after_command = motion_scans(scenario, config)
     recorder = _Recorder(sim, POWER_ON_SCANS + after_command)
     sim.plc.controller.add_observer(recorder)
@@ -242,8 +246,8 @@ def run_scenario(
     first = sim.scan_count + 1
     total = first - 1 + after_command
     command_scans, durations = [], []
-    for index, move in enumerate(planned_moves(scenario, config)):
-        edge = first + move.edge
+    for index, offset in enumerate(command_edges(scenario, config)):
+        edge = first + offset
         _run_to(sim, edge - 1, total, progress)
         command_scenario(sim, scenario, index)
         sim.run(1)
@@ -255,17 +259,29 @@ def run_scenario(
 
     count = recorder.count
     poses = expected_poses(scenario, config, first, count)
+    return recorded_result(sim, recorder, scenario, tuple(command_scans), poses, expected_cylinders(poses, config),
+                           wall, servo_lag_s, tuple(durations))
+
+
+def recorded_result(sim: ControllerSimulation, recorder: _Recorder, scenario, command_scans: tuple[int, ...],
+                    expected_pose: np.ndarray, expected: np.ndarray, wall: float, servo_lag_s: float,
+                    move_durations: tuple[float, ...] = ()) -> ScenarioResult:
+    """The :class:`ScenarioResult` of a finished run: what ``recorder`` took, the reference
+    (``expected_pose`` and its axis positions ``expected``, one row per recorded scan) and the
+    set-points' velocity and acceleration against the actuator's limits."""
+    count = recorder.count
+    config = sim.config
     sync = recorder.sync[:count]
     actuator = config.actuator
     period = config.task.period_s
     return ScenarioResult(
         scenario=scenario,
-        period_s=config.task.period_s,
-        command_scans=tuple(command_scans),
+        period_s=period,
+        command_scans=command_scans,
         commanded=recorder.commanded[:count],
-        expected=expected_cylinders(poses, config),
+        expected=expected,
         setpoint_pose=recorder.pose[:count],
-        expected_pose=poses,
+        expected_pose=expected_pose,
         state=recorder.state[:count],
         fault_id=recorder.fault_id[:count],
         refusal_id=recorder.refusal_id[:count],
@@ -280,7 +296,7 @@ def run_scenario(
         runtime_faults=list(sim.runtime_faults),
         wall_seconds=wall,
         servo_lag_s=servo_lag_s,
-        move_durations_s=tuple(durations),
+        move_durations_s=move_durations,
         nj_time=sim.plc.controller.time_report()[0],
         state_names={value: name for name, value in sim.codes.items() if name.startswith("SP_STATE_")},
     )

@@ -23,6 +23,7 @@ import numpy as np
 
 from stgen.config import PlatformConfig
 from stgen.reference.kinematics import inverse_kinematics
+from stgen.scenarios.actuators import actuator_limits, actuator_positions
 from stgen.scenarios.program import AXIS_NAMES, CONTROLLER_PROGRAM, load_controller
 
 #: Following-error limit of the simulated cylinders, mm (an ideal servo never reaches it).
@@ -31,20 +32,33 @@ FOLLOWING_ERROR_LIMIT_MM = 1.0
 IN_POSITION_RANGE_MM = 0.01
 
 
-def axis_tables(config: PlatformConfig, start_pose, servo_lag_s: float = 0.0) -> list[dict]:
+def axis_tables(config: PlatformConfig, start_pose, servo_lag_s: float = 0.0, base_pose=None) -> list[dict]:
     """The six ``[[axis]]`` tables: cylinder i starts at q_i of ``start_pose``.
 
     ``servo_lag_s``: first-order lag of the actual position behind the command
-    (0: an ideal servo).
+    (0: an ideal servo). A platform variant: axis i is its actuator coordinate
+    (:mod:`stgen.scenarios.actuators`; crank angles in degrees), ``base_pose``
+    the base's pose at the start (a moving base).
     """
-    ik = inverse_kinematics(config.geometry, np.asarray(start_pose, dtype=float), config.stroke)
-    if not bool(np.all(ik.in_stroke)):
-        raise ValueError(f"start pose {tuple(start_pose)} puts a cylinder outside the stroke")
+    if config.is_default_kind:
+        ik = inverse_kinematics(config.geometry, np.asarray(start_pose, dtype=float), config.stroke)
+        if not bool(np.all(ik.in_stroke)):
+            raise ValueError(f"start pose {tuple(start_pose)} puts a cylinder outside the stroke")
+        positions = ik.positions
+    else:
+        from stgen.reference.feasibility import check_pose
+
+        report = check_pose(config, start_pose, base_pose)
+        if not report.feasible:
+            raise ValueError(f"start pose {tuple(start_pose)} is not feasible: "
+                             + "; ".join(str(v) for v in report.violations))
+        positions = actuator_positions(config, start_pose, base_pose)
+    low, high = actuator_limits(config)
     return [
         {
             "name": name,
-            "soft_limit_min": config.stroke.min,
-            "soft_limit_max": config.stroke.max,
+            "soft_limit_min": low,
+            "soft_limit_max": high,
             "max_velocity": config.actuator.max_velocity,
             "max_acceleration": 0.0,
             "in_position_range": IN_POSITION_RANGE_MM,
@@ -52,7 +66,7 @@ def axis_tables(config: PlatformConfig, start_pose, servo_lag_s: float = 0.0) ->
             "servo_lag": servo_lag_s,
             "initial_position": float(position),
         }
-        for name, position in zip(AXIS_NAMES, ik.positions)
+        for name, position in zip(AXIS_NAMES, positions)
     ]
 
 
@@ -61,17 +75,20 @@ class ControllerSimulation:
 
     ``globals`` reads and writes the command/status variables by name
     (``sim.globals["SpPowerOn"] = True``); ``axes`` are the simulated axes
-    (``st_runtime.motion.axis.Axis``), in cylinder order.
+    (``st_runtime.motion.axis.Axis``), in cylinder order. ``playback``: a
+    :class:`~stgen.reference.playback.PlaybackTable` the controller is rendered with (SpPlaybackStart).
     """
 
     def __init__(
-        self, config: PlatformConfig | None = None, start_pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), servo_lag_s: float = 0.0
+        self, config: PlatformConfig | None = None, start_pose=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), servo_lag_s: float = 0.0,
+        base_pose=None,
+        playback=None,
     ):
         from st_runtime.motion.motion_task import MotionTask
 
         self.config = config if config is not None else PlatformConfig.default()
-        self.motion = MotionTask.from_tables(axis_tables(self.config, start_pose, servo_lag_s))
-        project = load_controller(self.config)
+        self.motion = MotionTask.from_tables(axis_tables(self.config, start_pose, servo_lag_s, base_pose))
+        project = load_controller(self.config, playback)
         period_ns = round(self.config.task.period_s * 1e9)
         self.plc = project.controller(period=period_ns)
         self.program = self.plc.add_program(CONTROLLER_PROGRAM)
@@ -79,6 +96,8 @@ class ControllerSimulation:
         self.axes = self.motion.axes
         self.globals = self.plc.globals
         self.codes = _global_codes(self.globals)
+        if self.config.moving_base:  # the IMU's first reading, before the first scan
+            self.set_pose("SpBasePose", base_pose if base_pose is not None else (0.0,) * 6)
 
     @property
     def scan_count(self) -> int:
