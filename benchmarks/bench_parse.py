@@ -250,7 +250,7 @@ def main() -> int:
     total_lines = sum(count_lines(t) for t in texts.values())
     print(f"corpus: {len(texts)} files, {total_lines} lines")
 
-    # Warm the grammar (built once per process, cached by Lark on disk).
+    # Warm the grammar (built once per process, its tables in the user cache, st_runtime/grammar_cache.py).
     start = clock()
     parse("PROGRAM P END_PROGRAM", "warm.st")
     print(f"our parser: grammar load {clock() - start:.3f} s (once per process)")

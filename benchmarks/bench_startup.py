@@ -39,11 +39,18 @@ SMALL = "PROGRAM Main\nVAR x : INT; END_VAR\nx := x + 1;\nEND_PROGRAM\n"
 HEAVY = ("numpy", "jinja2", "matplotlib", "rich", "stgen.render", "stgen.reference", "st_runtime.compiler")
 
 
+#: The children may write their bytecode (`__pycache__`), as an installed
+#: package has it: with PYTHONDONTWRITEBYTECODE set (as on some CI machines)
+#: every start would compile every module again, which is not start-up as a
+#: user meets it.
+CHILD_ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+
+
 def measure(argv: list[str]) -> tuple[float, float]:
     """(CPU seconds, wall seconds) of one run of `argv`; it must exit 0."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
-    result = subprocess.run(argv, cwd=ROOT, capture_output=True, text=True)
+    result = subprocess.run(argv, cwd=ROOT, capture_output=True, text=True, env=CHILD_ENV)
     wall = time.perf_counter() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if result.returncode != 0:
@@ -58,7 +65,7 @@ def heavy_imports(small: Path) -> list[str]:
              "try:\n    runpy.run_module('stgen', run_name='__main__')\n"
              "except SystemExit:\n    pass\n"
              "print('HEAVY:' + ','.join(m for m in %r if m in sys.modules), file=sys.stderr)") % (str(small), HEAVY)
-    result = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, capture_output=True, text=True)
+    result = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, capture_output=True, text=True, env=CHILD_ENV)
     line = [text for text in result.stderr.splitlines() if text.startswith("HEAVY:")][-1]
     return [m for m in line.removeprefix("HEAVY:").split(",") if m]
 
@@ -76,7 +83,7 @@ def main() -> int:
             "stgen check small.st": [sys.executable, "-m", "stgen", "check", str(small)],
             "stgen check examples/plc": [sys.executable, "-m", "stgen", "check", "examples/plc"],
         }
-        for argv in cases.values():      # warm the file cache and Lark's grammar cache
+        for argv in cases.values():      # warm the file cache, the bytecode and the user cache
             measure(argv)
         samples: dict[str, list[tuple[float, float]]] = {name: [] for name in cases}
         for _ in range(args.runs):

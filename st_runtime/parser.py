@@ -19,12 +19,12 @@ from __future__ import annotations
 import os
 import threading
 
-from lark import Lark
 from lark.lark import PostLex
 
 from . import ast
 from .ast_builder import AstBuilder
 from .diagnostics import Diagnostic, register
+from .grammar_cache import cached_lark
 
 GRAMMAR_PATH = os.path.join(os.path.dirname(__file__), "grammar.lark")
 
@@ -84,16 +84,12 @@ class _Grammar:
                 token.type = kind
             return token
 
-        self.lark = Lark(
+        self.lark = cached_lark(         # tables kept in the user cache (grammar_cache.py)
             grammar,
-            parser="lalr",
-            lexer="contextual",
-            transformer=self.builder,
-            postlex=_Postlex(self),
-            lexer_callbacks={"IDENT": reserve_keywords},
-            maybe_placeholders=True,
-            start=["start", "stmt_list", "test_file"],
-            cache=_cache_path(),
+            dict(parser="lalr", lexer="contextual", maybe_placeholders=True,
+                 start=["start", "stmt_list", "test_file"]),
+            dict(transformer=self.builder, postlex=_Postlex(self),
+                 lexer_callbacks={"IDENT": reserve_keywords}),
         )
 
     def retype(self, token):
@@ -143,13 +139,6 @@ def _keyword_terminals(grammar: str) -> dict[str, str]:
             if word.replace("_", "").isalpha():
                 result[word.upper()] = name.strip()
     return result
-
-
-def _cache_path() -> str | bool:
-    directory = os.environ.get("ST_PARSER_CACHE_DIR")
-    if directory:
-        return os.path.join(directory, "st_grammar.lark_cache")
-    return True
 
 
 _grammar: _Grammar | None = None

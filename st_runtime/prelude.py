@@ -12,7 +12,9 @@ changed since. The AST is immutable, so every load can share it.
 
 from __future__ import annotations
 
-from . import ast, native
+import os
+
+from . import ast, native, user_cache
 # Register every native FB before the prelude is read: the standard FBs
 # (TON, R_TRIG, ...) and the PLCopen motion FBs (MC_Power, ...) with AXIS_REF.
 from . import motion as _motion  # noqa: F401
@@ -36,6 +38,73 @@ def prelude_file(dialect: str = "iec") -> tuple[str, ast.SourceFile | None, list
     text = prelude_text(dialect)
     cached = _cache.get(dialect)
     if cached is None or cached[0] != text:
-        parsed, diagnostics = parse(text, BUILTIN_FILE)
+        parsed = _stored(text)
+        diagnostics: list[Diagnostic] = []
+        if parsed is None:
+            parsed, diagnostics = parse(text, BUILTIN_FILE)
+            if parsed is not None and not diagnostics:
+                _store(text, parsed)
         cached = _cache[dialect] = (text, parsed, list(diagnostics))
     return cached
+
+
+# ----------------------------------------------------------- across processes
+# The parsed prelude is kept in the user cache (`user_cache`: a private
+# directory, entries written atomically).  The entry's name is a hash of the
+# prelude text and of every file that decides what the parser makes of it
+# (the grammar, the parser and its lexer, the AST builder, the AST classes,
+# the literal rules, this cache's format), with Lark's and Python's
+# versions: after any change the name differs, so a stale AST is never
+# read.  It is read back by a pickle reader that accepts no global but the
+# AST classes (nothing can be called), and an entry that fails to read is
+# parsed again.  Only a prelude that parsed without a diagnostic is stored.
+# The checked prelude is not stored: it is checked with the user's files
+# (one symbol table), in under a millisecond, and its types and symbols
+# would widen what the reader must accept far beyond the AST's node classes.
+
+#: The files whose content decides the AST parsed from a text.
+PARSER_FILES = ("grammar.lark", "parser.py", "grammar_cache.py", "ast_builder.py", "ast.py", "literals.py",
+                "diagnostics.py", "user_cache.py")
+
+
+def _entry_name(text: str) -> str:
+    import hashlib
+    import sys
+
+    import lark
+
+    digest = hashlib.sha256()
+    for part in (user_cache.FORMAT, lark.__version__, sys.version.split()[0], text):
+        digest.update(part.encode("utf-8", "surrogatepass") + b"\0")
+    folder = os.path.dirname(os.path.abspath(__file__))
+    for name in PARSER_FILES:
+        with open(os.path.join(folder, name), "rb") as handle:
+            digest.update(handle.read() + b"\0")
+    return f"prelude-{digest.hexdigest()[:40]}.pickle"
+
+
+def _ast_classes() -> dict[tuple[str, str], type]:
+    """The classes an entry may name: the AST's node classes and Pos, nothing else."""
+    return {(ast.__name__, name): value for name, value in vars(ast).items()
+            if isinstance(value, type) and value.__module__ == ast.__name__
+            and (issubclass(value, ast.Node) or value is ast.Pos)}
+
+
+def _stored(text: str) -> ast.SourceFile | None:
+    try:
+        data = user_cache.read(_entry_name(text))
+        if data is None:
+            return None
+        parsed = user_cache.loads(data, _ast_classes())
+    except Exception:  # no entry, or a damaged or refused one: parse again
+        return None
+    return parsed if isinstance(parsed, ast.SourceFile) else None
+
+
+def _store(text: str, parsed: ast.SourceFile) -> None:
+    try:
+        data = user_cache.dumps(parsed)
+        if user_cache.loads(data, _ast_classes()) == parsed:   # stored only if it reads back
+            user_cache.write(_entry_name(text), data)
+    except Exception:  # pickling failed, no cache: the next process parses again
+        pass

@@ -43,10 +43,12 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-from lxml import etree
-
 from . import ast
 from .diagnostics import Diagnostic, register
+
+# lxml.etree, imported (`_lxml`) when the first XML file is read, not on
+# every `stgen check` of ST files; every use below comes after a `_parse`.
+etree = None
 
 TC6 = "http://www.plcopen.org/xml/tc6_0201"
 #: Namespaces of TC6 XML before 2.01 with the same elements for POUs, interfaces and bodies:
@@ -121,15 +123,23 @@ class _Refused(Exception):
         self.diagnostic = diagnostic
 
 
-def _parser() -> etree.XMLParser:
-    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, dtd_validation=False,
+def _lxml():
+    global etree
+    if etree is None:
+        from lxml import etree
+    return etree
+
+
+def _parser() -> "etree.XMLParser":
+    return _lxml().XMLParser(resolve_entities=False, no_network=True, load_dtd=False, dtd_validation=False,
                            huge_tree=False, remove_comments=True, remove_pis=True, encoding="utf-8")
 
 
 _DOCTYPE = re.compile(rb"<!DOCTYPE", re.IGNORECASE)
 
 
-def _parse(text: str, path: str) -> etree._Element:
+def _parse(text: str, path: str) -> "etree._Element":
+    _lxml()
     data = text.encode("utf-8")
     doctype = _DOCTYPE.search(data)
     if doctype:  # refused before libxml2 sees it: no entity is ever defined, so none can expand

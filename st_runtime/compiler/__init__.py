@@ -148,11 +148,28 @@ class CompileUnit:
     def run_source(self, key: str, source: str, pos=ast.NOWHERE) -> None:
         self.sources[key] = self.sources.get(key, "") + source
         try:
-            code = compile(source, f"<st:{key}>", "exec")
+            code = _code_of(source, f"<st:{key}>")
         except (SyntaxError, RecursionError, MemoryError) as exc:
             # CPython limits nesting (20 loops/try blocks, 100 indentation levels).
             raise CompileError(f"POU {key} is nested too deeply for the runtime ({exc.msg if isinstance(exc, SyntaxError) else type(exc).__name__})", pos) from None
         exec(code, self.namespace)  # the source is generated; ST text only as repr literals
+
+
+#: (file name, generated source) -> code: every load compiles the same
+#: initializers of the prelude's types again, and a code object is immutable,
+#: so one compiled once serves every later namespace (exact; bounded).
+_CODE: dict[tuple[str, str], object] = {}
+_CODE_ENTRIES = 2048
+
+
+def _code_of(source: str, filename: str):
+    code = _CODE.get((filename, source))
+    if code is None:
+        code = compile(source, filename, "exec")
+        if len(_CODE) >= _CODE_ENTRIES:
+            _CODE.clear()
+        _CODE[(filename, source)] = code
+    return code
 
 
 def compile_program(program, guard_statements: bool = True, charge_costs: bool = True,

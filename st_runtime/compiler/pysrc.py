@@ -7,6 +7,7 @@ checker has already restricted to letters, digits and `_`).
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 
@@ -42,6 +43,7 @@ def safe_name(name: str) -> str:
     return name
 
 
+@functools.lru_cache(maxsize=8192)   # a pure function, asked again for every variable of every load
 def pyident(st_name: str) -> str:
     """The Python name of an ST identifier: `mangle`, checked to be plain."""
     from ..native import mangle

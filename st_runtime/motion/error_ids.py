@@ -30,6 +30,7 @@ An observation (`Obsr.Active`, `Obsr.Code`) does not stop the axis.
 
 from __future__ import annotations
 
+import functools
 from enum import IntEnum
 
 
@@ -104,10 +105,12 @@ def describe(code: int) -> str:
         member = ErrorID(code)
     except ValueError:
         return f"16#{code:04X}: unknown ErrorID"
-    return f"16#{code:04X} {member.name}: {_DOCS[member]}"
+    return f"16#{code:04X} {member.name}: {_member_docs()[member]}"
 
 
-# Enum members do not keep their docstrings; read them from the source once.
+# Enum members do not keep their docstrings; read them from the source once,
+# when first asked (not at import: `stgen check` never needs them).
+@functools.cache
 def _member_docs() -> dict[ErrorID, str]:
     import ast
     import inspect
@@ -121,6 +124,3 @@ def _member_docs() -> dict[ErrorID, str]:
             text = following.value.value
             docs[ErrorID[name]] = " ".join(text.split())
     return docs
-
-
-_DOCS = _member_docs()

@@ -24,7 +24,6 @@ Lowering to ordinary FBs is in `lowering.py`; JUnit XML in `junit.py`.
 from __future__ import annotations
 
 import fnmatch
-import re
 import time
 from dataclasses import dataclass, field
 
@@ -36,6 +35,7 @@ from ..faults import ScanOverrun, StopRun
 from ..parser import parse, parse_tests
 from ..values import to_json
 from . import clock as _clock  # noqa: F401  (registers the clock FB)
+from .detect import is_test_source
 from .lowering import FAILED, NEAR, TEARDOWN, Lowering, LoweredTest, TestProblem
 
 CODES = register({
@@ -49,13 +49,6 @@ CODES = register({
 # an error (a loop that never ends stops there).
 TEST_TIME_LIMIT_PS = 2_000_000_000_000
 LABELS = {"passed": "PASS", "failed": "FAIL", "error": "ERROR"}
-_TEST_LINE = re.compile(r"^[ \t]*TEST[ \t]*['\"]", re.IGNORECASE | re.MULTILINE)
-
-
-def is_test_source(text: str) -> bool:
-    return _TEST_LINE.search(text) is not None
-
-
 @dataclass
 class TestResult:
     name: str

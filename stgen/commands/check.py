@@ -13,7 +13,7 @@ import os
 import sys
 
 from st_runtime.loader import LoadResult, expand, load, read_source
-from st_runtime.testing import is_test_source, run_tests
+from st_runtime.testing.detect import is_test_source
 
 from .sources import DIALECT_HELP, source_problem
 
@@ -83,6 +83,8 @@ def _load(paths: list[str], dialect: str, memory_limit: int | None):
     files, _ = expand(list(paths))
     if not any(_is_test_file(path) for path in files):
         return load(paths, dialect=dialect, memory_limit=memory_limit)
+    from st_runtime.testing import run_tests  # the test runner only for test files
+
     run = run_tests(paths, dialect, execute=False)
     return LoadResult(None, run.diagnostics, run.sources)
 
