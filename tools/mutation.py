@@ -154,7 +154,7 @@ def score_line(name: str, status: dict[str, str], sampled: str = "") -> str:
     counts: dict[str, int] = {}
     for state in status.values():
         counts[state] = counts.get(state, 0) + 1
-    killed = counts.get("killed", 0)
+    killed = counts.get("killed", 0) + counts.get("timeout", 0)   # a timeout: the mutant hung the tests
     judged = killed + counts.get("survived", 0) + counts.get("no tests", 0)
     score = 100.0 * killed / judged if judged else float("nan")
     rest = ", ".join(f"{k} {v}" for k, v in sorted(counts.items()))

@@ -1,0 +1,191 @@
+"""Reference details that mutation testing found unchecked (issue 16).
+
+Expected values are worked out by hand (hand-made limit maps and extremes,
+ErrorIDs from the table in stgen/error_codes.py, docs/mathematics.md sections
+4-6), or come from an independent computation (central differences of the leg
+extensions for the rates).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from stgen.config import PlatformConfig, load_config
+from stgen.reference.brake import brake_pose
+from stgen.reference.cycloidal import cycloidal_velocity
+from stgen.reference.feasibility import FeasibilityMap, Limit, check_pose, error_ids, feasibility
+from stgen.reference.geometry import pose_to_radians
+from stgen.reference.linalg import lu_doolittle, lu_solve
+from stgen.reference.motion_limits import MotionCheck
+from stgen.reference.paths import PathError, PathSpec, describe, plan_path
+from stgen.reference.playback import clamped_spline_slopes
+from stgen.reference.study_motions import (fixed_base_upper, motion_report, moving_base_base, moving_base_upper,
+                                           study_reports)
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+MOVING = load_config(EXAMPLES / "moving_base_platform.toml")
+CRANK = load_config(EXAMPLES / "crank_platform.toml")
+
+
+# --- ErrorIDs of the variants' IK (stgen/error_codes.py: base + leg; 16#1003 non-finite) ----
+
+def _map(*broken_per_pose):
+    """A FeasibilityMap whose excess is 1 where (leg 1..6, limit) is listed, -inf elsewhere."""
+    excess = np.full((len(broken_per_pose), 6, len(Limit)), -np.inf)
+    for pose, broken in enumerate(broken_per_pose):
+        for leg, limit in broken:
+            excess[pose, leg - 1, limit] = 1.0
+    return FeasibilityMap(excess, {})
+
+
+def test_error_ids_name_the_lowest_leg_and_its_first_limit():
+    result = _map(
+        [],                                                                   # feasible
+        [(5, Limit.SPHERICAL_TILT), (3, Limit.STROKE_MAX)],                  # lowest leg: 3, stroke
+        [(2, Limit.SPHERICAL_TILT), (2, Limit.UNIVERSAL_GAMMA)],            # first limit: universal
+        [(6, Limit.CRANK_ANGLE_MAX)],
+        [(1, Limit.STROKE_MIN), (4, Limit.NON_FINITE)],                      # non-finite wins
+    )
+    ids, legs = error_ids(result)
+    assert ids.tolist() == [0, 0x1043, 0x1072, 0x1066, 0x1003]
+    assert legs.tolist() == [0, 3, 2, 6, 0]
+    assert ids.dtype.kind == "i" and legs.dtype.kind == "i"
+
+
+# --- which limit binds ------------------------------------------------------------------------
+
+def test_binding_of_a_non_finite_pose_is_non_finite():
+    result = feasibility(MOVING, np.full(6, np.nan))
+    limit, leg = result.binding
+    assert (int(limit), int(leg)) == (Limit.NON_FINITE, 1)
+    assert not result.feasible
+
+
+def test_binding_of_a_pose_far_above_the_stroke_is_stroke_max():
+    # z = 1000 mm above home: every leg far beyond its 150 mm stroke, nothing else matters as much.
+    result = feasibility(PlatformConfig(), np.array([0.0, 0.0, 1000.0, 0.0, 0.0, 0.0]))
+    limit, _ = result.binding
+    assert int(limit) == Limit.STROKE_MAX
+    check = check_pose(PlatformConfig(), [0, 0, 1000, 0, 0, 0], [0, 0, 0, 0, 0, 0])
+    assert not check.feasible
+    assert {v.limit for v in check.violations} == {Limit.STROKE_MAX}
+    assert [v.leg for v in check.violations] == [1, 2, 3, 4, 5, 6]
+
+
+# --- actuator limits of a sampled motion --------------------------------------------------------
+
+def test_motion_check_extremes_and_breaches_by_hand():
+    positions = np.array([[10.0, 20, 30, 40, 50, 60],
+                          [-5.0, 25, 35, 45, 160, 65]])
+    velocities = np.array([[100.0, -300, 0, 0, 0, 0],
+                           [-250.0, 50, 0, 0, 0, 0]])
+    accelerations = np.array([[0.0, 0, 0, 0, 0, 2500],
+                              [0.0, 0, 0, 0, 0, -3500]])
+    check = MotionCheck(np.array([0.0, 0.1]), np.zeros((2, 6)), np.zeros((2, 6)), np.zeros((2, 6)),
+                        SimpleNamespace(velocities=velocities, accelerations=accelerations), positions)
+    ext = check.extremes()
+    assert ext["position_min"].tolist() == [-5, 20, 30, 40, 50, 60]
+    assert ext["position_max"].tolist() == [10, 25, 35, 45, 160, 65]
+    assert ext["velocity_max"].tolist() == [250, 300, 0, 0, 0, 0]
+    assert ext["acceleration_max"].tolist() == [0, 0, 0, 0, 0, 3500]
+    config = SimpleNamespace(stroke=SimpleNamespace(min=0.0, max=150.0),
+                             actuator=SimpleNamespace(max_velocity=280.0, max_acceleration=3000.0))
+    assert check.breaches(config) == [
+        (1, "stroke min", -5.0, 0.0),
+        (2, "velocity", 300.0, 280.0),
+        (5, "stroke max", 160.0, 150.0),
+        (6, "acceleration", 3500.0, 3000.0),
+    ]
+
+
+# --- time laws after their end -------------------------------------------------------------------
+
+def test_cycloidal_velocity_is_zero_after_the_move():
+    # tau = 1.5: (1 - cos 3pi)/T would be 2/T; outside the move the velocity is 0 (docs/mathematics.md section 4).
+    v = cycloidal_velocity(np.zeros(6), np.ones(6), 2.0, np.array([-1.0, 1.0, 3.0]))
+    assert v[0].tolist() == [0.0] * 6 and v[2].tolist() == [0.0] * 6
+    assert v[1] == pytest.approx([1.0] * 6)         # peak 2h/T = 2 * 1 / 2
+
+
+def test_brake_of_zero_duration_holds_the_start():
+    start = np.arange(6.0)
+    poses = brake_pose(start, np.ones(6), np.ones(6), 0.0, np.array([0.0, 0.5, 1.0]))
+    assert poses.shape == (3, 6)
+    assert (poses == start).all()
+
+
+# --- paths: description, checks, sample count ------------------------------------------------------
+
+def test_describe_names_the_time_law():
+    assert describe(PathSpec("epicycloid", R=60.0, r=20.0, law="cycloidal")).endswith("law cycloidal")
+    assert describe(PathSpec("epicycloid", R=60.0, r=20.0, law="blend", blend=0.25)).endswith("law blend 0.25")
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(R=0.0, r=20.0), "R and r: must be > 0, got R=0.0, r=20.0"),
+    (dict(R=60.0, r=20.0, phi_end=0.0), "phi_end: must be a finite number > 0, got 0.0"),
+    (dict(R=60.0, r=20.0, phi_end=float("inf")), "phi_end: must be a finite number > 0, got inf"),
+])
+def test_path_spec_errors_word_for_word(kwargs, message):
+    with pytest.raises(PathError) as err:
+        PathSpec("epicycloid", **kwargs)
+    assert str(err.value) == message
+
+
+def test_plan_samples_every_task_period_or_as_asked():
+    config = PlatformConfig()
+    period = config.task.period_s
+    spec = PathSpec("epicycloid", R=60.0, r=20.0, duration=2.0)
+    plan = plan_path(spec, config, plan_samples=200)
+    assert len(plan.samples.t) == round(2.0 / period) + 1          # 0, T/n, ..., 2 s
+    assert plan.samples.t[-1] == pytest.approx(2.0)
+    assert len(plan_path(spec, config, samples=50, plan_samples=200).samples.t) == 50
+
+
+# --- the study's motions (docs/mathematics.md section 6.2) ------------------------------------------
+
+def test_study_report_names_and_both_readings_of_theta_b():
+    reports = study_reports(MOVING)
+    assert [r.name for r in reports] == [
+        "moving base (thetaB about z, y, x)", "moving base (thetaB about x, y, z)", "fixed base"]
+    # The (x, y, z) reading takes thetaB = (0.3, 0.3, 0.2) t unreversed: a different base motion.
+    xyz = motion_report(MOVING, "xyz", moving_base_upper, lambda t: moving_base_base(t, False))
+    assert reports[1].max_tilt == xyz.max_tilt and reports[1].extension_range == xyz.extension_range
+    assert reports[0].extension_range != reports[1].extension_range
+
+
+def test_motion_report_rates_match_central_differences_of_the_extensions():
+    report = motion_report(MOVING, "fixed base", fixed_base_upper, duration=2.0, period=0.01)
+    t, h = np.arange(0.0, 2.0 + 0.005, 0.01), 1e-5
+    ahead = feasibility(MOVING, fixed_base_upper(t + h)[0]).values["extension_mm"]
+    behind = feasibility(MOVING, fixed_base_upper(t - h)[0]).values["extension_mm"]
+    assert report.max_velocity == pytest.approx(np.abs((ahead - behind) / (2 * h)).max(), rel=1e-6)
+    assert report.samples == 201
+
+
+def test_motion_report_names_the_first_broken_limit():
+    def far_up(t):
+        value = np.zeros(t.shape + (6,))
+        value[..., 2] = 1000.0            # 1 m above home: beyond the 150 mm stroke at once
+        return value, np.zeros_like(value), np.zeros_like(value)
+
+    report = motion_report(MOVING, "far up", far_up, duration=0.01, period=0.005)
+    assert not report.feasible
+    time, limit, leg = report.first_violation
+    assert (time, limit) == (0.0, "stroke_max") and 1 <= leg <= 6
+    assert report.max_velocity == 0.0
+
+
+# --- integer inputs give the float results ------------------------------------------------------------
+
+def test_integer_inputs_are_read_as_floats():
+    assert pose_to_radians([0, 0, 0, 90, 180, 45]).tolist() == pytest.approx(
+        [0, 0, 0, np.pi / 2, np.pi, np.pi / 4])
+    lu, perm = lu_doolittle(np.array([[4.0, 3.0], [6.0, 3.0]]))
+    assert lu_solve(lu, perm, [10, 12]) == pytest.approx([1.0, 2.0])     # 4+6 = 10, 6+6 = 12
+    # Knots 0..3 at y = 0..3, m0 = m3 = 0: 4 m1 + m2 = 3 (1 + 1) = 6 = m1 + 4 m2, so m1 = m2 = 6/5.
+    assert clamped_spline_slopes([0, 1, 2, 3], [[0], [1], [2], [3]])[:, 0] == pytest.approx([0, 1.2, 1.2, 0])
