@@ -189,3 +189,69 @@ def test_integer_inputs_are_read_as_floats():
     assert lu_solve(lu, perm, [10, 12]) == pytest.approx([1.0, 2.0])     # 4+6 = 10, 6+6 = 12
     # Knots 0..3 at y = 0..3, m0 = m3 = 0: 4 m1 + m2 = 3 (1 + 1) = 6 = m1 + 4 m2, so m1 = m2 = 6/5.
     assert clamped_spline_slopes([0, 1, 2, 3], [[0], [1], [2], [3]])[:, 0] == pytest.approx([0, 1.2, 1.2, 0])
+
+
+# --- crank legs (docs/mathematics.md section 6.1) ---------------------------------------------------
+
+def test_crank_out_of_reach_excess_is_how_far_the_cosine_is_out():
+    # |H / (2 a rho)| - 1 (feasibility's docstring): dimensionless distance out of reach.
+    far = check_pose(CRANK, [0, 0, 600, 0, 0, 0])
+    cosine = feasibility(CRANK, np.array([0.0, 0.0, 600.0, 0.0, 0.0, 0.0])).values["crank_cosine"]
+    assert [v.excess for v in far.violations] == pytest.approx(list(np.abs(cosine) - 1.0), rel=1e-12)
+    assert all(abs(c) > 1.0 for c in cosine)
+
+
+def test_crank_angle_above_its_maximum_is_reported():
+    from stgen.reference.crank import crank_inverse_kinematics
+
+    z = np.linspace(-400.0, 400.0, 81)
+    poses = np.zeros((len(z), 6))
+    poses[:, 2] = z
+    solution = crank_inverse_kinematics(CRANK, poses)
+    over = solution.solvable & (solution.angles_deg > CRANK.crank.angle_max_deg)
+    assert over.any()                                  # the grid reaches above 230 degrees somewhere
+    pose, leg = np.argwhere(over)[0]
+    found = {(v.leg, v.limit): v.excess for v in check_pose(CRANK, poses[pose]).violations}
+    assert found[(leg + 1, Limit.CRANK_ANGLE_MAX)] == pytest.approx(
+        solution.angles_deg[pose, leg] - CRANK.crank.angle_max_deg)
+
+
+# --- the wave's derivative bounds and fade-in (docstrings of wave_derivative_bounds, fade_in_duration) ---
+
+def test_wave_derivative_bounds_of_one_component_by_hand():
+    from stgen.reference.wave import OceanWave, WaveComponent, wave_derivative_bounds
+
+    a, w, k = 3.0, 2 * np.pi / 10.0, 2 * np.pi / 100_000.0       # 3 mm, 10 s, 100 m
+    bounds = wave_derivative_bounds(OceanWave((WaveComponent(a, 10.0, 100.0, 0.0),), heading_deg=30.0))
+    orbit = a * w ** np.arange(4)
+    assert bounds[:, 0] == pytest.approx(orbit * np.cos(np.radians(30.0)), rel=1e-12)
+    assert bounds[:, 1] == pytest.approx(orbit * 0.5, rel=1e-12)
+    assert bounds[:, 2] == pytest.approx(orbit, rel=1e-12)
+    assert bounds[:, 3].tolist() == [0.0] * 4
+    k0, k1, k2, k3 = a * k * w ** np.arange(4) * 0.5                # the sin(30 deg) column
+    c2 = 3 * np.sqrt(3) / 8
+    assert bounds[:, 5] == pytest.approx(np.degrees(
+        [np.arctan(k0), k1, k2 + c2 * k1**2, k3 + 3 * c2 * k1 * k2 + 2 * k1**3]), rel=1e-12)
+
+
+def test_fade_in_set_by_the_acceleration_term():
+    from stgen.config import TrajectoryConfig
+    from stgen.reference.wave import OceanWave, WaveComponent, fade_in_duration
+
+    # A = 100 mm, Tw = 100 s, L = 1000 m: D0 = 100, D2 = 100 w^2. With a velocity limit of 1e4 mm/s the
+    # acceleration term 2 pi D0 r^2 <= (500 - D2) / 2 binds (jerk: r = 0.75, velocity: r = 50; the rest larger).
+    w = 2 * np.pi / 100.0
+    rate = np.sqrt((500.0 - 100.0 * w**2) / 2.0 / (2 * np.pi * 100.0))
+    wave = OceanWave((WaveComponent(100.0, 100.0, 1000.0, 0.0),))
+    assert fade_in_duration(wave, TrajectoryConfig(linear_velocity=10_000.0)) == pytest.approx(1 / rate, rel=1e-12)
+
+
+def test_a_wave_whose_jerk_alone_breaks_the_limit_is_refused():
+    from stgen.config import TrajectoryConfig
+    from stgen.reference.wave import OceanWave, WaveComponent, fade_in_duration
+
+    # A = 1 mm, w = 20 rad/s: D1 = 20 < 100 mm/s, D2 = 400 < 500 mm/s^2, D3 = 8000 > 5000 mm/s^3.
+    wave = OceanWave((WaveComponent(1.0, 2 * np.pi / 20.0, 1_000_000.0, 0.0),))
+    with pytest.raises(ValueError) as err:
+        fade_in_duration(wave, TrajectoryConfig())
+    assert str(err.value) == "the wave alone reaches the limits in pose coordinate 1"
