@@ -404,7 +404,11 @@ def test_build_faults_name_the_conversion():
     assert fault(conversions._build("REAL", "DATE"), 1e19)[1] == (
         "REAL_TO_DATE(1e+19): result 10000000000000000000 outside "
         "-9223372036854775808..9223372036854775807")
+    assert fault(conversions._build("REAL", "INT"), 1e10)[1] == (
+        "REAL_TO_INT(10000000000.0): result 10000000000 outside -32768..32767")
     lint_min = -2 ** 63
+    assert fault(conversions._build("LINT", "DATE"), lint_min)[1] == (
+        f"LINT_TO_DATE({lint_min}): the day starts outside the DATE range")
     assert fault(conversions._drop_time_of_day, "LINT", "DATE", lint_min) == (
         "F-CONVERT", f"LINT_TO_DATE({lint_min}): the day starts outside the DATE range")
     assert conversions._kind("STRING") == "string" and conversions._kind("TOD") == "tod"
@@ -440,6 +444,7 @@ def test_time_scaled_to_and_from_numbers():
     assert time_scaled("TIME_TO_DINT", MS)(-1_500_000) == -1
     assert time_scaled("time_to_dint", MS)(2 * MS) == 2
     assert time_scaled("TIME_TO_LREAL", MS)(1_500_000) == 1.5
+    assert time_scaled("TIME_TO_DWORD", MS)(1_500_000) == 1          # bit strings count too
     assert time_scaled("DINT_TO_TIME", MS)(3) == 3 * MS
     assert time_scaled("LREAL_TO_TIME", MS)(1.5) == 1_500_000
     # 9e12 ms + 999_999 ns: the quotient needs more digits than a double has.
