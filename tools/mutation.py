@@ -60,7 +60,7 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
     "motion": (["st_runtime/motion/*"],
                ["tests/test_motion_axis.py", "tests/test_motion_fbs.py", "tests/test_motion_omron.py",
                 "tests/test_motion_config.py", "tests/test_motion_invariants.py", "tests/test_motion_st.py",
-                "tests/test_motion_limits_negative.py"]),
+                "tests/test_motion_limits_negative.py", "tests/test_motion_mutants.py"]),
     "checker": (["st_runtime/checker/*"],
                 ["tests/test_checker_rules.py", "tests/test_checker_typing.py", "tests/test_checker_program.py",
                  "tests/test_checker_loader.py", "tests/test_checker_corpus.py"]),
