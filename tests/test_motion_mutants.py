@@ -82,3 +82,30 @@ def test_soft_limits_and_initial_position():
         "axis 'X': key 'initial_position' must lie within the software limits [0.0, 5.0], found 10.0")
     assert config(soft_limit_min=0.0, soft_limit_max=5.0, initial_position=5.0).initial_position == 5.0
     assert config(soft_limit_min=0.0, soft_limit_max=5.0, initial_position=0.0).initial_position == 0.0
+
+
+# --- a new axis ---------------------------------------------------------------------------------------
+
+def test_a_new_axis_is_disabled_at_rest_at_its_initial_position():
+    from st_runtime.motion.axis import Axis, AxisState
+
+    axis = Axis(config(initial_position=12.5), axis_no=3)
+    assert axis.axis_no == 3 and axis.state == AxisState.DISABLED
+    assert (axis.power_requested, axis.powered, axis.homed) == (False, False, False)
+    assert all(flag is False for flag in (axis.power_requested, axis.powered, axis.homed,
+                                          axis.vel_limit, axis.in_pos_waiting))
+    assert (axis.cmd_pos, axis.act_pos) == (12.5, 12.5)
+    assert (axis.cmd_vel, axis.cmd_accdec, axis.act_vel) == (0.0, 0.0, 0.0)
+    assert axis.fault_code is ErrorID.NONE and axis.observation_code is ErrorID.NONE
+    assert axis.command is None
+
+
+def test_motion_fb_declaration_takes_the_axis_by_reference_first():
+    from st_runtime.motion import fbs
+
+    assert fbs._axis_fb_declaration("MC_X", "Execute : BOOL;", "Done : BOOL;") == (
+        "\nFUNCTION_BLOCK MC_X\n"
+        "VAR_IN_OUT\n    Axis : AXIS_REF;\nEND_VAR\n"
+        "VAR_INPUT\n    Execute : BOOL;\nEND_VAR\n"
+        "VAR_OUTPUT\n    Done : BOOL;\nEND_VAR\n"
+        "END_FUNCTION_BLOCK\n")
