@@ -13,7 +13,8 @@ the tests among those that executed the mutated function.  The result is a table
 of killed / survived / timeout / no-tests per module and the mutation score
 killed / (killed + survived + no tests), printed and collected with the
 other modules' last scores in build/mutation/report.txt; `--survivors` lists
-the surviving mutant names (see one with
+the surviving mutant names (also kept in build/mutation/<module>/survivors.txt;
+build/mutation/history.txt keeps the score of every run) (see one with
 `cd build/mutation/<module> && ../../../.venv/bin/mutmut show NAME`).
 
 Not part of the default test run: it takes minutes per module on two cores.
@@ -196,6 +197,11 @@ def main(argv: list[str] | None = None) -> int:
         sampled = f"  [{sample_file.read_text().splitlines()[0][2:]}]" if sample_file.exists() else ""
         line = score_line(name, status, sampled)
         (work / "score.txt").write_text(line + "\n")
+        (work / "survivors.txt").write_text(
+            "".join(f"{m}: {st}\n" for m, st in sorted(status.items()) if st in ("survived", "no tests")))
+        if not args.report_only:   # every run's score, kept when the next run replaces the scratch copy
+            with open(SCRATCH / "history.txt", "a") as history:
+                history.write(line + "\n")
         lines.append(line)
         if args.survivors:
             lines += [f"    {m}: {s}" for m, s in sorted(status.items()) if s != "killed"]
