@@ -170,13 +170,13 @@ def test_motion_report_rates_match_central_differences_of_the_extensions():
 def test_motion_report_names_the_first_broken_limit():
     def far_up(t):
         value = np.zeros(t.shape + (6,))
-        value[..., 2] = 1000.0            # 1 m above home: beyond the 150 mm stroke at once
+        value[..., 2] = np.where(t > 0.0, 1000.0, 0.0)   # home, then 1 m above: beyond the 150 mm stroke
         return value, np.zeros_like(value), np.zeros_like(value)
 
     report = motion_report(MOVING, "far up", far_up, duration=0.01, period=0.005)
     assert not report.feasible
     time, limit, leg = report.first_violation
-    assert (time, limit) == (0.0, "stroke_max") and 1 <= leg <= 6
+    assert (time, limit) == (0.005, "stroke_max") and 1 <= leg <= 6
     assert report.max_velocity == 0.0
 
 
@@ -255,3 +255,93 @@ def test_a_wave_whose_jerk_alone_breaks_the_limit_is_refused():
     with pytest.raises(ValueError) as err:
         fade_in_duration(wave, TrajectoryConfig())
     assert str(err.value) == "the wave alone reaches the limits in pose coordinate 1"
+
+
+# --- more from the second sample (seed 17) -------------------------------------------------------------
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(family="circle"), "family: must be one of epitrochoid, epicycloid, hypocycloid, spiral, got 'circle'"),
+    (dict(family="spiral", law="linear"), "law: must be one of blend, cycloidal, got 'linear'"),
+])
+def test_path_family_and_law_errors(kwargs, message):
+    with pytest.raises(PathError) as err:
+        PathSpec(**kwargs)
+    assert str(err.value) == message
+
+
+def test_describe_names_each_family_with_its_parameters():
+    assert describe(PathSpec("epitrochoid", R=60.0, r=20.0, d=30.0)).startswith("epitrochoid R=60 r=20 d=30 mm, ")
+    assert describe(PathSpec("hypocycloid", R=100.0, r=25.0)).startswith("hypocycloid R=100 r=25 mm, ")
+    assert describe(PathSpec("spiral", a=10.0, b=5.0)).startswith("spiral a=10 mm b=5 mm/rad, ")
+
+
+def test_cycloidal_time_law_and_the_angle_it_drives():
+    from stgen.reference.paths import sample, time_law
+
+    spec = PathSpec("epicycloid", R=60.0, r=20.0, law="cycloidal")
+    f, f1, f2, f3 = time_law(spec, np.array([0.25]))
+    # sigma(u) = u - sin(2 pi u) / (2 pi) (docs/mathematics.md section 4): at u = 1/4, sin = 1, cos = 0.
+    assert f[0] == pytest.approx(0.25 - 1 / (2 * np.pi), rel=1e-12)
+    assert (f1[0], f2[0]) == pytest.approx((1.0, 2 * np.pi))
+    assert abs(f3[0]) < 1e-9
+    path = sample(spec, 2.0, np.array([0.0, 2.0]))
+    assert path.phi.tolist() == pytest.approx([0.0, spec.end])
+
+
+def test_a_wave_component_of_zero_wavelength_is_refused():
+    from stgen.reference.wave import OceanWave, WaveComponent
+
+    with pytest.raises(ValueError) as err:
+        OceanWave((WaveComponent(3.0, 10.0, 0.0, 0.0),))
+    assert str(err.value).startswith("period and wavelength must be > 0: WaveComponent(")
+
+
+def test_brake_refuses_an_angular_acceleration_at_its_limit():
+    from stgen.config import TrajectoryConfig
+    from stgen.reference.brake import brake_duration
+
+    limits = TrajectoryConfig()                       # angular acceleration limit 50 deg/s^2, linear 500 mm/s^2
+    with pytest.raises(ValueError) as err:
+        brake_duration(np.zeros(6), [0, 0, 0, 50.0, 0, 0], limits, 0.001)
+    assert str(err.value) == "the set-point already accelerates at the limit in pose coordinate 4"
+
+
+def test_solve_passes_its_pivot_tolerance_on():
+    from stgen.reference.linalg import SingularMatrixError, solve
+
+    nearly = np.array([[1.0, 1.0], [1.0, 1.0 + 1e-9]])
+    assert solve(nearly, [2.0, 2.0]) == pytest.approx([2.0, 0.0])
+    with pytest.raises(SingularMatrixError):
+        solve(nearly, [2.0, 2.0], pivot_tolerance=1e-6)
+
+
+def test_positions_are_leg_lengths_less_l0():
+    from stgen.reference.kinematics import inverse_kinematics
+    from stgen.reference.motion_limits import check_motion
+
+    config = PlatformConfig()
+    pose = np.array([[0.0, 0.0, 20.0, 0.0, 0.0, 0.0]])
+    check = check_motion(config, [0.0], pose, np.zeros((1, 6)), np.zeros((1, 6)))
+    lengths = inverse_kinematics(config.geometry, pose[0]).leg_lengths
+    assert check.positions[0] == pytest.approx(lengths - config.geometry.l0)
+
+
+def test_spline_through_three_knots():
+    # One unknown: 2 (h0 + h1) m1 = 3 (h1 d0 + h0 d1) with h = 1, d = (1, 2): m1 = 9 / 4.
+    assert clamped_spline_slopes([0.0, 1.0, 2.0], [[0.0], [1.0], [3.0]])[:, 0].tolist() == [0.0, 2.25, 0.0]
+
+
+def test_crank_angle_below_its_minimum_is_reported():
+    import dataclasses
+
+    from stgen.reference.crank import crank_inverse_kinematics
+
+    # With the minimum raised to 120 degrees, z = +150 mm (cranks near 101 degrees) lies below it.
+    config = dataclasses.replace(CRANK, crank=dataclasses.replace(CRANK.crank, angle_min_deg=120.0))
+    pose = np.array([0.0, 0.0, 150.0, 0.0, 0.0, 0.0])
+    angles = crank_inverse_kinematics(config, pose).angles_deg
+    under = [leg for leg in range(6) if angles[leg] < 120.0]
+    assert under
+    found = {(v.leg, v.limit): v.excess for v in check_pose(config, pose).violations}
+    for leg in under:
+        assert found[(leg + 1, Limit.CRANK_ANGLE_MIN)] == pytest.approx(120.0 - angles[leg])
