@@ -345,3 +345,62 @@ def test_crank_angle_below_its_minimum_is_reported():
     found = {(v.leg, v.limit): v.excess for v in check_pose(config, pose).violations}
     for leg in under:
         assert found[(leg + 1, Limit.CRANK_ANGLE_MIN)] == pytest.approx(120.0 - angles[leg])
+
+
+def test_lu_needs_a_square_matrix_and_the_leibniz_table_starts_at_one():
+    from stgen.reference.linalg import permutation_table
+
+    with pytest.raises(ValueError) as err:
+        lu_doolittle(np.zeros((2, 3)))
+    assert str(err.value) == "expected a square matrix, got shape (2, 3)"
+    perms, signs = permutation_table(1)
+    assert perms.tolist() == [[0]] and signs.tolist() == [1]
+    with pytest.raises(ValueError) as err:
+        permutation_table(0)
+    assert str(err.value) == "n must be >= 1, got 0"
+
+
+def test_a_finished_solver_stays_done():
+    from stgen.config import GeometryConfig, SolverConfig
+    from stgen.reference import NewtonRaphsonSolver
+    from stgen.reference.kinematics import inverse_kinematics
+
+    geometry = GeometryConfig()
+    pose = np.array([1.0, 2.0, 20.0, 1.0, 2.0, 3.0])
+    machine = NewtonRaphsonSolver(geometry, SolverConfig(tolerance=1e-9, iterations_per_scan=1))
+    machine.start(inverse_kinematics(geometry, pose).positions, np.zeros(6))
+    while not machine.step():
+        pass
+    iterations = machine.iterations
+    assert machine.step() is True and machine.iterations == iterations
+
+
+def test_one_upper_pose_against_several_base_poses():
+    from stgen.reference.moving_base import legs
+
+    upper = np.array([0.0, 0.0, 20.0, 1.0, 2.0, 3.0])
+    bases = np.array([[5.0, -3, 2, 0, 0, 0], [0.0, 0, 0, 0, 0, 0], [1.0, 1, 1, 1, 1, 1]])
+    state = legs(MOVING, upper, bases)
+    assert state.lengths.shape == (3, 6)
+    for k, base in enumerate(bases):
+        assert state.lengths[k] == pytest.approx(legs(MOVING, upper, base).lengths, rel=1e-15)
+    # li = |vector i|, direction = vector / li
+    assert np.linalg.norm(state.vectors, axis=-1) == pytest.approx(state.lengths, rel=1e-12)
+    assert state.directions * state.lengths[..., None] == pytest.approx(state.vectors, rel=1e-12)
+
+
+def test_cranks_rest_when_platform_and_base_move_together():
+    from stgen.reference.rates import crank_rates
+
+    # Pure translation shared by base and platform (same velocity and acceleration): nothing moves
+    # relative to the base, so the cranks stand still (docs/mathematics.md section 6.1).
+    base = np.array([5.0, -3.0, 2.0, 0.0, 0.0, 0.0])
+    velocity = np.array([10.0, -20.0, 30.0, 0.0, 0.0, 0.0])
+    acceleration = np.array([100.0, 50.0, -200.0, 0.0, 0.0, 0.0])
+    upper = base + [0.0, 0.0, 20.0, 0.0, 0.0, 0.0]
+    moving = crank_rates(CRANK, upper, velocity, acceleration, base, velocity, acceleration)
+    assert np.abs(moving.rates).max() < 1e-9 and np.abs(moving.accelerations).max() < 1e-6
+    # No base given: the base at rest at the origin.
+    alone = crank_rates(CRANK, [0.0, 0.0, 20.0, 0.0, 0.0, 0.0], velocity, acceleration)
+    fixed = crank_rates(CRANK, [0.0, 0.0, 20.0, 0.0, 0.0, 0.0], velocity, acceleration, np.zeros(6))
+    assert alone.rates == pytest.approx(fixed.rates) and alone.accelerations == pytest.approx(fixed.accelerations)
