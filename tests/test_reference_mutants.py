@@ -404,3 +404,18 @@ def test_cranks_rest_when_platform_and_base_move_together():
     alone = crank_rates(CRANK, [0.0, 0.0, 20.0, 0.0, 0.0, 0.0], velocity, acceleration)
     fixed = crank_rates(CRANK, [0.0, 0.0, 20.0, 0.0, 0.0, 0.0], velocity, acceleration, np.zeros(6))
     assert alone.rates == pytest.approx(fixed.rates) and alone.accelerations == pytest.approx(fixed.accelerations)
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")
+def test_a_jacobian_too_large_for_its_determinant_is_non_finite():
+    from stgen.config import GeometryConfig
+    from stgen.error_codes import ErrorCode
+    from stgen.reference import forward_kinematics
+    from stgen.reference.kinematics import inverse_kinematics
+
+    # From (1e60, 1e60, 1e60) mm the residual (~1e120) and the Jacobian (~1e60) are finite, but a
+    # product of six Jacobian entries (~1e360) is not: the determinant step reports NON_FINITE.
+    geometry = GeometryConfig()
+    positions = inverse_kinematics(geometry, np.array([0.0, 0.0, 20.0, 0.0, 0.0, 0.0])).positions
+    result = forward_kinematics(geometry, positions, [1e60, 1e60, 1e60, 0.0, 0.0, 0.0])
+    assert result.status == ErrorCode.NON_FINITE and result.iterations == 0
