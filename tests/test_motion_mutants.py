@@ -109,3 +109,159 @@ def test_motion_fb_declaration_takes_the_axis_by_reference_first():
         "VAR_INPUT\n    Execute : BOOL;\nEND_VAR\n"
         "VAR_OUTPUT\n    Done : BOOL;\nEND_VAR\n"
         "END_FUNCTION_BLOCK\n")
+
+
+# --- the axis, driven directly (1 ms periods) ----------------------------------------------------------
+
+DT = 0.001
+
+
+def powered(**keys):
+    from st_runtime.motion.axis import Axis
+
+    axis = Axis(config(**keys))
+    axis.request_power(True)
+    axis.step(DT)
+    assert axis.powered
+    return axis
+
+
+def test_reset_of_a_healthy_axis_succeeds_and_clears_the_observation():
+    axis = powered()
+    axis.observation_code = ErrorID.FOLLOWING_ERROR_WARNING
+    assert axis.reset() is True
+    assert axis.observation_code == ErrorID.NONE
+
+
+def test_a_fault_without_error_deceleration_stops_the_command_at_once():
+    axis = powered()
+    command = axis.start_sync()
+    command.target = 0.05
+    axis.step(DT)
+    assert axis.cmd_vel == pytest.approx(50.0)               # 0.05 mm in 1 ms
+    axis.fault(ErrorID.FOLLOWING_ERROR_EXCEEDED)
+    assert axis.cmd_vel == 0.0 and axis.reset() is True      # nothing left to decelerate
+
+
+def test_sync_starts_where_the_command_is_and_moves_accept_slow_velocities():
+    axis = powered(initial_position=12.5)
+    assert axis.start_sync().target == 12.5
+    assert axis.start_move_absolute(13.0, 0.5, 0.0, 0.0).velocity == 0.5    # 0 < 0.5 mm/s <= 100
+
+
+def test_an_ideal_axis_is_exactly_at_its_command():
+    # No servo lag: Act.Pos = Cmd.Pos, bit for bit (0.07 + (0.01 - 0.07) would be 0.010000000000000002).
+    axis = powered()
+    command = axis.start_sync()
+    for target in (0.07, 0.01):
+        command.target = target
+        axis.step(DT)
+        assert axis.act_pos == axis.cmd_pos == target
+
+
+def test_the_command_holds_after_a_move_even_with_an_error_deceleration():
+    from st_runtime.motion.axis import AxisState
+
+    axis = powered(error_deceleration=1000.0)
+    axis.start_move_absolute(1.0, 100.0, 1e5, 1e5)
+    for _ in range(100):
+        axis.step(DT)
+    assert axis.state == AxisState.STANDSTILL and axis.command is None
+    assert (axis.cmd_pos, axis.cmd_vel) == (1.0, 0.0)
+
+
+def test_in_position_waiting_ends_when_the_lagging_axis_arrives():
+    from st_runtime.motion.axis import AxisState
+
+    axis = powered(servo_lag=0.005, in_position_range=0.001)
+    axis.start_move_absolute(1.0, 100.0, 1e5, 1e5)
+    waited = False
+    for _ in range(200):
+        axis.step(DT)
+        waited = waited or axis.in_pos_waiting
+    assert waited                                              # the lag made it wait
+    assert axis.state == AxisState.STANDSTILL and axis.in_pos_waiting is False
+
+
+# --- configuration messages -----------------------------------------------------------------------------
+
+def test_axis_names_that_are_keywords_in_any_case_are_refused():
+    for name in ("if", "IF", "Repeat"):
+        with pytest.raises(AxisConfigError) as err:
+            axis_config_from_dict({"name": name, "max_velocity": 1.0}, where="axis 1")
+        assert str(err.value) == (f"axis 1: key 'name' must not be an ST keyword, found {name!r} "
+                                  "(the axis becomes a global variable of that name)")
+
+
+def test_unknown_keys_and_non_numbers_name_the_axis():
+    with pytest.raises(AxisConfigError) as err:
+        axis_config_from_dict({"name": "X", "max_velocity": 1.0, "speed": 2}, where="axis 1")
+    assert str(err.value) == (
+        "axis 1: unknown key 'speed' (known keys: name, max_velocity, soft_limit_min, soft_limit_max, "
+        "max_acceleration, in_position_range, in_position_check_time, following_error_limit, "
+        "following_error_warning, error_deceleration, servo_lag, initial_position)")
+    assert rejects(max_velocity="fast") == "axis 'X': key 'max_velocity' must be a number, found 'fast'"
+
+
+# --- the motion task ------------------------------------------------------------------------------------
+
+def test_motion_task_refuses_duplicate_names_a_second_task_and_undeclared_axes():
+    from types import SimpleNamespace
+
+    from st_runtime.motion import MotionTask
+
+    with pytest.raises(ValueError) as err:
+        MotionTask([config(), axis_config_from_dict({"name": "x", "max_velocity": 1.0})])
+    assert str(err.value) == "axis names must be unique (case-insensitive)"
+    task = MotionTask([config()])
+    with pytest.raises(ValueError) as err:
+        task.install(SimpleNamespace(motion=object(), globals=object()))
+    assert str(err.value) == "this controller already has a motion task"
+    with pytest.raises(ValueError) as err:
+        task.install(SimpleNamespace(motion=None, globals=object()))     # no ST globals at all
+    assert str(err.value) == ("axis X: the global variable X is not declared; load "
+                              "MotionTask.globals_source() with the program to declare it as AXIS_REF")
+
+
+# --- what the ST program sees (OMRON's _sAXIS_REF members) ------------------------------------------------
+
+DIR_PROGRAM = """
+PROGRAM Main
+VAR
+    Local : AXIS_REF;
+    Power : MC_Power;
+    Home : MC_Home;
+    Sync : MC_SyncMoveAbsolute;
+    Scan : INT;
+    Target : LREAL;
+END_VAR
+Scan := Scan + 1;
+IF Scan = 1 THEN
+    Power(Axis := Local, Enable := TRUE);      (* not a configured axis: 16#5401 *)
+ELSE
+    Power(Axis := Cyl1, Enable := TRUE);
+END_IF;
+Home(Axis := Cyl1, Execute := Power.Status);
+IF Scan > 6 THEN
+    Target := Target - 0.01;
+    Sync(Axis := Cyl1, Execute := TRUE, Position := Target, BufferMode := _mcAborting);
+END_IF;
+END_PROGRAM
+"""
+
+
+def test_direction_flags_and_power_error_id_seen_from_st():
+    from test_motion_st import AXIS, make_plc
+
+    plc, main, _ = make_plc(DIR_PROGRAM, AXIS)
+    plc.run(1)
+    assert main["Power.Error"] and main["Power.ErrorID"] == 0x5401
+    plc.run(5)
+    # Homed, at rest: neither direction (Dir.Posi/Nega follow the sign of Cmd.Vel).
+    assert plc.globals["Cyl1.Details.Homed"] is True and plc.globals["Cyl1.Cmd.Vel"] == 0.0
+    assert plc.globals["Cyl1.Dir.Posi"] is False and plc.globals["Cyl1.Dir.Nega"] is False
+    assert main["Power.Error"] is False and main["Power.ErrorID"] == 0
+    plc.run(3)
+    # Synchronized to a falling target: moving in the negative direction.
+    assert plc.globals["Cyl1.Cmd.Vel"] < 0
+    assert plc.globals["Cyl1.Dir.Nega"] is True and plc.globals["Cyl1.Dir.Posi"] is False
