@@ -157,6 +157,7 @@ def test_an_ideal_axis_is_exactly_at_its_command():
         command.target = target
         axis.step(DT)
         assert axis.act_pos == axis.cmd_pos == target
+        assert axis.vel_limit is False                        # within one period's reach
 
 
 def test_the_command_holds_after_a_move_even_with_an_error_deceleration():
@@ -265,3 +266,15 @@ def test_direction_flags_and_power_error_id_seen_from_st():
     # Synchronized to a falling target: moving in the negative direction.
     assert plc.globals["Cyl1.Cmd.Vel"] < 0
     assert plc.globals["Cyl1.Dir.Nega"] is True and plc.globals["Cyl1.Dir.Posi"] is False
+
+
+def test_reset_allowed_with_a_following_error_at_its_limit():
+    # MC_Reset fails while the following error is above the limit (the simulator's own rule):
+    # at the limit itself the error would not come back, so the reset succeeds.
+    axis = powered(following_error_limit=0.5)
+    axis.fault(ErrorID.FOLLOWING_ERROR_EXCEEDED)
+    axis.cmd_pos, axis.act_pos = 0.5, 0.0
+    assert axis.reset() is True
+    axis.fault(ErrorID.FOLLOWING_ERROR_EXCEEDED)
+    axis.cmd_pos = 0.75
+    assert axis.reset() is False
