@@ -278,3 +278,117 @@ def test_reset_allowed_with_a_following_error_at_its_limit():
     axis.fault(ErrorID.FOLLOWING_ERROR_EXCEEDED)
     axis.cmd_pos = 0.75
     assert axis.reset() is False
+
+
+# --- from the second motion sample (seed 17) ------------------------------------------------------------
+
+def test_axis_number_defaults_to_zero_and_lookup_by_number():
+    from st_runtime.motion import MotionTask
+    from st_runtime.motion.axis import Axis
+
+    assert Axis(config()).axis_no == 0
+    task = MotionTask([config()])
+    assert task.axis_by_number(0) is task.axes[0]
+    assert task.axis_by_number(1) is None and task.axis_by_number(-1) is None
+
+
+def test_motion_of_a_context_without_a_task():
+    from types import SimpleNamespace
+
+    from st_runtime.motion.motion_task import motion_of
+
+    assert motion_of(SimpleNamespace()) is None
+    assert motion_of(SimpleNamespace(controller=SimpleNamespace())) is None
+    task = object()
+    assert motion_of(SimpleNamespace(controller=SimpleNamespace(motion=task))) is task
+
+
+def test_move_accelerates_at_acceleration_not_deceleration():
+    # Trapezoid from rest: the first 1 ms step reaches Acceleration * dt = 1000 * 0.001 = 1 mm/s.
+    axis = powered()
+    axis.start_move_absolute(10.0, 100.0, 1000.0, 100_000.0)
+    axis.step(DT)
+    assert axis.cmd_vel == pytest.approx(1.0)
+
+
+def test_small_error_deceleration_still_decelerates():
+    # error_deceleration 0.5 mm/s^2 (> 0, so not an immediate stop): one period after the fault at
+    # 50 mm/s the command moves on by (50 - 0.5 * 0.001) * 0.001 mm.
+    axis = powered(error_deceleration=0.5)
+    command = axis.start_sync()
+    command.target = 0.05
+    axis.step(DT)
+    axis.fault(ErrorID.FOLLOWING_ERROR_EXCEEDED)
+    axis.step(DT)
+    assert axis.cmd_pos == pytest.approx(0.05 + (50.0 - 0.0005) * 0.001, rel=1e-12)
+
+
+def test_accdec_is_negative_when_the_speed_does_not_grow():
+    # OMRON's Cmd.AccDec sign: + while |velocity| grows, - otherwise; +50 mm/s to -50 mm/s in one period.
+    axis = powered()
+    command = axis.start_sync()
+    command.target = 0.05
+    axis.step(DT)
+    command.target = 0.0
+    axis.step(DT)
+    assert axis.cmd_vel == pytest.approx(-50.0)
+    assert axis.cmd_accdec == pytest.approx(-100_000.0)
+
+
+def test_a_warning_of_zero_is_disabled():
+    axis = powered(servo_lag=0.01)              # the lag leaves a following error
+    command = axis.start_sync()
+    command.target = 0.05
+    axis.step(DT)
+    assert axis.following_error > 0 and axis.observation_code == ErrorID.NONE
+
+
+def test_more_configuration_messages():
+    from st_runtime.motion.axis_config import axis_configs_from_tables, axis_configs_from_toml
+
+    with pytest.raises(AxisConfigError) as err:
+        axis_config_from_dict([1, 2], where="axis 1")
+    assert str(err.value) == "axis 1: expected a table of axis settings, found list"
+    with pytest.raises(AxisConfigError) as err:
+        axis_configs_from_tables([{"name": "X", "max_velocity": 1.0}, {"name": "if", "max_velocity": 1.0}])
+    assert str(err.value).startswith("axis[1]: key 'name' must not be an ST keyword")
+    for text in ("", "axis = []", "[axis]\nname = 'X'\nmax_velocity = 1.0"):
+        with pytest.raises(AxisConfigError) as err:
+            axis_configs_from_toml(text)
+        assert str(err.value) == "axis configuration: expected at least one [[axis]] table"
+    with pytest.raises(AxisConfigError) as err:
+        axis_configs_from_toml("a = " + "[" * 5000 + "]" * 5000)
+    assert str(err.value) == ("axis configuration is not valid TOML: arrays or inline tables nested "
+                              "too deeply")
+
+
+RISING_PROGRAM = """
+PROGRAM Main
+VAR
+    Local : AXIS_REF;
+    Off : MC_Power;
+    Power : MC_Power;
+    Sync : MC_SyncMoveAbsolute;
+    Target : LREAL;
+END_VAR
+Off(Axis := Local, Enable := FALSE);            (* unassigned, not enabled: no error *)
+Power(Axis := Cyl1, Enable := TRUE);
+IF Power.Status THEN
+    Target := Target + 0.01;
+    Sync(Axis := Cyl1, Execute := TRUE, Position := Target, BufferMode := _mcAborting);
+END_IF;
+END_PROGRAM
+"""
+
+
+def test_rising_target_drive_status_and_an_unassigned_power_off():
+    from test_motion_st import AXIS, make_plc
+
+    plc, main, _ = make_plc(RISING_PROGRAM, AXIS)
+    plc.run(5)
+    assert main["Off.Error"] is False and main["Off.ErrorID"] == 0
+    assert main["Off.Status"] is False and main["Off.Busy"] is False
+    assert plc.globals["Cyl1.Cmd.Vel"] == pytest.approx(10.0)        # 0.01 mm a ms
+    assert plc.globals["Cyl1.Act.Vel"] == pytest.approx(10.0)        # ideal axis
+    assert plc.globals["Cyl1.Dir.Posi"] is True and plc.globals["Cyl1.Dir.Nega"] is False
+    assert plc.globals["Cyl1.DrvStatus.Ready"] is True and plc.globals["Cyl1.DrvStatus.MainPower"] is True
