@@ -392,3 +392,17 @@ def test_rising_target_drive_status_and_an_unassigned_power_off():
     assert plc.globals["Cyl1.Act.Vel"] == pytest.approx(10.0)        # ideal axis
     assert plc.globals["Cyl1.Dir.Posi"] is True and plc.globals["Cyl1.Dir.Nega"] is False
     assert plc.globals["Cyl1.DrvStatus.Ready"] is True and plc.globals["Cyl1.DrvStatus.MainPower"] is True
+
+
+def test_programs_see_the_axis_state_at_the_start_of_their_scan():
+    # Feedback in (before the programs): a fault raised between scans is what the next scan reads.
+    from test_motion_st import AXIS, make_plc
+
+    program = ("PROGRAM Main\nVAR\n    Power : MC_Power;\n    Seen : BOOL;\nEND_VAR\n"
+               "Seen := Cyl1.MFaultLvl.Active;\nPower(Axis := Cyl1, Enable := TRUE);\nEND_PROGRAM\n")
+    plc, main, task = make_plc(program, AXIS)
+    plc.run(3)
+    assert main["Seen"] is False
+    task.axis("Cyl1").fault(ErrorID.FOLLOWING_ERROR_EXCEEDED)
+    plc.run(1)
+    assert main["Seen"] is True
