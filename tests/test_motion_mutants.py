@@ -230,6 +230,7 @@ DIR_PROGRAM = """
 PROGRAM Main
 VAR
     Local : AXIS_REF;
+    Off : MC_Power;
     Power : MC_Power;
     Home : MC_Home;
     Sync : MC_SyncMoveAbsolute;
@@ -237,6 +238,7 @@ VAR
     Target : LREAL;
 END_VAR
 Scan := Scan + 1;
+Off(Axis := Local, Enable := FALSE);          (* unassigned, not enabled: no error *)
 IF Scan = 1 THEN
     Power(Axis := Local, Enable := TRUE);      (* not a configured axis: 16#5401 *)
 ELSE
@@ -257,6 +259,8 @@ def test_direction_flags_and_power_error_id_seen_from_st():
     plc, main, _ = make_plc(DIR_PROGRAM, AXIS)
     plc.run(1)
     assert main["Power.Error"] and main["Power.ErrorID"] == 0x5401
+    assert main["Off.Error"] is False and main["Off.ErrorID"] == 0
+    assert main["Off.Status"] is False and main["Off.Busy"] is False
     plc.run(5)
     # Homed, at rest: neither direction (Dir.Posi/Nega follow the sign of Cmd.Vel).
     assert plc.globals["Cyl1.Details.Homed"] is True and plc.globals["Cyl1.Cmd.Vel"] == 0.0
@@ -362,32 +366,11 @@ def test_more_configuration_messages():
                               "too deeply")
 
 
-RISING_PROGRAM = """
-PROGRAM Main
-VAR
-    Local : AXIS_REF;
-    Off : MC_Power;
-    Power : MC_Power;
-    Sync : MC_SyncMoveAbsolute;
-    Target : LREAL;
-END_VAR
-Off(Axis := Local, Enable := FALSE);            (* unassigned, not enabled: no error *)
-Power(Axis := Cyl1, Enable := TRUE);
-IF Power.Status THEN
-    Target := Target + 0.01;
-    Sync(Axis := Cyl1, Execute := TRUE, Position := Target, BufferMode := _mcAborting);
-END_IF;
-END_PROGRAM
-"""
+def test_rising_target_direction_drive_status_and_act_vel():
+    from test_motion_st import AXIS, SYNC_RAMP, make_plc
 
-
-def test_rising_target_drive_status_and_an_unassigned_power_off():
-    from test_motion_st import AXIS, make_plc
-
-    plc, main, _ = make_plc(RISING_PROGRAM, AXIS)
+    plc, main, _ = make_plc(SYNC_RAMP, AXIS)
     plc.run(5)
-    assert main["Off.Error"] is False and main["Off.ErrorID"] == 0
-    assert main["Off.Status"] is False and main["Off.Busy"] is False
     assert plc.globals["Cyl1.Cmd.Vel"] == pytest.approx(10.0)        # 0.01 mm a ms
     assert plc.globals["Cyl1.Act.Vel"] == pytest.approx(10.0)        # ideal axis
     assert plc.globals["Cyl1.Dir.Posi"] is True and plc.globals["Cyl1.Dir.Nega"] is False
