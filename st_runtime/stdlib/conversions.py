@@ -127,8 +127,11 @@ def parse_bool_text(text: str) -> bool:
 # ---------------------------------------------------------------------------
 # Builders: one per (source kind, destination kind)
 
-def _real_to_integer(src: str, dst: ElementaryType) -> Callable:
+def _real_to_integer(src: str, dst: ElementaryType, shown: str = "") -> Callable:
+    """`shown`: the destination named in faults when it is not `dst` (TIME
+    and the dates convert through LINT)."""
     wrap = int_wrapper(dst)
+    shown = shown or dst.name
     if dst.kind == "bits":   # the NJ's valid range: the signed integer of that width
         lo, hi = -(1 << (dst.bits - 1)), (1 << (dst.bits - 1)) - 1
     else:
@@ -136,10 +139,10 @@ def _real_to_integer(src: str, dst: ElementaryType) -> Callable:
 
     def convert(x: float) -> int:
         if not math.isfinite(x):
-            raise _fault(src, dst.name, x, "not a finite number")
+            raise _fault(src, shown, x, "not a finite number")
         n = round_half_even(x)
         if not lo <= n <= hi:
-            raise _fault(src, dst.name, x, f"result {n} outside {lo}..{hi}")
+            raise _fault(src, shown, x, f"result {n} outside {lo}..{hi}")
         return wrap(n)
 
     return convert
@@ -217,7 +220,7 @@ def _build(src: str, dst: str) -> Callable:
         return float
     # destination is TIME, DATE, TOD or DT: through the nanosecond count
     if sk == "real":
-        to_ns = _real_to_integer(src, ELEMENTARY["LINT"])
+        to_ns = _real_to_integer(src, ELEMENTARY["LINT"], dst)
     else:
         wrap64 = int_wrapper(ELEMENTARY["LINT"])
         to_ns = (lambda v: wrap64(int(v)))
