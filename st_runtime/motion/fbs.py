@@ -91,7 +91,7 @@ class _ExecuteFB(_AxisFB):
         if not self.v_EXECUTE and not self.v_BUSY:
             if self._final_shown():
                 self._clear_outputs()  # a held (or one-call) final output ends
-            if not self.AFTER_CALL or self._command is None:
+            if self._command is None or not self.AFTER_CALL:
                 # Idle (the call of most scans): nothing starts or runs, `_after_call`
                 # has nothing to do, so the axis need not be looked up.
                 self._previous_execute = False
