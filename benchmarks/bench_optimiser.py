@@ -17,7 +17,8 @@ ratios measured side by side mean much):
 3. Load time (parse + check + compile) of generated/iec, best of R (at
    least 7), by wall and by CPU time.
 4. With --opcodes: the bytecode instructions one FK iteration and one
-   controller scan execute (sys.settrace), a count the load does not change.
+   controller scan execute (sys.settrace), a count the load does not change,
+   and the Python and C function calls of a scan (sys.setprofile).
 5. A differential check: `--fk-check` seeded FK solves (default 10,000)
    with both builds; poses, iteration counts and flags must be equal bit for
    bit (the suite runs 1,000: tests/test_optimiser_equivalence.py).
@@ -126,6 +127,23 @@ def count_opcodes(run) -> int:
     return count
 
 
+def count_calls(run) -> tuple[int, int]:
+    """(Python function calls, calls of C functions) made by `run()` (sys.setprofile): the
+    second shows work the bytecode count misses (a builtin such as any() or abs())."""
+    calls = {"call": 0, "c_call": 0}
+
+    def profiler(frame, event, arg):
+        if event in calls:
+            calls[event] += 1
+
+    sys.setprofile(profiler)
+    try:
+        run()
+    finally:
+        sys.setprofile(None)
+    return calls["call"], calls["c_call"]
+
+
 def opcodes_per_iteration(variant, positions, start, solver) -> dict:
     counts = {}
     for name in BUILDS:
@@ -149,6 +167,7 @@ def opcodes_per_scan(scans: int = 200) -> dict:
         command_scenario(sim, scenario)
         sim.run(2500)                     # into the wave
         counts[name] = count_opcodes(lambda: sim.run(scans)) / scans
+        counts[name + " calls"] = [n / scans for n in count_calls(lambda: sim.run(scans))]
     return counts
 
 
@@ -241,6 +260,8 @@ def main() -> int:
             print(f"  FK iteration, {variant:<9} {c['none']:>9,.0f} / {c['all']:>9,.0f}   ratio {c['none'] / c['all']:.2f}x")
         c = opcodes_per_scan()
         print(f"  controller scan          {c['none']:>9,.0f} / {c['all']:>9,.0f}   ratio {c['none'] / c['all']:.2f}x")
+        print("  calls per controller scan, passes off / on: Python {:,.0f} / {:,.0f}, C {:,.0f} / {:,.0f}".format(
+            c["none calls"][0], c["all calls"][0], c["none calls"][1], c["all calls"][1]))
 
     if args.fk_check:
         differing = fk_differential(args.fk_check)

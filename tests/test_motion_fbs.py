@@ -267,3 +267,17 @@ def test_second_sync_instance_takes_the_axis_and_aborts_the_first():
     rig.scan(lambda: (rig.call(first, Execute=True, Position=0.3), rig.call(second, Execute=True, Position=0.14)))
     assert first.v_COMMANDABORTED and not first.v_BUSY
     assert second.v_BUSY and rig.task.axis("Ax").cmd_pos == 0.14
+
+
+@pytest.mark.parametrize("fb_class", [fbs.MC_Reset, fbs.MC_Home, fbs.MC_Stop, fbs.MC_MoveAbsolute,
+                                      fbs.MC_SyncMoveAbsolute])
+def test_the_idle_test_of_final_outputs_covers_exactly_each_fbs_final_outputs(fb_class):
+    # `_final_shown` spells out FINAL_OUTPUTS and ErrorID by hand (speed): each of them
+    # alone makes it true, none makes it false.
+    fb = make_fb(fb_class)
+    assert not fb._final_shown()
+    for output in (*fb_class.FINAL_OUTPUTS, "v_ERRORID"):
+        setattr(fb, output, 0x6440 if output == "v_ERRORID" else True)
+        assert fb._final_shown(), output
+        setattr(fb, output, 0 if output == "v_ERRORID" else False)
+        assert not fb._final_shown()
