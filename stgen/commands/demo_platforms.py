@@ -64,7 +64,10 @@ def summary_table(runs):
     from rich import box
 
     table = Table(title="Platform variants: SP_Controller + 6 axes vs NumPy reference, limits on every scan "
-                        "(v, a: per s, s²)", box=box.SIMPLE_HEAD)
+                        "(v, a: per s, s²)", box=box.SIMPLE_HEAD,
+                  caption="|v|, |a|: within the motion, checked against the actuator limits (result); start|a|: "
+                          "including the first streamed scan, reported apart: the study's moving-base motions "
+                          "start at speed, so that scan steps above the acceleration limit")
     for column in ("scenario", "error", "limits", "axis range", "γ/ψ/tilt°", "|v|", "|a|", "start|a|",
                    "result"):
         table.add_column(column, justify="left" if column in ("scenario", "limits", "result") else "right",
