@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -39,118 +40,22 @@ HARNESS_TIME_LIMIT_NS = 10**15
 
 # --------------------------------------------------------------------------- harness programs
 
-_IK_HARNESS = """
-PROGRAM VerifyIk
-VAR
-    CaseCount : DINT;
-    Poses : ARRAY[1..{n}, 1..6] OF LREAL;
-    Positions : ARRAY[1..{n}, 1..6] OF LREAL;
-    Reachable : ARRAY[1..{n}] OF BOOL;
-    ErrorIDs : ARRAY[1..{n}] OF WORD;
-    Pose : ARRAY[1..6] OF LREAL;
-    Ik : SP_InverseKinematics;
-    Item : DINT;
-    Leg : DINT;
-END_VAR
-FOR Item := 1 TO CaseCount DO
-    FOR Leg := 1 TO 6 DO
-        Pose[Leg] := Poses[Item, Leg];
-    END_FOR;
-    Ik(Pose := Pose);
-    FOR Leg := 1 TO 6 DO
-        Positions[Item, Leg] := Ik.CylinderPos[Leg];
-    END_FOR;
-    Reachable[Item] := Ik.Reachable;
-    ErrorIDs[Item] := Ik.ErrorID;
-END_FOR;
-END_PROGRAM
-"""
+#: The harness programs, ST files beside this package (their array sizes: the global constant
+#: VERIFY_CASES, loaded with them by :func:`harness_sources`).
+HARNESS_DIR = Path(__file__).resolve().parent / "harnesses"
+HARNESSES = ("VerifyIk", "VerifyLinalg", "VerifyFk")
 
-_LINALG_HARNESS = """
-PROGRAM VerifyLinalg
-VAR
-    CaseCount : DINT;
-    Matrices : ARRAY[1..{n}, 1..6, 1..6] OF LREAL;
-    Rhs : ARRAY[1..{n}, 1..6] OF LREAL;
-    Determinants : ARRAY[1..{n}] OF LREAL;
-    LuDeterminants : ARRAY[1..{n}] OF LREAL;
-    Solutions : ARRAY[1..{n}, 1..6] OF LREAL;
-    Solved : ARRAY[1..{n}] OF BOOL;
-    Matrix : ARRAY[1..6, 1..6] OF LREAL;
-    B : ARRAY[1..6] OF LREAL;
-    X : ARRAY[1..6] OF LREAL;
-    LuDet : LREAL;
-    Det : SP_LeibnizDeterminant;
-    Item : DINT;
-    Row : DINT;
-    Column : DINT;
-END_VAR
-FOR Item := 1 TO CaseCount DO
-    FOR Row := 1 TO 6 DO
-        B[Row] := Rhs[Item, Row];
-        X[Row] := 0.0;
-        FOR Column := 1 TO 6 DO
-            Matrix[Row, Column] := Matrices[Item, Row, Column];
-        END_FOR;
-    END_FOR;
-    Det(Matrix := Matrix);
-    Determinants[Item] := Det.Determinant;
-    LuDet := 0.0;
-    Solved[Item] := SP_LuSolve(Matrix := Matrix, Rhs := B, Solution := X, Determinant => LuDet);
-    LuDeterminants[Item] := LuDet;
-    FOR Row := 1 TO 6 DO
-        Solutions[Item, Row] := X[Row];
-    END_FOR;
-END_FOR;
-END_PROGRAM
-"""
 
-_FK_HARNESS = """
-PROGRAM VerifyFk
-VAR
-    CaseCount : DINT;
-    MaxCalls : DINT;
-    Tolerance : LREAL;
-    IterationsPerScan : INT;
-    MaxIterations : INT;
-    Targets : ARRAY[1..{n}, 1..6] OF LREAL;
-    Starts : ARRAY[1..{n}, 1..6] OF LREAL;
-    Poses : ARRAY[1..{n}, 1..6] OF LREAL;
-    Iterations : ARRAY[1..{n}] OF INT;
-    Calls : ARRAY[1..{n}] OF DINT;
-    Done : ARRAY[1..{n}] OF BOOL;
-    ErrorIDs : ARRAY[1..{n}] OF WORD;
-    CylinderPos : ARRAY[1..6] OF LREAL;
-    StartPose : ARRAY[1..6] OF LREAL;
-    Fk : SP_ForwardKinematics;
-    Item : DINT;
-    Leg : DINT;
-    Call : DINT;
-END_VAR
-FOR Item := 1 TO CaseCount DO
-    FOR Leg := 1 TO 6 DO
-        CylinderPos[Leg] := Targets[Item, Leg];
-        StartPose[Leg] := Starts[Item, Leg];
-    END_FOR;
-    (* One FB call per (simulated) scan until the solution ends. *)
-    Call := 0;
-    REPEAT
-        Fk(Execute := TRUE, CylinderPos := CylinderPos, StartPose := StartPose, Tolerance := Tolerance,
-           IterationsPerScan := IterationsPerScan, MaxIterations := MaxIterations);
-        Call := Call + 1;
-    UNTIL NOT Fk.Busy OR Call >= MaxCalls
-    END_REPEAT;
-    Calls[Item] := Call;
-    Done[Item] := Fk.Done;
-    ErrorIDs[Item] := Fk.ErrorID;
-    Iterations[Item] := Fk.Iterations;
-    FOR Leg := 1 TO 6 DO
-        Poses[Item, Leg] := Fk.Pose[Leg];
-    END_FOR;
-    Fk(Execute := FALSE);
-END_FOR;
-END_PROGRAM
-"""
+def cases_constant(capacity: int) -> str:
+    """The global constant VERIFY_CASES = ``capacity`` that sizes the harnesses' arrays."""
+    return f"VAR_GLOBAL CONSTANT\n    VERIFY_CASES : DINT := {int(capacity)};\nEND_VAR\n"
+
+
+def harness_sources(capacity: int) -> dict[str, str]:
+    """The default platform's harness programs and VERIFY_CASES = ``capacity``."""
+    sources = {f"{name}.st": (HARNESS_DIR / f"{name}.st").read_text(encoding="utf-8") for name in HARNESSES}
+    sources["VerifyCases.st"] = cases_constant(capacity)
+    return sources
 
 
 # --------------------------------------------------------------------------- results
@@ -338,8 +243,7 @@ def kinematics_sources(config: PlatformConfig | None = None, options: RenderOpti
     """IEC texts of the kinematics POUs plus the harness programs (``capacity`` cases per scan)."""
     program = render_program(config, options)
     sources = {f"{name}.st": pou_text(program.pou(name)) for name in KINEMATICS_POUS}
-    for name, text in (("VerifyIk", _IK_HARNESS), ("VerifyLinalg", _LINALG_HARNESS), ("VerifyFk", _FK_HARNESS)):
-        sources[f"{name}.st"] = text.format(n=capacity)
+    sources.update(harness_sources(capacity))
     return sources
 
 

@@ -19,7 +19,6 @@ cases in one scan, and every output is compared with the reference:
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 
@@ -31,10 +30,8 @@ from stgen.reference.moving_base import legs, spherical_tilt, universal_joint_an
 from stgen.reference.rates import crank_rates, leg_rates
 from stgen.reference.variant_fk import variant_forward_kinematics
 from stgen.render import render_program
-from stgen.verify import HARNESS_TIME_LIMIT_NS, Check, KinematicsRuntime
+from stgen.verify import HARNESS_DIR, HARNESS_TIME_LIMIT_NS, Check, KinematicsRuntime, cases_constant
 
-#: The IK harnesses, ST files beside this package (their array sizes: the global constant VERIFY_CASES).
-HARNESS_DIR = Path(__file__).resolve().parent / "harnesses"
 #: The harnesses by platform kind (crank?): IK, then FK.
 HARNESSES = {True: ("VerifyVariantIkCrank.st", "VerifyVariantFkCrank.st"),
              False: ("VerifyVariantIkMovingBase.st", "VerifyVariantFkMovingBase.st")}
@@ -46,7 +43,7 @@ def variant_harness_sources(config: PlatformConfig, capacity: int) -> dict[str, 
     return {
         "VerifyVariantIk.st": (HARNESS_DIR / ik).read_text(encoding="utf-8"),
         "VerifyVariantFk.st": (HARNESS_DIR / fk).read_text(encoding="utf-8"),
-        "VerifyCases.st": f"VAR_GLOBAL CONSTANT\n    VERIFY_CASES : DINT := {int(capacity)};\nEND_VAR\n",
+        "VerifyCases.st": cases_constant(capacity),
     }
 
 

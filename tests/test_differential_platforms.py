@@ -105,3 +105,16 @@ def test_the_harness_st_files_check_clean_with_the_variant_folder(name, tmp_path
     assert main(["check", "--dialect", "nj", str(tmp_path), str(folder)]) == 0
     out = capsys.readouterr()
     assert "0 error(s), 0 warning(s)" in out.out + out.err
+
+
+def test_the_default_harness_st_files_check_clean_with_generated_iec(tmp_path, capsys):
+    """The default platform's harnesses (VerifyIk, VerifyLinalg, VerifyFk) are ST files too:
+    with VERIFY_CASES and generated/iec they pass `stgen check --dialect nj` clean."""
+    from stgen.cli import main
+    from stgen.verify import harness_sources
+
+    for file, text in harness_sources(10).items():
+        (tmp_path / file).write_text(text, encoding="utf-8")
+    assert main(["check", "--dialect", "nj", str(tmp_path), str(EXAMPLES.parent / "generated" / "iec")]) == 0
+    out = capsys.readouterr()
+    assert "0 error(s), 0 warning(s)" in out.out + out.err
