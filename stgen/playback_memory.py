@@ -1,7 +1,10 @@
 """Does a playback table fit the controller? The memory model of ``stgen generate --playback``.
 
 TRJ_PlaybackTable holds, per knot, one LREAL time and six LREAL pose values
-and six LREAL slopes: 13 × 8 bytes. Two limits, both configurable here:
+and six LREAL slopes. Its bytes come from st_runtime's memory model (the
+checker's, issue 15: OMRON's allocation table, docs/limits.md), applied to the
+three arrays the template declares: 13 × 8 bytes per knot. Two limits, both
+configurable here:
 
 * ``MAX_ARRAY_ELEMENTS`` = 65535 elements per array (the pose and slope arrays hold
   6 per knot): the NJ-series array limit as remembered from the NJ-series CPU Unit
@@ -12,7 +15,9 @@ and six LREAL slopes: 13 × 8 bytes. Two limits, both configurable here:
   the rest of the project (assumed; W501 appendix A-10 "Size Restrictions for the User
   Program" says to confirm sizes in Sysmac Studio).
 
-The robustness issue's memory model, when merged, should replace these numbers.
+The memory model sizes the table; it has no NJ figure for either limit (docs/limits.md:
+"the NJ's limits on elements per array dimension and on total variable memory were not
+found"), so both numbers above stay assumed.
 """
 
 from __future__ import annotations
@@ -21,18 +26,24 @@ from stgen.reference.playback import ADDED_KNOTS, PlaybackError, PlaybackTable
 
 MAX_ARRAY_ELEMENTS = 65535
 TABLE_BYTES_MAX = 2 * 1024 * 1024
-LREAL_BYTES = 8
-VALUES_PER_KNOT = 13      # t, 6 pose values, 6 slopes
 
 
 def table_bytes(knots: int) -> int:
-    """Bytes of TRJ_PlaybackTable for ``knots`` knots."""
-    return knots * VALUES_PER_KNOT * LREAL_BYTES
+    """Bytes of TRJ_PlaybackTable for ``knots`` knots, by st_runtime's memory model (OMRON's
+    allocation rules): TRJ_PLAYBACK_TIME, _POSE and _SLOPE as the template declares them."""
+    from st_runtime import types as T
+    from st_runtime.checker.memory import MemoryModel
+
+    model = MemoryModel()
+    arrays = (T.ArrayType(((1, knots),), T.LREAL),              # TRJ_PLAYBACK_TIME
+              T.ArrayType(((1, knots), (1, 6)), T.LREAL),      # TRJ_PLAYBACK_POSE
+              T.ArrayType(((1, knots), (1, 6)), T.LREAL))      # TRJ_PLAYBACK_SLOPE
+    return sum(model.layout(array)[0] for array in arrays)
 
 
 def max_knots() -> int:
     """The most knots a table may have under both limits."""
-    return min(MAX_ARRAY_ELEMENTS // 6, TABLE_BYTES_MAX // (VALUES_PER_KNOT * LREAL_BYTES))
+    return min(MAX_ARRAY_ELEMENTS // 6, TABLE_BYTES_MAX // table_bytes(1))
 
 
 def max_rows() -> int:

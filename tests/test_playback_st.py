@@ -126,3 +126,37 @@ def test_generate_with_a_playback_writes_the_table_and_checks_clean_under_nj(sea
     assert main(["generate", "--target", "iec", "--out", str(tmp_path / "out"), "--playback", str(path)]) == 0
     assert (tmp_path / "out" / "TRJ_PlaybackTable.st").exists()
     assert main(["check", "--dialect", "nj", str(tmp_path / "out")]) == 0
+
+
+def test_the_table_is_sized_by_the_memory_model_of_the_checker():
+    # By hand: per knot one LREAL time, six LREAL poses and six LREAL slopes, 8 bytes each
+    # (OMRON's allocation table, docs/limits.md): 104 bytes; 2 MiB / 104 = 20164 knots, and
+    # 65535 elements per array / 6 = 10922 knots bind first.
+    from stgen.playback_memory import max_knots, table_bytes
+
+    assert table_bytes(1) == 104 and table_bytes(10922) == 1_135_888
+    assert max_knots() == 10922
+
+
+def test_the_checker_sizes_the_rendered_table_as_the_planner_counts(sea):
+    # The same model: st_runtime's checker, given a 1-byte limit, names each of the rendered
+    # table's arrays with its bytes; they add up to what generate --playback counts.
+    import re
+
+    from st_runtime.api import LoadError, load_sources
+    from stgen.exports.iec import pou_text
+    from stgen.playback_memory import table_bytes
+    from stgen.render import render_program
+
+    knots = len(sea.t)
+    program = render_program(PlatformConfig.default(), RenderOptions(playback=sea))
+    sources = {"TRJ_PlaybackTable.st": pou_text(program.pou("TRJ_PlaybackTable"))}
+    with pytest.raises(LoadError) as refused:
+        load_sources(sources, memory_limit=1)
+    sizes = {}
+    for line in str(refused.value).splitlines():
+        found = re.search(r"E-LIMIT-008\]: global (TRJ_PLAYBACK_(?:TIME|POSE|SLOPE)) needs ([\d,]+) bytes", line)
+        if found:
+            sizes[found.group(1)] = int(found.group(2).replace(",", ""))
+    assert sizes == {"TRJ_PLAYBACK_TIME": knots * 8, "TRJ_PLAYBACK_POSE": knots * 48, "TRJ_PLAYBACK_SLOPE": knots * 48}
+    assert sum(sizes.values()) == table_bytes(knots)
