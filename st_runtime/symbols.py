@@ -127,6 +127,9 @@ class CheckedProgram:
     image_inits: list = field(default_factory=list)
     # id(Call) -> (EN expression or None, ENO Arg or None, the call without them).
     enables: dict[int, tuple] = field(default_factory=dict)
+    # The shared checked prelude this program's native declarations come from
+    # (checker/prelude_base.py), or None; the compiler shares its classes too.
+    prelude: object = None
 
     def type_of(self, expr: ast.Node) -> Type:
         return self.expr_types[id(expr)]

@@ -50,6 +50,7 @@ from .nj_build import check_build_rules
 from .limits import check_files
 from .memory import check_memory
 from .nj_rules import check_identifiers
+from .prelude_base import prelude_base
 from .recursion import check_recursion
 from .statements import StatementChecker
 
@@ -64,13 +65,17 @@ register({
 
 def check(files: list[ast.SourceFile], dialect: str = "iec",
           memory_limit: int | None = None,
-          open_instances: bool = False) -> tuple[CheckedProgram, list[Diagnostic]]:
+          open_instances: bool = False,
+          share_prelude: bool = True) -> tuple[CheckedProgram, list[Diagnostic]]:
     """Check parsed files as one program; `dialect` is "iec" or "nj".
 
     `memory_limit`: bytes a variable, a POU instance or the project may need
     (default `memory.DEFAULT_LIMIT`). `open_instances` lets code read and
     write every variable of an FB instance from outside (`stgen test`:
     STruC++'s tests see inside instances, st_runtime/testing/lowering.py).
+    When the first file is the native prelude ("<builtin>"), its declarations
+    come from the process's shared checked prelude (`prelude_base`), with the
+    same result; `share_prelude=False` checks it again (the tests compare).
     """
     files = [f for f in files if f is not None]
     # The checker walks expressions recursively; a generated sum of 720
@@ -78,12 +83,12 @@ def check(files: list[ast.SourceFile], dialect: str = "iec",
     old_limit = sys.getrecursionlimit()
     sys.setrecursionlimit(max(old_limit, RECURSION_LIMIT))
     try:
-        return _check(files, dialect, memory_limit, open_instances)
+        return _check(files, dialect, memory_limit, open_instances, share_prelude)
     finally:
         sys.setrecursionlimit(old_limit)
 
 
-def _check(files, dialect, memory_limit=None, open_instances=False):
+def _check(files, dialect, memory_limit=None, open_instances=False, share_prelude=True):
     program = CheckedProgram(files=list(files))
     ctx = Context(program, FastSink(), dialect if dialect in DIALECTS else "iec", open_instances)
     program.dialect = ctx.dialect
@@ -91,7 +96,13 @@ def _check(files, dialect, memory_limit=None, open_instances=False):
         if not check_files(ctx, files):       # structural limits first (limits.py)
             return program, list(ctx.sink.items)
         program.files = lower_charts(ctx, files)     # a chart body becomes statements (sfc.py)
-        Declarations(ctx).run(program.files)
+        base = prelude_base(program.files, ctx.dialect, open_instances) if share_prelude else None
+        if base is not None and not base.clashes(program.files[1:]):
+            base.seed(ctx)
+            program.prelude = base
+            Declarations(ctx, base).run(program.files[1:])
+        else:
+            Declarations(ctx).run(program.files)
         for info in program.pous.values():
             if info.node is None or info.native is not None:
                 continue

@@ -35,17 +35,25 @@ def fb_type_of(t):
 
 
 class Declarations:
-    def __init__(self, ctx: Context):
+    """`base`: the shared checked prelude (`prelude_base`), already declared; `run` then
+    gets the user's files only.  `record`: note what resolving each TYPE does
+    (`type_events`), when building such a base."""
+
+    def __init__(self, ctx: Context, base=None, record: bool = False):
         self.ctx = ctx
         self.program = ctx.program
         self.global_scope = Scope(ctx, None)
         self.global_ex = ExprChecker(ctx, self.global_scope)
         self.global_blocks: list[ast.VarBlock] = []
         self._resolving: set[str] = set()
-        self._names: dict[str, ast.Pos] = {}
+        self._names: dict[str, ast.Pos] = dict(base.names) if base is not None else {}
         self.configurations: list[ast.Configuration] = []
         self.objects = ObjectModel(self)
-        self._interfaces_done: set[int] = set()
+        self._interfaces_done: set[int] = set(base.interfaces_done) if base is not None else set()
+        self.base = base
+        # TYPE key -> [("call", key, None) | ("enum", value key, EnumType) | ("insert", key, None)]
+        self.type_events: dict[str, list] | None = {} if record else None
+        self._recording: list[str] = []
 
     # ------------------------------------------------------------- driver
     def run(self, files: list[ast.SourceFile]) -> None:
@@ -148,7 +156,13 @@ class Declarations:
         return False
 
     def _create_pous(self) -> None:
+        base = self.base
         for k, node in self.ctx.pou_decls.items():
+            if base is not None and base.pous.get(k) is not None and base.pous[k].node is node:
+                self.program.pous[k] = base.pous[k]      # the shared prelude's, declared
+                if k in base.pou_types:
+                    self.program.types[k] = base.pou_types[k]
+                continue
             info = PouInfo(node.name, node.kind, node, file=node.pos.file)
             if node.kind == "INTERFACE":
                 self.program.types[k] = T.InterfaceType(node.name, info)
@@ -164,23 +178,50 @@ class Declarations:
     def type_named(self, k: str):
         """The resolved type declared as `k` (upper case), ERROR on a cycle, None if unknown."""
         t = self.program.types.get(k)
+        if self._recording:
+            self.type_events[self._recording[-1]].append(("call", k, None))
         if t is not None:
             return t
         decl = self.ctx.type_decls.get(k)
         if decl is None:
             return None
+        if self.base is not None and k in self.base.type_events and self.base.types.get(k) is not None:
+            return self._adopt(k)
         if k in self._resolving:
             self.ctx.error("E-DECL-005", f"type {decl.name} is defined in terms of itself", decl.pos)
             return ts.ERROR
         self._resolving.add(k)
+        if self.type_events is not None:
+            self.type_events[k] = []
+            self._recording.append(k)
         try:
-            t = self._type_spec(decl)
+            try:
+                t = self._type_spec(decl)
+            finally:
+                self._resolving.discard(k)
+            self.program.types[k] = t
+            if self.type_events is not None:
+                self.type_events[k].append(("insert", k, None))
+            if decl.init is not None and t is not ts.ERROR:
+                self.initializer(decl.init, t, self.global_ex, f"initial value of type {decl.name}")
         finally:
-            self._resolving.discard(k)
-        self.program.types[k] = t
-        if decl.init is not None and t is not ts.ERROR:
-            self.initializer(decl.init, t, self.global_ex, f"initial value of type {decl.name}")
+            if self.type_events is not None:
+                self._recording.pop()
         return t
+
+    def _adopt(self, k: str):
+        """A prelude TYPE enters this load's tables as resolving it did in the full check:
+        the types it needed first, its enumeration values, then itself."""
+        base = self.base
+        t = base.types[k]
+        for kind, name, enum in base.type_events[k]:
+            if kind == "call":
+                self.type_named(name)
+            elif kind == "enum":
+                self.ctx.enum_values.setdefault(name, []).append(enum)
+            elif k not in self.program.types:
+                self.program.types[k] = t
+        return self.program.types.get(k, t)
 
     def _type_spec(self, decl: ast.TypeDecl):
         spec = decl.spec
@@ -230,6 +271,8 @@ class Declarations:
             enum.values[ek] = (ev.name, value)
             next_value = value + 1
             self.ctx.enum_values.setdefault(ek, []).append(enum)
+            if self._recording:
+                self.type_events[self._recording[-1]].append(("enum", ek, enum))
         return enum
 
     def resolve(self, ref, ex: ExprChecker):

@@ -98,6 +98,7 @@ class CompileUnit:
             "_m_sin": math.sin, "_m_cos": math.cos, "_m_tan": math.tan, "_m_sqrt": math.sqrt,
         }
         self.makers = 0
+        self.init_makers: dict[str, int] = {}     # class key -> makers its __init__ registered
         self.guard_statements = True
         self.charge_costs = True
         self.initial = InitialValues(program, self.classes)
@@ -187,8 +188,9 @@ def compile_program(program, guard_statements: bool = True, charge_costs: bool =
     unit.optimise = optimise if optimise is not None else Optimisations.from_environment()
     unit.guard_statements = guard_statements
     unit.charge_costs = charge_costs
-    _make_classes(unit)
-    _make_initializers(unit)
+    shared = _shared_prelude(program)
+    _make_classes(unit, shared)
+    _make_initializers(unit, shared)
     for address, t, init in program.image_inits:      # `AT %QX0.1 : BOOL := 1;`
         unit.image.set(address, resolve_alias(t).kind, unit.initial.of(t, init, init.pos).const)
     globals_obj = unit.classes["<GLOBALS>"]()
@@ -245,9 +247,12 @@ def _instance_variables(pou) -> list:
     return [s for s in pou.variables.values() if s.kind not in ("VAR_TEMP", "VAR_EXTERNAL", "VAR_GLOBAL")]
 
 
-def _make_classes(unit: CompileUnit) -> None:
+def _make_classes(unit: CompileUnit, shared=None) -> None:
     program = unit.program
     for key, t in program.types.items():
+        if shared is not None and shared.owns_type(key, t):
+            unit.classes[key] = shared.classes[key]
+            continue
         t = resolve_alias(t)
         if isinstance(t, StructType) and t.name.upper() == key and t.union:
             layout = {k: (name, ft) for k, (name, ft) in t.fields.items()}
@@ -264,6 +269,9 @@ def _make_classes(unit: CompileUnit) -> None:
         if pou.kind in ("FUNCTION", "INTERFACE"):
             continue
         if pou.node is None or pou.native is not None:
+            if shared is not None and shared.owns_pou(key, pou):
+                unit.classes[key] = shared.install_layout(key)
+                continue
             native = pou.native or NATIVE_FBS.get(key)
             if native is None:
                 raise CompileError(f"native FB {pou.name} has no Python class", ast.NOWHERE)
@@ -343,10 +351,13 @@ def _new_class(name: str, slots: tuple, layout: dict, kind: str = "STRUCT", base
     return cls
 
 
-def _make_initializers(unit: CompileUnit) -> None:
+def _make_initializers(unit: CompileUnit, shared=None) -> None:
     program = unit.program
     initial = unit.initial
     for key, t in program.types.items():
+        if shared is not None and shared.owns_type(key, t):
+            shared.add_init(unit, key)
+            continue
         t = resolve_alias(t)
         if isinstance(t, StructType) and t.name.upper() == key:
             inits = initial.member_inits.get(key, {})
@@ -358,6 +369,9 @@ def _make_initializers(unit: CompileUnit) -> None:
             continue
         if pou.node is None or pou.native is not None:
             cls = unit.classes[key]
+            if shared is not None and shared.owns_pou(key, pou):
+                shared.install_initializers(key)
+                continue
             pairs = native_initializers(pou, lambda s: _maker_of(initial.of_symbol(s)))
             cls.set_initializers(pairs)
             continue
@@ -383,6 +397,7 @@ def _maker_of(value):
 
 
 def _install_init(unit: CompileUnit, key: str, members: list) -> None:
+    makers = unit.makers
     out = Emitter()
     pyname = "_init_" + str(len(unit.sources))
     out.line(f"def {pyname}(self):")
@@ -396,6 +411,73 @@ def _install_init(unit: CompileUnit, key: str, members: list) -> None:
     out.ensure_body(mark)
     unit.run_source("init:" + key, out.source())
     unit.classes[key].__init__ = unit.namespace[pyname]
+    unit.init_makers[key] = unit.makers - makers
+
+
+# ------------------------------------------------------------ shared prelude
+
+
+def _shared_prelude(program):
+    """The compiled native prelude of `program.prelude` (the checker's shared prelude),
+    compiled once per process on first use; None for a program checked without one."""
+    base = getattr(program, "prelude", None)
+    if base is None:
+        return None
+    if base.compiled is None:
+        base.compiled = SharedPrelude(base)
+    return base.compiled
+
+
+class SharedPrelude:
+    """The prelude's STRUCT classes (with their `__init__`) and its native FBs' layouts,
+    compiled once from the shared checked prelude and read by every compile.
+
+    A class holds no instance state (each program makes its own instances), and no
+    compile changes a prelude class: a compile only installs a native FB's layout,
+    as before (the class is process-wide, and the dialect decides its pin names).
+    A compile uses them only for the types and POUs that are the base's own objects
+    (a project that declares a prelude name is checked, and compiled, in full).
+    """
+
+    def __init__(self, base) -> None:
+        from ..symbols import CheckedProgram
+
+        self.base = base
+        program = CheckedProgram(files=[base.file], dialect=base.dialect)
+        for name, table in base.program_tables.items():
+            setattr(program, name, table)
+        program.types = base.types
+        unit = CompileUnit(program)
+        _make_classes(unit)
+        _make_initializers(unit)
+        self.classes = {k: c for k, c in unit.classes.items() if k != "<GLOBALS>"}
+        #: STRUCT key -> (its __init__'s source, the makers it registered)
+        self.inits = {k[len("init:"):]: (source, unit.init_makers[k[len("init:"):]])
+                      for k, source in unit.sources.items() if k != "init:<GLOBALS>"}
+        #: native FB key -> (class, _st_vars, _st_kinds, _st_name, _st_initializers)
+        self.layouts = {k: (c, c._st_vars, c._st_kinds, c._st_name, c._st_initializers)
+                        for k, c in self.classes.items()
+                        if base.pous.get(k) is not None and base.pous[k].native is c}
+
+    def owns_type(self, key: str, t) -> bool:
+        return key in self.inits and self.base.types.get(key) is t
+
+    def owns_pou(self, key: str, pou) -> bool:
+        return key in self.layouts and self.base.pous.get(key) is pou
+
+    def add_init(self, unit: CompileUnit, key: str) -> None:
+        """A STRUCT's __init__ counted in `unit` as if compiled there (sources, makers)."""
+        source, makers = self.inits[key]
+        unit.sources["init:" + key] = source
+        unit.makers += makers
+
+    def install_layout(self, key: str) -> type:
+        cls, cls._st_vars, cls._st_kinds, cls._st_name, _ = self.layouts[key]
+        return cls
+
+    def install_initializers(self, key: str) -> None:
+        cls, *_, initializers = self.layouts[key]
+        cls._st_initializers = initializers
 
 
 _native_layouts_installed = False
