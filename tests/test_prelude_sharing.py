@@ -22,13 +22,13 @@ ROOT = Path(__file__).resolve().parent.parent
 CORPUS = ROOT / "tests" / "corpus"
 
 
-def _both_ways(texts: dict[str, str], dialect: str):
+def _both_ways(texts: dict[str, str], dialect: str, memory_limit: int | None = None):
     """(shared, full): the diagnostics and the checked program of a load with the
     shared prelude and of one that checks the prelude again."""
     out = []
     for share in (True, False):
         prelude, parsed, diagnostics = parse_texts(dict(texts), dialect)
-        program, found = check([f for _, f in parsed], dialect, share_prelude=share)
+        program, found = check([f for _, f in parsed], dialect, memory_limit, share_prelude=share)
         everything = diagnostics + found
         rendered = [d.render(texts.get(d.pos.file)) for d in _ordered(everything, [BUILTIN, *texts])]
         out.append((rendered, None if any(d.is_error for d in everything) else program))
@@ -59,6 +59,15 @@ def test_shared_prelude_checks_like_a_full_check(path: Path, dialect: str):
     if program is not None:
         assert _layout(program) == _layout(again)
         assert _compiled(program) == _compiled(again)
+
+
+@pytest.mark.parametrize("limit", [1, 8, 16, 40, 2**20])
+@pytest.mark.parametrize("dialect", ["iec", "nj"])
+def test_memory_limits_report_the_prelude_as_a_full_check_does(limit: int, dialect: str):
+    """A limit below a prelude FB's bytes reports it (at "<builtin>") as the full check did."""
+    texts = {"m.st": "PROGRAM MAIN VAR t : TON; p : MC_Power; a : AXIS_REF; s : STRING[10]; END_VAR END_PROGRAM"}
+    (shared, _), (full, _) = _both_ways(texts, dialect, limit)
+    assert shared == full
 
 
 def _compiled(program):

@@ -54,6 +54,7 @@ class Declarations:
         # TYPE key -> [("call", key, None) | ("enum", value key, EnumType) | ("insert", key, None)]
         self.type_events: dict[str, list] | None = {} if record else None
         self._recording: list[str] = []
+        self._adopted = False        # a prelude TYPE entered this load's tables already
 
     # ------------------------------------------------------------- driver
     def run(self, files: list[ast.SourceFile]) -> None:
@@ -64,21 +65,30 @@ class Declarations:
                 while space:            # NAMESPACE A.B declares A and A.B
                     self.ctx.namespaces.add(key(space))
                     space = space.rpartition(".")[0]
-        self._create_pous()
+        # With a shared prelude, its POUs and TYPEs lead the tables: only the user's
+        # are declared here (the prelude's are, and their checks found nothing).
+        base = self.base
+        pous = list(self.ctx.pou_decls.items())[len(base.context_tables["pou_decls"]) if base else 0:]
+        self._create_pous(pous)
         # Global constants first: types may use them (ARRAY[1..N_LEGS]); types
         # are resolved on demand while globals are declared, the rest after.
         for block in sorted(self.global_blocks, key=lambda b: not b.constant):
             for decl in block.decls:
                 self.declare(decl, block, self.program.globals, self.global_ex, None)
-        for k in list(self.ctx.type_decls):
+        type_keys = list(self.ctx.type_decls)
+        if base is not None:
+            count = len(base.context_tables["type_decls"])
+            self._adopt_all(type_keys[:count])
+            type_keys = type_keys[count:]
+        for k in type_keys:
             self.type_named(k)
-        for k, node in self.ctx.pou_decls.items():
+        for k, node in pous:
             self.ensure_interface(self.program.pous[k])
-        for k, node in self.ctx.pou_decls.items():
+        for k, node in pous:
             self.objects.check_contracts(self.program.pous[k], node)
         for config in self.configurations:
             self._configuration(config)
-        for k, node in self.ctx.pou_decls.items():
+        for k, node in pous:
             if getattr(node, "access", ()):
                 info = self.program.pous[k]
                 check_program_access(self, node.access, ExprChecker(self.ctx, Scope(self.ctx, info)))
@@ -155,14 +165,8 @@ class Declarations:
             return True
         return False
 
-    def _create_pous(self) -> None:
-        base = self.base
-        for k, node in self.ctx.pou_decls.items():
-            if base is not None and base.pous.get(k) is not None and base.pous[k].node is node:
-                self.program.pous[k] = base.pous[k]      # the shared prelude's, declared
-                if k in base.pou_types:
-                    self.program.types[k] = base.pou_types[k]
-                continue
+    def _create_pous(self, pous) -> None:
+        for k, node in pous:
             info = PouInfo(node.name, node.kind, node, file=node.pos.file)
             if node.kind == "INTERFACE":
                 self.program.types[k] = T.InterfaceType(node.name, info)
@@ -209,10 +213,25 @@ class Declarations:
                 self._recording.pop()
         return t
 
+    def _adopt_all(self, keys: list[str]) -> None:
+        """Every prelude TYPE enters this load's tables, as the full check's loop over
+        them does: at once in the base's order when none entered before (the base
+        resolved them in this loop's order from nothing), else one by one."""
+        base = self.base
+        if self._adopted:
+            for k in keys:
+                self.type_named(k)
+            return
+        self._adopted = True
+        self.program.types.update(base.types)
+        for name, enums in base.enum_values.items():
+            self.ctx.enum_values.setdefault(name, []).extend(enums)
+
     def _adopt(self, k: str):
         """A prelude TYPE enters this load's tables as resolving it did in the full check:
         the types it needed first, its enumeration values, then itself."""
         base = self.base
+        self._adopted = True
         t = base.types[k]
         for kind, name, enum in base.type_events[k]:
             if kind == "call":

@@ -135,9 +135,13 @@ def check_memory(ctx, limit: int | None = None) -> None:
     total = 0
     for sym in program.globals.values():
         total += variable_bytes(sym, "global ")
-    for info in program.pous.values():
+    base = program.prelude
+    for k, info in program.pous.items():
         if info.node is None:
             continue
+        if base is not None and base.owns(k, info) and _within(base.memo(("bytes", k), lambda: _sizes(info)),
+                                                                 limit, ctx.rules.string_max_bytes):
+            continue    # a prelude FB within the limit: nothing to report, nothing to count
         stored = [s for s in info.variables.values() if s.kind in _STORED]
         instance = sum(variable_bytes(s, f"{info.name}.") for s in stored)
         if instance > limit and not any(variable_bytes_over(model, s, limit) for s in stored):
@@ -150,6 +154,28 @@ def check_memory(ctx, limit: int | None = None) -> None:
         if first is not None:
             ctx.error("E-LIMIT-010", f"the project's variables need {total:,} bytes (globals and one"
                       f" instance of each PROGRAM), above the memory limit of {limit:,} bytes", first)
+
+
+def _sizes(info) -> tuple:
+    """(largest variable, instance bytes, holds a STRING, is a PROGRAM) of a POU alone."""
+    model = MemoryModel()
+    sizes = [_REFERENCE[0] if s.kind == "VAR_IN_OUT" else model.layout(s.type)[0]
+             for s in info.variables.values() if s.kind in _STORED]
+    strings = any(isinstance(_innermost(s.type), T.StringType) for s in info.variables.values())
+    return max(sizes, default=0), sum(sizes), strings, info.kind == "PROGRAM"
+
+
+def _within(sizes: tuple, limit: int, string_max) -> bool:
+    """Whether check_memory would say nothing of a POU of these `_sizes` and count none of it."""
+    largest, instance, strings, program = sizes
+    return largest <= limit and instance <= limit and not program and not (strings and string_max is not None)
+
+
+def _innermost(t):
+    t = T.resolve_alias(t)
+    while isinstance(t, T.ArrayType):
+        t = T.resolve_alias(t.element)
+    return t
 
 
 def variable_bytes_over(model: MemoryModel, sym, limit: int) -> bool:

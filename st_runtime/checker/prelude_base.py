@@ -54,7 +54,21 @@ class PreludeBase:
     program_tables: dict             # CheckedProgram field -> its table after the prelude
     context_tables: dict             # Context field -> its table after the prelude
     interfaces_done: frozenset       # id(PouInfo) of the prelude POUs
+    enum_values: dict                # Context.enum_values after the prelude
     compiled: object = field(default=None, repr=False)   # the compiler's share, built lazily
+    _memo: dict = field(default_factory=dict, repr=False)
+
+    def memo(self, what: str, compute):
+        """What a whole-program pass found about the prelude alone (`compute()`, once):
+        the same in every load, since no load changes the prelude."""
+        found = self._memo.get(what)
+        if found is None:
+            found = self._memo[what] = compute()
+        return found
+
+    def owns(self, k: str, info) -> bool:
+        """Whether `info` is the prelude's own POU `k` (not a project's of that name)."""
+        return self.program_tables["pous"].get(k) is info
 
     def __repr__(self) -> str:
         return f"PreludeBase({self.dialect}, {len(self.pous)} POUs, {len(self.types)} types)"
@@ -71,6 +85,7 @@ class PreludeBase:
             setattr(program, name, table.copy())
         for name, table in self.context_tables.items():
             setattr(ctx, name, table.copy())
+        program.types = dict(self.pou_types)    # (its TYPEs enter later, see Declarations)
         ctx.calls = {caller: list(edges) for caller, edges in self.context_tables["calls"].items()}
 
     def clashes(self, files: list[ast.SourceFile]) -> bool:
@@ -124,4 +139,5 @@ def _build(prelude: ast.SourceFile, dialect: str, open_instances: bool) -> Prelu
         type_events={k: tuple(events) for k, events in decls.type_events.items()},
         program_tables={name: getattr(program, name) for name in _PROGRAM_TABLES},
         context_tables={name: getattr(ctx, name) for name in _CONTEXT_TABLES},
-        interfaces_done=frozenset(decls._interfaces_done))
+        interfaces_done=frozenset(decls._interfaces_done),
+        enum_values={name: tuple(enums) for name, enums in ctx.enum_values.items()})

@@ -16,22 +16,33 @@ from .declarations import _INSTANCE_KINDS, fb_type_of
 
 
 def _edges(ctx: Context) -> dict[str, list[tuple[str, object, str]]]:
-    graph: dict[str, list[tuple[str, object, str]]] = {k: [] for k in ctx.program.pous}
+    graph: dict[str, list[tuple[str, object, str]]] = {}
+    base = ctx.program.prelude      # the shared prelude's POUs: their edges found once
     for k, info in ctx.program.pous.items():
-        for sym in info.variables.values():
-            if sym.kind not in _INSTANCE_KINDS or sym.decl is None:
-                continue
-            fb = fb_type_of(sym.type)
-            if fb is not None:
-                graph[k].append((key(fb.name), sym.decl.pos, "declares an instance of"))
-            for struct, inner in _fbs_inside_structs(sym.type):
-                how = f"declares a {struct} holding an instance of"
-                graph[k].append((key(inner.name), sym.decl.pos, how))
+        if base is not None and base.owns(k, info):
+            graph[k] = list(base.memo(("edges", k), lambda: tuple(_declared_edges(info))))
+        else:
+            graph[k] = _declared_edges(info)
     for caller, calls in ctx.calls.items():
         for callee, pos in calls:
             if caller in graph and callee in graph:
                 graph[caller].append((callee, pos, "calls"))
     return graph
+
+
+def _declared_edges(info) -> list[tuple[str, object, str]]:
+    """The edges of a POU's instance declarations (FBs, and FBs inside STRUCTs)."""
+    edges = []
+    for sym in info.variables.values():
+        if sym.kind not in _INSTANCE_KINDS or sym.decl is None:
+            continue
+        fb = fb_type_of(sym.type)
+        if fb is not None:
+            edges.append((key(fb.name), sym.decl.pos, "declares an instance of"))
+        for struct, inner in _fbs_inside_structs(sym.type):
+            how = f"declares a {struct} holding an instance of"
+            edges.append((key(inner.name), sym.decl.pos, how))
+    return edges
 
 
 def _fbs_inside_structs(t) -> list[tuple[str, object]]:
@@ -131,7 +142,10 @@ def _cycle(graph, members: set[str], start: str):
 def check_recursion(ctx: Context) -> None:
     graph = _edges(ctx)
     pous = ctx.program.pous
-    for comp in _components(graph):
+    # A POU with no edge out (most: the prelude's FBs) is in no cycle: left out, the
+    # components found and their order are the same (it would be a component alone).
+    live = {k: [e for e in edges if graph.get(e[0])] for k, edges in graph.items() if edges}
+    for comp in _components(live):
         members = set(comp)
         if len(comp) == 1 and not any(e[0] == comp[0] for e in graph[comp[0]]):
             continue
