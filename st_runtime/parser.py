@@ -25,6 +25,7 @@ from . import ast
 from .ast_builder import AstBuilder
 from .diagnostics import Diagnostic, register
 from .grammar_cache import cached_lark
+from .lalr_fast import FAILED, FastLalr
 
 GRAMMAR_PATH = os.path.join(os.path.dirname(__file__), "grammar.lark")
 
@@ -77,6 +78,7 @@ class _Grammar:
         self.test_keywords = every_keyword
         self.contextual = _contextual_terminals(grammar)
         self.active = self.keywords          # parse_tests swaps in test_keywords
+        self._fast: FastLalr | None = None
 
         def reserve_keywords(token):
             kind = self.active.get(token.value.upper())
@@ -91,6 +93,12 @@ class _Grammar:
             dict(transformer=self.builder, postlex=_Postlex(self),
                  lexer_callbacks={"IDENT": reserve_keywords}),
         )
+
+    @property
+    def fast(self) -> FastLalr:
+        if self._fast is None:
+            self._fast = FastLalr(self.lark)
+        return self._fast
 
     def retype(self, token):
         """The token, an identifier again if it spells a test keyword outside a test file."""
@@ -197,17 +205,24 @@ def _parse(text: str, path: str, start: str = "start"):
 
 
 def _parse_with(g: _Grammar, text: str, path: str, start: str):
-    try:
-        tree = g.lark.parse(text, start=start)
-    except RecursionError:
-        raise
-    except Exception:
-        from .recovery import diagnose
-
-        diagnostics = diagnose(g, text, path, start)
-        if not diagnostics:  # should not happen: keep the promise of a diagnostic
-            diagnostics = [Diagnostic("E-PARSE-001", "syntax error", ast.Pos(path, 1, 1))]
-        return None, diagnostics
+    tree = g.fast.parse(text, start)      # Lark's tables and callbacks, a tighter loop
+    if tree is FAILED:                   # a syntax error (or anything): Lark's own parser again
+        g.builder.reset(path)
+        try:
+            tree = g.lark.parse(text, start=start)
+        except RecursionError:
+            raise
+        except Exception:
+            return _diagnosed(g, text, path, start)
     if g.builder.errors:
         return None, list(g.builder.errors)
     return tree, []
+
+
+def _diagnosed(g: _Grammar, text: str, path: str, start: str):
+    from .recovery import diagnose
+
+    diagnostics = diagnose(g, text, path, start)
+    if not diagnostics:  # should not happen: keep the promise of a diagnostic
+        diagnostics = [Diagnostic("E-PARSE-001", "syntax error", ast.Pos(path, 1, 1))]
+    return None, diagnostics

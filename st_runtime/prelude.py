@@ -63,7 +63,7 @@ def prelude_file(dialect: str = "iec") -> tuple[str, ast.SourceFile | None, list
 # would widen what the reader must accept far beyond the AST's node classes.
 
 #: The files whose content decides the AST parsed from a text.
-PARSER_FILES = ("grammar.lark", "parser.py", "grammar_cache.py", "ast_builder.py", "ast.py", "literals.py",
+PARSER_FILES = ("grammar.lark", "parser.py", "lalr_fast.py", "grammar_cache.py", "ast_builder.py", "ast.py", "literals.py",
                 "diagnostics.py", "user_cache.py")
 
 
