@@ -249,9 +249,11 @@ def _instance_variables(pou) -> list:
 
 def _make_classes(unit: CompileUnit, shared=None) -> None:
     program = unit.program
+    own = shared.types if shared is not None else {}
     for key, t in program.types.items():
-        if shared is not None and shared.owns_type(key, t):
-            unit.classes[key] = shared.classes[key]
+        if own.get(key) is t:               # the shared prelude's: its STRUCT class, if one
+            if key in shared.inits:
+                unit.classes[key] = shared.classes[key]
             continue
         t = resolve_alias(t)
         if isinstance(t, StructType) and t.name.upper() == key and t.union:
@@ -265,13 +267,12 @@ def _make_classes(unit: CompileUnit, shared=None) -> None:
             slots = tuple(pyident(name) for name, _ in t.fields.values())
             layout = {k: (name, ft) for k, (name, ft) in t.fields.items()}
             unit.classes[key] = _new_class(t.name, slots, layout)
-    for key, pou in _bases_first(program):
+    if shared is not None:       # the prelude's POUs lead program.pous, none has a base
+        unit.classes.update(shared.install_layouts())
+    for key, pou in _bases_first(program, shared.pous if shared is not None else {}):
         if pou.kind in ("FUNCTION", "INTERFACE"):
             continue
         if pou.node is None or pou.native is not None:
-            if shared is not None and shared.owns_pou(key, pou):
-                unit.classes[key] = shared.install_layout(key)
-                continue
             native = pou.native or NATIVE_FBS.get(key)
             if native is None:
                 raise CompileError(f"native FB {pou.name} has no Python class", ast.NOWHERE)
@@ -327,9 +328,10 @@ def _union_storage(cls: type, size: int) -> type:
     return cls
 
 
-def _bases_first(program) -> list:
-    """The POUs with every FB after the FB it extends (classes derive from their base's)."""
-    ordered, placed = [], set()
+def _bases_first(program, done=()) -> list:
+    """The POUs with every FB after the FB it extends (classes derive from their base's);
+    those in `done` (classes made already) left out."""
+    ordered, placed = [], set(done)
 
     def place(key, pou):
         if key in placed:
@@ -354,9 +356,11 @@ def _new_class(name: str, slots: tuple, layout: dict, kind: str = "STRUCT", base
 def _make_initializers(unit: CompileUnit, shared=None) -> None:
     program = unit.program
     initial = unit.initial
+    own = shared.types if shared is not None else {}
     for key, t in program.types.items():
-        if shared is not None and shared.owns_type(key, t):
-            shared.add_init(unit, key)
+        if own.get(key) is t:               # the shared prelude's: its STRUCT's __init__, if one
+            if key in shared.inits:
+                shared.add_init(unit, key)
             continue
         t = resolve_alias(t)
         if isinstance(t, StructType) and t.name.upper() == key:
@@ -364,14 +368,12 @@ def _make_initializers(unit: CompileUnit, shared=None) -> None:
             members = [(pyident(name), initial.of(ft, inits.get(fkey), ast.NOWHERE))
                        for fkey, (name, ft) in t.fields.items()]
             _install_init(unit, key, members)
+    own = shared.pous if shared is not None else {}
     for key, pou in program.pous.items():
-        if pou.kind in ("FUNCTION", "INTERFACE"):
-            continue
+        if pou.kind in ("FUNCTION", "INTERFACE") or own.get(key) is pou:
+            continue      # (the prelude's native layouts are whole already)
         if pou.node is None or pou.native is not None:
             cls = unit.classes[key]
-            if shared is not None and shared.owns_pou(key, pou):
-                shared.install_initializers(key)
-                continue
             pairs = native_initializers(pou, lambda s: _maker_of(initial.of_symbol(s)))
             cls.set_initializers(pairs)
             continue
@@ -458,12 +460,8 @@ class SharedPrelude:
         self.layouts = {k: (c, c._st_vars, c._st_kinds, c._st_name, c._st_initializers)
                         for k, c in self.classes.items()
                         if base.pous.get(k) is not None and base.pous[k].native is c}
-
-    def owns_type(self, key: str, t) -> bool:
-        return key in self.inits and self.base.types.get(key) is t
-
-    def owns_pou(self, key: str, pou) -> bool:
-        return key in self.layouts and self.base.pous.get(key) is pou
+        self.native_classes = {k: layout[0] for k, layout in self.layouts.items()}
+        self.types, self.pous = base.types, base.pous
 
     def add_init(self, unit: CompileUnit, key: str) -> None:
         """A STRUCT's __init__ counted in `unit` as if compiled there (sources, makers)."""
@@ -471,13 +469,15 @@ class SharedPrelude:
         unit.sources["init:" + key] = source
         unit.makers += makers
 
-    def install_layout(self, key: str) -> type:
-        cls, cls._st_vars, cls._st_kinds, cls._st_name, _ = self.layouts[key]
-        return cls
-
-    def install_initializers(self, key: str) -> None:
-        cls, *_, initializers = self.layouts[key]
-        cls._st_initializers = initializers
+    def install_layouts(self) -> dict[str, type]:
+        """Each native FB's layout of this dialect on its class, as every compile did
+        (a class serves every dialect: the last compile's pin names hold); key -> class."""
+        for cls, st_vars, kinds, name, initializers in self.layouts.values():
+            if cls.__dict__.get("_st_vars") is not st_vars or cls.__dict__.get("_st_initializers") \
+                    is not initializers:
+                cls._st_vars, cls._st_kinds, cls._st_name = st_vars, kinds, name
+                cls._st_initializers = initializers
+        return self.native_classes
 
 
 _native_layouts_installed = False

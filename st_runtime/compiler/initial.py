@@ -177,18 +177,38 @@ def _members(t) -> dict[str, Type]:
     return {key: sym.type for key, sym in t.variables.items()}
 
 
+def _prelude_first(program, what: str, read) -> dict:
+    """`read(files)` over the program's files, the shared prelude's file read once."""
+    out: dict = {}
+    files = program.files
+    base = getattr(program, "prelude", None)
+    if base is not None and files and files[0] is base.file:
+        out.update(base.memo(what, lambda: read([base.file])))
+        files = files[1:]
+    out.update(read(files))
+    return out
+
+
 def _member_initializers(program) -> dict[str, dict]:
+    return _prelude_first(program, "member_inits", _member_initializers_of)
+
+
+def _type_initializers(program) -> dict[str, object]:
+    return _prelude_first(program, "type_inits", _type_initializers_of)
+
+
+def _member_initializers_of(files) -> dict[str, dict]:
     out: dict[str, dict] = {}
-    for sf in program.files:
+    for sf in files:
         for item in sf.items:
             if isinstance(item, ast.TypeDecl) and isinstance(item.spec, ast.StructType):
                 out[item.name.upper()] = {m.name.upper(): m.init for m in item.spec.members}
     return out
 
 
-def _type_initializers(program) -> dict[str, object]:
+def _type_initializers_of(files) -> dict[str, object]:
     out: dict[str, object] = {}
-    for sf in program.files:
+    for sf in files:
         for item in sf.items:
             if isinstance(item, ast.TypeDecl) and item.init is not None:
                 out[item.name.upper()] = item.init
