@@ -95,8 +95,9 @@ def _check(files, dialect, memory_limit=None, open_instances=False, share_prelud
     try:
         if not check_files(ctx, files):       # structural limits first (limits.py)
             return program, list(ctx.sink.items)
-        program.files = lower_charts(ctx, files)     # a chart body becomes statements (sfc.py)
-        base = prelude_base(program.files, ctx.dialect, open_instances) if share_prelude else None
+        base = prelude_base(files, ctx.dialect, open_instances) if share_prelude else None
+        # a chart body becomes statements (sfc.py); the shared prelude has none
+        program.files = lower_charts(ctx, files, base.file if base is not None else None)
         if base is not None and not base.clashes(program.files[1:]):
             base.seed(ctx)
             program.prelude = base

@@ -61,9 +61,19 @@ def _walk(node):
             yield from _walk(child)
     elif isinstance(node, ast.Node):
         yield node
-        for f in fields(node):
-            if f.name != "pos":
-                yield from _walk(getattr(node, f.name))
+        for name in _field_names(type(node)):
+            yield from _walk(getattr(node, name))
+
+
+_FIELDS: dict[type, tuple[str, ...]] = {}
+
+
+def _field_names(cls: type) -> tuple[str, ...]:
+    """A node class's fields but `pos`, in order (dataclasses.fields, looked up once)."""
+    names = _FIELDS.get(cls)
+    if names is None:
+        names = _FIELDS[cls] = tuple(f.name for f in fields(cls) if f.name != "pos")
+    return names
 
 
 def _body_node(ctx: Context, node) -> None:

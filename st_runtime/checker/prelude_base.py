@@ -120,8 +120,9 @@ def prelude_base(files: list[ast.SourceFile], dialect: str, open_instances: bool
 def _build(prelude: ast.SourceFile, dialect: str, open_instances: bool) -> PreludeBase | None:
     from .declarations import Declarations    # (declarations imports this module)
 
-    if not all(isinstance(item, (ast.TypeDecl, ast.Pou)) for item in prelude.items):
-        return None      # globals or configurations: not what a prelude declares
+    if not all(isinstance(item, ast.TypeDecl) or isinstance(item, ast.Pou) and item.sfc is None
+               for item in prelude.items):
+        return None      # globals, configurations or charts: not what a prelude declares
     program = CheckedProgram(files=[prelude])
     program.dialect = dialect
     ctx = Context(program, FastSink(), dialect, open_instances)

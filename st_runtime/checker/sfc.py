@@ -43,11 +43,12 @@ def step_type_decl() -> ast.TypeDecl:
     return ast.TypeDecl(STEP_TYPE, ast.StructType(members))
 
 
-def lower_charts(ctx, files: list[ast.SourceFile]) -> list[ast.SourceFile]:
-    """`files` with every chart body replaced by its statements (and the step type added)."""
+def lower_charts(ctx, files: list[ast.SourceFile], chartless=None) -> list[ast.SourceFile]:
+    """`files` with every chart body replaced by its statements (and the step type added);
+    `chartless`: a file known to hold no chart (the shared prelude), not searched."""
     out, charts = [], False
     for f in files:
-        if not any(isinstance(item, ast.Pou) and item.sfc is not None for item in f.items):
+        if f is chartless or not any(isinstance(item, ast.Pou) and item.sfc is not None for item in f.items):
             out.append(f)
             continue
         charts = True
