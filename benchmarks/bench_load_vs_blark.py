@@ -6,7 +6,13 @@ For each file set, side by side in one run and one process:
 
 * ours: `st_runtime` loads the files as `st_runtime.api.load` does:
   `loader.load_texts` (parse with the native prelude, check) and then
-  `compiler.compile_program` (Python classes and functions, ready to run);
+  `compiler.compile_program` (Python classes and functions, ready to run).
+  Every round loads each file as if for the first time: the compiler's cache
+  of Python code objects (keyed by the generated source, which would make
+  CPython's `compile()` of a file's POUs free from the second round on) is
+  emptied before each load.  What a process keeps across loads stays, as in
+  any long-running use: the grammar's tables and the native prelude, parsed,
+  checked and compiled once (docs/load.md);
 * blark: `blark.parse.get_parser()` parses the same texts (its raw Lark
   parse tree, blark's fastest path, no summary or transform).
 
@@ -48,6 +54,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from st_runtime import loader  # noqa: E402
+from st_runtime import compiler as compiler_module  # noqa: E402
 from st_runtime.compiler import compile_program  # noqa: E402
 
 clock = time.process_time
@@ -67,6 +74,7 @@ def file_sets() -> list[tuple[str, list[dict[str, str]]]]:
 
 
 def load_once(texts: dict[str, str]) -> bool:
+    compiler_module._CODE.clear()      # no code object from an earlier round (see the docstring)
     result = loader.load_texts(dict(texts))
     if result.program is None:
         return False

@@ -58,9 +58,10 @@ def prelude_file(dialect: str = "iec") -> tuple[str, ast.SourceFile | None, list
 # read.  It is read back by a pickle reader that accepts no global but the
 # AST classes (nothing can be called), and an entry that fails to read is
 # parsed again.  Only a prelude that parsed without a diagnostic is stored.
-# The checked prelude is not stored: it is checked with the user's files
-# (one symbol table), in under a millisecond, and its types and symbols
-# would widen what the reader must accept far beyond the AST's node classes.
+# The checked prelude is not stored across processes: a process checks and
+# compiles it once and shares it with every load (checker/prelude_base.py,
+# docs/load.md), and its types and symbols would widen what the reader must
+# accept far beyond the AST's node classes.
 
 #: The files whose content decides the AST parsed from a text.
 PARSER_FILES = ("grammar.lark", "parser.py", "lalr_fast.py", "grammar_cache.py", "ast_builder.py", "ast.py", "literals.py",

@@ -41,6 +41,8 @@ checked.
 
 from __future__ import annotations
 
+from itertools import islice
+
 from .. import types as T
 from ..dialects import DIALECTS
 from ..diagnostics import register
@@ -135,13 +137,14 @@ def check_memory(ctx, limit: int | None = None) -> None:
     total = 0
     for sym in program.globals.values():
         total += variable_bytes(sym, "global ")
-    base = program.prelude
-    for k, info in program.pous.items():
+    pous = iter(program.pous.values())
+    base = program.prelude      # the shared prelude's POUs lead the table
+    if base is not None and _within(base.memo("bytes", lambda: _sizes(base.pous.values())), limit,
+                                    ctx.rules.string_max_bytes):
+        pous = islice(pous, len(base.pous), None)   # within the limit: nothing to report or count
+    for info in pous:
         if info.node is None:
             continue
-        if base is not None and base.owns(k, info) and _within(base.memo(("bytes", k), lambda: _sizes(info)),
-                                                                 limit, ctx.rules.string_max_bytes):
-            continue    # a prelude FB within the limit: nothing to report, nothing to count
         stored = [s for s in info.variables.values() if s.kind in _STORED]
         instance = sum(variable_bytes(s, f"{info.name}.") for s in stored)
         if instance > limit and not any(variable_bytes_over(model, s, limit) for s in stored):
@@ -156,13 +159,20 @@ def check_memory(ctx, limit: int | None = None) -> None:
                       f" instance of each PROGRAM), above the memory limit of {limit:,} bytes", first)
 
 
-def _sizes(info) -> tuple:
-    """(largest variable, instance bytes, holds a STRING, is a PROGRAM) of a POU alone."""
+def _sizes(pous) -> tuple:
+    """(largest variable, largest instance, a STRING anywhere, a PROGRAM among them) of POUs."""
     model = MemoryModel()
-    sizes = [_REFERENCE[0] if s.kind == "VAR_IN_OUT" else model.layout(s.type)[0]
-             for s in info.variables.values() if s.kind in _STORED]
-    strings = any(isinstance(_innermost(s.type), T.StringType) for s in info.variables.values())
-    return max(sizes, default=0), sum(sizes), strings, info.kind == "PROGRAM"
+    largest = instance = 0
+    strings = program = False
+    for info in pous:
+        if info.node is None:
+            continue
+        sizes = [_REFERENCE[0] if s.kind == "VAR_IN_OUT" else model.layout(s.type)[0]
+                 for s in info.variables.values() if s.kind in _STORED]
+        largest, instance = max([largest, *sizes]), max(instance, sum(sizes))
+        strings = strings or any(isinstance(_innermost(s.type), T.StringType) for s in info.variables.values())
+        program = program or info.kind == "PROGRAM"
+    return largest, instance, strings, program
 
 
 def _within(sizes: tuple, limit: int, string_max) -> bool:

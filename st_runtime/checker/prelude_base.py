@@ -66,10 +66,6 @@ class PreludeBase:
             found = self._memo[what] = compute()
         return found
 
-    def owns(self, k: str, info) -> bool:
-        """Whether `info` is the prelude's own POU `k` (not a project's of that name)."""
-        return self.program_tables["pous"].get(k) is info
-
     def __repr__(self) -> str:
         return f"PreludeBase({self.dialect}, {len(self.pous)} POUs, {len(self.types)} types)"
 

@@ -9,6 +9,8 @@ large).  Each cycle is reported once.
 
 from __future__ import annotations
 
+from itertools import islice
+
 from .. import types as T
 from ..ast import key
 from .context import Context
@@ -17,12 +19,14 @@ from .declarations import _INSTANCE_KINDS, fb_type_of
 
 def _edges(ctx: Context) -> dict[str, list[tuple[str, object, str]]]:
     graph: dict[str, list[tuple[str, object, str]]] = {}
-    base = ctx.program.prelude      # the shared prelude's POUs: their edges found once
-    for k, info in ctx.program.pous.items():
-        if base is not None and base.owns(k, info):
-            graph[k] = list(base.memo(("edges", k), lambda: tuple(_declared_edges(info))))
-        else:
-            graph[k] = _declared_edges(info)
+    pous = iter(ctx.program.pous.items())
+    base = ctx.program.prelude      # the shared prelude's POUs lead the table: edges found once
+    if base is not None:
+        prelude = base.memo("edges", lambda: {k: tuple(_declared_edges(i)) for k, i in base.pous.items()})
+        graph = {k: list(edges) for k, edges in prelude.items()}
+        pous = islice(pous, len(prelude), None)
+    for k, info in pous:
+        graph[k] = _declared_edges(info)
     for caller, calls in ctx.calls.items():
         for callee, pos in calls:
             if caller in graph and callee in graph:
