@@ -15,9 +15,20 @@ syntax diagnostics (`recovery.py`) exactly as before.
 
 from __future__ import annotations
 
+from itertools import chain
+
 from lark.parsers.lalr_analysis import Shift
 
 FAILED = object()
+
+
+class _End:
+    """The end of the input, as Lark's parser sees it (a token of type $END)."""
+
+    type = "$END"
+
+
+_END = _End()
 
 
 class _Position:
@@ -65,11 +76,14 @@ class FastLalr:
         state_stack = [self.start_states[start]]
         value_stack: list = []
         end_state = self.end_states[start]
-        for token in self.frontend._make_lexer_thread(text).lex(_Position(state_stack)):
+        tokens = self.frontend._make_lexer_thread(text).lex(_Position(state_stack))
+        for token in chain(tokens, (_END,)):     # the input, then its end
             kind = token.type
             while True:
                 action, arg = states[state_stack[-1]][kind]
                 if action is Shift:
+                    if token is _END:
+                        raise ValueError("shift at the end of the input")
                     state_stack.append(arg)
                     value_stack.append(token)
                     break
@@ -82,18 +96,6 @@ class FastLalr:
                     values = []
                 value_stack.append(callback(values))
                 state_stack.append(states[state_stack[-1]][origin][1])
-        while True:      # the end of the input: reduce until the start rule is complete
-            action, arg = states[state_stack[-1]]["$END"]
-            if action is Shift:
-                raise ValueError("shift at the end of the input")
-            size, origin, callback, _ = rules.get(id(arg)) or self._rule(arg)
-            if size:
-                values = value_stack[-size:]
-                del state_stack[-size:]
-                del value_stack[-size:]
-            else:
-                values = []
-            value_stack.append(callback(values))
-            state_stack.append(states[state_stack[-1]][origin][1])
-            if state_stack[-1] == end_state:
-                return value_stack[-1]
+                if token is _END and state_stack[-1] == end_state:
+                    return value_stack[-1]
+        raise ValueError("the input ended before its start rule")    # (never: $END reduces or fails)
