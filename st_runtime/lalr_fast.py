@@ -1,12 +1,15 @@
-"""A tighter driver for Lark's LALR parser: the same tables, lexer and callbacks.
+"""A tighter driver for Lark's LALR parser: the same tables, lexers and callbacks.
 
 Lark's own loop (`lalr_parser_state.ParserState.feed_token`) looks every
 reduction's callback up by its `Rule`, whose hash and equality are Python
-methods, and reads the rule's size and origin on each reduction; a small
-file spends a third of its parse there.  This loop does the same shifts and
-reductions in the same order, calling the same callbacks (the AST builder)
-on the same values, so it builds the same AST; it only keeps, per rule, its
-size, origin and callback (looked up once, by the rule's identity).
+methods, and reads the rule's size and origin on each reduction; each token
+also passes through three generators (the lexer thread, the contextual
+lexer, the postlexer).  This loop does the same shifts and reductions in the
+same order, calling the same callbacks (the AST builder) on the same values,
+so it builds the same AST: it keeps, per rule, its size, origin and callback
+(looked up once, by the rule's identity), and runs the contextual lexer's
+`next_token` and the postlexer's `retype` inline, with the same per-state
+lexers, token fields and line counting.
 
 It is a fast path only: on any exception it returns `FAILED`, and the
 caller parses the text again with Lark's own parser, whose errors feed the
@@ -15,9 +18,11 @@ syntax diagnostics (`recovery.py`) exactly as before.
 
 from __future__ import annotations
 
-from itertools import chain
-
+from lark.lexer import Token
 from lark.parsers.lalr_analysis import Shift
+from lark.utils import TextSlice
+
+new_token = Token._future_new      # what Token(type, value, pos, line, column) calls
 
 FAILED = object()
 
@@ -31,22 +36,11 @@ class _End:
 _END = _End()
 
 
-class _Position:
-    """What the contextual lexer reads of the parser: the state on top of the stack."""
-
-    __slots__ = ("stack",)
-
-    def __init__(self, stack: list) -> None:
-        self.stack = stack
-
-    @property
-    def position(self):
-        return self.stack[-1]
-
-
 class FastLalr:
-    def __init__(self, lark) -> None:
+    def __init__(self, lark, retype) -> None:
         self.frontend = lark.parser                       # ParsingFrontend
+        self.lexers = self.frontend.lexer.lexer.lexers    # contextual lexer: parser state -> lexer
+        self.retype = retype                              # the postlexer's work on each token
         parser = self.frontend.parser.parser              # lalr_parser._Parser
         self.states = parser.parse_table.states
         self.start_states = parser.parse_table.start_states
@@ -72,12 +66,45 @@ class FastLalr:
             return FAILED
 
     def _parse(self, text: str, start: str):
-        states, rules = self.states, self.rules
+        states, rules, retype = self.states, self.rules, self.retype
         state_stack = [self.start_states[start]]
         value_stack: list = []
         end_state = self.end_states[start]
-        tokens = self.frontend._make_lexer_thread(text).lex(_Position(state_stack))
-        for token in chain(tokens, (_END,)):     # the input, then its end
+        lexers = self.lexers
+        source = TextSlice.cast_from(text)
+        end = source.end
+        # Lark's line counter (LineCounter.feed), inline
+        pos, line, column, line_start = 0, 1, 1, 0
+        while True:
+            # Lark's contextual lexer: the next token the parser's state accepts
+            # (BasicLexer.next_token, then the postlexer), inline
+            lexer = lexers[state_stack[-1]]
+            scanner = lexer.scanner
+            ignore, callbacks, newlines = lexer.ignore_types, lexer.callback, lexer.newline_types
+            token = _END
+            while pos < end:
+                found = scanner.match(source, pos)
+                if not found:
+                    raise ValueError("no terminal matches here")
+                value, kind = found
+                ignored = kind in ignore
+                made = None
+                if not ignored or kind in callbacks:
+                    made = new_token(kind, value, pos, line, column)
+                if kind in newlines:
+                    count = value.count("\n")
+                    if count:
+                        line += count
+                        line_start = pos + value.rindex("\n") + 1
+                pos += len(value)
+                column = pos - line_start + 1
+                if made is not None:
+                    made.end_line, made.end_column, made.end_pos = line, column, pos
+                    if made.type in callbacks:
+                        made = callbacks[made.type](made)
+                    if not ignored:
+                        token = retype(made)
+                        break
             kind = token.type
             while True:
                 action, arg = states[state_stack[-1]][kind]
@@ -98,4 +125,3 @@ class FastLalr:
                 state_stack.append(states[state_stack[-1]][origin][1])
                 if token is _END and state_stack[-1] == end_state:
                     return value_stack[-1]
-        raise ValueError("the input ended before its start rule")    # (never: $END reduces or fails)
