@@ -20,7 +20,6 @@ from __future__ import annotations
 
 from lark.lexer import Token
 from lark.parsers.lalr_analysis import Shift
-from lark.utils import TextSlice
 
 new_token = Token._future_new      # what Token(type, value, pos, line, column) calls
 
@@ -71,22 +70,24 @@ class FastLalr:
         value_stack: list = []
         end_state = self.end_states[start]
         lexers = self.lexers
-        source = TextSlice.cast_from(text)
-        end = source.end
+        end = len(text)
         # Lark's line counter (LineCounter.feed), inline
         pos, line, column, line_start = 0, 1, 1, 0
         while True:
             # Lark's contextual lexer: the next token the parser's state accepts
             # (BasicLexer.next_token, then the postlexer), inline
             lexer = lexers[state_stack[-1]]
-            scanner = lexer.scanner
+            patterns = lexer.scanner._mres          # (Scanner.match, inline: the first that matches)
             ignore, callbacks, newlines = lexer.ignore_types, lexer.callback, lexer.newline_types
             token = _END
             while pos < end:
-                found = scanner.match(source, pos)
-                if not found:
+                for pattern in patterns:
+                    found = pattern.match(text, pos, end)
+                    if found:
+                        break
+                else:
                     raise ValueError("no terminal matches here")
-                value, kind = found
+                value, kind = found.group(0), found.lastgroup
                 ignored = kind in ignore
                 made = None
                 if not ignored or kind in callbacks:
