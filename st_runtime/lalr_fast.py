@@ -21,7 +21,9 @@ from __future__ import annotations
 from lark.lexer import Token
 from lark.parsers.lalr_analysis import Shift
 
-new_token = Token._future_new      # what Token(type, value, pos, line, column) calls
+#: What Token(type, value, pos, line, column) calls (Lark 1.2 and later); without
+#: it, or with any other internal this loop reads missing, Lark's loop parses.
+new_token = getattr(Token, "_future_new", None)
 
 FAILED = object()
 
@@ -37,18 +39,22 @@ _END = _End()
 
 class FastLalr:
     def __init__(self, lark, retype) -> None:
-        self.frontend = lark.parser                       # ParsingFrontend
-        self.lexers = self.frontend.lexer.lexer.lexers    # contextual lexer: parser state -> lexer
         self.retype = retype                              # the postlexer's work on each token
-        parser = self.frontend.parser.parser              # lalr_parser._Parser
-        self.states = parser.parse_table.states
-        self.start_states = parser.parse_table.start_states
-        self.end_states = parser.parse_table.end_states
-        self.callbacks = parser.callbacks
         self.rules: dict[int, tuple] = {}                 # id(Rule) -> (size, origin, callback, Rule)
+        try:
+            frontend = lark.parser                        # ParsingFrontend
+            self.lexers = frontend.lexer.lexer.lexers     # contextual lexer: parser state -> lexer
+            parser = frontend.parser.parser               # lalr_parser._Parser
+            self.states = parser.parse_table.states
+            self.start_states = parser.parse_table.start_states
+            self.end_states = parser.parse_table.end_states
+            self.callbacks = parser.callbacks
+        except AttributeError:    # another Lark inside: its own loop only
+            self.usable = False
+            return
         # Lark's loop also calls a callback named by a terminal on each shift; the
         # AST builder has none, and this loop is not used if one appears.
-        self.usable = not any(isinstance(k, str) for k in self.callbacks)
+        self.usable = new_token is not None and not any(isinstance(k, str) for k in self.callbacks)
 
     def _rule(self, rule) -> tuple:
         info = (len(rule.expansion), rule.origin.name, self.callbacks[rule], rule)   # (keeps the rule alive)
