@@ -24,6 +24,12 @@ states bit for bit:
 * `inline` (calls.py, `_GUARDED`): SIN, COS, TAN and SQRT call Python's
   math function directly where the library's wrapper would only call it
   (a finite argument; SQRT: not below zero), the wrapper otherwise.
+* `vector` (vector.py): in a CSE region, a straight run of at least
+  `vector.MIN_OPERATIONS` float `+ - *` (the unrolled Leibniz determinant:
+  1,950 products and 720 sums) is one call that computes the products depth
+  by depth and each `D := D +- term` chain with `np.add.accumulate` (left to
+  right); inputs that are not finite or could overflow take the same run in
+  Python, so the results are Python's bit for bit.
 * `unguard` (unguard.py): no `try` around an assignment whose Python code
   cannot raise (a local set from locals and literals with `+ - *`).
 
@@ -50,6 +56,7 @@ class Optimisations:
     fuse: bool = True
     gather: bool = True
     inline: bool = True
+    vector: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

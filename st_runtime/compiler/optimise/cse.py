@@ -31,7 +31,7 @@ from dataclasses import replace
 
 from ... import ast
 from ..scope import walk
-from . import fuse
+from . import fuse, vector
 
 _READ = re.compile(r"[A-Za-z_]\w*\[\d+\]")
 _NUMBER = re.compile(r"-?\(?-?\d[\d.e+-]*\)?")
@@ -146,7 +146,7 @@ def emit_region(compiler, compile_body) -> None:
     finally:
         compiler.region = None
     o.ensure_body(inner)
-    close_region(o, region, mark, flag, compiler.opt.fuse)
+    close_region(o, region, mark, flag, compiler.opt.fuse, vector_hooks(compiler, region))
     inner = o.mark()
     saved = compiler.opt        # the path that never runs unless a read faults: kept small
     compiler.opt = replace(saved, unroll=False, cse=False)
@@ -158,15 +158,25 @@ def emit_region(compiler, compile_body) -> None:
     o.dedent()
 
 
-def close_region(o, region, mark: int, flag: str, tidy: bool = False) -> None:
+def vector_hooks(compiler, region):
+    """(is_float, register) for vector.py when the `vector` pass is on, else None."""
+    if not compiler.opt.vector:
+        return None
+    return vector.float_names(compiler, region), compiler.unit.register_constant
+
+
+def close_region(o, region, mark: int, flag: str, tidy: bool = False, hooks=None) -> None:
     """End the region's `if flag:` block (begun at `mark`): single uses put back, the
     element reads put before it (a fault there sets `flag` False), and `else:` opened.
-    `tidy`: the lines go through fuse.py (stores no one sees skipped, temporaries renamed)."""
+    `tidy`: the lines go through fuse.py (stores no one sees skipped, temporaries renamed).
+    `hooks` (vector_hooks): long runs of float arithmetic go to NumPy (vector.py)."""
     inline_single_uses(region, o.lines, mark + 1)
     if tidy:
         fuse.substitute(o.lines, mark + 1)
         fuse.merge(o.lines, mark + 1)
         fuse.rename(o.lines, mark + 1, region.temp)
+    if hooks is not None:
+        vector.vectorise(o.lines, mark + 1, len(o.lines), *hooks)
     o.dedent()
     reads = [f"{name} = {code}" for code, name in region.reads.items()]
     o.insert(mark, ["try:"] + ["    " + line for line in reads + [f"{flag} = True"]]
