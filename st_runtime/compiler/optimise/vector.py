@@ -41,6 +41,7 @@ MIN_OPERATIONS = 256         # a NumPy call costs ~20 float operations: below th
 _TEMP = re.compile(r"_t\d+\Z")
 _ASSIGN = re.compile(r"([A-Za-z_]\w*) = (.*)\Z")
 _OPS = {pyast.Add: "+", pyast.Sub: "-", pyast.Mult: "*"}
+_abs, _largest, _multiply, _accumulate = np.absolute, np.maximum.reduce, np.multiply, np.add.accumulate
 
 
 class _NotVector(Exception):
@@ -255,22 +256,24 @@ class Vectorised:
                      for head, terms, signs, start, stop in self.chains]
 
     def __call__(self, inputs):
+        # (ufuncs and ndarray.take are C; np.take and ndarray.max go through Python wrappers)
         passed = self.passed
         passed[:] = inputs
-        if not np.abs(passed, out=self.scratch).max() < self.limit:     # inf, NaN, or too large
+        if not _largest(_abs(passed, out=self.scratch)) < self.limit:     # inf, NaN, or too large
             return self.exact(inputs)
-        v, multiply, take = self.buffer, np.multiply, np.take
+        v = self.buffer
+        take, multiply = v.take, _multiply
         for both, pair, left, right, out in self.steps:
-            take(v, both, out=pair, mode="wrap")       # (indices always in range: no check)
+            take(both, out=pair, mode="wrap")       # (indices always in range: no check)
             multiply(left, right, out=out)
-        early = v.take(self.early_positions).tolist() if self.early else ()
+        early = take(self.early_positions).tolist() if self.early else ()
         for head, terms, signs, out, steps in self.sums:
             out[0] = v[head]
             if terms is not None:
-                take(v, terms, out=steps, mode="wrap")
+                take(terms, out=steps, mode="wrap")
             multiply(out, signs, out=out)
-            np.add.accumulate(out, out=out)
-        results = v.take(self.outputs).tolist()
+            _accumulate(out, out=out)
+        results = take(self.outputs).tolist()
         for k, x in zip(self.early, early):
             results[k] = x
         return results
