@@ -256,23 +256,24 @@ class Vectorised:
                      for head, terms, signs, start, stop in self.chains]
 
     def __call__(self, inputs):
-        # (ufuncs and ndarray.take are C; np.take and ndarray.max go through Python wrappers)
+        # (ufuncs and ndarray.take are C; np.take and ndarray.max go through Python
+        # wrappers; positional arguments: out=, mode=, axis=, dtype=)
         passed = self.passed
         passed[:] = inputs
-        if not _largest(_abs(passed, out=self.scratch)) < self.limit:     # inf, NaN, or too large
+        if not _largest(_abs(passed, self.scratch)) < self.limit:     # inf, NaN, or too large
             return self.exact(inputs)
         v = self.buffer
         take, multiply = v.take, _multiply
         for both, pair, left, right, out in self.steps:
-            take(both, out=pair, mode="wrap")       # (indices always in range: no check)
-            multiply(left, right, out=out)
+            take(both, None, pair, "wrap")     # (out=pair; indices always in range: no check)
+            multiply(left, right, out)
         early = take(self.early_positions).tolist() if self.early else ()
         for head, terms, signs, out, steps in self.sums:
             out[0] = v[head]
             if terms is not None:
-                take(terms, out=steps, mode="wrap")
-            multiply(out, signs, out=out)
-            _accumulate(out, out=out)
+                take(terms, None, steps, "wrap")
+            multiply(out, signs, out)
+            _accumulate(out, 0, None, out)
         results = take(self.outputs).tolist()
         for k, x in zip(self.early, early):
             results[k] = x
