@@ -30,6 +30,10 @@ states bit for bit:
   by depth and each `D := D +- term` chain with `np.add.accumulate` (left to
   right); inputs that are not finite or could overflow take the same run in
   Python, so the results are Python's bit for bit.
+* `ranges` (ranges.py): the values an integer local can hold are followed
+  through the code as it is written (assignments, IF/CASE joins, loops), so
+  a bounds check that can never fail is left out (`Matrix[PivotRow, K]`
+  after `PivotRow := K` and `PivotRow := Row` in the LU's pivot search).
 * `unguard` (unguard.py): no `try` around an assignment whose Python code
   cannot raise (a local set from locals and literals with `+ - *`).
 
@@ -57,6 +61,7 @@ class Optimisations:
     gather: bool = True
     inline: bool = True
     vector: bool = True
+    ranges: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

@@ -141,6 +141,8 @@ def emit_region(compiler, compile_body) -> None:
     o.line(f"if {flag}:")
     o.indent()
     inner = o.mark()
+    flow = compiler.flow        # ranges.py: both paths start from the same state
+    before = flow.state() if flow is not None else None
     try:
         compile_body()
     finally:
@@ -150,10 +152,16 @@ def emit_region(compiler, compile_body) -> None:
     inner = o.mark()
     saved = compiler.opt        # the path that never runs unless a read faults: kept small
     compiler.opt = replace(saved, unroll=False, cse=False)
+    first = None
+    if flow is not None:
+        first = flow.state()
+        flow.set(before)
     try:
         compile_body()
     finally:
         compiler.opt = saved
+    if flow is not None:
+        flow.join([first, flow.state()])
     o.ensure_body(inner)
     o.dedent()
 
