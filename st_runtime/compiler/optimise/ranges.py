@@ -105,10 +105,17 @@ class Flow:
         lo, hi = self.bounds[key]
         if new is not None and not lo <= new[0] <= new[1] <= hi:
             new = None                              # it would wrap
-        cannot_fault = compiler.constant_of(s.value) is not None or isinstance(s.value, ast.Name)
+        cannot_fault = compiler.constant_of(s.value) is not None or (
+            isinstance(s.value, ast.Name) and _is_plain_local(compiler, s.value.name.upper()))
         if new is not None and not cannot_fault:
             new = None if old is None else (min(old[0], new[0]), max(old[1], new[1]))
         if new is None:
             known.pop(key, None)
         else:
             known[key] = new
+
+
+def _is_plain_local(compiler, key: str) -> bool:
+    """A Python local: reading it cannot fault (an unconnected VAR_IN_OUT can)."""
+    place = compiler.scope.places.get(key)
+    return key in compiler.unrolled or (place is not None and place.how == "local")
