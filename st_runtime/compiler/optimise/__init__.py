@@ -19,8 +19,11 @@ states bit for bit:
   can see before the variable is set again is put into its one use, runs of
   `D := D + x` become one expression (same operations, same order), and
   temporaries share Python names (fewer than 256 locals).
-* `gather` (gather.py): a body's prologue loads its variables with one
-  `operator.attrgetter` call per run instead of one load each.
+* `gather` (gather.py, off unless asked for): a body's prologue loads its
+  variables with one `operator.attrgetter` call per run instead of one load
+  each.  Fewer bytecodes, but slower on CPython 3.11: a specialised slot load
+  beats attrgetter's generic lookup, whose type-cache slot depends on
+  PYTHONHASHSEED (measured in gather.py's docstring).
 * `inline` (calls.py, `_GUARDED`): SIN, COS, TAN and SQRT call Python's
   math function directly where the library's wrapper would only call it
   (a finite argument; SQRT: not below zero), the wrapper otherwise.
@@ -40,7 +43,8 @@ states bit for bit:
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
 checks.  `ST_RUNTIME_OPTIMISE` (environment) picks the default: `none`, `all`
-or a comma-separated list of pass names; unset means all.
+(every pass on by default, so not `gather`) or a comma-separated list of
+pass names; unset means all.
 """
 
 from __future__ import annotations
@@ -58,7 +62,7 @@ class Optimisations:
     cse: bool = True
     unguard: bool = True
     fuse: bool = True
-    gather: bool = True
+    gather: bool = False     # off by default: slower than the loads it replaces (gather.py)
     inline: bool = True
     vector: bool = True
     ranges: bool = True
