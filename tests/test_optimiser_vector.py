@@ -147,7 +147,7 @@ def _chain_lines(count: int, head: str = "v_D") -> list[str]:
     lines = []
     for i in range(count):
         lines.append(f"    _t9 = (_t{i % 3 + 1} * _t{(i + 1) % 3 + 1})")
-        lines.append(f"    {head} = (({head} + (_t9 * _t4)) - ((_t9 * _t5) * 0.5))")
+        lines.append(f"    {head} = (({head} + (_t9 * _t4)) - ((_t9 * _t5) * {'-0.5' if i % 2 else '0.5'}))")
     return lines
 
 

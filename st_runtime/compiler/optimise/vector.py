@@ -71,6 +71,8 @@ class _Graph:
             return self._input(node.id)
         if isinstance(node, pyast.Constant):
             return self._literal(node.value)
+        if _negative_literal(node):
+            return self._literal(-node.operand.value)
         if isinstance(node, pyast.BinOp) and type(node.op) in _OPS:
             left, right = self.operand(node.left), self.operand(node.right)
             self.ops.append((_OPS[type(node.op)], left, right))
@@ -111,14 +113,20 @@ class _Graph:
     def _computable(self, node) -> bool:
         if isinstance(node, pyast.BinOp):
             return type(node.op) in _OPS and self._computable(node.left) and self._computable(node.right)
-        if isinstance(node, pyast.Constant):
-            return type(node.value) is float
+        if isinstance(node, pyast.Constant) or _negative_literal(node):
+            return type(getattr(node, "operand", node).value) is float
         if isinstance(node, pyast.Name):
             bound = self.env.get(node.id)
             if bound is None:
                 return self.is_float(node.id)
             return bound[0] == "v" or type(bound[2]) is float
         return False
+
+
+def _negative_literal(node) -> bool:
+    """`-2.5`: Python folds the negation into the constant (the same float)."""
+    return isinstance(node, pyast.UnaryOp) and isinstance(node.op, pyast.USub) \
+        and isinstance(node.operand, pyast.Constant)
 
 
 def _index(graph: _Graph, ref: int) -> int:
