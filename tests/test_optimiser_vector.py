@@ -86,7 +86,10 @@ def _run(compiled, matrix):
 
 def test_the_pass_fires_on_a_5x5_leibniz_table(builds):
     on, off = builds["on"].python_sources["DET5"], builds["off"].python_sources["DET5"]
-    assert re.search(r"v_D, v_X, = _k\d+\(\(", on) and "v_D, v_X, = " not in off
+    assert re.search(r"v_D, v_X, = _k\d+\(v_M, \(v_D, \)\)", on) and "v_D, v_X, = " not in off
+    # M is passed whole: of its reads before the region only the highest stays, the probe
+    # that faults exactly when one of them would (an unconnected M)
+    assert re.findall(r"= v_M\[(\d+)\]$", on, re.M) == [str(N * N - 1)]
     assert "((v_D + " in off and "((v_D + " not in on      # the fused sums: gone with the pass
     helpers = [v for v in builds["on"].namespace.values() if isinstance(v, vector.Vectorised)]
     assert len(helpers) == 1
@@ -174,13 +177,13 @@ def test_a_run_becomes_one_call_with_python_results():
     check = "    if _ctx.budget < _spent: _overrun(('X', 'x.st', 3, 1))"
     lines = long + ["    v_N = 7", check]
     vector.vectorise(lines, 0, len(lines), floats.__contains__, _register(bound))
-    call = re.fullmatch(r"    v_D, = _k0\(\((.*),\)\)", lines[0])
+    call = re.fullmatch(r"    v_D, = _k0\(None, \((.*), \)\)", lines[0])
     assert call is not None and lines[1:] == ["    v_N = 7", check]     # the literal store kept; the check ends the run
     names = call.group(1).split(", ")
     assert sorted(names) == sorted(floats)
     values = {"_t1": 1.25, "_t2": -0.75, "_t3": 3.0, "_t4": 1e-3, "_t5": 7.0, "v_D": 0.1}
     for changed in ({}, {"_t1": 1e200}, {"_t4": math.inf}, {"_t2": -0.0, "_t3": 0.0}):
         env = dict(values, **changed)
-        got = bound["_k0"](tuple(env[name] for name in names))
+        got = bound["_k0"](None, tuple(env[name] for name in names))
         exec("\n".join(line[4:] for line in long), {}, env)           # the lines as Python runs them
         assert (math.isnan(got[0]) and math.isnan(env["v_D"])) or _bits(got[0]) == _bits(env["v_D"]), changed

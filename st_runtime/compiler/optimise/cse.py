@@ -167,10 +167,26 @@ def emit_region(compiler, compile_body) -> None:
 
 
 def vector_hooks(compiler, region):
-    """(is_float, register) for vector.py when the `vector` pass is on, else None."""
+    """(is_float, register, element_of) for vector.py when the `vector` pass is on, else None."""
     if not compiler.opt.vector:
         return None
-    return vector.float_names(compiler, region), compiler.unit.register_constant
+    return (vector.float_names(compiler, region), compiler.unit.register_constant,
+            vector.region_elements(compiler, region))
+
+
+def _needed_reads(region, block: list[str]) -> list[tuple[str, str]]:
+    """The element reads the block still uses, and each list's highest element read: that
+    read faults exactly when one of the others would (a list has every lower index; an
+    unconnected VAR_IN_OUT faults on any), so the region runs exactly when it ran before
+    even where vector.py passes the list whole instead of its elements."""
+    used = set(_TEMP.findall("\n".join(block)))
+    highest: dict[str, tuple[int, str]] = {}
+    for code, name in region.reads.items():
+        base, index = code[:-1].split("[", 1)
+        if int(index) >= highest.get(base, (-1,))[0]:
+            highest[base] = (int(index), name)
+    probes = {name for _, name in highest.values()}
+    return [(code, name) for code, name in region.reads.items() if name in used or name in probes]
 
 
 def close_region(o, region, mark: int, flag: str, tidy: bool = False, hooks=None) -> None:
@@ -186,7 +202,7 @@ def close_region(o, region, mark: int, flag: str, tidy: bool = False, hooks=None
     if hooks is not None:
         vector.vectorise(o.lines, mark + 1, len(o.lines), *hooks)
     o.dedent()
-    reads = [f"{name} = {code}" for code, name in region.reads.items()]
+    reads = [f"{name} = {code}" for code, name in _needed_reads(region, o.lines[mark + 1:])]
     o.insert(mark, ["try:"] + ["    " + line for line in reads + [f"{flag} = True"]]
              + ["except _FAULTS:", f"    {flag} = False"])
     o.line("else:")

@@ -143,13 +143,17 @@ class Vectorised:
     the graph), the run is computed in Python instead (`exact`), so NumPy never sees
     an inf or a NaN (and never warns)."""
 
-    def __init__(self, graph: _Graph, outputs: list[int]):
+    def __init__(self, graph: _Graph, outputs: list[int], source=None):
+        """`source`: (size, {input: element}) when inputs are elements of one list, which
+        is then passed whole (`__call__(list, others)`) instead of read element by element."""
         n_in = len(graph.inputs)
+        self.n_list, self.elements = source if source is not None else (0, {})
         ops = [(op, _index(graph, a), _index(graph, b)) for op, a, b in graph.ops]
         self.n_inputs = n_in
         self.ops = ops                                   # the Python fallback, in order
         self.constants = [(i, c) for i, c in enumerate(graph.constants) if c is not None]
-        self.variable_inputs = [i for i, c in enumerate(graph.constants) if c is None]
+        self.variable_inputs = [i for i, c in enumerate(graph.constants)
+                                if c is None and i not in self.elements]     # passed in a tuple
         self.output_refs = outputs
         needed = set(outputs)                            # only what feeds an output is computed
         for k in range(len(ops) - 1, -1, -1):
@@ -165,7 +169,7 @@ class Vectorised:
         input: c = 1, d = 1; a literal: c = max(|x|, 1), d = 0; a product: c and d multiply
         and add; a sum: c adds, d is the larger)."""
         n_in = self.n_inputs
-        bound = {i: (1.0, 1) for i in self.variable_inputs}
+        bound = {i: (1.0, 1) for i in self.variable_inputs + list(self.elements)}
         bound.update((i, (max(abs(c), 1.0), 0)) for i, c in self.constants)
         exponent = math.inf
         for k in self.live:
@@ -207,11 +211,13 @@ class Vectorised:
             chains[c]["terms"].append(b)
             chains[c]["signs"].append(1.0 if op == "+" else -1.0)
             chain_of[v] = (c, len(chains[c]["terms"]) - 1)
-        # the inputs passed come first (one slice assignment), then the literals
+        # the list passed whole, the inputs passed in the tuple (one slice assignment each),
+        # then the literals
         order = self.variable_inputs + [i for i, _ in self.constants]
-        position = {i: p for p, i in enumerate(order)}
-        self.n_passed = len(self.variable_inputs)
-        size = n_in
+        position = {i: self.n_list + p for p, i in enumerate(order)}
+        position.update(self.elements)
+        self.n_passed = self.n_list + len(self.variable_inputs)
+        size = self.n_list + len(order)
         # a chain whose terms are one depth's products, in order, gets them written in place
         # (the sums overwrite them: not when another chain reads them; outputs read before)
         in_place = {}
@@ -252,9 +258,11 @@ class Vectorised:
 
     def _views(self, size: int) -> None:
         v = self.buffer = np.zeros(size)
-        for i, c in self.constants:
-            v[self.n_passed + [j for j, _ in self.constants].index(i)] = c
+        for k, (_, c) in enumerate(self.constants):
+            v[self.n_passed + k] = c
         self.passed = v[:self.n_passed]
+        self.whole = v[:self.n_list]
+        self.tuple = v[self.n_list:self.n_passed]
         self.scratch = np.empty(self.n_passed)
         self.steps = []
         for both, n, start, stop in self.levels:
@@ -263,13 +271,16 @@ class Vectorised:
         self.sums = [(head, terms, signs, v[start:stop], v[start + 1:stop])
                      for head, terms, signs, start, stop in self.chains]
 
-    def __call__(self, inputs):
+    def __call__(self, whole, inputs):
         # (ufuncs and ndarray.take are C; np.take and ndarray.max go through Python
         # wrappers; positional arguments: out=, mode=, axis=, dtype=)
-        passed = self.passed
-        passed[:] = inputs
-        if not _largest(_abs(passed, self.scratch)) < self.limit:     # inf, NaN, or too large
-            return self.exact(inputs)
+        if self.n_list:
+            if type(whole) is not list or len(whole) != self.n_list:
+                return self.exact(whole, inputs)
+            self.whole[:] = whole
+        self.tuple[:] = inputs
+        if not _largest(_abs(self.passed, self.scratch)) < self.limit:     # inf, NaN, or too large
+            return self.exact(whole, inputs)
         v = self.buffer
         take, multiply = v.take, _multiply
         for both, pair, left, right, out in self.steps:
@@ -287,23 +298,27 @@ class Vectorised:
             results[k] = x
         return results
 
-    def exact(self, inputs):
+    def exact(self, whole, inputs):
         """The run in Python, operation by operation in the original order."""
         values = [0.0] * self.n_inputs
         for i, c in self.constants:
             values[i] = c
         for i, x in zip(self.variable_inputs, inputs):
             values[i] = x
+        for i, k in self.elements.items():
+            values[i] = whole[k]
         for op, a, b in self.ops:
             x, y = values[a], values[b]
             values.append(x * y if op == "*" else x + y if op == "+" else x - y)
         return [values[o] for o in self.output_refs]
 
 
-def vectorise(lines: list[str], start: int, end: int, is_float, register) -> None:
+def vectorise(lines: list[str], start: int, end: int, is_float, register, element_of=None) -> None:
     """Replace qualifying runs in `lines[start:end]` (a region's block, one indentation)
     by one call each.  `is_float(name)`: the name holds a Python float (REAL/LREAL) before
-    a run; `register(value)`: the namespace name bound to a Python value."""
+    a run; `register(value)`: the namespace name bound to a Python value;
+    `element_of(name)`: (list, index, the list's length) when the name holds an element
+    read before the region (then the list is passed whole), else None."""
     if start >= end:
         return
     indent = lines[start][: len(lines[start]) - len(lines[start].lstrip())]
@@ -313,7 +328,7 @@ def vectorise(lines: list[str], start: int, end: int, is_float, register) -> Non
         while j < end and lines[j].startswith(indent) and not lines[j][len(indent):len(indent) + 1].isspace() \
                 and graph.assign(lines[j][len(indent):]):
             j += 1
-        written = _replace_run(lines, i, j, indent, graph, register) if j > i else None
+        written = _replace_run(lines, i, j, indent, graph, register, element_of) if j > i else None
         if written is None:
             i = max(j, i + 1)
         else:
@@ -321,7 +336,7 @@ def vectorise(lines: list[str], start: int, end: int, is_float, register) -> Non
             i += written
 
 
-def _replace_run(lines, i, j, indent, graph, register):
+def _replace_run(lines, i, j, indent, graph, register, element_of=None):
     """The number of lines written in place of `lines[i:j]` (the run `graph` holds), or
     None when the run does not qualify."""
     if len(graph.ops) < MIN_OPERATIONS:
@@ -337,15 +352,35 @@ def _replace_run(lines, i, j, indent, graph, register):
             stores.append((name, _index(graph, bound[1])))
     if not stores:
         return None
+    whole, source = _whole_list(graph, element_of)
     try:
-        helper = Vectorised(graph, [ref for _, ref in stores])
+        helper = Vectorised(graph, [ref for _, ref in stores], source)
     except _NotVector:
         return None
-    arguments = [graph.inputs[k] for k in helper.variable_inputs]
-    call = f"{', '.join(name for name, _ in stores)}, = {register(helper)}(({', '.join(arguments)},))"
+    arguments = "".join(f"{graph.inputs[k]}, " for k in helper.variable_inputs)
+    call = f"{', '.join(name for name, _ in stores)}, = {register(helper)}({whole}, ({arguments}))"
     new = [indent + call] + [indent + line for line in literals]
     lines[i:j] = new
     return len(new)
+
+
+MIN_ELEMENTS = 8      # elements of one list worth passing it whole
+
+
+def _whole_list(graph: _Graph, element_of):
+    """("v_M", (length, {input: index})) when at least MIN_ELEMENTS inputs are elements of
+    one list and no other list's (each element then sits at its own index), else ("None", None)."""
+    if element_of is None:
+        return "None", None
+    found = {i: element_of(text) for i, text in enumerate(graph.inputs) if graph.constants[i] is None}
+    bases = {f[0] for f in found.values() if f is not None}
+    if len(bases) != 1:
+        return "None", None
+    elements = {i: f[1] for i, f in found.items() if f is not None}
+    if len(elements) < MIN_ELEMENTS:
+        return "None", None
+    base = bases.pop()
+    return base, (next(f[2] for f in found.values() if f is not None), elements)
 
 
 def float_names(compiler, region):
@@ -364,3 +399,25 @@ def float_names(compiler, region):
         place = symbols.get(name)
         return place is not None and place.how == "local" and is_real(place.symbol.type)
     return is_float
+
+
+def region_elements(compiler, region):
+    """`element_of` for `vectorise`: a region's read `v_M[7]` -> ("v_M", 7, the array's
+    element count) when v_M is a whole array (a Python list of that length)."""
+    symbols = {place.name: place for place in compiler.scope.places.values()}
+    reads = {name: code for code, name in region.reads.items()}
+
+    def element_of(name: str):
+        code = reads.get(name)
+        if code is None:
+            return None
+        base, index = code[:-1].split("[", 1)
+        place = symbols.get(base)
+        t = resolve_alias(place.symbol.type) if place is not None else None
+        if not isinstance(t, ArrayType):
+            return None
+        size = 1
+        for lo, hi in t.dims:
+            size *= hi - lo + 1
+        return base, int(index), size
+    return element_of
