@@ -133,3 +133,25 @@ def test_f_period_lands_on_the_same_statement(budget_ns):
     program = api.load_text(PIVOT).program
     off_run, on_run = run_both(program, 2, budget_ns)
     assert on_run == off_run
+
+
+class _Context:
+    def __init__(self):
+        self.budget = 10**12
+        self.faults = []
+
+    def fault(self, exc, where):
+        self.faults.append((getattr(exc, "code", None), where))
+
+
+def test_the_time_charged_is_the_same():
+    """The NJ estimate comes from the ST: a check left out charges what it charged."""
+    program = api.load_text(PIVOT).program
+    spent = []
+    for optimise in (Optimisations.none(), NO_RANGES, ON):
+        pivot = compile_program(program, optimise=optimise).functions["PIVOT"]
+        context = _Context()
+        matrix = [1.0, 2.0, 3.0, 4.0, -9.0, 1.0, 0.5, 2.0, 3.0, 8.0, -1.0, 0.0, 2.0, -2.0, 7.0, 1.0]
+        result = pivot(context, matrix)
+        spent.append((10**12 - context.budget, result, matrix, context.faults))
+    assert spent[0] == spent[1] == spent[2] and spent[0][0] > 0
