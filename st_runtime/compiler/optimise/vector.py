@@ -33,15 +33,25 @@ import ast as pyast
 import math
 import re
 
-import numpy as np
-
 from ...types import ArrayType, resolve_alias
 
 MIN_OPERATIONS = 256         # a NumPy call costs ~20 float operations: below this, no gain
 _TEMP = re.compile(r"_t\d+\Z")
 _ASSIGN = re.compile(r"([A-Za-z_]\w*) = (.*)\Z")
 _OPS = {pyast.Add: "+", pyast.Sub: "-", pyast.Mult: "*"}
-_abs, _largest, _multiply, _accumulate = np.absolute, np.maximum.reduce, np.multiply, np.add.accumulate
+np = _abs = _largest = _multiply = _accumulate = None     # NumPy, imported by the first run
+
+
+def _import_numpy() -> None:
+    """NumPy is imported when a run first qualifies (a program without one loads as fast
+    as before: importing NumPy takes a tenth of a second or more)."""
+    global np, _abs, _largest, _multiply, _accumulate
+    if np is None:
+        import numpy
+
+        _abs, _largest, _multiply, _accumulate = (numpy.absolute, numpy.maximum.reduce,
+                                                  numpy.multiply, numpy.add.accumulate)
+        np = numpy
 
 
 class _NotVector(Exception):
@@ -146,6 +156,7 @@ class Vectorised:
     def __init__(self, graph: _Graph, outputs: list[int], source=None):
         """`source`: (size, {input: element}) when inputs are elements of one list, which
         is then passed whole (`__call__(list, others)`) instead of read element by element."""
+        _import_numpy()
         n_in = len(graph.inputs)
         self.n_list, self.elements = source if source is not None else (0, {})
         ops = [(op, _index(graph, a), _index(graph, b)) for op, a, b in graph.ops]
