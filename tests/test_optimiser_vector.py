@@ -187,3 +187,26 @@ def test_a_run_becomes_one_call_with_python_results():
         got = bound["_k0"](None, tuple(env[name] for name in names))
         exec("\n".join(line[4:] for line in long), {}, env)           # the lines as Python runs them
         assert (math.isnan(got[0]) and math.isnan(env["v_D"])) or _bits(got[0]) == _bits(env["v_D"]), changed
+
+
+MAIN5 = LEIBNIZ5 + """
+PROGRAM Main
+VAR A : ARRAY[1..5, 1..5] OF LREAL := [2.5, -1.0, 0.1, 3.0, 7.0, -2.0, 0.3, 1.0E10, 4.0, 1.5,
+                                       0.25, 6.0, -3.5, 2.0, 1.0, 9.0, 0.5, -0.75, 8.0, 2.5,
+                                       1.0, 1.0, 2.0, 3.0, 5.0];
+    F : Det5; K : INT; Out : LREAL; END_VAR
+FOR K := 1 TO 5 DO A[K, K] := A[K, K] * 1.0000001; END_FOR;
+F(M := A);
+Out := F.D;
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("budget_ns", [1_000, 5_000, 20_000, 60_000, 500_000])
+def test_f_period_lands_on_the_same_statement_and_state(budget_ns):
+    """Every pass off against every pass on (vector included): faults (code, line, scan),
+    instance states and globals equal bit for bit, also when the period is exceeded."""
+    from test_optimiser_equivalence import run_both
+
+    off, on = run_both(api.load_text(MAIN5).program, 3, budget_ns)
+    assert on == off
