@@ -51,6 +51,7 @@ class Flow:
                 if name:
                     excluded.add(name)
         self.compiler = compiler
+        self._assigned: dict[int, set[str]] = {}       # id(loop body) -> followed names it assigns
         self.bounds: dict[str, tuple[int, int]] = {}
         for key, place in compiler.scope.places.items():
             bounds = int_bounds(place.symbol.type) if place.how == "local" else None
@@ -60,34 +61,34 @@ class Flow:
     # ----------------------------------------------------------- states
 
     def state(self) -> dict:
-        known = self.compiler.known_ranges
-        return {key: known[key] for key in self.bounds if key in known}
+        bounds = self.bounds
+        return {key: r for key, r in self.compiler.known_ranges.items() if key in bounds}
 
     def set(self, state: dict) -> None:
-        known = self.compiler.known_ranges
-        for key in self.bounds:
-            if key in state:
-                known[key] = state[key]
-            else:
-                known.pop(key, None)
+        known, bounds = self.compiler.known_ranges, self.bounds
+        for key in [key for key in known if key in bounds and key not in state]:
+            del known[key]
+        known.update(state)
 
     def join(self, states: list[dict]) -> None:
         """The union of `states` becomes the state (a variable unknown in one is unknown)."""
         joined = {}
-        for key in self.bounds:
+        for key, r in (states[0].items() if states else ()):
             ranges = [s.get(key) for s in states]
-            if ranges and all(r is not None for r in ranges):
-                joined[key] = (min(r[0] for r in ranges), max(r[1] for r in ranges))
+            if all(x is not None for x in ranges):
+                joined[key] = (min(x[0] for x in ranges), max(x[1] for x in ranges))
         self.set(joined)
 
     def forget(self, body) -> None:
         """Every followed variable `body` assigns becomes unknown."""
+        names = self._assigned.get(id(body))
+        if names is None:       # (an unrolled loop compiles the loops in its body once a copy)
+            names = self._assigned[id(body)] = {
+                node.target.name.upper() for node in walk(body)
+                if isinstance(node, ast.Assign) and isinstance(node.target, ast.Name)} & set(self.bounds)
         known = self.compiler.known_ranges
-        for node in walk(body):
-            if isinstance(node, ast.Assign) and isinstance(node.target, ast.Name):
-                key = node.target.name.upper()
-                if key in self.bounds:
-                    known.pop(key, None)
+        for key in names:
+            known.pop(key, None)
 
     # ------------------------------------------------------- statements
 

@@ -29,7 +29,6 @@ charges and faults as before (it had no charge and no fault inside).
 
 from __future__ import annotations
 
-import ast as pyast
 import math
 import re
 
@@ -38,7 +37,6 @@ from ...types import ArrayType, resolve_alias
 MIN_OPERATIONS = 256         # a NumPy call costs ~20 float operations: below this, no gain
 _TEMP = re.compile(r"_t\d+\Z")
 _ASSIGN = re.compile(r"([A-Za-z_]\w*) = (.*)\Z")
-_OPS = {pyast.Add: "+", pyast.Sub: "-", pyast.Mult: "*"}
 np = _abs = _largest = _multiply = _accumulate = None     # NumPy, imported by the first run
 
 
@@ -70,24 +68,21 @@ class _Graph:
         self.env: dict[str, tuple] = {}      # name -> ("v", index) | ("lit", text)
 
     def operand(self, node) -> int:
-        if isinstance(node, pyast.Name):
-            bound = self.env.get(node.id)
+        kind = node[0]
+        if kind == "name":
+            bound = self.env.get(node[1])
             if bound is not None:
                 if bound[0] == "v":
                     return bound[1]
                 return self._literal(bound[2])
-            if not self.is_float(node.id):
-                raise _NotVector(node.id)
-            return self._input(node.id)
-        if isinstance(node, pyast.Constant):
-            return self._literal(node.value)
-        if _negative_literal(node):
-            return self._literal(-node.operand.value)
-        if isinstance(node, pyast.BinOp) and type(node.op) in _OPS:
-            left, right = self.operand(node.left), self.operand(node.right)
-            self.ops.append((_OPS[type(node.op)], left, right))
-            return -len(self.ops)            # operations: negative until numbered
-        raise _NotVector(pyast.dump(node))
+            if not self.is_float(node[1]):
+                raise _NotVector(node[1])
+            return self._input(node[1])
+        if kind == "const":
+            return self._literal(node[1])
+        left, right = self.operand(node[2]), self.operand(node[3])
+        self.ops.append((node[1], left, right))
+        return -len(self.ops)            # operations: negative until numbered
 
     def _literal(self, value) -> int:
         if type(value) is not float:
@@ -108,35 +103,76 @@ class _Graph:
         if match is None:
             return False
         target, text = match.groups()
-        try:
-            tree = pyast.parse(text, mode="eval").body
-        except (SyntaxError, RecursionError, MemoryError):
+        tree = _parse(text)
+        if tree is None:
             return False
-        if isinstance(tree, pyast.Constant):          # `v_TERM = 721`: kept as a literal store
-            self.env[target] = ("lit", text, tree.value)
+        if tree[0] == "const":              # `v_TERM = 721`: kept as a literal store
+            self.env[target] = ("lit", text, tree[1])
             return True
-        if not self._computable(tree):
+        n_ops, n_inputs = len(self.ops), len(self.inputs)
+        try:
+            value = self.operand(tree)
+        except _NotVector:                  # undo what the line added
+            del self.ops[n_ops:]
+            for text in self.inputs[n_inputs:]:
+                del self.input_of[text]
+            del self.inputs[n_inputs:], self.constants[n_inputs:]
             return False
-        self.env[target] = ("v", self.operand(tree))
+        self.env[target] = ("v", value)
         return True
 
-    def _computable(self, node) -> bool:
-        if isinstance(node, pyast.BinOp):
-            return type(node.op) in _OPS and self._computable(node.left) and self._computable(node.right)
-        if isinstance(node, pyast.Constant) or _negative_literal(node):
-            return type(getattr(node, "operand", node).value) is float
-        if isinstance(node, pyast.Name):
-            bound = self.env.get(node.id)
-            if bound is None:
-                return self.is_float(node.id)
-            return bound[0] == "v" or type(bound[2]) is float
-        return False
+
+_TOKEN = re.compile(r"\s*(?:([()+*-])|([A-Za-z_]\w*)|(\d+(?:\.\d*)?(?:[eE][+-]?\d+)?))")
+_WORDS = {"True": True, "False": False}
 
 
-def _negative_literal(node) -> bool:
-    """`-2.5`: Python folds the negation into the constant (the same float)."""
-    return isinstance(node, pyast.UnaryOp) and isinstance(node.op, pyast.USub) \
-        and isinstance(node.operand, pyast.Constant)
+def _parse(text: str):
+    """The tree of a fully parenthesised `+ - *` of names and number literals, as the
+    compiler writes them: ("name", n) | ("const", value) | ("bin", op, left, right);
+    None for anything else (a call, a subscript, an attribute, an operator without
+    parentheses ...).  A literal's value is Python's (`float(text)` rounds as the
+    compiler of the literal does; `-0.5` is the negated constant, as Python folds it)."""
+    tokens = []
+    pos, end = 0, len(text.rstrip())
+    while pos < end:
+        m = _TOKEN.match(text, pos)
+        if m is None:
+            return None
+        tokens.append(m.groups())
+        pos = m.end()
+    try:
+        tree, i = _expression(tokens, 0)
+    except (IndexError, RecursionError):
+        return None
+    return tree if tree is not None and i == len(tokens) else None
+
+
+def _expression(tokens, i):
+    punct, name, number = tokens[i]
+    if number is not None:
+        is_float = any(c in number for c in ".eE")
+        return ("const", float(number) if is_float else int(number)), i + 1
+    if name is not None:
+        if name in _WORDS:
+            return ("const", _WORDS[name]), i + 1
+        return ("name", name), i + 1
+    if punct == "-" and tokens[i + 1][2] is not None:
+        value, i = _expression(tokens, i + 1)
+        return ("const", -value[1]), i
+    if punct != "(":
+        return None, i
+    left, i = _expression(tokens, i + 1)
+    if left is None:
+        return None, i
+    if tokens[i][0] == ")":                 # `(x)`, `(-0.5)`
+        return left, i + 1
+    op = tokens[i][0]
+    if op not in ("+", "-", "*"):
+        return None, i
+    right, i = _expression(tokens, i + 1)
+    if right is None or tokens[i][0] != ")":
+        return None, i
+    return ("bin", op, left, right), i + 1
 
 
 def _index(graph: _Graph, ref: int) -> int:
@@ -402,7 +438,15 @@ def float_names(compiler, region):
     symbols = {place.name: place for place in compiler.scope.places.values()}
     reads = {name: code for code, name in region.reads.items()}
 
+    known: dict[str, bool] = {}
+
     def is_float(name: str) -> bool:
+        found = known.get(name)
+        if found is None:
+            found = known[name] = _is_float(name)
+        return found
+
+    def _is_float(name: str) -> bool:
         if name in reads:
             place = symbols.get(reads[name].split("[", 1)[0])
             t = resolve_alias(place.symbol.type) if place is not None else None
