@@ -10,7 +10,7 @@ import pytest
 
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
-from test_optimiser_equivalence import run_both
+from test_optimiser_equivalence import _Context, run_both
 
 ON = Optimisations()
 NO_RANGES = replace(ON, ranges=False)
@@ -133,15 +133,6 @@ def test_f_period_lands_on_the_same_statement(budget_ns):
     program = api.load_text(PIVOT).program
     off_run, on_run = run_both(program, 2, budget_ns)
     assert on_run == off_run
-
-
-class _Context:
-    def __init__(self):
-        self.budget = 10**12
-        self.faults = []
-
-    def fault(self, exc, where):
-        self.faults.append((getattr(exc, "code", None), where))
 
 
 def test_the_time_charged_is_the_same():

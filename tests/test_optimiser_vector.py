@@ -20,6 +20,7 @@ import pytest
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.compiler.optimise import vector
+from test_optimiser_equivalence import _Context
 
 ON = Optimisations()
 NO_VECTOR = replace(ON, vector=False)
@@ -56,15 +57,6 @@ def _leibniz(m: list[float]) -> float:
         x = m[p[0] - 1] * m[N + p[1] - 1] * m[2 * N + p[2] - 1] * m[3 * N + p[3] - 1] * m[4 * N + p[4] - 1]
         d = d + x if _sign(p) > 0 else d - x
     return d
-
-
-class _Context:
-    def __init__(self):
-        self.budget = 10**12
-        self.faults = []
-
-    def fault(self, exc, where):
-        self.faults.append((getattr(exc, "code", None), where))
 
 
 def _bits(x) -> bytes:
