@@ -49,10 +49,10 @@ def snapshot(value, seen=None):
     return type(value).__name__          # references, native helpers: identity only
 
 
-def run_both(program, scans: int, budget_ns: int = 500_000):
-    """(faults, states, times) of `scans` scans with the passes off and on."""
+def run_both(program, scans: int, budget_ns: int = 500_000, optimise: Optimisations = ON):
+    """(faults, states, times) of `scans` scans with the passes off and on (`optimise`)."""
     outcomes = []
-    for optimise in (OFF, ON):
+    for optimise in (OFF, optimise):
         compiled = compile_program(program, optimise=optimise)
         controller = Controller(compiled, time_limit_ns=budget_ns)
         for pou in program.pous.values():
@@ -330,9 +330,9 @@ def test_gather_reads_the_same_attributes_in_the_same_order():
 
     assert bound["_k0"](Owner()) == (1, 2.5, [3], "x")
     program = _text_program(GATHERED)
-    source = compile_program(program, optimise=ON).python_sources["MAIN"]
+    source = compile_program(program, optimise=replace(ON, gather=True)).python_sources["MAIN"]
     assert source.splitlines()[1].startswith("    v_A, v_B, v_C, v_D, v_I = _k")    # the prologue: one call
-    off, on = run_both(program, 3)
+    off, on = run_both(program, 3, optimise=replace(ON, gather=True))
     assert on == off
 
 

@@ -39,7 +39,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import cse, fold, gather, unguard, unroll
+from .optimise import cse, fold, gather, ranges, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -55,6 +55,7 @@ class BodyCompiler(ExprCompiler):
         self.out = Emitter()
         self.cost = CostModel(program)
         self._head_costs: dict[int, float] = {}
+        self.flow = ranges.Flow(self, body) if self.opt.ranges else None    # integer locals' ranges
         if not method:
             self._add_return_variable()
 
@@ -249,6 +250,8 @@ class BodyCompiler(ExprCompiler):
             raise CompileError(f"statement {type(stmt).__name__} is not supported by the runtime", stmt.pos)
         if isinstance(stmt, (ast.Assign, ast.CallStmt)):
             self.guard(stmt, lambda: method(stmt))
+            if self.flow is not None and isinstance(stmt, ast.Assign):
+                self.flow.assigned(stmt)
         elif isinstance(stmt, ast.If) and self.opt.fold and self._folded_if(stmt):
             return
         elif self.region is not None:       # code that may be skipped defines no shared values
@@ -351,13 +354,15 @@ class BodyCompiler(ExprCompiler):
         """A fault in a condition abandons the whole IF (no branch runs)."""
         o = self.out
         leads, _ = self._if_entries(s)
+        ends = self._branches_begin()
         if len(s.branches) == 1:
             test, guarded = self.guarded_value(s, self.expr(s.branches[0].condition), "None")
             o.line(f"if {test}:")
-            self.block(s.branches[0].body, leads[0])
+            self._branch(ends, s.branches[0].body, leads[0])
             if s.else_body:
                 o.line(f"elif {test} is not None:" if guarded else "else:")
-                self.block(s.else_body, leads[1])
+                self._branch(ends, s.else_body, leads[1])
+            self._branches_end(ends)
             return
         # IF/ELSIF chain: the index of the branch taken, conditions evaluated in order,
         # as flat if/elif lines (a nested conditional expression would add one level
@@ -381,10 +386,28 @@ class BodyCompiler(ExprCompiler):
         # The first test is charged before the IF; the later ones by the branch that took them.
         for i, branch in enumerate(s.branches):
             o.line(f"{'if' if i == 0 else 'elif'} {which} == {i}:")
-            self.block(branch.body, leads[i])
+            self._branch(ends, branch.body, leads[i])
         if s.else_body:
             o.line(f"elif {which} == {n}:")
-            self.block(s.else_body, leads[n])
+            self._branch(ends, s.else_body, leads[n])
+        self._branches_end(ends)
+
+    def _branches_begin(self) -> list | None:
+        """For ranges.py: the state before the branches of an IF or CASE, then each end."""
+        return [self.flow.state()] if self.flow is not None else None
+
+    def _branch(self, ends: list | None, body, lead: float) -> None:
+        if ends is not None:
+            self.flow.set(ends[0])          # each branch starts from the state before
+        self.block(body, lead)
+        if ends is not None:
+            ends.append(self.flow.state())
+
+    def _branches_end(self, ends: list | None) -> None:
+        """After the branches: their union with the state before (a fault in a condition
+        or a selector, or no branch taken, leaves the variables as they were)."""
+        if ends is not None:
+            self.flow.join(ends)
 
     def s_Case(self, s):
         """A fault in the selector abandons the whole CASE."""
@@ -394,6 +417,7 @@ class BodyCompiler(ExprCompiler):
         self.out.line(f"if {selector} is not None:")
         self.out.indent()
         t = self.ty(s.selector)
+        ends = self._branches_begin()
         first = True
         leads, _ = self._case_entries(s)     # labels compared to reach a clause, charged by that clause
         for index, clause in enumerate(s.clauses):
@@ -412,13 +436,14 @@ class BodyCompiler(ExprCompiler):
                 tests.insert(0, f"{selector} in ({', '.join(singles)},)")
             self.out.line(f"{'if' if first else 'elif'} {' or '.join(tests) or 'False'}:")
             first = False
-            self.block(clause.body, leads[index])
+            self._branch(ends, clause.body, leads[index])
         if s.else_body:
             if first:
                 self.out.line("if True:")
             else:
                 self.out.line("else:")
-            self.block(s.else_body, leads[-1])
+            self._branch(ends, s.else_body, leads[-1])
+        self._branches_end(ends)
         self.out.dedent()
 
     def _label(self, label):
@@ -451,6 +476,7 @@ class BodyCompiler(ExprCompiler):
             # The body may change the variable (a global can change in any call).
             self._for_as_while(s, target, var_t, step_value if const_step else None, assigned)
             return
+        before = self.flow.state() if self.flow is not None else None
         setup: list = []
         const_range = _is_int(self.constant_of(s.start)) and _is_int(self.constant_of(s.end)) and const_step
         if const_range:
@@ -496,6 +522,10 @@ class BodyCompiler(ExprCompiler):
                 else:
                     self.known_ranges[key] = saved
                 return
+        unrolled = self.flow.state() if fallback and self.flow is not None else None
+        if self.flow is not None:       # the loop runs its body any number of times
+            self.flow.set(before)
+            self.flow.forget(s.body)
         self.loops.append(_Loop(key, assigned, "FOR"))
         mark = o.mark()
         if target.kind == "ref":
@@ -530,6 +560,10 @@ class BodyCompiler(ExprCompiler):
             o.dedent()
         if fallback:        # the loop as before, when the unrolled copy's reads fault
             o.dedent()
+        if self.flow is not None:
+            self.flow.forget(s.body)
+            if unrolled is not None:
+                self.flow.join([unrolled, self.flow.state()])
 
     def _after_for(self, target, var_t, final, lo_r, hi_r, step_value, test: bool, where) -> None:
         bounds = int_bounds(var_t)
@@ -600,6 +634,7 @@ class BodyCompiler(ExprCompiler):
         o = self.out
         key = s.variable.upper()
         self.known_ranges.pop(key, None)
+        self._forget(s.body)
         end_tmp = self.temp()
         step_code = pyliteral(step) if step is not None else self.temp()
 
@@ -621,6 +656,7 @@ class BodyCompiler(ExprCompiler):
         o.indent()
         self.loops.append(_Loop(key, assigned, "WHILE", [increment]))
         self.statements(s.body, self.cost.loop() + self.cost.w["compare"], self.where(s))
+        self._forget(s.body)
         self.loops.pop()
         o.line(increment)
         o.dedent()
@@ -629,6 +665,7 @@ class BodyCompiler(ExprCompiler):
     def s_While(self, s):
         """A fault in the condition ends the loop."""
         o = self.out
+        self._forget(s.body)        # (before the condition: it is tested after each iteration too)
         cond = self.expr(s.condition)
         if _cannot_fault(cond):
             o.line(f"while {cond}:")
@@ -639,12 +676,14 @@ class BodyCompiler(ExprCompiler):
             self.guard(s, lambda: o.line(f"if not ({cond}): break"), lambda: ["break"])
         self.loops.append(_Loop("", set(), "WHILE"))
         self.statements(s.body, self.cost.loop() + self.cost.condition(s.condition), self.where(s))
+        self._forget(s.body)
         self.loops.pop()
         o.dedent()
 
     def s_Repeat(self, s):
         """The condition is tested after the body (CONTINUE goes to the test)."""
         o = self.out
+        self._forget(s.body)
         first = self.temp()
         cond = self.expr(s.condition)
         o.line(f"{first} = True")
@@ -657,8 +696,14 @@ class BodyCompiler(ExprCompiler):
         o.line(f"{first} = False")
         self.loops.append(_Loop("", set(), "WHILE"))
         self.statements(s.body, self.cost.loop() + self.cost.condition(s.condition), self.where(s))
+        self._forget(s.body)
         self.loops.pop()
         o.dedent()
+
+    def _forget(self, body) -> None:
+        """A loop's body runs any number of times: what it assigns is unknown (ranges.py)."""
+        if self.flow is not None:
+            self.flow.forget(body)
 
     def s_Exit(self, s):
         self.out.line("break")

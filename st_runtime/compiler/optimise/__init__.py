@@ -19,18 +19,32 @@ states bit for bit:
   can see before the variable is set again is put into its one use, runs of
   `D := D + x` become one expression (same operations, same order), and
   temporaries share Python names (fewer than 256 locals).
-* `gather` (gather.py): a body's prologue loads its variables with one
-  `operator.attrgetter` call per run instead of one load each.
+* `gather` (gather.py, off unless asked for): a body's prologue loads its
+  variables with one `operator.attrgetter` call per run instead of one load
+  each.  Fewer bytecodes, but slower on CPython 3.11: a specialised slot load
+  beats attrgetter's generic lookup, whose type-cache slot depends on
+  PYTHONHASHSEED (measured in gather.py's docstring).
 * `inline` (calls.py, `_GUARDED`): SIN, COS, TAN and SQRT call Python's
   math function directly where the library's wrapper would only call it
   (a finite argument; SQRT: not below zero), the wrapper otherwise.
+* `vector` (vector.py): in a CSE region, a straight run of at least
+  `vector.MIN_OPERATIONS` float `+ - *` (the unrolled Leibniz determinant:
+  1,950 products and 720 sums) is one call that computes the products depth
+  by depth and each `D := D +- term` chain with `np.add.accumulate` (left to
+  right); inputs that are not finite or could overflow take the same run in
+  Python, so the results are Python's bit for bit.
+* `ranges` (ranges.py): the values an integer local can hold are followed
+  through the code as it is written (assignments, IF/CASE joins, loops), so
+  a bounds check that can never fail is left out (`Matrix[PivotRow, K]`
+  after `PivotRow := K` and `PivotRow := Row` in the LU's pivot search).
 * `unguard` (unguard.py): no `try` around an assignment whose Python code
   cannot raise (a local set from locals and literals with `+ - *`).
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
 checks.  `ST_RUNTIME_OPTIMISE` (environment) picks the default: `none`, `all`
-or a comma-separated list of pass names; unset means all.
+(every pass on by default, so not `gather`) or a comma-separated list of
+pass names; unset means all.
 """
 
 from __future__ import annotations
@@ -48,8 +62,10 @@ class Optimisations:
     cse: bool = True
     unguard: bool = True
     fuse: bool = True
-    gather: bool = True
+    gather: bool = False     # off by default: slower than the loads it replaces (gather.py)
     inline: bool = True
+    vector: bool = True
+    ranges: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

@@ -31,7 +31,7 @@ from dataclasses import replace
 
 from ... import ast
 from ..scope import walk
-from . import fuse
+from . import fuse, vector
 
 _READ = re.compile(r"[A-Za-z_]\w*\[\d+\]")
 _NUMBER = re.compile(r"-?\(?-?\d[\d.e+-]*\)?")
@@ -141,34 +141,68 @@ def emit_region(compiler, compile_body) -> None:
     o.line(f"if {flag}:")
     o.indent()
     inner = o.mark()
+    flow = compiler.flow        # ranges.py: both paths start from the same state
+    before = flow.state() if flow is not None else None
     try:
         compile_body()
     finally:
         compiler.region = None
     o.ensure_body(inner)
-    close_region(o, region, mark, flag, compiler.opt.fuse)
+    close_region(o, region, mark, flag, compiler.opt.fuse, vector_hooks(compiler, region))
     inner = o.mark()
     saved = compiler.opt        # the path that never runs unless a read faults: kept small
     compiler.opt = replace(saved, unroll=False, cse=False)
+    first = None
+    if flow is not None:
+        first = flow.state()
+        flow.set(before)
     try:
         compile_body()
     finally:
         compiler.opt = saved
+    if flow is not None:
+        flow.join([first, flow.state()])
     o.ensure_body(inner)
     o.dedent()
 
 
-def close_region(o, region, mark: int, flag: str, tidy: bool = False) -> None:
+def vector_hooks(compiler, region):
+    """(is_float, register, element_of) for vector.py when the `vector` pass is on, else None."""
+    if not compiler.opt.vector:
+        return None
+    return (vector.float_names(compiler, region), compiler.unit.register_constant,
+            vector.region_elements(compiler, region))
+
+
+def _needed_reads(region, block: list[str]) -> list[tuple[str, str]]:
+    """The element reads the block still uses, and each list's highest element read: that
+    read faults exactly when one of the others would (a list has every lower index; an
+    unconnected VAR_IN_OUT faults on any), so the region runs exactly when it ran before
+    even where vector.py passes the list whole instead of its elements."""
+    used = set(_TEMP.findall("\n".join(block)))
+    highest: dict[str, tuple[int, str]] = {}
+    for code, name in region.reads.items():
+        base, index = code[:-1].split("[", 1)
+        if int(index) >= highest.get(base, (-1,))[0]:
+            highest[base] = (int(index), name)
+    probes = {name for _, name in highest.values()}
+    return [(code, name) for code, name in region.reads.items() if name in used or name in probes]
+
+
+def close_region(o, region, mark: int, flag: str, tidy: bool = False, hooks=None) -> None:
     """End the region's `if flag:` block (begun at `mark`): single uses put back, the
     element reads put before it (a fault there sets `flag` False), and `else:` opened.
-    `tidy`: the lines go through fuse.py (stores no one sees skipped, temporaries renamed)."""
+    `tidy`: the lines go through fuse.py (stores no one sees skipped, temporaries renamed).
+    `hooks` (vector_hooks): long runs of float arithmetic go to NumPy (vector.py)."""
     inline_single_uses(region, o.lines, mark + 1)
     if tidy:
         fuse.substitute(o.lines, mark + 1)
         fuse.merge(o.lines, mark + 1)
         fuse.rename(o.lines, mark + 1, region.temp)
+    if hooks is not None:
+        vector.vectorise(o.lines, mark + 1, len(o.lines), *hooks)
     o.dedent()
-    reads = [f"{name} = {code}" for code, name in region.reads.items()]
+    reads = [f"{name} = {code}" for code, name in _needed_reads(region, o.lines[mark + 1:])]
     o.insert(mark, ["try:"] + ["    " + line for line in reads + [f"{flag} = True"]]
              + ["except _FAULTS:", f"    {flag} = False"])
     o.line("else:")

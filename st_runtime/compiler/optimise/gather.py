@@ -7,6 +7,14 @@ its opcodes per scan.  `attrgetter` reads the same attributes in the same order
 (a located or union property runs as before), and a missing one raises the same
 AttributeError before the body starts; only the interpreter's dispatch per load
 goes.  Runs shorter than `MIN_RUN` stay as they are.  Switch: `Optimisations.gather`.
+
+Off by default (issue 17): it executes fewer bytecodes but takes longer.  On
+CPython 3.11 `self.v_X` is a specialised slot load (a version check and a read),
+while attrgetter does a generic lookup per name through the type's method cache,
+whose slot depends on the string's hash, so on PYTHONHASHSEED.  Measured side
+by side (60 slotted variables, best of 7): the loads 0.43-0.50 us, attrgetter
+1.03-1.77 us by seed; the FK iteration 1-2.5 us faster and the controller 4 %
+faster with the loads.
 """
 
 from __future__ import annotations

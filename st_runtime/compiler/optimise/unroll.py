@@ -69,7 +69,7 @@ def emit(compiler, s, key: str, values: range, after, returns: bool = False, whe
     block the caller fills), because the region's element reads may fault.
     `returns`: the body has a RETURN; each copy charges and tests at `where` as
     an iteration of the loop does."""
-    from .cse import Region, close_region, region_allowed
+    from .cse import Region, close_region, region_allowed, vector_hooks
 
     o = compiler.out
     outer = compiler.region
@@ -99,5 +99,5 @@ def emit(compiler, s, key: str, values: range, after, returns: bool = False, whe
     if region is None:
         return False
     compiler.region = None
-    close_region(o, region, mark, flag, compiler.opt.fuse)      # a fault in its reads: the loop runs as before
+    close_region(o, region, mark, flag, compiler.opt.fuse, vector_hooks(compiler, region))  # a fault in its reads: the loop runs as before
     return True
