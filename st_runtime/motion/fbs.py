@@ -402,7 +402,9 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
                 self._previous_execute = execute
                 # _poll(axis, command, False), inlined (every scan of every axis)
                 self.v_ACTIVE = True
-                self.v_INPOSITION = abs(axis.act_pos - command.target) <= axis.config.in_position_range
+                # |act - target| <= range, without the call of abs(): the same for every float
+                window = axis.config.in_position_range
+                self.v_INPOSITION = -window <= axis.act_pos - command.target <= window
                 command.target = float(self.v_POSITION)
                 return
         super().execute(ctx)

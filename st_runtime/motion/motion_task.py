@@ -125,9 +125,8 @@ class MotionTask:
     def _after_programs(self, ctx) -> None:
         self._published = False
         dt = ctx.period_ns * 1e-9
-        for axis in self.axes:
-            axis.step(dt)
-        for writer in self._writers:
+        for writer in self._writers:    # process(): an axis's step touches that axis only
+            writer.axis.step(dt)
             writer.write()
         controller = ctx.controller
         self._published = len(controller.before_hooks) == 1 and len(controller.after_hooks) == 1
