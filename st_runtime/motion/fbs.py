@@ -405,7 +405,8 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
                 # |act - target| <= range, without the call of abs(): the same for every float
                 window = axis.config.in_position_range
                 self.v_INPOSITION = -window <= axis.act_pos - command.target <= window
-                command.target = float(self.v_POSITION)
+                position = self.v_POSITION      # an LREAL input holds a float: float() only if not
+                command.target = position if position.__class__ is float else float(position)
                 return
         super().execute(ctx)
 
