@@ -59,7 +59,8 @@ class ScanContext:
         self.scan = 0
         self.period_ns = controller.period_ns
         # True while a scan directly follows the previous one inside one `Controller.run`, with
-        # no observer between them: no code outside the scan has run since the previous scan's
+        # no observer between them but those that only read (`add_observer(..., reads_only=True)`):
+        # no code that could change anything has run since the previous scan's
         # `after` hooks (the motion task then need not publish the axes again before the programs).
         self.resumed = False
         # Estimated NJ501 time (ps) the running task has left; each task run
@@ -102,6 +103,7 @@ class Controller:
         self.before_hooks: list[Callable] = []
         self.after_hooks: list[Callable] = []
         self.observers: list[Callable] = []
+        self._reading_observers = 0      # of them, added with reads_only
         self.faults: list[FaultRecord] = []
         self.fault_count = 0
         self.stopped: FaultRecord | None = None
@@ -159,9 +161,15 @@ class Controller:
         if after is not None:
             self.after_hooks.append(after)
 
-    def add_observer(self, observer: Callable) -> None:
-        """Called as `observer(controller)` at the end of every scan (trace)."""
+    def add_observer(self, observer: Callable, reads_only: bool = False) -> None:
+        """Called as `observer(controller)` at the end of every scan (trace).
+
+        `reads_only`: the observer changes nothing (no variable, no axis), so the
+        next scan of a run may go on as if it had not run (`ScanContext.resumed`).
+        """
         self.observers.append(observer)
+        if reads_only:
+            self._reading_observers += 1
 
     # ------------------------------------------------------------- run
 
@@ -237,7 +245,7 @@ class Controller:
                 if not scan():
                     break
                 # Only the observers run before the next scan of this loop (see ScanContext.resumed).
-                ctx.resumed = not self.observers
+                ctx.resumed = len(self.observers) == self._reading_observers
         finally:
             ctx.resumed = False         # the caller's code runs next
         return done

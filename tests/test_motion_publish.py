@@ -2,8 +2,8 @@
 
 The motion task publishes the axes into their AXIS_REF variables after the motion
 processing, and again before the programs (feedback in) unless nothing can have changed
-them since: the next scan of one `Controller.run` call, no observer, no other I/O hook
-(`ScanContext.resumed`).  These tests hold the skipped publication to the one that was
+them since: the next scan of one `Controller.run` call, no observer but read-only ones
+(a trace), no other I/O hook (`ScanContext.resumed`).  These tests hold the skipped publication to the one that was
 not skipped (scan by scan, each scan a call of its own) and show that every way code can
 reach the axes between two scans still gets its change published before the programs.
 """
@@ -168,3 +168,27 @@ def test_an_axis_changed_by_a_hook_before_the_feedback_in_is_seen_in_the_same_sc
     holder["hook"] = warn_at(task, 10)
     plc.run(30)
     assert main["ObsrSeenAt"] == 10
+
+
+def test_a_traced_run_ends_as_scan_by_scan_and_keeps_skipping(count_writes):
+    plc, main, task = make_plc()
+    trace = plc.trace(["Cyl1.Cmd.Pos", "Cyl2.Status.ErrorStop", "CmdAtStart1"], program="Main")
+    plc.run(300)
+    traced = state(plc, task)
+    assert count_writes.count("Cyl1") == 1 + 1 + 300      # bound, first feedback in, publications
+    reference, _, reference_task = make_plc()
+    for _ in range(300):
+        reference.run(1)
+    assert traced == state(reference, reference_task)
+    data = trace.to_numpy()
+    assert list(data["scan"]) == list(range(1, 301))
+    assert (data["CmdAtStart1"][1:] == data["Cyl1.Cmd.Pos"][:-1]).all()   # each scan reads the last
+
+
+def test_an_observer_that_says_it_only_reads_keeps_the_skip(count_writes):
+    plc, main, task = make_plc()
+    seen = []
+    plc.controller.add_observer(lambda controller: seen.append(main["CmdAtStart1"]), reads_only=True)
+    plc.run(50)
+    assert count_writes.count("Cyl1") == 1 + 1 + 50
+    assert len(seen) == 50

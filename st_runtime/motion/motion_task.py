@@ -6,7 +6,8 @@ Every primary period, around the user programs:
    into its global AXIS_REF variable, so the programs read this period's
    Cmd/Act/Status (skipped where step 3 of the previous scan already wrote the
    same values: the next scan of one `Controller.run` call, with no observer
-   and no other I/O hook that could have changed an axis in between);
+   but read-only ones and no other I/O hook that could have changed an axis
+   in between);
 2. the programs run; motion FBs start commands and hand over positions;
 3. `process(dt)` (after the programs) advances every axis by one period
    (command, limit checks, servo lag, following error) and publishes the new
@@ -114,7 +115,8 @@ class MotionTask:
     def _before_programs(self, ctx) -> None:
         """Feedback in, unless the axis variables already show the axes: the previous scan's
         motion processing published them, it is the only hook of the controller, and nothing
-        has run since (`ctx.resumed`: the next scan of one `Controller.run`, no observer), so
+        has run since (`ctx.resumed`: the next scan of one `Controller.run`, no observer but
+        read-only ones), so
         a second publication would store the same values (the programs run after it)."""
         published, self._published = self._published, False
         if published and ctx.resumed:
