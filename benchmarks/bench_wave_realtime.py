@@ -97,38 +97,42 @@ def profile(scenario, config, top: int = 25) -> str:
     return stream.getvalue()
 
 
+class _OpcodeTally:
+    """A trace function counting the bytecode instructions run, per code object."""
+
+    def __init__(self):
+        from collections import Counter
+
+        self.counts = Counter()
+
+    def __call__(self, frame, event, arg):
+        frame.f_trace_opcodes = True
+        if event == "opcode":
+            self.counts[frame.f_code] += 1
+        return self
+
+
 def opcodes(config, scans: int = 200, top: int = 12) -> str:
     """Instructions and calls per scan in the wave, in total and by function."""
-    from collections import Counter
-
-    from bench_optimiser import count_calls, count_opcodes
+    from bench_optimiser import count_calls
 
     scenario = RANDOM_WAVE.with_wave_seconds(5.0)
     sim = ControllerSimulation(config, scenario.start_pose)
     sim.power_on()
     command_scenario(sim, scenario)
     sim.run(2500)                         # into the wave
-    total = count_opcodes(lambda: sim.run(scans)) / scans
     python_calls, c_calls = (n / scans for n in count_calls(lambda: sim.run(scans)))
-    by_function = Counter()
-
-    def local(frame, event, arg):
-        if event == "opcode":
-            by_function[(Path(frame.f_code.co_filename).name, frame.f_code.co_name)] += 1
-        return local
-
-    def tracer(frame, event, arg):
-        frame.f_trace_opcodes = True
-        return local
-
-    sys.settrace(tracer)
+    tally = _OpcodeTally()
+    sys.settrace(tally)
     try:
         sim.run(scans)
     finally:
         sys.settrace(None)
+    total = sum(tally.counts.values()) / scans
     lines = [f"Per scan in the wave: {total:,.0f} bytecode instructions, {python_calls:,.0f} Python calls, "
              f"{c_calls:,.0f} C calls; instructions by function:"]
-    lines += [f"  {count / scans:8,.0f}  {name} ({where})" for (where, name), count in by_function.most_common(top)]
+    lines += [f"  {count / scans:8,.0f}  {code.co_name} ({Path(code.co_filename).name})"
+              for code, count in tally.counts.most_common(top)]
     return "\n".join(lines)
 
 
