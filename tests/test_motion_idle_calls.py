@@ -1,7 +1,10 @@
-"""The call with Execute FALSE after a command ended: its final output goes (PLCopen's output
+"""The short paths of the motion FBs called every scan do what the general ones do.
+
+The call with Execute FALSE after a command ended: its final output goes (PLCopen's output
 rules, st_runtime/motion/fbs.py): every final output of MC_Reset and MC_Stop, which answer an
 idle call on a short path, is held while Execute stays TRUE and cleared by the first call
-with Execute FALSE, ErrorID with it."""
+with Execute FALSE, ErrorID with it.  MC_Power, which keeps the axis it found, finds it
+again when the AXIS_REF's Cfg changes."""
 
 import pytest
 
@@ -53,3 +56,24 @@ def test_a_final_output_is_held_while_execute_is_true_and_goes_with_it(fb_class,
     assert outputs(fb, *FINALS[fb_class], "ErrorID", "Busy") == (False,) * len(FINALS[fb_class]) + (0, False)
     rig.scan(lambda: call(False))      # and idle from then on
     assert outputs(fb, *FINALS[fb_class], "ErrorID", "Busy") == (False,) * len(FINALS[fb_class]) + (0, False)
+
+
+def test_mc_power_follows_the_axis_ref_it_is_given_every_call():
+    """MC_Power finds its axis through Axis.Cfg.AxNo on every call (fbs.py): a variable whose
+    AxEnable goes FALSE is no axis (Error 16#5401 while Enable), one whose AxNo changes is the
+    other axis."""
+    from test_motion_fbs import axis_config
+    from motion_rig import Rig
+
+    rig = Rig(axis_config(name="A0"), axis_config(name="A1"))
+    power = make_fb(fbs.MC_Power)
+    ref = rig.ref("A0")
+    for _ in range(2):
+        rig.scan(lambda: rig.call(power, "A0", Enable=True))
+    assert power.v_STATUS and rig.task.axes[0].powered and not rig.task.axes[1].powered
+    ref.v_CFG.v_AXNO = 1
+    rig.call(power, "A0", Enable=True)
+    assert rig.task.axes[1].power_requested and outputs(power, "Status", "Busy", "Error") == (False, True, False)
+    ref.v_CFG.v_AXENABLE = False
+    rig.call(power, "A0", Enable=True)
+    assert outputs(power, "Status", "Busy", "Error", "ErrorID") == (False, False, True, ErrorID.AXIS_NOT_ASSIGNED)
