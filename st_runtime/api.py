@@ -325,7 +325,7 @@ class Plc:
         roots = [self.program(program).obj] if program else []
         roots.append(self.controller.globals)
         trace = Trace.for_objects(paths, roots)
-        self.controller.add_observer(lambda c: trace.sample(c.ctx.now_ns, c.ctx.scan))
+        self.controller.add_observer(lambda c: trace.sample(c.ctx.now_ns, c.ctx.scan), reads_only=True)
         return trace
 
 

@@ -51,13 +51,18 @@ MAX_FAULT_RECORDS = 10_000       # kept in `faults`; `fault_count` counts them a
 class ScanContext:
     """What compiled code and native FBs see of the controller (`ctx`)."""
 
-    __slots__ = ("now_ns", "scan", "period_ns", "budget", "controller", "pou")
+    __slots__ = ("now_ns", "scan", "period_ns", "budget", "controller", "pou", "resumed")
 
     def __init__(self, controller: "Controller"):
         self.controller = controller
         self.now_ns = 0
         self.scan = 0
         self.period_ns = controller.period_ns
+        # True while a scan directly follows the previous one inside one `Controller.run`, with
+        # no observer between them but those that only read (`add_observer(..., reads_only=True)`):
+        # no code that could change anything has run since the previous scan's
+        # `after` hooks (the motion task then need not publish the axes again before the programs).
+        self.resumed = False
         # Estimated NJ501 time (ps) the running task has left; each task run
         # starts from its limit (code run outside a scan gets one period).
         self.budget = (controller.time_limit_ns or controller.period_ns) * 1000
@@ -98,6 +103,7 @@ class Controller:
         self.before_hooks: list[Callable] = []
         self.after_hooks: list[Callable] = []
         self.observers: list[Callable] = []
+        self._reading_observers = 0      # of them, added with reads_only
         self.faults: list[FaultRecord] = []
         self.fault_count = 0
         self.stopped: FaultRecord | None = None
@@ -155,9 +161,15 @@ class Controller:
         if after is not None:
             self.after_hooks.append(after)
 
-    def add_observer(self, observer: Callable) -> None:
-        """Called as `observer(controller)` at the end of every scan (trace)."""
+    def add_observer(self, observer: Callable, reads_only: bool = False) -> None:
+        """Called as `observer(controller)` at the end of every scan (trace).
+
+        `reads_only`: the observer changes nothing (no variable, no axis), so the
+        next scan of a run may go on as if it had not run (`ScanContext.resumed`).
+        """
         self.observers.append(observer)
+        if reads_only:
+            self._reading_observers += 1
 
     # ------------------------------------------------------------- run
 
@@ -171,12 +183,20 @@ class Controller:
         ctx.now_ns = index * self.period_ns
         ctx.period_ns = self.period_ns
         try:
-            self._hooks(self.before_hooks, ctx)
+            for hook in self.before_hooks:      # a fault a hook raises is recorded against it
+                try:
+                    hook(ctx)
+                except STFault as fault:
+                    self._hook_fault(hook, fault)
             for task in self.tasks:
                 if not index % task.every:
                     self._run_task(task, ctx)
             ctx.period_ns = self.period_ns
-            self._hooks(self.after_hooks, ctx)
+            for hook in self.after_hooks:
+                try:
+                    hook(ctx)
+                except STFault as fault:
+                    self._hook_fault(hook, fault)
         except StopRun as stop:
             self.stopped = stop.record
         self.scan_count += 1
@@ -218,20 +238,22 @@ class Controller:
             return 0
         done = 0
         scan = self.scan
-        for _ in range(cycles):
-            done += 1
-            if not scan():
-                break
+        ctx = self.ctx
+        try:
+            for _ in range(cycles):
+                done += 1
+                if not scan():
+                    break
+                # Only the observers run before the next scan of this loop (see ScanContext.resumed).
+                ctx.resumed = len(self.observers) == self._reading_observers
+        finally:
+            ctx.resumed = False         # the caller's code runs next
         return done
 
-    def _hooks(self, hooks: list, ctx) -> None:
-        """Run I/O hooks; a fault they raise is recorded against the hook."""
-        for hook in hooks:
-            try:
-                hook(ctx)
-            except STFault as fault:
-                name = getattr(hook, "__qualname__", type(hook).__name__)
-                self.record_fault(fault, (name, "<io>", fault.line or 0, fault.col or 0))
+    def _hook_fault(self, hook, fault: STFault) -> None:
+        """Record a fault an I/O hook raised, against the hook."""
+        name = getattr(hook, "__qualname__", type(hook).__name__)
+        self.record_fault(fault, (name, "<io>", fault.line or 0, fault.col or 0))
 
     # ----------------------------------------------------------- faults
 

@@ -25,6 +25,11 @@ from .pysrc import pyliteral, safe_name, pyident
 # Standard functions that map to a Python builtin or to their argument.
 _INLINE = {"ABS": "abs"}
 
+# Optimisations.inline: MIN and MAX of two or more inputs as Python's min/max of
+# the arguments (the library's MIN(*values) is min(values): the same comparisons
+# in the same order, without the call of the wrapper).
+_SELECTION = {"MIN": "min", "MAX": "max"}
+
 # Optimisations.inline: the math function itself where the library's wrapper
 # (stdlib/functions.py) would only call it, with the wrapper kept for the rest:
 # SIN/COS/TAN raise ValueError only for an infinite argument (the wrapper gives
@@ -317,6 +322,8 @@ class Calls:
         if name in ("SHL", "SHR", "ROL", "ROR", "NOT"):
             t = elementary(ec.ty(ordered[0].value)) or generic
             codes.append(pyliteral(t.bits if isinstance(t, ElementaryType) else 64))
+        if name in _SELECTION and len(codes) >= 2 and ec.opt.inline:
+            return f"{_SELECTION[name]}({', '.join(codes)})"
         fn = self.unit.bind_function(name, call.pos)
         if name in _GUARDED and len(codes) == 1 and ec.opt.inline:
             fast, test = _GUARDED[name]

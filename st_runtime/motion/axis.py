@@ -295,7 +295,11 @@ class Axis:
                 self.cmd_vel = new_vel = (target - old_cmd) / dt
                 if new_vel != old_vel:
                     magnitude = abs(new_vel - old_vel) / dt
-                    self.cmd_accdec = magnitude if abs(new_vel) > abs(old_vel) else -magnitude
+                    # |new_vel| > |old_vel| without two calls of abs(): a comparison does not
+                    # see the sign of a NaN, so the negations give the same answer
+                    grows = ((new_vel if new_vel >= 0.0 else -new_vel)
+                             > (old_vel if old_vel >= 0.0 else -old_vel))
+                    self.cmd_accdec = magnitude if grows else -magnitude
                 else:
                     self.cmd_accdec = 0.0
                 if command.reached:

@@ -200,13 +200,18 @@ class MC_Power(_AxisFB):
         outputs="Status : BOOL; Busy : BOOL; Error : BOOL; ErrorID : WORD;")
 
     def execute(self, ctx) -> None:
-        axis = self._axis(ctx)
+        ref = self.v_AXIS   # _axis(ctx), its cached case inlined (every scan of every axis)
+        cfg = ref.v_CFG if ref is self._bound_ref else None
+        if cfg is not None and cfg.v_AXENABLE and cfg.v_AXNO == self._bound_no:
+            axis = self._bound_axis
+        else:
+            axis = self._axis(ctx)
         if axis is None:
             self.v_STATUS = self.v_BUSY = False
             self.v_ERROR = bool(self.v_ENABLE)
             self.v_ERRORID = int(ErrorID.AXIS_NOT_ASSIGNED) if self.v_ENABLE else 0
             return
-        enable = bool(self.v_ENABLE)
+        enable = True if self.v_ENABLE else False   # bool(), without the call
         axis.power_requested = enable       # axis.request_power, inlined (every scan)
         powered = axis.powered
         self.v_STATUS = powered
@@ -232,10 +237,18 @@ class MC_Reset(_ExecuteFB):
         inputs="Execute : BOOL;",
         outputs="Done : BOOL; Busy : BOOL; Failure : BOOL; Error : BOOL; ErrorID : WORD;")
     FINAL_OUTPUTS = ("v_DONE", "v_FAILURE", "v_ERROR")
+    ACTIVE_OUTPUT = False
 
     def _final_shown(self):
         return self.v_DONE or self.v_FAILURE or self.v_ERROR or self.v_ERRORID
-    ACTIVE_OUTPUT = False
+
+    def execute(self, ctx) -> None:
+        # The idle call (most scans: Execute FALSE, nothing running or shown) without a call
+        # of _final_shown; it does what _ExecuteFB.execute does then.
+        if self.v_EXECUTE or self.v_BUSY or self.v_DONE or self.v_FAILURE or self.v_ERROR or self.v_ERRORID:
+            _ExecuteFB.execute(self, ctx)
+        else:
+            self._previous_execute = False
 
     def _start(self, axis: Axis | None) -> None:
         if axis is None:
@@ -288,6 +301,15 @@ class MC_Stop(_ExecuteFB):
         return axis.start_stop(float(self.v_DECELERATION))
 
     AFTER_CALL = True
+
+    def execute(self, ctx) -> None:
+        # The idle call (most scans: Execute FALSE, no command, nothing shown) without a call
+        # of _final_shown; it does what _ExecuteFB.execute does then.
+        if (self.v_EXECUTE or self.v_BUSY or self._command is not None or self.v_DONE
+                or self.v_COMMANDABORTED or self.v_ERROR or self.v_ERRORID):
+            _ExecuteFB.execute(self, ctx)
+        else:
+            self._previous_execute = False
 
     def _after_call(self, axis: Axis | None, execute: bool) -> None:
         if not execute and self._command is not None and axis is not None:
@@ -367,7 +389,7 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
         # Short path for the call of every scan while synchronized (no edge,
         # command alive); everything else goes through the general rules.
         command = self._command
-        execute = bool(self.v_EXECUTE)
+        execute = True if self.v_EXECUTE else False   # bool(), without the call
         if (self.v_BUSY and command is not None and not command.aborted
                 and (self._previous_execute or not execute)):
             ref = self.v_AXIS   # _axis(ctx), its cached case inlined
@@ -380,8 +402,11 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
                 self._previous_execute = execute
                 # _poll(axis, command, False), inlined (every scan of every axis)
                 self.v_ACTIVE = True
-                self.v_INPOSITION = abs(axis.act_pos - command.target) <= axis.config.in_position_range
-                command.target = float(self.v_POSITION)
+                # |act - target| <= range, without the call of abs(): the same for every float
+                window = axis.config.in_position_range
+                self.v_INPOSITION = -window <= axis.act_pos - command.target <= window
+                position = self.v_POSITION      # an LREAL input holds a float: float() only if not
+                command.target = position if position.__class__ is float else float(position)
                 return
         super().execute(ctx)
 

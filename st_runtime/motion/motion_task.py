@@ -4,7 +4,10 @@ Every primary period, around the user programs:
 
 1. `feedback_in()` (before the programs) copies each axis's simulation state
    into its global AXIS_REF variable, so the programs read this period's
-   Cmd/Act/Status;
+   Cmd/Act/Status (skipped where step 3 of the previous scan already wrote the
+   same values: the next scan of one `Controller.run` call, with no observer
+   but read-only ones and no other I/O hook that could have changed an axis
+   in between);
 2. the programs run; motion FBs start commands and hand over positions;
 3. `process(dt)` (after the programs) advances every axis by one period
    (command, limit checks, servo lag, following error) and publishes the new
@@ -48,6 +51,9 @@ class MotionTask:
         if len(self._by_name) != len(self.axes):
             raise ValueError("axis names must be unique (case-insensitive)")
         self._writers: list[AxisRefWriter] = []
+        # The axis variables show the axes as they are: the motion processing has published
+        # them and no other hook runs in the scan (see _before_programs).
+        self._published = False
 
     @classmethod
     def from_tables(cls, tables: Iterable[Mapping]) -> "MotionTask":
@@ -107,15 +113,25 @@ class MotionTask:
 
     # The hooks repeat feedback_in() and process(): one call less for each, every scan.
     def _before_programs(self, ctx) -> None:
+        """Feedback in, unless the axis variables already show the axes: the previous scan's
+        motion processing published them, it is the only hook of the controller, and nothing
+        has run since (`ctx.resumed`: the next scan of one `Controller.run`, no observer but
+        read-only ones), so
+        a second publication would store the same values (the programs run after it)."""
+        published, self._published = self._published, False
+        if published and ctx.resumed:
+            return
         for writer in self._writers:
             writer.write()
 
     def _after_programs(self, ctx) -> None:
+        self._published = False
         dt = ctx.period_ns * 1e-9
-        for axis in self.axes:
-            axis.step(dt)
-        for writer in self._writers:
+        for writer in self._writers:    # process(): an axis's step touches that axis only
+            writer.axis.step(dt)
             writer.write()
+        controller = ctx.controller
+        self._published = len(controller.before_hooks) == 1 and len(controller.after_hooks) == 1
 
     # ---------------------------------------------------------------- cycle
     def feedback_in(self) -> None:

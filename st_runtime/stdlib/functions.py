@@ -115,7 +115,7 @@ def _trig(fn: Callable[[float], float]) -> Callable[[float], float]:
 SIN = _trig(math.sin)
 COS = _trig(math.cos)
 TAN = _trig(math.tan)
-ATAN = _trig(math.atan)
+ATAN = math.atan         # raises for no float (atan(+/-inf) = +/-pi/2): no wrapper to call
 
 
 def ASIN(x: float) -> float:

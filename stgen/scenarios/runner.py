@@ -238,7 +238,7 @@ def run_scenario(
     sim = ControllerSimulation(config, scenario.start_pose, servo_lag_s, playback=path_scenarios.playback_table(scenario))
     after_command = motion_scans(scenario, config)
     recorder = _Recorder(sim, POWER_ON_SCANS + after_command)
-    sim.plc.controller.add_observer(recorder)
+    sim.plc.controller.add_observer(recorder, reads_only=True)
     apply_limits(sim, scenario)
 
     started = time.perf_counter()

@@ -79,7 +79,7 @@ def run_track_scenario(scenario: TrackScenario, config: PlatformConfig, progress
     sim = ControllerSimulation(config, scenario.start_pose, servo_lag_s,
                                base[0] if scenario.base is not None else None)
     recorder = _Recorder(sim, POWER_ON_SCANS + hold + len(times))
-    sim.plc.controller.add_observer(recorder)
+    sim.plc.controller.add_observer(recorder, reads_only=True)
     started = time.perf_counter()
     sim.power_on(POWER_ON_SCANS)
     sim.run(hold)

@@ -1,0 +1,79 @@
+"""The short paths of the motion FBs called every scan do what the general ones do.
+
+The call with Execute FALSE after a command ended: its final output goes (PLCopen's output
+rules, st_runtime/motion/fbs.py): every final output of MC_Reset and MC_Stop, which answer an
+idle call on a short path, is held while Execute stays TRUE and cleared by the first call
+with Execute FALSE, ErrorID with it.  MC_Power, which keeps the axis it found, finds it
+again when the AXIS_REF's Cfg changes."""
+
+import pytest
+
+from st_runtime.motion import fbs
+from st_runtime.motion.error_ids import ErrorID
+from motion_rig import make_axis_ref, make_fb
+
+from test_motion_fbs import outputs, powered_rig
+
+FINALS = {fbs.MC_Reset: ("Done", "Failure", "Error"), fbs.MC_Stop: ("Done", "CommandAborted", "Error")}
+
+
+def ended(fb_class, output):
+    """A rig, the FB and a call of it, after a command that ended with `output`."""
+    if output == "Failure":    # the following error is still above its limit (docs/nj501.md)
+        rig, _ = powered_rig(servo_lag=0.01, following_error_limit=0.03)
+        sync = make_fb(fbs.MC_SyncMoveAbsolute)
+        rig.scan(lambda: rig.call(sync, Execute=True, Position=0.05))
+    elif output == "CommandAborted":   # MC_Stop on an axis in ErrorStop
+        rig, _ = powered_rig(soft_limit_max=0.15)
+        sync = make_fb(fbs.MC_SyncMoveAbsolute)
+        rig.scan(lambda: rig.call(sync, Execute=True, Position=0.16))
+    else:
+        rig, _ = powered_rig()
+    fb = make_fb(fb_class)
+    unbound = make_axis_ref()          # a local AXIS_REF (AxEnable FALSE): Error 16#5401
+
+    def call(execute):
+        if output == "Error":
+            fb.v_AXIS, fb.v_EXECUTE = unbound, execute
+            fb.execute(rig.ctx)
+        else:
+            rig.call(fb, Execute=execute)
+
+    return rig, fb, call
+
+
+@pytest.mark.parametrize("fb_class,output", [(c, o) for c, names in FINALS.items() for o in names])
+def test_a_final_output_is_held_while_execute_is_true_and_goes_with_it(fb_class, output):
+    rig, fb, call = ended(fb_class, output)
+    for _ in range(3):                 # MC_Stop is Done once the motion processing has stopped it
+        rig.scan(lambda: call(True))
+    assert outputs(fb, *FINALS[fb_class]) == tuple(name == output for name in FINALS[fb_class])
+    assert fb.v_ERRORID == (ErrorID.AXIS_NOT_ASSIGNED if output == "Error" else 0)
+    assert not fb.v_BUSY
+    rig.scan(lambda: call(True))       # held
+    assert getattr(fb, "v_" + output.upper())
+    rig.scan(lambda: call(False))
+    assert outputs(fb, *FINALS[fb_class], "ErrorID", "Busy") == (False,) * len(FINALS[fb_class]) + (0, False)
+    rig.scan(lambda: call(False))      # and idle from then on
+    assert outputs(fb, *FINALS[fb_class], "ErrorID", "Busy") == (False,) * len(FINALS[fb_class]) + (0, False)
+
+
+def test_mc_power_follows_the_axis_ref_it_is_given_every_call():
+    """MC_Power finds its axis through Axis.Cfg.AxNo on every call (fbs.py): a variable whose
+    AxEnable goes FALSE is no axis (Error 16#5401 while Enable), one whose AxNo changes is the
+    other axis."""
+    from test_motion_fbs import axis_config
+    from motion_rig import Rig
+
+    rig = Rig(axis_config(name="A0"), axis_config(name="A1"))
+    power = make_fb(fbs.MC_Power)
+    ref = rig.ref("A0")
+    for _ in range(2):
+        rig.scan(lambda: rig.call(power, "A0", Enable=True))
+    assert power.v_STATUS and rig.task.axes[0].powered and not rig.task.axes[1].powered
+    ref.v_CFG.v_AXNO = 1
+    rig.call(power, "A0", Enable=True)
+    assert rig.task.axes[1].power_requested and outputs(power, "Status", "Busy", "Error") == (False, True, False)
+    ref.v_CFG.v_AXENABLE = False
+    rig.call(power, "A0", Enable=True)
+    assert outputs(power, "Status", "Busy", "Error", "ErrorID") == (False, False, True, ErrorID.AXIS_NOT_ASSIGNED)
