@@ -26,7 +26,9 @@ states bit for bit:
   PYTHONHASHSEED (measured in gather.py's docstring).
 * `inline` (calls.py, `_GUARDED`): SIN, COS, TAN and SQRT call Python's
   math function directly where the library's wrapper would only call it
-  (a finite argument; SQRT: not below zero), the wrapper otherwise.
+  (a finite argument; SQRT: not below zero), the wrapper otherwise; MIN and
+  MAX of two or more inputs are Python's min/max (the library's MIN is min of
+  the tuple: the same comparisons in the same order).
 * `vector` (vector.py): in a CSE region, a straight run of at least
   `vector.MIN_OPERATIONS` float `+ - *` (the unrolled Leibniz determinant:
   1,950 products and 720 sums) is one call that computes the products depth
