@@ -16,7 +16,6 @@ from st_runtime import types as T
 from st_runtime.checker import check, constfold, limits, typesys
 from st_runtime.checker.constfold import NOT_CONSTANT
 from st_runtime.checker.memory import MemoryModel
-from st_runtime.api import load_text
 from st_runtime.parser import parse
 from checker_helpers import checked, load, nodes, statement
 
@@ -338,13 +337,3 @@ def test_a_reference_takes_eight_bytes():
     code, line, col, message = only(program("    a : ARRAY[0..99999999] OF REF_TO INT;", ""))
     assert (code, line) == ("E-LIMIT-008", 3) and "800,000,000 bytes" in message
 
-
-def test_sfc_program_runs_as_its_chart(tmp_path):
-    """Smoke of the SFC lowering positions at run time: a fault inside a step's
-    action names the chart's line (sfc.py: positions stay the chart's)."""
-    text = ("PROGRAM Main\nVAR\n    n, d : INT;\nEND_VAR\nINITIAL_STEP S1 : A(N); END_STEP\n"
-            "ACTION A:\nn := n + 1;\nEND_ACTION\nEND_PROGRAM\n")
-    plc = load_text(text, "c.st").controller()
-    main = plc.add_program("Main")
-    plc.run(2)
-    assert main.to_json()["n"] == 2
