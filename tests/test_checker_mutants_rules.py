@@ -337,3 +337,12 @@ def test_a_reference_takes_eight_bytes():
     code, line, col, message = only(program("    a : ARRAY[0..99999999] OF REF_TO INT;", ""))
     assert (code, line) == ("E-LIMIT-008", 3) and "800,000,000 bytes" in message
 
+
+
+def test_a_variable_of_an_unknown_type_needs_no_memory():
+    """One root cause, one diagnostic: a variable whose type is unknown was
+    refused at its type (E-DECL-004) and counts no bytes, so even a limit of 0
+    bytes adds no E-LIMIT diagnostic for it."""
+    text = "PROGRAM Main\nVAR\n    x : Nowhere;\nEND_VAR\nEND_PROGRAM\n"
+    _, found = check([parse(text, "t.st")[0]], memory_limit=0)
+    assert [(d.code, d.pos.line, d.pos.col) for d in found] == [("E-DECL-004", 3, 9)]
