@@ -346,3 +346,115 @@ def test_a_variable_of_an_unknown_type_needs_no_memory():
     text = "PROGRAM Main\nVAR\n    x : Nowhere;\nEND_VAR\nEND_PROGRAM\n"
     _, found = check([parse(text, "t.st")[0]], memory_limit=0)
     assert [(d.code, d.pos.line, d.pos.col) for d in found] == [("E-DECL-004", 3, 9)]
+
+
+# ------------------------------------------------------------ second round (seed-18 survivors)
+
+def test_subrange_may_reach_the_limits_of_its_base():
+    """3rd ed. 6.4.4.4: a subrange's limits lie within its base type's range, ends included."""
+    checked(program("    a : INT(-32768..32767);\n    b : USINT(0..255);", ""))
+    code, line, col, message = only(program("    b : USINT(0..256);", ""))
+    assert (code, line, col) == ("E-DECL-014", 3, 15) and "255" in message
+
+
+def test_strings_of_different_lengths_compare():
+    """Comparison of STRINGs (3rd ed. table 31): lengths need not agree."""
+    p = checked(program("    s : STRING[10];\n    t : STRING[20];\n    b : BOOL;", "b := s = t;"))
+    assert p.expr_types[id(statement(p, 0).value)] is T.BOOL
+    # STRING and WSTRING have no implicit conversion (3rd ed. figure 11): not comparable.
+    code, line, col, _ = only(program("    s : STRING;\n    w : WSTRING;\n    b : BOOL;", "b := s = w;"))
+    assert (code, line) == ("E-TYPE-002", 7)
+
+
+def test_time_of_day_minus_time_of_day_is_a_time():
+    """3rd ed. table 35: TOD - TOD is a TIME."""
+    p = checked(program("    a, b : TOD;\n    d : TIME;", "d := a - b;"))
+    assert p.expr_types[id(statement(p, 0).value)] is T.TIME
+
+
+def test_protected_method_is_called_from_a_derived_block():
+    """3rd ed. 6.6.5.5: PROTECTED is visible in the FB and the FBs extending it."""
+    checked("FUNCTION_BLOCK A\nMETHOD PROTECTED M : INT\nM := 1;\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
+            "FUNCTION_BLOCK B EXTENDS A\nVAR\n    x : INT;\nEND_VAR\nx := M();\nEND_FUNCTION_BLOCK\n")
+
+
+def test_chained_comparison_in_call_form_holds_for_every_pair():
+    """GT(IN1, IN2, IN3) is IN1 > IN2 AND IN2 > IN3 (3rd ed. table 31): GT(1, 7, 3) is FALSE."""
+    p = checked(program("    b : BOOL;", "b := GT(1, 7, 3);"))
+    assert p.constants[id(statement(p, 0).value)] is False
+
+
+def test_operator_in_call_form_input_given_twice():
+    code, line, col, _ = only(program("    a, b, c : INT;", "c := ADD(IN1 := a, IN1 := b);"))
+    assert (code, line, col) == ("E-CALL-003", 5, 6)
+
+
+def test_chart_without_initial_step_is_one_diagnostic():
+    """An SFC needs an INITIAL_STEP (3rd ed. 6.7.2): one E-SFC-002, nothing after it."""
+    text = ("PROGRAM Main\nVAR\n    n : INT;\nEND_VAR\nSTEP S1 : A(N); END_STEP\n"
+            "ACTION A:\nn := n + 1;\nEND_ACTION\nEND_PROGRAM\n")
+    assert [(c, line, col) for c, line, col, _ in diagnostics(text)] == [("E-SFC-002", 5, 1)]
+
+
+def test_step_declared_twice_points_at_the_second():
+    text = ("PROGRAM Main\nVAR\n    n : INT;\nEND_VAR\nINITIAL_STEP S1 : END_STEP\nSTEP S1 : END_STEP\n"
+            "END_PROGRAM\n")
+    found = diagnostics(text)
+    assert [(c, line, col) for c, line, col, _ in found] == [("E-SFC-002", 6, 1)]
+    assert "S1" in found[0][3]
+
+
+def test_constant_for_variable_and_non_bool_condition_messages():
+    code, line, col, message = only("PROGRAM Main\nVAR CONSTANT\n    i : INT := 1;\nEND_VAR\n"
+                                    "FOR i := 1 TO 3 DO\nEND_FOR;\nEND_PROGRAM\n")
+    assert (code, line, col) == ("E-ASSIGN-001", 5, 1) and "FOR" in message and "i" in message
+    code, line, col, message = only(program("    x : INT;", "IF x THEN\nx := 1;\nEND_IF;"))
+    assert (code, line, col) == ("E-TYPE-003", 5, 4) and message.startswith("IF condition")
+
+
+def test_bool_literal_with_prefix_is_true():
+    p = checked(program("    b : BOOL;", "b := BOOL#1;"))
+    assert p.constants[id(statement(p, 0).value)] is True
+
+
+def test_comparisons_fold():
+    assert constfold.apply_binary("=", 3, 3) is True
+    assert constfold.apply_binary("<>", 3, 3) is False
+
+
+def test_unknown_method_of_a_user_block_is_a_diagnostic_not_an_internal_error():
+    text = ("FUNCTION_BLOCK F\nEND_FUNCTION_BLOCK\n" + program("    f : F;", "f.Nope();"))
+    found = diagnostics(text)
+    assert found and not [c for c, _, _, _ in found if c == "E-CHECK-999"]
+    assert [(c, line, col) for c, line, col, _ in found] == [("E-TYPE-009", 7, 1)]
+    assert "Nope" in found[0][3]
+
+
+def test_reference_to_a_literal_is_one_diagnostic():
+    found = diagnostics(program("    r : REF_TO INT;", "r := REF(5);"))
+    assert len(found) == 1 and found[0][1] == 5
+
+
+def test_conversion_hints_name_the_conversion():
+    """A real function of an INT suggests INT_TO_LREAL; a shift of an INT, INT_TO_WORD."""
+    _, _, _, message = only(program("    i : INT;\n    r : LREAL;", "r := SQRT(i);"))
+    assert "INT_TO_LREAL" in message
+    _, _, _, message = only(program("    i : INT;\n    w : WORD;", "w := SHL(i, 1);"))
+    assert "INT_TO_WORD" in message
+
+
+def test_standard_function_has_no_outputs():
+    code, line, col, _ = only(program("    a, b, c : INT;", "c := MAX(IN1 := a, IN2 := b, OUT => c);"))
+    assert (code, line, col) == ("E-CALL-005", 5, 30)
+
+
+def test_function_without_result_used_as_a_value():
+    code, line, col, message = only("FUNCTION F\nVAR_INPUT\n    a : INT;\nEND_VAR\nEND_FUNCTION\n"
+                                    + program("    x : INT;", "x := F(1);"))
+    assert (code, line, col) == ("E-TYPE-016", 10, 6) and message.startswith("function F")
+
+
+def test_eno_must_be_bool():
+    code, _, _, message = only("FUNCTION F : INT\nF := 1;\nEND_FUNCTION\n"
+                               + program("    x, i : INT;", "x := F(EN := TRUE, ENO => i);"))
+    assert code == "E-TYPE-004" and message.startswith("ENO")
