@@ -458,3 +458,41 @@ def test_eno_must_be_bool():
     code, _, _, message = only("FUNCTION F : INT\nF := 1;\nEND_FUNCTION\n"
                                + program("    x, i : INT;", "x := F(EN := TRUE, ENO => i);"))
     assert code == "E-TYPE-004" and message.startswith("ENO")
+
+
+def test_duplicate_variable_names_its_pou():
+    code, line, col, message = only(program("    x : INT;\n    x : INT;", ""))
+    assert (code, line, col) == ("E-DECL-002", 4, 5) and "POU Main" in message
+
+
+def test_a_refused_construct_is_reported_once_per_file_with_the_count():
+    """One root cause, one diagnostic (dialects.py): POINTER TO, CODESYS's, is
+    refused under iec at its first use, the message counting the 2 others."""
+    code, line, _, message = only(program("    p : POINTER TO INT;\n    q : POINTER TO INT;\n"
+                                          "    r : POINTER TO INT;", ""))
+    assert (code, line) == ("E-DIALECT-001", 3) and message.endswith("(2 more use(s) in this file)")
+
+
+def test_string_length_must_be_positive():
+    code, line, col, _ = only(program("    s : STRING[0];", ""))
+    assert (code, line, col) == ("E-DECL-006", 3, 16)
+
+
+def test_interface_variable_takes_an_instance():
+    code, line, col, message = only("INTERFACE I\nEND_INTERFACE\n"
+                                    + program("    i : I;\n    x : INT;", "i := x;"))
+    assert (code, line, col) == ("E-TYPE-004", 8, 6) and "implements I" in message
+
+
+def test_internal_error_names_the_exception(monkeypatch):
+    """The promise of check(): diagnostics, never a traceback; an internal error
+    says what it was (E-CHECK-999 at the first user file)."""
+    import st_runtime.checker as checker
+
+    def broken(ctx):
+        raise ValueError("boom")
+
+    monkeypatch.setattr(checker, "check_recursion", broken)
+    _, found = check([parse("PROGRAM Main\nEND_PROGRAM\n", "t.st")[0]])
+    assert [(d.code, str(d.pos)) for d in found] == [("E-CHECK-999", "t.st:1:1")]
+    assert "ValueError" in found[0].message and "boom" in found[0].message
