@@ -496,3 +496,24 @@ def test_internal_error_names_the_exception(monkeypatch):
     _, found = check([parse("PROGRAM Main\nEND_PROGRAM\n", "t.st")[0]])
     assert [(d.code, str(d.pos)) for d in found] == [("E-CHECK-999", "t.st:1:1")]
     assert "ValueError" in found[0].message and "boom" in found[0].message
+
+
+def test_every_positional_argument_after_a_formal_one_is_refused():
+    """6.6.1.4.2: positional inputs come before formal ones; each one after is reported."""
+    found = diagnostics(program("    a, b, c, m : INT;", "m := MAX(IN1 := a, b, c);"))
+    assert [(code, line, col) for code, line, col, _ in found] == [("E-CALL-008", 5, 20),
+                                                                     ("E-CALL-008", 5, 23)]
+
+
+def test_f_edge_is_reserved_under_iec():
+    """IEC 61131-3 reserves R_EDGE and F_EDGE (CODESYS takes them as names)."""
+    code, line, _, message = only("PROGRAM Main\nVAR F_EDGE : BOOL; END_VAR\nF_EDGE := TRUE;\nEND_PROGRAM\n")
+    assert (code, line) == ("E-DIALECT-001", 2) and "F_EDGE" in message
+
+
+def test_statements_nested_beyond_the_limit():
+    """E-LIMIT-003: at most MAX_BLOCK_DEPTH (40) statements nested; 41 IFs are one too many."""
+    depth = limits.MAX_BLOCK_DEPTH + 1
+    body = "IF TRUE THEN\n" * depth + "x := 1;\n" + "END_IF;\n" * depth
+    found = diagnostics(program("    x : INT;", body))
+    assert [code for code, _, _, _ in found] == ["E-LIMIT-003"]
