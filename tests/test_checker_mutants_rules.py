@@ -292,19 +292,6 @@ def test_file_size_limit_is_inclusive():
     assert limits.file_too_large("x" * (limits.MAX_FILE_BYTES + 1)) is not None
 
 
-def test_nesting_too_deep_for_the_checker_is_one_diagnostic(monkeypatch):
-    """A RecursionError anywhere in the passes becomes E-LIMIT-001 at the first
-    user file (never a traceback, never E-CHECK-999)."""
-    import st_runtime.checker as checker
-
-    def too_deep(ctx):
-        raise RecursionError()
-
-    monkeypatch.setattr(checker, "check_recursion", too_deep)
-    _, found = check([parse("PROGRAM Main\nEND_PROGRAM\n", "t.st")[0]])
-    assert [(d.code, str(d.pos)) for d in found] == [("E-LIMIT-001", "t.st:1:1")]
-    assert "nested too deeply" in found[0].message
-
 
 def test_project_without_a_pou_is_checked_without_an_internal_error():
     """Globals alone beyond the project limit (no POU to point at): the checker
@@ -484,19 +471,6 @@ def test_interface_variable_takes_an_instance():
     assert (code, line, col) == ("E-TYPE-004", 8, 6) and "implements I" in message
 
 
-def test_internal_error_names_the_exception(monkeypatch):
-    """The promise of check(): diagnostics, never a traceback; an internal error
-    says what it was (E-CHECK-999 at the first user file)."""
-    import st_runtime.checker as checker
-
-    def broken(ctx):
-        raise ValueError("boom")
-
-    monkeypatch.setattr(checker, "check_recursion", broken)
-    _, found = check([parse("PROGRAM Main\nEND_PROGRAM\n", "t.st")[0]])
-    assert [(d.code, str(d.pos)) for d in found] == [("E-CHECK-999", "t.st:1:1")]
-    assert "ValueError" in found[0].message and "boom" in found[0].message
-
 
 def test_every_positional_argument_after_a_formal_one_is_refused():
     """6.6.1.4.2: positional inputs come before formal ones; each one after is reported."""
@@ -517,3 +491,22 @@ def test_statements_nested_beyond_the_limit():
     body = "IF TRUE THEN\n" * depth + "x := 1;\n" + "END_IF;\n" * depth
     found = diagnostics(program("    x : INT;", body))
     assert [code for code, _, _, _ in found] == ["E-LIMIT-003"]
+
+
+@pytest.mark.parametrize("error, code, words", [
+    (RecursionError(), "E-LIMIT-001", ["nested too deeply"]),
+    (ValueError("boom"), "E-CHECK-999", ["ValueError", "boom"]),
+])
+def test_an_exception_in_a_pass_is_one_diagnostic(monkeypatch, error, code, words):
+    """The promise of check(): diagnostics, never a traceback.  A RecursionError
+    anywhere in the passes is E-LIMIT-001, any other exception E-CHECK-999 naming
+    it, both at the first user file."""
+    import st_runtime.checker as checker
+
+    def failing(ctx):
+        raise error
+
+    monkeypatch.setattr(checker, "check_recursion", failing)
+    _, found = check([parse("PROGRAM Main\nEND_PROGRAM\n", "t.st")[0]])
+    assert [(d.code, str(d.pos)) for d in found] == [(code, "t.st:1:1")]
+    assert all(w in found[0].message for w in words)
