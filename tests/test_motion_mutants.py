@@ -389,3 +389,71 @@ def test_programs_see_the_axis_state_at_the_start_of_their_scan():
     task.axis("Cyl1").fault(ErrorID.FOLLOWING_ERROR_EXCEEDED)
     plc.run(1)
     assert main["Seen"] is True
+
+
+# --- the five survivors of the seed-17 run (docs/mutation.md, motion) ------------------------------
+
+@pytest.mark.parametrize("direction, code", [(1.0, ErrorID.TARGET_POSITIVE_SOFT_LIMIT),
+                                             (-1.0, ErrorID.TARGET_NEGATIVE_SOFT_LIMIT)])
+def test_a_stop_that_would_pass_a_software_limit_is_refused_with_its_code(direction, code):
+    # At 100 mm/s, 5 mm before a limit at +-10 mm, MC_Stop at 100 mm/s^2 would need 50 mm:
+    # the command position would leave the limits on the way, which faults the axis with the
+    # software limit's ErrorID (the rule for a target beyond it, error_ids.py).
+    from st_runtime.motion.axis import AxisState
+
+    axis = powered(soft_limit_min=-10.0, soft_limit_max=10.0)
+    axis.start_move_absolute(10.0 * direction, 100.0, 1e5, 1e5)
+    for _ in range(50):
+        axis.step(DT)
+    assert axis.cmd_pos == pytest.approx(5.0 * direction)
+    axis.start_stop(100.0)
+    for _ in range(100):
+        axis.step(DT)
+    assert axis.state == AxisState.ERRORSTOP and axis.fault_code == code
+    assert -10.0 <= axis.cmd_pos <= 10.0
+
+
+def test_in_position_range_includes_its_bound():
+    # "within the in-position range" (InPosition, fbs.py): |Act.Pos - target| equal to the
+    # range (0.25 mm, exact in binary) completes the move; a hair more keeps it waiting.
+    from st_runtime.motion.axis import AxisState
+
+    for act, done in ((0.75, True), (0.7499999, False)):
+        axis = powered(servo_lag=0.005, in_position_range=0.25)
+        command = axis.start_move_absolute(1.0, 100.0, 1e5, 1e5)
+        while not command.reached:
+            axis.step(DT)
+        axis.act_pos = act
+        axis._complete_commands(DT)
+        assert (axis.state == AxisState.STANDSTILL, command.done) == (done, done)
+        assert axis.in_pos_waiting is not done
+
+
+def scans_to_arrive(target: float, velocity: float) -> int:
+    """Scans of 1/1024 s (exact in binary) an ideal axis at 0 takes to reach `target`
+    at `velocity` with infinite acceleration: every step is velocity/1024, exactly."""
+    axis = powered(max_velocity=1e5)
+    command = axis.start_move_absolute(target, velocity, 0.0, 0.0)   # 0: the axis maximum, none
+    for scan in range(1, 100):
+        axis.step(1 / 1024)
+        if command.done:
+            assert axis.cmd_pos == target
+            return scan
+    raise AssertionError("never arrived")
+
+
+def test_arrival_tolerance_is_1e_12_of_the_target_but_at_least_of_1_mm():
+    # axis.py _ARRIVAL_EPS: a step that leaves at most 1e-12 * max(1, |target|) to go
+    # (float64 rounding of the summed steps) arrives.  Every number below is exact in binary.
+    # 1024 mm + 2^-39 mm (1.8e-12) at 64 mm a step: after 16 steps 2^-39 is left, below
+    # 1e-12 * 1024 = 1.0e-9: the 16th step arrives (a tolerance of 1e-12 / 1024 would not).
+    assert scans_to_arrive(1024.0 + 2.0**-39, 65536.0) == 16
+    # 1 mm + 1.5e-12 at 1/16 mm a step: 1.5e-12 left is beyond 1e-12 * 1: a 17th step
+    # (a tolerance of 2e-12 would arrive at the 16th).
+    assert scans_to_arrive(1.0 + 6756 * 2.0**-52, 64.0) == 17
+    # Bound included: a target of 2^-39 mm in one step of 2^-39 - fl(1e-12) leaves exactly
+    # fl(1e-12) = 1e-12 * max(1, 2^-39): it arrives at once.
+    target = 2.0**-39
+    step = target - 1e-12
+    assert target - step == 1e-12
+    assert scans_to_arrive(target, step * 1024) == 1

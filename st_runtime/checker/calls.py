@@ -18,6 +18,8 @@ from .expressions import start_pos
 from .stores import check_store, in_out_problem, is_variable_path, root_name
 
 _PIN_KINDS = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
+# _namespaced's answer for `NS.F` when NAMESPACE NS declares no F (already reported).
+_NOT_IN_NAMESPACE = object()
 
 
 
@@ -70,6 +72,8 @@ class CallChecker:
     def _dispatch(self, call: ast.Call, expected=None, statement: bool = False):
         callee = call.callee
         short = self._namespaced(callee)
+        if short is _NOT_IN_NAMESPACE:      # one root cause, one diagnostic
+            return self._give_up(call)
         if short is not None:       # NS.F(x): the function F of namespace NS
             inner = ast.Call(short, call.args, call.trailing_comma, pos=call.pos)
             self.program.lowered[id(call)] = inner
@@ -167,7 +171,8 @@ class CallChecker:
         return self.ex.record(call, T.RefType(t, name == "ADR"))
 
     def _namespaced(self, callee):
-        """Name(F) for a callee `NS.Sub.F` whose prefix is a NAMESPACE, else None."""
+        """Name(F) for a callee `NS.Sub.F` whose prefix is a NAMESPACE, else None
+        (_NOT_IN_NAMESPACE, reported, when that NAMESPACE declares no F)."""
         parts = []
         e = callee
         while isinstance(e, ast.Member):
@@ -181,7 +186,7 @@ class CallChecker:
         node = self.ctx.pou_decls.get(key(parts[0]))
         if node is None or key(node.namespace) != key(space):
             self.ctx.error("E-DECL-001", f"NAMESPACE {space} declares no POU '{parts[0]}'", callee.pos)
-            return None
+            return _NOT_IN_NAMESPACE
         return ast.Name(parts[0], pos=callee.pos)
 
     # ------------------------------------------------------------ methods

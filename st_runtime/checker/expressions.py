@@ -99,6 +99,19 @@ def _range(t) -> str:
 # The part a bit access selects: `x.3` and `x.%X3` a BOOL, `.%B1` a BYTE, ...
 PARTS = {"": T.BOOL, "X": T.BOOL, "B": T.BYTE, "W": T.WORD, "D": T.DWORD, "L": T.LWORD}
 
+def same_referenced(a, b) -> bool:
+    """Whether a reference to `a` may be stored in a REF_TO `b` (IEC 61131-3 3rd ed.
+    6.4.4.10: a reference refers to a variable of its declared type): the same
+    type, string lengths included.  (Issue 16: `same_type` alone let a REF_TO
+    STRING[20] refer to a STRING[4], and 12 characters written through it
+    stayed in the STRING[4].)"""
+    if isinstance(a, T.StringType) and isinstance(b, T.StringType):
+        return a.wide == b.wide and a.length == b.length
+    if isinstance(a, T.ArrayType) and isinstance(b, T.ArrayType):
+        return a.dims == b.dims and same_referenced(a.element, b.element)
+    return a is b or ts.same_type(a, b) or str(a) == str(b)
+
+
 class ExprChecker:
     """Types expressions inside one scope."""
 
@@ -159,8 +172,7 @@ class ExprChecker:
         if isinstance(dst, (T.RefType, T.InterfaceType)) and src is T.NULL:
             return True
         if isinstance(dst, T.RefType):
-            if isinstance(src, T.RefType) and (src.target is dst.target or ts.same_type(src.target, dst.target)
-                                               or str(src.target) == str(dst.target)):
+            if isinstance(src, T.RefType) and same_referenced(src.target, dst.target):
                 return True
             self.ctx.error("E-TYPE-004", f"{what}: expected {dst}, found {src}"
                            + ("; take a reference with REF(...)" if not isinstance(src, T.RefType) else ""),

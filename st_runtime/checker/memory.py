@@ -23,7 +23,9 @@ alignments and amounts per data type):
 
 Assumed (OMRON gives no rule we found): WSTRING[n] as 2(n + 1) bytes with
 alignment 2; an FB instance laid out like a structure of its own variables
-(VAR_IN_OUT as an 8-byte reference). The runtime's own memory per element
+(VAR_IN_OUT as an 8-byte reference); a REF_TO (POINTER TO) or INTERFACE
+variable as an 8-byte reference as well (the NJ has neither; issue 16: they
+counted 0 bytes, so `ARRAY[0..99999999] OF REF_TO INT` passed the limit). The runtime's own memory per element
 is larger (Python objects), so the default limit is well below what would
 exhaust a machine.
 
@@ -103,6 +105,8 @@ class MemoryModel:
         if isinstance(t, T.FBType):
             return _pack(_REFERENCE if sym.kind == "VAR_IN_OUT" else self.layout(sym.type)
                          for sym in t.variables.values() if sym.kind in _STORED)
+        if isinstance(t, (T.RefType, T.InterfaceType)):
+            return _REFERENCE
         return 0, 1
 
 
