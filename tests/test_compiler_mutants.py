@@ -82,3 +82,28 @@ def test_an_open_array_index_out_of_range_names_its_dimension():
     END_PROGRAM""")
     assert faults(plc) == [("F-INDEX", 4, "index 4 (dimension 2) of 'grid' out of bounds 1..3")]
     assert main["a"] == [[0, 0, 0], [0, 0, 7]]
+
+
+class _Context:
+    """What a compiled body needs of the controller: a budget and a fault log."""
+
+    def __init__(self):
+        self.budget = 10**12
+        self.faults = []
+
+    def fault(self, exc, where):
+        self.faults.append((getattr(exc, "code", None), str(exc), where[2]))
+
+
+def test_an_unconnected_in_out_names_itself_in_its_fault():
+    # The checker requires io at every call, so only a direct run of the body leaves it
+    # unconnected: the read is F-NULL-REF naming the VAR_IN_OUT as declared (line 4).
+    project = load_text("""FUNCTION_BLOCK F
+VAR_IN_OUT io : INT; END_VAR
+VAR_OUTPUT x : INT; END_VAR
+x := io;
+END_FUNCTION_BLOCK
+PROGRAM Main VAR f : F; a : INT; END_VAR f(io := a); END_PROGRAM""", "m.st")
+    fb, context = project.compiled.new("F"), _Context()
+    type(fb).execute(fb, context)
+    assert context.faults == [("F-NULL-REF", "VAR_IN_OUT 'io' was not passed a variable", 4)]
