@@ -107,3 +107,32 @@ PROGRAM Main VAR f : F; a : INT; END_VAR f(io := a); END_PROGRAM""", "m.st")
     fb, context = project.compiled.new("F"), _Context()
     type(fb).execute(fb, context)
     assert context.faults == [("F-NULL-REF", "VAR_IN_OUT 'io' was not passed a variable", 4)]
+
+
+# ------------------------------------------------------------------ functions
+
+def test_a_function_result_passed_by_reference_and_an_input_left_out():
+    # IEC 61131-3 (3rd ed., function calls): an input left out of a call takes its declared initial
+    # value (b = 10); the result variable is a variable of the function, so it can be passed to
+    # a VAR_IN_OUT (Inc adds 1) or referenced with REF (G triples it through the reference).
+    main, plc = run("""FUNCTION Inc : BOOL
+    VAR_IN_OUT v : INT; END_VAR
+    v := v + 1; Inc := TRUE;
+    END_FUNCTION
+    FUNCTION F : INT
+    VAR_INPUT a : INT; b : INT := 10; END_VAR
+    F := a + b;
+    Inc(F);
+    END_FUNCTION
+    FUNCTION G : INT
+    VAR r : REF_TO INT; END_VAR
+    G := 5;
+    r := REF(G);
+    r^ := r^ * 3;
+    END_FUNCTION
+    PROGRAM Main
+    VAR x, y, z : INT; END_VAR
+    x := F(a := 1); y := F(2, 3); z := G();
+    END_PROGRAM""")
+    assert (main["x"], main["y"], main["z"]) == (1 + 10 + 1, 2 + 3 + 1, 5 * 3)
+    assert plc.faults == []
