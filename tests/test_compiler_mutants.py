@@ -136,3 +136,117 @@ def test_a_function_result_passed_by_reference_and_an_input_left_out():
     END_PROGRAM""")
     assert (main["x"], main["y"], main["z"]) == (1 + 10 + 1, 2 + 3 + 1, 5 * 3)
     assert plc.faults == []
+
+
+def test_positional_arguments_go_to_the_inputs_in_declaration_order():
+    # IEC 61131-3: a non-formal call lists the inputs in the order they are declared.
+    main, _ = run("""FUNCTION H : DINT
+    VAR_INPUT a, b, c : DINT; END_VAR
+    H := a * 100 + b * 10 + c;
+    END_FUNCTION
+    PROGRAM Main
+    VAR hh : DINT; END_VAR
+    hh := H(1, 2, 3);
+    END_PROGRAM""")
+    assert main["hh"] == 123
+
+
+def test_en_and_eno_of_a_function_called_inside_an_expression():
+    # IEC 61131-3 EN/ENO: ENO alone is TRUE after a normal call; EN = FALSE calls nothing: the
+    # value is the type's initial value (FALSE), outputs keep their values (t2 stays 5), ENO FALSE.
+    main, _ = run("""FUNCTION Pair : BOOL
+    VAR_INPUT x : INT; END_VAR
+    VAR_OUTPUT twice : INT; END_VAR
+    twice := 2 * x; Pair := x > 0;
+    END_FUNCTION
+    PROGRAM Main
+    VAR r1, r2, ok : BOOL; ok2 : BOOL := TRUE; t : INT; t2 : INT := 5; END_VAR
+    r1 := Pair(5, twice => t, ENO => ok);
+    r2 := Pair(EN := FALSE, x := 5, twice => t2, ENO => ok2);
+    END_PROGRAM""")
+    assert (main["r1"], main["t"], main["ok"]) == (True, 10, True)
+    assert (main["r2"], main["t2"], main["ok2"]) == (False, 5, False)
+
+
+# ------------------------------------------------------------------ declarations
+
+def test_initial_values_declared_with_a_derived_type():
+    # IEC 61131-3 derived types carry an initial value that their variables take.
+    main, _ = run("""TYPE Speed : INT := 42; END_TYPE
+    TYPE Mode : (Off, Slow, Fast) := Slow; END_TYPE
+    PROGRAM Main
+    VAR s : Speed; md : Mode; END_VAR
+    END_PROGRAM""")
+    assert (main["s"], main["md"]) == (42, "Slow")
+
+
+def test_members_and_elements_of_an_enumerated_type_take_its_initial_value():
+    # IEC 61131-3: an enumerated type declared `:= Slow` starts every variable of the type at
+    # Slow, members of a structure and elements of an array as well (c has its own value).
+    # (Bug found by the mutation run: the compiler looked the type's initial value up by the
+    # type's spelling, its table is upper case, so members and elements started at Off.)
+    main, _ = run("""TYPE Mode : (Off, Slow, Fast) := Slow; END_TYPE
+    TYPE Pair : STRUCT b : Mode; c : Mode := Fast; END_STRUCT; END_TYPE
+    PROGRAM Main
+    VAR p : Pair; arr : ARRAY[1..2] OF Mode; END_VAR
+    END_PROGRAM""")
+    assert main["p"] == {"b": "Slow", "c": "Fast"} and main["arr"] == ["Slow", "Slow"]
+
+
+def test_a_write_through_this_is_read_back_by_the_body():
+    # THIS is the instance itself: n written through it is the n the body reads next
+    # (read four times, so a body that kept n in a local would show 0).
+    main, _ = run("""FUNCTION_BLOCK Self
+    VAR n, m : INT; END_VAR
+    THIS.n := 7; m := n + n + n + n;
+    END_FUNCTION_BLOCK
+    PROGRAM Main
+    VAR fb : Self; END_VAR
+    fb();
+    END_PROGRAM""")
+    assert main["fb"] == {"n": 7, "m": 28}
+
+
+# ------------------------------------------------------------------ loops and conditions
+
+def test_for_with_a_variable_step_over_a_local_control_variable():
+    # BY step (3, known at run time): i = 1, 4, 7, 10, then 13 after the loop.
+    main, _ = run("""PROGRAM Main
+    VAR i, n : INT; step : INT := 3; END_VAR
+    FOR i := 1 TO 10 BY step DO n := n + 1; END_FOR;
+    END_PROGRAM""")
+    assert (main["n"], main["i"]) == (4, 13)
+
+
+def test_not_of_a_constant_table_condition_takes_the_other_branch():
+    # sg[2] = -1, so sg[2] > 0 is FALSE and NOT of it TRUE: the THEN branch.
+    main, _ = run("""PROGRAM Main
+    VAR k : INT; END_VAR
+    VAR CONSTANT sg : ARRAY[1..2] OF INT := [1, -1]; END_VAR
+    IF NOT (sg[2] > 0) THEN k := 1; ELSE k := 2; END_IF;
+    END_PROGRAM""")
+    assert main["k"] == 1
+
+
+def test_bool_stores_stay_booleans():
+    # NOT of a BOOL and a BOOL copied are BOOL values (FALSE/TRUE), not the integers 0/1.
+    main, _ = run("""PROGRAM Main
+    VAR b : BOOL := TRUE; nb, cb : BOOL; END_VAR
+    nb := NOT b; cb := b;
+    END_PROGRAM""")
+    assert main["nb"] is False and main["cb"] is True
+
+
+def test_a_one_dimensional_open_array_index_out_of_range():
+    main, plc = run("""FUNCTION_BLOCK G
+    VAR_IN_OUT v : ARRAY[*] OF INT; END_VAR
+    VAR_INPUT i : INT; END_VAR
+    v[i] := 7;
+    END_FUNCTION_BLOCK
+    PROGRAM Main
+    VAR a : ARRAY[1..3] OF INT; g : G; END_VAR
+    g(v := a, i := 4);
+    g(v := a, i := 3);
+    END_PROGRAM""")
+    assert faults(plc) == [("F-INDEX", 4, "index 4 of 'v' out of bounds 1..3")]
+    assert main["a"] == [0, 0, 7]
