@@ -228,15 +228,6 @@ def test_not_of_a_constant_table_condition_takes_the_other_branch():
     assert main["k"] == 1
 
 
-def test_bool_stores_stay_booleans():
-    # NOT of a BOOL and a BOOL copied are BOOL values (FALSE/TRUE), not the integers 0/1.
-    main, _ = run("""PROGRAM Main
-    VAR b : BOOL := TRUE; nb, cb : BOOL; END_VAR
-    nb := NOT b; cb := b;
-    END_PROGRAM""")
-    assert main["nb"] is False and main["cb"] is True
-
-
 def test_a_one_dimensional_open_array_index_out_of_range():
     main, plc = run("""FUNCTION_BLOCK G
     VAR_IN_OUT v : ARRAY[*] OF INT; END_VAR
