@@ -241,3 +241,56 @@ def test_a_one_dimensional_open_array_index_out_of_range():
     END_PROGRAM""")
     assert faults(plc) == [("F-INDEX", 4, "index 4 of 'v' out of bounds 1..3")]
     assert main["a"] == [0, 0, 7]
+
+
+def test_the_instance_of_an_fb_call_is_evaluated_once():
+    # t[Next()](a := 1, b := 10): one call statement evaluates its instance once (Next runs
+    # once, returns 1): t[1] gets both inputs and runs (s = 11); t[2] is untouched.
+    main, plc = run("""VAR_GLOBAL calls : INT; END_VAR
+    FUNCTION Next : INT
+    Next := 1 + calls MOD 2; calls := calls + 1;
+    END_FUNCTION
+    FUNCTION_BLOCK Acc
+    VAR_INPUT a, b : INT; END_VAR
+    VAR_OUTPUT s : INT; END_VAR
+    s := s + a + b;
+    END_FUNCTION_BLOCK
+    PROGRAM Main
+    VAR t : ARRAY[1..2] OF Acc; END_VAR
+    t[Next()](a := 1, b := 10);
+    END_PROGRAM""")
+    assert main["t"] == [{"a": 1, "b": 10, "s": 11}, {"a": 0, "b": 0, "s": 0}]
+    assert plc.globals["calls"] == 1
+
+
+# ------------------------------------------------------------------ the estimated NJ501 time (cost.py's weights, by hand)
+
+def _scan_ps(src: str, dialect: str = "iec") -> int:
+    plc = load_text(src, "m.st", dialect).controller()
+    plc.add_program("Main")
+    plc.run(1)
+    return plc.controller.task_times["Primary"][0]
+
+
+def _ps(units) -> int:
+    from st_runtime.compiler.cost import PICOSECONDS_PER_UNIT
+
+    return int(round(units * PICOSECONDS_PER_UNIT))
+
+
+@pytest.mark.parametrize("decls, body, dialect, units", [
+    # x := a[i]: load a, load i + subscript, store x
+    ("a : ARRAY[1..3] OF INT; i : INT := 2; x : INT;", "x := a[i];", "iec", lambda w: w["load"] + w["load"] + w["index"] + w["store"]),
+    # FOR setup (start, end, store i), then 3 iterations of (loop + n := n + 1) charged up front
+    ("i, n : INT;", "FOR i := 1 TO 3 DO n := n + 1; END_FOR;", "iec",
+     lambda w: 2 * w["load"] + w["store"] + 3 * (w["loop"] + 2 * w["load"] + w["int_op"] + w["store"])),
+    # a PLCopen motion FB: its instruction, Axis by reference, Enable by value (a load)
+    ("ax : AXIS_REF; p : MC_Power;", "p(Axis := ax, Enable := TRUE);", "nj",
+     lambda w: w["motion_fb"] + w["argument"] + w["argument"] + w["load"]),
+    # REAL negation costs an add
+    ("r, s : LREAL := 2.0;", "r := -s;", "iec", lambda w: w["load"] + w["real_add"] + w["store"]),
+])
+def test_the_estimated_time_of_one_statement(decls, body, dialect, units):
+    from st_runtime.compiler.cost import WEIGHTS
+
+    assert _scan_ps(f"PROGRAM Main\nVAR {decls} END_VAR\n{body}\nEND_PROGRAM\n", dialect) == _ps(units(WEIGHTS))
