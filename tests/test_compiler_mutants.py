@@ -294,3 +294,16 @@ def test_the_estimated_time_of_one_statement(decls, body, dialect, units):
     from st_runtime.compiler.cost import WEIGHTS
 
     assert _scan_ps(f"PROGRAM Main\nVAR {decls} END_VAR\n{body}\nEND_PROGRAM\n", dialect) == _ps(units(WEIGHTS))
+
+
+def test_an_lint_output_read_into_an_lreal_inside_an_expression_is_rounded():
+    # 2^53 + 1 has no LREAL: the implicit LINT -> LREAL conversion rounds it to nearest, 2^53
+    # (ties to even), so lr - 2^53 is 0.0 (an exact integer kept in lr would give 1.0).
+    main, _ = run("""FUNCTION F : BOOL
+    VAR_OUTPUT big : LINT; END_VAR
+    big := 9007199254740993; F := TRUE;
+    END_FUNCTION
+    PROGRAM Main VAR ok : BOOL; lr, d : LREAL; END_VAR
+    ok := F(big => lr); d := lr - 9007199254740992.0;
+    END_PROGRAM""")
+    assert (main["ok"], main["d"]) == (True, 0.0)
