@@ -307,3 +307,19 @@ def test_an_lint_output_read_into_an_lreal_inside_an_expression_is_rounded():
     ok := F(big => lr); d := lr - 9007199254740992.0;
     END_PROGRAM""")
     assert (main["ok"], main["d"]) == (True, 0.0)
+
+
+def test_a_constant_string_is_cut_to_the_bytes_an_nj_string_holds():
+    # docs/nj501.md: under --dialect nj STRING[n] holds n bytes (UTF-8), never half a character:
+    # 'ÄÄ' is 4 bytes, STRING[3] keeps the first 'Ä' (2 bytes); under iec it counts 2 characters.
+    nj, _ = run("PROGRAM Main\nVAR s : STRING[3]; END_VAR\ns := 'ÄÄ';\nEND_PROGRAM\n", dialect="nj")
+    iec, _ = run("PROGRAM Main\nVAR s : STRING[3]; END_VAR\ns := 'ÄÄ';\nEND_PROGRAM\n")
+    assert (nj["s"], iec["s"]) == ("Ä", "ÄÄ")
+
+
+def test_a_wider_value_stored_in_a_subrange_is_checked():
+    # USINT 200 fits INT but not INT(0..10): IEC 61131-3 subrange, a fault (the store is abandoned).
+    main, plc = run("""PROGRAM Main VAR s : INT(0..10); u : USINT := 200; END_VAR
+    s := u;
+    END_PROGRAM""")
+    assert faults(plc) == [("F-SUBRANGE", 2, "200 is outside the subrange 0..10")] and main["s"] == 0
