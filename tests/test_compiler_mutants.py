@@ -323,3 +323,12 @@ def test_a_wider_value_stored_in_a_subrange_is_checked():
     s := u;
     END_PROGRAM""")
     assert faults(plc) == [("F-SUBRANGE", 2, "200 is outside the subrange 0..10")] and main["s"] == 0
+
+
+def test_a_long_for_left_by_exit_is_charged_only_for_the_iterations_it_ran():
+    # FOR to 10,000,000 left by EXIT at i = 2: two iterations of a few units each (ns), far
+    # inside the 1 ms period; charging the whole count up front would be about 50 ms: F-PERIOD.
+    main, plc = run("""PROGRAM Main VAR i : DINT; n : DINT; END_VAR
+    FOR i := 1 TO 10000000 DO IF i = 2 THEN EXIT; END_IF; n := n + 1; END_FOR;
+    END_PROGRAM""")
+    assert plc.faults == [] and (main["n"], main["i"]) == (1, 2)
