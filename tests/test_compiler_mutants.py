@@ -332,3 +332,19 @@ def test_a_long_for_left_by_exit_is_charged_only_for_the_iterations_it_ran():
     FOR i := 1 TO 10000000 DO IF i = 2 THEN EXIT; END_IF; n := n + 1; END_FOR;
     END_PROGRAM""")
     assert plc.faults == [] and (main["n"], main["i"]) == (1, 2)
+
+
+def test_a_variable_passed_positionally_to_a_third_in_out_is_written_back():
+    # Add3(1, 2, x): the third positional argument goes to the VAR_IN_OUT io, which the call
+    # changes (10 + 1 + 2 = 13); the program reads x often (4 times before), and must see 13.
+    main, _ = run("""FUNCTION Add3 : BOOL
+    VAR_INPUT a, b : INT; END_VAR
+    VAR_IN_OUT io : INT; END_VAR
+    io := io + a + b; Add3 := TRUE;
+    END_FUNCTION
+    PROGRAM Main VAR x : INT := 10; y : INT; ok : BOOL; END_VAR
+    y := x + x + x + x;
+    ok := Add3(1, 2, x);
+    y := y + x;
+    END_PROGRAM""")
+    assert (main["x"], main["y"]) == (13, 4 * 10 + 13)
