@@ -348,3 +348,14 @@ def test_a_variable_passed_positionally_to_a_third_in_out_is_written_back():
     y := y + x;
     END_PROGRAM""")
     assert (main["x"], main["y"]) == (13, 4 * 10 + 13)
+
+
+def test_a_body_that_writes_an_array_reads_the_value_it_wrote():
+    # Eight element reads at literal indices after a store to a[1]: the sum reads the new
+    # a[1] = 8, so s = 8 + 2 + 3 + 4 + 5 + 6 + 7 + 8 = 43 (reads taken before the store: 36).
+    main, _ = run("""PROGRAM Main
+    VAR a : ARRAY[1..8] OF INT := [1, 2, 3, 4, 5, 6, 7, 8]; s : INT; END_VAR
+    a[1] := a[8];
+    s := a[1] + a[2] + a[3] + a[4] + a[5] + a[6] + a[7] + a[8];
+    END_PROGRAM""")
+    assert (main["a"][0], main["s"]) == (8, 43)
