@@ -298,15 +298,15 @@ def test_the_estimated_time_of_one_statement(decls, body, dialect, units):
 
 def test_an_lint_output_read_into_an_lreal_inside_an_expression_is_rounded():
     # 2^53 + 1 has no LREAL: the implicit LINT -> LREAL conversion rounds it to nearest, 2^53
-    # (ties to even), so lr - 2^53 is 0.0 (an exact integer kept in lr would give 1.0).
+    # (ties to even), so lr = 2^53 and LREAL_TO_LINT gives 2^53 back.
     main, _ = run("""FUNCTION F : BOOL
     VAR_OUTPUT big : LINT; END_VAR
     big := 9007199254740993; F := TRUE;
     END_FUNCTION
-    PROGRAM Main VAR ok : BOOL; lr, d : LREAL; END_VAR
-    ok := F(big => lr); d := lr - 9007199254740992.0;
+    PROGRAM Main VAR ok, same : BOOL; lr : LREAL; back : LINT; END_VAR
+    ok := F(big => lr); same := lr = 9007199254740992.0; back := LREAL_TO_LINT(lr);
     END_PROGRAM""")
-    assert (main["ok"], main["d"]) == (True, 0.0)
+    assert (main["ok"], main["same"], main["back"]) == (True, True, 2**53)
 
 
 def test_a_constant_string_is_cut_to_the_bytes_an_nj_string_holds():
