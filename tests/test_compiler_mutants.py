@@ -359,3 +359,23 @@ def test_a_body_that_writes_an_array_reads_the_value_it_wrote():
     s := a[1] + a[2] + a[3] + a[4] + a[5] + a[6] + a[7] + a[8];
     END_PROGRAM""")
     assert (main["a"][0], main["s"]) == (8, 43)
+
+
+def test_time_multiplied_and_divided_by_a_real_variable():
+    # TIME * REAL and TIME / REAL (IEC 61131-3 MUL/DIV of TIME by ANY_NUM): 2 s * 1.5 = 3 s,
+    # 1.5 * 2 s = 3 s, 2 s / 0.5 = 4 s (variables, so the checker folds nothing).
+    main, _ = run("""PROGRAM Main
+    VAR t : TIME := T#2s; k : LREAL := 1.5; h : LREAL := 0.5; a, b, c : TIME; END_VAR
+    a := t * k; b := k * t; c := t / h;
+    END_PROGRAM""")
+    assert (main["a"], main["b"], main["c"]) == ("T#3s", "T#3s", "T#4s")
+
+
+def test_a_long_time_times_one_is_exact():
+    # MULTIME rounds the exact product (values.time_mul): 200 days + 1 ns (above 2^53 ns, no
+    # LREAL holds it) times 1.0 is itself, to the nanosecond.
+    main, _ = run("""PROGRAM Main
+    VAR big, a : TIME; one : LREAL := 1.0; n : LINT; END_VAR
+    big := LINT_TO_TIME(17280000000000001); a := big * one; n := TIME_TO_LINT(a);
+    END_PROGRAM""")
+    assert main["n"] == 200 * 86_400 * 10**9 + 1
