@@ -379,3 +379,16 @@ def test_a_long_time_times_one_is_exact():
     big := LINT_TO_TIME(17280000000000001); a := big * one; n := TIME_TO_LINT(a);
     END_PROGRAM""")
     assert main["n"] == 200 * 86_400 * 10**9 + 1
+
+
+def test_a_global_control_variable_read_without_var_external_is_tested_each_time():
+    # Main uses the global g directly; Bump adds 4 to it inside the loop. A PLC tests g at
+    # each end: g = 1 -> 5 -> 6, -> 10 -> 11 > 10: two iterations, g = 11 after the loop.
+    main, plc = run("""VAR_GLOBAL g : INT; END_VAR
+    FUNCTION Bump : BOOL
+    g := g + 4; Bump := TRUE;
+    END_FUNCTION
+    PROGRAM Main VAR n : INT; ok : BOOL; END_VAR
+    FOR g := 1 TO 10 DO ok := Bump(); n := n + 1; END_FOR;
+    END_PROGRAM""")
+    assert (main["n"], plc.globals["g"]) == (2, 11)
