@@ -419,3 +419,44 @@ def test_a_jacobian_too_large_for_its_determinant_is_non_finite():
     positions = inverse_kinematics(geometry, np.array([0.0, 0.0, 20.0, 0.0, 0.0, 0.0])).positions
     result = forward_kinematics(geometry, positions, [1e60, 1e60, 1e60, 0.0, 0.0, 0.0])
     assert result.status == ErrorCode.NON_FINITE and result.iterations == 0
+
+
+# --- the two survivors left after seed 17's second round (docs/mutation.md, reference) ----------------------
+
+def test_fade_in_set_by_the_jerk_term_of_the_second_derivative():
+    from stgen.config import TrajectoryConfig
+    from stgen.reference.wave import OceanWave, WaveComponent, fade_in_duration
+
+    # A = 1 mm, w = 20 rad/s, L = 1e6 m (tilts negligible): D0..D3 = 1, 20, 400, 8000. With the velocity and
+    # acceleration limits far away and a jerk limit of 9800 (spare 1800), the jerk rates are
+    # cbrt(1800 / 3 / (4 pi^2)) = 2.48, sqrt(1800 / 3 / (6 pi 20)) = 1.26 and 1800 / 3 / (6 * 400) = 0.25:
+    # the last one, the D2 term of the Leibniz rule, binds.
+    period = 2 * np.pi / 20.0
+    w = 2 * np.pi / period
+    wave = OceanWave((WaveComponent(1.0, period, 1_000_000.0, 0.0),))
+    limits = TrajectoryConfig(linear_velocity=1e4, linear_acceleration=1e6, linear_jerk=9800.0)
+    rate = (9800.0 - w**3) / 3.0 / (6.0 * w**2)
+    assert fade_in_duration(wave, limits) == pytest.approx(1.0 / rate, rel=1e-12)
+    assert fade_in_duration(wave, limits) == pytest.approx(4.0, rel=1e-9)
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")
+def test_a_newton_step_that_overflows_is_non_finite_after_one_iteration():
+    from stgen.config import GeometryConfig, SolverConfig
+    from stgen.error_codes import ErrorCode
+    from stgen.reference import NewtonRaphsonSolver
+
+    # Residual 1.7e308 and Jacobian 0.5 I (finite, det 1/64 > Ktol 0): the Newton step J^-1 r = 3.4e308
+    # overflows to infinity, so the estimate after the update is not finite.
+    class Model:
+        def residual(self, pose):
+            return np.full(6, 1.7e308)
+
+        def jacobian(self, pose):
+            return 0.5 * np.eye(6)
+
+    machine = NewtonRaphsonSolver(GeometryConfig(), SolverConfig(singularity_threshold=0.0),
+                                  model_factory=lambda positions: Model())
+    machine.start(np.zeros(6), np.zeros(6))
+    assert machine.step() is True
+    assert machine.status == ErrorCode.NON_FINITE and machine.iterations == 1

@@ -53,7 +53,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                 "tests/test_semantics_random.py", "tests/test_stdlib_functions.py"]),
     "compiler": (["st_runtime/compiler/*"],
                  ["tests/test_compiler.py", "tests/test_semantics.py", "tests/test_operators_runtime.py",
-                  "tests/test_semantics_random.py", "tests/test_compiler_corpus.py"]),
+                  "tests/test_semantics_random.py", "tests/test_compiler_corpus.py",
+                  "tests/test_iec_constructs.py", "tests/test_optimiser_equivalence.py",
+                  "tests/test_cost_model.py", "tests/test_compiler_mutants.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",
@@ -81,6 +83,11 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                    "tests/test_reference_playback.py", "tests/test_study_motions.py",
                    "tests/test_reference_mutants.py"]),
 }
+
+# Extra [tool.mutmut] settings of one module. The compiler's mutants include
+# endless loops (a WHILE without its budget check), and mutmut's default
+# timeout (15 x the tests' time, x2) would spend half an hour on each.
+SETTINGS: dict[str, dict[str, float]] = {"compiler": {"timeout_multiplier": 3.0}}
 
 COPY = ["st_runtime", "stgen", "st_templates", "tests", "examples", "generated", "README.md"]
 
@@ -110,7 +117,8 @@ def prepare(name: str) -> Path:
                   f"only_mutate = {toml_list(targets)}\n"
                   f"pytest_add_cli_args_test_selection = {toml_list(tests)}\n"
                   'pytest_add_cli_args = ["-p", "no:cacheprovider", "-q", "-x"]\n'
-                  'also_copy = ["st_templates", "examples", "generated", "README.md"]\n')
+                  'also_copy = ["st_templates", "examples", "generated", "README.md"]\n'
+                  + "".join(f"{k} = {v}\n" for k, v in SETTINGS.get(name, {}).items()))
     (work / "pyproject.toml").write_text(pyproject)
     return work
 

@@ -108,7 +108,7 @@ class InitialValues:
         raw = t
         t = resolve_alias(t)
         if init is None:
-            init = self.type_inits.get(getattr(raw, "name", None) or "")
+            init = self.type_inits.get((getattr(raw, "name", None) or "").upper())   # keys are upper case
         if not is_aggregate(t):
             if init is None:
                 return Initial(const=default_value(t, self.classes)())
@@ -119,10 +119,13 @@ class InitialValues:
 
     def _array_maker(self, t: ArrayType, init, pos) -> Callable:
         if init is None:
-            return default_value(t, self.classes)
-        if not isinstance(init, ast.ArrayInit):
+            if self.type_inits.get((getattr(t.element, "name", None) or "").upper()) is None:
+                return default_value(t, self.classes)
+            items = []      # elements of a type declared with an initial value take it
+        elif not isinstance(init, ast.ArrayInit):
             raise CompileError("an array needs an array initializer [...]", getattr(init, "pos", pos))
-        items = self._flatten(init, t.element)
+        else:
+            items = self._flatten(init, t.element)
         if len(items) > t.size:
             raise CompileError(f"{len(items)} initial values for {t.size} elements", init.pos)
         items += [self.of(t.element, None, pos)] * (t.size - len(items))
