@@ -172,6 +172,10 @@ class ArrayType:
 
     dims: tuple[tuple[int, int], ...]
     element: "Type"
+    # The initial value of an element whose type is a TYPE declared with one
+    # (`ARRAY[1..3] OF Speed` with `TYPE Speed : INT := 42`): the element type
+    # above is resolved to INT, so the declaration's value travels here (AST).
+    element_init: object = field(default=None, compare=False, hash=False, repr=False)
 
     def __str__(self) -> str:
         ranges = ", ".join("*" if lo is None else f"{lo}..{hi}" for lo, hi in self.dims)

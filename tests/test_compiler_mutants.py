@@ -193,6 +193,25 @@ def test_members_and_elements_of_an_enumerated_type_take_its_initial_value():
     assert main["p"] == {"b": "Slow", "c": "Fast"} and main["arr"] == ["Slow", "Slow"]
 
 
+def test_members_and_elements_of_an_elementary_derived_type_take_its_initial_value():
+    # IEC 61131-3 (table 11): `TYPE Speed : INT := 42` starts every variable of type Speed at
+    # 42: a member of a structure (c has its own value), an element of an array, also of an
+    # array partly initialised, and a FB's variable. (Found beside the enumerated case: the
+    # alias resolves to INT, so members and elements started at 0.)
+    main, _ = run("""TYPE Speed : INT := 42; END_TYPE
+    TYPE Pair : STRUCT b : Speed; c : Speed := 7; END_STRUCT; END_TYPE
+    FUNCTION_BLOCK Holder
+    VAR_OUTPUT s : Speed; END_VAR
+    END_FUNCTION_BLOCK
+    PROGRAM Main
+    VAR p : Pair; arr : ARRAY[1..2] OF Speed; part : ARRAY[1..3] OF Speed := [1];
+        h : Holder; fromfb : INT; END_VAR
+    fromfb := h.s;
+    END_PROGRAM""")
+    assert main["p"] == {"b": 42, "c": 7} and main["arr"] == [42, 42]
+    assert main["part"] == [1, 42, 42] and main["fromfb"] == 42
+
+
 def test_a_write_through_this_is_read_back_by_the_body():
     # THIS is the instance itself: n written through it is the n the body reads next
     # (read four times, so a body that kept n in a local would show 0).

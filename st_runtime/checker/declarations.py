@@ -361,7 +361,7 @@ class Declarations:
             element = self.resolve(ref.element, ex)
             if not ok or element is ts.ERROR:
                 return ts.ERROR
-            return T.ArrayType(tuple(dims), element)
+            return T.ArrayType(tuple(dims), element, self._default_init(ref.element))
         return ts.ERROR
 
     def qualified(self, name: str, pos) -> str | None:

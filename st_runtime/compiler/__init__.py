@@ -364,8 +364,7 @@ def _make_initializers(unit: CompileUnit, shared=None) -> None:
             continue
         t = resolve_alias(t)
         if isinstance(t, StructType) and t.name.upper() == key:
-            inits = initial.member_inits.get(key, {})
-            members = [(pyident(name), initial.of(ft, inits.get(fkey), ast.NOWHERE))
+            members = [(pyident(name), initial.of(ft, initial.member_init(key, fkey), ast.NOWHERE))
                        for fkey, (name, ft) in t.fields.items()]
             _install_init(unit, key, members)
     own = shared.pous if shared is not None else {}

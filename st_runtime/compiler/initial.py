@@ -49,6 +49,14 @@ class InitialValues:
         self.member_inits = _member_initializers(program)   # STRUCT/FB name -> {MEMBER: init}
         self.type_inits = _type_initializers(program)       # TYPE name -> init
 
+    def member_init(self, struct_key: str, member_key: str):
+        """A STRUCT member's initializer: its own, else its TYPE's (IEC 61131-3:2013 table 11:
+        a derived type's initial value is the default of every variable of that type)."""
+        init = self.member_inits.get(struct_key, {}).get(member_key)
+        if isinstance(init, ast.NamedType):
+            return self.type_inits.get(init.name.upper())
+        return init
+
     # ---------------------------------------------------------- constants
 
     def const(self, expr):
@@ -119,6 +127,11 @@ class InitialValues:
 
     def _array_maker(self, t: ArrayType, init, pos) -> Callable:
         if init is None:
+            if t.element_init is not None:     # ARRAY OF a TYPE declared with an initial value
+                element = self.of(t.element, t.element_init, pos)
+                if element.is_const:
+                    return ([element.const] * t.size).copy
+                return lambda: [element.maker() for _ in range(t.size)]
             if self.type_inits.get((getattr(t.element, "name", None) or "").upper()) is None:
                 return default_value(t, self.classes)
             items = []      # elements of a type declared with an initial value take it
@@ -128,7 +141,7 @@ class InitialValues:
             items = self._flatten(init, t.element)
         if len(items) > t.size:
             raise CompileError(f"{len(items)} initial values for {t.size} elements", init.pos)
-        items += [self.of(t.element, None, pos)] * (t.size - len(items))
+        items += [self.of(t.element, t.element_init, pos)] * (t.size - len(items))
         if all(item.is_const for item in items):
             proto = [item.const for item in items]
             return proto.copy
@@ -205,7 +218,11 @@ def _member_initializers_of(files) -> dict[str, dict]:
     for sf in files:
         for item in sf.items:
             if isinstance(item, ast.TypeDecl) and isinstance(item.spec, ast.StructType):
-                out[item.name.upper()] = {m.name.upper(): m.init for m in item.spec.members}
+                # a member without its own initial value whose type is a TYPE name keeps
+                # that name (resolved by InitialValues.member_init: the type may hold one)
+                out[item.name.upper()] = {m.name.upper(): m.init if m.init is not None or not
+                                          isinstance(m.type, ast.NamedType) else m.type
+                                          for m in item.spec.members}
     return out
 
 
