@@ -127,14 +127,10 @@ class InitialValues:
 
     def _array_maker(self, t: ArrayType, init, pos) -> Callable:
         if init is None:
-            if t.element_init is not None:     # ARRAY OF a TYPE declared with an initial value
-                element = self.of(t.element, t.element_init, pos)
-                if element.is_const:
-                    return ([element.const] * t.size).copy
-                return lambda: [element.maker() for _ in range(t.size)]
-            if self.type_inits.get((getattr(t.element, "name", None) or "").upper()) is None:
+            if t.element_init is None and \
+                    self.type_inits.get((getattr(t.element, "name", None) or "").upper()) is None:
                 return default_value(t, self.classes)
-            items = []      # elements of a type declared with an initial value take it
+            items = []      # elements of a TYPE declared with an initial value take it (below)
         elif not isinstance(init, ast.ArrayInit):
             raise CompileError("an array needs an array initializer [...]", getattr(init, "pos", pos))
         else:
