@@ -183,20 +183,12 @@ class Controller:
         ctx.now_ns = index * self.period_ns
         ctx.period_ns = self.period_ns
         try:
-            for hook in self.before_hooks:      # a fault a hook raises is recorded against it
-                try:
-                    hook(ctx)
-                except STFault as fault:
-                    self._hook_fault(hook, fault)
+            self._hooks(self.before_hooks, ctx)
             for task in self.tasks:
                 if not index % task.every:
                     self._run_task(task, ctx)
             ctx.period_ns = self.period_ns
-            for hook in self.after_hooks:
-                try:
-                    hook(ctx)
-                except STFault as fault:
-                    self._hook_fault(hook, fault)
+            self._hooks(self.after_hooks, ctx)
         except StopRun as stop:
             self.stopped = stop.record
         self.scan_count += 1
@@ -250,10 +242,14 @@ class Controller:
             ctx.resumed = False         # the caller's code runs next
         return done
 
-    def _hook_fault(self, hook, fault: STFault) -> None:
-        """Record a fault an I/O hook raised, against the hook."""
-        name = getattr(hook, "__qualname__", type(hook).__name__)
-        self.record_fault(fault, (name, "<io>", fault.line or 0, fault.col or 0))
+    def _hooks(self, hooks: list, ctx) -> None:
+        """Run I/O hooks; a fault they raise is recorded against the hook."""
+        for hook in hooks:
+            try:
+                hook(ctx)
+            except STFault as fault:
+                name = getattr(hook, "__qualname__", type(hook).__name__)
+                self.record_fault(fault, (name, "<io>", fault.line or 0, fault.col or 0))
 
     # ----------------------------------------------------------- faults
 

@@ -111,7 +111,6 @@ class MotionTask:
         controller.motion = self
         controller.add_io_hook(before=self._before_programs, after=self._after_programs)
 
-    # The hooks repeat feedback_in() and process(): one call less for each, every scan.
     def _before_programs(self, ctx) -> None:
         """Feedback in, unless the axis variables already show the axes: the previous scan's
         motion processing published them, it is the only hook of the controller, and nothing
@@ -121,15 +120,11 @@ class MotionTask:
         published, self._published = self._published, False
         if published and ctx.resumed:
             return
-        for writer in self._writers:
-            writer.write()
+        self.feedback_in()
 
     def _after_programs(self, ctx) -> None:
         self._published = False
-        dt = ctx.period_ns * 1e-9
-        for writer in self._writers:    # process(): an axis's step touches that axis only
-            writer.axis.step(dt)
-            writer.write()
+        self.process(ctx.period_ns * 1e-9)
         controller = ctx.controller
         self._published = len(controller.before_hooks) == 1 and len(controller.after_hooks) == 1
 
