@@ -242,14 +242,6 @@ class MC_Reset(_ExecuteFB):
     def _final_shown(self):
         return self.v_DONE or self.v_FAILURE or self.v_ERROR or self.v_ERRORID
 
-    def execute(self, ctx) -> None:
-        # The idle call (most scans: Execute FALSE, nothing running or shown) without a call
-        # of _final_shown; it does what _ExecuteFB.execute does then.
-        if self.v_EXECUTE or self.v_BUSY or self.v_DONE or self.v_FAILURE or self.v_ERROR or self.v_ERRORID:
-            _ExecuteFB.execute(self, ctx)
-        else:
-            self._previous_execute = False
-
     def _start(self, axis: Axis | None) -> None:
         if axis is None:
             self._fail(ErrorID.AXIS_NOT_ASSIGNED)
@@ -301,15 +293,6 @@ class MC_Stop(_ExecuteFB):
         return axis.start_stop(float(self.v_DECELERATION))
 
     AFTER_CALL = True
-
-    def execute(self, ctx) -> None:
-        # The idle call (most scans: Execute FALSE, no command, nothing shown) without a call
-        # of _final_shown; it does what _ExecuteFB.execute does then.
-        if (self.v_EXECUTE or self.v_BUSY or self._command is not None or self.v_DONE
-                or self.v_COMMANDABORTED or self.v_ERROR or self.v_ERRORID):
-            _ExecuteFB.execute(self, ctx)
-        else:
-            self._previous_execute = False
 
     def _after_call(self, axis: Axis | None, execute: bool) -> None:
         if not execute and self._command is not None and axis is not None:
