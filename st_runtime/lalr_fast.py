@@ -11,6 +11,19 @@ so it builds the same AST: it keeps, per rule, its size, origin and callback
 `next_token` and the postlexer's `retype` inline, with the same per-state
 lexers, token fields and line counting.
 
+Each reduction also does, inline, what Lark's wrappers around the builder's
+method do (`parse_tree_builder.py`): it keeps the children that are not
+filtered out, inserts the `None` of an absent `[optional]`, splices in the
+children of an inlined `_rule`, returns the child of a `?rule` that has one,
+and calls the method with the children inline (`v_args(inline=True)`).  The
+plan of each rule is read from Lark's own wrapper objects (`_plan`); a
+wrapper of another kind keeps Lark's callback.  Two shortcuts, same values:
+
+* a `?rule` of one kept symbol (`?expr: xor_expr`, nine of them between an
+  operand and its expression) only changes the parser's state;
+* an inlined `_rule` is a plain list of its children instead of a `Tree`
+  that its parent takes apart at once (nothing else ever sees it).
+
 It is a fast path only: on any exception it returns `FAILED`, and the
 caller parses the text again with Lark's own parser, whose errors feed the
 syntax diagnostics (`recovery.py`) exactly as before.
@@ -18,14 +31,42 @@ syntax diagnostics (`recovery.py`) exactly as before.
 
 from __future__ import annotations
 
+from functools import partial
+
 from lark.lexer import Token
+from lark.parse_tree_builder import ChildFilterLALR, ChildFilterLALR_NoPlaceholders, ExpandSingleChild
 from lark.parsers.lalr_analysis import Shift
+from lark.tree import Tree
+from lark.visitors import Transformer, _vargs_inline
 
 #: What Token(type, value, pos, line, column) calls (Lark 1.2 and later); without
 #: it, or with any other internal this loop reads missing, Lark's loop parses.
 new_token = getattr(Token, "_future_new", None)
 
 FAILED = object()
+
+# What a reduction does with its children (see _plan):
+UNIT = 0        # a `?rule` of one kept symbol: the value stays, only the state changes
+INLINE = 1      # the builder's method, children inline
+SINGLE = 2      # a `?rule`: its one child, or else the builder's method, children inline
+SPLICE = 3      # an inlined `_rule`: the list of its children
+TREE = 4        # a rule with no method: Lark's Tree (the builder has one for every rule)
+LARK = 5        # a wrapper this loop does not know: Lark's callback on the raw children
+SINGLE_TREE = 6  # a `?rule` with no method: its one child, or else a Tree
+
+
+def _builds_tree(callback) -> bool:
+    """Whether a callback is Lark's default for a rule without a method:
+    partial(default_callback, name), which calls Transformer.__default__, a Tree."""
+    if type(callback) is not partial or len(callback.args) != 1 or callback.keywords:
+        return False
+    function = callback.func
+    if function is Tree:
+        return True
+    cells = dict(zip(function.__code__.co_freevars, function.__closure__ or ()))
+    handler = cells.get("default_handler")
+    return function.__name__ == "default_callback" and handler is not None and \
+        getattr(handler.cell_contents, "__func__", None) is Transformer.__default__
 
 
 class _End:
@@ -40,7 +81,8 @@ _END = _End()
 class FastLalr:
     def __init__(self, lark, retype) -> None:
         self.retype = retype                              # the postlexer's work on each token
-        self.rules: dict[int, tuple] = {}                 # id(Rule) -> (size, origin, callback, Rule)
+        self.rules: dict[int, tuple] = {}                 # id(Rule) -> its plan (_plan)
+        self.units: dict[tuple, int] = {}                 # (state below, state, token) -> _unit_chain
         try:
             frontend = lark.parser                        # ParsingFrontend
             self.lexers = frontend.lexer.lexer.lexers     # contextual lexer: parser state -> lexer
@@ -53,13 +95,58 @@ class FastLalr:
             self.usable = False
             return
         # Lark's loop also calls a callback named by a terminal on each shift; the
-        # AST builder has none, and this loop is not used if one appears.
-        self.usable = new_token is not None and not any(isinstance(k, str) for k in self.callbacks)
+        # AST builder has none, and this loop is not used if one appears.  An
+        # inlined `_rule` must build Lark's plain Tree, which this loop replaces
+        # by a list (_plan).
+        self.usable = new_token is not None and not any(isinstance(k, str) for k in self.callbacks) \
+            and all(self._plan(rule)[2] == SPLICE for rule in self.callbacks
+                    if rule.origin.name.startswith("_"))
+        self.rules.clear()
 
-    def _rule(self, rule) -> tuple:
-        info = (len(rule.expansion), rule.origin.name, self.callbacks[rule], rule)   # (keeps the rule alive)
-        self.rules[id(rule)] = info
-        return info
+    def _plan(self, rule) -> tuple:
+        """(size, origin, kind, function, children to keep, Nones to append, rule).
+
+        Read from the wrappers Lark put around the builder's method
+        (parse_tree_builder.ParseTreeBuilder): the child filter's
+        (index, splice, Nones before) triples, ExpandSingleChild, then the
+        method wrapped for v_args(inline=True), or partial(Tree, name).
+        """
+        callback = self.callbacks[rule]
+        size, origin = len(rule.expansion), rule.origin.name
+        inner, keep, nones = callback, None, 0
+        if type(inner) is ChildFilterLALR:
+            keep, nones, inner = tuple(inner.to_include), inner.append_none, inner.node_builder
+        elif type(inner) is ChildFilterLALR_NoPlaceholders:
+            keep, inner = tuple((i, splice, 0) for i, splice in inner.to_include), inner.node_builder
+        single = type(inner) is ExpandSingleChild
+        if single:
+            inner = inner.node_builder
+        wrapped = getattr(inner, "__wrapped__", None)
+        if getattr(wrapped, "visit_wrapper", None) is _vargs_inline:
+            kind, function = (SINGLE if single else INLINE), wrapped.base_func
+        elif _builds_tree(inner):
+            kind, function = (SINGLE_TREE if single else SPLICE if origin.startswith("_") else TREE), inner
+        else:
+            kind, function, keep, nones = LARK, callback, None, 0
+        if kind in (SINGLE, SINGLE_TREE) and size == 1 and nones == 0 and keep in (None, ((0, False, 0),)):
+            kind = UNIT
+        plan = (size, origin, kind, function, keep, nones, rule)     # (keeps the rule alive)
+        self.rules[id(rule)] = plan
+        return plan
+
+    def _unit_chain(self, below: int, top: int, kind: str) -> int:
+        """The state after the UNIT reductions that follow one from `below`
+        (`?expr: xor_expr` after `?xor_expr: and_expr`, ...) before `kind`:
+        each replaces the top state by a goto from `below`, whatever lies deeper,
+        so the chain from (below, top, token) always ends in the same state."""
+        while True:
+            action, arg = self.states[top].get(kind, (None, None))
+            if action is Shift or action is None:
+                return top
+            plan = self.rules.get(id(arg)) or self._plan(arg)
+            if plan[2] != UNIT:
+                return top
+            top = self.states[below][plan[1]][1]
 
     def parse(self, text: str, start: str):
         """The callbacks' result for `text`, or FAILED (then nothing is to be trusted)."""
@@ -71,7 +158,7 @@ class FastLalr:
             return FAILED
 
     def _parse(self, text: str, start: str):
-        states, rules, retype = self.states, self.rules, self.retype
+        states, rules, retype, units = self.states, self.rules, self.retype, self.units
         state_stack = [self.start_states[start]]
         value_stack: list = []
         end_state = self.end_states[start]
@@ -121,14 +208,48 @@ class FastLalr:
                     state_stack.append(arg)
                     value_stack.append(token)
                     break
-                size, origin, callback, _ = rules.get(id(arg)) or self._rule(arg)
+                size, origin, how, function, keep, nones, _ = rules.get(id(arg)) or self._plan(arg)
+                if how == UNIT:         # the value stays; the state is the goto's
+                    below = state_stack[-2]
+                    chain = (below, state_stack[-1], kind)
+                    top = units.get(chain)
+                    if top is None:
+                        top = units[chain] = self._unit_chain(below, states[below][origin][1], kind)
+                    state_stack[-1] = top
+                    continue
                 if size:
                     values = value_stack[-size:]
                     del state_stack[-size:]
                     del value_stack[-size:]
                 else:
                     values = []
-                value_stack.append(callback(values))
+                if how == LARK:
+                    value_stack.append(function(values))
+                else:
+                    if keep is not None:        # Lark's ChildFilterLALR, inline
+                        children = []
+                        for i, splice, before in keep:
+                            if before:
+                                children += [None] * before
+                            if splice:
+                                if children:
+                                    children += values[i]
+                                else:       # left recursion: extend the list in place
+                                    children = values[i]
+                            else:
+                                children.append(values[i])
+                        if nones:
+                            children += [None] * nones
+                    else:
+                        children = values
+                    if how == INLINE:
+                        value_stack.append(function(*children))
+                    elif how == SPLICE:
+                        value_stack.append(children)
+                    elif how != TREE and len(children) == 1:        # SINGLE, SINGLE_TREE
+                        value_stack.append(children[0])
+                    else:
+                        value_stack.append(function(*children) if how == SINGLE else function(children))
                 state_stack.append(states[state_stack[-1]][origin][1])
                 if token is _END and state_stack[-1] == end_state:
                     return value_stack[-1]
