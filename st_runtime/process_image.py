@@ -33,6 +33,7 @@ SIZES = {"X": 1, "B": 8, "W": 16, "D": 32, "L": 64}
 PLAIN_TYPES = {"X": "BOOL", "B": "BYTE", "W": "WORD", "D": "DWORD", "L": "LWORD"}
 # Area size limit: a located address beyond it is refused by the checker.
 AREA_BYTES = 1 << 16
+AREAS = ("I", "Q", "M")
 
 _ADDRESS = re.compile(r"%([IQM])([XBWDL]?)(\*|[0-9]+(?:\.[0-9]+)*)$", re.IGNORECASE)
 
@@ -74,11 +75,23 @@ def parse_address(text: str) -> tuple[Address | None, str | None]:
     return Address(area, size, byte, bit, f"%{area}{size}{numbers}"), None
 
 
+class _Areas(dict):
+    """Area letter -> its bytes, each zeroed on first use: every compile makes an
+    image, and most programs locate nothing (three 64 KiB areas cost more than
+    compiling a small program's initial values)."""
+
+    def __missing__(self, area: str) -> bytearray:
+        if area not in AREAS:
+            raise KeyError(area)
+        data = self[area] = bytearray(AREA_BYTES)
+        return data
+
+
 class ProcessImage:
     """The %I, %Q and %M areas as byte arrays."""
 
     def __init__(self) -> None:
-        self.areas = {"I": bytearray(AREA_BYTES), "Q": bytearray(AREA_BYTES), "M": bytearray(AREA_BYTES)}
+        self.areas = _Areas()
 
     def clear(self) -> None:
         for data in self.areas.values():

@@ -404,15 +404,53 @@ def _install_init(unit: CompileUnit, key: str, members: list) -> None:
     out.line(f"def {pyname}(self):")
     out.indent()
     mark = out.mark()
+    steps = []
     for attr, value in members:
         if value.is_const:
             out.line(f"self.{attr} = {pyliteral(value.const)}")
+            steps.append((attr, None, _plain(value.const)))
         else:
-            out.line(f"self.{attr} = {unit.register_maker(value.maker)}()")
+            maker = unit.register_maker(value.maker)
+            out.line(f"self.{attr} = {maker}()")
+            steps.append((attr, unit.namespace[maker], None))
     out.ensure_body(mark)
-    unit.run_source("init:" + key, out.source())
-    unit.classes[key].__init__ = unit.namespace[pyname]
+    cls = unit.classes[key]
+    if steps and key != "<GLOBALS>" and cls._st_kind != "PROGRAM":
+        unit.run_source("init:" + key, out.source())
+        cls.__init__ = unit.namespace[pyname]
+    else:
+        # Made once per run (the globals, a PROGRAM) or setting nothing: the same
+        # stores, in the same order, without compiling the source (kept for reading).
+        unit.sources["init:" + key] = unit.sources.get("init:" + key, "") + out.source()
+        cls.__init__ = _store_members(tuple(steps))
     unit.init_makers[key] = unit.makers - makers
+
+
+def _store_members(steps: tuple):
+    """An `__init__` that does what the source `_install_init` writes: each
+    attribute in order, from its maker or its constant."""
+    def __init__(self):
+        for attr, maker, const in steps:
+            setattr(self, attr, const if maker is None else maker())
+    return __init__
+
+
+def _plain(value):
+    """The value the literal `pyliteral(value)` evaluates to (plain bool, int,
+    float, str, tuple; NaN and infinities as _NAN and _INF)."""
+    if isinstance(value, bool):
+        return bool(value)
+    if isinstance(value, int):
+        return int(value)
+    if isinstance(value, float):
+        return math.nan if math.isnan(value) else float(value)
+    if isinstance(value, str):
+        return str(value)
+    if isinstance(value, tuple):
+        return tuple(_plain(v) for v in value)
+    if value is None:
+        return None
+    raise TypeError(f"no Python literal for {type(value).__name__}")
 
 
 # ------------------------------------------------------------ shared prelude

@@ -1,0 +1,100 @@
+"""The load's shortcuts do what the long way did (docs/load.md, "Less work per load").
+
+* A PROGRAM's and the globals' `__init__`, and one that sets nothing, are not
+  compiled: `_store_members` makes the stores the kept source spells, in its order.
+* The process image allocates an area when it is first used.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from st_runtime.compiler import compile_program
+from st_runtime.compiler import _plain, _store_members
+from st_runtime.loader import load_texts
+from st_runtime.process_image import ProcessImage, parse_address
+
+ROOT = Path(__file__).resolve().parent.parent
+ACCEPT = sorted((ROOT / "tests" / "corpus" / "accept").glob("*.st"))
+
+
+def _state(value, depth: int = 0):
+    """A value, deep: instances by type and attributes, lists by elements."""
+    if depth > 8:
+        return "..."
+    if isinstance(value, (list, tuple)):
+        return [type(value).__name__] + [_state(v, depth + 1) for v in value]
+    attrs = list(getattr(type(value), "__slots__", ())) + list(getattr(value, "__dict__", {}))
+    if attrs and not isinstance(value, (str, int, float)):
+        return (type(value).__name__, {a: _state(getattr(value, a, "<unset>"), depth + 1) for a in attrs})
+    return (type(value).__name__, repr(value))
+
+
+@pytest.mark.parametrize("path", ACCEPT[::3], ids=lambda p: p.stem)
+def test_an_uncompiled_init_stores_what_its_source_says(path: Path):
+    result = load_texts({path.name: path.read_text(encoding="utf-8")})
+    if result.program is None:
+        pytest.skip("a file the loader refuses")
+    compiled = compile_program(result.program)
+    for key, cls in list(compiled.classes.items()) + [("<GLOBALS>", type(compiled.globals))]:
+        if cls.__init__.__name__ != "__init__" or cls.__init__.__qualname__.split(".")[0] != "_store_members":
+            continue
+        source = compiled.python_sources["init:" + key]
+        namespace = dict(compiled.namespace)
+        exec(compile(source, "<test>", "exec"), namespace)       # the kept source, compiled here
+        by_source = object.__new__(cls)
+        namespace[source.split()[1].split("(")[0]](by_source)
+        assert _state(cls()) == _state(by_source)
+
+
+def test_programs_and_globals_are_initialised_without_compiling():
+    text = """
+    VAR_GLOBAL g : INT := 7; h : ARRAY[1..3] OF REAL := [1.5, 2.5, 3.5]; END_VAR
+    PROGRAM Main VAR x : LREAL := -0.0; s : STRING := 'it$'s'; t : TON; b : BOOL := TRUE; END_VAR
+    x := x + 1.0;
+    END_PROGRAM
+    """
+    compiled = compile_program(load_texts({"m.st": text}).program)
+    main = compiled.new("Main")
+    assert type(main).__init__.__qualname__.startswith("_store_members")
+    assert math.copysign(1.0, main.v_X) == -1.0 and main.v_S == "it's" and main.v_B is True
+    assert type(main.v_T).__name__ == "TON" and main.v_T is not compiled.new("Main").v_T
+    g = compiled.globals
+    assert g.v_G == 7 and list(g.v_H) == [1.5, 2.5, 3.5]
+    assert "self.v_G = 7" in compiled.python_sources["init:<GLOBALS>"]
+
+
+def test_plain_values_are_those_of_the_literals():
+    class Small(int):
+        pass
+
+    assert type(_plain(Small(3))) is int and _plain(True) is True
+    assert math.isnan(_plain(float("nan"))) and _plain(float("-inf")) == -math.inf
+    assert _plain((Small(1), "a", None)) == (1, "a", None) and type(_plain((Small(1),))[0]) is int
+    made = []
+    init = _store_members((("a", None, 1), ("b", lambda: made.append(1) or [0], None)))
+
+    class Obj:
+        pass
+
+    one, two = Obj(), Obj()
+    init(one)
+    init(two)
+    assert one.a == 1 and one.b == [0] and one.b is not two.b and made == [1, 1]
+
+
+def test_process_image_areas_appear_on_first_use():
+    image = ProcessImage()
+    assert dict(image.areas) == {}
+    address = parse_address("%QW4")[0]
+    image.set(address, "int", 513)
+    assert image.get(address, "int") == 513 and set(image.areas) == {"Q"}
+    assert image.get(parse_address("%IX1.2")[0], "bool") is False
+    assert len(image.areas["I"]) == len(image.areas["Q"])
+    with pytest.raises(KeyError):
+        image.areas["Z"]
+    image.clear()
+    assert image.get(address, "int") == 0
