@@ -48,32 +48,45 @@ def _constructs(item):
             yield ("ACTION" if "ACTION" in kinds else "PROPERTY" if kinds & {"GET", "SET"}
                    else "METHOD"), method.pos
     stack = [item]
+    push, Node = stack.append, ast.Node
     while stack:
         node = stack.pop()
         if isinstance(node, tuple):
             stack.extend(node)
             continue
-        if not isinstance(node, ast.Node):
+        if not isinstance(node, Node):
             continue
         kind = type(node)
-        if kind is ast.RefType:
-            yield ("POINTER" if node.pointer else "REF_TO"), node.pos
-        elif kind is ast.Deref:
-            yield "DEREF", node.pos
-        elif kind is ast.Assign and node.mode != ":=":
-            yield "SET_RESET", node.pos
-        elif kind is ast.Call and node.trailing_comma:
-            yield "TRAILING_COMMA", node.pos
-        elif kind is ast.StructType and node.union:
-            yield "UNION", node.pos
-        elif kind is ast.VarDecl and node.name.upper() in ("R_EDGE", "F_EDGE"):
-            yield "EDGE_NAME", node.pos
-        elif kind is ast.NullLiteral:
-            yield "NULL", node.pos
-        elif kind is ast.BitAccess and not node.size:      # x.%X3 is the standard's
-            yield "BIT_ACCESS", node.pos
-        for name in node.__dataclass_fields__:
-            if name != "pos":
-                value = getattr(node, name)
-                if isinstance(value, (ast.Node, tuple)):
-                    stack.append(value)
+        if kind in _CONSTRUCT_NODES:
+            if kind is ast.RefType:
+                yield ("POINTER" if node.pointer else "REF_TO"), node.pos
+            elif kind is ast.Deref:
+                yield "DEREF", node.pos
+            elif kind is ast.Assign and node.mode != ":=":
+                yield "SET_RESET", node.pos
+            elif kind is ast.Call and node.trailing_comma:
+                yield "TRAILING_COMMA", node.pos
+            elif kind is ast.StructType and node.union:
+                yield "UNION", node.pos
+            elif kind is ast.VarDecl and node.name.upper() in ("R_EDGE", "F_EDGE"):
+                yield "EDGE_NAME", node.pos
+            elif kind is ast.NullLiteral:
+                yield "NULL", node.pos
+            elif kind is ast.BitAccess and not node.size:      # x.%X3 is the standard's
+                yield "BIT_ACCESS", node.pos
+        for name in _FIELDS.get(kind) or _fields(kind):
+            value = getattr(node, name)
+            if isinstance(value, (Node, tuple)):
+                push(value)
+
+
+#: The node classes `_constructs` looks at (the others it only walks through).
+_CONSTRUCT_NODES = frozenset({ast.RefType, ast.Deref, ast.Assign, ast.Call, ast.StructType, ast.VarDecl,
+                              ast.NullLiteral, ast.BitAccess})
+#: node class -> its dataclass fields but `pos`, in order (looked up once per class)
+_FIELDS: dict[type, tuple[str, ...]] = {}
+
+
+def _fields(cls: type) -> tuple[str, ...]:
+    names = _FIELDS[cls] = tuple(name for name in cls.__dataclass_fields__ if name != "pos")
+    return names

@@ -69,16 +69,15 @@ _TRANSPARENT = (ast.IfBranch, ast.CaseClause, ast.CaseRange, ast.Arg, ast.Pou, a
                 ast.Configuration, ast.TaskDecl, ast.ProgramInstance, ast.StructType, ast.EnumType, ast.EnumValue)
 
 
-def _children(node):
-    """The child nodes of `node`, in field order (tuples flattened)."""
-    for name in node.__slots__:
-        value = getattr(node, name, None)
-        if isinstance(value, ast.Node):
-            yield value
-        elif isinstance(value, tuple):
-            for item in value:
-                if isinstance(item, ast.Node):
-                    yield item
+#: node class -> (statement, block, loop, transparent, field names): what check_limits
+#: asks of every node, worked out once per class (`_shape`).
+_SHAPES: dict[type, tuple] = {}
+
+
+def _shape(cls: type) -> tuple:
+    shape = _SHAPES[cls] = (issubclass(cls, _STATEMENTS), issubclass(cls, _BLOCKS), issubclass(cls, _LOOPS),
+                            issubclass(cls, _TRANSPARENT), tuple(cls.__slots__))
+    return shape
 
 
 def check_files(ctx, files) -> bool:
@@ -107,18 +106,20 @@ def check_limits(ctx, pou, name: str) -> bool:
     statements = 0
     # (node, statement depth, loop depth, expression depth)
     stack = [(pou, 0, 0, 0)]
+    push, Node = stack.append, ast.Node
     while stack:
         node, blocks, loops, depth = stack.pop()
-        if isinstance(node, _STATEMENTS):
+        is_statement, is_block, is_loop, transparent, names = _SHAPES.get(type(node)) or _shape(type(node))
+        if is_statement:
             statements += 1
             depth = 0
-            if isinstance(node, _BLOCKS):
+            if is_block:
                 blocks += 1
                 if blocks > MAX_BLOCK_DEPTH:
                     report("E-LIMIT-003", f"statements nested more than {MAX_BLOCK_DEPTH} levels deep"
                            f" ({type(node).__name__.upper()} here)", node)
                     continue
-            if isinstance(node, _LOOPS):
+            if is_loop:
                 loops += 1
                 if loops > MAX_LOOP_DEPTH:
                     report("E-LIMIT-004", f"loops nested more than {MAX_LOOP_DEPTH} levels deep", node)
@@ -128,7 +129,7 @@ def check_limits(ctx, pou, name: str) -> bool:
                        " a CASE takes many more)", node)
             if isinstance(node, ast.Case) and len(node.clauses) > MAX_CASE_CLAUSES:
                 report("E-LIMIT-006", f"CASE with {len(node.clauses)} clauses (at most {MAX_CASE_CLAUSES})", node)
-        elif not isinstance(node, _TRANSPARENT):
+        elif not transparent:
             depth += 1
             if depth > MAX_EXPRESSION_DEPTH:
                 what = ("type" if isinstance(node, (ast.NamedType, ast.StringType, ast.ArrayType, ast.Subrange))
@@ -136,7 +137,14 @@ def check_limits(ctx, pou, name: str) -> bool:
                 report("E-LIMIT-002", f"{what} nested more than {MAX_EXPRESSION_DEPTH} levels deep"
                        " (split it with intermediate variables or types)", node)
                 continue
-        stack.extend((child, blocks, loops, depth) for child in _children(node))
+        for field in names:         # the child nodes in field order, tuples flattened
+            value = getattr(node, field, None)
+            if isinstance(value, Node):
+                push((value, blocks, loops, depth))
+            elif isinstance(value, tuple):
+                for item in value:
+                    if isinstance(item, Node):
+                        push((item, blocks, loops, depth))
     if statements > MAX_STATEMENTS:
         report("E-LIMIT-007", f"{statements} statements (at most {MAX_STATEMENTS}; split the POU)", pou)
     return not found
