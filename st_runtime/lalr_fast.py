@@ -69,6 +69,16 @@ def _builds_tree(callback) -> bool:
         getattr(handler.cell_contents, "__func__", None) is Transformer.__default__
 
 
+class _EveryType:
+    """Every token type (a postlexer that may change any token)."""
+
+    def __contains__(self, kind) -> bool:
+        return True
+
+
+_EVERY_TYPE = _EveryType()
+
+
 class _End:
     """The end of the input, as Lark's parser sees it (a token of type $END)."""
 
@@ -79,8 +89,9 @@ _END = _End()
 
 
 class FastLalr:
-    def __init__(self, lark, retype) -> None:
-        self.retype = retype                              # the postlexer's work on each token
+    def __init__(self, lark, retype, retyped=None) -> None:
+        self.retype = retype                              # the postlexer's work on a token
+        self.retyped = retyped if retyped is not None else _EVERY_TYPE   # ... of these types only
         self.rules: dict[int, tuple] = {}                 # id(Rule) -> its plan (_plan)
         self.units: dict[tuple, int] = {}                 # (state below, state, token) -> _unit_chain
         try:
@@ -159,6 +170,7 @@ class FastLalr:
 
     def _parse(self, text: str, start: str):
         states, rules, retype, units = self.states, self.rules, self.retype, self.units
+        retyped = self.retyped
         state_stack = [self.start_states[start]]
         value_stack: list = []
         end_state = self.end_states[start]
@@ -181,10 +193,7 @@ class FastLalr:
                 else:
                     raise ValueError("no terminal matches here")
                 value, kind = found.group(0), found.lastgroup
-                ignored = kind in ignore
-                made = None
-                if not ignored or kind in callbacks:
-                    made = new_token(kind, value, pos, line, column)
+                start, start_line, start_column = pos, line, column
                 if kind in newlines:
                     count = value.count("\n")
                     if count:
@@ -192,12 +201,13 @@ class FastLalr:
                         line_start = pos + value.rindex("\n") + 1
                 pos += len(value)
                 column = pos - line_start + 1
-                if made is not None:
-                    made.end_line, made.end_column, made.end_pos = line, column, pos
-                    if made.type in callbacks:
-                        made = callbacks[made.type](made)
+                ignored = kind in ignore
+                if not ignored or kind in callbacks:
+                    made = new_token(kind, value, start, start_line, start_column, line, column, pos)
+                    if kind in callbacks:
+                        made = callbacks[kind](made)
                     if not ignored:
-                        token = retype(made)
+                        token = retype(made) if made.type in retyped else made
                         break
             kind = token.type
             while True:

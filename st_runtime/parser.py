@@ -97,7 +97,7 @@ class _Grammar:
     @property
     def fast(self) -> FastLalr:
         if self._fast is None:
-            self._fast = FastLalr(self.lark, self.retype)
+            self._fast = FastLalr(self.lark, self.retype, TEST_TERMINALS)   # (retype changes no other)
         return self._fast
 
     def retype(self, token):
