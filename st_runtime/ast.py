@@ -35,6 +35,19 @@ def key(name: str) -> str:
     return name.upper()
 
 
+#: node class -> its fields but `pos`, in order (what every walk of the tree reads)
+_FIELDS: dict[type, tuple[str, ...]] = {}
+
+
+def fields_of(cls: type) -> tuple[str, ...]:
+    """A node class's dataclass fields but `pos`, in declaration order, looked up once
+    per class (the walks of the checker and compiler ask it of every node)."""
+    names = _FIELDS.get(cls)
+    if names is None:
+        names = _FIELDS[cls] = tuple(name for name in cls.__dataclass_fields__ if name != "pos")
+    return names
+
+
 @dataclass(frozen=True, slots=True)
 class Node:
     pos: Pos = field(default=NOWHERE, compare=False, repr=False, kw_only=True)

@@ -74,7 +74,7 @@ def _constructs(item):
                 yield "NULL", node.pos
             elif kind is ast.BitAccess and not node.size:      # x.%X3 is the standard's
                 yield "BIT_ACCESS", node.pos
-        for name in _FIELDS.get(kind) or _fields(kind):
+        for name in ast._FIELDS.get(kind) or ast.fields_of(kind):
             value = getattr(node, name)
             if isinstance(value, (Node, tuple)):
                 push(value)
@@ -83,10 +83,3 @@ def _constructs(item):
 #: The node classes `_constructs` looks at (the others it only walks through).
 _CONSTRUCT_NODES = frozenset({ast.RefType, ast.Deref, ast.Assign, ast.Call, ast.StructType, ast.VarDecl,
                               ast.NullLiteral, ast.BitAccess})
-#: node class -> its dataclass fields but `pos`, in order (looked up once per class)
-_FIELDS: dict[type, tuple[str, ...]] = {}
-
-
-def _fields(cls: type) -> tuple[str, ...]:
-    names = _FIELDS[cls] = tuple(name for name in cls.__dataclass_fields__ if name != "pos")
-    return names

@@ -21,8 +21,6 @@ which allows all three.
 
 from __future__ import annotations
 
-from dataclasses import fields
-
 from .. import ast
 from .. import types as T
 from ..printer import format_expr as _text
@@ -56,24 +54,14 @@ def check_build_rules(ctx: Context, files) -> None:
 
 def _walk(node):
     """Every AST node below `node` (statements, expressions, labels), depth first."""
-    if isinstance(node, (tuple, list)):
-        for child in node:
-            yield from _walk(child)
-    elif isinstance(node, ast.Node):
-        yield node
-        for name in _field_names(type(node)):
-            yield from _walk(getattr(node, name))
-
-
-_FIELDS: dict[type, tuple[str, ...]] = {}
-
-
-def _field_names(cls: type) -> tuple[str, ...]:
-    """A node class's fields but `pos`, in order (dataclasses.fields, looked up once)."""
-    names = _FIELDS.get(cls)
-    if names is None:
-        names = _FIELDS[cls] = tuple(f.name for f in fields(cls) if f.name != "pos")
-    return names
+    stack = [node]           # (iterative: the same preorder as recursing, in linear time)
+    while stack:
+        item = stack.pop()
+        if isinstance(item, (tuple, list)):
+            stack.extend(reversed(item))
+        elif isinstance(item, ast.Node):
+            yield item
+            stack.extend(reversed([getattr(item, name) for name in ast.fields_of(type(item))]))
 
 
 def _body_node(ctx: Context, node) -> None:

@@ -46,20 +46,19 @@ class VarPlace:
 def walk(node):
     """Every AST node under `node` (tuples and dataclass fields), preorder."""
     stack = [node]
+    push, Node, fields = stack.append, ast.Node, ast._FIELDS
     while stack:
         n = stack.pop()
         if isinstance(n, tuple):
             stack.extend(reversed(n))
             continue
-        if not isinstance(n, ast.Node):
+        if not isinstance(n, Node):
             continue
         yield n
-        for name in n.__dataclass_fields__:
-            if name == "pos":
-                continue
+        for name in fields.get(type(n)) or ast.fields_of(type(n)):
             value = getattr(n, name)
-            if isinstance(value, (ast.Node, tuple)):
-                stack.append(value)
+            if isinstance(value, (Node, tuple)):
+                push(value)
 
 
 def root_name(e) -> str | None:
