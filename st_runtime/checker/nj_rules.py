@@ -17,6 +17,8 @@ and motion instructions.  It is not the complete NJ instruction list.
 
 from __future__ import annotations
 
+import functools
+
 from .. import ast
 from ..ast import key
 from . import builtins as B
@@ -96,5 +98,10 @@ def _declared_names(files):
 
 def check_identifiers(ctx: Context, files) -> None:
     for name, pos in _declared_names(files):
-        for rule, message in identifier_problems(name):
+        for rule, message in _problems_of(name):
             ctx.nj_rule(rule, message, pos)
+
+
+@functools.lru_cache(maxsize=4096)   # a pure function of the name, asked on every load (Main, x, ...)
+def _problems_of(name: str) -> tuple[tuple[str, str], ...]:
+    return tuple(identifier_problems(name))

@@ -17,20 +17,24 @@ from .context import Context
 from .declarations import _INSTANCE_KINDS, fb_type_of
 
 
-def _edges(ctx: Context) -> dict[str, list[tuple[str, object, str]]]:
+def _edges(ctx: Context) -> dict[str, list | tuple]:
+    """POU key -> its edges out (a list, or the shared prelude's tuple), read only by the search."""
     graph: dict[str, list[tuple[str, object, str]]] = {}
     pous = iter(ctx.program.pous.items())
     base = ctx.program.prelude      # the shared prelude's POUs lead the table: edges found once
     if base is not None:
         prelude = base.memo("edges", lambda: {k: tuple(_declared_edges(i)) for k, i in base.pous.items()})
-        graph = {k: list(edges) for k, edges in prelude.items()}
+        graph = dict(prelude)       # (its tuples, shared: a list is made for a caller's first call)
         pous = islice(pous, len(prelude), None)
     for k, info in pous:
         graph[k] = _declared_edges(info)
     for caller, calls in ctx.calls.items():
         for callee, pos in calls:
             if caller in graph and callee in graph:
-                graph[caller].append((callee, pos, "calls"))
+                edges = graph[caller]
+                if type(edges) is tuple:
+                    edges = graph[caller] = list(edges)
+                edges.append((callee, pos, "calls"))
     return graph
 
 
