@@ -43,6 +43,11 @@ from lark.visitors import Transformer, _vargs_inline
 #: it, or with any other internal this loop reads missing, Lark's loop parses.
 new_token = getattr(Token, "_future_new", None)
 
+#: Whether a Token is a str with exactly the slots `_future_new` fills (then this
+#: loop fills them itself, without a call per token).
+PLAIN_TOKENS = Token.__mro__[1] is str and getattr(Token, "__slots__", None) == (
+    "type", "start_pos", "value", "line", "column", "end_line", "end_column", "end_pos")
+
 FAILED = object()
 
 # What a reduction does with its children (see _plan):
@@ -171,6 +176,7 @@ class FastLalr:
     def _parse(self, text: str, start: str):
         states, rules, retype, units = self.states, self.rules, self.retype, self.units
         retyped = self.retyped
+        plain_tokens, str_new = PLAIN_TOKENS, str.__new__
         state_stack = [self.start_states[start]]
         value_stack: list = []
         end_state = self.end_states[start]
@@ -203,7 +209,13 @@ class FastLalr:
                 column = pos - line_start + 1
                 ignored = kind in ignore
                 if not ignored or kind in callbacks:
-                    made = new_token(kind, value, start, start_line, start_column, line, column, pos)
+                    if plain_tokens:        # Token._future_new, inline
+                        made = str_new(Token, value)
+                        made.type, made.start_pos, made.value, made.line, made.column = \
+                            kind, start, value, start_line, start_column
+                        made.end_line, made.end_column, made.end_pos = line, column, pos
+                    else:
+                        made = new_token(kind, value, start, start_line, start_column, line, column, pos)
                     if kind in callbacks:
                         made = callbacks[kind](made)
                     if not ignored:
