@@ -98,3 +98,21 @@ def test_process_image_areas_appear_on_first_use():
         image.areas["Z"]
     image.clear()
     assert image.get(address, "int") == 0
+
+
+def test_a_body_walked_again_gives_the_same_nodes():
+    """scope.walk keeps a body's node list for the next pass of the same compile:
+    the same nodes in the same order as walking it afresh, never another tuple's."""
+    from st_runtime import ast
+    from st_runtime.compiler import scope
+    from st_runtime.parser import parse_body
+
+    bodies = [parse_body(f"x := {i} + y[{i}]; IF a THEN b := NOT c; END_IF;", "w.st")[0] for i in range(40)]
+    fresh = [[id(n) for n in scope._walk(body)] for body in bodies]
+    for _ in range(2):
+        for body, nodes in zip(bodies, fresh):
+            assert [id(n) for n in scope.walk(body)] == nodes
+    twin = tuple(bodies[0])                      # equal, but another tuple: its own nodes
+    assert [id(n) for n in scope.walk(twin)] == fresh[0]
+    assert len(scope._WALKED) <= scope._WALKED_ENTRIES
+    assert [type(n) for n in scope.walk(bodies[0][0])][0] is ast.Assign    # (a node: walked afresh)

@@ -44,7 +44,27 @@ class VarPlace:
 
 
 def walk(node):
-    """Every AST node under `node` (tuples and dataclass fields), preorder."""
+    """Every AST node under `node` (tuples and dataclass fields), preorder.
+
+    A body (a tuple of statements) is walked by several passes of one compile
+    (usage, ranges, CSE, unrolling): its nodes are listed once and kept for
+    the next walk of the same tuple (the AST is immutable; `_WALKED` holds the
+    tuple itself, so its id cannot be another's while the entry lives)."""
+    if type(node) is not tuple:
+        return _walk(node)
+    hit = _WALKED.get(id(node))
+    if hit is None or hit[0] is not node:
+        if len(_WALKED) >= _WALKED_ENTRIES:
+            _WALKED.clear()
+        hit = _WALKED[id(node)] = (node, list(_walk(node)))
+    return iter(hit[1])
+
+
+_WALKED: dict[int, tuple] = {}
+_WALKED_ENTRIES = 32
+
+
+def _walk(node):
     stack = [node]
     push, Node, fields = stack.append, ast.Node, ast._FIELDS
     while stack:
