@@ -99,6 +99,7 @@ class FastLalr:
         self.retyped = retyped if retyped is not None else _EVERY_TYPE   # ... of these types only
         self.rules: dict[int, tuple] = {}                 # id(Rule) -> its plan (_plan)
         self.units: dict[tuple, int] = {}                 # (state below, state, token) -> _unit_chain
+        self.lexing: dict[int, tuple] = {}                # parser state -> _lexing
         try:
             frontend = lark.parser                        # ParsingFrontend
             self.lexers = frontend.lexer.lexer.lexers     # contextual lexer: parser state -> lexer
@@ -150,6 +151,15 @@ class FastLalr:
         self.rules[id(rule)] = plan
         return plan
 
+    def _lexing(self, state: int) -> tuple:
+        """What the loop reads of the state's lexer: (patterns, ignored types,
+        callbacks, types that may hold a newline); the patterns are the scanner's
+        (Scanner.match, inline: the first that matches), built before the callbacks."""
+        lexer = self.lexers[state]
+        patterns = lexer.scanner._mres
+        entry = self.lexing[state] = (patterns, lexer.ignore_types, lexer.callback, lexer.newline_types)
+        return entry
+
     def _unit_chain(self, below: int, top: int, kind: str) -> int:
         """The state after the UNIT reductions that follow one from `below`
         (`?expr: xor_expr` after `?xor_expr: and_expr`, ...) before `kind`:
@@ -180,16 +190,14 @@ class FastLalr:
         state_stack = [self.start_states[start]]
         value_stack: list = []
         end_state = self.end_states[start]
-        lexers = self.lexers
+        lexing = self.lexing
         end = len(text)
         # Lark's line counter (LineCounter.feed), inline
         pos, line, column, line_start = 0, 1, 1, 0
         while True:
             # Lark's contextual lexer: the next token the parser's state accepts
             # (BasicLexer.next_token, then the postlexer), inline
-            lexer = lexers[state_stack[-1]]
-            patterns = lexer.scanner._mres          # (Scanner.match, inline: the first that matches)
-            ignore, callbacks, newlines = lexer.ignore_types, lexer.callback, lexer.newline_types
+            patterns, ignore, callbacks, newlines = lexing.get(state_stack[-1]) or self._lexing(state_stack[-1])
             token = _END
             while pos < end:
                 for pattern in patterns:
