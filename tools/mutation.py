@@ -55,7 +55,11 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                  ["tests/test_compiler.py", "tests/test_semantics.py", "tests/test_operators_runtime.py",
                   "tests/test_semantics_random.py", "tests/test_compiler_corpus.py",
                   "tests/test_iec_constructs.py", "tests/test_optimiser_equivalence.py",
-                  "tests/test_cost_model.py", "tests/test_compiler_mutants.py"]),
+                  "tests/test_cost_model.py", "tests/test_compiler_mutants.py",
+                  # the optimiser passes' own tests and the shared prelude (fast, seed-19 run)
+                  "tests/test_optimiser_ranges.py", "tests/test_optimiser_vector.py",
+                  "tests/test_inline_selection.py", "tests/test_prelude_sharing.py",
+                  "tests/test_compiler_mutants_s19.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",
