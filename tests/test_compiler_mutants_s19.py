@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import itertools
 
+import pytest
+
 from st_runtime.api import load_text
 
 N = 5
@@ -106,3 +108,21 @@ f(a := 1, b := x);
 END_PROGRAM
 """
     assert _scan_ps(src) == units * PICOSECONDS_PER_UNIT
+
+
+# ------------------------------------------------------------------ the optimiser switch
+
+def test_st_runtime_optimise_takes_a_comma_separated_list_of_passes(monkeypatch):
+    # optimise/__init__.py: ST_RUNTIME_OPTIMISE is `none`, `all` or a comma-separated list
+    # of pass names (case and spaces around names do not matter): the passes named are on,
+    # every other pass off.
+    from dataclasses import fields
+
+    from st_runtime.compiler import Optimisations
+
+    monkeypatch.setenv("ST_RUNTIME_OPTIMISE", " Fold, CSE ,unroll ")
+    chosen = Optimisations.from_environment()
+    assert {f.name for f in fields(chosen) if getattr(chosen, f.name)} == {"fold", "cse", "unroll"}
+    monkeypatch.setenv("ST_RUNTIME_OPTIMISE", "ranges,nosuchpass")
+    with pytest.raises(ValueError, match="nosuchpass"):
+        Optimisations.from_environment()
