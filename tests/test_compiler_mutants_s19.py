@@ -126,3 +126,22 @@ def test_st_runtime_optimise_takes_a_comma_separated_list_of_passes(monkeypatch)
     monkeypatch.setenv("ST_RUNTIME_OPTIMISE", "ranges,nosuchpass")
     with pytest.raises(ValueError, match="nosuchpass"):
         Optimisations.from_environment()
+
+
+@pytest.mark.parametrize("statement", ["p := tab[i];", "tab[i] := p;"])
+def test_the_estimated_time_of_a_structure_copied_from_or_to_an_array_element(statement):
+    # A structure assignment moves its 3 INT members one by one (3 x `element`), and
+    # locating tab[i] costs the load of i and one subscript: 3 * 2 + (1 + 2) = 9 units,
+    # whichever side the element is on (cost.py's table).
+    from st_runtime.compiler.cost import PICOSECONDS_PER_UNIT, WEIGHTS
+
+    w = WEIGHTS
+    units = 3 * w["element"] + w["load"] + w["index"]
+    assert units == 9
+    src = f"""TYPE P3 : STRUCT a : INT; b : INT; c : INT; END_STRUCT; END_TYPE
+PROGRAM Main
+VAR tab : ARRAY[1..2] OF P3; p : P3; i : INT := 2; END_VAR
+{statement}
+END_PROGRAM
+"""
+    assert _scan_ps(src) == units * PICOSECONDS_PER_UNIT
