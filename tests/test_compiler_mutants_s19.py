@@ -145,3 +145,28 @@ VAR tab : ARRAY[1..2] OF P3; p : P3; i : INT := 2; END_VAR
 END_PROGRAM
 """
     assert _scan_ps(src) == units * PICOSECONDS_PER_UNIT
+
+
+def test_the_estimated_time_of_a_for_whose_body_has_two_blocks():
+    # FOR i := 1 TO 3: setup (load 1, load 3, store i) = 3 units.  Its body is two blocks:
+    # the IF's test, charged up front with the loop for all 3 iterations
+    # (3 x (loop 2 + load n, load 100, compare, branch = 4) = 18), and `n := n + 1` after
+    # the IF, charged when it runs (3 x (load, load, int_op, store) = 12); the IF's branch
+    # never runs (n stays below 100).  3 + 18 + 12 = 33 units (cost.py's table).
+    from st_runtime.compiler.cost import PICOSECONDS_PER_UNIT, WEIGHTS
+
+    w = WEIGHTS
+    setup = 2 * w["load"] + w["store"]
+    head = w["loop"] + 2 * w["load"] + w["compare"] + w["branch"]
+    increment = 2 * w["load"] + w["int_op"] + w["store"]
+    units = setup + 3 * head + 3 * increment
+    assert units == 33
+    src = """PROGRAM Main
+VAR i : INT; n : INT; END_VAR
+FOR i := 1 TO 3 DO
+    IF n > 100 THEN n := 0; END_IF;
+    n := n + 1;
+END_FOR;
+END_PROGRAM
+"""
+    assert _scan_ps(src) == units * PICOSECONDS_PER_UNIT
