@@ -55,7 +55,11 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                  ["tests/test_compiler.py", "tests/test_semantics.py", "tests/test_operators_runtime.py",
                   "tests/test_semantics_random.py", "tests/test_compiler_corpus.py",
                   "tests/test_iec_constructs.py", "tests/test_optimiser_equivalence.py",
-                  "tests/test_cost_model.py", "tests/test_compiler_mutants.py"]),
+                  "tests/test_cost_model.py", "tests/test_compiler_mutants.py",
+                  # the optimiser passes' own tests and the shared prelude (fast, seed-19 run)
+                  "tests/test_optimiser_ranges.py", "tests/test_optimiser_vector.py",
+                  "tests/test_inline_selection.py", "tests/test_prelude_sharing.py",
+                  "tests/test_compiler_mutants_s19.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",
@@ -87,7 +91,12 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
 # Extra [tool.mutmut] settings of one module. The compiler's mutants include
 # endless loops (a WHILE without its budget check), and mutmut's default
 # timeout (15 x the tests' time, x2) would spend half an hour on each.
-SETTINGS: dict[str, dict[str, float]] = {"compiler": {"timeout_multiplier": 3.0}}
+# "forkserver": each mutant's worker is forked from a process that has not run
+# the tests; forked from mutmut's own process (the default), it inherits the
+# shared prelude the stats run compiled, and a mutant of the code that compiles
+# it never runs (docs/mutation.md, compiler, seed 19).
+SETTINGS: dict[str, dict[str, float | str]] = {
+    "compiler": {"timeout_multiplier": 3.0, "process_isolation": "forkserver"}}
 
 COPY = ["st_runtime", "stgen", "st_templates", "tests", "examples", "generated", "README.md"]
 
@@ -118,7 +127,7 @@ def prepare(name: str) -> Path:
                   f"pytest_add_cli_args_test_selection = {toml_list(tests)}\n"
                   'pytest_add_cli_args = ["-p", "no:cacheprovider", "-q", "-x"]\n'
                   'also_copy = ["st_templates", "examples", "generated", "README.md"]\n'
-                  + "".join(f"{k} = {v}\n" for k, v in SETTINGS.get(name, {}).items()))
+                  + "".join(f"{k} = {json.dumps(v)}\n" for k, v in SETTINGS.get(name, {}).items()))
     (work / "pyproject.toml").write_text(pyproject)
     return work
 
