@@ -1,0 +1,231 @@
+"""Checker rules that mutation testing found unchecked, third round (issue 16):
+survivors of the fresh seed-19 sample and the last ones of seed 18.
+
+Each test states a rule of IEC 61131-3 (2nd ed. 2003 or 3rd ed. 2013), of
+OMRON's manuals (docs/nj501.md) or of the checker's own contract (its module
+docstrings: every diagnostic has its registered code, its words and the
+position of what it is about), with line and column counted by hand in the
+snippet.
+"""
+
+from __future__ import annotations
+
+from st_runtime.api import load_text
+from checker_helpers import load
+
+
+def diagnostics(text: str, dialect: str = "iec") -> list[tuple[str, int, int, str]]:
+    result, _ = load(text, dialect)
+    return [(d.code, d.pos.line, d.pos.col, d.message) for d in result.diagnostics]
+
+
+def only(text: str, dialect: str = "iec") -> tuple[str, int, int, str]:
+    found = diagnostics(text, dialect)
+    assert len(found) == 1, found
+    return found[0]
+
+
+def program(decls: str, body: str) -> str:
+    return f"PROGRAM Main\nVAR\n{decls}\nEND_VAR\n{body}\nEND_PROGRAM\n"
+
+
+def after_one_scan(text: str, dialect: str = "iec"):
+    """The program Main of `text` after one scan (the text must check clean)."""
+    plc = load_text(text, dialect=dialect).controller(period="1ms")
+    main = plc.add_program("Main")
+    plc.run(1)
+    return main
+
+
+# ------------------------------------------------------------ conditions and literals
+
+def test_boolean_zero_and_one_are_conditions():
+    """IEC 61131-3 2nd ed. table 4 (3rd ed. table 5), feature "Boolean zero
+    and one": the literals 0 and 1 are BOOL literals, so `IF 1 THEN` is a
+    BOOL condition (the checker reads a condition with the BOOL hint); 2 is
+    no BOOL literal and is refused (E-TYPE-003 at the condition)."""
+    main = after_one_scan(program("    x, y : INT;", "IF 1 THEN x := 5; END_IF;\nIF 0 THEN y := 7; END_IF;"))
+    assert (main["x"], main["y"]) == (5, 0)
+    code, line, col, message = only(program("    x : INT;", "IF 2 THEN x := 5; END_IF;"))
+    assert (code, line, col) == ("E-TYPE-003", 5, 4) and "IF condition: expected BOOL" in message
+
+
+def test_sqrt_of_an_untyped_literal_is_an_lreal():
+    """An untyped literal given to an ANY_REAL input takes LREAL when nothing
+    else fixes the type (3rd ed. 6.6.2.5.4, the literal is typed by its use)."""
+    main = after_one_scan(program("    b : BOOL;\n    r : LREAL;", "b := SQRT(16) > 3.5;\nr := SQRT(2) * SQRT(2);"))
+    assert main["b"] is True
+    assert main["r"] == 2.0000000000000004        # sqrt(2)**2 in binary64, by hand: 2 + 2**-51
+
+
+def test_max_takes_a_third_input_by_its_formal_name():
+    """MAX is extensible (3rd ed. table 28): IN3 is its third input."""
+    main = after_one_scan(program("    i : INT;", "i := MAX(IN1 := 1, IN2 := 5, IN3 := 9);"))
+    assert main["i"] == 9
+
+
+def test_enumeration_values_are_dint_constants():
+    """An enumeration value given explicitly is a DINT constant (the
+    checker's rule, after OMRON's enumerated types: values -2147483648 to
+    2147483647): 3000000000 does not fit, 2.5 is no integer."""
+    code, line, col, message = only("TYPE E : (A := 3000000000, B); END_TYPE\n")
+    assert (code, line, col) == ("E-TYPE-005", 1, 16) and "does not fit DINT" in message
+    code, line, col, message = only("TYPE E : (A := 2.5, B); END_TYPE\n")
+    assert (code, line, col) == ("E-DECL-008", 1, 16)
+    assert message == "value of 'A': expected a constant integer"
+
+
+def test_division_by_zero_in_a_constant_expression():
+    code, line, col, message = only(program("    x : DINT;", "x := 10 / 0;"))
+    assert (code, line, col) == ("E-TYPE-017", 5, 9)      # at the operator
+    assert message == "division by zero in a constant expression"
+
+
+# ------------------------------------------------------------ configurations
+
+TANK = ("CONFIGURATION Plant\nRESOURCE Cpu ON PLC\nPROGRAM Tank1 : Tank;\nVAR_ACCESS\n"
+        "  L : {path} : {type} READ_ONLY;\nEND_VAR\nEND_RESOURCE\nEND_CONFIGURATION\n"
+        "PROGRAM Tank\nVAR\n  Level : INT; Arr : ARRAY[1..2] OF INT;\nEND_VAR\nEND_PROGRAM\n")
+
+
+def test_access_path_is_resource_program_variable():
+    """3rd ed. 6.8.2 (table 62): an access path names Resource.Program.Variable;
+    an indexed element is no such path (E-TYPE-014 at the path)."""
+    code, line, col, message = only(TANK.format(path="Cpu.Tank1.Arr[1]", type="INT"))
+    assert (code, line, col) == ("E-TYPE-014", 5, 7)
+    assert message == "VAR_ACCESS L: expected a path Resource.Program.Variable"
+
+
+def test_access_path_type_may_use_a_global_constant():
+    """The declared type of an access path is resolved like any declared
+    type: a bound that is a global constant (N = 2) gives ARRAY[1..2]."""
+    text = "VAR_GLOBAL CONSTANT N : INT := 2; END_VAR\n" + TANK
+    assert diagnostics(text.format(path="Cpu.Tank1.Arr", type="ARRAY[1..N] OF INT")) == []
+    code, line, col, message = only(text.format(path="Cpu.Tank1.Arr", type="ARRAY[1..N+1] OF INT"))
+    assert (code, line, col) == ("E-TYPE-004", 6, 3) and "ARRAY[1..3] OF INT" in message
+
+
+def test_program_instance_of_something_that_is_no_program():
+    text = ("CONFIGURATION C\nRESOURCE R ON PLC\nPROGRAM P1 : F;\nEND_RESOURCE\nEND_CONFIGURATION\n"
+            "FUNCTION F : INT\nF := 1;\nEND_FUNCTION\n")
+    code, line, col, message = only(text)
+    assert (code, line, col) == ("E-DECL-004", 3, 1)
+    assert message == "program instance P1: expected a PROGRAM 'F', found a FUNCTION"
+
+
+# ------------------------------------------------------------ declarations
+
+def test_unknown_type_suggests_the_closest_name():
+    code, line, col, message = only(program("    x : INTT;", ""))
+    assert (code, line, col) == ("E-DECL-004", 3, 9)
+    assert message == "unknown type 'INTT' (did you mean INT?)"
+
+
+def test_a_var_temp_cannot_be_located():
+    """3rd ed. 6.5.5: AT is for VAR, VAR_GLOBAL, VAR_INPUT, VAR_OUTPUT."""
+    code, line, col, message = only("PROGRAM Main\nVAR_TEMP x AT %IX0.0 : BOOL; END_VAR\nEND_PROGRAM\n")
+    assert (code, line, col) == ("E-DECL-015", 2, 10) and "a VAR_TEMP cannot be located" in message
+
+
+def test_for_variable_may_not_be_an_input():
+    """3rd ed. 6.5.2.2: a VAR_INPUT is read-only inside its POU, so it cannot
+    be a FOR control variable (E-ASSIGN-002 at the FOR)."""
+    text = "FUNCTION_BLOCK F\nVAR_INPUT i : INT; END_VAR\nFOR i := 1 TO 3 DO\nEND_FOR;\nEND_FUNCTION_BLOCK\n"
+    assert only(text) == ("E-ASSIGN-002", 3, 1, "FOR control variable 'i' is a VAR_INPUT and read-only")
+
+
+def test_case_beyond_its_clause_limit_points_at_the_case():
+    clauses = "".join(f"{i}: x := 1;\n" for i in range(1501))
+    code, line, col, message = only(program("    x : INT;", f"CASE x OF\n{clauses}END_CASE;"))
+    assert (code, line, col) == ("E-LIMIT-006", 5, 1) and "1501 clauses (at most 1500)" in message
+
+
+def test_recursion_found_after_a_pou_that_is_in_no_cycle():
+    """F1 calls F2 (no cycle) and comes first; A and B call each other
+    (3rd ed. 6.6.1.2: no recursion): one E-REC-001 at A's call of B."""
+    text = ("FUNCTION F2 : INT\nF2 := 1;\nEND_FUNCTION\nFUNCTION F1 : INT\nF1 := F2();\nEND_FUNCTION\n"
+            "FUNCTION A : INT\nA := B();\nEND_FUNCTION\nFUNCTION B : INT\nB := A();\nEND_FUNCTION\n")
+    code, line, col, message = only(text)
+    assert (code, line, col) == ("E-REC-001", 8, 6) and "A calls B, B calls A" in message
+
+
+# ------------------------------------------------------------ object orientation
+
+def test_private_and_protected_methods_name_who_may_call_them():
+    """3rd ed. 6.6.5.4: PRIVATE only inside the FB, PROTECTED also in FBs
+    extending it."""
+    fb = "FUNCTION_BLOCK A\nMETHOD {access} M\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
+    code, line, col, message = only(fb.format(access="PRIVATE") + program("    a : A;", "a.M();"))
+    assert (code, line, col) == ("E-CALL-012", 9, 1)
+    assert message == "method A.M is PRIVATE: it may be called only inside A"
+    assert only(fb.format(access="PROTECTED") + program("    a : A;", "a.M();"))[3] == \
+        "method A.M is PROTECTED: it may be called only inside A and the FBs extending it"
+
+
+def test_final_and_abstract_rules():
+    """3rd ed. 6.6.5.5-6: a FINAL FB is not extended; an FB extending an
+    ABSTRACT one implements its ABSTRACT methods; an ABSTRACT method only in
+    an ABSTRACT FB; EXTENDS names a FUNCTION_BLOCK."""
+    assert only("FUNCTION_BLOCK FINAL A\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK B EXTENDS A\nEND_FUNCTION_BLOCK\n") \
+        == ("E-DECL-016", 3, 1, "B EXTENDS A, which is FINAL")
+    code, line, col, message = only("FUNCTION_BLOCK ABSTRACT A\nMETHOD ABSTRACT M\nEND_METHOD\n"
+                                    "END_FUNCTION_BLOCK\nFUNCTION_BLOCK B EXTENDS A\nEND_FUNCTION_BLOCK\n")
+    assert (code, line, col) == ("E-DECL-016", 5, 1) and "must implement the ABSTRACT method M of A" in message
+    found = diagnostics("FUNCTION_BLOCK A\nMETHOD ABSTRACT M\nEND_METHOD\nEND_FUNCTION_BLOCK\n")
+    assert ("E-DECL-016", 2, 17, "ABSTRACT method M in A, which is not ABSTRACT") in found
+    assert {d[0] for d in found} == {"E-DECL-016"}
+    assert only("FUNCTION F : INT\nF := 1;\nEND_FUNCTION\nFUNCTION_BLOCK B EXTENDS F\nEND_FUNCTION_BLOCK\n") \
+        == ("E-DECL-016", 4, 1, "EXTENDS 'F': expected a FUNCTION_BLOCK, found a FUNCTION")
+
+
+def test_an_interface_extends_an_interface():
+    """3rd ed. 6.6.6.3: an INTERFACE may EXTEND others; an FB implementing it
+    implements the methods of both (it is called through either)."""
+    text = ("INTERFACE I\nMETHOD Size : INT\nEND_METHOD\nEND_INTERFACE\nINTERFACE J EXTENDS I\nEND_INTERFACE\n"
+            "FUNCTION_BLOCK B IMPLEMENTS J\nMETHOD PUBLIC Size : INT\nSize := 42;\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
+            + program("    b : B;\n    j : J;\n    v : INT;", "j := b;\nv := j.Size();"))
+    assert after_one_scan(text)["v"] == 42
+
+
+# ------------------------------------------------------------ standard functions
+
+def test_standard_function_output_message():
+    code, line, col, message = only(program("    a, b, c : INT;", "c := MAX(IN1 := a, IN2 := b, OUT => c);"))
+    assert (code, line, col) == ("E-CALL-005", 5, 30)
+    assert message == "MAX has no outputs: 'OUT' cannot be read with =>"
+
+
+def test_sel_selector_must_be_bool():
+    """SEL's G is BOOL (3rd ed. table 28): 1 is a BOOL literal, 2 is not."""
+    assert after_one_scan(program("    i : INT;", "i := SEL(1, 2, 3);"))["i"] == 3
+    code, line, col, message = only(program("    i : INT;", "i := SEL(2, 2, 3);"))
+    assert (code, line, col) == ("E-TYPE-004", 5, 10) and "argument G: expected BOOL" in message
+
+
+def test_sel_selector_beyond_the_real_range_is_named_as_such():
+    """A real literal beyond LREAL's range (IEC 60559 binary64) is refused as
+    not fitting LREAL, wherever it stands, even where BOOL is expected."""
+    code, line, col, message = only(program("    i : INT;", "i := SEL(1.0E400, 1, 2);"))
+    assert (code, line, col) == ("E-TYPE-005", 5, 10) and "does not fit LREAL" in message
+
+
+def test_division_by_a_typed_zero_constant():
+    """Integer division by a constant 0 (3rd ed. 7.3.2: an error) is found by
+    the checker, at the operator when both sides are constants, at the zero
+    when only the divisor is."""
+    found = only(program("    x : DINT;", "x := DINT#10 / DINT#0;"))
+    assert found == ("E-TYPE-017", 5, 14, "division by zero in a constant expression")
+    found = only(program("    x : DINT;", "x := x / DINT#0;"))
+    assert found == ("E-TYPE-017", 5, 10, "division by zero in a constant expression")
+
+
+def test_super_outside_a_function_block():
+    """SUPER (3rd ed. 6.6.5.8) names the base of the FB it is used in."""
+    found = diagnostics(program("    i : INT;", "SUPER.M();"))
+    assert ("E-DECL-016", 5, 1, "SUPER.M: SUPER is only valid inside a FUNCTION_BLOCK or its methods") in found
+    assert all(code.startswith("E-DECL-") for code, *_ in found)
+
+
+def test_a_method_an_interface_does_not_have():
+    code, line, col, _ = only("INTERFACE I\nEND_INTERFACE\n" + program("    j : I;", "j.Nope();"))
+    assert (code, line, col) == ("E-TYPE-009", 7, 1)
