@@ -39,8 +39,17 @@ states bit for bit:
   through the code as it is written (assignments, IF/CASE joins, loops), so
   a bounds check that can never fail is left out (`Matrix[PivotRow, K]`
   after `PivotRow := K` and `PivotRow := Row` in the LU's pivot search).
+  A FOR with step 1 whose end is data (`FOR C := 1 TO Count`) and whose body
+  checks bounds on its variable comes in two versions: one without those
+  checks, run when the range (`range.stop`, tested once) lies inside every
+  array so indexed, and the loop as before otherwise.
 * `unguard` (unguard.py): no `try` around an assignment whose Python code
   cannot raise (a local set from locals and literals with `+ - *`).
+* `branches` (branches.py): an IF whose conditions cannot fault (owned
+  variables, comparisons, logic, `+ - *`, no call that may raise) is a plain
+  `if/elif/else` instead of a guarded branch index compared with each
+  branch's number; a CASE selector that cannot fault is read without a
+  guard.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -68,6 +77,7 @@ class Optimisations:
     inline: bool = True
     vector: bool = True
     ranges: bool = True
+    branches: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
