@@ -130,3 +130,50 @@ def test_the_code_check_refuses_what_can_raise():
     assert not code_cannot_fault("v_R.get() > 0")
     assert not code_cannot_fault(" * ".join(["v_A"] * 16) + " > 0.5")   # an int beyond 2**1024
     assert not code_cannot_fault("")
+
+
+# The `aliases` pass (optimise/aliases.py): a variable loaded at the start of the one
+# branch that uses it instead of in the prologue.
+COLD = """
+FUNCTION_BLOCK Mover
+VAR_INPUT Go : BOOL; END_VAR
+VAR
+    Table : ARRAY[1..4] OF LREAL := [1.0, 2.0, 3.0, 4.0]; Gain : LREAL := 0.5;
+    Target : ARRAY[1..4] OF LREAL; Calls : INT; Both : ARRAY[1..2] OF INT;
+END_VAR
+Calls := Calls + 1;
+IF Go THEN
+    IF Calls > 2 THEN
+        Target[1] := Table[1] * Gain + Table[2] * Gain + Table[3] * Gain + Table[4] * Gain;
+        Both[1] := Both[1] + 1;
+    END_IF;
+ELSE
+    Both[2] := Both[2] + 1;
+END_IF;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR M : Mover; N : INT; END_VAR
+N := N + 1;
+M(Go := N MOD 2 = 0);
+END_PROGRAM
+"""
+
+
+def test_a_variable_used_in_one_branch_is_loaded_there():
+    source = compile_program(_program(COLD), optimise=ON).python_sources["MOVER"]
+    lines = [line.strip() for line in source.splitlines()]
+    prologue = lines[1:lines.index("_spent = 0")]
+    assert "v_BOTH = self.v_BOTH" in prologue                     # used in both branches
+    assert "v_TABLE = self.v_TABLE" not in prologue and "v_GAIN = self.v_GAIN" not in prologue
+    inner = lines.index("if (self.v_CALLS > 2):")
+    assert {"v_TABLE = self.v_TABLE", "v_GAIN = self.v_GAIN"} <= set(lines[inner + 1:inner + 4])
+    plain = compile_program(_program(COLD), optimise=replace(ON, aliases=False)).python_sources["MOVER"]
+    assert "    v_TABLE = self.v_TABLE" in plain.splitlines()[1:8]
+
+
+@pytest.mark.parametrize("budget_ns", [400, 1_000, 500_000])
+def test_late_loads_run_the_same(budget_ns):
+    off, on = run_both(_program(COLD), 8, budget_ns, optimise=Optimisations.only("aliases"))
+    assert on == off
+    off, on = run_both(_program(CHAINS), 12, budget_ns, optimise=Optimisations.only("aliases"))
+    assert on == off

@@ -39,7 +39,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import branches, cse, fold, gather, ranges, unguard, unroll
+from .optimise import aliases, branches, cse, fold, gather, ranges, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -58,6 +58,9 @@ class BodyCompiler(ExprCompiler):
         self.flow = ranges.Flow(self, body) if self.opt.ranges else None    # integer locals' ranges
         if not method:
             self._add_return_variable()
+        whole_region = self.opt.cse and unit.guard_statements and cse.worth_a_region(self, body)
+        # id(branch body) -> alias lines moved there from the prologue (optimise/aliases.py)
+        self._late_loads = aliases.late_loads(self, body) if self.opt.aliases and not whole_region else {}
 
     def _add_return_variable(self) -> None:
         key = self.pou.name.upper()
@@ -159,6 +162,8 @@ class BodyCompiler(ExprCompiler):
         `charge=False`: the caller has charged the whole body already;
         `first_charged`: the caller has charged the first block.
         """
+        for line in self._late_loads.get(id(body), ()):
+            self.out.line(line)
         first = True
         for simple, compound in _blocks(body):
             units = sum(self._simple_cost(st) for st in simple) + (self._head_cost(compound) if compound else 0)

@@ -50,6 +50,10 @@ states bit for bit:
   `if/elif/else` instead of a guarded branch index compared with each
   branch's number; a CASE selector that cannot fault is read without a
   guard.
+* `aliases` (aliases.py): an array, struct or FB instance of the instance or
+  a global that a body names inside one IF branch or CASE clause only is
+  aliased by its local at the start of that branch, not in the prologue of
+  every call (the same load of the same object, before any use).
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -78,6 +82,7 @@ class Optimisations:
     vector: bool = True
     ranges: bool = True
     branches: bool = True
+    aliases: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
