@@ -177,3 +177,11 @@ def test_late_loads_run_the_same(budget_ns):
     assert on == off
     off, on = run_both(_program(CHAINS), 12, budget_ns, optimise=Optimisations.only("aliases"))
     assert on == off
+
+
+def test_the_code_check_reads_literals_and_operators_right():
+    assert code_cannot_fault("(abs(v_A) <= 1.7976931348623157e+308) & (v_B >= -1e-05)")
+    assert code_cannot_fault("(v_A == 1) | (v_B != 2) | (v_C <= 3)")
+    assert not code_cannot_fault("v_A = 1")
+    assert not code_cannot_fault("v_A == 'x'")               # a string: refused, to be safe
+    assert not code_cannot_fault("lambda: 1")
