@@ -146,3 +146,53 @@ def test_the_time_charged_is_the_same():
         result = pivot(context, matrix)
         spent.append((10**12 - context.budget, result, matrix, context.faults))
     assert spent[0] == spent[1] == spent[2] and spent[0][0] > 0
+
+
+# A FOR whose end is data (the wave's `FOR Component := 1 TO Count`): a version without
+# the checks on its variable runs when the range lies inside every array it indexes.
+VERSIONED = """
+PROGRAM Main
+VAR
+    Count : INT; Scan : INT; First : INT := 1; I : INT; J : INT;
+    A : ARRAY[1..8] OF LREAL := [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0];
+    B : ARRAY[0..6] OF LREAL; M : ARRAY[1..8, 1..3] OF INT; Sum : LREAL; Hits : INT;
+END_VAR
+Scan := Scan + 1;
+Count := (Scan * 3) MOD 11 - 1;         (* -1, 2, 5, 8, 0, 3, 6, 9, 1, 4, 7, -1, ... *)
+Sum := 0.0;
+FOR I := 1 TO Count DO
+    Sum := Sum + A[I] * 0.5;
+    B[I - 1] := Sum;                    (* I - 1 is not the variable: checked in both *)
+    M[I, 2] := M[I, 2] + 1;
+    IF A[I] > 2.5 THEN Hits := Hits + 1; EXIT; END_IF;
+END_FOR;
+FOR J := First TO Count DO              (* the start is data too: no version *)
+    Sum := Sum + A[J];
+END_FOR;
+END_PROGRAM
+"""
+
+
+def test_a_loop_with_a_data_end_has_a_version_without_checks():
+    source = compile_program(api.load_text(VERSIONED).program, optimise=ON).python_sources["MAIN"]
+    fast, checked = source.split("for v_I in", 2)[1:]
+    assert ".stop <= 9:" in source                          # A and M: 1..8
+    assert "'A'" not in fast and "_index_fault_n(" not in fast and "'B'" in fast
+    assert "'A'" in checked and "_index_fault_n(" in checked
+    assert source.count("for v_J in") == 1
+    plain = compile_program(api.load_text(VERSIONED).program, optimise=NO_RANGES).python_sources["MAIN"]
+    assert ".stop <=" not in plain and plain.count("for v_I in") == 1
+
+
+def test_the_versions_run_and_fault_the_same():
+    off, on = run_both(api.load_text(VERSIONED).program, 13, optimise=Optimisations.only("ranges"))
+    assert on == off
+    assert any(code == "F-INDEX" for code, *_ in on[0])     # Count = 9: A[9] in the checked copy
+    off, on = run_both(api.load_text(VERSIONED).program, 13, optimise=ON)
+    assert on == off
+
+
+@pytest.mark.parametrize("budget_ns", [300, 1_000, 2_500, 6_000])
+def test_f_period_lands_on_the_same_statement_in_a_version(budget_ns):
+    off, on = run_both(api.load_text(VERSIONED).program, 13, budget_ns, optimise=Optimisations.only("ranges"))
+    assert on == off

@@ -152,6 +152,7 @@ class ExprCompiler:
         self.unit = unit              # the CompileUnit: namespace, functions, classes
         self.temp_count = 0
         self.known_ranges: dict[str, tuple[int, int]] = {}   # upper var name -> range
+        self._index_probe: dict[str, list] = {}   # FOR variable -> (lo, hi) of checks on it (statements._versioned)
         self.loops: list = []      # FOR loops being compiled, innermost last (hoisting)
         self.opt = getattr(unit, "optimise", None) or Optimisations.none()
         self.unrolled: dict[str, int] = {}   # FOR variable -> its value in this unrolled copy
@@ -476,6 +477,8 @@ class ExprCompiler:
                 terms.append(code if k == 1 else self.scaled_loop_term(index, code, k))
                 values.append(code)
                 continue
+            if self._index_probe and isinstance(index, ast.Name) and index.name.upper() in self._index_probe:
+                self._index_probe[index.name.upper()].append((lo, hi))
             if not _is_simple(code):
                 tmp = self.temp()
                 checks.append(f"{lo} <= ({tmp} := {code}) <= {hi}")

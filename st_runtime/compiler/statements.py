@@ -39,7 +39,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import cse, fold, gather, ranges, unguard, unroll
+from .optimise import aliases, branches, cse, fold, gather, ranges, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -58,6 +58,9 @@ class BodyCompiler(ExprCompiler):
         self.flow = ranges.Flow(self, body) if self.opt.ranges else None    # integer locals' ranges
         if not method:
             self._add_return_variable()
+        whole_region = self.opt.cse and unit.guard_statements and cse.worth_a_region(self, body)
+        # id(branch body) -> alias lines moved there from the prologue (optimise/aliases.py)
+        self._late_loads = aliases.late_loads(self, body) if self.opt.aliases and not whole_region else {}
 
     def _add_return_variable(self) -> None:
         key = self.pou.name.upper()
@@ -159,6 +162,8 @@ class BodyCompiler(ExprCompiler):
         `charge=False`: the caller has charged the whole body already;
         `first_charged`: the caller has charged the first block.
         """
+        for line in self._late_loads.get(id(body), ()):
+            self.out.line(line)
         first = True
         for simple, compound in _blocks(body):
             units = sum(self._simple_cost(st) for st in simple) + (self._head_cost(compound) if compound else 0)
@@ -356,7 +361,9 @@ class BodyCompiler(ExprCompiler):
         leads, _ = self._if_entries(s)
         ends = self._branches_begin()
         if len(s.branches) == 1:
-            test, guarded = self.guarded_value(s, self.expr(s.branches[0].condition), "None")
+            code = self.expr(s.branches[0].condition)
+            test, guarded = (code, False) if self._tested_in_place(s.branches[0].condition, code) \
+                else self.guarded_value(s, code, "None")
             o.line(f"if {test}:")
             self._branch(ends, s.branches[0].body, leads[0])
             if s.else_body:
@@ -369,6 +376,15 @@ class BodyCompiler(ExprCompiler):
         # of parentheses per ELSIF to CPython's 200).
         n = len(s.branches)
         conditions = [self.expr(branch.condition) for branch in s.branches]
+        if all(self._tested_in_place(b.condition, c) for b, c in zip(s.branches, conditions)):
+            for i, (branch, condition) in enumerate(zip(s.branches, conditions)):   # branches.py
+                o.line(f"{'if' if i == 0 else 'elif'} {condition}:")
+                self._branch(ends, branch.body, leads[i])
+            if s.else_body:
+                o.line("else:")
+                self._branch(ends, s.else_body, leads[n])
+            self._branches_end(ends)
+            return
         which = self.temp()
 
         def choose():
@@ -392,6 +408,11 @@ class BodyCompiler(ExprCompiler):
             self._branch(ends, s.else_body, leads[n])
         self._branches_end(ends)
 
+    def _tested_in_place(self, node, code: str) -> bool:
+        """The condition or selector needs no guard (optimise/branches.py)."""
+        return (self.opt.branches and self.unit.guard_statements
+                and branches.expr_cannot_fault(self, node, code))
+
     def _branches_begin(self) -> list | None:
         """For ranges.py: the state before the branches of an IF or CASE, then each end."""
         return [self.flow.state()] if self.flow is not None else None
@@ -413,8 +434,12 @@ class BodyCompiler(ExprCompiler):
         """A fault in the selector abandons the whole CASE."""
         selector = self.temp()
         code = self.expr(s.selector)
-        self.guard(s, lambda: self.out.line(f"{selector} = {code}"), lambda: [f"{selector} = None"])
-        self.out.line(f"if {selector} is not None:")
+        if self._tested_in_place(s.selector, code):
+            self.out.line(f"{selector} = {code}")
+            self.out.line("if True:")       # (keeps the clauses' indentation)
+        else:
+            self.guard(s, lambda: self.out.line(f"{selector} = {code}"), lambda: [f"{selector} = None"])
+            self.out.line(f"if {selector} is not None:")
         self.out.indent()
         t = self.ty(s.selector)
         ends = self._branches_begin()
@@ -526,6 +551,70 @@ class BodyCompiler(ExprCompiler):
         if self.flow is not None:       # the loop runs its body any number of times
             self.flow.set(before)
             self.flow.forget(s.body)
+
+        def emit_loop():
+            self._range_loop(s, key, assigned, target, rng, early, where, saved,
+                             lambda: self._after_for(target, var_t, final, lo_r, hi_r,
+                                                     step_value if const_step else None,
+                                                     not early and not straight, where))
+
+        if self.opt.ranges and step_value == 1 and count is None and lo_r is not None:
+            self._versioned(key, rng, lo_r[0], emit_loop)
+        else:
+            emit_loop()
+        if not const_range:
+            o.dedent()
+        if fallback:        # the loop as before, when the unrolled copy's reads fault
+            o.dedent()
+        if self.flow is not None:
+            self.flow.forget(s.body)
+            if unrolled is not None:
+                self.flow.join([unrolled, self.flow.state()])
+
+    def _versioned(self, key: str, rng: str, low: int, emit_loop) -> None:
+        """A FOR with step 1 whose end is known only at run time, emitted: when the body
+        checks array bounds on its variable, in two versions, one without those checks
+        run when the range lies inside every such array (optimise/ranges.py)."""
+        o = self.out
+        mark = o.mark()
+        start = self.flow.state() if self.flow is not None else None
+        known = self.known_ranges.get(key)          # the variable's static range, if any
+        self._index_probe[key] = []
+        try:
+            emit_loop()                                 # the loop as before, checks recorded
+            dims = self._index_probe[key]
+        finally:
+            del self._index_probe[key]
+        if not dims or low < max(lo for lo, _ in dims):
+            return
+        high = min(hi for _, hi in dims)
+        if known is not None:
+            low, high = max(low, known[0]), min(high, known[1])
+        checked = o.lines[mark:]
+        del o.lines[mark:]
+        after_checked = self.flow.state() if self.flow is not None else None
+        if self.flow is not None:
+            self.flow.set(start)
+        o.line(f"if {rng}.stop <= {high + 1}:")       # every value of the variable in [low, high]
+        o.indent()
+        saved = self.known_ranges.get(key)
+        self.known_ranges[key] = (low, high)
+        emit_loop()
+        if saved is None:
+            self.known_ranges.pop(key, None)
+        else:
+            self.known_ranges[key] = saved
+        o.dedent()
+        o.line("else:")
+        o.lines.extend("    " + line for line in checked)
+        if self.flow is not None:
+            self.flow.join([after_checked, self.flow.state()])
+
+    def _range_loop(self, s, key, assigned, target, rng, early, where, saved, after) -> None:
+        """`for v in rng:` with the body, then `else:` with what a normal end leaves."""
+        o = self.out
+        if self.flow is not None:       # the loop runs its body any number of times
+            self.flow.forget(s.body)
         self.loops.append(_Loop(key, assigned, "FOR"))
         mark = o.mark()
         if target.kind == "ref":
@@ -553,17 +642,8 @@ class BodyCompiler(ExprCompiler):
         # the test (IEC: FOR is a WHILE loop that increments by BY).
         o.line("else:")
         o.indent()
-        self._after_for(target, var_t, final, lo_r, hi_r, step_value if const_step else None,
-                        not early and not straight, where)
+        after()
         o.dedent()
-        if not const_range:
-            o.dedent()
-        if fallback:        # the loop as before, when the unrolled copy's reads fault
-            o.dedent()
-        if self.flow is not None:
-            self.flow.forget(s.body)
-            if unrolled is not None:
-                self.flow.join([unrolled, self.flow.state()])
 
     def _after_for(self, target, var_t, final, lo_r, hi_r, step_value, test: bool, where) -> None:
         bounds = int_bounds(var_t)

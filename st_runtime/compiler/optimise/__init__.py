@@ -39,8 +39,21 @@ states bit for bit:
   through the code as it is written (assignments, IF/CASE joins, loops), so
   a bounds check that can never fail is left out (`Matrix[PivotRow, K]`
   after `PivotRow := K` and `PivotRow := Row` in the LU's pivot search).
+  A FOR with step 1 whose end is data (`FOR C := 1 TO Count`) and whose body
+  checks bounds on its variable comes in two versions: one without those
+  checks, run when the range (`range.stop`, tested once) lies inside every
+  array so indexed, and the loop as before otherwise.
 * `unguard` (unguard.py): no `try` around an assignment whose Python code
   cannot raise (a local set from locals and literals with `+ - *`).
+* `branches` (branches.py): an IF whose conditions cannot fault (owned
+  variables, comparisons, logic, `+ - *`, no call that may raise) is a plain
+  `if/elif/else` instead of a guarded branch index compared with each
+  branch's number; a CASE selector that cannot fault is read without a
+  guard.
+* `aliases` (aliases.py): an array, struct or FB instance of the instance or
+  a global that a body names inside one IF branch or CASE clause only is
+  aliased by its local at the start of that branch, not in the prologue of
+  every call (the same load of the same object, before any use).
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -68,6 +81,8 @@ class Optimisations:
     inline: bool = True
     vector: bool = True
     ranges: bool = True
+    branches: bool = True
+    aliases: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

@@ -16,6 +16,15 @@ order it writes it:
 * a body compiled twice (a CSE region and its fallback): each from the same state,
   the union after.
 
+Loop versions (statements.py, `_versioned`): a FOR with step 1 whose start has a static
+range but whose end is data runs over a Python range; the checks its body makes on the
+variable itself are recorded while the loop is compiled as before, and when the start
+cannot be below any such array's lower bound a second copy is compiled with the variable
+known in [start, smallest upper bound] and run when `range.stop` is at most that bound
+plus 1, the loop as before otherwise.  Every value the variable takes in the copy is in
+the bounds of every array it indexes, so each check left out would have passed; both
+copies charge the same time at the same points (the loop's charge is before the choice).
+
 Only plain Python locals of an integer type are followed, and only those no one
 else can write: never a FOR variable, the root of an element/member/bit store, a
 call's argument that is a variable (VAR_IN_OUT, REF, ADR, an output `=>`), or a

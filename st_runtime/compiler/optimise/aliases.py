@@ -1,0 +1,92 @@
+"""`aliases`: an aggregate or a read-only cached variable used in one branch is loaded there.
+
+A body aliases each instance or global aggregate it names by a local in its prologue
+(`v_X = self.v_X`, `v_X = _G.v_X`; scope.py): the object's identity never changes, so
+the alias is the object for the whole call.  An elementary variable the body reads
+often but never stores is cached the same way (`v_X = self.v_X`, no store at the end):
+no code but the body's can change it while the body runs (scope.py caches nothing a
+reference, a METHOD or THIS can reach), so its value is the same at any point.  When every occurrence of the name is
+inside one IF branch or CASE clause (the innermost such branch that holds them all,
+looking no deeper than the first loop around an occurrence), the alias line moves to
+the start of that branch's code: a call that does not take the branch does not load it
+(the controller's cold paths: power-on, locate, point-to-point, faults).  Exact: the
+line is the same load of the same object, made before any use of the local (every use
+is compiled inside that branch), and the load cannot raise; nothing else changes.
+A variable the body stores keeps its load in the prologue (its store at the end runs
+on every call).
+
+Left as they are: a body compiled as one CSE region (its reads may move to the top),
+names the walk does not find as often as the body has them (a safety net).
+"""
+
+from __future__ import annotations
+
+import re
+
+from ... import ast
+from ..scope import walk
+
+_ALIAS_LINE = re.compile(r"(v_\w+) = (?:self|_G)\.(v_\w+)")
+
+
+def late_loads(compiler, body) -> dict[int, list[str]]:
+    """Move eligible alias lines out of `compiler.scope.prologue`; id(branch body) -> lines."""
+    scope = compiler.scope
+    stored = {line.split(" = ", 1)[1] for line in scope.epilogue if isinstance(line, str)}
+    names = {place.name: key for key, place in scope.places.items()
+             if place.how == "alias" or (place.how == "local" and place.name not in stored)}
+    candidates = {}
+    for line in scope.prologue:
+        match = _ALIAS_LINE.fullmatch(line) if isinstance(line, str) else None
+        if match and match.group(1) == match.group(2) and match.group(1) in names:
+            candidates[names[match.group(1)]] = line
+    if not candidates:
+        return {}
+    paths: dict[str, list[tuple]] = {key: [] for key in candidates}
+    _visit(body, (), paths)
+    counts = {key: 0 for key in candidates}
+    for node in walk(body):
+        if isinstance(node, ast.Name) and node.name.upper() in counts:
+            counts[node.name.upper()] += 1
+    loads: dict[int, list[str]] = {}
+    for key, line in candidates.items():
+        found = paths[key]
+        if not found or len(found) != counts[key]:
+            continue
+        common = found[0]
+        for path in found[1:]:
+            n = 0
+            while n < min(len(common), len(path)) and common[n] == path[n]:
+                n += 1
+            common = common[:n]
+        if common:
+            scope.prologue.remove(line)
+            loads.setdefault(common[-1], []).append(line)
+    return loads
+
+
+def _visit(stmts, path: tuple, paths: dict) -> None:
+    for stmt in stmts or ():
+        if isinstance(stmt, ast.If):
+            for branch in stmt.branches:
+                _names(branch.condition, path, paths)
+                _visit(branch.body, path + (id(branch.body),), paths)
+            if stmt.else_body:
+                _visit(stmt.else_body, path + (id(stmt.else_body),), paths)
+        elif isinstance(stmt, ast.Case):
+            _names(stmt.selector, path, paths)
+            for clause in stmt.clauses:
+                _names(clause.labels, path, paths)
+                _visit(clause.body, path + (id(clause.body),), paths)
+            if stmt.else_body:
+                _visit(stmt.else_body, path + (id(stmt.else_body),), paths)
+        else:       # a simple statement, or a loop: every name in it at this path
+            _names(stmt, path, paths)
+
+
+def _names(node, path: tuple, paths: dict) -> None:
+    for n in walk(node if isinstance(node, tuple) else (node,)):
+        if isinstance(n, ast.Name):
+            found = paths.get(n.name.upper())
+            if found is not None:
+                found.append(path)

@@ -1,0 +1,101 @@
+"""IF conditions and CASE selectors that cannot fault are tested in place.
+
+Without this pass an IF/ELSIF chain evaluates its conditions under one
+`try` into the index of the branch taken, then compares that index with
+each branch's number (a fault in a condition abandons the whole IF); a
+single IF keeps its condition in a temporary, and a CASE its selector.
+When no condition can raise what the handler catches (`_FAULTS`: STFault,
+ArithmeticError, ValueError), the handler never runs, so `if c0: ...
+elif c1: ... else: ...` evaluates the same conditions in the same order
+and runs the same branch, with each branch's charge where it was (the
+charges are the branches' own lines, cost.py).
+
+What cannot fault, judged on the ST expression and on its Python code both:
+
+* ST: no dereference, every variable read owned storage (not a VAR_IN_OUT,
+  which may be unconnected: NullRef raises F-NULL-REF on any read, nor a
+  REF_TO or interface), no member that is an FB's VAR_IN_OUT;
+* Python: names, literals, attribute reads and subscripts (of owned lists
+  and objects: an IndexError or AttributeError is not caught by the
+  handler either, so it propagates the same with or without it),
+  comparisons, `& | ^ ~ not and or`, and `+ - *`; calls only of `abs`,
+  `min`, `max`; no `/ // % ** << >>` (ZeroDivisionError, ValueError of a
+  negative shift), no `:=`, no other call (index checks call `_index_fault`,
+  conversions and functions may raise).  `+ - *` of ints and floats raise
+  only when an int beyond 2**1024 meets a float (OverflowError): with at
+  most 14 such operators on ST integers (at most 64 bits, literals at most
+  65) no intermediate gets there.
+"""
+
+from __future__ import annotations
+
+import keyword
+import re
+
+from ... import ast
+from ...types import FBType, InterfaceType, RefType, StructType, resolve_alias
+from ..scope import walk
+
+# Characters an expression that cannot fault is made of: no quote, `/`, `%`, `:`, `@`.
+_ALLOWED = re.compile(r"[\w\s.()\[\],+\-*<>=!&|^~]*")
+_ASSIGNMENT = re.compile(r"(?<![=<>!])=(?!=)")          # `=` outside `== <= >= !=`
+_WORD = re.compile(r"\b([A-Za-z_]\w*)(\s*\()?")
+_CALLABLE = {"abs", "min", "max"}
+_WORDS = {"not", "and", "or", "if", "else", "in", "is", "True", "False", "None"}
+_EXPONENT = re.compile(r"\b\d+(?:\.\d*)?[eE][+-]\d+")
+MAX_ARITHMETIC = 14
+
+
+def code_cannot_fault(code: str) -> bool:
+    """The Python expression `code` raises nothing `_FAULTS` catches (module docstring)."""
+    if not code.strip() or not _ALLOWED.fullmatch(code) or "**" in code or "<<" in code \
+            or ">>" in code or _ASSIGNMENT.search(code):
+        return False
+    for match in _WORD.finditer(code):
+        word, called = match.group(1), match.group(2)
+        if keyword.iskeyword(word) and word not in _WORDS:
+            return False
+        if called and word not in _CALLABLE and word not in _WORDS:
+            return False
+    bare = _EXPONENT.sub("0", code)        # the sign of 1e+308 is no operator
+    return bare.count("+") + bare.count("-") + bare.count("*") <= MAX_ARITHMETIC
+
+
+def _owned(t) -> bool:
+    return not isinstance(resolve_alias(t), (RefType, InterfaceType))
+
+
+def expr_cannot_fault(compiler, node, code: str) -> bool:
+    """`node` (compiled to `code`) reads only owned storage and its code cannot raise."""
+    if not code_cannot_fault(code):
+        return False
+    for n in walk((node,)):
+        if isinstance(n, ast.Deref):
+            return False
+        if isinstance(n, ast.Name):
+            symbol = _symbol(compiler, n)
+            if symbol is not None and (symbol.kind == "VAR_IN_OUT" or not _owned(symbol.type)):
+                return False
+        elif isinstance(n, ast.Member):
+            base = resolve_alias(compiler.ty(n.base))
+            key = n.name.upper()
+            if isinstance(base, StructType) and key in base.fields and not base.union:
+                member_type = base.fields[key][1]
+            elif isinstance(base, FBType) and key in base.variables and base.variables[key].kind != "VAR_IN_OUT":
+                member_type = base.variables[key].type
+            else:
+                return False
+            if not _owned(member_type):
+                return False
+    return True
+
+
+def _symbol(compiler, name):
+    """The variable `name` stands for, or None (an enumerated value, a constant)."""
+    key = name.name.upper()
+    place = compiler.scope.places.get(key)
+    if place is not None:
+        return place.symbol
+    if key in compiler.pou.variables:
+        return compiler.pou.variables[key]
+    return compiler.program.globals.get(key)
