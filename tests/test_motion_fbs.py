@@ -272,8 +272,8 @@ def test_second_sync_instance_takes_the_axis_and_aborts_the_first():
 @pytest.mark.parametrize("fb_class", [fbs.MC_Reset, fbs.MC_Home, fbs.MC_Stop, fbs.MC_MoveAbsolute,
                                       fbs.MC_SyncMoveAbsolute])
 def test_the_idle_test_of_final_outputs_covers_exactly_each_fbs_final_outputs(fb_class):
-    # `_final_shown` spells out FINAL_OUTPUTS and ErrorID by hand (speed): each of them
-    # alone makes it true, none makes it false.
+    # `_final_shown` (and the idle call's test) spells out FINAL_OUTPUTS and ErrorID,
+    # generated per class (speed): each of them alone makes it true, none makes it false.
     fb = make_fb(fb_class)
     assert not fb._final_shown()
     for output in (*fb_class.FINAL_OUTPUTS, "v_ERRORID"):
@@ -281,3 +281,11 @@ def test_the_idle_test_of_final_outputs_covers_exactly_each_fbs_final_outputs(fb
         assert fb._final_shown(), output
         setattr(fb, output, 0 if output == "v_ERRORID" else False)
         assert not fb._final_shown()
+
+
+def test_the_idle_call_is_spelt_out_per_class_and_only_from_attribute_names():
+    for fb_class in (fbs.MC_Reset, fbs.MC_Home, fbs.MC_Stop, fbs.MC_MoveAbsolute):
+        assert fb_class.execute is fb_class._execute_rules
+    assert fbs.MC_SyncMoveAbsolute.execute is not fbs.MC_SyncMoveAbsolute._execute_rules   # its own short path
+    with pytest.raises(ValueError, match="attribute names only"):
+        type("Odd", (fbs._ExecuteFB,), {"FINAL_OUTPUTS": ("v_DONE; import os",)})

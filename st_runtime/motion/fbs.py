@@ -87,15 +87,12 @@ class _ExecuteFB(_AxisFB):
         self._previous_execute = False
         self._command: MotionCommand | None = None
 
-    def execute(self, ctx) -> None:
-        if not self.v_EXECUTE and not self.v_BUSY:
-            if self._final_shown():
-                self._clear_outputs()  # a held (or one-call) final output ends
-            if self._command is None or not self.AFTER_CALL:
-                # Idle (the call of most scans): nothing starts or runs, `_after_call`
-                # has nothing to do, so the axis need not be looked up.
-                self._previous_execute = False
-                return
+    def __init_subclass__(cls, **kwargs) -> None:
+        super().__init_subclass__(**kwargs)
+        _spell_out_idle_call(cls)
+
+    def _run(self, ctx) -> None:
+        """A call that is not idle (`execute`, `_IDLE_CALL`: the rules after the idle test)."""
         execute = bool(self.v_EXECUTE)
         axis = self._axis(ctx)
         if execute and not self._previous_execute:
@@ -143,12 +140,6 @@ class _ExecuteFB(_AxisFB):
         self._end("v_ERROR")
         self.v_ERRORID = int(code)
 
-    def _final_shown(self):
-        """Truthy when a final output or ErrorID is set: FINAL_OUTPUTS spelt out (every idle
-        call asks; attribute loads cost a fifth of any() over an attrgetter).  A subclass
-        with other FINAL_OUTPUTS spells out its own."""
-        return self.v_DONE or self.v_COMMANDABORTED or self.v_ERROR or self.v_ERRORID
-
     def _clear_outputs(self) -> None:
         # Called every scan an idle FB is called: write only what is set (same state, fewer stores).
         if not self._final_shown():
@@ -168,6 +159,45 @@ class _ExecuteFB(_AxisFB):
 
     def _after_call(self, axis: Axis | None, execute: bool) -> None:
         pass
+
+
+# An Execute FB's idle call (no Execute, not Busy: the call of most scans) and the test
+# of its final outputs, spelt out from the class's FINAL_OUTPUTS: attribute loads in the
+# call itself, no call of a helper (each costs more than the test; any() over an
+# attrgetter five times the loads).  Held (or one-call) final outputs end; nothing starts
+# or runs and `_after_call` has nothing to do, so the axis need not be looked up.
+_IDLE_CALL = """
+def _final_shown(self):
+    return {shown}
+
+def _execute_rules(self, ctx):
+    if not self.v_EXECUTE and not self.v_BUSY:
+        if {shown}:
+            self._clear_outputs()
+        if self._command is None or not self.AFTER_CALL:
+            self._previous_execute = False
+            return
+    self._run(ctx)
+"""
+
+
+def _spell_out_idle_call(cls) -> None:
+    """`_final_shown` and `_execute_rules` of `cls` from `_IDLE_CALL`; `execute` is
+    `_execute_rules` unless the class writes its own (which then calls it)."""
+    outputs = (*cls.FINAL_OUTPUTS, "v_ERRORID")
+    if not all(output.isidentifier() for output in outputs):
+        raise ValueError(f"{cls.__name__}.FINAL_OUTPUTS: attribute names only, not {outputs!r}")
+    shown = " or ".join(f"self.{output}" for output in outputs)
+    namespace: dict = {}
+    code = compile(_IDLE_CALL.format(shown=shown), f"<{cls.__name__} idle call>", "exec")
+    exec(code, namespace)       # attribute names only (checked above)
+    cls._final_shown = namespace["_final_shown"]
+    cls._execute_rules = namespace["_execute_rules"]
+    if "execute" not in cls.__dict__:
+        cls.execute = cls._execute_rules
+
+
+_spell_out_idle_call(_ExecuteFB)
 
 
 # The outputs every command that moves the axis has after its own first one.
@@ -238,9 +268,6 @@ class MC_Reset(_ExecuteFB):
         outputs="Done : BOOL; Busy : BOOL; Failure : BOOL; Error : BOOL; ErrorID : WORD;")
     FINAL_OUTPUTS = ("v_DONE", "v_FAILURE", "v_ERROR")
     ACTIVE_OUTPUT = False
-
-    def _final_shown(self):
-        return self.v_DONE or self.v_FAILURE or self.v_ERROR or self.v_ERRORID
 
     def _start(self, axis: Axis | None) -> None:
         if axis is None:
@@ -359,9 +386,6 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
         inputs="Execute : BOOL; Position : LREAL; Direction : _eMC_DIRECTION; BufferMode : _eMC_BUFFER_MODE;",
         outputs="InPosition : BOOL; " + MOVE_OUTPUTS)
     FINAL_OUTPUTS = ("v_COMMANDABORTED", "v_ERROR")
-
-    def _final_shown(self):
-        return self.v_COMMANDABORTED or self.v_ERROR or self.v_ERRORID
     ACTIVE_AT_START = False
 
     def _begin(self, axis: Axis) -> MotionCommand:
@@ -391,7 +415,7 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
                 position = self.v_POSITION      # an LREAL input holds a float: float() only if not
                 command.target = position if position.__class__ is float else float(position)
                 return
-        super().execute(ctx)
+        self._execute_rules(ctx)
 
     def _start(self, axis: Axis | None) -> None:
         command = self._command
