@@ -64,9 +64,7 @@ def _owned_store(compiler, node, lines: list[str]) -> bool:
 
 def _plain_variable(compiler, name) -> bool:
     """`name` is the POU's own elementary variable held as a local or a slot."""
-    key = name.name.upper()
-    place = compiler.scope.places.get(key)
-    symbol = place.symbol if place is not None else compiler.pou.variables.get(key)
+    symbol = branches._symbol(compiler, name)       # a global has kind VAR_GLOBAL
     if symbol is None or symbol.kind not in _PLAIN_KINDS:
         return False
     if symbol.decl is not None and getattr(symbol.decl, "location", None) is not None:
