@@ -31,11 +31,15 @@ Q := 3;
 B := 0;
 N := N + A / B;
 I := I + 1;
+G := 1;
 END_PROGRAM
+VAR_GLOBAL
+    G : DINT;
+END_VAR
 """
 FAULT_FREE = ["self.v_T = 93784005006007", "v_B = ((((-", "self.v_F = (((", "v_R = ((v_R * 2.0) - v_R)",
               "v_B = 0", "self.v_I = (((("]
-MAY_FAULT = ["_idiv(", "_index_fault(", "self.v_Q = 3"]
+MAY_FAULT = ["_idiv(", "_index_fault(", "self.v_Q = 3", "v_G = 1"]
 
 
 def _program(tmp_path):
@@ -66,7 +70,7 @@ def test_fault_free_stores_lose_their_try_and_the_rest_keep_it(tmp_path):
     source = compile_program(_program(tmp_path), optimise=Optimisations()).python_sources["MAIN"]
     for fragment in FAULT_FREE:
         assert not _guarded(source, fragment), fragment
-    for fragment in MAY_FAULT:            # division, index check, store to the process image
+    for fragment in MAY_FAULT:            # division, index check, process image, global
         assert _guarded(source, fragment), fragment
     without = compile_program(_program(tmp_path), optimise=Optimisations.none()).python_sources["MAIN"]
     for fragment in ("self.v_T = 93784005006007", "v_B = 0"):
