@@ -298,7 +298,7 @@ class BodyCompiler(ExprCompiler):
         if self.opt.unguard and isinstance(node, ast.Assign):
             mark = o.mark()
             emit()
-            if unguard.cannot_fault(o.lines[mark:]):
+            if unguard.cannot_fault(o.lines[mark:], self, node):
                 return
             o.lines[mark:] = ["    " + line for line in o.lines[mark:]]
             o.insert(mark, ["try:"])

@@ -44,7 +44,14 @@ states bit for bit:
   checks, run when the range (`range.stop`, tested once) lies inside every
   array so indexed, and the loop as before otherwise.
 * `unguard` (unguard.py): no `try` around an assignment whose Python code
-  cannot raise (a local set from locals and literals with `+ - *`).
+  cannot raise: a local set from locals and literals with `+ - *`, or a
+  store into the POU's own elementary variable (a local or a `self.` slot;
+  not located, whose attribute is a process-image property, nor VAR_IN_OUT,
+  REF_TO or global) of an expression that cannot fault by the branches
+  pass's rule (owned reads, literals, comparisons, logic, unary minus,
+  `+ - *`; no division, power, shift or call).  The handler catches
+  `_FAULTS` only, so where nothing can raise one it never runs: same
+  results, faults and charges.
 * `branches` (branches.py): an IF whose conditions cannot fault (owned
   variables, comparisons, logic, `+ - *`, no call that may raise) is a plain
   `if/elif/else` instead of a guarded branch index compared with each

@@ -1,24 +1,72 @@
 """No `try` around an assignment that cannot raise.
 
-The code of an assignment cannot raise when it is `local = expression`
-where the expression uses only Python locals, numeric literals, parentheses
-and `+ - *`: every local of an elementary variable holds an int or a float
-(set in the prologue, so always bound), and + - * of ints and floats never
-raise in Python (a float overflow gives inf).  Attribute reads, subscripts,
-calls, `**`, division and comparisons keep their handler.
+Two rules, either one suffices:
+
+* local arithmetic: `local = expression` where the expression uses only
+  Python locals, numeric literals, parentheses and `+ - *`: every local of
+  an elementary variable holds an int or a float (set in the prologue, so
+  always bound), and + - * of ints and floats never raise in Python (a
+  float overflow gives inf).
+* owned store: `X := expression` compiled to the one line `target = code`,
+  where X is a variable the POU owns as plain storage (a local or a
+  `self.` slot: not a VAR_IN_OUT or REF_TO, whose store goes through a
+  reference; not located AT %..., whose attribute is a property writing the
+  process image; not a global or VAR_EXTERNAL; of an elementary type, so no
+  copy), and the expression cannot fault by the rule of the branches pass
+  (optimise/branches.py `expr_cannot_fault`: owned reads, literals,
+  comparisons, `not and or & | ^ ~`, unary minus, at most 14 `+ - *`; no
+  division, power, shift or call but `abs min max`).  Storing into a slot
+  or a local raises nothing; the conversion to the target's type, where one
+  is needed, is a call and keeps the handler.
+
+The handler catches `_FAULTS` only: when the code cannot raise one, the
+handler never runs and results, faults and the charged cost are the same.
+Division, power, calls (conversions, index checks), and stores to located,
+referenced or global variables keep their handler.
 """
 
 from __future__ import annotations
 
 import re
 
+from ... import ast
+from ...types import ElementaryType, resolve_alias
+from . import branches
+
 _ASSIGNMENT = re.compile(r"\s*[A-Za-z_]\w* = ([\w\s()+\-*.]+)")
 _ATTRIBUTE_OR_CALL = re.compile(r"[A-Za-z_]\w*\s*[.(]")
+_STORE = re.compile(r"\s*(?:self\.)?[A-Za-z_]\w* = (.+)")
+_PLAIN_KINDS = {"VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP", "RETURN"}
 
 
-def cannot_fault(lines: list[str]) -> bool:
-    for line in lines:
-        match = _ASSIGNMENT.fullmatch(line)
-        if match is None or "**" in match.group(1) or _ATTRIBUTE_OR_CALL.search(match.group(1)):
-            return False
-    return bool(lines)
+def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:
+    """The assignment's code `lines` raises nothing `_FAULTS` catches (module docstring)."""
+    if lines and all(_local_arithmetic(line) for line in lines):
+        return True
+    return compiler is not None and _owned_store(compiler, node, lines)
+
+
+def _local_arithmetic(line: str) -> bool:
+    match = _ASSIGNMENT.fullmatch(line)
+    return match is not None and "**" not in match.group(1) \
+        and not _ATTRIBUTE_OR_CALL.search(match.group(1))
+
+
+def _owned_store(compiler, node, lines: list[str]) -> bool:
+    if len(lines) != 1 or not isinstance(node, ast.Assign) or node.mode != ":=" \
+            or not isinstance(node.target, ast.Name):
+        return False
+    match = _STORE.fullmatch(lines[0])
+    if match is None or not _plain_variable(compiler, node.target):
+        return False
+    return branches.expr_cannot_fault(compiler, node.value, match.group(1))
+
+
+def _plain_variable(compiler, name) -> bool:
+    """`name` is the POU's own elementary variable held as a local or a slot."""
+    symbol = branches._symbol(compiler, name)       # a global has kind VAR_GLOBAL
+    if symbol is None or symbol.kind not in _PLAIN_KINDS:
+        return False
+    if symbol.decl is not None and getattr(symbol.decl, "location", None) is not None:
+        return False
+    return isinstance(resolve_alias(symbol.type), ElementaryType)

@@ -1,0 +1,87 @@
+"""The unguard pass (optimise/unguard.py): which statements lose their `try`, and that
+the ones that keep it fault at the same line, scan after scan, with the pass on and off."""
+
+from __future__ import annotations
+
+from st_runtime import loader
+from st_runtime.compiler import Optimisations, compile_program
+
+from test_optimiser_equivalence import run_both
+
+SOURCE = """\
+PROGRAM MAIN
+VAR
+    T : LINT;
+    A : DINT := 7;
+    B : DINT;
+    F : BOOL;
+    R : LREAL := 1.5;
+    Q AT %QW0 : INT;
+    ARR : ARRAY[0..3] OF DINT;
+    I : DINT := 5;
+    N : DINT;
+END_VAR
+T := 93784005006007;
+B := -A;
+F := A > 3 AND NOT (R < 0.5) OR FALSE;
+R := R * 2.0 - R;
+N := A / B;
+ARR[I] := 1;
+Q := 3;
+B := 0;
+N := N + A / B;
+I := I + 1;
+G := 1;
+END_PROGRAM
+VAR_GLOBAL
+    G : DINT;
+END_VAR
+"""
+FAULT_FREE = ["self.v_T = 93784005006007", "v_B = ((((-", "self.v_F = (((", "v_R = ((v_R * 2.0) - v_R)",
+              "v_B = 0", "self.v_I = (((("]
+MAY_FAULT = ["_idiv(", "_index_fault(", "self.v_Q = 3", "v_G = 1"]
+
+
+def _program(tmp_path):
+    path = tmp_path / "main.st"
+    path.write_text(SOURCE)
+    result = loader.load([str(path)])
+    assert result.program is not None
+    return result.program
+
+
+def _guarded(source: str, fragment: str) -> bool:
+    """Whether the line holding `fragment` sits in a `try:` whose handler is `except _FAULTS`."""
+    lines = source.splitlines()
+    index = next(i for i, line in enumerate(lines) if fragment in line)
+    indent = _depth(lines[index])
+    opener = next(i for i in range(index - 1, -1, -1) if _depth(lines[i]) < indent)
+    if lines[opener].strip() != "try:":
+        return False
+    after = next(line for line in lines[index:] if _depth(line) <= _depth(lines[opener]))
+    return after.strip().startswith("except _FAULTS")
+
+
+def _depth(line: str) -> int:
+    return len(line) - len(line.lstrip())
+
+
+def test_fault_free_stores_lose_their_try_and_the_rest_keep_it(tmp_path):
+    source = compile_program(_program(tmp_path), optimise=Optimisations()).python_sources["MAIN"]
+    for fragment in FAULT_FREE:
+        assert not _guarded(source, fragment), fragment
+    for fragment in MAY_FAULT:            # division, index check, process image, global
+        assert _guarded(source, fragment), fragment
+    without = compile_program(_program(tmp_path), optimise=Optimisations.none()).python_sources["MAIN"]
+    for fragment in ("self.v_T = 93784005006007", "v_B = 0"):
+        assert _guarded(without, fragment), fragment
+
+
+def test_guarded_statements_fault_at_the_same_line_and_the_scan_goes_on(tmp_path):
+    off, on = run_both(_program(tmp_path), 2, budget_ns=10_000_000)
+    assert on == off
+    faults = [(code, line, scan) for code, _, line, _, scan in on[0]]
+    # Line 17: 7 / -7 is fine; line 18: ARR[5] is out of 0..3; line 21: N + 7 / 0.
+    # I goes 5 -> 6, so scan 2 indexes out of range again.
+    assert [(code, line) for code, line, _ in faults] == [("F-INDEX", 18), ("F-DIV-ZERO", 21)] * 2
+    assert [scan for *_, scan in faults] == [faults[0][2]] * 2 + [faults[0][2] + 1] * 2
