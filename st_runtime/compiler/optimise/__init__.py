@@ -39,10 +39,6 @@ states bit for bit:
   through the code as it is written (assignments, IF/CASE joins, loops), so
   a bounds check that can never fail is left out (`Matrix[PivotRow, K]`
   after `PivotRow := K` and `PivotRow := Row` in the LU's pivot search).
-* `rowswap` (rowswap.py): an unrolled loop that exchanges two rows of a
-  matrix through a buffer (the LU's row exchange) is two slice assignments
-  when the matrix is a list and both rows are in range, the unrolled loop
-  otherwise: the same elements moved, the buffer's last value, no fault.
 * `unguard` (unguard.py): no `try` around an assignment whose Python code
   cannot raise (a local set from locals and literals with `+ - *`).
 
@@ -72,7 +68,6 @@ class Optimisations:
     inline: bool = True
     vector: bool = True
     ranges: bool = True
-    rowswap: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

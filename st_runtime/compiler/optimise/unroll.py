@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from ... import ast
 from ..scope import walk
-from . import UNROLL_CAP, rowswap
+from . import UNROLL_CAP
 
 
 def can_unroll(compiler, body, place, count: int | None, assigned: set[str], key: str) -> bool:
@@ -73,12 +73,8 @@ def emit(compiler, s, key: str, values: range, after, returns: bool = False, whe
 
     o = compiler.out
     outer = compiler.region
-    swap = rowswap.match(compiler, s, values) if compiler.opt.rowswap and outer is None and not returns else None
-    if swap is not None:        # two slices when it can: the copies below in its `else:`
-        rowswap.emit(compiler, swap, after)
-        o.indent()
     region = None
-    if (swap is None and outer is None and not returns and compiler.opt.cse and compiler.unit.guard_statements
+    if (outer is None and not returns and compiler.opt.cse and compiler.unit.guard_statements
             and region_allowed(compiler, s.body)):
         region = compiler.region = Region(compiler.temp)
         flag = compiler.temp()
@@ -100,8 +96,6 @@ def emit(compiler, s, key: str, values: range, after, returns: bool = False, whe
         compiler.unrolled.pop(key, None)
         if outer is not None:
             outer.straight = False
-        if swap is not None:
-            o.dedent()
     if region is None:
         return False
     compiler.region = None
