@@ -188,7 +188,9 @@ class Vectorised:
     by depth, and each chain (its head, then its steps).  The inputs are checked first:
     when one is not finite or so large that some value could overflow (`limit`, from
     the graph), the run is computed in Python instead (`exact`), so NumPy never sees
-    an inf or a NaN (and never warns)."""
+    an inf or a NaN (and never warns).  The passed inputs reach the buffer through one
+    `struct.pack_into` (`=d`: the double's bits unchanged, as NumPy's conversion keeps
+    them; cheaper than converting a list and a tuple); what it cannot pack runs `exact`."""
 
     def __init__(self, graph: _Graph, outputs: list[int], source=None):
         """`source`: (size, {input: element}) when inputs are elements of one list, which
