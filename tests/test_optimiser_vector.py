@@ -202,3 +202,19 @@ def test_f_period_lands_on_the_same_statement_and_state(budget_ns):
 
     off, on = run_both(api.load_text(MAIN5).program, 3, budget_ns)
     assert on == off
+
+
+def test_inputs_that_struct_cannot_pack_take_the_python_run(builds):
+    """The inputs are written into NumPy's buffer by one struct.pack_into; an input it
+    cannot pack as a double (an int beyond the double range, a string) makes the call
+    compute the run in Python (`exact`), as an input NumPy must not see does."""
+    helper = next(v for v in builds["on"].namespace.values() if isinstance(v, vector.Vectorised))
+    m = [float(i % 7) - 3.0 for i in range(N * N)]
+    assert helper(m, (0.0,)) == helper.exact(m, (0.0,))
+    assert helper(m, (0,)) == helper.exact(m, (0,))                    # an int packs exactly
+    huge = list(m)
+    huge[0] = 10 ** 400                    # OverflowError in pack; Python's `*` raises it too
+    for run in (helper, helper.exact):
+        with pytest.raises(OverflowError):
+            run(huge, (0.0,))
+    assert helper(m, (0.0, 0.0)) == helper.exact(m, (0.0, 0.0))         # struct.error: count

@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import math
 import re
+import struct
 
 from ...types import ArrayType, resolve_alias
 
@@ -187,7 +188,9 @@ class Vectorised:
     by depth, and each chain (its head, then its steps).  The inputs are checked first:
     when one is not finite or so large that some value could overflow (`limit`, from
     the graph), the run is computed in Python instead (`exact`), so NumPy never sees
-    an inf or a NaN (and never warns)."""
+    an inf or a NaN (and never warns).  The passed inputs reach the buffer through one
+    `struct.pack_into` (`=d`: the double's bits unchanged, as NumPy's conversion keeps
+    them; cheaper than converting a list and a tuple); what it cannot pack runs `exact`."""
 
     def __init__(self, graph: _Graph, outputs: list[int], source=None):
         """`source`: (size, {input: element}) when inputs are elements of one list, which
@@ -308,8 +311,11 @@ class Vectorised:
         for k, (_, c) in enumerate(self.constants):
             v[self.n_passed + k] = c
         self.passed = v[:self.n_passed]
-        self.whole = v[:self.n_list]
-        self.tuple = v[self.n_list:self.n_passed]
+        # the passed inputs are written by one struct call into the buffer's first bytes
+        # (`=d`: IEEE binary64 in the machine's order, NumPy's float64; a float's bits as
+        # they are), instead of NumPy converting a list and a tuple element by element
+        self.pack = struct.Struct(f"={self.n_passed}d").pack_into
+        self.memory = memoryview(v).cast("B")
         self.scratch = np.empty(self.n_passed)
         self.steps = []
         for both, n, start, stop in self.levels:
@@ -321,11 +327,12 @@ class Vectorised:
     def __call__(self, whole, inputs):
         # (ufuncs and ndarray.take are C; np.take and ndarray.max go through Python
         # wrappers; positional arguments: out=, mode=, axis=, dtype=)
-        if self.n_list:
-            if type(whole) is not list or len(whole) != self.n_list:
-                return self.exact(whole, inputs)
-            self.whole[:] = whole
-        self.tuple[:] = inputs
+        if self.n_list and (type(whole) is not list or len(whole) != self.n_list):
+            return self.exact(whole, inputs)
+        try:
+            self.pack(self.memory, 0, *(whole or ()), *inputs)
+        except (struct.error, TypeError, OverflowError):     # not numbers, or not as many
+            return self.exact(whole, inputs)
         if not _largest(_abs(self.passed, self.scratch)) < self.limit:     # inf, NaN, or too large
             return self.exact(whole, inputs)
         v = self.buffer
