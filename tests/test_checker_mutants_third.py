@@ -229,3 +229,43 @@ def test_super_outside_a_function_block():
 def test_a_method_an_interface_does_not_have():
     code, line, col, _ = only("INTERFACE I\nEND_INTERFACE\n" + program("    j : I;", "j.Nope();"))
     assert (code, line, col) == ("E-TYPE-009", 7, 1)
+
+
+def test_untyped_real_literal_takes_the_type_of_the_other_operand():
+    """3rd ed. 6.6.2.5.4 (and the checker's module docstring): an untyped
+    literal takes its type from the typed operand, so `1.5 * r` with r a
+    REAL is a REAL and may be stored in a REAL without conversion."""
+    main = after_one_scan(program("    x : REAL;\n    r : REAL := 2.0;", "x := 1.5 * r;"))
+    assert main["x"] == 3.0
+
+
+def test_namespaced_function_without_result_called_as_a_statement():
+    """A function without a result type is called as a statement (3rd ed.
+    6.6.1.2.2), also through its namespace (6.9: NS.F)."""
+    text = ("NAMESPACE NS\nFUNCTION F\nVAR_INPUT i : INT; END_VAR\nEND_FUNCTION\nEND_NAMESPACE\n"
+            + program("    x : INT;", "NS.F(1);"))
+    assert diagnostics(text) == []
+
+
+def test_expression_given_to_an_in_out_is_still_checked():
+    """An expression given to a VAR_IN_OUT is refused (it is no variable,
+    3rd ed. 6.6.1.2.2), and what is wrong inside it is reported as well."""
+    text = ("FUNCTION_BLOCK B\nVAR_IN_OUT v : INT; END_VAR\nEND_FUNCTION_BLOCK\n"
+            + program("    b : B; x : INT;", "b(v := x + TRUE);"))
+    assert [d[:3] for d in diagnostics(text)] == [("E-CALL-007", 8, 8), ("E-TYPE-001", 8, 10)]
+
+
+def test_an_enumerator_written_type_dot_value_is_a_literal_initial_value():
+    """Sysmac Studio's variable table takes literals (docs/nj501.md, NJ rule
+    008); CODESYS's `Light.Green` is an enumerator, a literal: no warning."""
+    text = "TYPE Light : (Red, Green); END_TYPE\n" + program("    c : Light := Light.Green;", "")
+    assert diagnostics(text, "codesys") == []
+
+
+def test_struct_initializer_reports_every_wrong_member():
+    """3rd ed. 6.4.4.5 (structure initialization): each member named once,
+    each one a member, each value of its type; all three faults reported."""
+    text = ("TYPE S : STRUCT x : INT; y : INT; END_STRUCT; END_TYPE\n"
+            + program("    s : S := (q := 1, x := 1, x := 2, y := TRUE);", ""))
+    assert [d[:3] for d in diagnostics(text)] == [("E-DECL-007", 4, 15), ("E-DECL-007", 4, 31),
+                                                  ("E-TYPE-004", 4, 44)]
