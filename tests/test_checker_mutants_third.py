@@ -348,3 +348,33 @@ def test_memory_limit_of_a_variable_is_inclusive():
              if d.code.startswith("E") and d.pos.file == "t.st"]
     assert found == [("E-LIMIT-009", 1, 1, "an instance of Main needs 100,001 bytes, above the memory limit "
                                            "of 100,000 bytes")]
+
+
+CHART = """PROGRAM Main
+VAR Go : BOOL := TRUE; Lamp : BOOL; END_VAR
+INITIAL_STEP Wait:
+END_STEP
+TRANSITION FROM Wait TO (A, B) := Go;
+END_TRANSITION
+STEP A:
+    Lamp(N);
+END_STEP
+STEP B:
+    {b}
+END_STEP
+TRANSITION FROM (A, B) TO Wait := FALSE;
+END_TRANSITION
+END_PROGRAM
+"""
+
+
+def test_reset_qualifier_overrides_a_non_stored_association():
+    """IEC 61131-3 3rd ed. 6.7.4 (action control, figure 15): Q = (N OR S
+    ...) AND NOT R: an action reset (R) by one active step is off even while
+    another active step associates it with N.  A and B run side by side
+    after the divergence; without B's R, A's N turns the lamp on."""
+    for b, lamp in (("Lamp(R);", False), ("", True)):
+        plc = load_text(CHART.format(b=b)).controller(period="1ms")
+        main = plc.add_program("Main")
+        plc.run(3)
+        assert (main["A.X"], main["B.X"], main["Lamp"]) == (True, True, lamp), b
