@@ -378,3 +378,43 @@ def test_reset_qualifier_overrides_a_non_stored_association():
         main = plc.add_program("Main")
         plc.run(3)
         assert (main["A.X"], main["B.X"], main["Lamp"]) == (True, True, lamp), b
+
+
+# ------------------------------------------------------------ the shared prelude, built afresh
+
+def _shared_and_full(texts: dict[str, str], dialect: str, memory_limit: int | None = None):
+    """The rendered diagnostics and the types of a load with the shared
+    prelude and of one that checks the prelude again (checker/prelude_base.py:
+    both must be the same)."""
+    from st_runtime.checker import check
+    from st_runtime.loader import BUILTIN, _ordered, parse_texts
+    out = []
+    for share in (True, False):
+        _, parsed, diagnostics = parse_texts(dict(texts), dialect)
+        program, found = check([f for _, f in parsed], dialect, memory_limit, share_prelude=share)
+        everything = diagnostics + found
+        rendered = [d.render(texts.get(d.pos.file)) for d in _ordered(everything, [BUILTIN, *texts])]
+        types = None if any(d.is_error for d in everything) else \
+            [(k, str(t)) for k, t in program.types.items()]
+        out.append((rendered, types))
+    return out
+
+
+SHARED_CASES = [
+    ("TYPE Light : (Red, Green); END_TYPE\nTYPE Pair : STRUCT a : Light; t : TON; END_STRUCT; END_TYPE\n"
+     + program("    p : Pair; c : Light := Green; t : TON;", "t(IN := c = Red, PT := T#1ms);"), None),
+    ("PROGRAM MAIN VAR t : TON; p : MC_Power; a : AXIS_REF; s : STRING[10]; END_VAR END_PROGRAM", 16),
+    ("PROGRAM MAIN VAR t : TON; p : MC_Power; a : AXIS_REF; s : STRING[10]; END_VAR END_PROGRAM", 40),
+]
+
+
+def test_a_prelude_built_afresh_checks_like_a_full_check(monkeypatch):
+    """The shared prelude is built once per process; here it is built again
+    for each case (an empty cache), so a changed builder is seen."""
+    import importlib
+    prelude_base = importlib.import_module("st_runtime.checker.prelude_base")   # (the package exports a function of that name)
+    for text, limit in SHARED_CASES:
+        for dialect in ("iec", "nj"):
+            monkeypatch.setattr(prelude_base, "_BASES", {})
+            shared, full = _shared_and_full({"m.st": text}, dialect, limit)
+            assert shared == full, (text, dialect, limit)
