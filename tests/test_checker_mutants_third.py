@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from st_runtime.api import load_text
 from checker_helpers import load
+from test_prelude_sharing import _both_ways, _layout     # (shared and full check side by side)
 
 
 def diagnostics(text: str, dialect: str = "iec") -> list[tuple[str, int, int, str]]:
@@ -382,24 +383,6 @@ def test_reset_qualifier_overrides_a_non_stored_association():
 
 # ------------------------------------------------------------ the shared prelude, built afresh
 
-def _shared_and_full(texts: dict[str, str], dialect: str, memory_limit: int | None = None):
-    """The rendered diagnostics and the types of a load with the shared
-    prelude and of one that checks the prelude again (checker/prelude_base.py:
-    both must be the same)."""
-    from st_runtime.checker import check
-    from st_runtime.loader import BUILTIN, _ordered, parse_texts
-    out = []
-    for share in (True, False):
-        _, parsed, diagnostics = parse_texts(dict(texts), dialect)
-        program, found = check([f for _, f in parsed], dialect, memory_limit, share_prelude=share)
-        everything = diagnostics + found
-        rendered = [d.render(texts.get(d.pos.file)) for d in _ordered(everything, [BUILTIN, *texts])]
-        types = None if any(d.is_error for d in everything) else \
-            [(k, str(t)) for k, t in program.types.items()]
-        out.append((rendered, types))
-    return out
-
-
 SHARED_CASES = [
     ("TYPE Light : (Red, Green); END_TYPE\nTYPE Pair : STRUCT a : Light; t : TON; END_STRUCT; END_TYPE\n"
      + program("    p : Pair; c : Light := Green; t : TON;", "t(IN := c = Red, PT := T#1ms);"), None),
@@ -416,5 +399,7 @@ def test_a_prelude_built_afresh_checks_like_a_full_check(monkeypatch):
     for text, limit in SHARED_CASES:
         for dialect in ("iec", "nj"):
             monkeypatch.setattr(prelude_base, "_BASES", {})
-            shared, full = _shared_and_full({"m.st": text}, dialect, limit)
+            (shared, program), (full, again) = _both_ways({"m.st": text}, dialect, limit)
             assert shared == full, (text, dialect, limit)
+            if program is not None:
+                assert _layout(program) == _layout(again)
