@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from st_runtime.api import load_text
 from checker_helpers import load
+from test_prelude_sharing import _both_ways, _layout     # (shared and full check side by side)
 
 
 def diagnostics(text: str, dialect: str = "iec") -> list[tuple[str, int, int, str]]:
@@ -229,3 +230,176 @@ def test_super_outside_a_function_block():
 def test_a_method_an_interface_does_not_have():
     code, line, col, _ = only("INTERFACE I\nEND_INTERFACE\n" + program("    j : I;", "j.Nope();"))
     assert (code, line, col) == ("E-TYPE-009", 7, 1)
+
+
+def test_untyped_real_literal_takes_the_type_of_the_other_operand():
+    """3rd ed. 6.6.2.5.4 (and the checker's module docstring): an untyped
+    literal takes its type from the typed operand, so `1.5 * r` with r a
+    REAL is a REAL and may be stored in a REAL without conversion."""
+    main = after_one_scan(program("    x : REAL;\n    r : REAL := 2.0;", "x := 1.5 * r;"))
+    assert main["x"] == 3.0
+
+
+def test_namespaced_function_without_result_called_as_a_statement():
+    """A function without a result type is called as a statement (3rd ed.
+    6.6.1.2.2), also through its namespace (6.9: NS.F)."""
+    text = ("NAMESPACE NS\nFUNCTION F\nVAR_INPUT i : INT; END_VAR\nEND_FUNCTION\nEND_NAMESPACE\n"
+            + program("    x : INT;", "NS.F(1);"))
+    assert diagnostics(text) == []
+
+
+def test_expression_given_to_an_in_out_is_still_checked():
+    """An expression given to a VAR_IN_OUT is refused (it is no variable,
+    3rd ed. 6.6.1.2.2), and what is wrong inside it is reported as well."""
+    text = ("FUNCTION_BLOCK B\nVAR_IN_OUT v : INT; END_VAR\nEND_FUNCTION_BLOCK\n"
+            + program("    b : B; x : INT;", "b(v := x + TRUE);"))
+    assert [d[:3] for d in diagnostics(text)] == [("E-CALL-007", 8, 8), ("E-TYPE-001", 8, 10)]
+
+
+def test_an_enumerator_written_type_dot_value_is_a_literal_initial_value():
+    """Sysmac Studio's variable table takes literals (docs/nj501.md, NJ rule
+    008); CODESYS's `Light.Green` is an enumerator, a literal: no warning."""
+    text = "TYPE Light : (Red, Green); END_TYPE\n" + program("    c : Light := Light.Green;", "")
+    assert diagnostics(text, "codesys") == []
+
+
+def test_struct_initializer_reports_every_wrong_member():
+    """3rd ed. 6.4.4.5 (structure initialization): each member named once,
+    each one a member, each value of its type; all three faults reported."""
+    text = ("TYPE S : STRUCT x : INT; y : INT; END_STRUCT; END_TYPE\n"
+            + program("    s : S := (q := 1, x := 1, x := 2, y := TRUE);", ""))
+    assert [d[:3] for d in diagnostics(text)] == [("E-DECL-007", 4, 15), ("E-DECL-007", 4, 31),
+                                                  ("E-TYPE-004", 4, 44)]
+
+
+# ------------------------------------------------------------ seed-18 survivors left by round two
+
+def test_multime_names_the_number_it_expects():
+    """MULTIME (3rd ed. table 30: TIME * ANY_NUM) names the category wanted."""
+    code, line, col, message = only(program("    t : TIME; b : BOOL;", "t := MULTIME(t, b);"))
+    assert (code, line, col) == ("E-TYPE-004", 5, 17)
+    assert message == "MULTIME: argument IN2: expected a number (ANY_NUM), found BOOL"
+
+
+def test_upper_bound_takes_no_output():
+    """UPPER_BOUND (3rd ed. 6.5.3) has the inputs ARR and DIM only: an
+    output argument is no second input (E-CALL-006 at the call, 2 counted)."""
+    code, line, col, message = only(program("    a : ARRAY[1..3] OF INT; i : DINT;", "i := UPPER_BOUND(a, X => i);"))
+    assert (code, line, col) == ("E-CALL-006", 5, 6) and "found 2 argument(s)" in message
+
+
+def test_enumeration_value_given_to_an_in_out_points_at_the_value():
+    text = ("TYPE Light : (Red, Green); END_TYPE\nFUNCTION_BLOCK B\nVAR_IN_OUT v : Light; END_VAR\n"
+            "END_FUNCTION_BLOCK\n" + program("    b : B;", "b(v := Red);"))
+    code, line, col, message = only(text)
+    assert (code, line, col) == ("E-CALL-007", 9, 8) and message.endswith("found an enumeration value")
+
+
+CONNECT = ("CONFIGURATION Plant\nRESOURCE Cpu ON PLC\nTASK T(INTERVAL := T#1ms, PRIORITY := 1);\n"
+           "PROGRAM P1 WITH T : Tank({args});\nEND_RESOURCE\nEND_CONFIGURATION\nVAR_GLOBAL G : INT; END_VAR\n"
+           "PROGRAM Tank\nVAR_INPUT Level : INT; END_VAR\nVAR_OUTPUT Out : INT; END_VAR\nEND_PROGRAM\n")
+
+
+def test_program_configuration_connects_inputs_with_values_and_outputs_with_variables():
+    """3rd ed. 6.8.2 (table 62, PROGRAM ... WITH task : type (connections)):
+    an input takes a value (:=), an output goes to a variable (=>)."""
+    assert diagnostics(CONNECT.format(args="Level := 5, Out => G")) == []
+    code, line, col, message = only(CONNECT.format(args="Level => G"))
+    assert (code, line, col) == ("E-CALL-005", 4, 26) and "'Level' is a VAR_INPUT" in message
+
+
+def test_access_path_in_a_configuration_without_programs():
+    text = ("CONFIGURATION Plant\nRESOURCE Cpu ON PLC\nVAR_ACCESS\n  L : Cpu.Tank1.Level : INT READ_ONLY;\n"
+            "END_VAR\nEND_RESOURCE\nEND_CONFIGURATION\n")
+    assert only(text) == ("E-DECL-001", 4, 3, "VAR_ACCESS L: the path names no program instance of Plant "
+                                              "(instances: none)")
+
+
+def test_initial_value_of_a_type_names_the_type():
+    code, line, col, message = only("TYPE T : INT := TRUE; END_TYPE\n")
+    assert (code, line, col) == ("E-TYPE-004", 1, 17) and message.startswith("initial value of type T: expected INT")
+
+
+def test_union_reports_every_wrong_member():
+    """A UNION's members share bytes (OMRON NJ union: BOOL, integers, bit
+    strings, reals: docs/nj501.md): a STRING member is refused, and the
+    members after it are still checked."""
+    found = diagnostics("TYPE U : UNION a : STRING; b : INT := TRUE; END_UNION; END_TYPE\n", "nj")
+    assert [d[:3] for d in found] == [("E-DECL-017", 1, 16), ("E-TYPE-004", 1, 39)]
+
+
+def test_nj_initial_value_hint_spells_true_in_upper_case():
+    code, line, col, message = only(program("    b : BOOL := NOT FALSE;", ""))
+    assert (code, line, col) == ("W-NJ-008", 3, 17) and message.endswith("write TRUE (* NOT FALSE *)")
+
+
+def test_memory_limit_of_a_variable_is_inclusive():
+    """checker/memory.py: a variable may need as many bytes as the limit,
+    not one more (100000 BYTEs against limits 100000 and 99999)."""
+    from st_runtime.loader import load_texts
+    text = program("    a : ARRAY[1..100000] OF BYTE;", "")
+    assert [d for d in load_texts({"t.st": text}, "iec", 100_000).diagnostics if d.code.startswith("E")] == []
+    refused = [(d.code, d.pos.line, d.pos.col) for d in load_texts({"t.st": text}, "iec", 99_999).diagnostics
+               if d.code.startswith("E") and d.pos.file == "t.st"]
+    assert ("E-LIMIT-008", 3, 5) in refused
+    # An instance of 100001 bytes whose variables are each within the limit is
+    # itself above it: E-LIMIT-009 at the POU.
+    text = program("    a : ARRAY[1..100000] OF BYTE;\n    b : BYTE;", "")
+    found = [(d.code, d.pos.line, d.pos.col, d.message) for d in load_texts({"t.st": text}, "iec", 100_000).diagnostics
+             if d.code.startswith("E") and d.pos.file == "t.st"]
+    assert found == [("E-LIMIT-009", 1, 1, "an instance of Main needs 100,001 bytes, above the memory limit "
+                                           "of 100,000 bytes")]
+
+
+CHART = """PROGRAM Main
+VAR Go : BOOL := TRUE; Lamp : BOOL; END_VAR
+INITIAL_STEP Wait:
+END_STEP
+TRANSITION FROM Wait TO (A, B) := Go;
+END_TRANSITION
+STEP A:
+    Lamp(N);
+END_STEP
+STEP B:
+    {b}
+END_STEP
+TRANSITION FROM (A, B) TO Wait := FALSE;
+END_TRANSITION
+END_PROGRAM
+"""
+
+
+def test_reset_qualifier_overrides_a_non_stored_association():
+    """IEC 61131-3 3rd ed. 6.7.4 (action control, figure 15): Q = (N OR S
+    ...) AND NOT R: an action reset (R) by one active step is off even while
+    another active step associates it with N.  A and B run side by side
+    after the divergence; without B's R, A's N turns the lamp on."""
+    for b, lamp in (("Lamp(R);", False), ("", True)):
+        plc = load_text(CHART.format(b=b)).controller(period="1ms")
+        main = plc.add_program("Main")
+        plc.run(3)
+        assert (main["A.X"], main["B.X"], main["Lamp"]) == (True, True, lamp), b
+
+
+# ------------------------------------------------------------ the shared prelude, built afresh
+
+SHARED_CASES = [
+    ("TYPE Light : (Red, Green); END_TYPE\nTYPE Pair : STRUCT a : Light; t : TON; END_STRUCT; END_TYPE\n"
+     + program("    p : Pair; c : Light := Green; t : TON;", "t(IN := c = Red, PT := T#1ms);"), None),
+    ("PROGRAM MAIN VAR t : TON; p : MC_Power; a : AXIS_REF; s : STRING[10]; END_VAR END_PROGRAM", 16),
+    ("PROGRAM MAIN VAR t : TON; p : MC_Power; a : AXIS_REF; s : STRING[10]; END_VAR END_PROGRAM", 40),
+]
+
+
+def test_a_prelude_built_afresh_checks_like_a_full_check(monkeypatch):
+    """The shared prelude is built once per process; here it is built again
+    for each case (an empty cache), so a changed builder is seen."""
+    import importlib
+    prelude_base = importlib.import_module("st_runtime.checker.prelude_base")   # (the package exports a function of that name)
+    for text, limit in SHARED_CASES:
+        for dialect in ("iec", "nj"):
+            monkeypatch.setattr(prelude_base, "_BASES", {})
+            (shared, program), (full, again) = _both_ways({"m.st": text}, dialect, limit)
+            assert shared == full, (text, dialect, limit)
+            if program is not None:
+                assert _layout(program) == _layout(again)

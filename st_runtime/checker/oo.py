@@ -30,15 +30,6 @@ def this_symbol(owner: PouInfo, program) -> Symbol:
     return Symbol("THIS", program.types[key(owner.name)], "THIS")
 
 
-def fb_of_scope(pou: PouInfo | None) -> PouInfo | None:
-    """The FB whose variables a body sees: the FB itself or a method's owner."""
-    if pou is None:
-        return None
-    if pou.kind == "METHOD":
-        return pou.owner
-    return pou if pou.kind == "FUNCTION_BLOCK" else None
-
-
 def find_method(info: PouInfo | None, name: str) -> PouInfo | None:
     while info is not None:
         found = info.methods.get(key(name) if " " not in name else name)
