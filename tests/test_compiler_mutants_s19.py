@@ -170,3 +170,41 @@ END_FOR;
 END_PROGRAM
 """
     assert _scan_ps(src) == units * PICOSECONDS_PER_UNIT
+
+
+# ------------------------------------------------------------------ seed 20's survivors
+
+def faults(plc):
+    return [(f.code, f.line, f.message) for f in plc.faults]
+
+
+def test_mod_and_integer_division_by_a_zero_variable_fault_with_their_messages():
+    # IEC 61131-3: an integer division or MOD by zero is an error; here F-DIV-ZERO with the
+    # same messages as the library's int_div / int_mod (values.py), at the statement's line.
+    main, plc = run("""PROGRAM Main
+VAR a : DINT := 7; b : DINT; q : DINT := 5; r : DINT := 6; END_VAR
+q := a / b;
+r := a MOD b;
+END_PROGRAM
+""")
+    assert faults(plc) == [("F-DIV-ZERO", 3, "integer division by zero"), ("F-DIV-ZERO", 4, "MOD by zero")]
+    assert (main["q"], main["r"]) == (5, 6)      # a faulting statement stores nothing
+
+
+def test_an_index_summed_from_two_loop_variables_is_checked_at_its_low_end(monkeypatch):
+    # i runs 1..3 and j -2..0, so i + j runs -1..3: below the array's 0..3 when i = 1 and
+    # j = -2 (and j = -1 gives 0, in bounds).  The loops are kept as loops (no unrolling),
+    # so the index is checked at run time: F-INDEX for (1, -2), the only pair below 0.
+    monkeypatch.setenv("ST_RUNTIME_OPTIMISE", "none")
+    main, plc = run("""PROGRAM Main
+VAR arr : ARRAY[0..3] OF INT := [10, 20, 30, 40]; i : INT; j : INT; s : INT; END_VAR
+FOR i := 1 TO 3 DO
+    FOR j := -2 TO 0 DO
+        s := s + arr[i + j];
+    END_FOR;
+END_FOR;
+END_PROGRAM
+""")
+    assert [(f.code, f.line) for f in plc.faults] == [("F-INDEX", 5)]
+    # the other 8 pairs: i + j = 0, 1 (i = 1); 0, 1, 2 (i = 2); 1, 2, 3 (i = 3)
+    assert main["s"] == (10 + 20) + (10 + 20 + 30) + (20 + 30 + 40)
