@@ -208,3 +208,22 @@ END_PROGRAM
     assert [(f.code, f.line) for f in plc.faults] == [("F-INDEX", 5)]
     # the other 8 pairs: i + j = 0, 1 (i = 1); 0, 1, 2 (i = 2); 1, 2, 3 (i = 3)
     assert main["s"] == (10 + 20) + (10 + 20 + 30) + (20 + 30 + 40)
+
+
+def test_the_estimated_time_of_an_array_passed_by_value():
+    # An input of ARRAY[1..4] OF INT is passed by value, element by element: 4 x `argument`
+    # (no load of a whole array); with the call of an FB written in ST (empty body):
+    # 10 + 4 = 14 units (cost.py's table).
+    from st_runtime.compiler.cost import PICOSECONDS_PER_UNIT, WEIGHTS
+
+    units = WEIGHTS["call"] + 4 * WEIGHTS["argument"]
+    assert units == 14
+    src = """FUNCTION_BLOCK F
+VAR_INPUT v : ARRAY[1..4] OF INT; END_VAR
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR f : F; a : ARRAY[1..4] OF INT; END_VAR
+f(v := a);
+END_PROGRAM
+"""
+    assert _scan_ps(src) == units * PICOSECONDS_PER_UNIT
