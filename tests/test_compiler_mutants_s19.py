@@ -227,3 +227,20 @@ f(v := a);
 END_PROGRAM
 """
     assert _scan_ps(src) == units * PICOSECONDS_PER_UNIT
+
+
+def test_continue_in_a_for_over_a_global_still_steps_the_variable():
+    # A global control variable makes FOR a loop that tests the variable each time; CONTINUE
+    # must still add the step (IEC 61131-3 ed. 3, CONTINUE: on to the next iteration).
+    # g = 1, 3, 5, 7, 9: CONTINUE at g = 3 skips one count, so n = 4; g ends at 11.
+    main, plc = run("""VAR_GLOBAL g : INT; END_VAR
+PROGRAM Main
+VAR n : INT; END_VAR
+FOR g := 1 TO 10 BY 2 DO
+    IF g = 3 THEN CONTINUE; END_IF;
+    n := n + 1;
+END_FOR;
+END_PROGRAM
+""")
+    assert plc.faults == []
+    assert (main["n"], plc.globals["g"]) == (4, 11)
