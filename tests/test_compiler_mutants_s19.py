@@ -244,3 +244,20 @@ END_PROGRAM
 """)
     assert plc.faults == []
     assert (main["n"], plc.globals["g"]) == (4, 11)
+
+
+def test_a_while_loop_forgets_what_it_knew_of_a_variable_its_body_changes():
+    # i := 4 before the loop, but the body counts i down to 0: the read arr[i] must be
+    # checked each time, so i = 0 (below arr's 1..4) is F-INDEX at line 5 and that
+    # statement stores nothing; s = 40 + 30 + 20 + 10 = 100, and the loop ends at i = -1.
+    main, plc = run("""PROGRAM Main
+VAR arr : ARRAY[1..4] OF INT := [10, 20, 30, 40]; i : INT; s : INT; END_VAR
+i := 4;
+WHILE i >= 0 DO
+    s := s + arr[i];
+    i := i - 1;
+END_WHILE;
+END_PROGRAM
+""")
+    assert [(f.code, f.line) for f in plc.faults] == [("F-INDEX", 5)]
+    assert (main["s"], main["i"]) == (100, -1)
