@@ -170,3 +170,94 @@ END_FOR;
 END_PROGRAM
 """
     assert _scan_ps(src) == units * PICOSECONDS_PER_UNIT
+
+
+# ------------------------------------------------------------------ seed 20's survivors
+
+def faults(plc):
+    return [(f.code, f.line, f.message) for f in plc.faults]
+
+
+def test_mod_and_integer_division_by_a_zero_variable_fault_with_their_messages():
+    # IEC 61131-3: an integer division or MOD by zero is an error; here F-DIV-ZERO with the
+    # same messages as the library's int_div / int_mod (values.py), at the statement's line.
+    main, plc = run("""PROGRAM Main
+VAR a : DINT := 7; b : DINT; q : DINT := 5; r : DINT := 6; END_VAR
+q := a / b;
+r := a MOD b;
+END_PROGRAM
+""")
+    assert faults(plc) == [("F-DIV-ZERO", 3, "integer division by zero"), ("F-DIV-ZERO", 4, "MOD by zero")]
+    assert (main["q"], main["r"]) == (5, 6)      # a faulting statement stores nothing
+
+
+def test_an_index_summed_from_two_loop_variables_is_checked_at_its_low_end(monkeypatch):
+    # i runs 1..3 and j -2..0, so i + j runs -1..3: below the array's 0..3 when i = 1 and
+    # j = -2 (and j = -1 gives 0, in bounds).  The loops are kept as loops (no unrolling),
+    # so the index is checked at run time: F-INDEX for (1, -2), the only pair below 0.
+    monkeypatch.setenv("ST_RUNTIME_OPTIMISE", "none")
+    main, plc = run("""PROGRAM Main
+VAR arr : ARRAY[0..3] OF INT := [10, 20, 30, 40]; i : INT; j : INT; s : INT; END_VAR
+FOR i := 1 TO 3 DO
+    FOR j := -2 TO 0 DO
+        s := s + arr[i + j];
+    END_FOR;
+END_FOR;
+END_PROGRAM
+""")
+    assert [(f.code, f.line) for f in plc.faults] == [("F-INDEX", 5)]
+    # the other 8 pairs: i + j = 0, 1 (i = 1); 0, 1, 2 (i = 2); 1, 2, 3 (i = 3)
+    assert main["s"] == (10 + 20) + (10 + 20 + 30) + (20 + 30 + 40)
+
+
+def test_the_estimated_time_of_an_array_passed_by_value():
+    # An input of ARRAY[1..4] OF INT is passed by value, element by element: 4 x `argument`
+    # (no load of a whole array); with the call of an FB written in ST (empty body):
+    # 10 + 4 = 14 units (cost.py's table).
+    from st_runtime.compiler.cost import PICOSECONDS_PER_UNIT, WEIGHTS
+
+    units = WEIGHTS["call"] + 4 * WEIGHTS["argument"]
+    assert units == 14
+    src = """FUNCTION_BLOCK F
+VAR_INPUT v : ARRAY[1..4] OF INT; END_VAR
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR f : F; a : ARRAY[1..4] OF INT; END_VAR
+f(v := a);
+END_PROGRAM
+"""
+    assert _scan_ps(src) == units * PICOSECONDS_PER_UNIT
+
+
+def test_continue_in_a_for_over_a_global_still_steps_the_variable():
+    # A global control variable makes FOR a loop that tests the variable each time; CONTINUE
+    # must still add the step (IEC 61131-3 ed. 3, CONTINUE: on to the next iteration).
+    # g = 1, 3, 5, 7, 9: CONTINUE at g = 3 skips one count, so n = 4; g ends at 11.
+    main, plc = run("""VAR_GLOBAL g : INT; END_VAR
+PROGRAM Main
+VAR n : INT; END_VAR
+FOR g := 1 TO 10 BY 2 DO
+    IF g = 3 THEN CONTINUE; END_IF;
+    n := n + 1;
+END_FOR;
+END_PROGRAM
+""")
+    assert plc.faults == []
+    assert (main["n"], plc.globals["g"]) == (4, 11)
+
+
+def test_a_while_loop_forgets_what_it_knew_of_a_variable_its_body_changes():
+    # i := 4 before the loop, but the body counts i down to 0: the read arr[i] must be
+    # checked each time, so i = 0 (below arr's 1..4) is F-INDEX at line 5 and that
+    # statement stores nothing; s = 40 + 30 + 20 + 10 = 100, and the loop ends at i = -1.
+    main, plc = run("""PROGRAM Main
+VAR arr : ARRAY[1..4] OF INT := [10, 20, 30, 40]; i : INT; s : INT; END_VAR
+i := 4;
+WHILE i >= 0 DO
+    s := s + arr[i];
+    i := i - 1;
+END_WHILE;
+END_PROGRAM
+""")
+    assert [(f.code, f.line) for f in plc.faults] == [("F-INDEX", 5)]
+    assert (main["s"], main["i"]) == (100, -1)
