@@ -11,7 +11,10 @@
   from it (TIME_TO_DINT, ...);
 * `string_unit` / `string_max_bytes`: what the n of STRING[n] counts, and the
   largest STRING the target holds;
-* `errors` and `pins`: OMRON's Build rules and pin names (below).
+* `errors` and `pins`: OMRON's Build rules and pin names (below);
+* `wraps_in_expressions`: whether an integer `+ - *` result that leaves its
+  type's range overflows where it is used (compared, divided, converted to
+  REAL, stored into a wider type), not only when it is stored.
 
 No other module asks which dialect is active (`if dialect == ...`).  A reader can check every OMRON rule below
 against its source (docs/nj501.md, "What Sysmac Studio builds", has one row
@@ -165,6 +168,14 @@ class Dialect:
     time_unit_ns: int = 1
     string_unit: str = "character"
     string_max_bytes: int | None = None
+    # The NJ evaluates an expression in the data type of its highest-ranked
+    # operand and overflows there ("NJ-series CPU Unit Software User's Manual"
+    # W501, 6-5-3, "Implicit Casts": `(UdintVar + DintVar) / DINT#2` with
+    # UDINT#16#FFFF_FFFF and 1 "overflows and 0 is assigned" to a LINT).
+    # IEC 61131-3 leaves overflow to the implementation and CODESYS computes
+    # in at least 32-bit registers: there intermediate results stay exact
+    # (wrapped only when stored), this project's behaviour before.
+    wraps_in_expressions: bool = False
 
     def accepts(self, construct: str) -> bool:
         return self.name in CONSTRUCTS[construct].accepted_by
@@ -206,7 +217,8 @@ class Dialect:
 # string_max_bytes: the NJ's largest STRING is STRING[1986], the NULL included
 # (docs/nj501.md, memory model rows).
 IEC = Dialect("iec")
-NJ = Dialect("nj", frozenset(NJ_RULES), OMRON_PINS, string_unit="byte", string_max_bytes=1986)
+NJ = Dialect("nj", frozenset(NJ_RULES), OMRON_PINS, string_unit="byte", string_max_bytes=1986,
+             wraps_in_expressions=True)
 # CODESYS/TwinCAT: IEC pin names and NJ rules as warnings.
 CODESYS = Dialect("codesys", time_unit_ns=1_000_000)
 DIALECTS: Mapping[str, Dialect] = MappingProxyType({d.name: d for d in (IEC, NJ, CODESYS)})

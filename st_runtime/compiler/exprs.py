@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .. import ast
+from ..dialects import DIALECTS
 from ..objects import is_aggregate, store_value
 from ..process_image import ImageCell, parse_address
 from ..types import (
@@ -242,6 +243,37 @@ class ExprCompiler:
                 return a[0] - b[1], a[1] - b[0]
         return None
 
+    def settled(self, expr, code: str) -> str:
+        """`code` of `expr` as a value of the expression's own integer type.
+
+        `+ - *` and unary minus run on exact Python integers, wrapped when
+        stored: the stored result of any chain of them (and of bit
+        operations on them) is the same as with a wrap after every
+        operation.  Where the exact value itself would be seen (a
+        comparison, a division or MOD, a conversion to REAL, a store into a
+        wider type) it is wrapped first: the NJ evaluates the right-hand
+        side in the data type of its highest-ranked operand, and a result
+        out of that type's range overflows ("NJ-series CPU Unit Software
+        User's Manual" W501, 6-5-3 Structured Text, Implicit Casts:
+        `(UdintVar + DintVar) / DINT#2` with UDINT#16#FFFF_FFFF and 1
+        assigns 0 to a LINT; the checker types that sum LINT, the IEC
+        common type, where OMRON's ranking makes it UDINT: not followed).
+        Only under a dialect that says so (`Dialect.wraps_in_expressions`).
+        """
+        if not DIALECTS[self.program.dialect].wraps_in_expressions:
+            return code
+        if not ((isinstance(expr, ast.Binary) and expr.op in ("+", "-", "*"))
+                or (isinstance(expr, ast.Unary) and expr.op == "-")):
+            return code
+        e = elementary(self.ty(expr))
+        bounds = int_bounds(e)
+        if bounds is None or e.kind == "bool" or isinstance(e, SubrangeType):
+            return code
+        known = self.static_range(expr)
+        if known is not None and bounds[0] <= known[0] and known[1] <= bounds[1]:
+            return code
+        return _wrapped(code, e)
+
     def constant_array_range(self, name) -> tuple[int, int] | None:
         """(min, max) of the elements of a CONSTANT integer array, else None."""
         try:
@@ -333,6 +365,9 @@ class ExprCompiler:
         op = e.op
         lt, rt, t = self.ty(e.left), self.ty(e.right), self.ty(e)
         left, right = self.expr(e.left), self.expr(e.right)
+        if op not in _BIT_OPS and not (op in ("+", "-", "*") and is_int_like(t)):
+            # The exact value of an integer operand is seen here (settled).
+            left, right = self.settled(e.left, left), self.settled(e.right, right)
         if op in _BIT_OPS:
             return f"({left} {_BIT_OPS[op]} {right})"
         if op == "*" and elementary(t) is not None and elementary(t).kind == "time" \
@@ -569,6 +604,8 @@ class ExprCompiler:
                 return value
             if e.kind == "real":
                 s = elementary(src_r)
+                if s is not None and s.kind != "real" and node is not None:
+                    value = self.settled(node, value)
                 if e.bits == 64:
                     return f"float({value})" if s is not None and s.kind != "real" else value
                 if s is not None and s.kind == "real" and s.bits == 32 and plain_read:
@@ -587,13 +624,12 @@ class ExprCompiler:
                         return value
             if isinstance(e, SubrangeType):
                 return f"_subrange({value}, {e.lo}, {e.hi})"
-            bits = 64 if e.kind in ("time", "date", "tod", "dt") else e.bits
-            signed = e.signed or e.kind in ("time", "date", "tod", "dt")
-            mask = (1 << bits) - 1
-            if signed:
-                half = 1 << (bits - 1)
-                return f"((({value}) + {half} & {mask}) - {half})"
-            return f"(({value}) & {mask})"
+            if node is not None and not plain_read:
+                narrower = int_bounds(src_r)
+                if narrower is not None and not (bounds[0] <= narrower[0] and narrower[1] <= bounds[1]):
+                    return _wrapped(value, e)
+                value = self.settled(node, value)
+            return _wrapped(value, e)
         if isinstance(dst_r, StringType):
             if node is not None and isinstance(self.constant_of(node), str) \
                     and string_size(self.constant_of(node), self.program.dialect) <= dst_r.length:
@@ -602,6 +638,17 @@ class ExprCompiler:
                 return value
             return f"_truncate({value}, {dst_r.length})"
         return value
+
+
+def _wrapped(value: str, e) -> str:
+    """Python source of the integer `value` wrapped to the width and signedness of `e`."""
+    bits = 64 if e.kind in ("time", "date", "tod", "dt") else e.bits
+    signed = e.signed or e.kind in ("time", "date", "tod", "dt")
+    mask = (1 << bits) - 1
+    if signed:
+        half = 1 << (bits - 1)
+        return f"((({value}) + {half} & {mask}) - {half})"
+    return f"(({value}) & {mask})"
 
 
 def _is_simple(code: str) -> bool:
