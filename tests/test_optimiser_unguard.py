@@ -85,3 +85,31 @@ def test_guarded_statements_fault_at_the_same_line_and_the_scan_goes_on(tmp_path
     # I goes 5 -> 6, so scan 2 indexes out of range again.
     assert [(code, line) for code, line, _ in faults] == [("F-INDEX", 18), ("F-DIV-ZERO", 21)] * 2
     assert [scan for *_, scan in faults] == [faults[0][2]] * 2 + [faults[0][2] + 1] * 2
+
+
+LONG_CHAIN = """\
+FUNCTION F : LREAL
+VAR_INPUT X : LREAL; END_VAR
+VAR A : LINT := 9223372036854775807; R : LREAL; END_VAR
+R := {chain} * X;
+F := 2.5;
+END_FUNCTION
+PROGRAM MAIN
+VAR Y : LREAL; END_VAR
+Y := F(1.0);
+END_PROGRAM
+"""
+
+
+def test_a_long_integer_product_meeting_a_real_keeps_its_guard(tmp_path):
+    # (2**63 - 1)**20 is about 2**1260: beyond 2**1024, Python cannot convert it to a
+    # float (OverflowError, F-MATH).  With the guard the fault lands on line 4 in F and
+    # F goes on (F := 2.5, so Y = 2.5); without it, it would land on the call, line 9.
+    path = tmp_path / "main.st"
+    path.write_text(LONG_CHAIN.format(chain=" * ".join(["A"] * 20)))
+    result = loader.load([str(path)])
+    off, on = run_both(result.program, 1)
+    assert on == off
+    assert [(code, line) for code, _, line, _, _ in on[0]] == [("F-MATH", 4)]
+    main = dict(on[1][0][1])["MAIN"]              # (class name, (slot, value), ...)
+    assert dict(main[1:])["v_Y"] == ("f", (2.5).hex())

@@ -5,8 +5,10 @@ Two rules, either one suffices:
 * local arithmetic: `local = expression` where the expression uses only
   Python locals, numeric literals, parentheses and `+ - *`: every local of
   an elementary variable holds an int or a float (set in the prologue, so
-  always bound), and + - * of ints and floats never raise in Python (a
-  float overflow gives inf).
+  always bound), and + - * of ints and floats raise in Python only when
+  an int beyond 2**1024 meets a float (OverflowError; a float overflow
+  gives inf): at most 14 of them, as in the branches pass, keep every
+  intermediate of 64-bit ST integers below that.
 * owned store: `X := expression` compiled to the one line `target = code`,
   where X is a variable the POU owns as plain storage (a local or a
   `self.` slot: not a VAR_IN_OUT or REF_TO, whose store goes through a
@@ -49,7 +51,8 @@ def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:
 def _local_arithmetic(line: str) -> bool:
     match = _ASSIGNMENT.fullmatch(line)
     return match is not None and "**" not in match.group(1) \
-        and not _ATTRIBUTE_OR_CALL.search(match.group(1))
+        and not _ATTRIBUTE_OR_CALL.search(match.group(1)) \
+        and branches.code_cannot_fault(match.group(1))   # at most 14 `+ - *`
 
 
 def _owned_store(compiler, node, lines: list[str]) -> bool:
