@@ -45,3 +45,21 @@ def statement(program, index: int, pou: str = "Main"):
 
 def nodes(root, kind):
     return [n for n in walk(root) if isinstance(n, kind)]
+
+
+def diagnostics(text: str, dialect: str = "iec") -> list[tuple[str, int, int, str]]:
+    """(code, line, column, message) of every diagnostic of `text`."""
+    result, _ = load(text, dialect)
+    return [(d.code, d.pos.line, d.pos.col, d.message) for d in result.diagnostics]
+
+
+def only(text: str, dialect: str = "iec") -> tuple[str, int, int, str]:
+    """The one diagnostic of `text` (fails when there are none or several)."""
+    found = diagnostics(text, dialect)
+    assert len(found) == 1, found
+    return found[0]
+
+
+def program(decls: str, body: str) -> str:
+    """`PROGRAM Main` with these declarations and this body."""
+    return f"PROGRAM Main\nVAR\n{decls}\nEND_VAR\n{body}\nEND_PROGRAM\n"

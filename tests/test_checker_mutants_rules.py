@@ -17,22 +17,7 @@ from st_runtime.checker import check, constfold, limits, typesys
 from st_runtime.checker.constfold import NOT_CONSTANT
 from st_runtime.checker.memory import MemoryModel
 from st_runtime.parser import parse
-from checker_helpers import checked, load, nodes, statement
-
-
-def diagnostics(text: str, dialect: str = "iec") -> list[tuple[str, int, int, str]]:
-    result, _ = load(text, dialect)
-    return [(d.code, d.pos.line, d.pos.col, d.message) for d in result.diagnostics]
-
-
-def only(text: str, dialect: str = "iec") -> tuple[str, int, int, str]:
-    found = diagnostics(text, dialect)
-    assert len(found) == 1, found
-    return found[0]
-
-
-def program(decls: str, body: str) -> str:
-    return f"PROGRAM Main\nVAR\n{decls}\nEND_VAR\n{body}\nEND_PROGRAM\n"
+from checker_helpers import checked, diagnostics, nodes, only, program, statement
 
 
 # ------------------------------------------------------------ references

@@ -11,23 +11,8 @@ snippet.
 from __future__ import annotations
 
 from st_runtime.api import load_text
-from checker_helpers import load
+from checker_helpers import diagnostics, only, program
 from test_prelude_sharing import _both_ways, _layout     # (shared and full check side by side)
-
-
-def diagnostics(text: str, dialect: str = "iec") -> list[tuple[str, int, int, str]]:
-    result, _ = load(text, dialect)
-    return [(d.code, d.pos.line, d.pos.col, d.message) for d in result.diagnostics]
-
-
-def only(text: str, dialect: str = "iec") -> tuple[str, int, int, str]:
-    found = diagnostics(text, dialect)
-    assert len(found) == 1, found
-    return found[0]
-
-
-def program(decls: str, body: str) -> str:
-    return f"PROGRAM Main\nVAR\n{decls}\nEND_VAR\n{body}\nEND_PROGRAM\n"
 
 
 def after_one_scan(text: str, dialect: str = "iec"):
