@@ -388,3 +388,18 @@ def test_a_prelude_built_afresh_checks_like_a_full_check(monkeypatch):
             assert shared == full, (text, dialect, limit)
             if program is not None:
                 assert _layout(program) == _layout(again)
+
+
+def test_a_property_named_like_a_variable_of_its_fb_is_refused():
+    # `fb.x` would name both; the same rule as for a METHOD (seed-19 survivor `_Member`).
+    text = ("FUNCTION_BLOCK FB\nVAR x : INT; END_VAR\n"
+            "PROPERTY x : INT\nGET\nx := 2;\nEND_GET\nEND_PROPERTY\nEND_FUNCTION_BLOCK\n")
+    code, line, col, message = only(text, "codesys")
+    assert (code, line, col) == ("E-DECL-002", 3, 10)
+    assert message == "property x has the name of a variable of FB"
+
+
+def test_a_property_of_another_name_is_no_duplicate():
+    text = ("FUNCTION_BLOCK FB\nVAR v : INT; END_VAR\n"
+            "PROPERTY x : INT\nGET\nx := v;\nEND_GET\nEND_PROPERTY\nEND_FUNCTION_BLOCK\n")
+    assert diagnostics(text, "codesys") == []

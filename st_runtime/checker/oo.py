@@ -110,8 +110,14 @@ class ObjectModel:
     def declare_methods(self, info: PouInfo, node: ast.Pou) -> None:
         for m in node.methods:
             k = accessor_key(m)
-            if k in info.variables and info.variables[k].kind != "RETURN":
-                self.ctx.error("E-DECL-002", f"method {m.name} has the name of a variable of "
+            # A PROPERTY's accessors are keyed "GET X"/"SET X", but a caller writes
+            # `fb.X`, which would then name both the property and the variable: refused
+            # as a METHOD named like a variable is (no CODESYS page was found saying
+            # how CODESYS itself reports it).
+            own = info.variables.get(key(m.name))
+            if own is not None and own.kind != "RETURN":
+                what = "property" if k != key(m.name) else "method"
+                self.ctx.error("E-DECL-002", f"{what} {m.name} has the name of a variable of "
                                f"{node.name}", m.pos)
                 continue
             inherited = info.methods.get(k)
