@@ -625,9 +625,9 @@ class ExprCompiler:
             if isinstance(e, SubrangeType):
                 return f"_subrange({value}, {e.lo}, {e.hi})"
             if node is not None and not plain_read:
-                narrower = int_bounds(src_r)
-                if narrower is not None and not (bounds[0] <= narrower[0] and narrower[1] <= bounds[1]):
-                    return _wrapped(value, e)
+                source = int_bounds(src_r)
+                if source is not None and not (bounds[0] <= source[0] and source[1] <= bounds[1]):
+                    return _wrapped(value, e)      # the target is no wider: its wrap settles it
                 value = self.settled(node, value)
             return _wrapped(value, e)
         if isinstance(dst_r, StringType):
