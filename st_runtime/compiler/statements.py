@@ -58,9 +58,10 @@ class BodyCompiler(ExprCompiler):
         self.flow = ranges.Flow(self, body) if self.opt.ranges else None    # integer locals' ranges
         if not method:
             self._add_return_variable()
-        whole_region = self.opt.cse and unit.guard_statements and cse.worth_a_region(self, body)
+        # the whole body compiled as one CSE region, and once as before (cse.body_region)
+        self._whole_region = self.opt.cse and unit.guard_statements and cse.worth_a_region(self, body)
         # id(branch body) -> alias lines moved there from the prologue (optimise/aliases.py)
-        self._late_loads = aliases.late_loads(self, body) if self.opt.aliases and not whole_region else {}
+        self._late_loads = aliases.late_loads(self, body) if self.opt.aliases and not self._whole_region else {}
 
     def _add_return_variable(self) -> None:
         key = self.pou.name.upper()
@@ -118,7 +119,7 @@ class BodyCompiler(ExprCompiler):
 
     def _body(self) -> None:
         """The body's statements; twice when a whole-body region applies (cse.body_region)."""
-        if not (self.opt.cse and self.unit.guard_statements and cse.worth_a_region(self, self.body)):
+        if not self._whole_region:
             self.statements(self.body)
             return
         cse.emit_region(self, lambda: self.statements(self.body))
@@ -548,9 +549,8 @@ class BodyCompiler(ExprCompiler):
                     self.known_ranges[key] = saved
                 return
         unrolled = self.flow.state() if fallback and self.flow is not None else None
-        if self.flow is not None:       # the loop runs its body any number of times
+        if self.flow is not None:       # (each copy of the loop forgets its body: _range_loop)
             self.flow.set(before)
-            self.flow.forget(s.body)
 
         def emit_loop():
             self._range_loop(s, key, assigned, target, rng, early, where, saved,

@@ -50,9 +50,8 @@ def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:
 
 def _local_arithmetic(line: str) -> bool:
     match = _ASSIGNMENT.fullmatch(line)
-    return match is not None and "**" not in match.group(1) \
-        and not _ATTRIBUTE_OR_CALL.search(match.group(1)) \
-        and branches.code_cannot_fault(match.group(1))   # at most 14 `+ - *`
+    return match is not None and not _ATTRIBUTE_OR_CALL.search(match.group(1)) \
+        and branches.code_cannot_fault(match.group(1))   # no `**`, at most 14 `+ - *`
 
 
 def _owned_store(compiler, node, lines: list[str]) -> bool:
