@@ -10,7 +10,11 @@ runtime keeps intermediate results exact and wraps them when stored.
 
 Expected values by hand: DINT 2147483647 + 1 overflows to -2147483648; half
 of it, truncated toward zero, is -1073741824; INT 16384 * 2 overflows to
--32768.
+-32768; SINT 127 + 127 to -2; INT -32768 / -1 to -32768 (the same rule
+applied to a quotient: W501 shows it for a sum only).
+
+The same expressions with CONSTANT operands, which the checker folds, must
+give the same values as with variables, under each dialect.
 """
 
 from __future__ import annotations
@@ -19,8 +23,10 @@ import pytest
 
 from st_runtime.api import load_text
 
-DECLS = """D1 : DINT := 2147483647; D2 : DINT := 1; I : INT := 16384; X : LREAL := 0.5;
-L1, L2 : LINT; C : BOOL; R : LREAL; K : DINT; M : LINT; E : BOOL; S : DINT; N : LINT;"""
+OPERANDS = "D1 : DINT := 2147483647; D2 : DINT := 1; I : INT := 16384; B : SINT := 127; I2 : INT := -32768;"
+DECLS = """X : LREAL := 0.5; A : ARRAY[-2..254] OF INT;
+L1, L2 : LINT; C : BOOL; R : LREAL; K : DINT; M : LINT; E : BOOL; S : DINT; N : LINT;
+P, Q : LINT; W : INT; G : INT; V : DINT;"""
 BODY = """
 L1 := (D1 + D2) / DINT#2;     (* the sum overflows DINT before the division *)
 L2 := D1 + D2;                (* cast to LINT after the DINT overflow *)
@@ -31,16 +37,28 @@ M := (D1 + D2) MOD 3;         (* -2147483648 MOD 3 = -2 (sign of the dividend) *
 E := I * 2 = -32768;
 S := D1 + D2 - 1;             (* a chain stored into its own type: wraps as before *)
 N := -(D1 + D2);              (* -(-2147483648) overflows DINT again *)
+P := DINT_TO_LINT(D1 + D2);   (* a conversion's argument *)
+Q := MAX(D1 + D2, 0);         (* a standard function's argument *)
+CASE D1 + D2 OF               (* a CASE selector *)
+    -2147483648: W := 1;
+ELSE
+    W := 2;
+END_CASE;
+A[-2] := 5; A[254] := 7;
+G := A[B + B];                (* an index: SINT 127 + 127 *)
+V := I2 / -1;                 (* a quotient *)
 """
 NJ = {"L1": -1073741824, "L2": -2147483648, "C": False, "R": -1073741824.0, "K": -32768, "M": -2,
-      "E": True, "S": 2147483647, "N": -2147483648}
+      "E": True, "S": 2147483647, "N": -2147483648, "P": -2147483648, "Q": 0, "W": 1, "G": 5, "V": -32768}
 EXACT = {"L1": 1073741824, "L2": 2147483648, "C": True, "R": 1073741824.0, "K": 32768, "M": 2,
-         "E": False, "S": 2147483647, "N": -2147483648}
+         "E": False, "S": 2147483647, "N": -2147483648, "P": 2147483648, "Q": 2147483648, "W": 2, "G": 7,
+         "V": 32768}
 
 
-def run(dialect: str, optimise: str, monkeypatch):
+def run(dialect: str, optimise: str, monkeypatch, operands: str = "VAR"):
+    """Run BODY once; `operands` is the block the operands are declared in."""
     monkeypatch.setenv("ST_RUNTIME_OPTIMISE", optimise)
-    src = f"PROGRAM Main\nVAR\n{DECLS}\nEND_VAR\n{BODY}\nEND_PROGRAM\n"
+    src = f"PROGRAM Main\nVAR\n{DECLS}\nEND_VAR\n{operands}\n{OPERANDS}\nEND_VAR\n{BODY}\nEND_PROGRAM\n"
     plc = load_text(src, "main.st", dialect=dialect).controller()
     main = plc.add_program("Main")
     plc.run(1)
@@ -56,3 +74,11 @@ def test_nj_overflows_in_the_type_of_the_right_hand_side(optimise, monkeypatch):
 @pytest.mark.parametrize("dialect", ["iec", "codesys"])
 def test_other_dialects_keep_intermediate_results_exact(dialect, monkeypatch):
     assert run(dialect, "all", monkeypatch) == EXACT
+
+
+@pytest.mark.parametrize("dialect, expected", [("nj", NJ), ("iec", EXACT), ("codesys", EXACT)])
+def test_constant_operands_fold_to_the_values_variables_give(dialect, expected, monkeypatch):
+    """Folded by the checker (`(C + 1) / 2` with C a CONSTANT) or computed at
+    run time, an expression has one value; under `iec` the fold of `C + 1`
+    used to wrap where the run time keeps the exact sum."""
+    assert run(dialect, "all", monkeypatch, operands="VAR CONSTANT") == expected

@@ -135,8 +135,24 @@ class ExprChecker:
             t = T.ELEMENTARY[t.name]
         self.program.expr_types[id(e)] = t
         if value is not NOT_CONSTANT and value is not None and t is not ts.ERROR:
-            self.program.constants[id(e)] = ts.coerce_constant(value, t)
+            self.program.constants[id(e)] = value if self._keeps_exact(e, value, t) \
+                else ts.coerce_constant(value, t)
         return t
+
+    def _keeps_exact(self, e, value, t) -> bool:
+        """Whether a folded integer `+ - * /` (or unary minus) keeps its exact value.
+
+        The run time computes those on exact integers (`INT#-32768 / -1` is
+        32768) and wraps only where a value is stored, unless the dialect wraps inside expressions
+        (`Dialect.wraps_in_expressions`, the NJ).  A folded constant must be
+        the value the same expression has at run time: under `iec`,
+        `(C + 1) / 2` with C = INT#32767 is 16384 whether C is a CONSTANT or a
+        variable (before, the constant was wrapped to -32768 at `C + 1`).
+        """
+        return (isinstance(e, (ast.Binary, ast.Unary)) and e.op in ("+", "-", "*", "/")
+                and isinstance(value, int) and not isinstance(value, bool)
+                and isinstance(t, T.ElementaryType) and t.kind == "int"
+                and not self.ctx.rules.wraps_in_expressions)
 
     def constant(self, e):
         return self.program.constants.get(id(e), NOT_CONSTANT)

@@ -250,8 +250,11 @@ class ExprCompiler:
         stored: the stored result of any chain of them (and of bit
         operations on them) is the same as with a wrap after every
         operation.  Where the exact value itself would be seen (a
-        comparison, a division or MOD, a conversion to REAL, a store into a
-        wider type) it is wrapped first: the NJ evaluates the right-hand
+        comparison, a division or MOD, a conversion, an argument of a
+        standard function, a CASE selector, an array index, a store into a
+        wider type) it is wrapped first; so is a quotient, whose one
+        overflow is `INT#-32768 / -1` (the same rule, not shown on its own
+        in W501).  The NJ evaluates the right-hand
         side in the data type of its highest-ranked operand, and a result
         out of that type's range overflows ("NJ-series CPU Unit Software
         User's Manual" W501, 6-5-3 Structured Text, Implicit Casts:
@@ -262,7 +265,7 @@ class ExprCompiler:
         """
         if not DIALECTS[self.program.dialect].wraps_in_expressions:
             return code
-        if not ((isinstance(expr, ast.Binary) and expr.op in ("+", "-", "*"))
+        if not ((isinstance(expr, ast.Binary) and expr.op in ("+", "-", "*", "/"))
                 or (isinstance(expr, ast.Unary) and expr.op == "-")):
             return code
         e = elementary(self.ty(expr))
@@ -505,7 +508,7 @@ class ExprCompiler:
                 values.append(pyliteral(const))
                 continue
             known = self.static_range(index)
-            code = self.expr(index)
+            code = self.settled(index, self.expr(index))
             if k != 1 and self.is_loop_invariant(index):
                 self._invariant_terms.append(f"{code} * {k}")
             if known is not None and lo <= known[0] and known[1] <= hi:
