@@ -176,6 +176,14 @@ class Dialect:
     # in at least 32-bit registers: there intermediate results stay exact
     # (wrapped only when stored), this project's behaviour before.
     wraps_in_expressions: bool = False
+    # The type of an integer `+ - * / MOD` under OMRON's ranking (W501 6-5-3,
+    # "Casting Rules When the Right-hand Side of an Assignment Statement Is an
+    # Arithmetic Expression", p. 6-106): the operand of the higher rank
+    # (ranks by size: SINT/USINT, INT/UINT, DINT/UDINT, LINT/ULINT), and of a
+    # signed and an unsigned integer of one rank, the unsigned one: UDINT +
+    # DINT is UDINT, ULINT + LINT is ULINT.  IEC 61131-3 takes the narrowest
+    # type both widen to (UDINT + DINT is LINT; ULINT + LINT has none).
+    omron_integer_ranking: bool = False
 
     def accepts(self, construct: str) -> bool:
         return self.name in CONSTRUCTS[construct].accepted_by
@@ -218,7 +226,7 @@ class Dialect:
 # (docs/nj501.md, memory model rows).
 IEC = Dialect("iec")
 NJ = Dialect("nj", frozenset(NJ_RULES), OMRON_PINS, string_unit="byte", string_max_bytes=1986,
-             wraps_in_expressions=True)
+             wraps_in_expressions=True, omron_integer_ranking=True)
 # CODESYS/TwinCAT: IEC pin names and NJ rules as warnings.
 CODESYS = Dialect("codesys", time_unit_ns=1_000_000)
 DIALECTS: Mapping[str, Dialect] = MappingProxyType({d.name: d for d in (IEC, NJ, CODESYS)})

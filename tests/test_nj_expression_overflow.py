@@ -82,3 +82,44 @@ def test_constant_operands_fold_to_the_values_variables_give(dialect, expected, 
     run time, an expression has one value; under `iec` the fold of `C + 1`
     used to wrap where the run time keeps the exact sum."""
     assert run(dialect, "all", monkeypatch, operands="VAR CONSTANT") == expected
+
+
+# OMRON's data type ranking (W501 6-5-3, p. 6-106): an integer operation takes
+# the type of its higher-ranked operand, and of a signed and an unsigned one
+# of the same rank, the unsigned type.  Hand values below.
+RANKED_OPERANDS = """U : UDINT := 16#FFFFFFFF; D : DINT := 1; M1 : DINT := -1; UZ : UDINT := 10;
+I : INT := -1; W : UINT := 3; S : SINT := -2;"""
+RANKED_BODY = """
+R1 := (U + D) / DINT#2;   (* OMRON's own example: UDINT, overflows to 0, 0 / 2 = 0 *)
+R2 := UZ / M1;            (* UDINT / DINT is UDINT: 10 / 4294967295 = 0 *)
+R3 := W + I;              (* UINT + INT is UINT: 3 + 65535 wraps to 2 *)
+R4 := I * W;              (* UINT: -3 is 65533 *)
+R5 := S + W;              (* UINT (rank 2 over rank 1): 1 *)
+R6 := UZ MOD M1;          (* UDINT: 10 MOD 4294967295 = 10 *)
+R7 := M1 - UZ;            (* UDINT: -11 is 4294967285 *)
+"""
+RANKED_NJ = {"R1": 0, "R2": 0, "R3": 2, "R4": 65533, "R5": 1, "R6": 10, "R7": 4294967285}
+# IEC 61131-3: the narrowest type both widen to (UDINT and DINT: LINT; UINT and INT: DINT).
+RANKED_IEC = {"R1": 2147483648, "R2": -10, "R3": 2, "R4": -3, "R5": 1, "R6": 0, "R7": -11}
+
+
+@pytest.mark.parametrize("dialect, expected", [("nj", RANKED_NJ), ("iec", RANKED_IEC)])
+@pytest.mark.parametrize("operands", ["VAR", "VAR CONSTANT"])
+def test_mixed_signed_and_unsigned_integers_take_the_dialects_type(dialect, expected, operands, monkeypatch):
+    src = (f"PROGRAM Main\nVAR R1, R2, R3, R4, R5, R6, R7 : LINT; END_VAR\n{operands}\n{RANKED_OPERANDS}\n"
+           f"END_VAR\n{RANKED_BODY}\nEND_PROGRAM\n")
+    plc = load_text(src, "main.st", dialect=dialect).controller()
+    main = plc.add_program("Main")
+    plc.run(1)
+    assert not plc.faults
+    assert {name: main[name] for name in expected} == expected
+
+
+def test_ulint_and_lint_meet_in_ulint_on_the_nj_only():
+    src = "PROGRAM Main\nVAR UL : ULINT := 5; L : LINT := -1; R : ULINT; END_VAR\nR := UL + L;\nEND_PROGRAM\n"
+    plc = load_text(src, "main.st", dialect="nj").controller()
+    main = plc.add_program("Main")
+    plc.run(1)
+    assert main["R"] == 4
+    with pytest.raises(Exception, match="E-TYPE-002"):
+        load_text(src, "main.st", dialect="iec")

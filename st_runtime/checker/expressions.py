@@ -557,8 +557,12 @@ class ExprChecker:
         if t is ts.ERROR:
             return self.record(e, ts.ERROR)
         value = NOT_CONSTANT
+        left, right = self.constant(e.left), self.constant(e.right)
+        if op in ("/", "MOD") and ts.is_int(t) and self.ctx.rules.omron_integer_ranking:
+            # UDINT / DINT divides as UDINT: a DINT -1 is 4294967295 there
+            left, right = (v if v is NOT_CONSTANT else ts.coerce_constant(v, t) for v in (left, right))
         try:
-            value = apply_binary(op, self.constant(e.left), self.constant(e.right))
+            value = apply_binary(op, left, right)
         except DivisionByZero:
             self.ctx.error("E-TYPE-017", "division by zero in a constant expression", e.pos)
             return self.record(e, ts.ERROR)
@@ -650,6 +654,9 @@ class ExprChecker:
         return table.get(names)
 
     def _common(self, e, lt, rt):
+        if self.ctx.rules.omron_integer_ranking and e.op in ARITHMETIC \
+                and ts.is_int(lt) and ts.is_int(rt):
+            return ts.omron_ranked(lt, rt)
         c = ts.common_type(lt, rt)
         if c is None:
             self.ctx.error("E-TYPE-002", f"{e.op}: operands {lt} and {rt} have no common type; "

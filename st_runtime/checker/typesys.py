@@ -156,6 +156,15 @@ def common_type(a, b):
     return None
 
 
+def omron_ranked(a: ElementaryType, b: ElementaryType) -> ElementaryType:
+    """The type OMRON gives an integer `a op b` (`Dialect.omron_integer_ranking`):
+    the wider operand's, and of one signed and one unsigned of the same size,
+    the unsigned one (W501 6-5-3, data type ranking table)."""
+    if a.bits != b.bits:
+        return a if a.bits > b.bits else b
+    return b if a.signed and not b.signed else a
+
+
 def conversion_hint(src, dst) -> str:
     """A suggestion such as `; use DINT_TO_INT` when a standard conversion exists."""
     if isinstance(src, ElementaryType) and isinstance(dst, ElementaryType) and src.name != dst.name:

@@ -259,8 +259,8 @@ class ExprCompiler:
         out of that type's range overflows ("NJ-series CPU Unit Software
         User's Manual" W501, 6-5-3 Structured Text, Implicit Casts:
         `(UdintVar + DintVar) / DINT#2` with UDINT#16#FFFF_FFFF and 1
-        assigns 0 to a LINT; the checker types that sum LINT, the IEC
-        common type, where OMRON's ranking makes it UDINT: not followed).
+        assigns 0 to a LINT: the checker types that sum UDINT by OMRON's
+        ranking, `Dialect.omron_integer_ranking`).
         Only under a dialect that says so (`Dialect.wraps_in_expressions`).
         """
         if not DIALECTS[self.program.dialect].wraps_in_expressions:
@@ -276,6 +276,21 @@ class ExprCompiler:
         if known is not None and bounds[0] <= known[0] and known[1] <= bounds[1]:
             return code
         return _wrapped(code, e)
+
+    def cast_operand(self, operand, code: str, t) -> str:
+        """An integer operand of `/` or MOD as a value of the operation's type `t`.
+
+        Only OMRON's ranking (`Dialect.omron_integer_ranking`) gives an
+        operation a type that does not hold its operand's values: UDINT / DINT
+        is UDINT, and a DINT -1 divides as UDINT 4294967295 (W501 6-5-3).
+        """
+        target, source = elementary(t), elementary(self.ty(operand))
+        if target is None or target.kind != "int" or source is None or source.kind != "int":
+            return code
+        (lo, hi), (src_lo, src_hi) = int_bounds(target), int_bounds(source)
+        if lo <= src_lo and src_hi <= hi:
+            return code
+        return _wrapped(code, target)
 
     def constant_array_range(self, name) -> tuple[int, int] | None:
         """(min, max) of the elements of a CONSTANT integer array, else None."""
@@ -371,6 +386,8 @@ class ExprCompiler:
         if op not in _BIT_OPS and not (op in ("+", "-", "*") and is_int_like(t)):
             # The exact value of an integer operand is seen here (settled).
             left, right = self.settled(e.left, left), self.settled(e.right, right)
+            if op in ("/", "MOD"):
+                left, right = self.cast_operand(e.left, left, t), self.cast_operand(e.right, right, t)
         if op in _BIT_OPS:
             return f"({left} {_BIT_OPS[op]} {right})"
         if op == "*" and elementary(t) is not None and elementary(t).kind == "time" \
