@@ -184,6 +184,15 @@ class Dialect:
     # DINT is UDINT, ULINT + LINT is ULINT.  IEC 61131-3 takes the narrowest
     # type both widen to (UDINT + DINT is LINT; ULINT + LINT has none).
     omron_integer_ranking: bool = False
+    # Assignment casts beyond IEC's widening: a signed integer into an
+    # unsigned one of the same or a larger size, the bits kept (W501 6-5-3,
+    # "Casting Rules When You Assign the Right-hand Value to the Left-hand
+    # Side", p. 6-107: SINT->USINT->UINT->UDINT->ULINT are connected, so
+    # `ULINT := SINT` builds; `uintVar := intVar` with -1 gives 16#FFFF).
+    # The chart itself could not be read here: DINT->UDINT and LINT->ULINT
+    # follow the pattern of the two pairs the text shows; other arrows of
+    # the chart (UINT->INT? narrowing?) are not taken, so they stay errors.
+    signed_to_unsigned_assignment: bool = False
 
     def accepts(self, construct: str) -> bool:
         return self.name in CONSTRUCTS[construct].accepted_by
@@ -226,7 +235,7 @@ class Dialect:
 # (docs/nj501.md, memory model rows).
 IEC = Dialect("iec")
 NJ = Dialect("nj", frozenset(NJ_RULES), OMRON_PINS, string_unit="byte", string_max_bytes=1986,
-             wraps_in_expressions=True, omron_integer_ranking=True)
+             wraps_in_expressions=True, omron_integer_ranking=True, signed_to_unsigned_assignment=True)
 # CODESYS/TwinCAT: IEC pin names and NJ rules as warnings.
 CODESYS = Dialect("codesys", time_unit_ns=1_000_000)
 DIALECTS: Mapping[str, Dialect] = MappingProxyType({d.name: d for d in (IEC, NJ, CODESYS)})

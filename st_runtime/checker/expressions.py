@@ -204,11 +204,17 @@ class ExprChecker:
             self.ctx.error("E-TYPE-016", f"{what}: function block instances cannot be copied "
                            f"(found {src}, expected {dst})", pos)
             return False
-        if ts.implicitly_converts(src, dst):
+        if ts.implicitly_converts(src, dst) or self._dialect_casts(src, dst):
             return True
         self.ctx.error("E-TYPE-004", f"{what}: expected {dst}, found {src}"
                        f"{ts.conversion_hint(src, dst)}", pos)
         return False
+
+    def _dialect_casts(self, src, dst) -> bool:
+        """An assignment the dialect casts where IEC 61131-3 needs a conversion
+        (`Dialect.signed_to_unsigned_assignment`: `UintVar := IntVar` on the NJ)."""
+        return (self.ctx.rules.signed_to_unsigned_assignment and ts.is_int(src) and ts.is_int(dst)
+                and src.signed and not dst.signed and dst.bits >= src.bits)
 
     # --------------------------------------------- untyped constant folding
     def _fold_exact(self, e, values: dict):
