@@ -140,7 +140,7 @@ class ExprChecker:
         return t
 
     def _keeps_exact(self, e, value, t) -> bool:
-        """Whether a folded integer `+ - * /` (or unary minus) keeps its exact value.
+        """Whether a folded integer `+ - * / MOD` (or unary minus) keeps its exact value.
 
         The run time computes those on exact integers (`INT#-32768 / -1` is
         32768) and wraps only where a value is stored, unless the dialect wraps inside expressions
@@ -149,7 +149,7 @@ class ExprChecker:
         `(C + 1) / 2` with C = INT#32767 is 16384 whether C is a CONSTANT or a
         variable (before, the constant was wrapped to -32768 at `C + 1`).
         """
-        return (isinstance(e, (ast.Binary, ast.Unary)) and e.op in ("+", "-", "*", "/")
+        return (isinstance(e, (ast.Binary, ast.Unary)) and e.op in ("+", "-", "*", "/", "MOD")
                 and isinstance(value, int) and not isinstance(value, bool)
                 and isinstance(t, T.ElementaryType) and t.kind == "int"
                 and not self.ctx.rules.wraps_in_expressions)

@@ -247,9 +247,10 @@ class ExprCompiler:
         """`code` of `expr` as a value of the expression's own integer type.
 
         `+ - *` and unary minus run on exact Python integers, wrapped when
-        stored: the stored result of any chain of them (and of bit
-        operations on them) is the same as with a wrap after every
-        operation.  Where the exact value itself would be seen (a
+        stored: the stored result of any chain of them in one type (and of
+        bit operations on them) is the same as with a wrap after every
+        operation; an operand of a narrower type is settled where a wider
+        `+ - *` takes it (`settled_narrower`).  Where the exact value itself would be seen (a
         comparison, a division or MOD, a conversion, an argument of a
         standard function, a CASE selector, an array index, a store into a
         wider type) it is wrapped first; so is a quotient, whose one
@@ -276,6 +277,13 @@ class ExprCompiler:
         if known is not None and bounds[0] <= known[0] and known[1] <= bounds[1]:
             return code
         return _wrapped(code, e)
+
+    def settled_narrower(self, operand, code: str, t) -> str:
+        """`settled` for an operand of a `+ - *` of type `t` whose own type is narrower."""
+        own, target = elementary(self.ty(operand)), elementary(t)
+        if own is None or target is None or own.kind != "int" or own.bits >= target.bits:
+            return code
+        return self.settled(operand, code)
 
     def cast_operand(self, operand, code: str, t) -> str:
         """An integer operand of `/` or MOD as a value of the operation's type `t`.
@@ -388,6 +396,9 @@ class ExprCompiler:
             left, right = self.settled(e.left, left), self.settled(e.right, right)
             if op in ("/", "MOD"):
                 left, right = self.cast_operand(e.left, left, t), self.cast_operand(e.right, right, t)
+        elif op not in _BIT_OPS:
+            # An operand of a narrower type is seen by this wider + - *: `DintVar + (IntVar + IntVar)`.
+            left, right = self.settled_narrower(e.left, left, t), self.settled_narrower(e.right, right, t)
         if op in _BIT_OPS:
             return f"({left} {_BIT_OPS[op]} {right})"
         if op == "*" and elementary(t) is not None and elementary(t).kind == "time" \
