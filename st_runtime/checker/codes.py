@@ -44,7 +44,6 @@ CHECKER_CODES = register({
     "E-TYPE-016": "a name that is not a value (a POU, a type, an FB instance) is used as a value",
     "E-TYPE-017": "division by zero in a constant expression",
     "W-DECL-001": "a project's FUNCTION_BLOCK replaces the built-in standard FB of the same name (TON, CTU, MC_Power)",
-    "E-SFC-001": "an SFC action qualifier st_runtime does not run (SD, DS, SL)",
     "E-SFC-002": "an SFC chart that is not well formed: an unknown or duplicate step, no INITIAL_STEP",
     "W-TYPE-001": "a string literal is longer than the STRING it is stored in and will be truncated",
     # assignments

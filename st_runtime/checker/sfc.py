@@ -13,16 +13,22 @@ a fault in a transition condition points at it).  One scan of a chart:
 3. each action's control (6.7.4.5, table 60) computes Q from its
    associations: N while the step is active, S / R stored and reset (R wins),
    P and P1 one scan on the step's activation, P0 one scan on its
-   deactivation, L while active for at most the time, D after the time; an
+   deactivation, L while active for at most the time, D after the time;
+   SD stored at activation and on after the time, DS on after the time if
+   the step is still active and then stored, SL stored at activation and on
+   for the time (a flip-flop and a TON each, as the standard's
+   ACTION_CONTROL body; CODESYS's help, "Qualifiers for Actions in SFC",
+   words the same rules); R is reset-dominant over every stored kind; an
    action's body runs while Q is TRUE and once more on Q's falling edge
    (the standard's final scan; PLCnext's help, "Action and Action Qualifier
    in SFC", quotes the rule), so a P, P1 or P0 action's body runs on two
    scans, the second with Q FALSE.  An association naming no ACTION is a
    Boolean variable set to Q.
 
-The order (transitions, steps, then actions) is MATIEC's.  The stored timed
-qualifiers SD, DS and SL are not run (E-SFC-001).  `S.T` counts up to
-T#24d (a TON's preset), where it stops.
+The order (transitions, steps, then actions) is MATIEC's.  `S.T` counts up
+to T#24d (a TON's preset), where it stops.  Each L, D, SD, DS and SL
+association has its own timer (an action held by two steps with two times
+times each association on its own).
 """
 
 from __future__ import annotations
@@ -33,7 +39,6 @@ from .. import ast
 from ..ast import key
 
 STEP_TYPE = "__SFC_STEP"
-_NOT_RUN = frozenset({"SD", "DS", "SL"})
 _FOREVER_NS = 24 * 86_400 * 10**9
 
 
@@ -129,14 +134,6 @@ class _Lowering:
                                    f"{', '.join(t.targets)}: no step '{name}' in "
                                    f"{self.pou.name}", t.pos)
                     ok = False
-        for s in self.chart.steps:
-            for a in s.actions:
-                if a.qualifier in _NOT_RUN:
-                    self.ctx.error("E-SFC-001", f"action {a.action}({a.qualifier}, ...) in step "
-                                   f"{s.name}: the stored timed qualifiers SD, DS and SL are "
-                                   f"not run by st_runtime (N, S, R, P, P1, P0, L and D are)",
-                                   a.pos)
-                    ok = False
         return ok
 
     # ------------------------------------------------------------ body
@@ -191,8 +188,11 @@ class _Lowering:
             for hidden in (q, stored, reset, final):
                 self._var(hidden.name, "BOOL", pos)
             out += [self._set(q, self._false(pos), pos), self._set(reset, self._false(pos), pos)]
-            for i, (s, a) in enumerate(associations):
+            # Resets first: every stored kind is reset-dominant (an RS flip-flop).
+            numbered = sorted(enumerate(associations), key=lambda ia: ia[1][1].qualifier != "R")
+            for i, (s, a) in numbered:
                 out += self._association(s, a, i, q, stored, reset)
+            out.append(self._set(stored, self._and(stored, self._not(reset)), pos))
             out.append(self._set(q, self._and(self._or(q, stored), self._not(reset)), pos))
             if k in coded:
                 out.append(self._if(self._or(q, final), coded[k].body, pos))
@@ -211,8 +211,7 @@ class _Lowering:
         if kind == "S":
             return [self._if(active, [self._set(stored, ast.BoolLiteral(True, pos=p), p)], p)]
         if kind == "R":
-            return [self._if(active, [self._set(stored, self._false(p), p),
-                                      self._set(reset, ast.BoolLiteral(True, pos=p), p)], p)]
+            return [self._if(active, [self._set(reset, ast.BoolLiteral(True, pos=p), p)], p)]
         if kind in ("P", "P1"):
             return [self._set(q, self._or(q, self._and(active, self._not(was))), p)]
         if kind == "P0":
@@ -220,5 +219,18 @@ class _Lowering:
         timer = f"__{kind}{i}_{a.action}"
         self._var(timer, "TON", p)
         done = ast.Member(self._name(timer, p), "Q", pos=p)
-        term = self._and(active, self._not(done)) if kind == "L" else done
-        return [self._ton(timer, active, a.time, p), self._set(q, self._or(q, term), p)]
+        if kind in ("L", "D"):
+            term = self._and(active, self._not(done)) if kind == "L" else done
+            return [self._ton(timer, active, a.time, p), self._set(q, self._or(q, term), p)]
+        # SD, DS, SL: a reset-dominant flip-flop (RS) and a TON, as ACTION_CONTROL's body
+        flag = self._name(f"__{kind}F{i}_{a.action}", p)
+        self._var(flag.name, "BOOL", p)
+        not_reset = self._not(reset)
+        if kind == "DS":        # timed while the step is active, then stored
+            return [self._ton(timer, active, a.time, p),
+                    self._set(flag, self._and(self._or(flag, done), not_reset), p),
+                    self._set(q, self._or(q, flag), p)]
+        term = done if kind == "SD" else self._and(flag, self._not(done))      # SL: on for the time
+        return [self._set(flag, self._and(self._or(flag, active), not_reset), p),
+                self._ton(timer, flag, a.time, p),
+                self._set(q, self._or(q, term), p)]
