@@ -88,3 +88,15 @@ def test_bad_playback_names_file_line_and_column(tmp_path, capsys):
     code, _, err = run_plan(capsys, "--playback", path)
     assert code == 1
     assert f"{path}:3:9: expected a finite number" in err
+
+
+@pytest.mark.parametrize("example", ["crank_platform.toml", "moving_base_platform.toml"])
+def test_plan_refuses_a_platform_it_does_not_plan_for(capsys, example):
+    # The planner's legs are linear on a fixed base; it used to print a crank platform's
+    # "stroke" as if its legs were cylinders.
+    from pathlib import Path
+
+    config = Path(__file__).resolve().parent.parent / "examples" / example
+    code, out, err = run_plan(capsys, "--config", config, "--path", "epitrochoid:R=60,r=20,d=30,z=240")
+    assert code == 1 and out == ""
+    assert "not planned" in err and err.count("\n") == 1

@@ -10,6 +10,7 @@ limit is named with its leg. ``--study`` plans the four curves of the
 figures (stgen.reference.paths.STUDY_PATHS) at roll = pitch = 0 and 35 deg.
 ``--figures DIR`` draws the six actuator velocities of each.
 Exit 0 when every limit holds, 1 when one breaks or on bad input (file:line:col).
+A crank or moving-base platform is refused (exit 1), as the controller refuses paths there.
 """
 
 from __future__ import annotations
@@ -123,6 +124,14 @@ def _figures(motions: list[PlannedMotion], config, out: Path, study: bool) -> li
 def run(args: argparse.Namespace) -> int:
     config = config_from_args(args, "plan")
     if config is None:
+        return 1
+    if not config.is_default_kind:
+        # The legs planned here are linear on a fixed base; SP_Controller refuses paths and
+        # playback on the other platforms (SP_REFUSED_PLATFORM): plan nothing rather than wrong legs.
+        kind = config.platform
+        print(f"stgen plan: error: {args.config}: paths and playback are planned for linear legs on a "
+              f"fixed base (docs/mathematics.md section 6.3); this platform (actuator {kind.actuator!r}, "
+              f"base {kind.base!r}) is not planned, as SP_Controller refuses them there", file=sys.stderr)
         return 1
     started = time.perf_counter()
     try:
