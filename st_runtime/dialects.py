@@ -184,6 +184,11 @@ class Dialect:
     # DINT is UDINT, ULINT + LINT is ULINT.  IEC 61131-3 takes the narrowest
     # type both widen to (UDINT + DINT is LINT; ULINT + LINT has none).
     omron_integer_ranking: bool = False
+    # The same rule for REAL: a REAL `+ - * /` is computed in single precision,
+    # each result rounded to float32 (W501 6-5-3: the right-hand side has the
+    # type of its highest-ranked operand, REAL when no operand is LREAL).
+    # Elsewhere REAL intermediate results stay doubles until stored.
+    rounds_real_operations: bool = False
     # Assignment casts beyond IEC's widening: a signed integer into an
     # unsigned one of the same or a larger size, the bits kept (W501 6-5-3,
     # "Casting Rules When You Assign the Right-hand Value to the Left-hand
@@ -235,7 +240,8 @@ class Dialect:
 # (docs/nj501.md, memory model rows).
 IEC = Dialect("iec")
 NJ = Dialect("nj", frozenset(NJ_RULES), OMRON_PINS, string_unit="byte", string_max_bytes=1986,
-             wraps_in_expressions=True, omron_integer_ranking=True, signed_to_unsigned_assignment=True)
+             wraps_in_expressions=True, omron_integer_ranking=True, signed_to_unsigned_assignment=True,
+             rounds_real_operations=True)
 # CODESYS/TwinCAT: IEC pin names and NJ rules as warnings.
 CODESYS = Dialect("codesys", time_unit_ns=1_000_000)
 DIALECTS: Mapping[str, Dialect] = MappingProxyType({d.name: d for d in (IEC, NJ, CODESYS)})

@@ -105,3 +105,44 @@ def test_mixed_integer_expressions_follow_the_dialect(dialect, block, seed):
     got = main["r"]
     wrong = [(text, g, w) for (text, _, _), g, w in zip(exprs, got, want) if g != w]
     assert not wrong, wrong[:5]
+
+
+# REAL: under `nj` each `+ - * /` is computed in single precision (the right-hand
+# side has the type REAL, W501 6-5-3); under `iec` intermediate results stay
+# doubles and are rounded once, when stored.  The references use NumPy's
+# float32 and float64 arithmetic (IEEE 754, round to nearest even).
+REAL_VALUES = (0.1, 1.0 / 3.0, 2.7182817, 1.0e-3, 123.456, 7.0e5, -0.3, 3.0e38)
+
+
+def random_real_expr(rng: random.Random, names: list, depth: int) -> str:
+    if depth == 0 or rng.random() < 0.3:
+        return rng.choice(names)
+    return f"({random_real_expr(rng, names, depth - 1)} {rng.choice('+-*/')} {random_real_expr(rng, names, depth - 1)})"
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+@pytest.mark.parametrize("block", ["VAR", "VAR CONSTANT"])
+@pytest.mark.parametrize("dialect", ["nj", "iec"])
+def test_real_expressions_round_where_the_dialect_rounds(dialect, block, seed):
+    import numpy as np
+
+    rng = random.Random(seed)
+    names = ["a", "b", "c", "d"]
+    values = {n: rng.choice(REAL_VALUES) for n in names}
+    exprs = [random_real_expr(rng, names, 3) for _ in range(60)]
+    decls = " ".join(f"{n} : REAL := {v!r};" for n, v in values.items())
+    body = "\n".join(f"r[{i}] := {text};" for i, text in enumerate(exprs, 1))
+    src = (f"PROGRAM Main\nVAR r : ARRAY[1..{len(exprs)}] OF REAL; END_VAR\n{block}\n{decls}\nEND_VAR\n"
+           f"{body}\nEND_PROGRAM\n")
+    plc = load_text(src, "main.st", dialect=dialect).controller()
+    main = plc.add_program("Main")
+    plc.run(1)
+    assert not plc.faults
+    f32 = {n: np.float32(v) for n, v in values.items()}
+    f64 = {n: np.float64(v) for n, v in f32.items()}     # REAL variables hold float32 values
+    with np.errstate(all="ignore"):
+        want = [float(np.float32(eval(text, {}, f32 if dialect == "nj" else f64))) for text in exprs]
+    got = main["r"]         # the API shows a REAL by its shortest decimal: compare as float32
+    wrong = [(text, g, w) for text, g, w in zip(exprs, got, want)
+             if np.float32(g) != np.float32(w) and not (g != g and w != w)]
+    assert not wrong, wrong[:5]

@@ -148,11 +148,16 @@ class ExprChecker:
         the value the same expression has at run time: under `iec`,
         `(C + 1) / 2` with C = INT#32767 is 16384 whether C is a CONSTANT or a
         variable (before, the constant was wrapped to -32768 at `C + 1`).
+        Likewise a REAL `+ - * /` stays a double under `iec`
+        (`Dialect.rounds_real_operations`).
         """
-        return (isinstance(e, (ast.Binary, ast.Unary)) and e.op in ("+", "-", "*", "/", "MOD")
-                and isinstance(value, int) and not isinstance(value, bool)
-                and isinstance(t, T.ElementaryType) and t.kind == "int"
-                and not self.ctx.rules.wraps_in_expressions)
+        if not (isinstance(e, (ast.Binary, ast.Unary)) and e.op in ("+", "-", "*", "/", "MOD")
+                and isinstance(t, T.ElementaryType)):
+            return False
+        if isinstance(value, int) and not isinstance(value, bool) and t.kind == "int":
+            return not self.ctx.rules.wraps_in_expressions
+        # A REAL result: a double until stored, unless the dialect rounds each operation.
+        return isinstance(value, float) and t.kind == "real" and not self.ctx.rules.rounds_real_operations
 
     def constant(self, e):
         return self.program.constants.get(id(e), NOT_CONSTANT)

@@ -228,8 +228,9 @@ class Calls:
                     value = f"(not {value})"
                 stores.append(place.store_expr(ec.convert(value, symbol.type, place.type)))
             return f"({tmp} := {code}, {', '.join(stores)}, {tmp}[0])[-1]"
-        if target.kind == "function":
-            return self.standard(ec, call, target)
+        if target.kind == "function":     # a REAL result rounded where the NJ computes in REAL
+            code = self.standard(ec, call, target)
+            return f"_f32({code})" if ec.rounds_real(ec.ty(call)) else code
         if target.kind == "bound":               # LOWER_BOUND / UPPER_BOUND
             array, dim = call.args[0].value, ec.constant_of(call.args[1].value)
             t = ec.ty(array)

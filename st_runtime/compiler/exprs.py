@@ -388,6 +388,19 @@ class ExprCompiler:
         return f"({operand} ^ {(1 << t.bits) - 1})"
 
     def x_Binary(self, e):
+        code = self._binary(e)
+        if e.op in ("+", "-", "*", "/", "**") and self.rounds_real(self.ty(e)):
+            return f"_f32({code})"
+        return code
+
+    def rounds_real(self, t) -> bool:
+        """Whether a REAL result is rounded to single precision where it is computed
+        (`Dialect.rounds_real_operations`, the NJ: W501 6-5-3)."""
+        e = elementary(t)
+        return (e is not None and e.kind == "real" and e.bits == 32
+                and DIALECTS[self.program.dialect].rounds_real_operations)
+
+    def _binary(self, e):
         op = e.op
         lt, rt, t = self.ty(e.left), self.ty(e.right), self.ty(e)
         left, right = self.expr(e.left), self.expr(e.right)
