@@ -14,7 +14,12 @@
 * `errors` and `pins`: OMRON's Build rules and pin names (below);
 * `wraps_in_expressions`: whether an integer `+ - *` result that leaves its
   type's range overflows where it is used (compared, divided, converted to
-  REAL, stored into a wider type), not only when it is stored.
+  REAL, stored into a wider type), not only when it is stored;
+* `omron_integer_ranking`, `rounds_real_operations`: the type an operation
+  on mixed integers has, and whether a REAL operation is rounded to single
+  precision where it is computed (OMRON's implicit cast rules);
+* `signed_to_unsigned_assignment`: whether `UintVar := IntVar` needs no
+  conversion function.
 
 No other module asks which dialect is active (`if dialect == ...`).  A reader can check every OMRON rule below
 against its source (docs/nj501.md, "What Sysmac Studio builds", has one row

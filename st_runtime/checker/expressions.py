@@ -140,15 +140,15 @@ class ExprChecker:
         return t
 
     def _keeps_exact(self, e, value, t) -> bool:
-        """Whether a folded integer `+ - * / MOD` (or unary minus) keeps its exact value.
+        """Whether a folded `+ - * / MOD` (or unary minus) keeps its value unrounded.
 
-        The run time computes those on exact integers (`INT#-32768 / -1` is
-        32768) and wraps only where a value is stored, unless the dialect wraps inside expressions
-        (`Dialect.wraps_in_expressions`, the NJ).  A folded constant must be
-        the value the same expression has at run time: under `iec`,
-        `(C + 1) / 2` with C = INT#32767 is 16384 whether C is a CONSTANT or a
-        variable (before, the constant was wrapped to -32768 at `C + 1`).
-        Likewise a REAL `+ - * /` stays a double under `iec`
+        A folded constant must be the value the same expression has at run
+        time.  The run time computes integers exactly (`INT#-32768 / -1` is
+        32768) and wraps them only where they are stored, unless the dialect
+        wraps inside expressions (`Dialect.wraps_in_expressions`, the NJ):
+        under `iec`, `(C + 1) / 2` with C = INT#32767 is 16384 whether C is a
+        CONSTANT or a variable.  Likewise a REAL result stays a double
+        unless the dialect rounds each operation
         (`Dialect.rounds_real_operations`).
         """
         if not (isinstance(e, (ast.Binary, ast.Unary)) and e.op in ("+", "-", "*", "/", "MOD")

@@ -250,12 +250,12 @@ class ExprCompiler:
         stored: the stored result of any chain of them in one type (and of
         bit operations on them) is the same as with a wrap after every
         operation; an operand of a narrower type is settled where a wider
-        `+ - *` takes it (`settled_narrower`).  Where the exact value itself would be seen (a
-        comparison, a division or MOD, a conversion, an argument of a
-        standard function, a CASE selector, an array index, a store into a
-        wider type) it is wrapped first; so is a quotient, whose one
-        overflow is `INT#-32768 / -1` (the same rule, not shown on its own
-        in W501).  The NJ evaluates the right-hand
+        `+ - *` takes it (`settled_narrower`).  Where the exact value itself
+        would be seen (a comparison, a division or MOD, a conversion, an
+        argument of a standard function, a CASE selector, an array index, a
+        store into a wider type) it is wrapped first; so is a quotient,
+        whose one overflow is `INT#-32768 / -1` (the same rule, not shown on
+        its own in W501).  The NJ evaluates the right-hand
         side in the data type of its highest-ranked operand, and a result
         out of that type's range overflows ("NJ-series CPU Unit Software
         User's Manual" W501, 6-5-3 Structured Text, Implicit Casts:
