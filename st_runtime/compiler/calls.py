@@ -163,10 +163,19 @@ class Calls:
                 lines.append(copy_statement(attr, ec.aggregate(arg.value), symbol.type))
             else:
                 lines.append(f"{attr} = {self.argument(ec, symbol, arg)}")
-        lines.append(f"{instance}.execute(_ctx)")
+        lines += self._execute(ec, target, call, instance)
         for symbol, arg in outputs:
             lines.append(self.store_output(ec, f"{instance}.{pyident(symbol.name)}", symbol, arg))
         return lines
+
+    def _execute(self, ec, target, call, instance: str) -> list[str]:
+        """The call of the body; with `inline`, a native FB's call only when its
+        `CALL_NEEDED` test says it can do something (an idle MC_Stop returns at once)."""
+        native = target.pou.native if target.pou is not None else getattr(ec.ty(call.callee), "native", None)
+        needed = getattr(native, "CALL_NEEDED", None) if ec.opt.inline else None
+        if needed is None:
+            return [f"{instance}.execute(_ctx)"]
+        return [f"if {needed.format(fb=instance)}:", f"    {instance}.execute(_ctx)"]
 
     def user_call_with_outputs(self, ec, call, target) -> list[str]:
         tmp = ec.temp()

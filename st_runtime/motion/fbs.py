@@ -195,6 +195,10 @@ def _spell_out_idle_call(cls) -> None:
     cls._execute_rules = namespace["_execute_rules"]
     if "execute" not in cls.__dict__:
         cls.execute = cls._execute_rules
+    # The idle call changes nothing once its outputs are clear and the Execute it remembers is
+    # FALSE (and, with `_after_call`, no command is left): the compiled caller tests that itself.
+    rest = ("_previous_execute", *(("_command is not None",) if cls.AFTER_CALL else ()))
+    cls.CALL_NEEDED = " or ".join("{fb}." + test for test in ("v_EXECUTE", "v_BUSY", *outputs, *rest))
 
 
 _spell_out_idle_call(_ExecuteFB)
