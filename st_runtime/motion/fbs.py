@@ -235,8 +235,7 @@ class MC_Power(_AxisFB):
 
     def execute(self, ctx) -> None:
         ref = self.v_AXIS   # _axis(ctx), its cached case inlined (every scan of every axis)
-        cfg = ref.v_CFG if ref is self._bound_ref else None
-        if cfg is not None and cfg.v_AXENABLE and cfg.v_AXNO == self._bound_no:
+        if ref is self._bound_ref and (cfg := ref.v_CFG).v_AXENABLE and cfg.v_AXNO == self._bound_no:
             axis = self._bound_axis
         else:
             axis = self._axis(ctx)
@@ -404,8 +403,7 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
         if (self.v_BUSY and command is not None and not command.aborted
                 and (self._previous_execute or not execute)):
             ref = self.v_AXIS   # _axis(ctx), its cached case inlined
-            cfg = ref.v_CFG if ref is self._bound_ref else None
-            if cfg is not None and cfg.v_AXENABLE and cfg.v_AXNO == self._bound_no:
+            if ref is self._bound_ref and (cfg := ref.v_CFG).v_AXENABLE and cfg.v_AXNO == self._bound_no:
                 axis = self._bound_axis
             else:
                 axis = self._axis(ctx)
