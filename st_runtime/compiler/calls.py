@@ -11,7 +11,9 @@ Conventions of the generated code:
   get the bit width of IN as a trailing argument.  `A_TO_B` is `_cv_A_TO_B`.
 * An FB call stores the given inputs into the instance (`inst.v_IN = ...`),
   connects VAR_IN_OUTs (the aggregate itself, or a `Ref`), calls
-  `inst.execute(_ctx)` and then copies the `=>` outputs.
+  `inst.execute(_ctx)` and then copies the `=>` outputs.  With `inline`, a
+  native FB whose class has a `CALL_NEEDED` test is called only when that
+  test is true (an idle MC_Stop would change nothing).
 """
 
 from __future__ import annotations
@@ -169,8 +171,7 @@ class Calls:
         return lines
 
     def _execute(self, ec, target, call, instance: str) -> list[str]:
-        """The call of the body; with `inline`, a native FB's call only when its
-        `CALL_NEEDED` test says it can do something (an idle MC_Stop returns at once)."""
+        """The call of the body (see the module docstring for `CALL_NEEDED`)."""
         native = target.pou.native if target.pou is not None else getattr(ec.ty(call.callee), "native", None)
         needed = getattr(native, "CALL_NEEDED", None) if ec.opt.inline else None
         if needed is None:
