@@ -183,12 +183,20 @@ class Controller:
         ctx.now_ns = index * self.period_ns
         ctx.period_ns = self.period_ns
         try:
-            self._hooks(self.before_hooks, ctx)
+            for hook in self.before_hooks:      # the I/O hooks' loops spelt out: no call for each
+                try:
+                    hook(ctx)
+                except STFault as fault:
+                    self._hook_fault(hook, fault)
             for task in self.tasks:
                 if not index % task.every:
                     self._run_task(task, ctx)
             ctx.period_ns = self.period_ns
-            self._hooks(self.after_hooks, ctx)
+            for hook in self.after_hooks:
+                try:
+                    hook(ctx)
+                except STFault as fault:
+                    self._hook_fault(hook, fault)
         except StopRun as stop:
             self.stopped = stop.record
         self.scan_count += 1
@@ -242,14 +250,10 @@ class Controller:
             ctx.resumed = False         # the caller's code runs next
         return done
 
-    def _hooks(self, hooks: list, ctx) -> None:
-        """Run I/O hooks; a fault they raise is recorded against the hook."""
-        for hook in hooks:
-            try:
-                hook(ctx)
-            except STFault as fault:
-                name = getattr(hook, "__qualname__", type(hook).__name__)
-                self.record_fault(fault, (name, "<io>", fault.line or 0, fault.col or 0))
+    def _hook_fault(self, hook: Callable, fault: STFault) -> None:
+        """A fault an I/O hook raised, recorded against the hook."""
+        name = getattr(hook, "__qualname__", type(hook).__name__)
+        self.record_fault(fault, (name, "<io>", fault.line or 0, fault.col or 0))
 
     # ----------------------------------------------------------- faults
 

@@ -109,6 +109,10 @@ class NativeFB:
 
     NAME: str = ""
     DECLARATION: str = ""
+    # A Python expression of the instance `{fb}`, or None: when it is false, a call with the
+    # inputs as they are stored changes nothing (no variable, no state of the FB or of what it
+    # drives) and raises nothing, so the compiled caller may leave the call out.
+    CALL_NEEDED: str | None = None
 
     def __init__(self) -> None:
         init = type(self).__dict__.get("_st_initializers")

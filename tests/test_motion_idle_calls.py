@@ -77,3 +77,82 @@ def test_mc_power_follows_the_axis_ref_it_is_given_every_call():
     ref.v_CFG.v_AXENABLE = False
     rig.call(power, "A0", Enable=True)
     assert outputs(power, "Status", "Busy", "Error", "ErrorID") == (False, False, True, ErrorID.AXIS_NOT_ASSIGNED)
+
+
+# Every Execute FB of a program, driven through starts, holds, falls, an axis error and its
+# reset: the compiled caller leaves out the calls that change nothing (`CALL_NEEDED`, with
+# the `inline` pass), and every FB and the axis end each scan as with every call made.
+CALLED_WHEN_NEEDED = """
+PROGRAM Main
+VAR
+    Power : MC_Power;
+    Home : MC_Home;
+    Go : MC_MoveAbsolute;
+    Sync : MC_SyncMoveAbsolute;
+    Stop : MC_Stop;
+    Reset : MC_Reset;
+    DoHome, DoMove, DoSync, DoStop, DoReset : BOOL;
+    Target : LREAL;
+END_VAR
+Power(Axis := Cyl1, Enable := TRUE);
+Home(Axis := Cyl1, Execute := DoHome);
+Go(Axis := Cyl1, Execute := DoMove, Position := Target, Velocity := 50.0, BufferMode := _mcAborting);
+Sync(Axis := Cyl1, Execute := DoSync, Position := Target, BufferMode := _mcAborting);
+Stop(Axis := Cyl1, Execute := DoStop, Deceleration := 50000.0, BufferMode := _mcAborting);
+Reset(Axis := Cyl1, Execute := DoReset);
+END_PROGRAM
+"""
+
+# (scans, the inputs set before them)
+STEPS = [(3, {}), (2, {"DoHome": True}), (2, {"DoHome": False}),
+         (5, {"DoMove": True, "Target": 5.0}), (2, {"DoMove": False}),
+         (4, {"DoStop": True}), (3, {"DoStop": False}), (3, {}),
+         (1, {"DoMove": True, "Target": 60.0}), (3, {"DoMove": False}),          # beyond the limit
+         (2, {"DoReset": True}), (2, {"DoReset": False}),
+         (2, {"DoReset": True}), (1, {"Reset.Done": False}),   # an output cleared from outside
+         (1, {"DoReset": False}), (2, {"DoReset": True}), (2, {"DoReset": False}),
+         (4, {"DoSync": True, "Target": 1.0}), (2, {"DoStop": True}), (2, {"DoSync": False}),
+         (3, {"DoStop": False}), (20, {})]
+
+
+def _fb_state(fb) -> tuple:
+    variables = sorted((k, v) for k, v in vars(fb).items() if k.startswith("v_") and k != "v_AXIS")
+    command = fb._command
+    shown = None if command is None else tuple(getattr(command, f) for f in type(command).__slots__)
+    return (type(fb).__name__, variables, fb._previous_execute, shown)
+
+
+def _run_steps(monkeypatch, optimise: str, calls: list) -> list:
+    from test_motion_st import AXIS, make_plc
+
+    monkeypatch.setenv("ST_RUNTIME_OPTIMISE", optimise)
+    plc, main, task = make_plc(CALLED_WHEN_NEEDED, AXIS)
+    instance = plc.controller.instances["Main"]
+    axis = task.axis("Cyl1")
+    states = []
+    for scans, inputs in STEPS:
+        for name, value in inputs.items():
+            main[name] = value
+        for _ in range(scans):
+            before = len(calls)
+            plc.run(1)
+            fbs_after = [_fb_state(getattr(instance, "v_" + n)) for n in
+                         ("HOME", "GO", "SYNC", "STOP", "RESET")]
+            states.append((fbs_after, axis.state, axis.cmd_pos, axis.fault_code, len(calls) - before))
+    return states
+
+
+def test_a_call_that_would_change_nothing_is_left_out_and_nothing_else(monkeypatch):
+    calls = []
+    for cls in (fbs.MC_Home, fbs.MC_MoveAbsolute, fbs.MC_SyncMoveAbsolute, fbs.MC_Stop, fbs.MC_Reset):
+        def counted(self, ctx, _execute=cls.execute):
+            calls.append(type(self).__name__)
+            _execute(self, ctx)
+        monkeypatch.setattr(cls, "execute", counted)
+    every_call = _run_steps(monkeypatch, "none", calls)
+    needed_only = _run_steps(monkeypatch, "inline", calls)
+    assert [s[:4] for s in needed_only] == [s[:4] for s in every_call]
+    assert {s[4] for s in every_call} == {5}                     # five Execute FBs, every scan
+    assert sum(s[4] for s in needed_only) < sum(s[4] for s in every_call) // 2
+    assert needed_only[0][4] == 0 and needed_only[-1][4] == 0   # all idle: no call at all
+    assert any(s[1] == 6 for s in every_call)                    # the axis error happened (ErrorStop)

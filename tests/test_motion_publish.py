@@ -192,3 +192,58 @@ def test_an_observer_that_says_it_only_reads_keeps_the_skip(count_writes):
     plc.run(50)
     assert count_writes.count("Cyl1") == 1 + 1 + 50
     assert len(seen) == 50
+
+
+def _axis_bits(axis) -> tuple:
+    return tuple(v.hex() if isinstance(v, float) else v for v in
+                 (axis.state, axis.powered, axis.cmd_pos, axis.act_pos, axis.cmd_vel, axis.cmd_accdec,
+                  axis.act_vel, axis.fault_code, axis.observation_code, axis.vel_limit))
+
+
+def test_the_stream_step_of_the_motion_task_is_axis_step_bit_for_bit():
+    """MotionTask.process spells out Axis.step for a sync stream on an ideal axis: held against
+    Axis.step and the writer on a twin, through targets within reach, out of reach (VelLimit),
+    beyond a soft limit (ErrorStop), not finite, a new period, a servo lag and power off."""
+    import math
+    import random
+
+    from st_runtime.motion import fbs
+    from st_runtime.motion.axis import Axis
+    from motion_rig import PERIOD_S, make_fb
+    from test_motion_fbs import axis_config, powered_rig
+
+    generator = random.Random(17)
+    for lag in (0.0, 0.002):
+        rigs = [powered_rig(servo_lag=lag, following_error_limit=5.0, following_error_warning=0.5)
+                for _ in range(2)]
+        syncs = [make_fb(fbs.MC_SyncMoveAbsolute) for _ in rigs]
+        resets = [make_fb(fbs.MC_Reset) for _ in rigs]
+        seen = set()
+        walk, targets = 0.0, []
+        for scan in range(450):
+            walk += generator.choice((0.001, 0.05, 0.099, 0.1, -0.1, -0.05)) + (0.3 if scan % 40 == 39 else 0.0)
+            targets.append(walk if scan % 97 else (50.5, math.nan, math.inf, -math.inf, 49.99)[scan // 97])
+        for scan, target in enumerate(targets):
+            dt = PERIOD_S if scan < 300 else 2 * PERIOD_S
+            enable = scan % 150 != 149
+            outcome = []
+            for twin, ((rig, power), sync, reset) in enumerate(zip(rigs, syncs, resets)):
+                rig.task.feedback_in()
+                rig.call(power, Enable=enable)
+                rig.call(reset, Execute=scan % 97 == 1)
+                rig.call(sync, Execute=scan % 97 != 0, Position=target)
+                if twin == 0:
+                    rig.task.process(dt)
+                else:                                  # what process did before the stream step
+                    for axis in rig.task.axes:
+                        Axis.step(axis, dt)
+                    for writer in rig.task._writers:
+                        writer.write()
+                outcome.append((_axis_bits(rig.task.axes[0]), snapshot(vars(rig.ref().v_CMD)),
+                                snapshot(vars(rig.ref().v_ACT)), snapshot(vars(rig.ref().v_STATUS)),
+                                snapshot(vars(rig.ref().v_DETAILS))))
+            assert outcome[0] == outcome[1], (lag, scan)
+            axis = rigs[0][0].task.axes[0]
+            seen.add((axis.state.name, axis.vel_limit, axis.observation_code != 0))
+        assert {("DISCRETE", False, False), ("DISCRETE", True, False), ("ERRORSTOP", False, False),
+                ("DISABLED", False, False)} <= seen, seen

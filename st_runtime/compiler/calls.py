@@ -11,7 +11,9 @@ Conventions of the generated code:
   get the bit width of IN as a trailing argument.  `A_TO_B` is `_cv_A_TO_B`.
 * An FB call stores the given inputs into the instance (`inst.v_IN = ...`),
   connects VAR_IN_OUTs (the aggregate itself, or a `Ref`), calls
-  `inst.execute(_ctx)` and then copies the `=>` outputs.
+  `inst.execute(_ctx)` and then copies the `=>` outputs.  With `inline`, a
+  native FB whose class has a `CALL_NEEDED` test is called only when that
+  test is true (an idle MC_Stop would change nothing).
 """
 
 from __future__ import annotations
@@ -163,10 +165,18 @@ class Calls:
                 lines.append(copy_statement(attr, ec.aggregate(arg.value), symbol.type))
             else:
                 lines.append(f"{attr} = {self.argument(ec, symbol, arg)}")
-        lines.append(f"{instance}.execute(_ctx)")
+        lines += self._execute(ec, target, call, instance)
         for symbol, arg in outputs:
             lines.append(self.store_output(ec, f"{instance}.{pyident(symbol.name)}", symbol, arg))
         return lines
+
+    def _execute(self, ec, target, call, instance: str) -> list[str]:
+        """The call of the body (see the module docstring for `CALL_NEEDED`)."""
+        native = target.pou.native if target.pou is not None else getattr(ec.ty(call.callee), "native", None)
+        needed = getattr(native, "CALL_NEEDED", None) if ec.opt.inline else None
+        if needed is None:
+            return [f"{instance}.execute(_ctx)"]
+        return [f"if {needed.format(fb=instance)}:", f"    {instance}.execute(_ctx)"]
 
     def user_call_with_outputs(self, ec, call, target) -> list[str]:
         tmp = ec.temp()

@@ -266,8 +266,8 @@ class Axis:
     def step(self, dt: float) -> None:
         """Advance one period of `dt` seconds: command, servo, checks.
 
-        Runs for every axis every scan, so the common case (a sync Position
-        within one period's reach) takes a short path.
+        (The motion task spells out the common case, an ideal axis following a
+        sync Position within one period's reach: `MotionTask.process`.)
         """
         if self.power_requested != self.powered:
             self._apply_power()
@@ -280,31 +280,6 @@ class Axis:
         if dt != self._dt:
             self._set_period(dt)
         command = self.command
-        if command is not None and command.kind == "sync" and self._lag_gain == 1.0:
-            # An ideal axis following a sync Position within one period's reach (every scan of
-            # a stream): the general path below, less what cannot happen in it.  The actual
-            # position becomes the command, so the deviation is 0.0 (NaN for an infinite one)
-            # and neither following-error check can fire.
-            target, old_cmd = command.target, self.cmd_pos
-            slack = self._step_slack
-            if -slack <= target - old_cmd <= slack and self._soft_min <= target <= self._soft_max:
-                self.vel_limit = False
-                self.act_vel = (target - self.act_pos) / dt
-                self.cmd_pos = self.act_pos = target
-                old_vel = self.cmd_vel
-                self.cmd_vel = new_vel = (target - old_cmd) / dt
-                if new_vel != old_vel:
-                    magnitude = abs(new_vel - old_vel) / dt
-                    # |new_vel| > |old_vel| without two calls of abs(): a comparison does not
-                    # see the sign of a NaN, so the negations give the same answer
-                    grows = ((new_vel if new_vel >= 0.0 else -new_vel)
-                             > (old_vel if old_vel >= 0.0 else -old_vel))
-                    self.cmd_accdec = magnitude if grows else -magnitude
-                else:
-                    self.cmd_accdec = 0.0
-                if command.reached:
-                    self._complete_commands(dt)
-                return
         old_cmd, old_act, old_vel = self.cmd_pos, self.act_pos, self.cmd_vel
         if command is None:
             new_cmd = self._error_stop_position(dt) if self.state == AxisState.ERRORSTOP else old_cmd

@@ -195,6 +195,10 @@ def _spell_out_idle_call(cls) -> None:
     cls._execute_rules = namespace["_execute_rules"]
     if "execute" not in cls.__dict__:
         cls.execute = cls._execute_rules
+    # The idle call changes nothing once its outputs are clear and the Execute it remembers is
+    # FALSE (and, with `_after_call`, no command is left): the compiled caller tests that itself.
+    rest = ("_previous_execute", *(("_command is not None",) if cls.AFTER_CALL else ()))
+    cls.CALL_NEEDED = " or ".join("{fb}." + test for test in ("v_EXECUTE", "v_BUSY", *outputs, *rest))
 
 
 _spell_out_idle_call(_ExecuteFB)
@@ -231,8 +235,7 @@ class MC_Power(_AxisFB):
 
     def execute(self, ctx) -> None:
         ref = self.v_AXIS   # _axis(ctx), its cached case inlined (every scan of every axis)
-        cfg = ref.v_CFG if ref is self._bound_ref else None
-        if cfg is not None and cfg.v_AXENABLE and cfg.v_AXNO == self._bound_no:
+        if ref is self._bound_ref and (cfg := ref.v_CFG).v_AXENABLE and cfg.v_AXNO == self._bound_no:
             axis = self._bound_axis
         else:
             axis = self._axis(ctx)
@@ -400,8 +403,7 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
         if (self.v_BUSY and command is not None and not command.aborted
                 and (self._previous_execute or not execute)):
             ref = self.v_AXIS   # _axis(ctx), its cached case inlined
-            cfg = ref.v_CFG if ref is self._bound_ref else None
-            if cfg is not None and cfg.v_AXENABLE and cfg.v_AXNO == self._bound_no:
+            if ref is self._bound_ref and (cfg := ref.v_CFG).v_AXENABLE and cfg.v_AXNO == self._bound_no:
                 axis = self._bound_axis
             else:
                 axis = self._axis(ctx)

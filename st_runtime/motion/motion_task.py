@@ -135,8 +135,40 @@ class MotionTask:
             writer.write()
 
     def process(self, dt: float) -> None:
-        """After the programs: every axis advances one period of `dt` seconds."""
-        for axis in self.axes:
-            axis.step(dt)
+        """After the programs: every axis advances one period of `dt` seconds and its
+        variable shows the result (an axis and its variable at a time: neither step nor
+        publication reads another axis)."""
+        if not self._writers:                           # no variables bound (bind: all or none)
+            for axis in self.axes:
+                axis.step(dt)
+            return
         for writer in self._writers:
+            axis = writer.axis
+            command = axis.command
+            # Axis.step of an ideal, powered axis following a sync Position within one period's
+            # reach (every scan of a stream), spelt out; anything else takes Axis.step.  The
+            # actual position becomes the command, so the deviation is 0.0 and neither
+            # following-error check can fire; nothing completes a sync command.
+            if (command is not None and command.kind == "sync" and axis.powered
+                    and axis.power_requested == axis.powered and dt == axis._dt and axis._lag_gain == 1.0):
+                target, old_cmd = command.target, axis.cmd_pos
+                slack = axis._step_slack
+                if -slack <= target - old_cmd <= slack and axis._soft_min <= target <= axis._soft_max:
+                    axis.vel_limit = False
+                    axis.act_vel = (target - axis.act_pos) / dt
+                    axis.cmd_pos = axis.act_pos = target
+                    old_vel = axis.cmd_vel
+                    axis.cmd_vel = new_vel = (target - old_cmd) / dt
+                    if new_vel != old_vel:
+                        magnitude = abs(new_vel - old_vel) / dt
+                        # |new_vel| > |old_vel| without two calls of abs(): a comparison does not
+                        # see the sign of a NaN, so the negations give the same answer
+                        grows = ((new_vel if new_vel >= 0.0 else -new_vel)
+                                 > (old_vel if old_vel >= 0.0 else -old_vel))
+                        axis.cmd_accdec = magnitude if grows else -magnitude
+                    else:
+                        axis.cmd_accdec = 0.0
+                    writer.write()
+                    continue
+            axis.step(dt)
             writer.write()
