@@ -90,6 +90,7 @@ class Optimisations:
     ranges: bool = True
     branches: bool = True
     aliases: bool = True
+    fastpath: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
