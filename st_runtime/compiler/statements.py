@@ -27,7 +27,8 @@ cannot leave early charges all its iterations once, before it starts (its
 bounds are evaluated once, so the count is known).  Straight-line code is
 checked by the controller after the program.  The charges come from the ST
 text only, so any change of the Python generated for it leaves them as
-they are.
+they are.  Where the worst case of a body is bounded and the time left
+covers it, a second copy without checks runs instead (optimise/fastpath.py).
 """
 
 from __future__ import annotations
