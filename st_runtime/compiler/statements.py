@@ -130,9 +130,9 @@ class BodyCompiler(ExprCompiler):
                                 self._statements_of_body)
 
     def _fast_or_exact(self, test: str, fast, exact) -> None:
-        """The code `exact()` emits; when it has at least `fastpath.WORTH` charges and
-        checks, `if test:` the code `fast()` emits without budget checks, its charges
-        merged (fastpath.Segments), `else:` the exact code.  Both from the same state."""
+        """The code `exact()` emits; when it has at least `fastpath.WORTH` budget checks,
+        `if test:` the code `fast()` emits without them, its charges merged
+        (fastpath.Segments), `else:` the exact code.  Both from the same state."""
         o = self.out
         mark = o.mark()
         before = self.flow.state() if self.flow is not None else None
@@ -142,9 +142,9 @@ class BodyCompiler(ExprCompiler):
             return
         exact_lines = o.lines[mark:]
         del o.lines[mark:]
-        if unroll_left is not None:         # the same unrolling in both
+        if unroll_left is not None:         # the same unrolling in both (unroll.can_unroll's budget)
             self.unroll_left = unroll_left
-        elif hasattr(self, "unroll_left"):
+        elif hasattr(self, "unroll_left"):  # (not set yet: unroll.can_unroll starts from the cap)
             del self.unroll_left
         after_exact = None
         if self.flow is not None:

@@ -9,13 +9,16 @@ every charge the body could make on any path (every condition, label and
 branch, every iteration) and its callees' worst cases: an upper bound of
 what one call takes from `_ctx.budget`.
 
-The body is then compiled twice (statements.py):
+The body is then compiled twice (statements.py), when its exact code has at
+least `WORTH` budget checks (a second copy costs load time):
 
     if _ctx.budget >= <worst case>:
         <the body without budget checks, its charges merged>
     else:
         <the body as before>
 
+An iteration of a FOR whose count is data and which may leave early (the
+FK's Newton loop) is tested the same way, against `_ctx.budget - _spent`.
 When the budget covers the worst case no check could fire (a check compares
 what the body and its callees have charged since it began with the budget it
 began with), so leaving them out changes nothing; otherwise the exact path
@@ -38,7 +41,7 @@ from ...native import NATIVE_FBS
 from ..scope import walk
 
 _JUMPS = (ast.Exit, ast.Continue, ast.Return)
-WORTH = 8               # budget checks the exact code must have
+WORTH = 8               # budget checks the exact code must have (the LU: 64, the FK: 23)
 MAX_VALUES = 64         # values of a loop variable the bound is worked out for one by one
 _TOKEN = re.compile("\x02([SA])([0-9:,]*)\x02")
 
