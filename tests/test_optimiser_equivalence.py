@@ -117,7 +117,7 @@ def _text_program(text: str):
 def test_the_passes_fire_on_a_leibniz_table():
     """The table reads become literals, the loop unrolled, the products shared, no try left."""
     program = _text_program(LEIBNIZ)
-    source = compile_program(program, optimise=replace(ON, fuse=False)).python_sources["DET3"]
+    source = compile_program(program, optimise=replace(ON, fuse=False, fastpath=False)).python_sources["DET3"]
     unrolled, fallback = source.split("for v_T")      # the copies, then the loop as before
     assert "v_P[" not in unrolled and "v_S[" not in unrolled and "v_P[" in fallback
     lines = source.splitlines()

@@ -27,7 +27,7 @@ from ..types import (
     string_size,
 )
 from .initial import CompileError
-from .optimise import Optimisations, fold
+from .optimise import Optimisations, absolute, fold
 from .pysrc import pyliteral, pyident
 
 # Python source of the comparison/arithmetic operators that map one to one.
@@ -419,6 +419,10 @@ class ExprCompiler:
             # TIME * REAL rounds to the nearest ns, as the NJ's MULTIME (values.time_mul).
             return f"_time_mul({left}, float({right}))" if elementary(lt).kind == "time" \
                 else f"_time_mul({right}, float({left}))"
+        if self.opt.inline and op in ("<", "<=", ">", ">="):
+            chained = absolute.bounded(self, e, left, right)     # ABS(x) <= C: no call
+            if chained is not None:
+                return chained
         if op in _PLAIN_OPS:
             shared = self.region.binary(op, left, right, self.out, e is not self.region.whole) \
                 if self.region is not None else None

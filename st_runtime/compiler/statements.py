@@ -27,7 +27,8 @@ cannot leave early charges all its iterations once, before it starts (its
 bounds are evaluated once, so the count is known).  Straight-line code is
 checked by the controller after the program.  The charges come from the ST
 text only, so any change of the Python generated for it leaves them as
-they are.
+they are.  Where the worst case of a body is bounded and the time left
+covers it, a second copy without checks runs instead (optimise/fastpath.py).
 """
 
 from __future__ import annotations
@@ -39,7 +40,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import aliases, branches, cse, fold, gather, ranges, unguard, unroll
+from .optimise import aliases, branches, cse, fastpath, fold, gather, ranges, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -62,6 +63,7 @@ class BodyCompiler(ExprCompiler):
         self._whole_region = self.opt.cse and unit.guard_statements and cse.worth_a_region(self, body)
         # id(branch body) -> alias lines moved there from the prologue (optimise/aliases.py)
         self._late_loads = aliases.late_loads(self, body) if self.opt.aliases and not self._whole_region else {}
+        self._segments: fastpath.Segments | None = None     # while the fast body is compiled
 
     def _add_return_variable(self) -> None:
         key = self.pou.name.upper()
@@ -118,6 +120,63 @@ class BodyCompiler(ExprCompiler):
         return o.source()
 
     def _body(self) -> None:
+        """The body; with the fast path (optimise/fastpath.py), once without budget
+        checks, run when the budget covers the worst case, and once as before."""
+        worst = self._worst_case(self.body)
+        if worst is None:
+            self._statements_of_body()
+        else:
+            self._fast_or_exact(f"_ctx.budget >= {picoseconds(worst)}", self._statements_of_body,
+                                self._statements_of_body)
+
+    def _fast_or_exact(self, test: str, fast, exact) -> None:
+        """The code `exact()` emits; when it has at least `fastpath.WORTH` budget checks,
+        `if test:` the code `fast()` emits without them, its charges merged
+        (fastpath.Segments), `else:` the exact code.  Both from the same state."""
+        o = self.out
+        mark = o.mark()
+        before = self.flow.state() if self.flow is not None else None
+        unroll_left = getattr(self, "unroll_left", None)
+        exact()
+        if not fastpath.worth_it(o.lines[mark:]):
+            return
+        exact_lines = o.lines[mark:]
+        del o.lines[mark:]
+        if unroll_left is not None:         # the same unrolling in both (unroll.can_unroll's budget)
+            self.unroll_left = unroll_left
+        elif hasattr(self, "unroll_left"):  # (not set yet: unroll.can_unroll starts from the cap)
+            del self.unroll_left
+        after_exact = None
+        if self.flow is not None:
+            after_exact = self.flow.state()
+            self.flow.set(before)
+        o.line(f"if {test}:")
+        o.indent()
+        inner = o.mark()
+        self._segments = fastpath.Segments()
+        try:
+            fast()
+            o.lines[inner:] = self._segments.resolve(o.lines[inner:])
+        finally:
+            self._segments = None
+        o.ensure_body(inner)
+        o.dedent()
+        o.line("else:")
+        o.lines.extend("    " + line for line in exact_lines)
+        if self.flow is not None:
+            self.flow.join([self.flow.state(), after_exact])
+
+    def _worst_case(self, body) -> int | None:
+        """Units `body` charges at most, when the fast path applies to it (not already
+        in a fast body, nor in a CSE region, whose code cse.py rearranges)."""
+        if not (self.opt.fastpath and self.unit.charge_costs and self.unit.guard_statements
+                and self._segments is None and self.region is None):
+            return None
+        if not any(isinstance(node, ast.For) for node in walk(body)):
+            return None             # no loop, no budget check to leave out
+        return fastpath.worst_case(self, body)
+
+    def _statements_of_body(self) -> None:
         """The body's statements; twice when a whole-body region applies (cse.body_region)."""
         if not self._whole_region:
             self.statements(self.body)
@@ -154,15 +213,20 @@ class BodyCompiler(ExprCompiler):
     # --------------------------------------------------------- statements
 
     def statements(self, body, lead: float = 0, check: str | None = None, charge: bool = True,
-                   first_charged: bool = False) -> None:
+                   first_charged: bool = False, level: bool = True) -> None:
         """Compile `body` block by block, each block charged once at its start.
 
         `lead`: units charged with the first block (a loop's overhead and
         test, the tests an ELSIF took); `check`: the place of the loop whose
         iteration this is (the first charge then tests for an overrun);
         `charge=False`: the caller has charged the whole body already;
-        `first_charged`: the caller has charged the first block.
+        `first_charged`: the caller has charged the first block; `level=False`
+        (fast body only): `body` always runs where it is written (an unrolled
+        copy), so its charges join the enclosing body's (fastpath.Segments).
         """
+        segments = self._segments if level else None
+        if segments is not None:
+            segments.enter()
         for line in self._late_loads.get(id(body), ()):
             self.out.line(line)
         first = True
@@ -174,9 +238,16 @@ class BodyCompiler(ExprCompiler):
                 self._charge(units, check if first else None)
             first = False
             for stmt in simple:
-                self.statement(stmt)
+                self._statement_in_segment(stmt)
             if compound is not None:
-                self.statement(compound)
+                self._statement_in_segment(compound)
+        if segments is not None:
+            segments.leave()
+
+    def _statement_in_segment(self, stmt) -> None:
+        self.statement(stmt)
+        if self._segments is not None and fastpath.may_leave(self, stmt):
+            self._segments.close()      # what follows may not run: its charges wait for it
 
     def _simple_cost(self, st) -> float:
         """cost.simple, memoised: an unrolled loop compiles its body once per iteration."""
@@ -243,9 +314,14 @@ class BodyCompiler(ExprCompiler):
         if not self.unit.charge_costs:
             return
         ps = picoseconds(units)
+        if self._segments is not None and times is None:    # the fast body: merged charges, no checks
+            line = self._segments.charge(ps) if ps else None
+            if line:
+                self.out.line(line)
+            return
         if ps:
             self.out.line(f"_spent += {ps if times is None else f'{times} * {ps}'}")
-        if check:
+        if check and self._segments is None:
             self.out.line(f"if _ctx.budget < _spent: _overrun({check})")
 
     def statement(self, stmt) -> None:
@@ -314,7 +390,13 @@ class BodyCompiler(ExprCompiler):
             o.dedent()
         o.line("except _FAULTS as _e:")
         o.indent()
-        o.line(f"_ctx.fault(_e, {self.where(node)})")
+        if self._segments is not None:      # stop_on_fault ends the scan with `_spent` as charged so far
+            ahead = self._segments.ahead()
+            o.line(f"_spent -= {ahead}")
+            o.line(f"_ctx.fault(_e, {self.where(node)})")
+            o.line(f"_spent += {ahead}")
+        else:
+            o.line(f"_ctx.fault(_e, {self.where(node)})")
         for line in on_fault():
             o.line(line)
         o.dedent()
@@ -627,7 +709,12 @@ class BodyCompiler(ExprCompiler):
             o.line(f"for {target.target} in {rng}:")
         o.indent()
         body_mark = o.mark()
-        if early:
+        worst = self._worst_case(s.body) if early else None
+        if worst is not None:       # each iteration: the fast path when the time left covers it
+            self._fast_or_exact(f"_ctx.budget - _spent >= {picoseconds(worst + self.cost.loop())}",
+                                lambda: self.statements(s.body, self.cost.loop()),
+                                lambda: self.statements(s.body, self.cost.loop(), where))
+        elif early:
             self.statements(s.body, self.cost.loop(), where)
         else:
             self.statements(s.body, first_charged=True)

@@ -28,7 +28,8 @@ states bit for bit:
   math function directly where the library's wrapper would only call it
   (a finite argument; SQRT: not below zero), the wrapper otherwise; MIN and
   MAX of two or more inputs are Python's min/max (the library's MIN is min of
-  the tuple: the same comparisons in the same order).
+  the tuple: the same comparisons in the same order); `ABS(x) <= B` and
+  `ABS(x) < B` are chained comparisons without the call (absolute.py).
 * `vector` (vector.py): in a CSE region, a straight run of at least
   `vector.MIN_OPERATIONS` float `+ - *` (the unrolled Leibniz determinant:
   1,950 products and 720 sums) is one call that computes the products depth
@@ -61,10 +62,17 @@ states bit for bit:
   a global that a body names inside one IF branch or CASE clause only is
   aliased by its local at the start of that branch, not in the prologue of
   every call (the same load of the same object, before any use).
+* `fastpath` (fastpath.py): a POU body, or an iteration of a FOR that may
+  leave early, whose worst-case NJ time is bounded at compile time (constant
+  loop counts, callees bounded too, no METHOD or PROPERTY) and whose exact
+  code has at least `fastpath.WORTH` budget checks is compiled a second time
+  without the checks and with one charge per straight run of blocks; it runs
+  when the time left covers the worst case, the exact code otherwise.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
-checks.  `ST_RUNTIME_OPTIMISE` (environment) picks the default: `none`, `all`
+checks; the fast path charges the same total, and leaves out only checks
+that cannot fire.  `ST_RUNTIME_OPTIMISE` (environment) picks the default: `none`, `all`
 (every pass on by default, so not `gather`) or a comma-separated list of
 pass names; unset means all.
 """
@@ -90,6 +98,7 @@ class Optimisations:
     ranges: bool = True
     branches: bool = True
     aliases: bool = True
+    fastpath: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

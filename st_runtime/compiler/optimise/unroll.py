@@ -83,19 +83,24 @@ def emit(compiler, s, key: str, values: range, after, returns: bool = False, whe
         o.indent()
     if outer is not None:       # the copies run in order whenever the loop runs
         outer.straight = outer.enclosing_straight
+    segments = compiler._segments if region is not None else None
+    if segments is not None:        # the copies run only if the reads do not fault: charges of their own
+        segments.enter()
     try:
         for value in values:
             compiler.unrolled[key] = value
             if returns:
-                compiler.statements(s.body, compiler.cost.loop(), where)
+                compiler.statements(s.body, compiler.cost.loop(), where, level=False)
             else:
-                compiler.statements(s.body, first_charged=True)
+                compiler.statements(s.body, first_charged=True, level=False)
         compiler.unrolled.pop(key, None)
         after()
     finally:
         compiler.unrolled.pop(key, None)
         if outer is not None:
             outer.straight = False
+        if segments is not None:
+            segments.leave()
     if region is None:
         return False
     compiler.region = None

@@ -1,0 +1,59 @@
+"""`ABS(x) < B` and `ABS(x) <= B` without the call (part of the `inline` switch).
+
+For any numbers x and B (Python ints or floats), `abs(x) <= B` is `-B <= x <= B` and
+`abs(x) < B` is `-B < x < B`: a NaN on either side fails both; below zero, B admits no
+x either way (-B > B), and B = -0.0 admits only the zeros with `<=`, none with `<`;
+-0.0 and 0.0 compare equal; ints and floats compare exactly.  The chained comparison
+evaluates x once, as the call did (`abs` of a number cannot raise), and B is a literal
+or a local, read twice with the same value.  Two float comparisons cost less than a
+builtin call: the FK's finiteness tests (`NOT (ABS(J[r, c]) <= SP_LREAL_MAX)`), its
+convergence test and the LU's zero-pivot test take this form.  `>` and `>=` keep the
+call.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ... import ast
+from ..pysrc import pyliteral
+
+_MIRROR = {"<": ">", "<=": ">=", ">": "<", ">=": "<="}
+
+
+def bounded(compiler, e, left: str, right: str) -> str | None:
+    """Python for the comparison `e` (codes `left`, `right`) as a chained comparison, or None."""
+    op = e.op
+    if op not in _MIRROR:
+        return None
+    if _is_abs(compiler, e.right) and not _is_abs(compiler, e.left):
+        op, left, right, bound = _MIRROR[op], right, left, e.left
+    elif _is_abs(compiler, e.left):
+        bound = e.right
+    else:
+        return None
+    if op not in ("<", "<=") or not (left.startswith("abs(") and left.endswith(")")):
+        return None
+    if right.isidentifier():            # a local: read twice, the same value, no fault
+        return f"(-{right} {op} {left[4:-1]} {op} {right})"
+    value = _literal(right)
+    if value is None or not math.isfinite(value):
+        return None
+    return f"({pyliteral(-value)} {op} {left[4:-1]} {op} {right})"
+
+
+def _literal(code: str):
+    """The number a Python literal `code` is (the bound exactly as the comparison reads it)."""
+    try:
+        value = float(code) if any(c in code for c in ".eE") else int(code)
+    except ValueError:
+        return None
+    return value if pyliteral(value) == code else None
+
+
+def _is_abs(compiler, node) -> bool:
+    if not (isinstance(node, ast.Call) and len(node.args) == 1):
+        return False
+    target = compiler.program.call_targets.get(id(node))
+    return (target is not None and target.kind == "function" and getattr(target, "pou", None) is None
+            and str(target.name).upper() == "ABS")

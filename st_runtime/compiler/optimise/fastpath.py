@@ -1,0 +1,247 @@
+"""The per-POU fast path: a body whose worst-case NJ time is known, run without budget checks.
+
+A body qualifies when its cost is bounded at compile time: every loop is a
+FOR with constant bounds and step whose body leaves its variable alone (no
+WHILE, REPEAT or data-dependent count), and every FUNCTION or FB written in
+ST that it calls qualifies too (no METHOD or PROPERTY: they are dispatched
+at run time, nor an FB that extends or is extended).  `worst_case` adds
+every charge the body could make on any path (every condition, label and
+branch, every iteration) and its callees' worst cases: an upper bound of
+what one call takes from `_ctx.budget`.
+
+The body is then compiled twice (statements.py), when its exact code has at
+least `WORTH` budget checks (a second copy costs load time):
+
+    if _ctx.budget >= <worst case>:
+        <the body without budget checks, its charges merged>
+    else:
+        <the body as before>
+
+An iteration of a FOR whose count is data and which may leave early (the
+FK's Newton loop) is tested the same way, against `_ctx.budget - _spent`.
+When the budget covers the worst case no check could fire (a check compares
+what the body and its callees have charged since it began with the budget it
+began with), so leaving them out changes nothing; otherwise the exact path
+runs and F-PERIOD lands where it did.
+`_spent` is read only when the body returns (or a fault with stop_on_fault
+ends the scan), so within a straight run of blocks (`Segments`) the charges
+can be added once, at the run's first block: the run ends after a statement
+that may leave it (EXIT, CONTINUE, RETURN, a call of ST code, which ends the
+scan when a fault in it stops the run), and a fault handler takes
+back what was charged ahead of it while `_ctx.fault` runs, so a fault that
+stops the run sees `_spent` as the exact path has it.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ... import ast
+from ...native import NATIVE_FBS
+from ..scope import walk
+
+_JUMPS = (ast.Exit, ast.Continue, ast.Return)
+WORTH = 8               # budget checks the exact code must have (the LU: 64, the FK: 23)
+MAX_VALUES = 64         # values of a loop variable the bound is worked out for one by one
+_TOKEN = re.compile("\x02([SA])([0-9:,]*)\x02")
+
+
+def worst_case(compiler, body) -> int | None:
+    """Units the body charges at most in one run, its callees' charges included, or
+    None when that is not bounded here."""
+    if any(id(node) in compiler.program.properties for node in walk(body)):
+        return None             # a PROPERTY's accessor runs ST code
+    return _bound(compiler, body)
+
+
+def _bound(compiler, body) -> int | None:
+    cost = compiler.cost
+    total = 0
+    for s in body or ():
+        if isinstance(s, ast.Empty):
+            continue
+        if isinstance(s, (ast.While, ast.Repeat)):
+            return None
+        if isinstance(s, ast.If):
+            parts = [cost.condition(b.condition) for b in s.branches]
+            parts += [_calls(compiler, b.condition) for b in s.branches]
+            parts += [_bound(compiler, b.body) for b in s.branches] + [_bound(compiler, s.else_body)]
+        elif isinstance(s, ast.Case):
+            parts = [cost.expr(s.selector), _calls(compiler, s.selector),
+                     sum(cost.case_labels(c) for c in s.clauses) * cost.w["branch"]]
+            parts += [_bound(compiler, c.body) for c in s.clauses] + [_bound(compiler, s.else_body)]
+        elif isinstance(s, ast.For):
+            values = _values(compiler, s)
+            if values is None:
+                return None
+            parts = [cost.for_setup(s), _iterations(compiler, s, values)]
+        else:
+            parts = [cost.simple(s), _calls(compiler, s)]
+        if any(p is None for p in parts):
+            return None
+        total += sum(parts)
+    return total
+
+
+def _calls(compiler, node) -> int | None:
+    """Units the ST code that `node`'s calls run charges at most (its own blocks)."""
+    total = 0
+    for n in walk(node):
+        if isinstance(n, ast.Call):
+            target = compiler.program.call_targets.get(id(n))
+            callee = _callee(compiler, target)
+            if callee is not None:
+                units = _pou_bound(compiler, callee)
+                if units is None:
+                    return None
+                total += units
+            elif target is None or target.kind in ("method", "super_body"):
+                return None     # unknown, or dispatched at run time
+    return total
+
+
+def _callee(compiler, target):
+    """The POU written in ST that a call runs, or None (a standard function, a native FB)."""
+    if target is None or target.kind not in ("function", "fb"):
+        return None
+    pou = getattr(target, "pou", None)
+    if pou is None or pou.node is None or pou.native is not None:
+        return None
+    if target.kind == "fb" and str(target.name).upper() in NATIVE_FBS:
+        return None
+    return pou
+
+
+def _pou_bound(compiler, pou) -> int | None:
+    """A user FUNCTION's or FB's worst case, once per compilation (None if an FB that
+    extends or is extended: the instance may run another body)."""
+    program = compiler.program
+    if pou.kind == "FUNCTION_BLOCK" and (pou.parent is not None
+                                         or any(p.parent is pou for p in program.pous.values())):
+        return None
+    known = compiler.unit.__dict__.setdefault("worst_cases", {})
+    key = pou.name.upper()
+    if key not in known:
+        from ..statements import BodyCompiler
+
+        known[key] = None           # (a recursive call: not bounded)
+        callee = BodyCompiler(program, pou, compiler.unit, method=pou.kind != "FUNCTION")
+        known[key] = worst_case(callee, callee.body)
+    return known[key]
+
+
+def may_leave(compiler, stmt) -> bool:
+    """Whether control may leave `stmt` other than by its end: a jump, or a call of ST code
+    (a fault in it with stop_on_fault ends the scan).  The charges that follow must wait."""
+    for n in walk(stmt) if not isinstance(stmt, _JUMPS) else (stmt,):
+        if isinstance(n, _JUMPS):
+            return True
+        if isinstance(n, ast.Call):
+            target = compiler.program.call_targets.get(id(n))
+            if target is None or target.kind in ("method", "super_body") or _callee(compiler, target):
+                return True
+        if id(n) in compiler.program.properties:
+            return True
+    return False
+
+
+def _iterations(compiler, s, values: range) -> int | None:
+    """Units of all iterations: the body's bound times the count, or, when an inner
+    loop's bounds depend on the variable (`FOR Row := K + 1 TO SIZE`), summed over
+    the values the variable takes, each seen as a constant (as unroll.py does)."""
+    inner = _bound(compiler, s.body)
+    if inner is not None:
+        return len(values) * (compiler.cost.loop() + inner)
+    if len(values) > MAX_VALUES:
+        return None
+    key = s.variable.upper()
+    saved = compiler.unrolled.get(key)
+    total = 0
+    try:
+        for value in values:
+            compiler.unrolled[key] = value
+            inner = _bound(compiler, s.body)
+            if inner is None:
+                return None
+            total += compiler.cost.loop() + inner
+    finally:
+        if saved is None:
+            compiler.unrolled.pop(key, None)
+        else:
+            compiler.unrolled[key] = saved
+    return total
+
+
+def _values(compiler, s) -> range | None:
+    """The values of a FOR that runs over a constant range, else None."""
+    from ..scope import Usage
+
+    start, end = compiler.constant_of(s.start), compiler.constant_of(s.end)
+    step = 1 if s.step is None else compiler.constant_of(s.step)
+    if not all(type(v) is int for v in (start, end, step)) or step == 0:
+        return None
+    place = compiler.scope.place_of(ast.Name(s.variable, pos=s.pos))
+    if place.how == "global" or s.variable.upper() in Usage(compiler.program, s.body, None).assigned:
+        return None         # a loop that tests its variable: its count is data
+    return range(start, end + (1 if step > 0 else -1), step)
+
+
+def worth_it(exact_lines: list[str]) -> bool:
+    """Whether the exact code has budget checks enough to pay for a second copy (its load time)."""
+    return sum(1 for line in exact_lines if line.lstrip().startswith("if _ctx.budget <")) >= WORTH
+
+
+class Segments:
+    """The charges of the fast body: one `_spent +=` per straight run of blocks.
+
+    A level is one body compiled by `statements` (a branch, a loop's body);
+    its open segment takes every charge until a jump closes it.  The amounts
+    are known only when the body is compiled, so the lines carry tokens that
+    `resolve` replaces."""
+
+    def __init__(self):
+        self.totals: list[int] = []
+        self.levels: list[list] = []        # per level: [open segment or None]
+
+    def enter(self) -> None:
+        self.levels.append([None])
+
+    def leave(self) -> None:
+        self.levels.pop()
+
+    def close(self) -> None:
+        self.levels[-1][0] = None
+
+    def charge(self, ps: int) -> str | None:
+        """Add `ps` to the open segment; the line to emit when this opens one."""
+        level = self.levels[-1]
+        if level[0] is None:
+            level[0] = len(self.totals)
+            self.totals.append(ps)
+            return f"_spent += \x02S{level[0]}\x02"
+        self.totals[level[0]] += ps
+        return None
+
+    def ahead(self) -> str:
+        """A token for what the open segments have charged beyond this point so far."""
+        marks = [f"{level[0]}:{self.totals[level[0]]}" for level in self.levels if level[0] is not None]
+        return f"\x02A{','.join(marks)}\x02"
+
+    def resolve(self, lines: list[str]) -> list[str]:
+        """The lines with the amounts in place; a fault handler's take-back of 0 is left out."""
+        out = []
+        for line in lines:
+            if "\x02" not in line:
+                out.append(line)
+                continue
+            text = _TOKEN.sub(self._amount, line)
+            if text.lstrip() in ("_spent -= 0", "_spent += 0"):
+                continue
+            out.append(text)
+        return out
+
+    def _amount(self, match) -> str:
+        if match.group(1) == "S":
+            return str(self.totals[int(match.group(2))])
+        marks = [m.split(":") for m in match.group(2).split(",") if m]
+        return str(sum(self.totals[int(seg)] - int(seen) for seg, seen in marks))

@@ -1,0 +1,65 @@
+"""`ABS(x) <= B` and `ABS(x) < B` as chained comparisons (optimise/absolute.py, `inline` switch).
+
+Expected values: the IEC meaning of ABS and IEEE-754 comparison, which Python's `abs(x) <= b`
+on floats states (a NaN compares false, -0.0 equals 0.0); the compiled program must agree for
+every pair of special values, with the pass on and off, and the pass must fire.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import replace
+
+import pytest
+
+from st_runtime.api import Plc, load_text
+from st_runtime.compiler import Optimisations, compile_program
+from st_runtime.controller import Controller
+
+PROGRAM = """
+PROGRAM Main
+VAR x, b : LREAL; i : DINT; le, lt, le_lit, lt_zero, ge, int_le : BOOL; END_VAR
+VAR_TEMP local : LREAL; END_VAR
+local := b;
+le := ABS(x) <= local;
+lt := local > ABS(x);
+le_lit := ABS(x) <= 2.5;
+lt_zero := ABS(x) < 0.0;
+ge := ABS(x) >= local;
+int_le := ABS(i) <= 3;
+END_PROGRAM
+"""
+
+VALUES = [math.nan, math.inf, -math.inf, 0.0, -0.0, 2.5, -2.5, -3.0, 1e308, -5e-324]
+ON = Optimisations()
+OFF = replace(ON, inline=False)
+
+
+@pytest.fixture(scope="module")
+def builds():
+    program = load_text(PROGRAM).program
+    return {name: compile_program(program, optimise=o) for name, o in (("on", ON), ("off", OFF))}
+
+
+def test_the_calls_go_where_the_bound_allows(builds):
+    on, off = builds["on"].python_sources["MAIN"], builds["off"].python_sources["MAIN"]
+    assert off.count("abs(") == 6
+    # `>=` keeps its call, and so would a bound read from the instance (`self.v_B`)
+    assert on.count("abs(") == 1 and "(-v_LOCAL <= v_X <= v_LOCAL)" in on and "v_X < v_LOCAL)" in on
+    assert "(-2.5 <= v_X <= 2.5)" in on and "(-0.0 < v_X < 0.0)" in on and "(-3 <= self.v_I <= 3)" in on
+
+
+@pytest.mark.parametrize("build", ["on", "off"])
+def test_every_pair_of_special_values(builds, build):
+    plc = Plc(Controller(builds[build], 1_000_000))
+    main = plc.add_program("Main")
+    for x, b in itertools.product(VALUES, VALUES):
+        main["x"], main["b"] = x, b
+        plc.run(1)
+        expected = (abs(x) <= b, abs(x) < b, abs(x) <= 2.5, abs(x) < 0.0, abs(x) >= b)
+        assert (main["le"], main["lt"], main["le_lit"], main["lt_zero"], main["ge"]) == expected, (x, b)
+    for i in (-2147483648, -4, -3, 0, 3, 4, 2147483647):
+        main["i"] = i
+        plc.run(1)
+        assert main["int_le"] == (abs(i) <= 3)
