@@ -87,7 +87,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                    "tests/test_reference_linalg.py", "tests/test_reference_wave.py",
                    "tests/test_reference_paths.py", "tests/test_reference_platforms.py",
                    "tests/test_reference_playback.py", "tests/test_study_motions.py",
-                   "tests/test_reference_mutants.py"]),
+                   "tests/test_reference_mutants.py",
+                   # seed-21 run (issue 16, session 7)
+                   "tests/test_reference_mutation_s7.py"]),
 }
 
 # Extra [tool.mutmut] settings of one module. The compiler's mutants include
