@@ -79,7 +79,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                  "tests/test_string_length_rule.py", "tests/test_call_cycles_and_hints.py",
                  "tests/test_iec_constructs.py",
                  # seed-19 run: prelude_base.py's own tests (the shared prelude), and round three
-                 "tests/test_prelude_sharing.py", "tests/test_checker_mutants_third.py"]),
+                 "tests/test_prelude_sharing.py", "tests/test_checker_mutants_third.py",
+                 # seed-21 run (issue 16, session 7)
+                 "tests/test_checker_mutation_s7.py"]),
     "reference": (["stgen/reference/*"],
                   ["tests/test_reference_brake.py", "tests/test_reference_cycloidal.py",
                    "tests/test_reference_error_codes.py", "tests/test_reference_forward.py",
