@@ -179,3 +179,40 @@ def test_every_node_of_a_lowered_chart_has_a_position():
     nodes = [n for n in walk(main) if not isinstance(n, ast.NamedType)]
     assert len(nodes) > 100
     assert [type(n).__name__ for n in nodes if n.pos.file != "t.st" or n.pos.line < 1] == []
+
+
+# ------------------------------------------------------------ later survivors of the sample
+
+def test_ampersand_is_reported_as_and():
+    """`&` is IEC's other spelling of AND (3rd ed. table 71): the message names AND."""
+    assert only(program("    b : BOOL; i : INT;", "b := i & TRUE;")) == \
+        ("E-TYPE-001", 5, 8, "AND: expected BOOL or bit-string operands, found INT")
+
+
+def test_an_integer_literal_added_to_a_real_is_a_real():
+    """A literal takes the type its context needs (3rd ed. 6.3.2): in `r + 16777217`
+    with r REAL it is the REAL 16777216 (2^24 + 1 is a tie between 2^24 and
+    2^24 + 2, rounded to even), and 1.0 + 16777216 = 2^24 + 1 rounds to 2^24
+    again: 16777216, where an LREAL literal would give 16777218."""
+    main = after_one_scan(program("    r, r2 : REAL;", "r := 1.0;\nr2 := r + 16777217;"))
+    assert main["r2"] == 16777216.0
+
+
+def test_an_enumeration_takes_four_bytes_aligned_to_four():
+    """OMRON's table (memory.py, W501 appendix / W506 A-47): an enumeration is
+    4 bytes at a multiple of 4, so after a BYTE it starts at 4: 8 bytes."""
+    from st_runtime.checker.memory import MemoryModel
+
+    types = checked("TYPE Color : (Red, Green); END_TYPE\n"
+                    "TYPE S : STRUCT b : BYTE; c : Color; END_STRUCT; END_TYPE\n" + program("    s : S;", "")).types
+    assert MemoryModel().layout(types["COLOR"]) == (4, 4)
+    assert MemoryModel().layout(types["S"]) == (8, 4)
+
+
+def test_a_reference_input_writes_what_it_refers_to():
+    """`p^.a := 5` inside an FB whose VAR_INPUT p is a REF_TO writes the
+    variable p refers to, not the (read-only) input itself."""
+    text = ("TYPE Pair : STRUCT a, b : INT; END_STRUCT; END_TYPE\nFUNCTION_BLOCK Setter\n"
+            "VAR_INPUT p : REF_TO Pair; END_VAR\np^.a := 5;\nEND_FUNCTION_BLOCK\n"
+            + program("    x : Pair; s : Setter;", "s(p := REF(x));"))
+    assert after_one_scan(text)["x.a"] == 5
