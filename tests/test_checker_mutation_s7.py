@@ -216,3 +216,34 @@ def test_a_reference_input_writes_what_it_refers_to():
             "VAR_INPUT p : REF_TO Pair; END_VAR\np^.a := 5;\nEND_FUNCTION_BLOCK\n"
             + program("    x : Pair; s : Setter;", "s(p := REF(x));"))
     assert after_one_scan(text)["x.a"] == 5
+
+
+def test_a_constant_external_is_a_constant():
+    """A VAR_EXTERNAL CONSTANT has its global's value (3rd ed. 6.5.2.2):
+    N = 3 bounds an array and indexes it."""
+    text = ("VAR_GLOBAL CONSTANT N : INT := 3; END_VAR\nPROGRAM Main\nVAR_EXTERNAL CONSTANT N : INT; END_VAR\n"
+            "VAR a : ARRAY[1..N] OF INT; s : INT; END_VAR\na[3] := 7;\ns := a[N];\nEND_PROGRAM\n")
+    assert after_one_scan(text)["s"] == 7
+
+
+def test_statements_nested_too_deep_name_the_statement():
+    """E-LIMIT-003 at the 41st nested IF (MAX_BLOCK_DEPTH = 40): column
+    40 x len('IF TRUE THEN ') + 1 = 521 of line 5, naming IF."""
+    text = program("    i : INT;", "IF TRUE THEN " * 41 + "i := 1;" + " END_IF;" * 41)
+    assert only(text) == ("E-LIMIT-003", 5, 521, "statements nested more than 40 levels deep (IF here) in Main")
+
+
+def test_open_instances_reach_inside_an_fb():
+    """`stgen test` checks with open_instances: every variable of an FB
+    instance is visible from outside (checker.check's contract)."""
+    from st_runtime.checker import check
+    from st_runtime.loader import parse_texts
+
+    text = ("FUNCTION_BLOCK F\nVAR n : INT; END_VAR\nEND_FUNCTION_BLOCK\n"
+            + program("    f : F; k : INT;", "k := f.n;"))
+    codes = {}
+    for open_instances in (False, True):
+        _, parsed, _ = parse_texts({"t.st": text}, "iec")
+        _, found = check([f for _, f in parsed], "iec", open_instances=open_instances)
+        codes[open_instances] = [d.code for d in found]
+    assert codes == {False: ["E-TYPE-009"], True: []}
