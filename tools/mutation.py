@@ -27,6 +27,9 @@ their names in sorted order, draws N of them with `random.Random(S).sample`
 and runs only those (their names are kept in build/mutation/<module>/sample.txt).
 The score is then the score of that sample, and the report says so
 ("sample N of TOTAL"); the mutants not drawn count as not checked.
+`--names FILE` runs the names listed in FILE (an earlier run's sample.txt,
+copied out of the scratch copy first) instead: the same sample again after
+a change of the source, which would make a new draw another sample.
 """
 
 from __future__ import annotations
@@ -79,7 +82,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                  "tests/test_string_length_rule.py", "tests/test_call_cycles_and_hints.py",
                  "tests/test_iec_constructs.py",
                  # seed-19 run: prelude_base.py's own tests (the shared prelude), and round three
-                 "tests/test_prelude_sharing.py", "tests/test_checker_mutants_third.py"]),
+                 "tests/test_prelude_sharing.py", "tests/test_checker_mutants_third.py",
+                 # seed-21 run (issue 16, session 7)
+                 "tests/test_checker_mutation_s7.py"]),
     "reference": (["stgen/reference/*"],
                   ["tests/test_reference_brake.py", "tests/test_reference_cycloidal.py",
                    "tests/test_reference_error_codes.py", "tests/test_reference_forward.py",
@@ -87,7 +92,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                    "tests/test_reference_linalg.py", "tests/test_reference_wave.py",
                    "tests/test_reference_paths.py", "tests/test_reference_platforms.py",
                    "tests/test_reference_playback.py", "tests/test_study_motions.py",
-                   "tests/test_reference_mutants.py"]),
+                   "tests/test_reference_mutants.py",
+                   # seed-21 run (issue 16, session 7)
+                   "tests/test_reference_mutation_s7.py"]),
 }
 
 # Extra [tool.mutmut] settings of one module. The compiler's mutants include
@@ -164,6 +171,18 @@ def draw_sample(work: Path, size: int, seed: int) -> tuple[list[str], int]:
     return sample, len(names)
 
 
+def listed_sample(work: Path, listed: Path) -> tuple[list[str], int]:
+    """The mutant names of an earlier sample file (e.g. its sample.txt) that still exist."""
+    names = all_mutant_names(work)
+    wanted = [n.strip() for n in listed.read_text().splitlines() if n.strip() and not n.startswith("#")]
+    present = set(names)
+    sample = sorted(n for n in wanted if n in present)
+    gone = len(wanted) - len(sample)
+    (work / "sample.txt").write_text(f"# {len(sample)} names of {listed.name} ({gone} no longer exist), "
+                                     f"of {len(names)} mutants\n" + "".join(n + "\n" for n in sample))
+    return sample, len(names)
+
+
 def results(work: Path) -> dict[str, str]:
     """mutant name -> status, from `mutmut results --all true`."""
     out = subprocess.run([sys.executable, "-m", "mutmut", "results", "--all", "true"], cwd=work,
@@ -198,6 +217,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--nice", type=int, default=15, help="niceness of the mutmut run")
     parser.add_argument("--sample", type=int, help="run only a seeded sample of this many mutants")
     parser.add_argument("--seed", type=int, default=16, help="seed of the sample")
+    parser.add_argument("--names", type=Path, help="run only the mutants named in this file (an earlier "
+                        "sample.txt: the same sample again after the source changed)")
     parser.add_argument("--survivors", action="store_true", help="list surviving mutants")
     parser.add_argument("--report-only", action="store_true", help="report an earlier run")
     args = parser.parse_args(argv)
@@ -210,7 +231,10 @@ def main(argv: list[str] | None = None) -> int:
         if not args.report_only:
             work = prepare(name)
             chosen: list[str] = []
-            if args.sample:
+            if args.names:
+                chosen, total = listed_sample(work, args.names.resolve())
+                print(f"{name}: {len(chosen)} mutants named in {args.names}, of {total}", flush=True)
+            elif args.sample:
                 chosen, total = draw_sample(work, args.sample, args.seed)
                 print(f"{name}: sample of {len(chosen)} of {total} mutants, seed {args.seed}", flush=True)
             print(f"{name}: mutmut run in {work} (progress in {work / 'mutmut.log'})", flush=True)

@@ -15,7 +15,7 @@ from __future__ import annotations
 from .. import ast
 from .. import types as T
 from ..ast import key
-from ..symbols import PouInfo, Symbol
+from ..symbols import PouInfo
 
 ACCESS_DEFAULT = "PUBLIC"
 
@@ -23,11 +23,6 @@ ACCESS_DEFAULT = "PUBLIC"
 def method_info(owner: PouInfo, node: ast.Method) -> PouInfo:
     return PouInfo(node.name, "METHOD", node, file=node.pos.file, owner=owner,
                    access=node.access or ACCESS_DEFAULT, modifiers=node.modifiers)
-
-
-def this_symbol(owner: PouInfo, program) -> Symbol:
-    """THIS inside an FB or its methods: the instance, of the FB's type."""
-    return Symbol("THIS", program.types[key(owner.name)], "THIS")
 
 
 def find_method(info: PouInfo | None, name: str) -> PouInfo | None:
