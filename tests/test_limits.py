@@ -176,3 +176,50 @@ def test_a_file_beyond_the_line_limit_is_refused_before_parsing():
     diagnostics = refused(text)
     assert [(d.code, d.pos.line) for d in diagnostics] == [("E-LIMIT-012", 1)]
     assert f"at most {limits.MAX_FILE_LINES:,}" in diagnostics[0].message
+
+
+def _walk_order(node):
+    """The structural walk's order, spelled recursively: a node, then its fields from
+    the last to the first, the items of a tuple from the last to the first (a stack)."""
+    from st_runtime import ast
+
+    if isinstance(node, tuple):
+        for item in reversed(node):
+            yield from _walk_order(item)
+    elif isinstance(node, ast.Node):
+        yield node
+        for name in reversed(ast.fields_of(type(node))):
+            yield from _walk_order(getattr(node, name))
+
+
+def test_the_structural_walk_notes_what_the_later_passes_look_for():
+    """check_files notes, per item, each dialect construct in the order of a walk of
+    every node, and whether an Index, a Member or a CASE is inside (the NJ build
+    rules' walk is skipped otherwise): on every file of the corpora."""
+    from pathlib import Path
+
+    from st_runtime import ast
+    from st_runtime.checker.context import Context, FastSink
+    from st_runtime.checker.dialects import CONSTRUCT_NODES, construct_of
+    from st_runtime.parser import parse
+    from st_runtime.symbols import CheckedProgram
+
+    root = Path(__file__).resolve().parent
+    paths = sorted(root.glob("corpus/*/*.st")) + sorted(root.glob("st_dialects/*.st"))
+    constructs = build = 0
+    for path in paths:
+        parsed, _ = parse(path.read_text(encoding="utf-8"), str(path))
+        if parsed is None:
+            continue
+        ctx = Context(CheckedProgram(files=[parsed]), FastSink())
+        if not limits.check_files(ctx, [parsed]):
+            continue
+        for item in parsed.items:
+            nodes = list(_walk_order(item))
+            expected = [(construct_of(n), n.pos) for n in nodes if type(n) in CONSTRUCT_NODES]
+            walked = ctx.walked[id(item)]
+            assert walked.constructs == [(name, pos) for name, pos in expected if name is not None]
+            assert walked.build_nodes == any(isinstance(n, (ast.Index, ast.Member, ast.Case)) for n in nodes)
+            constructs += len(walked.constructs)
+            build += walked.build_nodes
+    assert constructs > 20 and build > 20
