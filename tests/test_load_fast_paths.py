@@ -108,7 +108,7 @@ def test_a_body_walked_again_gives_the_same_nodes():
     from st_runtime.parser import parse_body
 
     bodies = [parse_body(f"x := {i} + y[{i}]; IF a THEN b := NOT c; END_IF;", "w.st")[0] for i in range(40)]
-    fresh = [[id(n) for n in scope._walk(body)] for body in bodies]
+    fresh = [[id(n) for n in _reference_walk(body)] for body in bodies]
     for _ in range(2):
         for body, nodes in zip(bodies, fresh):
             assert [id(n) for n in scope.walk(body)] == nodes
@@ -116,3 +116,71 @@ def test_a_body_walked_again_gives_the_same_nodes():
     assert [id(n) for n in scope.walk(twin)] == fresh[0]
     assert len(scope._WALKED) <= scope._WALKED_ENTRIES
     assert [type(n) for n in scope.walk(bodies[0][0])][0] is ast.Assign    # (a node: walked afresh)
+
+
+def _reference_walk(node):
+    """The walk's order, spelled recursively: a node, then its fields from the last
+    to the first, the items of a tuple in order."""
+    from st_runtime import ast
+
+    if isinstance(node, tuple):
+        for item in node:
+            yield from _reference_walk(item)
+    elif isinstance(node, ast.Node):
+        yield node
+        for name in reversed(ast.fields_of(type(node))):
+            yield from _reference_walk(getattr(node, name))
+
+
+def test_the_walk_lists_every_node_of_the_corpus_in_its_order():
+    """scope.walk over every POU of the accept corpus (a whole item, each body, each
+    statement alone as the passes ask) gives the reference order; a one-leaf tuple,
+    which it returns as it is, holds a node with no child node."""
+    from st_runtime import ast
+    from st_runtime.compiler import scope
+    from st_runtime.parser import parse
+
+    leaves = 0
+    for path in ACCEPT:
+        parsed, _ = parse(path.read_text(encoding="utf-8"), str(path))
+        for item in parsed.items:
+            assert [id(n) for n in scope.walk(item)] == [id(n) for n in _reference_walk(item)]
+            for body in [getattr(item, "body", ())] + [m.body for m in getattr(item, "methods", ())]:
+                assert [id(n) for n in scope.walk(body)] == [id(n) for n in _reference_walk(body)]
+                for node in _reference_walk(body):
+                    one = (node,)
+                    assert [id(n) for n in scope.walk(one)] == [id(n) for n in _reference_walk(one)]
+                    if type(node) in scope._LEAVES:
+                        leaves += 1
+                        assert not any(isinstance(getattr(node, f), (ast.Node, tuple))
+                                       for f in ast.fields_of(type(node)))
+    assert leaves > 1000
+
+
+def test_a_load_pauses_the_collector_and_restores_it(monkeypatch):
+    """load_texts and compile_program run without cyclic collections (st_runtime/gc_pause.py)
+    and leave the collector as they found it: on, or off when the caller turned it off."""
+    import gc
+
+    from st_runtime import loader
+
+    seen = []
+    real_check = loader.check
+
+    def check(*args, **kwargs):
+        seen.append(gc.isenabled())
+        return real_check(*args, **kwargs)
+
+    monkeypatch.setattr(loader, "check", check)
+    text = {"p.st": "PROGRAM P VAR x : INT; END_VAR x := x + 1; END_PROGRAM"}
+    assert gc.isenabled()
+    program = load_texts(text).program
+    assert seen == [False] and gc.isenabled()
+    compile_program(program)
+    assert gc.isenabled()
+    gc.disable()
+    try:
+        load_texts(text)
+        assert not gc.isenabled()
+    finally:
+        gc.enable()

@@ -39,6 +39,7 @@ from .. import ast
 from ..dialects import DIALECTS
 from ..diagnostics import register
 from ..faults import STFault
+from ..gc_pause import without_collections
 from ..native import NATIVE_FBS
 from ..objects import AttrRef, ItemRef, NullRef, STObject, assign_list, native_initializers
 from ..types import StructType, fit_string, resolve_alias
@@ -173,6 +174,7 @@ def _code_of(source: str, filename: str):
     return code
 
 
+@without_collections
 def compile_program(program, guard_statements: bool = True, charge_costs: bool = True,
                     optimise: Optimisations | None = None) -> CompiledProgram:
     """Translate a CheckedProgram; raises CompileError on unsupported input.
@@ -213,7 +215,8 @@ def compile_program(program, guard_statements: bool = True, charge_costs: bool =
             unit.run_source(key, BodyCompiler(program, pou, unit, method=True).function_source(pyname),
                             pou.node.pos)
             unit.classes[key].execute = unit.namespace[pyname]
-    classes = {k: v for k, v in unit.classes.items() if k != "<GLOBALS>"}
+    classes = dict(unit.classes)
+    del classes["<GLOBALS>"]
     return CompiledProgram(program, classes, functions, globals_obj, unit.sources, unit.namespace,
                            unit.image)
 
