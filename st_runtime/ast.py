@@ -48,6 +48,25 @@ def fields_of(cls: type) -> tuple[str, ...]:
     return names
 
 
+#: The annotations of fields that never hold a node (names, operators, flags, numbers).
+_SCALARS = frozenset({"str", "str | None", "bool", "bool | None", "int", "int | None", "float",
+                      "tuple[str, ...]"})
+
+
+class _ChildFields(dict):
+    """node class -> the fields of `fields_of(cls)` that may hold a node or a tuple of
+    nodes, in order, worked out on first use: a walk of the tree need not look at the
+    others (`Name.name`, `Binary.op`).  `CHILD_FIELDS[type(node)]`, one lookup."""
+
+    def __missing__(self, cls: type) -> tuple[str, ...]:
+        declared = cls.__dataclass_fields__
+        names = self[cls] = tuple(name for name in fields_of(cls) if declared[name].type not in _SCALARS)
+        return names
+
+
+CHILD_FIELDS: dict[type, tuple[str, ...]] = _ChildFields()
+
+
 @dataclass(frozen=True, slots=True)
 class Node:
     pos: Pos = field(default=NOWHERE, compare=False, repr=False, kw_only=True)

@@ -184,3 +184,38 @@ def test_a_load_pauses_the_collector_and_restores_it(monkeypatch):
         assert not gc.isenabled()
     finally:
         gc.enable()
+
+
+def test_a_field_the_walks_pass_by_never_holds_a_node():
+    """The walks read only `ast.CHILD_FIELDS` (fields annotated as names, flags or
+    numbers are passed by): in every .st file of the repository, parsed, and in the
+    checked files (SFC charts lowered to statements), no other field holds a node."""
+    from st_runtime import ast
+    from st_runtime.checker import check
+    from st_runtime.parser import parse
+
+    def nodes(node):
+        stack = [node]
+        while stack:
+            n = stack.pop()
+            if isinstance(n, tuple):
+                stack.extend(n)
+            elif isinstance(n, ast.Node):
+                yield n
+                stack.extend(getattr(n, name) for name in ast.fields_of(type(n)))
+
+    def holds_node(value) -> bool:
+        return isinstance(value, ast.Node) or isinstance(value, tuple) and any(map(holds_node, value))
+
+    seen = 0
+    for path in sorted({*ROOT.glob("tests/**/*.st"), *ROOT.glob("examples/**/*.st"), *ROOT.glob("generated/**/*.st")}):
+        parsed, _ = parse(path.read_text(encoding="utf-8", errors="replace"), str(path))
+        if parsed is None:
+            continue
+        program, _ = check([parsed])
+        for source in [parsed, *program.files]:
+            for node in nodes(source):
+                passed_by = set(ast.fields_of(type(node))) - set(ast.CHILD_FIELDS[type(node)])
+                assert not any(holds_node(getattr(node, name)) for name in passed_by), type(node)
+                seen += 1
+    assert seen > 100_000

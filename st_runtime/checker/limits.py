@@ -77,14 +77,15 @@ _TRANSPARENT = (ast.IfBranch, ast.CaseClause, ast.CaseRange, ast.Arg, ast.Pou, a
 _BUILD_NODES = (ast.Index, ast.Member, ast.Case)
 
 #: node class -> (statement, block, loop, transparent, dialect construct, build rule node,
-#: field names): what check_limits asks of every node, worked out once per class (`_shape`).
+#: fields that may hold a node): what check_limits asks of every node, worked out once per
+#: class (`_shape`).
 _SHAPES: dict[type, tuple] = {}
 
 
 def _shape(cls: type) -> tuple:
     shape = _SHAPES[cls] = (issubclass(cls, _STATEMENTS), issubclass(cls, _BLOCKS), issubclass(cls, _LOOPS),
                             issubclass(cls, _TRANSPARENT), cls in CONSTRUCT_NODES, cls in _BUILD_NODES,
-                            tuple(cls.__slots__))
+                            ast.CHILD_FIELDS[cls])
     return shape
 
 

@@ -62,7 +62,7 @@ def _walk(node):
             stack.extend(reversed(item))
         elif isinstance(item, ast.Node):
             yield item
-            stack.extend(reversed([getattr(item, name) for name in ast.fields_of(type(item))]))
+            stack.extend(reversed([getattr(item, name) for name in ast.CHILD_FIELDS[type(item)]]))
 
 
 def _body_node(ctx: Context, node) -> None:

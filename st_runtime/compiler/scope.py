@@ -76,14 +76,14 @@ def _nodes(node) -> list:
     from the last to the first, the items of a tuple in order."""
     out = []
     stack = [node]
-    pop, push, add, Node, fields = stack.pop, stack.append, out.append, ast.Node, ast._FIELDS
+    pop, push, add, Node, fields = stack.pop, stack.append, out.append, ast.Node, ast.CHILD_FIELDS
     while stack:
         n = pop()
         if isinstance(n, tuple):
             stack.extend(reversed(n))
         elif isinstance(n, Node):
             add(n)
-            for name in fields.get(type(n)) or ast.fields_of(type(n)):
+            for name in fields[type(n)]:
                 value = getattr(n, name)
                 if isinstance(value, (Node, tuple)):
                     push(value)
