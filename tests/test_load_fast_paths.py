@@ -219,3 +219,28 @@ def test_a_field_the_walks_pass_by_never_holds_a_node():
                 assert not any(holds_node(getattr(node, name)) for name in passed_by), type(node)
                 seen += 1
     assert seen > 100_000
+
+
+def test_a_compile_takes_the_leading_prelude_at_once_as_one_by_one(monkeypatch):
+    """When a program's types and POUs begin with the shared prelude's (most loads),
+    compile_program adds their classes, __init__ sources and makers at once: the same
+    sources, in the same order, the same classes as going through them one by one."""
+    from st_runtime.compiler import SharedPrelude
+
+    def compiled(path):
+        result = compile_program(load_texts({str(path): path.read_text(encoding="utf-8")}).program)
+        return list(result.python_sources.items()), [(k, c.__qualname__) for k, c in result.classes.items()]
+
+    loads = [p for p in ACCEPT if load_texts({str(p): p.read_text(encoding="utf-8")}).program is not None]
+    at_once = [compiled(p) for p in loads]
+    led = [SharedPrelude.leads]
+    taken = []
+
+    def leads(self, program, table):
+        taken.append(led[0](self, program, table))
+        return False
+
+    monkeypatch.setattr(SharedPrelude, "leads", leads)
+    one_by_one = [compiled(p) for p in loads]
+    assert at_once == one_by_one
+    assert taken.count(True) > len(loads) and taken.count(False) > 0     # (both cases occur)

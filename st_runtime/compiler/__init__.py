@@ -33,6 +33,8 @@ from __future__ import annotations
 
 import functools
 import math
+from itertools import islice
+from operator import is_
 from dataclasses import dataclass, field
 
 from .. import ast
@@ -198,7 +200,7 @@ def compile_program(program, guard_statements: bool = True, charge_costs: bool =
     globals_obj = unit.classes["<GLOBALS>"]()
     unit.namespace["_G"] = globals_obj
     functions = {}
-    for key, pou in program.pous.items():
+    for key, pou in _after_prelude(program, shared, "pous"):
         if pou.node is None or pou.native is not None or pou.kind == "INTERFACE":
             continue
         if pou.kind == "FUNCTION_BLOCK":
@@ -253,7 +255,9 @@ def _instance_variables(pou) -> list:
 def _make_classes(unit: CompileUnit, shared=None) -> None:
     program = unit.program
     own = shared.types if shared is not None else {}
-    for key, t in program.types.items():
+    if shared is not None and shared.leads(program, "types"):
+        unit.classes.update(shared.struct_classes)      # (what the loop below would add for them)
+    for key, t in _after_prelude(program, shared, "types"):
         if own.get(key) is t:               # the shared prelude's: its STRUCT class, if one
             if key in shared.inits:
                 unit.classes[key] = shared.classes[key]
@@ -272,7 +276,8 @@ def _make_classes(unit: CompileUnit, shared=None) -> None:
             unit.classes[key] = _new_class(t.name, slots, layout)
     if shared is not None:       # the prelude's POUs lead program.pous, none has a base
         unit.classes.update(shared.install_layouts())
-    for key, pou in _bases_first(program, shared.pous if shared is not None else {}):
+    for key, pou in _bases_first(_after_prelude(program, shared, "pous"),
+                                 shared.pous if shared is not None else {}):
         if pou.kind in ("FUNCTION", "INTERFACE"):
             continue
         if pou.node is None or pou.native is not None:
@@ -331,9 +336,9 @@ def _union_storage(cls: type, size: int) -> type:
     return cls
 
 
-def _bases_first(program, done=()) -> list:
-    """The POUs with every FB after the FB it extends (classes derive from their base's);
-    those in `done` (classes made already) left out."""
+def _bases_first(pous, done=()) -> list:
+    """The POUs (key, PouInfo) with every FB after the FB it extends (classes derive
+    from their base's); those in `done` (classes made already) left out."""
     ordered, placed = [], set(done)
 
     def place(key, pou):
@@ -344,7 +349,7 @@ def _bases_first(program, done=()) -> list:
             place(pou.parent.name.upper(), pou.parent)
         ordered.append((key, pou))
 
-    for key, pou in program.pous.items():
+    for key, pou in pous:
         place(key, pou)
     return ordered
 
@@ -360,7 +365,9 @@ def _make_initializers(unit: CompileUnit, shared=None) -> None:
     program = unit.program
     initial = unit.initial
     own = shared.types if shared is not None else {}
-    for key, t in program.types.items():
+    if shared is not None and shared.leads(program, "types"):
+        shared.add_inits(unit)              # (what the loop below would add for them)
+    for key, t in _after_prelude(program, shared, "types"):
         if own.get(key) is t:               # the shared prelude's: its STRUCT's __init__, if one
             if key in shared.inits:
                 shared.add_init(unit, key)
@@ -371,7 +378,7 @@ def _make_initializers(unit: CompileUnit, shared=None) -> None:
                        for fkey, (name, ft) in t.fields.items()]
             _install_init(unit, key, members)
     own = shared.pous if shared is not None else {}
-    for key, pou in program.pous.items():
+    for key, pou in _after_prelude(program, shared, "pous"):
         if pou.kind in ("FUNCTION", "INTERFACE") or own.get(key) is pou:
             continue      # (the prelude's native layouts are whole already)
         if pou.node is None or pou.native is not None:
@@ -459,6 +466,15 @@ def _plain(value):
 # ------------------------------------------------------------ shared prelude
 
 
+def _after_prelude(program, shared, name: str):
+    """The items of the program's table `name` ("types" or "pous") after the shared
+    prelude's, when those lead it (`SharedPrelude.leads`); else all of them."""
+    table = getattr(program, name)
+    if shared is not None and shared.leads(program, name):
+        return islice(table.items(), len(shared.tables[name][0]), None)
+    return table.items()
+
+
 def _shared_prelude(program):
     """The compiled native prelude of `program.prelude` (the checker's shared prelude),
     compiled once per process on first use; None for a program checked without one."""
@@ -502,6 +518,26 @@ class SharedPrelude:
                         if base.pous.get(k) is not None and base.pous[k].native is c}
         self.native_classes = {k: layout[0] for k, layout in self.layouts.items()}
         self.types, self.pous = base.types, base.pous
+        #: per table ("types", "pous"): its keys and its very objects, in order
+        self.tables = {name: (list(table), list(table.values()))
+                       for name, table in (("types", base.types), ("pous", base.pous))}
+        #: in the prelude's order: its STRUCT classes; their __init__ sources; the makers of all
+        self.struct_classes = {k: self.classes[k] for k in base.types if k in self.inits}
+        self.init_sources = {"init:" + k: self.inits[k][0] for k in base.types if k in self.inits}
+        self.init_makers = sum(self.inits[k][1] for k in base.types if k in self.inits)
+
+    def leads(self, program, table: str) -> bool:
+        """Whether `program`'s table ("types" or "pous") begins with the prelude's whole
+        table, in its order, the very objects (as in most loads: then a compile does for
+        them at once what it would do for each; the prelude's POUs always lead)."""
+        keys, values = self.tables[table]
+        mine = getattr(program, table)
+        return list(islice(mine, len(keys))) == keys and all(map(is_, islice(mine.values(), len(keys)), values))
+
+    def add_inits(self, unit: CompileUnit) -> None:
+        """`add_init` of every prelude STRUCT, in the prelude's order."""
+        unit.sources.update(self.init_sources)
+        unit.makers += self.init_makers
 
     def add_init(self, unit: CompileUnit, key: str) -> None:
         """A STRUCT's __init__ counted in `unit` as if compiled there (sources, makers)."""
