@@ -244,3 +244,24 @@ def test_a_compile_takes_the_leading_prelude_at_once_as_one_by_one(monkeypatch):
     one_by_one = [compiled(p) for p in loads]
     assert at_once == one_by_one
     assert taken.count(True) > len(loads) and taken.count(False) > 0     # (both cases occur)
+
+
+def test_each_compile_installs_its_dialects_native_layouts():
+    """A native FB's class serves every dialect: after each compile it holds that
+    dialect's layout (CTU's reset pin is R under iec, Reset under nj), also when
+    the previous compile left another dialect's, or a full compile its own."""
+    from st_runtime.native import NATIVE_FBS
+    from st_runtime.checker import check
+    from st_runtime.loader import parse_texts
+
+    text = {"c.st": "PROGRAM P VAR c : CTU; END_VAR c(CU := TRUE, PV := 3); END_PROGRAM"}
+    ctu = NATIVE_FBS["CTU"]
+    for dialect, pin, other in [("iec", "R", "RESET"), ("nj", "RESET", "R"), ("nj", "RESET", "R"),
+                                ("iec", "R", "RESET"), ("iec", "R", "RESET")]:
+        compile_program(load_texts(text, dialect).program)
+        assert pin in ctu._st_vars and other not in ctu._st_vars
+        if dialect == "nj":        # a full compile (no shared prelude) sets its own layout
+            _, parsed, _ = parse_texts(text, "iec")
+            program, _ = check([f for _, f in parsed], "iec", share_prelude=False)
+            compile_program(program)
+            assert "R" in ctu._st_vars and "RESET" not in ctu._st_vars

@@ -34,7 +34,7 @@ from __future__ import annotations
 import functools
 import math
 from itertools import islice
-from operator import is_
+from operator import is_, methodcaller
 from dataclasses import dataclass, field
 
 from .. import ast
@@ -109,6 +109,8 @@ class CompileUnit:
         self.sources: dict[str, str] = {}
         self.constant_ranges: dict[int, tuple | None] = {}   # id(Symbol) -> element range
         self.image = ProcessImage()
+        #: "types", "pous" -> how many first entries of the table are the shared prelude's
+        self.prelude_lead: dict[str, int] = {}
 
     def register_maker(self, maker) -> str:
         self.makers += 1
@@ -193,6 +195,8 @@ def compile_program(program, guard_statements: bool = True, charge_costs: bool =
     unit.guard_statements = guard_statements
     unit.charge_costs = charge_costs
     shared = _shared_prelude(program)
+    if shared is not None:
+        unit.prelude_lead = shared.lead(program)
     _make_classes(unit, shared)
     _make_initializers(unit, shared)
     for address, t, init in program.image_inits:      # `AT %QX0.1 : BOOL := 1;`
@@ -200,7 +204,7 @@ def compile_program(program, guard_statements: bool = True, charge_costs: bool =
     globals_obj = unit.classes["<GLOBALS>"]()
     unit.namespace["_G"] = globals_obj
     functions = {}
-    for key, pou in _after_prelude(program, shared, "pous"):
+    for key, pou in _after_prelude(unit, "pous"):
         if pou.node is None or pou.native is not None or pou.kind == "INTERFACE":
             continue
         if pou.kind == "FUNCTION_BLOCK":
@@ -255,9 +259,9 @@ def _instance_variables(pou) -> list:
 def _make_classes(unit: CompileUnit, shared=None) -> None:
     program = unit.program
     own = shared.types if shared is not None else {}
-    if shared is not None and shared.leads(program, "types"):
+    if unit.prelude_lead.get("types"):
         unit.classes.update(shared.struct_classes)      # (what the loop below would add for them)
-    for key, t in _after_prelude(program, shared, "types"):
+    for key, t in _after_prelude(unit, "types"):
         if own.get(key) is t:               # the shared prelude's: its STRUCT class, if one
             if key in shared.inits:
                 unit.classes[key] = shared.classes[key]
@@ -276,7 +280,7 @@ def _make_classes(unit: CompileUnit, shared=None) -> None:
             unit.classes[key] = _new_class(t.name, slots, layout)
     if shared is not None:       # the prelude's POUs lead program.pous, none has a base
         unit.classes.update(shared.install_layouts())
-    for key, pou in _bases_first(_after_prelude(program, shared, "pous"),
+    for key, pou in _bases_first(_after_prelude(unit, "pous"),
                                  shared.pous if shared is not None else {}):
         if pou.kind in ("FUNCTION", "INTERFACE"):
             continue
@@ -365,9 +369,9 @@ def _make_initializers(unit: CompileUnit, shared=None) -> None:
     program = unit.program
     initial = unit.initial
     own = shared.types if shared is not None else {}
-    if shared is not None and shared.leads(program, "types"):
+    if unit.prelude_lead.get("types"):
         shared.add_inits(unit)              # (what the loop below would add for them)
-    for key, t in _after_prelude(program, shared, "types"):
+    for key, t in _after_prelude(unit, "types"):
         if own.get(key) is t:               # the shared prelude's: its STRUCT's __init__, if one
             if key in shared.inits:
                 shared.add_init(unit, key)
@@ -378,7 +382,7 @@ def _make_initializers(unit: CompileUnit, shared=None) -> None:
                        for fkey, (name, ft) in t.fields.items()]
             _install_init(unit, key, members)
     own = shared.pous if shared is not None else {}
-    for key, pou in _after_prelude(program, shared, "pous"):
+    for key, pou in _after_prelude(unit, "pous"):
         if pou.kind in ("FUNCTION", "INTERFACE") or own.get(key) is pou:
             continue      # (the prelude's native layouts are whole already)
         if pou.node is None or pou.native is not None:
@@ -466,13 +470,12 @@ def _plain(value):
 # ------------------------------------------------------------ shared prelude
 
 
-def _after_prelude(program, shared, name: str):
+def _after_prelude(unit: CompileUnit, name: str):
     """The items of the program's table `name` ("types" or "pous") after the shared
-    prelude's, when those lead it (`SharedPrelude.leads`); else all of them."""
-    table = getattr(program, name)
-    if shared is not None and shared.leads(program, name):
-        return islice(table.items(), len(shared.tables[name][0]), None)
-    return table.items()
+    prelude's when those lead it (`CompileUnit.prelude_lead`), else all of them."""
+    table = getattr(unit.program, name)
+    lead = unit.prelude_lead.get(name)
+    return islice(table.items(), lead, None) if lead else table.items()
 
 
 def _shared_prelude(program):
@@ -517,6 +520,8 @@ class SharedPrelude:
                         for k, c in self.classes.items()
                         if base.pous.get(k) is not None and base.pous[k].native is c}
         self.native_classes = {k: layout[0] for k, layout in self.layouts.items()}
+        #: (classes, their _st_vars, their _st_initializers) as `install_layouts` sets them
+        self.installed = tuple(zip(*[(c, v, i) for c, v, _, _, i in self.layouts.values()])) or ((), (), ())
         self.types, self.pous = base.types, base.pous
         #: per table ("types", "pous"): its keys and its very objects, in order
         self.tables = {name: (list(table), list(table.values()))
@@ -534,6 +539,10 @@ class SharedPrelude:
         mine = getattr(program, table)
         return list(islice(mine, len(keys))) == keys and all(map(is_, islice(mine.values(), len(keys)), values))
 
+    def lead(self, program) -> dict[str, int]:
+        """table name -> how many of its first entries are the prelude's (`leads`), or 0."""
+        return {name: len(keys) if self.leads(program, name) else 0 for name, (keys, _) in self.tables.items()}
+
     def add_inits(self, unit: CompileUnit) -> None:
         """`add_init` of every prelude STRUCT, in the prelude's order."""
         unit.sources.update(self.init_sources)
@@ -548,6 +557,10 @@ class SharedPrelude:
     def install_layouts(self) -> dict[str, type]:
         """Each native FB's layout of this dialect on its class, as every compile did
         (a class serves every dialect: the last compile's pin names hold); key -> class."""
+        classes, st_vars, initializers = self.installed
+        if all(map(is_, map(_OWN_VARS, map(vars, classes)), st_vars)) and \
+                all(map(is_, map(_OWN_INITIALIZERS, map(vars, classes)), initializers)):
+            return self.native_classes          # (all in place: the loop below would set none)
         for cls, st_vars, kinds, name, initializers in self.layouts.values():
             if cls.__dict__.get("_st_vars") is not st_vars or cls.__dict__.get("_st_initializers") \
                     is not initializers:
@@ -555,6 +568,10 @@ class SharedPrelude:
                 cls._st_initializers = initializers
         return self.native_classes
 
+
+#: A class's own `_st_vars` and `_st_initializers` (not a base's), from `vars(cls)`.
+_OWN_VARS = methodcaller("get", "_st_vars")
+_OWN_INITIALIZERS = methodcaller("get", "_st_initializers")
 
 _native_layouts_installed = False
 
