@@ -12,6 +12,7 @@ import pytest
 
 from st_runtime.api import LoadError, load_text
 from st_runtime.checker import limits
+from tree_order import walk_order
 
 
 def program(body: str, decls: str = "x : DINT; i : DINT; r : LREAL;") -> str:
@@ -178,20 +179,6 @@ def test_a_file_beyond_the_line_limit_is_refused_before_parsing():
     assert f"at most {limits.MAX_FILE_LINES:,}" in diagnostics[0].message
 
 
-def _walk_order(node):
-    """The structural walk's order, spelled recursively: a node, then its fields from
-    the last to the first, the items of a tuple from the last to the first (a stack)."""
-    from st_runtime import ast
-
-    if isinstance(node, tuple):
-        for item in reversed(node):
-            yield from _walk_order(item)
-    elif isinstance(node, ast.Node):
-        yield node
-        for name in reversed(ast.fields_of(type(node))):
-            yield from _walk_order(getattr(node, name))
-
-
 def test_the_structural_walk_notes_what_the_later_passes_look_for():
     """check_files notes, per item, each dialect construct in the order of a walk of
     every node, and whether an Index, a Member or a CASE is inside (the NJ build
@@ -215,7 +202,7 @@ def test_the_structural_walk_notes_what_the_later_passes_look_for():
         if not limits.check_files(ctx, [parsed]):
             continue
         for item in parsed.items:
-            nodes = list(_walk_order(item))
+            nodes = list(walk_order(item, tuples_from_last=True))
             expected = [(construct_of(n), n.pos) for n in nodes if type(n) in CONSTRUCT_NODES]
             walked = ctx.walked[id(item)]
             assert walked.constructs == [(name, pos) for name, pos in expected if name is not None]

@@ -16,6 +16,7 @@ from st_runtime.compiler import compile_program
 from st_runtime.compiler import _plain, _store_members
 from st_runtime.loader import load_texts
 from st_runtime.process_image import ProcessImage, parse_address
+from tree_order import walk_order
 
 ROOT = Path(__file__).resolve().parent.parent
 ACCEPT = sorted((ROOT / "tests" / "corpus" / "accept").glob("*.st"))
@@ -108,7 +109,7 @@ def test_a_body_walked_again_gives_the_same_nodes():
     from st_runtime.parser import parse_body
 
     bodies = [parse_body(f"x := {i} + y[{i}]; IF a THEN b := NOT c; END_IF;", "w.st")[0] for i in range(40)]
-    fresh = [[id(n) for n in _reference_walk(body)] for body in bodies]
+    fresh = [[id(n) for n in walk_order(body)] for body in bodies]
     for _ in range(2):
         for body, nodes in zip(bodies, fresh):
             assert [id(n) for n in scope.walk(body)] == nodes
@@ -116,20 +117,6 @@ def test_a_body_walked_again_gives_the_same_nodes():
     assert [id(n) for n in scope.walk(twin)] == fresh[0]
     assert len(scope._WALKED) <= scope._WALKED_ENTRIES
     assert [type(n) for n in scope.walk(bodies[0][0])][0] is ast.Assign    # (a node: walked afresh)
-
-
-def _reference_walk(node):
-    """The walk's order, spelled recursively: a node, then its fields from the last
-    to the first, the items of a tuple in order."""
-    from st_runtime import ast
-
-    if isinstance(node, tuple):
-        for item in node:
-            yield from _reference_walk(item)
-    elif isinstance(node, ast.Node):
-        yield node
-        for name in reversed(ast.fields_of(type(node))):
-            yield from _reference_walk(getattr(node, name))
 
 
 def test_the_walk_lists_every_node_of_the_corpus_in_its_order():
@@ -144,12 +131,12 @@ def test_the_walk_lists_every_node_of_the_corpus_in_its_order():
     for path in ACCEPT:
         parsed, _ = parse(path.read_text(encoding="utf-8"), str(path))
         for item in parsed.items:
-            assert [id(n) for n in scope.walk(item)] == [id(n) for n in _reference_walk(item)]
+            assert [id(n) for n in scope.walk(item)] == [id(n) for n in walk_order(item)]
             for body in [getattr(item, "body", ())] + [m.body for m in getattr(item, "methods", ())]:
-                assert [id(n) for n in scope.walk(body)] == [id(n) for n in _reference_walk(body)]
-                for node in _reference_walk(body):
+                assert [id(n) for n in scope.walk(body)] == [id(n) for n in walk_order(body)]
+                for node in walk_order(body):
                     one = (node,)
-                    assert [id(n) for n in scope.walk(one)] == [id(n) for n in _reference_walk(one)]
+                    assert [id(n) for n in scope.walk(one)] == [id(n) for n in walk_order(one)]
                     if type(node) in scope._LEAVES:
                         leaves += 1
                         assert not any(isinstance(getattr(node, f), (ast.Node, tuple))
