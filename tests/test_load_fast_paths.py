@@ -252,3 +252,22 @@ def test_each_compile_installs_its_dialects_native_layouts():
             program, _ = check([f for _, f in parsed], "iec", share_prelude=False)
             compile_program(program)
             assert "R" in ctu._st_vars and "RESET" not in ctu._st_vars
+
+
+def test_programs_without_globals_share_one_empty_globals_class():
+    """A program without globals gets the one shared Globals class, which holds
+    nothing of any program and is not changed by a compile; a program with globals
+    gets its own class, and its values stay its own."""
+    import st_runtime.compiler as compiler
+
+    bare = [compile_program(load_texts({f"p{i}.st": f"PROGRAM P VAR x : INT := {i}; END_VAR x := x + 1; "
+                                                    "END_PROGRAM"}).program) for i in range(2)]
+    assert type(bare[0].globals) is type(bare[1].globals) is compiler._NO_GLOBALS
+    assert compiler._NO_GLOBALS.__slots__ == () and compiler._NO_GLOBALS._st_vars == {}
+    assert compiler._NO_GLOBALS.__dict__["__init__"] is compiler._NO_GLOBALS_INIT
+    assert bare[0].python_sources["init:<GLOBALS>"].endswith("(self):\n    pass\n")    # (kept for reading)
+    with_globals = compile_program(load_texts({"g.st": "VAR_GLOBAL g : INT := 7; END_VAR "
+                                               "PROGRAM P VAR_EXTERNAL g : INT; END_VAR g := g + 1; "
+                                               "END_PROGRAM"}).program)
+    assert type(with_globals.globals) is not compiler._NO_GLOBALS
+    assert with_globals.globals.v_G == 7 and compiler._NO_GLOBALS._st_vars == {}

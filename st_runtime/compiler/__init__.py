@@ -306,6 +306,9 @@ def _make_classes(unit: CompileUnit, shared=None) -> None:
         unit.classes[key]._st_constants = frozenset(s.name.upper() for s in variables if s.constant)
         _locate_variables(unit, unit.classes[key], variables)
     gl = [s for s in program.globals.values()]
+    if not gl:
+        unit.classes["<GLOBALS>"] = _NO_GLOBALS
+        return
     unit.classes["<GLOBALS>"] = _new_class(
         "Globals", tuple(pyident(s.name) for s in gl if located_at(s) is None),
         {s.name.upper(): (s.name, s.type) for s in gl})
@@ -436,7 +439,8 @@ def _install_init(unit: CompileUnit, key: str, members: list) -> None:
         # Made once per run (the globals, a PROGRAM) or setting nothing: the same
         # stores, in the same order, without compiling the source (kept for reading).
         unit.sources["init:" + key] = unit.sources.get("init:" + key, "") + out.source()
-        cls.__init__ = _store_members(tuple(steps))
+        if cls is not _NO_GLOBALS:      # (whose __init__ sets nothing already)
+            cls.__init__ = _store_members(tuple(steps))
     unit.init_makers[key] = unit.makers - makers
 
 
@@ -447,6 +451,14 @@ def _store_members(steps: tuple):
         for attr, maker, const in steps:
             setattr(self, attr, const if maker is None else maker())
     return __init__
+
+
+#: The class of a program without globals, the same for all: no variable, no
+#: constant, an `__init__` that sets nothing (`_install_init`), so nothing of one
+#: program is in it.  A class costs more to make than a small file's whole check.
+_NO_GLOBALS = _new_class("Globals", (), {})
+_NO_GLOBALS._st_constants = frozenset()
+_NO_GLOBALS.__init__ = _NO_GLOBALS_INIT = _store_members(())
 
 
 def _plain(value):
