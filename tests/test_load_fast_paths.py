@@ -271,3 +271,31 @@ def test_programs_without_globals_share_one_empty_globals_class():
                                                "END_PROGRAM"}).program)
     assert type(with_globals.globals) is not compiler._NO_GLOBALS
     assert with_globals.globals.v_G == 7 and compiler._NO_GLOBALS._st_vars == {}
+
+
+def test_a_node_is_made_as_its_dataclass_init_made_it():
+    """Every AST class (and Pos) takes the parameters its dataclass __init__ took,
+    with the same defaults, and stores the same fields (ast._fast_init)."""
+    import dataclasses
+    import inspect
+
+    from st_runtime import ast
+
+    classes = [ast.Pos] + [c for c in vars(ast).values() if isinstance(c, type) and issubclass(c, ast.Node)]
+    assert set(ast._DATACLASS_INITS) == set(classes) and len(classes) > 60
+    for cls in classes:
+        original = ast._DATACLASS_INITS[cls]
+        assert inspect.signature(cls.__init__) == inspect.signature(original)
+        fields = dataclasses.fields(cls)
+        values = {f.name: object() for f in fields}
+        args = [values[f.name] for f in fields if not f.kw_only]
+        kwargs = {f.name: values[f.name] for f in fields if f.kw_only}
+        made, by_dataclass = object.__new__(cls), object.__new__(cls)
+        cls.__init__(made, *args, **kwargs)
+        original(by_dataclass, *args, **kwargs)
+        assert all(getattr(made, f.name) is getattr(by_dataclass, f.name) is values[f.name] for f in fields)
+        with_defaults, by_dataclass = object.__new__(cls), object.__new__(cls)
+        required = [values[f.name] for f in fields if not f.kw_only and f.default is dataclasses.MISSING]
+        cls.__init__(with_defaults, *required)
+        original(by_dataclass, *required)
+        assert all(getattr(with_defaults, f.name) is getattr(by_dataclass, f.name) for f in fields)
