@@ -26,7 +26,6 @@ from .checker import check
 from .checker.limits import file_too_large
 from .checker import codes as _codes  # noqa: F401  (registers E-LOAD-*)
 from .diagnostics import Diagnostic, ERROR, WARNING
-from .gc_pause import without_collections
 from .input_files import MAX_SOURCE_BYTES, InputFileError, kind_of, read_bounded
 from .parser import parse
 from .prelude import prelude_file
@@ -154,7 +153,6 @@ def parse_texts(texts: dict[str, str], dialect: str = "iec", parser_for=None):
     return prelude, files, diagnostics
 
 
-@without_collections
 def load_texts(texts: dict[str, str], dialect: str = "iec", memory_limit: int | None = None) -> LoadResult:
     """Parse (`parse_texts`) and check in-memory sources (path -> text), with the native prelude;
     `sources` keeps the text of each, an XML file's XML."""

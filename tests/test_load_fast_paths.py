@@ -144,35 +144,6 @@ def test_the_walk_lists_every_node_of_the_corpus_in_its_order():
     assert leaves > 1000
 
 
-def test_a_load_pauses_the_collector_and_restores_it(monkeypatch):
-    """load_texts and compile_program run without cyclic collections (st_runtime/gc_pause.py)
-    and leave the collector as they found it: on, or off when the caller turned it off."""
-    import gc
-
-    from st_runtime import loader
-
-    seen = []
-    real_check = loader.check
-
-    def check(*args, **kwargs):
-        seen.append(gc.isenabled())
-        return real_check(*args, **kwargs)
-
-    monkeypatch.setattr(loader, "check", check)
-    text = {"p.st": "PROGRAM P VAR x : INT; END_VAR x := x + 1; END_PROGRAM"}
-    assert gc.isenabled()
-    program = load_texts(text).program
-    assert seen == [False] and gc.isenabled()
-    compile_program(program)
-    assert gc.isenabled()
-    gc.disable()
-    try:
-        load_texts(text)
-        assert not gc.isenabled()
-    finally:
-        gc.enable()
-
-
 def test_a_field_the_walks_pass_by_never_holds_a_node():
     """The walks read only `ast.CHILD_FIELDS` (fields annotated as names, flags or
     numbers are passed by): in every .st file of the repository, parsed, and in the

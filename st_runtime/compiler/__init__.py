@@ -41,7 +41,6 @@ from .. import ast
 from ..dialects import DIALECTS
 from ..diagnostics import register
 from ..faults import STFault
-from ..gc_pause import without_collections
 from ..native import NATIVE_FBS
 from ..objects import AttrRef, ItemRef, NullRef, STObject, assign_list, native_initializers
 from ..types import StructType, fit_string, resolve_alias
@@ -178,7 +177,6 @@ def _code_of(source: str, filename: str):
     return code
 
 
-@without_collections
 def compile_program(program, guard_statements: bool = True, charge_costs: bool = True,
                     optimise: Optimisations | None = None) -> CompiledProgram:
     """Translate a CheckedProgram; raises CompileError on unsupported input.
