@@ -624,10 +624,10 @@ class TestCase(Node):
 
 
 # ------------------------------------------------------------ construction
-# A parse makes thousands of nodes and positions.  A frozen dataclass's __init__ stores each
-# field through `object.__setattr__(self, name, value)`; the one below stores
-# it through the slot's own descriptor, which does the same at a third of the
-# cost.  Same parameters (the fields in order, their defaults, `pos` keyword
+# A parse makes thousands of nodes and positions.  A frozen dataclass's
+# __init__ stores each field through `object.__setattr__(self, name, value)`;
+# the one below stores it through the slot's own descriptor, which does the
+# same at a third of the cost.  Same parameters (the fields in order, their defaults, `pos` keyword
 # only), same stores, and no node class has a __post_init__ or a default_factory.
 
 

@@ -163,8 +163,9 @@ class FastLalr:
         patterns = lexer.scanner._mres
         blank = next((t for t in lexer.terminals if t.name == "WS"), None)
         blanks = None
-        if blank is not None and "WS" in lexer.ignore_types and "WS" not in lexer.callback \
-                and "WS" in lexer.newline_types and blank.pattern.type == "re" and not blank.pattern.flags and not lexer.g_regex_flags:
+        plain = blank is not None and blank.pattern.type == "re" and not blank.pattern.flags \
+            and not lexer.g_regex_flags
+        if plain and "WS" in lexer.ignore_types and "WS" in lexer.newline_types and "WS" not in lexer.callback:
             blanks = re.compile(blank.pattern.value).match
         entry = self.lexing[state] = (patterns, lexer.ignore_types, lexer.callback, lexer.newline_types, blanks)
         return entry

@@ -33,9 +33,9 @@ from __future__ import annotations
 
 import functools
 import math
+from dataclasses import dataclass, field
 from itertools import islice
 from operator import is_, methodcaller
-from dataclasses import dataclass, field
 
 from .. import ast
 from ..dialects import DIALECTS
@@ -547,11 +547,13 @@ class SharedPrelude:
         them at once what it would do for each; the prelude's POUs always lead)."""
         keys, values = self.tables[table]
         mine = getattr(program, table)
-        return list(islice(mine, len(keys))) == keys and all(map(is_, islice(mine.values(), len(keys)), values))
+        return list(islice(mine, len(keys))) == keys \
+            and all(map(is_, islice(mine.values(), len(keys)), values))
 
     def lead(self, program) -> dict[str, int]:
         """table name -> how many of its first entries are the prelude's (`leads`), or 0."""
-        return {name: len(keys) if self.leads(program, name) else 0 for name, (keys, _) in self.tables.items()}
+        return {name: len(keys) if self.leads(program, name) else 0
+                for name, (keys, _) in self.tables.items()}
 
     def add_inits(self, unit: CompileUnit) -> None:
         """`add_init` of every prelude STRUCT, in the prelude's order."""
