@@ -270,3 +270,24 @@ def test_a_node_is_made_as_its_dataclass_init_made_it():
         cls.__init__(with_defaults, *required)
         original(by_dataclass, *required)
         assert all(getattr(with_defaults, f.name) is getattr(by_dataclass, f.name) for f in fields)
+
+
+def test_the_prelude_text_is_made_again_when_a_native_is_registered(monkeypatch):
+    """prelude_text keeps the text per dialect until the registered natives change:
+    always the text native.prelude_source makes of them."""
+    from st_runtime import native, prelude
+
+    for dialect in ("iec", "nj", "codesys"):
+        assert prelude.prelude_text(dialect) == native.prelude_source(dialect)
+
+    class Probe:
+        NAME = "PROBE_FB"
+        DECLARATION = native.fb_declaration("PROBE_FB", inputs="A : BOOL;")
+
+    monkeypatch.setitem(native.NATIVE_FBS, "PROBE_FB", Probe)
+    assert prelude.prelude_text("iec") == native.prelude_source("iec")
+    assert "FUNCTION_BLOCK PROBE_FB" in prelude.prelude_text("iec")
+    monkeypatch.setattr(native, "NATIVE_TYPE_SOURCES", native.NATIVE_TYPE_SOURCES + ["TYPE PROBE_T : INT; END_TYPE"])
+    assert "PROBE_T" in prelude.prelude_text("nj") and prelude.prelude_text("nj") == native.prelude_source("nj")
+    monkeypatch.undo()
+    assert "PROBE" not in prelude.prelude_text("iec") and "PROBE" not in prelude.prelude_text("nj")
