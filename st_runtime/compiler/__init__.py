@@ -79,26 +79,35 @@ class CompiledProgram:
         return self.classes[name.upper()]()
 
 
+#: What the generated code may call of Python's builtins.
+_BUILTINS = {"len": len, "range": range, "float": float, "int": int, "abs": abs, "min": min, "max": max}
+
+#: The names every namespace starts with, in order; `__builtins__` (a copy of _BUILTINS)
+#: and `_truncate` (per dialect) are set for each.
+_NAMESPACE = {
+    "__builtins__": None,
+    "_f32": support.f32, "_idiv": support.idiv, "_imod": support.imod,
+    "_rdiv": support.rdiv, "_time_mul": values.time_mul, "_time_div": values.time_div,
+    "_index_fault": support.index_fault, "_index_fault_n": support.index_fault_n,
+    "_overrun": support.overrun, "_for_range": support.for_range,
+    "_truncate": None,
+    "_subrange": support.subrange, "_method": support.bound_method, "_deref": support.deref,
+    "_ArrayView": support.ArrayView, "_setbit": support.set_bit, "_AttrRef": AttrRef, "_ItemRef": ItemRef,
+    "_setattr": setattr, "_assign_list": assign_list, "_FAULTS": _FAULTS,
+    "_INF": math.inf, "_NAN": math.nan, "_NINF": -math.inf,
+    "_m_sin": math.sin, "_m_cos": math.cos, "_m_tan": math.tan, "_m_sqrt": math.sqrt,
+}
+
+
 class CompileUnit:
     """The shared state of one compilation: namespace, makers, bindings."""
 
     def __init__(self, program):
         self.program = program
         self.classes: dict[str, type] = {}
-        self.namespace: dict = {
-            "__builtins__": {"len": len, "range": range, "float": float, "int": int,
-                             "abs": abs, "min": min, "max": max},
-            "_f32": support.f32, "_idiv": support.idiv, "_imod": support.imod,
-            "_rdiv": support.rdiv, "_time_mul": values.time_mul, "_time_div": values.time_div,
-            "_index_fault": support.index_fault, "_index_fault_n": support.index_fault_n,
-            "_overrun": support.overrun, "_for_range": support.for_range,
-            "_truncate": functools.partial(fit_string, dialect=program.dialect),
-            "_subrange": support.subrange, "_method": support.bound_method, "_deref": support.deref,
-            "_ArrayView": support.ArrayView, "_setbit": support.set_bit, "_AttrRef": AttrRef, "_ItemRef": ItemRef,
-            "_setattr": setattr, "_assign_list": assign_list, "_FAULTS": _FAULTS,
-            "_INF": math.inf, "_NAN": math.nan, "_NINF": -math.inf,
-            "_m_sin": math.sin, "_m_cos": math.cos, "_m_tan": math.tan, "_m_sqrt": math.sqrt,
-        }
+        self.namespace: dict = dict(_NAMESPACE)
+        self.namespace["__builtins__"] = dict(_BUILTINS)
+        self.namespace["_truncate"] = functools.partial(fit_string, dialect=program.dialect)
         self.makers = 0
         self.init_makers: dict[str, int] = {}     # class key -> makers its __init__ registered
         self.guard_statements = True

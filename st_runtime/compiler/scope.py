@@ -76,17 +76,20 @@ def _nodes(node) -> list:
     from the last to the first, the items of a tuple in order."""
     out = []
     stack = [node]
-    pop, push, add, Node, fields = stack.pop, stack.append, out.append, ast.Node, ast.CHILD_FIELDS
+    pop, push, extend, add = stack.pop, stack.append, stack.extend, out.append
+    Node, fields = ast.Node, ast.CHILD_FIELDS
     while stack:
         n = pop()
-        if isinstance(n, tuple):
-            stack.extend(reversed(n))
-        elif isinstance(n, Node):
+        if isinstance(n, Node):
             add(n)
             for name in fields[type(n)]:
                 value = getattr(n, name)
-                if isinstance(value, (Node, tuple)):
+                if isinstance(value, Node):
                     push(value)
+                elif isinstance(value, tuple):      # (its items now: the same order as later)
+                    extend(reversed(value))
+        elif isinstance(n, tuple):
+            extend(reversed(n))
     return out
 
 
