@@ -11,7 +11,7 @@ Tuples, never lists, hold children so that every node is hashable.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import MISSING, dataclass, field
 from typing import Union
 
 
@@ -46,6 +46,25 @@ def fields_of(cls: type) -> tuple[str, ...]:
     if names is None:
         names = _FIELDS[cls] = tuple(name for name in cls.__dataclass_fields__ if name != "pos")
     return names
+
+
+#: The annotations of fields that never hold a node (names, operators, flags, numbers).
+_SCALARS = frozenset({"str", "str | None", "bool", "bool | None", "int", "int | None", "float",
+                      "tuple[str, ...]"})
+
+
+class _ChildFields(dict):
+    """node class -> the fields of `fields_of(cls)` that may hold a node or a tuple of
+    nodes, in order, worked out on first use: a walk of the tree need not look at the
+    others (`Name.name`, `Binary.op`).  `CHILD_FIELDS[type(node)]`, one lookup."""
+
+    def __missing__(self, cls: type) -> tuple[str, ...]:
+        declared = cls.__dataclass_fields__
+        names = self[cls] = tuple(name for name in fields_of(cls) if declared[name].type not in _SCALARS)
+        return names
+
+
+CHILD_FIELDS: dict[type, tuple[str, ...]] = _ChildFields()
 
 
 @dataclass(frozen=True, slots=True)
@@ -602,3 +621,38 @@ class TestCase(Node):
     name: str
     var_blocks: tuple[VarBlock, ...]
     body: tuple[Stmt, ...]
+
+
+# ------------------------------------------------------------ construction
+# A parse makes thousands of nodes and positions.  A frozen dataclass's
+# __init__ stores each field through `object.__setattr__(self, name, value)`;
+# the one below stores it through the slot's own descriptor, which does the
+# same at a third of the cost.  Same parameters (the fields in order, their defaults, `pos` keyword
+# only), same stores, and no node class has a __post_init__ or a default_factory.
+
+
+def _fast_init(cls: type) -> None:
+    fields = list(cls.__dataclass_fields__.values())
+    scope: dict = {}
+    positional, keyword, stores = [], [], []
+    for f in fields:
+        scope[f"_set_{f.name}"] = getattr(cls, f.name).__set__
+        if f.default is not MISSING:
+            scope[f"_default_{f.name}"] = f.default
+        spelled = f.name if f.default is MISSING else f"{f.name}=_default_{f.name}"
+        (keyword if f.kw_only else positional).append(spelled)
+        stores.append(f"    _set_{f.name}(self, {f.name})\n")
+    parameters = ", ".join(["self", *positional] + (["*", *keyword] if keyword else []))
+    exec(f"def __init__({parameters}):\n{''.join(stores)}", scope)
+    init = scope["__init__"]
+    init.__qualname__ = f"{cls.__qualname__}.__init__"
+    init.__annotations__ = dict(cls.__init__.__annotations__)
+    _DATACLASS_INITS[cls] = cls.__init__
+    cls.__init__ = init
+
+
+#: class -> the __init__ dataclass wrote (the tests compare the two)
+_DATACLASS_INITS: dict[type, object] = {}
+
+for _cls in [Pos] + [c for c in list(globals().values()) if isinstance(c, type) and issubclass(c, Node)]:
+    _fast_init(_cls)

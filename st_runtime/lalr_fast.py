@@ -31,6 +31,7 @@ syntax diagnostics (`recovery.py`) exactly as before.
 
 from __future__ import annotations
 
+import re
 from functools import partial
 
 from lark.lexer import Token
@@ -153,11 +154,20 @@ class FastLalr:
 
     def _lexing(self, state: int) -> tuple:
         """What the loop reads of the state's lexer: (patterns, ignored types,
-        callbacks, types that may hold a newline); the patterns are the scanner's
-        (Scanner.match, inline: the first that matches), built before the callbacks."""
+        callbacks, types that may hold a newline, blanks); the patterns are the
+        scanner's (Scanner.match, inline: the first that matches), built before
+        the callbacks.  `blanks` matches the ignored WS terminal alone, or is None:
+        no other terminal of the grammar starts with a blank, so where WS matches
+        it is the scanner's match, and the loop skips it without trying the others."""
         lexer = self.lexers[state]
         patterns = lexer.scanner._mres
-        entry = self.lexing[state] = (patterns, lexer.ignore_types, lexer.callback, lexer.newline_types)
+        blank = next((t for t in lexer.terminals if t.name == "WS"), None)
+        blanks = None
+        plain = blank is not None and blank.pattern.type == "re" and not blank.pattern.flags \
+            and not lexer.g_regex_flags
+        if plain and "WS" in lexer.ignore_types and "WS" in lexer.newline_types and "WS" not in lexer.callback:
+            blanks = re.compile(blank.pattern.value).match
+        entry = self.lexing[state] = (patterns, lexer.ignore_types, lexer.callback, lexer.newline_types, blanks)
         return entry
 
     def _unit_chain(self, below: int, top: int, kind: str) -> int:
@@ -197,9 +207,22 @@ class FastLalr:
         while True:
             # Lark's contextual lexer: the next token the parser's state accepts
             # (BasicLexer.next_token, then the postlexer), inline
-            patterns, ignore, callbacks, newlines = lexing.get(state_stack[-1]) or self._lexing(state_stack[-1])
+            patterns, ignore, callbacks, newlines, blanks = \
+                lexing.get(state_stack[-1]) or self._lexing(state_stack[-1])
             token = _END
             while pos < end:
+                if blanks is not None:       # an ignored WS token: only the position moves
+                    found = blanks(text, pos, end)
+                    if found:
+                        stop = found.end()
+                        count = text.count("\n", pos, stop)
+                        if count:
+                            line += count
+                            line_start = text.rindex("\n", pos, stop) + 1
+                        pos = stop
+                        column = pos - line_start + 1
+                        if pos == end:
+                            break
                 for pattern in patterns:
                     found = pattern.match(text, pos, end)
                     if found:

@@ -73,6 +73,8 @@ class _Grammar:
         with open(GRAMMAR_PATH, encoding="utf-8") as handle:
             grammar = handle.read()
         self.builder = AstBuilder()
+        # (Lark's v_args wraps each public method: fetched once, not on every parse)
+        self.reset_builder = self.builder.reset
         every_keyword = _keyword_terminals(grammar)
         self.keywords = {w: k for w, k in every_keyword.items() if w not in TEST_KEYWORDS}
         self.test_keywords = every_keyword
@@ -196,7 +198,7 @@ def _guarded(text: str, path: str, start: str, caller: str):
 
 def _parse(text: str, path: str, start: str = "start"):
     g = grammar()
-    g.builder.reset(path)
+    g.reset_builder(path)
     g.active = g.test_keywords if start == "test_file" else g.keywords
     try:
         return _parse_with(g, text, path, start)
@@ -207,7 +209,7 @@ def _parse(text: str, path: str, start: str = "start"):
 def _parse_with(g: _Grammar, text: str, path: str, start: str):
     tree = g.fast.parse(text, start)      # Lark's tables and callbacks, a tighter loop
     if tree is FAILED:                   # a syntax error (or anything): Lark's own parser again
-        g.builder.reset(path)
+        g.reset_builder(path)
         try:
             tree = g.lark.parse(text, start=start)
         except RecursionError:

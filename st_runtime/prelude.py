@@ -29,7 +29,17 @@ _cache: dict[str, tuple[str, ast.SourceFile | None, list[Diagnostic]]] = {}
 
 def prelude_text(dialect: str = "iec") -> str:
     """The native declarations as one ST text (types first), with the dialect's pin names."""
-    return native.prelude_source(dialect)
+    registered = (len(native.NATIVE_TYPE_SOURCES), tuple(native.NATIVE_FBS.items()))
+    made = _texts.get(dialect)
+    if made is None or made[0] != registered:
+        made = _texts[dialect] = (registered, native.prelude_source(dialect))
+    return made[1]
+
+
+#: Per dialect, (the natives registered, the prelude text made of them): the text is
+#: made again only when a native type or FB is registered (the registries only grow;
+#: a class's DECLARATION and a dialect's pin names are constants).
+_texts: dict[str, tuple[tuple, str]] = {}
 
 
 def prelude_file(dialect: str = "iec") -> tuple[str, ast.SourceFile | None, list[Diagnostic]]:

@@ -12,6 +12,7 @@ import pytest
 
 from st_runtime.api import LoadError, load_text
 from st_runtime.checker import limits
+from tree_order import walk_order
 
 
 def program(body: str, decls: str = "x : DINT; i : DINT; r : LREAL;") -> str:
@@ -176,3 +177,36 @@ def test_a_file_beyond_the_line_limit_is_refused_before_parsing():
     diagnostics = refused(text)
     assert [(d.code, d.pos.line) for d in diagnostics] == [("E-LIMIT-012", 1)]
     assert f"at most {limits.MAX_FILE_LINES:,}" in diagnostics[0].message
+
+
+def test_the_structural_walk_notes_what_the_later_passes_look_for():
+    """check_files notes, per item, each dialect construct in the order of a walk of
+    every node, and whether an Index, a Member or a CASE is inside (the NJ build
+    rules' walk is skipped otherwise): on every file of the corpora."""
+    from pathlib import Path
+
+    from st_runtime import ast
+    from st_runtime.checker.context import Context, FastSink
+    from st_runtime.checker.dialects import CONSTRUCT_NODES, construct_of
+    from st_runtime.parser import parse
+    from st_runtime.symbols import CheckedProgram
+
+    root = Path(__file__).resolve().parent
+    paths = sorted(root.glob("corpus/*/*.st")) + sorted(root.glob("st_dialects/*.st"))
+    constructs = build = 0
+    for path in paths:
+        parsed, _ = parse(path.read_text(encoding="utf-8"), str(path))
+        if parsed is None:
+            continue
+        ctx = Context(CheckedProgram(files=[parsed]), FastSink())
+        if not limits.check_files(ctx, [parsed]):
+            continue
+        for item in parsed.items:
+            nodes = list(walk_order(item, tuples_from_last=True))
+            expected = [(construct_of(n), n.pos) for n in nodes if type(n) in CONSTRUCT_NODES]
+            walked = ctx.walked[id(item)]
+            assert walked.constructs == [(name, pos) for name, pos in expected if name is not None]
+            assert walked.build_nodes == any(isinstance(n, (ast.Index, ast.Member, ast.Case)) for n in nodes)
+            constructs += len(walked.constructs)
+            build += walked.build_nodes
+    assert constructs > 20 and build > 20

@@ -16,6 +16,7 @@ from st_runtime.compiler import compile_program
 from st_runtime.compiler import _plain, _store_members
 from st_runtime.loader import load_texts
 from st_runtime.process_image import ProcessImage, parse_address
+from tree_order import walk_order
 
 ROOT = Path(__file__).resolve().parent.parent
 ACCEPT = sorted((ROOT / "tests" / "corpus" / "accept").glob("*.st"))
@@ -108,7 +109,7 @@ def test_a_body_walked_again_gives_the_same_nodes():
     from st_runtime.parser import parse_body
 
     bodies = [parse_body(f"x := {i} + y[{i}]; IF a THEN b := NOT c; END_IF;", "w.st")[0] for i in range(40)]
-    fresh = [[id(n) for n in scope._walk(body)] for body in bodies]
+    fresh = [[id(n) for n in walk_order(body)] for body in bodies]
     for _ in range(2):
         for body, nodes in zip(bodies, fresh):
             assert [id(n) for n in scope.walk(body)] == nodes
@@ -116,3 +117,177 @@ def test_a_body_walked_again_gives_the_same_nodes():
     assert [id(n) for n in scope.walk(twin)] == fresh[0]
     assert len(scope._WALKED) <= scope._WALKED_ENTRIES
     assert [type(n) for n in scope.walk(bodies[0][0])][0] is ast.Assign    # (a node: walked afresh)
+
+
+def test_the_walk_lists_every_node_of_the_corpus_in_its_order():
+    """scope.walk over every POU of the accept corpus (a whole item, each body, each
+    statement alone as the passes ask) gives the reference order; a one-leaf tuple,
+    which it returns as it is, holds a node with no child node."""
+    from st_runtime import ast
+    from st_runtime.compiler import scope
+    from st_runtime.parser import parse
+
+    leaves = 0
+    for path in ACCEPT:
+        parsed, _ = parse(path.read_text(encoding="utf-8"), str(path))
+        for item in parsed.items:
+            assert [id(n) for n in scope.walk(item)] == [id(n) for n in walk_order(item)]
+            for body in [getattr(item, "body", ())] + [m.body for m in getattr(item, "methods", ())]:
+                assert [id(n) for n in scope.walk(body)] == [id(n) for n in walk_order(body)]
+                for node in walk_order(body):
+                    one = (node,)
+                    assert [id(n) for n in scope.walk(one)] == [id(n) for n in walk_order(one)]
+                    if type(node) in scope._LEAVES:
+                        leaves += 1
+                        assert not any(isinstance(getattr(node, f), (ast.Node, tuple))
+                                       for f in ast.fields_of(type(node)))
+    assert leaves > 1000
+
+
+def test_a_field_the_walks_pass_by_never_holds_a_node():
+    """The walks read only `ast.CHILD_FIELDS` (fields annotated as names, flags or
+    numbers are passed by): in every .st file of the repository, parsed, and in the
+    checked files (SFC charts lowered to statements), no other field holds a node."""
+    from st_runtime import ast
+    from st_runtime.checker import check
+    from st_runtime.parser import parse
+
+    def nodes(node):
+        stack = [node]
+        while stack:
+            n = stack.pop()
+            if isinstance(n, tuple):
+                stack.extend(n)
+            elif isinstance(n, ast.Node):
+                yield n
+                stack.extend(getattr(n, name) for name in ast.fields_of(type(n)))
+
+    def holds_node(value) -> bool:
+        return isinstance(value, ast.Node) or isinstance(value, tuple) and any(map(holds_node, value))
+
+    seen = 0
+    for path in sorted({*ROOT.glob("tests/**/*.st"), *ROOT.glob("examples/**/*.st"), *ROOT.glob("generated/**/*.st")}):
+        parsed, _ = parse(path.read_text(encoding="utf-8", errors="replace"), str(path))
+        if parsed is None:
+            continue
+        program, _ = check([parsed])
+        for source in [parsed, *program.files]:
+            for node in nodes(source):
+                passed_by = set(ast.fields_of(type(node))) - set(ast.CHILD_FIELDS[type(node)])
+                assert not any(holds_node(getattr(node, name)) for name in passed_by), type(node)
+                seen += 1
+    assert seen > 100_000
+
+
+def test_a_compile_takes_the_leading_prelude_at_once_as_one_by_one(monkeypatch):
+    """When a program's types and POUs begin with the shared prelude's (most loads),
+    compile_program adds their classes, __init__ sources and makers at once: the same
+    sources, in the same order, the same classes as going through them one by one."""
+    from st_runtime.compiler import SharedPrelude
+
+    def compiled(path):
+        result = compile_program(load_texts({str(path): path.read_text(encoding="utf-8")}).program)
+        return list(result.python_sources.items()), [(k, c.__qualname__) for k, c in result.classes.items()]
+
+    loads = [p for p in ACCEPT if load_texts({str(p): p.read_text(encoding="utf-8")}).program is not None]
+    at_once = [compiled(p) for p in loads]
+    led = [SharedPrelude.leads]
+    taken = []
+
+    def leads(self, program, table):
+        taken.append(led[0](self, program, table))
+        return False
+
+    monkeypatch.setattr(SharedPrelude, "leads", leads)
+    one_by_one = [compiled(p) for p in loads]
+    assert at_once == one_by_one
+    assert taken.count(True) > len(loads) and taken.count(False) > 0     # (both cases occur)
+
+
+def test_each_compile_installs_its_dialects_native_layouts():
+    """A native FB's class serves every dialect: after each compile it holds that
+    dialect's layout (CTU's reset pin is R under iec, Reset under nj), also when
+    the previous compile left another dialect's, or a full compile its own."""
+    from st_runtime.native import NATIVE_FBS
+    from st_runtime.checker import check
+    from st_runtime.loader import parse_texts
+
+    text = {"c.st": "PROGRAM P VAR c : CTU; END_VAR c(CU := TRUE, PV := 3); END_PROGRAM"}
+    ctu = NATIVE_FBS["CTU"]
+    for dialect, pin, other in [("iec", "R", "RESET"), ("nj", "RESET", "R"), ("nj", "RESET", "R"),
+                                ("iec", "R", "RESET"), ("iec", "R", "RESET")]:
+        compile_program(load_texts(text, dialect).program)
+        assert pin in ctu._st_vars and other not in ctu._st_vars
+        if dialect == "nj":        # a full compile (no shared prelude) sets its own layout
+            _, parsed, _ = parse_texts(text, "iec")
+            program, _ = check([f for _, f in parsed], "iec", share_prelude=False)
+            compile_program(program)
+            assert "R" in ctu._st_vars and "RESET" not in ctu._st_vars
+
+
+def test_programs_without_globals_share_one_empty_globals_class():
+    """A program without globals gets the one shared Globals class, which holds
+    nothing of any program and is not changed by a compile; a program with globals
+    gets its own class, and its values stay its own."""
+    import st_runtime.compiler as compiler
+
+    bare = [compile_program(load_texts({f"p{i}.st": f"PROGRAM P VAR x : INT := {i}; END_VAR x := x + 1; "
+                                                    "END_PROGRAM"}).program) for i in range(2)]
+    assert type(bare[0].globals) is type(bare[1].globals) is compiler._NO_GLOBALS
+    assert compiler._NO_GLOBALS.__slots__ == () and compiler._NO_GLOBALS._st_vars == {}
+    assert compiler._NO_GLOBALS.__dict__["__init__"] is compiler._NO_GLOBALS_INIT
+    assert bare[0].python_sources["init:<GLOBALS>"].endswith("(self):\n    pass\n")    # (kept for reading)
+    with_globals = compile_program(load_texts({"g.st": "VAR_GLOBAL g : INT := 7; END_VAR "
+                                               "PROGRAM P VAR_EXTERNAL g : INT; END_VAR g := g + 1; "
+                                               "END_PROGRAM"}).program)
+    assert type(with_globals.globals) is not compiler._NO_GLOBALS
+    assert with_globals.globals.v_G == 7 and compiler._NO_GLOBALS._st_vars == {}
+
+
+def test_a_node_is_made_as_its_dataclass_init_made_it():
+    """Every AST class (and Pos) takes the parameters its dataclass __init__ took,
+    with the same defaults, and stores the same fields (ast._fast_init)."""
+    import dataclasses
+    import inspect
+
+    from st_runtime import ast
+
+    classes = [ast.Pos] + [c for c in vars(ast).values() if isinstance(c, type) and issubclass(c, ast.Node)]
+    assert set(ast._DATACLASS_INITS) == set(classes) and len(classes) > 60
+    for cls in classes:
+        original = ast._DATACLASS_INITS[cls]
+        assert inspect.signature(cls.__init__) == inspect.signature(original)
+        fields = dataclasses.fields(cls)
+        values = {f.name: object() for f in fields}
+        args = [values[f.name] for f in fields if not f.kw_only]
+        kwargs = {f.name: values[f.name] for f in fields if f.kw_only}
+        made, by_dataclass = object.__new__(cls), object.__new__(cls)
+        cls.__init__(made, *args, **kwargs)
+        original(by_dataclass, *args, **kwargs)
+        assert all(getattr(made, f.name) is getattr(by_dataclass, f.name) is values[f.name] for f in fields)
+        with_defaults, by_dataclass = object.__new__(cls), object.__new__(cls)
+        required = [values[f.name] for f in fields if not f.kw_only and f.default is dataclasses.MISSING]
+        cls.__init__(with_defaults, *required)
+        original(by_dataclass, *required)
+        assert all(getattr(with_defaults, f.name) is getattr(by_dataclass, f.name) for f in fields)
+
+
+def test_the_prelude_text_is_made_again_when_a_native_is_registered(monkeypatch):
+    """prelude_text keeps the text per dialect until the registered natives change:
+    always the text native.prelude_source makes of them."""
+    from st_runtime import native, prelude
+
+    for dialect in ("iec", "nj", "codesys"):
+        assert prelude.prelude_text(dialect) == native.prelude_source(dialect)
+
+    class Probe:
+        NAME = "PROBE_FB"
+        DECLARATION = native.fb_declaration("PROBE_FB", inputs="A : BOOL;")
+
+    monkeypatch.setitem(native.NATIVE_FBS, "PROBE_FB", Probe)
+    assert prelude.prelude_text("iec") == native.prelude_source("iec")
+    assert "FUNCTION_BLOCK PROBE_FB" in prelude.prelude_text("iec")
+    monkeypatch.setattr(native, "NATIVE_TYPE_SOURCES", native.NATIVE_TYPE_SOURCES + ["TYPE PROBE_T : INT; END_TYPE"])
+    assert "PROBE_T" in prelude.prelude_text("nj") and prelude.prelude_text("nj") == native.prelude_source("nj")
+    monkeypatch.undo()
+    assert "PROBE" not in prelude.prelude_text("iec") and "PROBE" not in prelude.prelude_text("nj")

@@ -115,3 +115,32 @@ def test_fast_loop_builds_the_same_ast_for_every_shape(text: str):
         fast, plain = _both(text, "t.st", parse)
         assert fast == plain
         assert _positions(fast) == _positions(plain)     # (== leaves positions out)
+
+
+@pytest.mark.parametrize("text", [
+    "   ", "\n\n", "\ufeffPROGRAM P END_PROGRAM", "PROGRAM P\r\n\tVAR x : INT; END_VAR\r\n\f x := 1;\n\n  \nEND_PROGRAM \t\n",
+    "PROGRAM P VAR x : INT; END_VAR\n  (* a *)  \n  x := 1; // c\n\t{attribute}\n END_PROGRAM\n\n\n   ",
+])
+def test_fast_loop_skips_blanks_where_lark_does(text: str):
+    """The loop skips an ignored WS token without the scanner (lalr_fast._lexing):
+    the same AST and every position, line ends and tabs included."""
+    fast, plain = _both(text, "b.st")
+    assert fast == plain
+    assert _positions(fast) == _positions(plain)
+
+
+def test_no_terminal_but_ws_starts_with_a_blank():
+    """What the blank skip relies on: where WS matches, no other terminal of the
+    grammar can (each is tried on every blank followed by text of every kind)."""
+    import re
+
+    lark = st_parser.grammar().lark
+    blanks = " \t\f\r\n\ufeff"
+    after = ["x", "1", "%IX0.1", ":=", "(*c*)", "'s'", "OF", "AT %Q", " ", "\n", "#", "..", ";", ""]
+    others = [t for t in lark.terminals if t.name != "WS"]
+    assert len(others) > 100
+    for terminal in others:
+        pattern = re.compile(terminal.pattern.to_regexp(), re.IGNORECASE if "i" in terminal.pattern.flags else 0)
+        for blank in blanks:
+            for rest in after:
+                assert pattern.match(blank + rest) is None, (terminal.name, blank + rest)

@@ -45,6 +45,8 @@ class Context:
     calls: dict[str, list[tuple[str, ast.Pos]]] = field(default_factory=dict)
     namespaces: set = field(default_factory=set)     # upper-case "A", "A.B"
     direct_types: dict = field(default_factory=dict)  # "%MW1" -> type declared AT it
+    # id(item) -> what the structural walk (limits.check_files) found in it for later passes
+    walked: dict = field(default_factory=dict)
 
     @property
     def rules(self) -> Dialect:

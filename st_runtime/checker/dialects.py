@@ -1,10 +1,13 @@
 """E-DIALECT-001: the constructs a file uses that its dialect refuses.
 
 Which dialect accepts which construct is data, in st_runtime/dialects.py
-(CONSTRUCTS); this module only finds the constructs in the syntax tree.
+(CONSTRUCTS); this module only names the constructs of the syntax tree (the
+checker's structural walk, `limits.check_files`, finds them on its way).
 """
 
 from __future__ import annotations
+
+from itertools import chain
 
 from .. import ast
 from ..dialects import DIALECTS, refusal
@@ -12,7 +15,9 @@ from ..dialects import DIALECTS, refusal
 
 def check_dialect(ctx, files) -> None:
     """Report the first use, per file, of each construct the dialect refuses
-    (one root cause, one diagnostic; the count says how many more)."""
+    (one root cause, one diagnostic; the count says how many more).  The
+    constructs inside each item come from the structural walk
+    (`limits.check_files`, run first: `ctx.walked`)."""
     dialect = ctx.dialect
     rules = DIALECTS[dialect]
     for f in files:
@@ -21,7 +26,7 @@ def check_dialect(ctx, files) -> None:
         first: dict[str, ast.Pos] = {}
         count: dict[str, int] = {}
         for item in f.items:
-            for name, pos in _constructs(item):
+            for name, pos in chain(_item_constructs(item), ctx.walked[id(item)].constructs):
                 if not rules.accepts(name):
                     first[name] = min(first.get(name, pos), pos, key=lambda p: (p.line, p.col))
                     count[name] = count.get(name, 0) + 1
@@ -30,8 +35,9 @@ def check_dialect(ctx, files) -> None:
             ctx.error("E-DIALECT-001", refusal(name, dialect) + more, pos)
 
 
-def _constructs(item):
-    """(construct name, position) of each dialect-dependent construct in an item."""
+def _item_constructs(item):
+    """(construct name, position) of each dialect-dependent construct of an item itself
+    (its kind, its methods), before those of the nodes inside it."""
     if getattr(item, "namespace", ""):
         yield "NAMESPACE", item.pos
     if isinstance(item, ast.Pou):
@@ -47,39 +53,30 @@ def _constructs(item):
             kinds = set(method.modifiers)
             yield ("ACTION" if "ACTION" in kinds else "PROPERTY" if kinds & {"GET", "SET"}
                    else "METHOD"), method.pos
-    stack = [item]
-    push, Node = stack.append, ast.Node
-    while stack:
-        node = stack.pop()
-        if isinstance(node, tuple):
-            stack.extend(node)
-            continue
-        if not isinstance(node, Node):
-            continue
-        kind = type(node)
-        if kind in _CONSTRUCT_NODES:
-            if kind is ast.RefType:
-                yield ("POINTER" if node.pointer else "REF_TO"), node.pos
-            elif kind is ast.Deref:
-                yield "DEREF", node.pos
-            elif kind is ast.Assign and node.mode != ":=":
-                yield "SET_RESET", node.pos
-            elif kind is ast.Call and node.trailing_comma:
-                yield "TRAILING_COMMA", node.pos
-            elif kind is ast.StructType and node.union:
-                yield "UNION", node.pos
-            elif kind is ast.VarDecl and node.name.upper() in ("R_EDGE", "F_EDGE"):
-                yield "EDGE_NAME", node.pos
-            elif kind is ast.NullLiteral:
-                yield "NULL", node.pos
-            elif kind is ast.BitAccess and not node.size:      # x.%X3 is the standard's
-                yield "BIT_ACCESS", node.pos
-        for name in ast._FIELDS.get(kind) or ast.fields_of(kind):
-            value = getattr(node, name)
-            if isinstance(value, (Node, tuple)):
-                push(value)
 
 
-#: The node classes `_constructs` looks at (the others it only walks through).
-_CONSTRUCT_NODES = frozenset({ast.RefType, ast.Deref, ast.Assign, ast.Call, ast.StructType, ast.VarDecl,
-                              ast.NullLiteral, ast.BitAccess})
+def construct_of(node) -> str | None:
+    """The dialect-dependent construct a node of a class in CONSTRUCT_NODES is, or None."""
+    kind = type(node)
+    if kind is ast.RefType:
+        return "POINTER" if node.pointer else "REF_TO"
+    if kind is ast.Deref:
+        return "DEREF"
+    if kind is ast.Assign:
+        return "SET_RESET" if node.mode != ":=" else None
+    if kind is ast.Call:
+        return "TRAILING_COMMA" if node.trailing_comma else None
+    if kind is ast.StructType:
+        return "UNION" if node.union else None
+    if kind is ast.VarDecl:
+        return "EDGE_NAME" if node.name.upper() in ("R_EDGE", "F_EDGE") else None
+    if kind is ast.NullLiteral:
+        return "NULL"
+    if kind is ast.BitAccess:
+        return "BIT_ACCESS" if not node.size else None     # x.%X3 is the standard's
+    return None
+
+
+#: The node classes `construct_of` names (the walk passes the others by).
+CONSTRUCT_NODES = frozenset({ast.RefType, ast.Deref, ast.Assign, ast.Call, ast.StructType, ast.VarDecl,
+                             ast.NullLiteral, ast.BitAccess})

@@ -10,7 +10,10 @@ and 17 nested loops still compile; an IF with 200 branches does, CASE with
 4,000 clauses does not), and each one that is exceeded is one diagnostic
 naming the construct, at its position.  The walk is iterative, so a POU
 nested 100,000 levels deep costs time linear in its size, never a
-RecursionError.
+RecursionError.  It is the checker's one walk of every node of the user's
+files: on the way it notes what two later passes look for (`Walked`), the
+dialect's constructs and whether an item holds a node of the NJ build rules,
+so that neither walks the tree again.
 
 | code | limit |
 |---|---|
@@ -28,6 +31,7 @@ from __future__ import annotations
 from .. import ast
 from ..diagnostics import register
 from .context import BUILTIN_FILE
+from .dialects import CONSTRUCT_NODES, construct_of
 
 MAX_EXPRESSION_DEPTH = 64
 MAX_BLOCK_DEPTH = 40
@@ -69,34 +73,57 @@ _TRANSPARENT = (ast.IfBranch, ast.CaseClause, ast.CaseRange, ast.Arg, ast.Pou, a
                 ast.Configuration, ast.TaskDecl, ast.ProgramInstance, ast.StructType, ast.EnumType, ast.EnumValue)
 
 
-#: node class -> (statement, block, loop, transparent, field names): what check_limits
-#: asks of every node, worked out once per class (`_shape`).
+#: The node classes of the NJ build rules (nj_build.py: rules 006 and 007).
+_BUILD_NODES = (ast.Index, ast.Member, ast.Case)
+
+#: node class -> (statement, block, loop, transparent, dialect construct, build rule node,
+#: fields that may hold a node): what check_limits asks of every node, worked out once per
+#: class (`_shape`).
 _SHAPES: dict[type, tuple] = {}
 
 
 def _shape(cls: type) -> tuple:
     shape = _SHAPES[cls] = (issubclass(cls, _STATEMENTS), issubclass(cls, _BLOCKS), issubclass(cls, _LOOPS),
-                            issubclass(cls, _TRANSPARENT), tuple(cls.__slots__))
+                            issubclass(cls, _TRANSPARENT), cls in CONSTRUCT_NODES, cls in _BUILD_NODES,
+                            ast.CHILD_FIELDS[cls])
     return shape
+
+
+class Walked:
+    """What the walk found in one item for the passes after it: `constructs`, the
+    (construct, position) of each node a dialect may refuse (`dialects.construct_of`),
+    in the walk's order; `build_nodes`, whether any node is one the NJ build rules
+    look at (an Index, a Member or a CASE), else their walk of the item is skipped."""
+
+    __slots__ = ("constructs", "build_nodes")
+
+    def __init__(self) -> None:
+        self.constructs: list[tuple[str, ast.Pos]] = []
+        self.build_nodes = False
 
 
 def check_files(ctx, files) -> bool:
     """Check the limits of every POU, type and global block of `files`; True
-    when all are within them (otherwise nothing else should walk them)."""
+    when all are within them (otherwise nothing else should walk them).
+    What each item holds for later passes goes to `ctx.walked` (`Walked`)."""
     ok = True
     for source in files:
         if source.path == BUILTIN_FILE:
             continue   # the native prelude: declarations only, within every limit, and walked on every load
         for item in source.items:
-            ok = check_limits(ctx, item, getattr(item, "name", None) or source.path) and ok
+            walked = ctx.walked[id(item)] = Walked()
+            ok = check_limits(ctx, item, getattr(item, "name", None) or source.path, walked) and ok
     return ok
 
 
-def check_limits(ctx, pou, name: str) -> bool:
+def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
     """Report every limit `pou` (a POU, a type or a VAR_GLOBAL block named
     `name`) exceeds, one diagnostic per kind at the first place; True when it
-    is within all of them."""
+    is within all of them.  `walked` collects what later passes need (`Walked`):
+    complete only when the item is within every limit."""
     found: set[str] = set()
+    walked = walked if walked is not None else Walked()
+    constructs, build_nodes = walked.constructs, False
 
     def report(code: str, message: str, node) -> None:
         if code not in found:
@@ -109,7 +136,13 @@ def check_limits(ctx, pou, name: str) -> bool:
     push, Node = stack.append, ast.Node
     while stack:
         node, blocks, loops, depth = stack.pop()
-        is_statement, is_block, is_loop, transparent, names = _SHAPES.get(type(node)) or _shape(type(node))
+        is_statement, is_block, is_loop, transparent, construct, build_node, names = \
+            _SHAPES.get(type(node)) or _shape(type(node))
+        if construct:
+            what = construct_of(node)
+            if what is not None:
+                constructs.append((what, node.pos))
+        build_nodes = build_nodes or build_node
         if is_statement:
             statements += 1
             depth = 0
@@ -147,4 +180,5 @@ def check_limits(ctx, pou, name: str) -> bool:
                         push((item, blocks, loops, depth))
     if statements > MAX_STATEMENTS:
         report("E-LIMIT-007", f"{statements} statements (at most {MAX_STATEMENTS}; split the POU)", pou)
+    walked.build_nodes = build_nodes
     return not found

@@ -36,8 +36,9 @@ def check_build_rules(ctx: Context, files) -> None:
             continue
         for item in f.items:
             if isinstance(item, ast.Pou):
-                for node in _walk(item.body):
-                    _body_node(ctx, node)
+                if ctx.walked[id(item)].build_nodes:    # (the structural walk saw one: limits.py)
+                    for node in _walk(item.body):
+                        _body_node(ctx, node)
                 for block in item.var_blocks:
                     _initial_values(ctx, block.decls)
             elif isinstance(item, ast.VarBlock):
@@ -61,7 +62,7 @@ def _walk(node):
             stack.extend(reversed(item))
         elif isinstance(item, ast.Node):
             yield item
-            stack.extend(reversed([getattr(item, name) for name in ast.fields_of(type(item))]))
+            stack.extend(reversed([getattr(item, name) for name in ast.CHILD_FIELDS[type(item)]]))
 
 
 def _body_node(ctx: Context, node) -> None:

@@ -76,8 +76,10 @@ def _declared_names(files):
                 yield decl.name, decl.pos
 
     for f in files:
+        if f.path == BUILTIN_FILE:
+            continue
         for item in f.items:
-            if item.pos.file == BUILTIN_FILE or f.path == BUILTIN_FILE:
+            if item.pos.file == BUILTIN_FILE:
                 continue
             if isinstance(item, ast.Pou):
                 yield item.name, item.pos

@@ -34,6 +34,8 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass, field
+from itertools import islice
+from operator import is_, methodcaller
 
 from .. import ast
 from ..dialects import DIALECTS
@@ -77,26 +79,35 @@ class CompiledProgram:
         return self.classes[name.upper()]()
 
 
+#: What the generated code may call of Python's builtins.
+_BUILTINS = {"len": len, "range": range, "float": float, "int": int, "abs": abs, "min": min, "max": max}
+
+#: The names every namespace starts with, in order; `__builtins__` (a copy of _BUILTINS)
+#: and `_truncate` (per dialect) are set for each.
+_NAMESPACE = {
+    "__builtins__": None,
+    "_f32": support.f32, "_idiv": support.idiv, "_imod": support.imod,
+    "_rdiv": support.rdiv, "_time_mul": values.time_mul, "_time_div": values.time_div,
+    "_index_fault": support.index_fault, "_index_fault_n": support.index_fault_n,
+    "_overrun": support.overrun, "_for_range": support.for_range,
+    "_truncate": None,
+    "_subrange": support.subrange, "_method": support.bound_method, "_deref": support.deref,
+    "_ArrayView": support.ArrayView, "_setbit": support.set_bit, "_AttrRef": AttrRef, "_ItemRef": ItemRef,
+    "_setattr": setattr, "_assign_list": assign_list, "_FAULTS": _FAULTS,
+    "_INF": math.inf, "_NAN": math.nan, "_NINF": -math.inf,
+    "_m_sin": math.sin, "_m_cos": math.cos, "_m_tan": math.tan, "_m_sqrt": math.sqrt,
+}
+
+
 class CompileUnit:
     """The shared state of one compilation: namespace, makers, bindings."""
 
     def __init__(self, program):
         self.program = program
         self.classes: dict[str, type] = {}
-        self.namespace: dict = {
-            "__builtins__": {"len": len, "range": range, "float": float, "int": int,
-                             "abs": abs, "min": min, "max": max},
-            "_f32": support.f32, "_idiv": support.idiv, "_imod": support.imod,
-            "_rdiv": support.rdiv, "_time_mul": values.time_mul, "_time_div": values.time_div,
-            "_index_fault": support.index_fault, "_index_fault_n": support.index_fault_n,
-            "_overrun": support.overrun, "_for_range": support.for_range,
-            "_truncate": functools.partial(fit_string, dialect=program.dialect),
-            "_subrange": support.subrange, "_method": support.bound_method, "_deref": support.deref,
-            "_ArrayView": support.ArrayView, "_setbit": support.set_bit, "_AttrRef": AttrRef, "_ItemRef": ItemRef,
-            "_setattr": setattr, "_assign_list": assign_list, "_FAULTS": _FAULTS,
-            "_INF": math.inf, "_NAN": math.nan, "_NINF": -math.inf,
-            "_m_sin": math.sin, "_m_cos": math.cos, "_m_tan": math.tan, "_m_sqrt": math.sqrt,
-        }
+        self.namespace: dict = dict(_NAMESPACE)
+        self.namespace["__builtins__"] = dict(_BUILTINS)
+        self.namespace["_truncate"] = functools.partial(fit_string, dialect=program.dialect)
         self.makers = 0
         self.init_makers: dict[str, int] = {}     # class key -> makers its __init__ registered
         self.guard_statements = True
@@ -106,6 +117,8 @@ class CompileUnit:
         self.sources: dict[str, str] = {}
         self.constant_ranges: dict[int, tuple | None] = {}   # id(Symbol) -> element range
         self.image = ProcessImage()
+        #: "types", "pous" -> how many first entries of the table are the shared prelude's
+        self.prelude_lead: dict[str, int] = {}
 
     def register_maker(self, maker) -> str:
         self.makers += 1
@@ -189,6 +202,8 @@ def compile_program(program, guard_statements: bool = True, charge_costs: bool =
     unit.guard_statements = guard_statements
     unit.charge_costs = charge_costs
     shared = _shared_prelude(program)
+    if shared is not None:
+        unit.prelude_lead = shared.lead(program)
     _make_classes(unit, shared)
     _make_initializers(unit, shared)
     for address, t, init in program.image_inits:      # `AT %QX0.1 : BOOL := 1;`
@@ -196,7 +211,7 @@ def compile_program(program, guard_statements: bool = True, charge_costs: bool =
     globals_obj = unit.classes["<GLOBALS>"]()
     unit.namespace["_G"] = globals_obj
     functions = {}
-    for key, pou in program.pous.items():
+    for key, pou in _after_prelude(unit, "pous"):
         if pou.node is None or pou.native is not None or pou.kind == "INTERFACE":
             continue
         if pou.kind == "FUNCTION_BLOCK":
@@ -213,7 +228,8 @@ def compile_program(program, guard_statements: bool = True, charge_costs: bool =
             unit.run_source(key, BodyCompiler(program, pou, unit, method=True).function_source(pyname),
                             pou.node.pos)
             unit.classes[key].execute = unit.namespace[pyname]
-    classes = {k: v for k, v in unit.classes.items() if k != "<GLOBALS>"}
+    classes = dict(unit.classes)
+    del classes["<GLOBALS>"]
     return CompiledProgram(program, classes, functions, globals_obj, unit.sources, unit.namespace,
                            unit.image)
 
@@ -250,7 +266,9 @@ def _instance_variables(pou) -> list:
 def _make_classes(unit: CompileUnit, shared=None) -> None:
     program = unit.program
     own = shared.types if shared is not None else {}
-    for key, t in program.types.items():
+    if unit.prelude_lead.get("types"):
+        unit.classes.update(shared.struct_classes)      # (what the loop below would add for them)
+    for key, t in _after_prelude(unit, "types"):
         if own.get(key) is t:               # the shared prelude's: its STRUCT class, if one
             if key in shared.inits:
                 unit.classes[key] = shared.classes[key]
@@ -269,7 +287,8 @@ def _make_classes(unit: CompileUnit, shared=None) -> None:
             unit.classes[key] = _new_class(t.name, slots, layout)
     if shared is not None:       # the prelude's POUs lead program.pous, none has a base
         unit.classes.update(shared.install_layouts())
-    for key, pou in _bases_first(program, shared.pous if shared is not None else {}):
+    for key, pou in _bases_first(_after_prelude(unit, "pous"),
+                                 shared.pous if shared is not None else {}):
         if pou.kind in ("FUNCTION", "INTERFACE"):
             continue
         if pou.node is None or pou.native is not None:
@@ -294,6 +313,9 @@ def _make_classes(unit: CompileUnit, shared=None) -> None:
         unit.classes[key]._st_constants = frozenset(s.name.upper() for s in variables if s.constant)
         _locate_variables(unit, unit.classes[key], variables)
     gl = [s for s in program.globals.values()]
+    if not gl:
+        unit.classes["<GLOBALS>"] = _NO_GLOBALS
+        return
     unit.classes["<GLOBALS>"] = _new_class(
         "Globals", tuple(pyident(s.name) for s in gl if located_at(s) is None),
         {s.name.upper(): (s.name, s.type) for s in gl})
@@ -328,9 +350,9 @@ def _union_storage(cls: type, size: int) -> type:
     return cls
 
 
-def _bases_first(program, done=()) -> list:
-    """The POUs with every FB after the FB it extends (classes derive from their base's);
-    those in `done` (classes made already) left out."""
+def _bases_first(pous, done=()) -> list:
+    """The POUs (key, PouInfo) with every FB after the FB it extends (classes derive
+    from their base's); those in `done` (classes made already) left out."""
     ordered, placed = [], set(done)
 
     def place(key, pou):
@@ -341,7 +363,7 @@ def _bases_first(program, done=()) -> list:
             place(pou.parent.name.upper(), pou.parent)
         ordered.append((key, pou))
 
-    for key, pou in program.pous.items():
+    for key, pou in pous:
         place(key, pou)
     return ordered
 
@@ -357,7 +379,9 @@ def _make_initializers(unit: CompileUnit, shared=None) -> None:
     program = unit.program
     initial = unit.initial
     own = shared.types if shared is not None else {}
-    for key, t in program.types.items():
+    if unit.prelude_lead.get("types"):
+        shared.add_inits(unit)              # (what the loop below would add for them)
+    for key, t in _after_prelude(unit, "types"):
         if own.get(key) is t:               # the shared prelude's: its STRUCT's __init__, if one
             if key in shared.inits:
                 shared.add_init(unit, key)
@@ -368,7 +392,7 @@ def _make_initializers(unit: CompileUnit, shared=None) -> None:
                        for fkey, (name, ft) in t.fields.items()]
             _install_init(unit, key, members)
     own = shared.pous if shared is not None else {}
-    for key, pou in program.pous.items():
+    for key, pou in _after_prelude(unit, "pous"):
         if pou.kind in ("FUNCTION", "INTERFACE") or own.get(key) is pou:
             continue      # (the prelude's native layouts are whole already)
         if pou.node is None or pou.native is not None:
@@ -422,7 +446,8 @@ def _install_init(unit: CompileUnit, key: str, members: list) -> None:
         # Made once per run (the globals, a PROGRAM) or setting nothing: the same
         # stores, in the same order, without compiling the source (kept for reading).
         unit.sources["init:" + key] = unit.sources.get("init:" + key, "") + out.source()
-        cls.__init__ = _store_members(tuple(steps))
+        if cls is not _NO_GLOBALS:      # (whose __init__ sets nothing already)
+            cls.__init__ = _store_members(tuple(steps))
     unit.init_makers[key] = unit.makers - makers
 
 
@@ -433,6 +458,14 @@ def _store_members(steps: tuple):
         for attr, maker, const in steps:
             setattr(self, attr, const if maker is None else maker())
     return __init__
+
+
+#: The class of a program without globals, the same for all: no variable, no
+#: constant, an `__init__` that sets nothing (`_install_init`), so nothing of one
+#: program is in it.  A class costs more to make than a small file's whole check.
+_NO_GLOBALS = _new_class("Globals", (), {})
+_NO_GLOBALS._st_constants = frozenset()
+_NO_GLOBALS.__init__ = _NO_GLOBALS_INIT = _store_members(())
 
 
 def _plain(value):
@@ -454,6 +487,14 @@ def _plain(value):
 
 
 # ------------------------------------------------------------ shared prelude
+
+
+def _after_prelude(unit: CompileUnit, name: str):
+    """The items of the program's table `name` ("types" or "pous") after the shared
+    prelude's when those lead it (`CompileUnit.prelude_lead`), else all of them."""
+    table = getattr(unit.program, name)
+    lead = unit.prelude_lead.get(name)
+    return islice(table.items(), lead, None) if lead else table.items()
 
 
 def _shared_prelude(program):
@@ -498,7 +539,35 @@ class SharedPrelude:
                         for k, c in self.classes.items()
                         if base.pous.get(k) is not None and base.pous[k].native is c}
         self.native_classes = {k: layout[0] for k, layout in self.layouts.items()}
+        #: (classes, their _st_vars, their _st_initializers) as `install_layouts` sets them
+        self.installed = tuple(zip(*[(c, v, i) for c, v, _, _, i in self.layouts.values()])) or ((), (), ())
         self.types, self.pous = base.types, base.pous
+        #: per table ("types", "pous"): its keys and its very objects, in order
+        self.tables = {name: (list(table), list(table.values()))
+                       for name, table in (("types", base.types), ("pous", base.pous))}
+        #: in the prelude's order: its STRUCT classes; their __init__ sources; the makers of all
+        self.struct_classes = {k: self.classes[k] for k in base.types if k in self.inits}
+        self.init_sources = {"init:" + k: self.inits[k][0] for k in base.types if k in self.inits}
+        self.init_makers = sum(self.inits[k][1] for k in base.types if k in self.inits)
+
+    def leads(self, program, table: str) -> bool:
+        """Whether `program`'s table ("types" or "pous") begins with the prelude's whole
+        table, in its order, the very objects (as in most loads: then a compile does for
+        them at once what it would do for each; the prelude's POUs always lead)."""
+        keys, values = self.tables[table]
+        mine = getattr(program, table)
+        return list(islice(mine, len(keys))) == keys \
+            and all(map(is_, islice(mine.values(), len(keys)), values))
+
+    def lead(self, program) -> dict[str, int]:
+        """table name -> how many of its first entries are the prelude's (`leads`), or 0."""
+        return {name: len(keys) if self.leads(program, name) else 0
+                for name, (keys, _) in self.tables.items()}
+
+    def add_inits(self, unit: CompileUnit) -> None:
+        """`add_init` of every prelude STRUCT, in the prelude's order."""
+        unit.sources.update(self.init_sources)
+        unit.makers += self.init_makers
 
     def add_init(self, unit: CompileUnit, key: str) -> None:
         """A STRUCT's __init__ counted in `unit` as if compiled there (sources, makers)."""
@@ -509,6 +578,10 @@ class SharedPrelude:
     def install_layouts(self) -> dict[str, type]:
         """Each native FB's layout of this dialect on its class, as every compile did
         (a class serves every dialect: the last compile's pin names hold); key -> class."""
+        classes, st_vars, initializers = self.installed
+        if all(map(is_, map(_OWN_VARS, map(vars, classes)), st_vars)) and \
+                all(map(is_, map(_OWN_INITIALIZERS, map(vars, classes)), initializers)):
+            return self.native_classes          # (all in place: the loop below would set none)
         for cls, st_vars, kinds, name, initializers in self.layouts.values():
             if cls.__dict__.get("_st_vars") is not st_vars or cls.__dict__.get("_st_initializers") \
                     is not initializers:
@@ -516,6 +589,10 @@ class SharedPrelude:
                 cls._st_initializers = initializers
         return self.native_classes
 
+
+#: A class's own `_st_vars` and `_st_initializers` (not a base's), from `vars(cls)`.
+_OWN_VARS = methodcaller("get", "_st_vars")
+_OWN_INITIALIZERS = methodcaller("get", "_st_initializers")
 
 _native_layouts_installed = False
 

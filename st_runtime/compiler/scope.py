@@ -51,34 +51,46 @@ def walk(node):
     the next walk of the same tuple (the AST is immutable; `_WALKED` holds the
     tuple itself, so its id cannot be another's while the entry lives)."""
     if type(node) is not tuple:
-        return _walk(node)
+        return iter(_nodes(node))
+    if len(node) == 1 and type(node[0]) in _LEAVES:
+        return iter(node)            # (one leaf, as `walk((expr,))` often asks: nothing to keep)
     hit = _WALKED.get(id(node))
     if hit is None or hit[0] is not node:
         if len(_WALKED) >= _WALKED_ENTRIES:
             _WALKED.clear()
-        hit = _WALKED[id(node)] = (node, list(_walk(node)))
+        hit = _WALKED[id(node)] = (node, _nodes(node))
     return iter(hit[1])
 
 
 _WALKED: dict[int, tuple] = {}
 _WALKED_ENTRIES = 32
 
+#: Node classes with no child node (a walk of one of them is the node alone).
+_LEAVES = frozenset({ast.Name, ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral, ast.StringLiteral,
+                     ast.TimeLiteral, ast.DateTimeLiteral, ast.EnumLiteral, ast.Exit, ast.Continue,
+                     ast.Return, ast.Empty})
 
-def _walk(node):
+
+def _nodes(node) -> list:
+    """The nodes under `node` in the walk's order: a node, then the nodes of its fields
+    from the last to the first, the items of a tuple in order."""
+    out = []
     stack = [node]
-    push, Node, fields = stack.append, ast.Node, ast._FIELDS
+    pop, push, extend, add = stack.pop, stack.append, stack.extend, out.append
+    Node, fields = ast.Node, ast.CHILD_FIELDS
     while stack:
-        n = stack.pop()
-        if isinstance(n, tuple):
-            stack.extend(reversed(n))
-            continue
-        if not isinstance(n, Node):
-            continue
-        yield n
-        for name in fields.get(type(n)) or ast.fields_of(type(n)):
-            value = getattr(n, name)
-            if isinstance(value, (Node, tuple)):
-                push(value)
+        n = pop()
+        if isinstance(n, Node):
+            add(n)
+            for name in fields[type(n)]:
+                value = getattr(n, name)
+                if isinstance(value, Node):
+                    push(value)
+                elif isinstance(value, tuple):      # (its items now: the same order as later)
+                    extend(reversed(value))
+        elif isinstance(n, tuple):
+            extend(reversed(n))
+    return out
 
 
 def root_name(e) -> str | None:
