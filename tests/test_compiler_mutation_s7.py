@@ -1,0 +1,113 @@
+"""Compiler behaviours that survivors of the fresh seed-21 mutation sample pinned down (issue 16).
+
+The sample: `python tools/mutation.py compiler --sample 150 --seed 21` (docs/mutation.md,
+"st_runtime/compiler/").  Each test loads ST through the public entry point, runs scans
+and takes its expected values from IEC 61131-3 or a hand calculation stated beside it.
+"""
+
+from __future__ import annotations
+
+from st_runtime.api import load_text
+
+
+def run(src: str, cycles: int = 1, dialect: str = "iec"):
+    """Load `src`, run PROGRAM Main `cycles` scans; (instance, plc)."""
+    plc = load_text(src, "m.st", dialect).controller()
+    main = plc.add_program("Main")
+    plc.run(cycles)
+    return main, plc
+
+
+def faults(plc):
+    return [(f.code, f.line) for f in plc.faults]
+
+
+# ------------------------------------------------------ outputs read with `=>`
+
+AGGREGATE_OUTPUTS = """
+TYPE Pt : STRUCT x : INT; y : INT; END_STRUCT; END_TYPE
+
+FUNCTION_BLOCK Pair
+VAR_OUTPUT Out : ARRAY[1..2] OF INT; S : Pt; END_VAR
+Out[1] := 3; Out[2] := 4; S.x := 5; S.y := 6;
+END_FUNCTION_BLOCK
+
+FUNCTION Mk : INT
+VAR_INPUT k : INT; END_VAR
+VAR_OUTPUT Arr : ARRAY[0..1] OF INT; P : Pt; e : INT; END_VAR
+Arr[0] := k; Arr[1] := k + 1; P.x := 10 * k; P.y := -k; e := k + 2; Mk := 2 * k;
+END_FUNCTION
+
+PROGRAM Main
+VAR
+    F : Pair; A : ARRAY[1..2] OF INT; Q : Pt;
+    B : ARRAY[0..1] OF INT; U : Pt; Res : INT; e1 : INT;
+    C : ARRAY[0..1] OF INT; T : Pt; e2 : INT;
+END_VAR
+F(Out => A, S => Q);
+A[1] := 9; Q.x := 8;                    (* copies: the FB's outputs keep their values *)
+Res := Mk(k := 7, Arr => B, P => U, e => e1) + 1;
+Mk(k := 3, Arr => C, P => T, e => e2);
+END_PROGRAM
+"""
+
+
+def test_array_and_structure_outputs_are_copied_into_their_targets():
+    # IEC 61131-3 6.6.1.2: `=>` assigns the output to the variable after the call; an
+    # aggregate is assigned by value.  Mk(7): Arr = [7, 8], P = (70, -7), e = 9, Mk = 14.
+    main, plc = run(AGGREGATE_OUTPUTS)
+    assert plc.faults == []
+    assert (main["A"], main["Q.x"], main["Q.y"]) == ([9, 4], 8, 6)
+    assert (main["F.Out"], main["F.S.x"]) == ([3, 4], 5)
+    # a call inside an expression (the outputs stored while the expression is evaluated)
+    assert (main["B"], main["U.x"], main["U.y"], main["e1"], main["Res"]) == ([7, 8], 70, -7, 9, 15)
+    # the same function called as a statement
+    assert (main["C"], main["T.x"], main["T.y"], main["e2"]) == ([3, 4], 30, -3, 5)
+
+
+def test_a_function_output_inside_an_expression_written_to_a_property():
+    # CODESYS dialect: a PROPERTY is written through its SET, here from an output of a call
+    # inside an expression.  Split(47): 47 / 10 = 4 (integer division), Rest = 47 MOD 10 = 7.
+    main, plc = run("""
+FUNCTION Split : INT
+VAR_INPUT X : INT; END_VAR
+VAR_OUTPUT Rest : INT; END_VAR
+Split := X / 10; Rest := X MOD 10;
+END_FUNCTION
+FUNCTION_BLOCK Box
+VAR Raw : INT; Writes : INT; END_VAR
+PROPERTY Value : INT
+GET
+    Value := Raw;
+END_GET
+SET
+    Raw := Value; Writes := Writes + 1;
+END_SET
+END_PROPERTY
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR B : Box; Q : INT; END_VAR
+Q := Split(X := 47, Rest => B.Value) + 1;
+END_PROGRAM
+""", dialect="codesys")
+    assert plc.faults == []
+    assert (main["Q"], main["B.Raw"], main["B.Writes"]) == (5, 7, 1)
+
+
+# ------------------------------------------------------------------------ loops
+
+def test_a_repeat_condition_is_checked_with_what_the_body_changed():
+    # i := 1 before the loop, but the body runs first (IEC: REPEAT tests after the body) and
+    # makes i = 0: UNTIL's arr[i] is below arr's 1..4, F-INDEX at line 7, which ends the loop.
+    main, plc = run("""PROGRAM Main
+VAR arr : ARRAY[1..4] OF INT := [10, 20, 30, 40]; i : INT; n : INT; END_VAR
+i := 1;
+REPEAT
+    i := i - 1;
+    n := n + 1;
+UNTIL arr[i] > 25
+END_REPEAT;
+END_PROGRAM
+""")
+    assert faults(plc) == [("F-INDEX", 7)]
+    assert (main["i"], main["n"]) == (0, 1)
