@@ -111,3 +111,40 @@ END_PROGRAM
 """)
     assert faults(plc) == [("F-INDEX", 7)]
     assert (main["i"], main["n"]) == (0, 1)
+
+
+# -------------------------------------------- a function body compiled as one region
+
+def run_region(body: str) -> tuple[float, list]:
+    """F's body reads M's elements at literal indices often enough (8) and stores only its
+    own locals, so the optimiser compiles it as one region (cse.py); M = [1.5, 2.25, 4.0, 0.5]."""
+    main, plc = run(f"""FUNCTION F : LREAL
+VAR_IN_OUT M : ARRAY[1..4] OF LREAL; END_VAR
+VAR p : LREAL; q : LREAL; r : LREAL; END_VAR
+{body}
+END_FUNCTION
+PROGRAM Main
+VAR a : ARRAY[1..4] OF LREAL := [1.5, 2.25, 4.0, 0.5]; res : LREAL; END_VAR
+res := F(M := a);
+END_PROGRAM
+""")
+    return main["res"], faults(plc)
+
+
+def test_a_region_reads_an_element_used_only_as_a_whole_value():
+    # q := M[2] alone: p = 1.5 * 4.0 + 0.5 = 6.5, q = 2.25, r = 1.5 * 0.5 + 4.0 * 1.5 = 6.75,
+    # F = 6.5 * 2.25 + 6.75 = 21.375 (every number exact in binary).
+    assert run_region("""p := M[1] * M[3] + M[4];
+q := M[2];
+r := M[1] * M[4] + M[3] * M[1];
+F := p * q + r;""") == (21.375, [])
+
+
+def test_two_sums_in_a_row_stay_two_sums():
+    # p = 1 + 1.5 * 2.25 = 4.375, q = 2 + 4.0 * 0.5 = 4.0, r = 8.25: F = 437.5 + 40 + 8.25.
+    assert run_region("""p := 1.0;
+q := 2.0;
+p := p + M[1] * M[2];
+q := q + M[3] * M[4];
+r := M[1] + M[2] + M[3] + M[4];
+F := p * 100.0 + q * 10.0 + r;""") == (485.75, [])
