@@ -7,15 +7,7 @@ and takes its expected values from IEC 61131-3 or a hand calculation stated besi
 
 from __future__ import annotations
 
-from st_runtime.api import load_text
-
-
-def run(src: str, cycles: int = 1, dialect: str = "iec"):
-    """Load `src`, run PROGRAM Main `cycles` scans; (instance, plc)."""
-    plc = load_text(src, "m.st", dialect).controller()
-    main = plc.add_program("Main")
-    plc.run(cycles)
-    return main, plc
+from test_compiler_mutants import run
 
 
 def faults(plc):

@@ -12,6 +12,8 @@ from types import SimpleNamespace
 import pytest
 
 from motion_rig import Rig, make_fb
+from test_motion_fbs import axis_config, powered_rig
+from test_motion_mutants import powered
 from st_runtime.motion import fbs
 from st_runtime.motion.axis import Axis, AxisState
 from st_runtime.motion.axis_config import AxisConfig
@@ -20,24 +22,14 @@ from st_runtime.motion.error_ids import ErrorID
 DT = 0.001
 
 
-def axis_config(**overrides) -> AxisConfig:
-    return AxisConfig(**{"name": "Ax", "max_velocity": 100.0, **overrides})
-
-
-def powered(dt: float = DT, **overrides) -> Axis:
-    axis = Axis(axis_config(**overrides))
-    axis.request_power(True)
-    axis.step(dt)
-    assert axis.powered
-    return axis
-
-
 # --- the axis, driven directly ---------------------------------------------------------------------
 
 def test_a_first_period_of_one_second_sets_the_step_limits():
     # The period's limits are set by the first step whatever its length: at 100 mm/s a 1 s period
     # reaches 100 mm, so a sync Position 50 mm away is taken at once (not saturated).
-    axis = powered(dt=1.0)
+    axis = Axis(AxisConfig(name="Ax", max_velocity=100.0))
+    axis.request_power(True)
+    axis.step(1.0)
     command = axis.start_sync()
     command.target = 50.0
     axis.step(1.0)
@@ -89,15 +81,6 @@ def test_mc_stop_with_a_bad_deceleration_is_parameter_out_of_range(deceleration)
 
 
 # --- the FBs on the bench --------------------------------------------------------------------------
-
-def powered_rig(**overrides):
-    rig = Rig(axis_config(soft_limit_min=-50.0, soft_limit_max=50.0, **overrides))
-    power = make_fb(fbs.MC_Power)
-    rig.scan(lambda: rig.call(power, Enable=True))
-    rig.scan(lambda: rig.call(power, Enable=True))
-    assert power.v_STATUS
-    return rig, power
-
 
 def test_an_fb_without_an_axis_or_without_a_motion_task_is_not_assigned():
     # resolve_axis: no AXIS_REF given (a bench FB's in-out is None), or a context whose
