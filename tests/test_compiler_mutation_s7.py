@@ -7,6 +7,7 @@ and takes its expected values from IEC 61131-3 or a hand calculation stated besi
 
 from __future__ import annotations
 
+from st_runtime.api import load_text
 from test_compiler_mutants import run
 
 
@@ -140,3 +141,44 @@ p := p + M[1] * M[2];
 q := q + M[3] * M[4];
 r := M[1] + M[2] + M[3] + M[4];
 F := p * 100.0 + q * 10.0 + r;""") == (485.75, [])
+
+
+# ------------------------------------------------- the task period and a long FOR
+
+def run_for(body: str, count: int):
+    """A FOR of `count` iterations over `body` in a 1 ms task (the NJ time limit = the period)."""
+    plc = load_text(f"""FUNCTION_BLOCK Work
+VAR_OUTPUT n : DINT; END_VAR
+n := n + 1;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR i : DINT; k : DINT := {count}; w : Work; s : DINT; after : INT; END_VAR
+FOR i := 1 TO k DO
+    {body}
+END_FOR;
+after := after + 1;
+END_PROGRAM
+""", "m.st", "iec").controller(period="1ms")
+    main = plc.add_program("Main")
+    plc.run(1)
+    return main, faults(plc)
+
+
+def test_a_for_with_a_branch_is_tested_against_the_period_when_it_ends():
+    # A FOR that runs its whole count is charged and tested up front for its overhead and its
+    # body's first block (the IF's test); the IF's branch is charged per iteration without a test,
+    # and the total is tested when the loop ends (statements.py, s_For).  220000 iterations fit
+    # the up-front test but not the total: F-PERIOD at the FOR (line 7) after every iteration
+    # ran, and the statement after it does not run.
+    main, seen = run_for("IF i > 0 THEN s := s + 1; END_IF;", 220_000)
+    assert seen == [("F-PERIOD", 7)]
+    assert (main["s"], main["after"]) == (220_000, 0)
+
+
+def test_a_for_of_straight_code_is_tested_up_front_only():
+    # A body of simple statements (here an FB call, whose own body is charged where it runs) is
+    # tested up front only; the time the calls add is caught where straight-line code is, after
+    # the program (F-PERIOD at the PROGRAM, line 5): the statement after the loop still runs.
+    main, seen = run_for("w();", 120_000)
+    assert seen == [("F-PERIOD", 5)]
+    assert (main["w.n"], main["after"]) == (120_000, 1)
