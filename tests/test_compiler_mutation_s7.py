@@ -182,3 +182,15 @@ def test_a_for_of_straight_code_is_tested_up_front_only():
     main, seen = run_for("w();", 120_000)
     assert seen == [("F-PERIOD", 5)]
     assert (main["w.n"], main["after"]) == (120_000, 1)
+
+
+def test_a_store_to_a_structure_member_wraps_to_the_member_type():
+    # An INT member holds 16 bits: 300 * 200 = 60000 is stored as 60000 - 65536 = -5536.
+    main, plc = run("""TYPE Pt : STRUCT x : INT; END_STRUCT; END_TYPE
+PROGRAM Main
+VAR s : Pt; i : INT := 300; END_VAR
+s.x := i * 200;
+END_PROGRAM
+""")
+    assert plc.faults == []
+    assert main["s.x"] == -5536
