@@ -21,7 +21,9 @@ _DECL = re.compile(r"(\w+)\s*:\s*(\w+)\s*;")
 
 def make_fb(cls):
     """An instance of native FB `cls`, variables at their declared defaults."""
-    bench_class = type(cls.__name__ + "Bench", (cls,), {})
+    # `execute` named in the subclass: else _ExecuteFB.__init_subclass__ gives it the general
+    # rules, and MC_SyncMoveAbsolute's own per-scan path (the one ST runs) would go untested.
+    bench_class = type(cls.__name__ + "Bench", (cls,), {"execute": cls.execute})
     pairs = []
     for section in _SECTION.findall(cls.DECLARATION):
         for name, type_name in _DECL.findall(section):

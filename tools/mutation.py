@@ -62,7 +62,7 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   # the optimiser passes' own tests and the shared prelude (fast, seed-19 run)
                   "tests/test_optimiser_ranges.py", "tests/test_optimiser_vector.py",
                   "tests/test_inline_selection.py", "tests/test_prelude_sharing.py",
-                  "tests/test_compiler_mutants_s19.py"]),
+                  "tests/test_compiler_mutants_s19.py", "tests/test_compiler_mutation_s7.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",
@@ -70,7 +70,10 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
     "motion": (["st_runtime/motion/*"],
                ["tests/test_motion_axis.py", "tests/test_motion_fbs.py", "tests/test_motion_omron.py",
                 "tests/test_motion_config.py", "tests/test_motion_invariants.py", "tests/test_motion_st.py",
-                "tests/test_motion_limits_negative.py", "tests/test_motion_mutants.py"]),
+                "tests/test_motion_limits_negative.py", "tests/test_motion_mutants.py",
+                # seed-21 run: two motion files the selection had missed, and round s7's tests
+                "tests/test_motion_idle_calls.py", "tests/test_motion_publish.py",
+                "tests/test_motion_mutation_s7.py"]),
     "checker": (["st_runtime/checker/*"],
                 ["tests/test_checker_rules.py", "tests/test_checker_typing.py", "tests/test_checker_program.py",
                  "tests/test_checker_loader.py", "tests/test_checker_corpus.py",

@@ -234,6 +234,9 @@ class Calls:
                 i = 1 + out_syms.index(symbol.name.upper())
                 place = ec.lvalue(arg.value)
                 value = f"{tmp}[{i}]"
+                if is_aggregate(symbol.type):    # copied into the target, as by store_output
+                    stores.append(copy_expr(place.read(), value, symbol.type))
+                    continue
                 if arg.negated:
                     value = f"(not {value})"
                 stores.append(place.store_expr(ec.convert(value, symbol.type, place.type)))
@@ -354,3 +357,10 @@ def copy_statement(target: str, source: str, t) -> str:
     if isinstance(t, (StructType, FBType)):
         return f"{target}._assign({source})"
     raise AssertionError(f"not an aggregate: {t}")
+
+
+def copy_expr(target: str, source: str, t) -> str:
+    """`copy_statement` as an expression, for a store inside a larger expression."""
+    if isinstance(resolve_alias(t), ArrayType):
+        return f"_assign_list({target}, {source})"
+    return copy_statement(target, source, t)     # a call already
