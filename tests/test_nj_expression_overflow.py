@@ -22,6 +22,7 @@ from __future__ import annotations
 import pytest
 
 from st_runtime.api import load_text
+from test_semantics_random_mixed import run_once
 
 OPERANDS = "D1 : DINT := 2147483647; D2 : DINT := 1; I : INT := 16384; B : SINT := 127; I2 : INT := -32768;"
 DECLS = """X : LREAL := 0.5; A : ARRAY[-2..254] OF INT;
@@ -108,10 +109,7 @@ RANKED_IEC = {"R1": 2147483648, "R2": -10, "R3": 2, "R4": -3, "R5": 1, "R6": 0, 
 def test_mixed_signed_and_unsigned_integers_take_the_dialects_type(dialect, expected, operands, monkeypatch):
     src = (f"PROGRAM Main\nVAR R1, R2, R3, R4, R5, R6, R7 : LINT; END_VAR\n{operands}\n{RANKED_OPERANDS}\n"
            f"END_VAR\n{RANKED_BODY}\nEND_PROGRAM\n")
-    plc = load_text(src, "main.st", dialect=dialect).controller()
-    main = plc.add_program("Main")
-    plc.run(1)
-    assert not plc.faults
+    main = run_once(src, dialect)
     assert {name: main[name] for name in expected} == expected
 
 

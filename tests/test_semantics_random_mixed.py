@@ -17,13 +17,10 @@ import random
 import pytest
 
 from st_runtime.api import load_text
+from test_semantics_random import DivZero, iec_div as trunc_div
 
 TYPES = {"SINT": (8, True), "USINT": (8, False), "INT": (16, True), "UINT": (16, False),
          "DINT": (32, True), "UDINT": (32, False)}
-
-
-class DivZero(Exception):
-    pass
 
 
 def wrap(v: int, bits: int, signed: bool) -> int:
@@ -31,11 +28,13 @@ def wrap(v: int, bits: int, signed: bool) -> int:
     return v - (1 << bits) if signed and v >= 1 << (bits - 1) else v
 
 
-def trunc_div(a: int, b: int) -> int:
-    if b == 0:
-        raise DivZero
-    q = abs(a) // abs(b)
-    return q if (a >= 0) == (b >= 0) else -q
+def run_once(src: str, dialect: str):
+    """One scan of PROGRAM Main in `src`, with no fault; its instance."""
+    plc = load_text(src, "main.st", dialect=dialect).controller()
+    main = plc.add_program("Main")
+    plc.run(1)
+    assert not plc.faults
+    return main
 
 
 def ranked(a: str, b: str) -> str:
@@ -97,10 +96,7 @@ def program(rng: random.Random, block: str):
 @pytest.mark.parametrize("dialect", ["nj", "iec"])
 def test_mixed_integer_expressions_follow_the_dialect(dialect, block, seed):
     src, exprs = program(random.Random(seed), block)
-    plc = load_text(src, "main.st", dialect=dialect).controller()
-    main = plc.add_program("Main")
-    plc.run(1)
-    assert not plc.faults
+    main = run_once(src, dialect)
     want = [wrap(nj if dialect == "nj" else exact, 64, True) for _, nj, exact in exprs]
     got = main["r"]
     wrong = [(text, g, w) for (text, _, _), g, w in zip(exprs, got, want) if g != w]
@@ -134,10 +130,7 @@ def test_real_expressions_round_where_the_dialect_rounds(dialect, block, seed):
     body = "\n".join(f"r[{i}] := {text};" for i, text in enumerate(exprs, 1))
     src = (f"PROGRAM Main\nVAR r : ARRAY[1..{len(exprs)}] OF REAL; END_VAR\n{block}\n{decls}\nEND_VAR\n"
            f"{body}\nEND_PROGRAM\n")
-    plc = load_text(src, "main.st", dialect=dialect).controller()
-    main = plc.add_program("Main")
-    plc.run(1)
-    assert not plc.faults
+    main = run_once(src, dialect)
     f32 = {n: np.float32(v) for n, v in values.items()}
     f64 = {n: np.float64(v) for n, v in f32.items()}     # REAL variables hold float32 values
     with np.errstate(all="ignore"):
