@@ -27,8 +27,8 @@ a fault in a transition condition points at it).  One scan of a chart:
 
 The order (transitions, steps, then actions) is MATIEC's.  `S.T` counts up
 to T#24d (a TON's preset), where it stops.  Each L, D, SD, DS and SL
-association has its own timer (an action held by two steps with two times
-times each association on its own).
+association has its own timer: an action associated with two steps, each
+with its own time, times each association separately.
 """
 
 from __future__ import annotations
