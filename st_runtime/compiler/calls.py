@@ -295,8 +295,7 @@ class Calls:
         if len(call.args) != 1 or call.args[0].direction == "out":
             raise CompileError(f"{target.name} takes one input", call.pos)
         fn = self.unit.bind_conversion(target.name, call.pos)
-        value = call.args[0].value
-        return f"{fn}({ec.settled(value, ec.expr(value))})"
+        return f"{fn}({ec.settled_expr(call.args[0].value)})"
 
     def standard(self, ec, call, target) -> str:
         from ..checker.builtins import STANDARD_FUNCTIONS, extra_param
@@ -325,7 +324,7 @@ class Calls:
         codes = []
         generic = resolve_alias(target.generic_type) if target.generic_type is not None else None
         for i, arg in enumerate(ordered):
-            code = ec.settled(arg.value, ec.expr(arg.value))
+            code = ec.settled_expr(arg.value)
             p = extra_param(spec, i)
             if p.generic and is_real(generic) and not is_real(ec.ty(arg.value)):
                 code = f"float({code})"

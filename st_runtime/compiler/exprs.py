@@ -278,6 +278,10 @@ class ExprCompiler:
             return code
         return _wrapped(code, e)
 
+    def settled_expr(self, expr) -> str:
+        """`expr` compiled where its exact value would be seen (`settled`)."""
+        return self.settled(expr, self.expr(expr))
+
     def settled_narrower(self, operand, code: str, t) -> str:
         """`settled` for an operand of a `+ - *` of type `t` whose own type is narrower."""
         own, target = elementary(self.ty(operand)), elementary(t)
@@ -553,7 +557,7 @@ class ExprCompiler:
                 values.append(pyliteral(const))
                 continue
             known = self.static_range(index)
-            code = self.settled(index, self.expr(index))
+            code = self.settled_expr(index)
             if k != 1 and self.is_loop_invariant(index):
                 self._invariant_terms.append(f"{code} * {k}")
             if known is not None and lo <= known[0] and known[1] <= hi:

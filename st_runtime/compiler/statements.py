@@ -516,7 +516,7 @@ class BodyCompiler(ExprCompiler):
     def s_Case(self, s):
         """A fault in the selector abandons the whole CASE."""
         selector = self.temp()
-        code = self.settled(s.selector, self.expr(s.selector))
+        code = self.settled_expr(s.selector)
         if self._tested_in_place(s.selector, code):
             self.out.line(f"{selector} = {code}")
             self.out.line("if True:")       # (keeps the clauses' indentation)
