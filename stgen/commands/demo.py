@@ -40,7 +40,7 @@ into the same DIR refuses while the first runs.
 ``--quick`` shortens every scenario: waves of 5 s, point-to-point moves of a
 tenth of each displacement with 0.1 s of standstill after each, a quarter
 of each path from its first pose, 5 s of sea state, 1 s of each streamed
-platform motion (a few MB of CSV in all). Exit 1 if any scenario fails (error above 1e-6 mm, any fault, or
+platform motion (about 25 MB of CSV in all). Exit 1 if any scenario fails (error above 1e-6 mm, any fault, or
 a set-point velocity or acceleration above the actuator's limit in any scan).
 """
 
