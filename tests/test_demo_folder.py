@@ -59,7 +59,7 @@ def test_a_second_demo_replaces_its_own_files_and_says_what_it_wrote(tmp_path, o
     (tmp_path / "notes.txt").write_text("mine\n", encoding="utf-8")
     assert cli.main(["demo", "--quick", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert f"Wrote 2 traces and figures in {tmp_path}/: airy_wave.csv, airy_wave.png" in out
+    assert f"Wrote 2 traces and figures in {tmp_path}/ (--quick: each CSV keeps one scan in 10): airy_wave.csv, airy_wave.png" in out
     assert (tmp_path / "notes.txt").read_text(encoding="utf-8") == "mine\n"
 
 

@@ -53,9 +53,13 @@ def test_demo_writes_code_traces_figures_and_passes(tmp_path, short_waves, capsy
         with (tmp_path / f"{name}.csv").open() as stream:
             rows = list(csv.reader(stream))
         assert tuple(rows[0]) == HEADER
-        assert [int(row[1]) for row in rows[1:4]] == [1, 2, 3]
+        # --quick keeps one scan in ten, with the ends of each state's stretch: no gap wider than ten.
+        scans = [int(row[1]) for row in rows[1:]]
+        assert scans[0] == 1 and all(0 < b - a <= 10 for a, b in zip(scans, scans[1:]))
+        assert set(range(1, scans[-1], 10)) <= set(scans)
         # The time base of stgen run --trace: scan k at (k - 1) * 1 ms.
-        assert [row[0] for row in rows[1:3]] == ["0.0", "0.001"]
+        assert rows[1][0] == "0.0"
+        assert all(float(row[0]) == pytest.approx((int(row[1]) - 1) * 1e-3, abs=1e-12) for row in rows[1:])
         assert rows[1][3] == "SP_STATE_POWERING"
         errors = [float(row[-1]) for row in rows[1:]]
         assert max(errors) <= 1e-6
@@ -68,9 +72,12 @@ def test_demo_writes_code_traces_figures_and_passes(tmp_path, short_waves, capsy
     assert (tmp_path / "generated" / "iec" / "SP_Controller.st").is_file()
     assert (tmp_path / "generated" / "nj501" / "SP_Controller.variables.tsv").is_file()
     # --quick shortens the point-to-point moves too (8 of 1 s, 4 of 0.6 s, 0.1 s standstill after
-    # each): 8*1,001 + 4*601 + 12*100 = 11,612 scans after the first command, not 110,012.
+    # each): 8*1,001 + 4*601 + 12*100 = 11,612 scans after the first command, not 110,012; the CSV
+    # keeps about one in ten of them.
     with (tmp_path / "point_to_point.csv").open() as stream:
-        assert 11_612 < sum(1 for _ in stream) - 1 < 12_000
+        rows = list(csv.reader(stream))[1:]
+    assert 11_612 < int(rows[-1][1]) < 12_000
+    assert 1_161 < len(rows) < 1_400
 
 
 def test_demo_csv_headers_carry_units():
@@ -103,3 +110,20 @@ def test_demo_fails_a_scenario_whose_setpoints_exceed_the_actuator_acceleration(
     assert cli.main(["demo", "--quick", "--config", str(config), "--out", str(tmp_path / "o")]) == 1
     out = capsys.readouterr().out
     assert "ABOVE" in out and "FAILED" in out
+
+
+def test_a_thinned_trace_keeps_one_scan_in_n_and_both_ends_of_each_state():
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from stgen.scenarios.csv_trace import kept_rows
+
+    # 25 scans: state 1 for scans 1-4, state 2 for 5-20, a fault on scans 13-14, state 3 for 21-25.
+    state = np.array([1] * 4 + [2] * 16 + [3] * 5)
+    fault = np.zeros(25, dtype=int)
+    fault[12:14] = 7
+    result = SimpleNamespace(scans=25, state=state, fault_id=fault)
+    # rows (scan - 1): every tenth 0, 10, 20; state ends 3, 4, 19, 20; fault ends 11, 12, 13, 14; the last 24.
+    assert kept_rows(result, 10) == [0, 3, 4, 10, 11, 12, 13, 14, 19, 20, 24]
+    assert kept_rows(result, 1) == list(range(25))

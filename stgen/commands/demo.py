@@ -40,7 +40,10 @@ into the same DIR refuses while the first runs.
 ``--quick`` shortens every scenario: waves of 5 s, point-to-point moves of a
 tenth of each displacement with 0.1 s of standstill after each, a quarter
 of each path from its first pose, 5 s of sea state, 1 s of each streamed
-platform motion (about 25 MB of CSV in all). Exit 1 if any scenario fails (error above 1e-6 mm, any fault, or
+platform motion, and its CSV traces keep one scan in ten (every scan where the
+first and last scan of each state, and the last scan, kept too; every scan is
+still checked):
+about 3 MB of CSV in all. Exit 1 if any scenario fails (error above 1e-6 mm, any fault, or
 a set-point velocity or acceleration above the actuator's limit in any scan).
 """
 
@@ -59,6 +62,8 @@ from stgen.exports.folder import FolderError, OwnedFolder, refuse_links_below
 QUICK_WAVE_SECONDS = 5.0
 QUICK_MOVE_FRACTION = 0.1
 QUICK_SETTLE_SECONDS = 0.1
+#: ``--quick``: the CSV traces keep one scan in this many (:func:`stgen.scenarios.csv_trace.kept_rows`).
+QUICK_CSV_EVERY = 10
 #: The demo's axes trail their commands by a first-order lag, so the figures' following-error panel shows a
 #: real servo (the commanded positions, compared with the reference, do not depend on it).
 DEMO_SERVO_LAG_S = 0.002
@@ -75,7 +80,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--out", metavar="DIR", default="demo", help="output folder (default: ./demo)")
     parser.add_argument("--quick", action="store_true",
                         help=f"every scenario shortened: waves of {QUICK_WAVE_SECONDS:g} s instead of 60 s,"
-                             f" point-to-point moves of {QUICK_MOVE_FRACTION:g} of each displacement")
+                             f" point-to-point moves of {QUICK_MOVE_FRACTION:g} of each displacement, CSV traces"
+                             f" with one scan in {QUICK_CSV_EVERY}")
     add_config_argument(parser)
 
 
@@ -110,10 +116,11 @@ def run(args: argparse.Namespace) -> int:
             platform_runs = _run_platforms(platform_items, console)
             if platform_runs is None:
                 return 1
+            every = QUICK_CSV_EVERY if args.quick else 1
             for result in results:
-                _stage_outputs(result, folder)
+                _stage_outputs(result, folder, every)
             for run in platform_runs:
-                demo_platforms.stage_outputs(run, folder)
+                demo_platforms.stage_outputs(run, folder, every)
             sea_state = Path(scratch) / SEA_STATE_CSV
             if sea_state.is_file():  # the recorded motion the playback played, beside its trace
                 folder.stage_with(SEA_STATE_CSV, lambda temp: shutil.copyfile(sea_state, temp))
@@ -136,7 +143,8 @@ def run(args: argparse.Namespace) -> int:
         if result.nj_time is not None:
             console.print(f"{result.scenario.name}: SP_Controller {_nj_time(result.nj_time)}", soft_wrap=True)
     summary = update.summary()
-    console.print(f"Wrote {len(update.written)} traces and figures in {out}/: "
+    thinned = f" (--quick: each CSV keeps one scan in {QUICK_CSV_EVERY})" if args.quick else ""
+    console.print(f"Wrote {len(update.written)} traces and figures in {out}/{thinned}: "
                   + ", ".join(p.name for p in update.written) + (f"; {summary}" if summary else ""), soft_wrap=True)
     failed = [r.scenario.name for r in results if not r.passed] + [r.name for r in platform_runs if not r.passed]
     if failed:
@@ -225,11 +233,11 @@ def _run_all(scenarios, config, console):
     return results
 
 
-def _stage_outputs(result, folder: OwnedFolder) -> None:
+def _stage_outputs(result, folder: OwnedFolder, every: int) -> None:
     from stgen.figures import scenario_figure
     from stgen.scenarios.csv_trace import write_trace_csv
 
-    folder.stage_with(f"{result.scenario.name}.csv", lambda temp: write_trace_csv(result, temp))
+    folder.stage_with(f"{result.scenario.name}.csv", lambda temp: write_trace_csv(result, temp, every))
     folder.stage_with(f"{result.scenario.name}.png", lambda temp: scenario_figure(result, temp))
 
 

@@ -42,11 +42,11 @@ def run_all(items, console, servo_lag_s: float):
     return runs
 
 
-def stage_outputs(run, folder) -> None:
+def stage_outputs(run, folder, every: int = 1) -> None:
     from stgen.platform_figures import platform_figure
     from stgen.scenarios.platform_csv import write_platform_csv
 
-    folder.stage_with(f"{run.name}.csv", lambda temp: write_platform_csv(run, temp))
+    folder.stage_with(f"{run.name}.csv", lambda temp: write_platform_csv(run, temp, every))
     folder.stage_with(f"{run.name}.png", lambda temp: platform_figure(run, temp))
 
 

@@ -11,6 +11,10 @@ set-points SP_Controller handed to MC_SyncMoveAbsolute ``sp_q1_mm ..
 sp_q6_mm`` (equal to q unless an axis saturated them) and ``max_error_mm``
 (largest |q - ref_q| of the scan). Floats in shortest round-trip form
 (``repr``), so the file holds exactly the simulated values.
+
+``every=N`` (``stgen demo --quick`` writes N = 10) keeps one scan in N: scans 1,
+N + 1, 2N + 1, ..., the first and the last scan of every stretch of one state and
+fault, and the last scan. The rows kept are whole; ``scan`` says which they are.
 """
 
 from __future__ import annotations
@@ -32,8 +36,22 @@ HEADER = (
 )
 
 
-def write_trace_csv(result: ScenarioResult, path: str | Path) -> Path:
-    """Write the run to ``path``; returns the path."""
+def kept_rows(result, every: int = 1) -> list[int]:
+    """The rows (scan - 1) a trace keeps when it keeps one scan in ``every`` (module docstring)."""
+    scans = result.scans
+    if every <= 1:
+        return list(range(scans))
+    state, fault = result.state, result.fault_id
+
+    def changes(row: int, other: int) -> bool:
+        return state[row] != state[other] or fault[row] != fault[other]
+
+    return [row for row in range(scans)
+            if row % every == 0 or row == scans - 1 or changes(row, row - 1) or changes(row, row + 1)]
+
+
+def write_trace_csv(result: ScenarioResult, path: str | Path, every: int = 1) -> Path:
+    """Write the run to ``path`` (one scan in ``every``, module docstring); returns the path."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     error = result.error.max(axis=1)
@@ -41,7 +59,7 @@ def write_trace_csv(result: ScenarioResult, path: str | Path) -> Path:
     with path.open("w", newline="", encoding="utf-8") as stream:
         writer = csv.writer(stream)
         writer.writerow(HEADER)
-        for row in range(result.scans):
+        for row in kept_rows(result, every):
             writer.writerow(
                 [repr(float(time[row])), row + 1, int(result.state[row]),
                  result.state_names.get(int(result.state[row]), ""), int(result.fault_id[row])]

@@ -8,12 +8,15 @@ zeros on a fixed base); the commanded axis positions ``q1_mm .. q6_mm`` (``theta
 on a crank platform) and the reference ``ref_q1_mm ..``; on linear legs with joint limits the
 joint angles of the set-point ``gamma1_deg .. psi1_deg .. tilt1_deg ..``; ``max_error``
 (largest |q - ref_q| of the scan, the axes' unit). Floats in shortest round-trip form.
+``every`` keeps one scan in N as :func:`stgen.scenarios.csv_trace.kept_rows` says.
 """
 
 from __future__ import annotations
 
 import csv
 from pathlib import Path
+
+from stgen.scenarios.csv_trace import kept_rows
 
 POSE = ("x_mm", "y_mm", "z_mm", "a1_deg", "a2_deg", "a3_deg")
 BASE = ("base_x_mm", "base_y_mm", "base_z_mm", "base_b1_deg", "base_b2_deg", "base_b3_deg")
@@ -27,7 +30,7 @@ def header(run) -> tuple[str, ...]:
             + ("max_error",))
 
 
-def write_platform_csv(run, path: str | Path) -> Path:
+def write_platform_csv(run, path: str | Path, every: int = 1) -> Path:
     path = Path(path)
     result = run.result
     error = result.error.max(axis=1)
@@ -35,7 +38,7 @@ def write_platform_csv(run, path: str | Path) -> Path:
     with path.open("w", newline="", encoding="utf-8") as stream:
         writer = csv.writer(stream)
         writer.writerow(header(run))
-        for row in range(result.scans):
+        for row in kept_rows(result, every):
             writer.writerow(
                 [repr(float(result.time_s[row])), row + 1, int(result.state[row]),
                  result.state_names.get(int(result.state[row]), ""), int(result.fault_id[row])]
