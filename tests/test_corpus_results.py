@@ -4,6 +4,10 @@ Each `tests/corpus/accept/*.st` snippet may carry, in comments,
 
     (* expect: x = 3; a[2] = TRUE after 1 scan *)
     (* no-result: why the snippet has nothing to observe *)
+    (* faults: F-INDEX, ... *)
+
+A run must end without faults, unless a `faults` comment names the codes the
+snippet raises by design: then its faults must have exactly those codes.
 
 An `expect` comment runs every PROGRAM of the snippet for N scans (cumulative
 across the comments of one snippet, in ascending N) and compares the values
@@ -28,6 +32,7 @@ from test_checker_corpus import accept_dialect
 ACCEPT = sorted((Path(__file__).parent / "corpus" / "accept").glob("*.st"))
 
 EXPECT = re.compile(r"\(\*\s*expect:\s*(?P<body>.+?)\s+after\s+(?P<scans>\d+)\s+scans?\s*\*\)", re.S)
+FAULTS = re.compile(r"\(\*\s*faults:\s*(?P<codes>F-[A-Z0-9-]+(?:\s*,\s*F-[A-Z0-9-]+)*)\s*\*\)")
 NO_RESULT = re.compile(r"\(\*\s*no-result:\s*(?P<why>.+?)\s*\*\)", re.S)
 
 ESCAPES = {"$": "$", "'": "'", "L": "\n", "N": "\n", "R": "\r", "T": "\t", "P": "\f"}
@@ -112,7 +117,9 @@ def check_snippet(text: str, name: str = "snippet.st") -> int:
             assert actual == value and type(actual) is type(value), \
                 f"{name}: {path} = {actual!r} after {scans} scans, expected {value!r}"
             checked += 1
-    assert plc.faults == [], f"{name}: faults {plc.faults}"
+    declared = FAULTS.search(text)
+    expected_codes = {code.strip() for code in declared["codes"].split(",")} if declared else set()
+    assert {fault.code for fault in plc.faults} == expected_codes, f"{name}: faults {plc.faults}"
     return checked
 
 
@@ -136,6 +143,16 @@ def test_a_wrong_expectation_fails():
     with pytest.raises(AssertionError, match="x = 3 after 1 scans, expected 4"):
         check_snippet(snippet)
     assert check_snippet(snippet.replace("x = 4", "x = 3")) == 1
+
+
+def test_a_fault_must_be_declared_and_a_declared_fault_must_happen():
+    snippet = ("(* expect: x = 0 after 1 scan *)\nPROGRAM Main\nVAR x : INT; a : ARRAY[1..2] OF INT; i : INT := 3; END_VAR\n"
+               "x := a[i];\nEND_PROGRAM\n")
+    with pytest.raises(AssertionError, match="F-INDEX"):
+        check_snippet(snippet)
+    assert check_snippet(snippet.replace("END_PROGRAM", "END_PROGRAM\n(* faults: F-INDEX *)")) == 1
+    with pytest.raises(AssertionError, match="faults"):
+        check_snippet(snippet.replace("i : INT := 3", "i : INT := 2") + "(* faults: F-INDEX *)")
 
 
 def test_types_must_match_too():
