@@ -91,7 +91,7 @@ class MotionTask:
         """Tie each axis to its global AXIS_REF value; `lookup(name)` finds it."""
         self._writers = [bind_axis_ref(lookup(axis.name), axis) for axis in self.axes]
         # What `process` works with, per axis: the axis, its writer and the Cmd and Act structs.
-        self._lanes = [(writer.axis, writer, writer.ref.v_CMD, writer.ref.v_ACT) for writer in self._writers]
+        self._lanes = [(writer.axis, writer, writer._cmd, writer._act) for writer in self._writers]
 
     def install(self, controller) -> None:
         """Bind to `controller`'s global axis variables and run in its scans.
