@@ -142,13 +142,20 @@ def _run_steps(monkeypatch, optimise: str, calls: list) -> list:
     return states
 
 
-def test_a_call_that_would_change_nothing_is_left_out_and_nothing_else(monkeypatch):
+def counted_calls(monkeypatch, *classes) -> list:
+    """The calls of `execute` of each class, by class name, as they happen."""
     calls = []
-    for cls in (fbs.MC_Home, fbs.MC_MoveAbsolute, fbs.MC_SyncMoveAbsolute, fbs.MC_Stop, fbs.MC_Reset):
+    for cls in classes:
         def counted(self, ctx, _execute=cls.execute):
             calls.append(type(self).__name__)
             _execute(self, ctx)
         monkeypatch.setattr(cls, "execute", counted)
+    return calls
+
+
+def test_a_call_that_would_change_nothing_is_left_out_and_nothing_else(monkeypatch):
+    calls = counted_calls(monkeypatch, fbs.MC_Home, fbs.MC_MoveAbsolute, fbs.MC_SyncMoveAbsolute,
+                          fbs.MC_Stop, fbs.MC_Reset)
     every_call = _run_steps(monkeypatch, "none", calls)
     needed_only = _run_steps(monkeypatch, "inline", calls)
     assert [s[:4] for s in needed_only] == [s[:4] for s in every_call]
@@ -213,12 +220,7 @@ def _run_hot_steps(monkeypatch, optimise: str, calls: list) -> list:
 
 
 def test_the_hot_paths_run_in_place_of_the_call_do_what_the_call_does(monkeypatch):
-    calls = []
-    for cls in (fbs.MC_Power, fbs.MC_SyncMoveAbsolute):
-        def counted(self, ctx, _execute=cls.execute):
-            calls.append(type(self).__name__)
-            _execute(self, ctx)
-        monkeypatch.setattr(cls, "execute", counted)
+    calls = counted_calls(monkeypatch, fbs.MC_Power, fbs.MC_SyncMoveAbsolute)
     every_call = _run_hot_steps(monkeypatch, "none", calls)
     in_place = _run_hot_steps(monkeypatch, "inline", calls)
     assert [s[:2] for s in in_place] == [s[:2] for s in every_call]
