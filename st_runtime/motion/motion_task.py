@@ -156,15 +156,15 @@ class MotionTask:
             # deviation is 0.0 and neither following-error check can fire; nothing completes a
             # sync command.
             if (command is not None and command.kind == "sync" and (powered := axis.powered)
-                    and axis.power_requested == powered and dt == axis._dt and axis._lag_gain == 1.0):
+                    and axis.power_requested == powered and dt == axis._stream_dt):
                 target, old_cmd = command.target, axis.cmd_pos
                 slack = axis._step_slack
-                if -slack <= target - old_cmd <= slack and axis._soft_min <= target <= axis._soft_max:
+                if -slack <= (delta := target - old_cmd) <= slack and axis._soft_min <= target <= axis._soft_max:
                     axis.vel_limit = False
                     act.v_VEL = axis.act_vel = (target - axis.act_pos) / dt
                     cmd.v_POS = act.v_POS = axis.cmd_pos = axis.act_pos = target
                     old_vel = axis.cmd_vel
-                    cmd.v_VEL = axis.cmd_vel = new_vel = (target - old_cmd) / dt
+                    cmd.v_VEL = axis.cmd_vel = new_vel = delta / dt
                     if new_vel != old_vel:
                         magnitude = abs(new_vel - old_vel) / dt
                         # |new_vel| > |old_vel| without two calls of abs(): a comparison does not
