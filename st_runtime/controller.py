@@ -177,48 +177,74 @@ class Controller:
         """Run one primary period.  False when the run has stopped on a fault."""
         if self.stopped is not None:
             return False
-        ctx = self.ctx
-        index = self.scan_count
-        ctx.scan = index + 1
-        ctx.now_ns = index * self.period_ns
-        ctx.period_ns = self.period_ns
-        try:
-            for hook in self.before_hooks:      # the I/O hooks' loops spelt out: no call for each
-                try:
-                    hook(ctx)
-                except STFault as fault:
-                    self._hook_fault(hook, fault)
-            for task in self.tasks:
-                if not index % task.every:
-                    self._run_task(task, ctx)
-            ctx.period_ns = self.period_ns
-            for hook in self.after_hooks:
-                try:
-                    hook(ctx)
-                except STFault as fault:
-                    self._hook_fault(hook, fault)
-        except StopRun as stop:
-            self.stopped = stop.record
-        self.scan_count += 1
-        for observer in self.observers:
-            observer(self)
+        self._scans(1, False)
         return self.stopped is None
 
-    def _run_task(self, task: Task, ctx) -> None:
-        """One run of `task`'s programs, charged against its time limit."""
-        ctx.period_ns = task.period_ns
-        limit_ps = (self.time_limit_ns or task.period_ns) * 1000
-        ctx.budget = limit_ps
+    def run(self, cycles: int) -> int:
+        """Run up to `cycles` scans; returns the number run (fewer if stopped)."""
+        if self.stopped is not None:
+            return 0
         try:
-            for name, instance in task.programs:
-                instance.execute(ctx)
-                if ctx.budget < 0:          # straight-line code is checked after its program
-                    raise ScanOverrun(self._program_place(name))
-        except ScanOverrun as overrun:
-            self._record(FaultRecord("F-PERIOD", f"task period exceeded: the estimated NJ501 time of task "
-                                     f"{task.name} passed {_ms(limit_ps)}", *overrun.where, ctx.scan))
+            return self._scans(cycles, True)
         finally:
-            self.task_times[task.name].append(limit_ps - ctx.budget)
+            self.ctx.resumed = False         # the caller's code runs next
+
+    def _scans(self, cycles: int, resume: bool) -> int:
+        """Up to `cycles` scans, each as `scan` describes it, in one frame: the hooks, the
+        tasks and their programs are read from the controller every scan (a hook may add
+        one), only the calls of a method per scan and per task are gone.  `resume`: set
+        ScanContext.resumed between the scans (inside one `run`).  Returns the scans run."""
+        ctx = self.ctx
+        done = 0
+        for _ in range(cycles):
+            done += 1
+            index = self.scan_count
+            ctx.scan = index + 1
+            ctx.now_ns = index * self.period_ns
+            ctx.period_ns = self.period_ns
+            try:
+                for hook in self.before_hooks:
+                    try:
+                        hook(ctx)
+                    except STFault as fault:
+                        self._hook_fault(hook, fault)
+                for task in self.tasks:
+                    if index % task.every:
+                        continue
+                    # One run of the task's programs, charged against its time limit.
+                    ctx.period_ns = task.period_ns
+                    limit_ps = (self.time_limit_ns or task.period_ns) * 1000
+                    ctx.budget = limit_ps
+                    try:
+                        for name, instance in task.programs:
+                            instance.execute(ctx)
+                            if ctx.budget < 0:      # straight-line code is checked after its program
+                                raise ScanOverrun(self._program_place(name))
+                    except ScanOverrun as overrun:
+                        self._overran(task, limit_ps, overrun)
+                    finally:
+                        self.task_times[task.name].append(limit_ps - ctx.budget)
+                ctx.period_ns = self.period_ns
+                for hook in self.after_hooks:
+                    try:
+                        hook(ctx)
+                    except STFault as fault:
+                        self._hook_fault(hook, fault)
+            except StopRun as stop:
+                self.stopped = stop.record
+            self.scan_count += 1
+            for observer in self.observers:
+                observer(self)
+            if self.stopped is not None:
+                break
+            if resume:
+                # Only the observers run before the next scan of this loop (see ScanContext.resumed).
+                ctx.resumed = len(self.observers) == self._reading_observers
+        return done
+
+    def _overran(self, task: Task, limit_ps: int, overrun: ScanOverrun) -> None:
+        self._record(FaultRecord("F-PERIOD", f"task period exceeded: the estimated NJ501 time of task "
+                                 f"{task.name} passed {_ms(limit_ps)}", *overrun.where, self.ctx.scan))
 
     def _program_place(self, name: str) -> tuple:
         pou = self.compiled.checked.pous.get(name.upper())
@@ -231,24 +257,6 @@ class Controller:
         """The estimated NJ501 time per run of each task that ran."""
         return [TaskTime.of(task, self.task_times[task.name]) for task in self.tasks
                 if self.task_times[task.name]]
-
-    def run(self, cycles: int) -> int:
-        """Run up to `cycles` scans; returns the number run (fewer if stopped)."""
-        if self.stopped is not None:
-            return 0
-        done = 0
-        scan = self.scan
-        ctx = self.ctx
-        try:
-            for _ in range(cycles):
-                done += 1
-                if not scan():
-                    break
-                # Only the observers run before the next scan of this loop (see ScanContext.resumed).
-                ctx.resumed = len(self.observers) == self._reading_observers
-        finally:
-            ctx.resumed = False         # the caller's code runs next
-        return done
 
     def _hook_fault(self, hook: Callable, fault: STFault) -> None:
         """A fault an I/O hook raised, recorded against the hook."""

@@ -113,6 +113,10 @@ class NativeFB:
     # inputs as they are stored changes nothing (no variable, no state of the FB or of what it
     # drives) and raises nothing, so the compiled caller may leave the call out.
     CALL_NEEDED: str | None = None
+    # None, or an object whose `inline(fb, temp)` gives (test, statements): when the test holds,
+    # the statements (new locals named by `temp()`) do what the call would do, so the compiled
+    # caller runs them instead of the call (motion.fbs.HotPath).
+    HOT_PATH = None
 
     def __init__(self) -> None:
         init = type(self).__dict__.get("_st_initializers")

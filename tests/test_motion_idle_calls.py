@@ -142,13 +142,20 @@ def _run_steps(monkeypatch, optimise: str, calls: list) -> list:
     return states
 
 
-def test_a_call_that_would_change_nothing_is_left_out_and_nothing_else(monkeypatch):
+def counted_calls(monkeypatch, *classes) -> list:
+    """The calls of `execute` of each class, by class name, as they happen."""
     calls = []
-    for cls in (fbs.MC_Home, fbs.MC_MoveAbsolute, fbs.MC_SyncMoveAbsolute, fbs.MC_Stop, fbs.MC_Reset):
+    for cls in classes:
         def counted(self, ctx, _execute=cls.execute):
             calls.append(type(self).__name__)
             _execute(self, ctx)
         monkeypatch.setattr(cls, "execute", counted)
+    return calls
+
+
+def test_a_call_that_would_change_nothing_is_left_out_and_nothing_else(monkeypatch):
+    calls = counted_calls(monkeypatch, fbs.MC_Home, fbs.MC_MoveAbsolute, fbs.MC_SyncMoveAbsolute,
+                          fbs.MC_Stop, fbs.MC_Reset)
     every_call = _run_steps(monkeypatch, "none", calls)
     needed_only = _run_steps(monkeypatch, "inline", calls)
     assert [s[:4] for s in needed_only] == [s[:4] for s in every_call]
@@ -156,3 +163,70 @@ def test_a_call_that_would_change_nothing_is_left_out_and_nothing_else(monkeypat
     assert sum(s[4] for s in needed_only) < sum(s[4] for s in every_call) // 2
     assert needed_only[0][4] == 0 and needed_only[-1][4] == 0   # all idle: no call at all
     assert any(s[1] == 6 for s in every_call)                    # the axis error happened (ErrorStop)
+
+
+# MC_Power and MC_SyncMoveAbsolute on two axes: the compiled caller runs each FB's HotPath in
+# place of the call while the AXIS_REF is the one the FB resolved before (the `inline` pass).
+# Driven through power on, a stream, an AXIS_REF whose Cfg names the other axis and then no
+# axis (Error 16#5401), a re-execution while Busy (16#543B), an axis error and power off.
+HOT_PATHS = """
+PROGRAM Main
+VAR
+    Power : MC_Power;
+    Sync : MC_SyncMoveAbsolute;
+    Reset : MC_Reset;
+    PowerOn, DoSync, DoReset : BOOL;
+    Target : LREAL;
+END_VAR
+Power(Axis := Cyl1, Enable := PowerOn);
+Sync(Axis := Cyl1, Execute := DoSync, Position := Target, BufferMode := _mcAborting);
+Reset(Axis := Cyl1, Execute := DoReset);
+Target := Target + 0.125;
+END_PROGRAM
+"""
+
+# (scans, the inputs set before them, Cyl1.Cfg as (AxNo, AxEnable) or None to leave it)
+HOT_STEPS = [(3, {"PowerOn": True}, None), (6, {"DoSync": True}, None), (2, {}, (1, True)),
+             (2, {}, (0, True)), (2, {}, (0, False)), (2, {}, (0, True)),          # aborted: no axis
+             (1, {"DoSync": False}, None), (3, {"DoSync": True}, None),
+             (1, {"DoSync": False}, None), (2, {"DoSync": True}, None),            # a new edge: 16#543B
+             (2, {"DoSync": False, "DoReset": True}, None), (2, {"DoReset": False}, None),
+             (4, {"DoSync": True}, None), (3, {"PowerOn": False}, None), (3, {"PowerOn": True}, None),
+             (1, {"DoSync": False}, None), (4, {"DoSync": True}, None)]
+
+
+def _run_hot_steps(monkeypatch, optimise: str, calls: list) -> list:
+    from test_motion_st import AXIS, make_plc
+
+    monkeypatch.setenv("ST_RUNTIME_OPTIMISE", optimise)
+    plc, main, task = make_plc(HOT_PATHS, AXIS, dict(AXIS, name="Cyl2"))
+    instance = plc.controller.instances["Main"]
+    cfg = plc.controller.globals.v_CYL1.v_CFG
+    states = []
+    for scans, inputs, axis_cfg in HOT_STEPS:
+        for name, value in inputs.items():
+            main[name] = value
+        if axis_cfg is not None:
+            cfg.v_AXNO, cfg.v_AXENABLE = axis_cfg
+        for _ in range(scans):
+            before = len(calls)
+            plc.run(1)
+            power = instance.v_POWER
+            fbs_after = [sorted((k, v) for k, v in vars(power).items() if k.startswith("v_") and k != "v_AXIS"),
+                         _fb_state(instance.v_SYNC), _fb_state(instance.v_RESET)]
+            axes = [(a.state, a.powered, a.power_requested, a.cmd_pos, a.fault_code) for a in task.axes]
+            states.append((fbs_after, axes, len(calls) - before, power.v_ERRORID, instance.v_SYNC.v_ERRORID))
+    return states
+
+
+def test_the_hot_paths_run_in_place_of_the_call_do_what_the_call_does(monkeypatch):
+    calls = counted_calls(monkeypatch, fbs.MC_Power, fbs.MC_SyncMoveAbsolute)
+    every_call = _run_hot_steps(monkeypatch, "none", calls)
+    in_place = _run_hot_steps(monkeypatch, "inline", calls)
+    assert [s[:2] for s in in_place] == [s[:2] for s in every_call]
+    assert {s[2] for s in every_call} == {2}                    # both FBs called every scan
+    assert sum(s[2] for s in in_place) < sum(s[2] for s in every_call) // 2
+    assert in_place[-1][2] == 0                                 # powered and streaming: no call
+    assert {s[3] for s in every_call} == {0, ErrorID.AXIS_NOT_ASSIGNED}
+    assert ErrorID.RE_EXECUTION_DISABLED in {s[4] for s in every_call}
+    assert any(axes[1][1] for _, axes, *_ in every_call)        # Cyl2 powered while Cfg named it

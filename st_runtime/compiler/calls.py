@@ -13,7 +13,9 @@ Conventions of the generated code:
   connects VAR_IN_OUTs (the aggregate itself, or a `Ref`), calls
   `inst.execute(_ctx)` and then copies the `=>` outputs.  With `inline`, a
   native FB whose class has a `CALL_NEEDED` test is called only when that
-  test is true (an idle MC_Stop would change nothing).
+  test is true (an idle MC_Stop would change nothing), and one whose class has
+  a `HOT_PATH` runs that path's statements in place of the call when its test
+  holds (MC_Power, and MC_SyncMoveAbsolute while synchronized).
 """
 
 from __future__ import annotations
@@ -174,9 +176,13 @@ class Calls:
         """The call of the body (see the module docstring for `CALL_NEEDED`)."""
         native = target.pou.native if target.pou is not None else getattr(ec.ty(call.callee), "native", None)
         needed = getattr(native, "CALL_NEEDED", None) if ec.opt.inline else None
-        if needed is None:
-            return [f"{instance}.execute(_ctx)"]
-        return [f"if {needed.format(fb=instance)}:", f"    {instance}.execute(_ctx)"]
+        hot = getattr(native, "HOT_PATH", None) if ec.opt.inline else None
+        call = f"{instance}.execute(_ctx)"
+        if hot is None:
+            return [call] if needed is None else [f"if {needed.format(fb=instance)}:", f"    {call}"]
+        test, statements = hot.inline(instance, ec.temp)
+        otherwise = "else:" if needed is None else f"elif {needed.format(fb=instance)}:"
+        return [f"if {test}:", *("    " + line for line in statements), otherwise, f"    {call}"]
 
     def user_call_with_outputs(self, ec, call, target) -> list[str]:
         tmp = ec.temp()

@@ -141,6 +141,7 @@ class Axis:
         self._dt = 0.0
         self._max_step = self._step_slack = 0.0
         self._lag_gain = 1.0
+        self._stream_dt = None  # _dt for an ideal axis (no servo lag), else None: MotionTask.process
 
     # ------------------------------------------------------------ queries
     @property
@@ -360,6 +361,7 @@ class Axis:
         self._step_slack = self._max_step * (1 + _LIMIT_SLACK)
         tau = cfg.servo_lag
         self._lag_gain = 1.0 if tau == 0 else 1.0 - math.exp(-dt / tau)
+        self._stream_dt = dt if self._lag_gain == 1.0 else None
 
     # ------------------------------------------------------------ internals
     def _check_can_move(self) -> None:

@@ -27,6 +27,8 @@ model are accepted and ignored: `Jerk` (profiles are trapezoidal) and
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from ..native import NativeFB, fb_declaration, native_fb
 from . import types as _types  # noqa: F401  (registers AXIS_REF before the FBs)
 from .axis import Axis, MotionAborted, MotionCommand, MotionRefused
@@ -66,6 +68,61 @@ class _AxisFB(NativeFB):
         else:
             self._bound_ref, self._bound_axis, self._bound_no = ref, axis, axis.axis_no
         return axis
+
+
+# `_AxisFB._axis`'s cached case as an expression: the AXIS_REF is the one resolved before and
+# its Cfg still names that axis.
+_BOUND = ("{fb}.v_AXIS is {fb}._bound_ref and ({cfg} := {fb}.v_AXIS.v_CFG).v_AXENABLE"
+          " and {cfg}.v_AXNO == {fb}._bound_no")
+
+# An axis FB's `execute`, spelt out from its HotPath (`{pre}`: `True` when it has none).
+_HOT_EXECUTE = """
+def execute(self, ctx):
+    if {pre}:
+        if {bound}:
+            axis = self._bound_axis
+        else:
+            axis = self._axis(ctx)
+        if axis is not None:
+{body}
+            return
+    self.{cold}(ctx)
+"""
+
+
+@dataclass(frozen=True)
+class HotPath:
+    """The call of most scans of an axis FB, as Python source: the FB's own `execute` is
+    built from it, and the compiled caller puts it in place of the call (`NativeFB.HOT_PATH`,
+    under the `inline` pass), which saves a Python call per FB and scan.
+
+    When `pre` holds (no `pre`: always) and the FB's AXIS_REF is the one it resolved before,
+    `body` is the whole call, with `{axis}` its axis and `{fb}` the instance; else `execute`
+    resolves the axis (`_AxisFB._axis`) and runs `body` with it, or calls method `cold` when
+    `pre` fails or no axis is found.  `pre` and the test of the binding only read.
+    `temps`: the other names the source uses (locals of the caller, one set per call site).
+    """
+
+    pre: str
+    body: tuple[str, ...]
+    temps: tuple[str, ...]
+    cold: str
+
+    def inline(self, fb: str, temp) -> tuple[str, list[str]]:
+        """(test, statements) of the call of `fb` (a Python name), new locals from `temp()`."""
+        names = {"fb": fb, "axis": temp(), "cfg": temp(), **{name: temp() for name in self.temps}}
+        test = " and ".join(part for part in (self.pre, _BOUND) if part).format(**names)
+        return test, [f"{names['axis']} = {fb}._bound_axis"] + [line.format(**names) for line in self.body]
+
+    def install(self, cls) -> None:
+        """`cls.execute` from this path."""
+        names = {"fb": "self", "axis": "axis", "cfg": "cfg", **{name: name for name in self.temps}}
+        body = "\n".join(" " * 12 + line.format(**names) for line in self.body)
+        source = _HOT_EXECUTE.format(pre=(self.pre or "True").format(**names), bound=_BOUND.format(**names),
+                                     body=body, cold=self.cold)
+        namespace: dict = {}
+        exec(compile(source, f"<{cls.__name__} hot path>", "exec"), namespace)   # our own text only
+        cls.execute = namespace["execute"]
 
 
 class _ExecuteFB(_AxisFB):
@@ -233,24 +290,27 @@ class MC_Power(_AxisFB):
         inputs="Enable : BOOL;",
         outputs="Status : BOOL; Busy : BOOL; Error : BOOL; ErrorID : WORD;")
 
-    def execute(self, ctx) -> None:
-        ref = self.v_AXIS   # _axis(ctx), its cached case inlined (every scan of every axis)
-        if ref is self._bound_ref and (cfg := ref.v_CFG).v_AXENABLE and cfg.v_AXNO == self._bound_no:
-            axis = self._bound_axis
-        else:
-            axis = self._axis(ctx)
-        if axis is None:
-            self.v_STATUS = self.v_BUSY = False
-            self.v_ERROR = bool(self.v_ENABLE)
-            self.v_ERRORID = int(ErrorID.AXIS_NOT_ASSIGNED) if self.v_ENABLE else 0
-            return
-        enable = True if self.v_ENABLE else False   # bool(), without the call
-        axis.power_requested = enable       # axis.request_power, inlined (every scan)
-        powered = axis.powered
-        self.v_STATUS = powered
-        self.v_BUSY = enable != powered
-        self.v_ERROR = False
-        self.v_ERRORID = 0
+    # Every scan of every axis: Status follows the servo, Busy while it switches.
+    HOT_PATH = HotPath(
+        pre="",
+        body=("{enable} = True if {fb}.v_ENABLE else False",    # bool(), without the call
+              "{axis}.power_requested = {enable}",              # axis.request_power, inlined
+              "{powered} = {axis}.powered",
+              "{fb}.v_STATUS = {powered}",
+              "{fb}.v_BUSY = {enable} != {powered}",
+              "{fb}.v_ERROR = False",
+              "{fb}.v_ERRORID = 0"),
+        temps=("enable", "powered"),
+        cold="_unassigned")
+
+    def _unassigned(self, ctx) -> None:
+        """No axis for the AXIS_REF: Error while Enable is TRUE."""
+        self.v_STATUS = self.v_BUSY = False
+        self.v_ERROR = bool(self.v_ENABLE)
+        self.v_ERRORID = int(ErrorID.AXIS_NOT_ASSIGNED) if self.v_ENABLE else 0
+
+
+MC_Power.HOT_PATH.install(MC_Power)
 
 
 @native_fb
@@ -395,29 +455,20 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
         _check_buffer_mode(self.v_BUFFERMODE)
         return axis.start_sync()
 
-    def execute(self, ctx) -> None:
-        # Short path for the call of every scan while synchronized (no edge,
-        # command alive); everything else goes through the general rules.
-        command = self._command
-        execute = True if self.v_EXECUTE else False   # bool(), without the call
-        if (self.v_BUSY and command is not None and not command.aborted
-                and (self._previous_execute or not execute)):
-            ref = self.v_AXIS   # _axis(ctx), its cached case inlined
-            if ref is self._bound_ref and (cfg := ref.v_CFG).v_AXENABLE and cfg.v_AXNO == self._bound_no:
-                axis = self._bound_axis
-            else:
-                axis = self._axis(ctx)
-            if axis is not None:
-                self._previous_execute = execute
-                # _poll(axis, command, False), inlined (every scan of every axis)
-                self.v_ACTIVE = True
-                # |act - target| <= range, without the call of abs(): the same for every float
-                window = axis.config.in_position_range
-                self.v_INPOSITION = -window <= axis.act_pos - command.target <= window
-                position = self.v_POSITION      # an LREAL input holds a float: float() only if not
-                command.target = position if position.__class__ is float else float(position)
-                return
-        self._execute_rules(ctx)
+    # The call of every scan while synchronized (no edge, command alive); everything else
+    # goes through the general rules.  InPosition: |act - target| <= range without the call of
+    # abs() (the same for every float); an LREAL input holds a float: float() only if not.
+    HOT_PATH = HotPath(
+        pre=("{fb}.v_BUSY and ({command} := {fb}._command) is not None and not {command}.aborted"
+             " and ({fb}._previous_execute or not {fb}.v_EXECUTE)"),
+        body=("{fb}._previous_execute = True if {fb}.v_EXECUTE else False",
+              "{fb}.v_ACTIVE = True",                         # _poll(axis, command, False), inlined
+              "{window} = {axis}.config.in_position_range",
+              "{fb}.v_INPOSITION = -{window} <= {axis}.act_pos - {command}.target <= {window}",
+              "{position} = {fb}.v_POSITION",
+              "{command}.target = {position} if {position}.__class__ is float else float({position})"),
+        temps=("command", "window", "position"),
+        cold="_execute_rules")
 
     def _start(self, axis: Axis | None) -> None:
         command = self._command
@@ -436,3 +487,6 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
     def _end(self, output: str) -> None:
         super()._end(output)
         self.v_INPOSITION = False
+
+
+MC_SyncMoveAbsolute.HOT_PATH.install(MC_SyncMoveAbsolute)

@@ -26,10 +26,12 @@ from __future__ import annotations
 
 from typing import Callable, Iterable, Mapping
 
-from .axis import Axis
+from .axis import Axis, AxisState
 from .axis_config import AxisConfig, axis_configs_from_tables, axis_configs_from_toml
 from ..native import mangle
 from .types import AxisRefWriter, bind_axis_ref
+
+_ERRORSTOP = AxisState.ERRORSTOP
 
 
 def motion_of(ctx) -> "MotionTask | None":
@@ -51,6 +53,7 @@ class MotionTask:
         if len(self._by_name) != len(self.axes):
             raise ValueError("axis names must be unique (case-insensitive)")
         self._writers: list[AxisRefWriter] = []
+        self._lanes: list[tuple] = []
         # The axis variables show the axes as they are: the motion processing has published
         # them and no other hook runs in the scan (see _before_programs).
         self._published = False
@@ -87,6 +90,8 @@ class MotionTask:
     def bind(self, lookup: Callable[[str], object]) -> None:
         """Tie each axis to its global AXIS_REF value; `lookup(name)` finds it."""
         self._writers = [bind_axis_ref(lookup(axis.name), axis) for axis in self.axes]
+        # What `process` works with, per axis: the axis, its writer and the Cmd and Act structs.
+        self._lanes = [(writer.axis, writer, writer._cmd, writer._act) for writer in self._writers]
 
     def install(self, controller) -> None:
         """Bind to `controller`'s global axis variables and run in its scans.
@@ -142,33 +147,43 @@ class MotionTask:
             for axis in self.axes:
                 axis.step(dt)
             return
-        for writer in self._writers:
-            axis = writer.axis
+        for axis, writer, cmd, act in self._lanes:
             command = axis.command
-            # Axis.step of an ideal, powered axis following a sync Position within one period's
-            # reach (every scan of a stream), spelt out; anything else takes Axis.step.  The
-            # actual position becomes the command, so the deviation is 0.0 and neither
-            # following-error check can fire; nothing completes a sync command.
-            if (command is not None and command.kind == "sync" and axis.powered
-                    and axis.power_requested == axis.powered and dt == axis._dt and axis._lag_gain == 1.0):
+            # Axis.step and AxisRefWriter.write of an ideal, powered axis following a sync
+            # Position within one period's reach (every scan of a stream), spelt out as one:
+            # each value is stored in the axis and in its variable at once.  Anything else takes
+            # Axis.step and the writer.  The actual position becomes the command, so the
+            # deviation is 0.0 and neither following-error check can fire; nothing completes a
+            # sync command.
+            if (command is not None and command.kind == "sync" and (powered := axis.powered)
+                    and axis.power_requested == powered and dt == axis._stream_dt):
                 target, old_cmd = command.target, axis.cmd_pos
                 slack = axis._step_slack
-                if -slack <= target - old_cmd <= slack and axis._soft_min <= target <= axis._soft_max:
+                if -slack <= (delta := target - old_cmd) <= slack and axis._soft_min <= target <= axis._soft_max:
                     axis.vel_limit = False
-                    axis.act_vel = (target - axis.act_pos) / dt
-                    axis.cmd_pos = axis.act_pos = target
+                    act.v_VEL = axis.act_vel = (target - axis.act_pos) / dt
+                    cmd.v_POS = act.v_POS = axis.cmd_pos = axis.act_pos = target
                     old_vel = axis.cmd_vel
-                    axis.cmd_vel = new_vel = (target - old_cmd) / dt
+                    cmd.v_VEL = axis.cmd_vel = new_vel = delta / dt
                     if new_vel != old_vel:
                         magnitude = abs(new_vel - old_vel) / dt
                         # |new_vel| > |old_vel| without two calls of abs(): a comparison does not
                         # see the sign of a NaN, so the negations give the same answer
                         grows = ((new_vel if new_vel >= 0.0 else -new_vel)
                                  > (old_vel if old_vel >= 0.0 else -old_vel))
-                        axis.cmd_accdec = magnitude if grows else -magnitude
+                        cmd.v_ACCDEC = axis.cmd_accdec = magnitude if grows else -magnitude
                     else:
-                        axis.cmd_accdec = 0.0
-                    writer.write()
+                        cmd.v_ACCDEC = axis.cmd_accdec = 0.0
+                    # AxisRefWriter.write's flags test, with what this path knows: a command
+                    # (so idle is decided by it), VelLimit FALSE, the axis powered.
+                    state, waiting = axis.state, axis.in_pos_waiting
+                    idle = ((command.done or command.reached) and not waiting
+                            and not (state == _ERRORSTOP and new_vel != 0.0))
+                    shown = (state, axis.homed, axis.fault_code, axis.observation_code, False,
+                             waiting, idle, powered, new_vel > 0, new_vel < 0)
+                    if shown != writer._shown:
+                        writer._shown = shown
+                        writer._write_flags(axis, (new_vel > 0) - (new_vel < 0))
                     continue
             axis.step(dt)
             writer.write()
