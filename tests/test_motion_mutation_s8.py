@@ -74,7 +74,7 @@ def test_the_compiled_callers_idle_test_is_true_exactly_when_a_call_can_change_s
     # its test is spelt out in this process (the package's classes were made at import).
     probe = make_fb(type("Probe", (fb_class,), {}))
     needed = lambda: eval(type(probe).CALL_NEEDED.format(fb="fb"), {"fb": probe})   # noqa: E731
-    assert needed() is False
+    assert not needed()            # a condition of the compiled caller: read as a truth value
     flags = ["v_EXECUTE", "v_BUSY", *fb_class.FINAL_OUTPUTS, "v_ERRORID", "_previous_execute"]
     for flag in flags:
         old = getattr(probe, flag)
