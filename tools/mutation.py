@@ -62,7 +62,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
     "values": (["st_runtime/values.py"],
                ["tests/test_values.py", "tests/test_values_edges.py", "tests/test_controller_api.py",
                 "tests/test_semantics.py", "tests/test_operators_runtime.py",
-                "tests/test_semantics_random.py", "tests/test_stdlib_functions.py"]),
+                "tests/test_semantics_random.py", "tests/test_stdlib_functions.py",
+                # session 8's whole run (issue 16)
+                "tests/test_values_mutation_s8.py"]),
     "compiler": (["st_runtime/compiler/*"],
                  ["tests/test_compiler.py", "tests/test_semantics.py", "tests/test_operators_runtime.py",
                   "tests/test_semantics_random.py", "tests/test_compiler_corpus.py",
