@@ -126,3 +126,8 @@ def test_every_survivor_listed_equivalent_or_not():
     assert registry.survivor_lines(status, v) == [
         "    b: survived", "    e: no tests, stale entry",
         f"    {NAME}: survived, equivalent: read only as a cache key"]
+
+
+def test_a_run_of_listed_mutants_only_has_no_score_of_the_not_equivalent():
+    t = registry.tally({NAME: "survived"}, registry.Verdicts(equivalent={NAME: entry()}))
+    assert registry.score_line("motion", t).endswith("score 0.0 % raw, n/a of the not equivalent")

@@ -23,6 +23,7 @@ until it is judged again.
 from __future__ import annotations
 
 import json
+import math
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -140,10 +141,14 @@ def tally(status: dict[str, str], verdicts: Verdicts) -> Tally:
     return Tally(counts["killed"], counts["survived"], counts["equivalent"], counts["no tests"], others)
 
 
+def _percent(value: float) -> str:
+    return "n/a" if math.isnan(value) else f"{value:.1f} %"
+
+
 def score_line(name: str, t: Tally, sampled: str = "") -> str:
     rest = "".join(f", {k} {v}" for k, v in sorted(t.others.items()))
     return (f"{name:10s} killed {t.killed}, survived {t.survived}, equivalent {t.equivalent} (listed), "
-            f"no tests {t.no_tests}{rest}: score {t.raw:.1f} % raw, {t.of_not_equivalent:.1f} % "
+            f"no tests {t.no_tests}{rest}: score {_percent(t.raw)} raw, {_percent(t.of_not_equivalent)} "
             f"of the not equivalent{sampled}")
 
 
