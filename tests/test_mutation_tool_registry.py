@@ -66,10 +66,13 @@ def test_an_entry_listed_twice_or_without_a_reason_is_refused(tmp_path):
         registry.load(path)
 
 
-def test_the_registered_diff_in_the_repository_parses():
+def test_every_entry_of_the_repositorys_registry_names_a_module_a_change_and_a_reason():
+    import mutation
+
     for (module, name), e in registry.load().items():
-        assert e.diff.startswith(("-", "+")) and e.reason, name
-        assert name.startswith(("st_runtime.", "stgen.")), name
+        assert module in mutation.MODULES, name
+        assert e.diff.startswith("-") and "\n+" in e.diff and e.reason, name
+        assert name.startswith(("st_runtime.", "stgen.")) and "__mutmut_" in name, name
 
 
 def test_a_survivor_whose_diff_matches_its_entry_is_equivalent():
