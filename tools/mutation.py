@@ -239,7 +239,8 @@ def report(name: str, work: Path, entries: dict, survivors: bool) -> tuple[str, 
     """The module's score line (the registry's equivalent mutants left out of the second score),
     and the lines under it: stale entries, and with `survivors` every mutant not killed."""
     status = results(work)
-    listed = [m for (mod, m) in entries if mod == name and m in status]
+    judged = (*registry.UNKILLED, *registry.KILLED)
+    listed = [m for (mod, m) in entries if mod == name and status.get(m) in judged]
     verdicts = registry.judge(name, status, mutant_diffs(work, listed), entries)
     sample_file = work / "sample.txt"
     sampled = f"  [{sample_file.read_text().splitlines()[0][2:]}]" if sample_file.exists() else ""
