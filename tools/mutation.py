@@ -9,12 +9,19 @@
 Each module runs in its own scratch copy of the project (build/mutation/<module>/),
 with a `[tool.mutmut]` table written there that mutates only that module and runs
 only the test files relevant to it (MODULES below): mutmut then picks, per mutant,
-the tests among those that executed the mutated function.  The result is a table
-of killed / survived / timeout / no-tests per module and the mutation score
-killed / (killed + survived + no tests), printed and collected with the
-other modules' last scores in build/mutation/report.txt; `--survivors` lists
-the surviving mutant names (also kept in build/mutation/<module>/survivors.txt;
-build/mutation/history.txt keeps the score of every run) (see one with
+the tests among those that executed the mutated function.  The result is a line
+per module: killed (a timeout counts as killed), survived, equivalent (listed),
+no tests, the raw score killed / (killed + survived + equivalent + no tests) and
+the score of the not equivalent, killed / (killed + survived + no tests).
+"Equivalent (listed)" are the survivors that tools/mutation_equivalent.toml
+lists, each with its reason, while their diff is still the recorded one
+(tools/mutation_registry.py; a stale entry is reported and its mutant counts
+as a survivor).  `--register NAME --reason TEXT` adds a mutant of the module's
+last run to it.  The line is printed and collected with the other modules'
+last lines in build/mutation/report.txt; `--survivors` lists the mutants not
+killed, the listed equivalent ones with their reason (the others are also kept
+in build/mutation/<module>/survivors.txt; build/mutation/history.txt keeps the
+line of every run) (see one with
 `cd build/mutation/<module> && ../../../.venv/bin/mutmut show NAME`).
 
 Not part of the default test run: it takes minutes per module on two cores.
@@ -42,6 +49,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import mutation_registry as registry
+
 ROOT = Path(__file__).resolve().parent.parent
 SCRATCH = ROOT / "build" / "mutation"
 
@@ -53,7 +62,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
     "values": (["st_runtime/values.py"],
                ["tests/test_values.py", "tests/test_values_edges.py", "tests/test_controller_api.py",
                 "tests/test_semantics.py", "tests/test_operators_runtime.py",
-                "tests/test_semantics_random.py", "tests/test_stdlib_functions.py"]),
+                "tests/test_semantics_random.py", "tests/test_stdlib_functions.py",
+                # session 8's whole run (issue 16)
+                "tests/test_values_mutation_s8.py"]),
     "compiler": (["st_runtime/compiler/*"],
                  ["tests/test_compiler.py", "tests/test_semantics.py", "tests/test_operators_runtime.py",
                   "tests/test_semantics_random.py", "tests/test_compiler_corpus.py",
@@ -73,7 +84,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                 "tests/test_motion_limits_negative.py", "tests/test_motion_mutants.py",
                 # seed-21 run: two motion files the selection had missed, and round s7's tests
                 "tests/test_motion_idle_calls.py", "tests/test_motion_publish.py",
-                "tests/test_motion_mutation_s7.py"]),
+                "tests/test_motion_mutation_s7.py",
+                # seed-23 run (issue 16, session 8)
+                "tests/test_motion_mutation_s8.py"]),
     "checker": (["st_runtime/checker/*"],
                 ["tests/test_checker_rules.py", "tests/test_checker_typing.py", "tests/test_checker_program.py",
                  "tests/test_checker_loader.py", "tests/test_checker_corpus.py",
@@ -199,15 +212,57 @@ def results(work: Path) -> dict[str, str]:
     return status
 
 
-def score_line(name: str, status: dict[str, str], sampled: str = "") -> str:
-    counts: dict[str, int] = {}
-    for state in status.values():
-        counts[state] = counts.get(state, 0) + 1
-    killed = counts.get("killed", 0) + counts.get("timeout", 0)   # a timeout: the mutant hung the tests
-    judged = killed + counts.get("survived", 0) + counts.get("no tests", 0)
-    score = 100.0 * killed / judged if judged else float("nan")
-    rest = ", ".join(f"{k} {v}" for k, v in sorted(counts.items()))
-    return f"{name:10s} score {score:5.1f} %  ({rest}){sampled}"
+DIFFS = """
+import json, sys
+from pathlib import Path
+from mutmut.mutation.diff_apply import get_diff_for_mutant
+wanted = set(json.load(sys.stdin))
+diffs = {}
+for meta in Path("mutants").rglob("*.meta"):
+    for name in json.loads(meta.read_text())["exit_code_by_key"]:
+        if name in wanted:
+            diffs[name] = get_diff_for_mutant(name, path=meta.with_suffix("").relative_to("mutants"))
+json.dump(diffs, sys.stdout)
+"""
+
+
+def mutant_diffs(work: Path, names: list[str]) -> dict[str, str]:
+    """name -> the diff `mutmut show` prints, for the named mutants of the scratch copy."""
+    if not names:
+        return {}
+    out = subprocess.run([sys.executable, "-c", DIFFS], cwd=work, input=json.dumps(names), check=True,
+                         capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+def report(name: str, work: Path, entries: dict, survivors: bool) -> tuple[str, list[str]]:
+    """The module's score line (the registry's equivalent mutants left out of the second score),
+    and the lines under it: stale entries, and with `survivors` every mutant not killed."""
+    status = results(work)
+    judged = (*registry.UNKILLED, *registry.KILLED)
+    listed = [m for (mod, m) in entries if mod == name and status.get(m) in judged]
+    verdicts = registry.judge(name, status, mutant_diffs(work, listed), entries)
+    sample_file = work / "sample.txt"
+    sampled = f"  [{sample_file.read_text().splitlines()[0][2:]}]" if sample_file.exists() else ""
+    line = registry.score_line(name, registry.tally(status, verdicts), sampled)
+    (work / "survivors.txt").write_text("".join(
+        f"{m}: {st}\n" for m, st in sorted(status.items())
+        if st in registry.UNKILLED and m not in verdicts.equivalent))
+    below = registry.notes(verdicts) + (registry.survivor_lines(status, verdicts) if survivors else [])
+    return line, below
+
+
+def register(name: str, mutant: str, reason: str) -> str:
+    """Add a judged equivalent mutant of the last run of `name` to the registry."""
+    diff = mutant_diffs(SCRATCH / name, [mutant]).get(mutant)
+    if diff is None:
+        raise SystemExit(f"{mutant} is not a mutant of {SCRATCH / name}")
+    entry = registry.Entry(name, mutant, diff, reason)
+    if (name, mutant) in registry.load():
+        raise SystemExit(f"{mutant} is listed already")
+    with open(registry.REGISTRY, "a") as out:
+        out.write(registry.entry_toml(entry))
+    return registry.changed_lines(diff)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -222,12 +277,22 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=16, help="seed of the sample")
     parser.add_argument("--names", type=Path, help="run only the mutants named in this file (an earlier "
                         "sample.txt: the same sample again after the source changed)")
-    parser.add_argument("--survivors", action="store_true", help="list surviving mutants")
+    parser.add_argument("--survivors", action="store_true",
+                        help="list the mutants not killed, the listed equivalent ones with their reason")
     parser.add_argument("--report-only", action="store_true", help="report an earlier run")
+    parser.add_argument("--register", metavar="MUTANT", help="add MUTANT of the module's last run to the "
+                        f"registry of equivalent mutants ({registry.REGISTRY.name}), with --reason")
+    parser.add_argument("--reason", help="why no test can kill the --register'ed mutant (one line)")
     args = parser.parse_args(argv)
     names = list(MODULES) if args.all else args.modules
     if not names:
         parser.error("name a module or pass --all")
+    if args.register:
+        if len(names) != 1 or not args.reason:
+            parser.error("--register needs one module and a --reason")
+        print(register(names[0], args.register, args.reason))
+        return 0
+    entries = registry.load()
     lines = []
     for name in names:
         work = SCRATCH / name
@@ -245,19 +310,12 @@ def main(argv: list[str] | None = None) -> int:
                 subprocess.run(["nice", "-n", str(args.nice), sys.executable, "-m", "mutmut", "run",
                                 "--max-children", str(args.max_children), *chosen],
                                cwd=work, check=False, stdout=log, stderr=subprocess.STDOUT)
-        status = results(work)
-        sample_file = work / "sample.txt"
-        sampled = f"  [{sample_file.read_text().splitlines()[0][2:]}]" if sample_file.exists() else ""
-        line = score_line(name, status, sampled)
+        line, below = report(name, work, entries, args.survivors)
         (work / "score.txt").write_text(line + "\n")
-        (work / "survivors.txt").write_text(
-            "".join(f"{m}: {st}\n" for m, st in sorted(status.items()) if st in ("survived", "no tests")))
         if not args.report_only:   # every run's score, kept when the next run replaces the scratch copy
             with open(SCRATCH / "history.txt", "a") as history:
                 history.write(line + "\n")
-        lines.append(line)
-        if args.survivors:
-            lines += [f"    {m}: {s}" for m, s in sorted(status.items()) if s != "killed"]
+        lines += [line, *below]
     print("\n".join(lines))
     # The table of every module run so far (each run keeps its own score.txt).
     scores = [(SCRATCH / n / "score.txt") for n in MODULES]
