@@ -1,0 +1,136 @@
+"""Compiler behaviours that survivors of the mutation samples of seeds 21 and 22 pinned down
+(issue 16, session 8; docs/mutation.md, "st_runtime/compiler/").
+
+Each test loads ST through the public entry point (or calls a pass on its own lines) and
+takes its expected values from IEC 61131-3, OMRON's W501 manual as docs/nj501.md quotes
+it, the passes' own documented contracts, or a hand calculation stated beside it.
+"""
+
+from __future__ import annotations
+
+import re
+
+from st_runtime.compiler.optimise import vector
+from test_compiler_mutants import run
+
+
+# ----------------------------------------------- `ranges`: a store that may fault
+
+def test_a_store_that_may_fault_keeps_the_union_of_both_ranges():
+    # i := 1, then i := i + 1 in a branch: after the IF, i is 1 or 2, both inside a[1..3],
+    # so a[i] is read unchecked.  k = 1: i = 2, a[2] + k = 20 + 1 = 21.
+    main, plc = run("""
+FUNCTION Step : INT
+VAR_INPUT k : INT; END_VAR
+VAR i : INT; a : ARRAY[1..3] OF INT := [10, 20, 30]; END_VAR
+i := 1;
+IF k > 0 THEN i := i + 1; END_IF;
+i := a[i] + k;
+Step := i;
+END_FUNCTION
+PROGRAM Main
+VAR r : INT; s : INT; END_VAR
+r := Step(k := 1);
+s := Step(k := 0);       (* i stays 1: a[1] + 0 = 10 *)
+END_PROGRAM""")
+    assert (main["r"], main["s"], plc.faults) == (21, 10, [])
+
+
+# ----------------------------------- an FB's in-out array read from outside the FB
+
+def test_an_in_out_array_of_an_instance_is_read_from_outside():
+    # IEC 61131-3 6.5.2.2: a VAR_IN_OUT is the variable connected by the last call; the FB
+    # added 1 to A[2] of arr = [1, 2, 3], so f.A[2] is arr[2] = 3.
+    main, plc = run("""
+FUNCTION_BLOCK Fb
+VAR_IN_OUT A : ARRAY[1..3] OF INT; END_VAR
+A[2] := A[2] + 1;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR f : Fb; arr : ARRAY[1..3] OF INT := [1, 2, 3]; x : INT; END_VAR
+f(A := arr);
+x := f.A[2];
+END_PROGRAM""")
+    assert (main["x"], main["arr"], plc.faults) == (3, [1, 3, 3], [])
+
+
+# -------------------------- `unroll`: the size of a loop whose CASE has an ELSE loop
+
+def test_a_loop_in_the_else_of_a_case_inside_an_unrolled_loop():
+    # i = 1: x = 1; i = 2 and 3: the ELSE adds j = 1 and 2 each time: y = 2 * (1 + 2) = 6.
+    main, plc = run("""
+FUNCTION Count : INT
+VAR i : INT; j : INT; x : INT; y : INT; END_VAR
+FOR i := 1 TO 3 DO
+    CASE i OF
+        1: x := x + 1;
+    ELSE
+        FOR j := 1 TO 2 DO y := y + j; END_FOR;
+    END_CASE;
+END_FOR;
+Count := 10 * x + y;
+END_FUNCTION
+PROGRAM Main
+VAR r : INT; END_VAR
+r := Count();
+END_PROGRAM""")
+    assert (main["r"], plc.faults) == (16, [])
+
+
+# ------------------------------------------------- `vector`: two chains in one run
+
+def test_a_run_of_two_sums_becomes_one_call_with_python_results():
+    # Two accumulations, D and E, of 100 products each (400 operations, above
+    # MIN_OPERATIONS): one NumPy call, whose results are the lines' own, evaluated here
+    # by Python operation by operation (the pass's contract, module docstring).
+    lines = []
+    for i in range(100):
+        lines.append(f"    _t9 = (_t{i % 3 + 1} * _t{(i + 1) % 3 + 1})")
+        lines.append(f"    v_D = (v_D + (_t9 * _t4))")
+        lines.append(f"    _t8 = (_t{(i + 2) % 3 + 1} * _t5)")
+        lines.append(f"    v_E = (v_E - (_t8 * _t4))")
+    floats = {"_t1", "_t2", "_t3", "_t4", "_t5", "v_D", "v_E"}
+    bound = {}
+
+    def register(value):
+        bound[f"_k{len(bound)}"] = value
+        return f"_k{len(bound) - 1}"
+
+    original = list(lines)
+    vector.vectorise(lines, 0, len(lines), floats.__contains__, register)
+    call = re.fullmatch(r"    (.*), = _k0\(None, \((.*), \)\)", lines[0])
+    assert call is not None and len(lines) == 1
+    outputs, names = call.group(1).split(", "), call.group(2).split(", ")
+    assert {"v_D", "v_E"} <= set(outputs)
+    env = {"_t1": 1.25, "_t2": -0.75, "_t3": 3.0, "_t4": 1e-3, "_t5": 7.0, "v_D": 0.1, "v_E": -2.5}
+    got = bound["_k0"](None, tuple(env[name] for name in names))
+    exec("\n".join(line[4:] for line in original), {}, env)
+    assert dict(zip(outputs, got)) == {name: env[name] for name in outputs}
+
+
+# ------------------------------------ NJ: a narrower signed sum stored into a wider unsigned
+
+NJ_WIDER_UNSIGNED = """
+PROGRAM Main
+VAR
+    s1 : SINT := 127; s2 : SINT := 127; u : UINT; cu : UINT;
+    i1 : INT := 32767; w : UDINT; cw : UDINT;
+END_VAR
+u := s1 + s2;
+cu := SINT_TO_UINT(s1 + s2);
+w := i1 + i1;
+cw := INT_TO_UDINT(i1 + i1);
+END_PROGRAM
+"""
+
+
+def test_nj_a_signed_sum_that_overflows_is_sign_extended_into_a_wider_unsigned():
+    # docs/nj501.md: under nj an integer + - * result outside the range of its type overflows
+    # where it is used, stored into a wider type included (W501 6-5-3); a signed integer
+    # assigned to an unsigned one of a larger size keeps its bits, sign-extended as
+    # SINT_TO_ULINT does.  SINT 127 + 127 = 254 overflows to -2 = 16#FE; in a UINT that is
+    # 16#FFFE = 65534.  INT 32767 + 32767 = 65534 overflows to -2; in a UDINT 16#FFFF_FFFE.
+    main, plc = run(NJ_WIDER_UNSIGNED, dialect="nj")
+    assert plc.faults == []
+    assert (main["u"], main["cu"]) == (65534, 65534)
+    assert (main["w"], main["cw"]) == (4294967294, 4294967294)
