@@ -8,10 +8,15 @@ it, the passes' own documented contracts, or a hand calculation stated beside it
 
 from __future__ import annotations
 
+import math
 import re
+import warnings
 
+from st_runtime.api import load_text
+from st_runtime.compiler import compile_program
 from st_runtime.compiler.optimise import vector
 from test_compiler_mutants import run
+from test_optimiser_equivalence import _Context
 
 
 # ----------------------------------------------- `ranges`: a store that may fault
@@ -79,6 +84,21 @@ END_PROGRAM""")
 
 # ------------------------------------------------- `vector`: two chains in one run
 
+def _vectorised(lines: list[str], floats: set[str]):
+    """vector.vectorise on a copy of `lines`, which must become one call: (the helper it
+    registered, its output names, its input names)."""
+    done, bound = list(lines), {}
+
+    def register(helper) -> str:
+        bound["_k0"] = helper
+        return "_k0"
+
+    vector.vectorise(done, 0, len(done), floats.__contains__, register)
+    call = re.fullmatch(r"    (.*), = _k0\(None, \((.*), \)\)", done[0])
+    assert call is not None and len(done) == 1
+    return bound["_k0"], call.group(1).split(", "), call.group(2).split(", ")
+
+
 def test_a_run_of_two_sums_becomes_one_call_with_python_results():
     # Two accumulations, D and E, of 100 products each (400 operations, above
     # MIN_OPERATIONS): one NumPy call, whose results are the lines' own, evaluated here
@@ -89,22 +109,11 @@ def test_a_run_of_two_sums_becomes_one_call_with_python_results():
         lines.append(f"    v_D = (v_D + (_t9 * _t4))")
         lines.append(f"    _t8 = (_t{(i + 2) % 3 + 1} * _t5)")
         lines.append(f"    v_E = (v_E - (_t8 * _t4))")
-    floats = {"_t1", "_t2", "_t3", "_t4", "_t5", "v_D", "v_E"}
-    bound = {}
-
-    def register(value):
-        bound[f"_k{len(bound)}"] = value
-        return f"_k{len(bound) - 1}"
-
-    original = list(lines)
-    vector.vectorise(lines, 0, len(lines), floats.__contains__, register)
-    call = re.fullmatch(r"    (.*), = _k0\(None, \((.*), \)\)", lines[0])
-    assert call is not None and len(lines) == 1
-    outputs, names = call.group(1).split(", "), call.group(2).split(", ")
+    helper, outputs, names = _vectorised(lines, {"_t1", "_t2", "_t3", "_t4", "_t5", "v_D", "v_E"})
     assert {"v_D", "v_E"} <= set(outputs)
     env = {"_t1": 1.25, "_t2": -0.75, "_t3": 3.0, "_t4": 1e-3, "_t5": 7.0, "v_D": 0.1, "v_E": -2.5}
-    got = bound["_k0"](None, tuple(env[name] for name in names))
-    exec("\n".join(line[4:] for line in original), {}, env)
+    got = helper(None, tuple(env[name] for name in names))
+    exec("\n".join(line[4:] for line in lines), {}, env)
     assert dict(zip(outputs, got)) == {name: env[name] for name in outputs}
 
 
@@ -134,3 +143,47 @@ def test_nj_a_signed_sum_that_overflows_is_sign_extended_into_a_wider_unsigned()
     assert plc.faults == []
     assert (main["u"], main["cu"]) == (65534, 65534)
     assert (main["w"], main["cw"]) == (4294967294, 4294967294)
+
+
+# ---------------------------------------------------------------- seed 23's survivors
+
+FOLDED_REGION = """
+FUNCTION F : INT
+VAR CONSTANT Off : BOOL := FALSE; END_VAR
+VAR a : ARRAY[1..8] OF INT := [1, 2, 3, 4, 5, 6, 7, 8]; x : INT; END_VAR
+IF Off THEN x := a[1] + a[2] + a[3] + a[4] + a[5] + a[6] + a[7] + a[8]; END_IF;
+END_FUNCTION
+PROGRAM Main
+VAR r : INT; END_VAR
+r := F() + 1;
+END_PROGRAM
+"""
+
+
+def test_a_whole_body_region_that_folds_to_nothing_compiles_without_charges():
+    # Eight element reads make F's body one CSE region (cse.worth_a_region); the IF on a
+    # FALSE constant folds away, and without charges nothing is left inside the region:
+    # the function still compiles and returns its result's initial value, 0.
+    program = load_text(FOLDED_REGION, "m.st").program
+    compiled = compile_program(program, charge_costs=False)
+    assert compiled.namespace["_fn_F"](_Context()) == 0
+    main, plc = run(FOLDED_REGION)         # with charges: F() + 1 = 1
+    assert (main["r"], plc.faults) == (1, [])
+
+
+def test_inputs_whose_products_could_overflow_take_the_python_run_without_a_warning():
+    # vector.py: inputs so large that some value could overflow run in Python, so NumPy
+    # never sees an inf (and never warns).  Products of two inputs of 1e160 reach 1e320:
+    # beyond the largest double, inf in Python as in NumPy; the results are Python's.
+    lines = []
+    for i in range(100):
+        lines.append(f"    _t9 = (_t{i % 3 + 1} * _t{(i + 1) % 3 + 1})")
+        lines.append(f"    v_D = (v_D + (_t9 * _t4))")
+    helper, outputs, names = _vectorised(lines, {"_t1", "_t2", "_t3", "_t4", "v_D"})
+    env = {"_t1": 1e160, "_t2": -1e160, "_t3": 2.0, "_t4": 0.5, "v_D": 1.0}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = helper(None, tuple(env[name] for name in names))
+    exec("\n".join(line[4:] for line in lines), {}, env)
+    assert env["v_D"] == -math.inf                  # 1e160 * -1e160 = -inf, then -inf * 0.5
+    assert dict(zip(outputs, got)) == {name: env[name] for name in outputs}
