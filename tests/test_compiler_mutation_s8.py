@@ -19,6 +19,10 @@ from test_compiler_mutants import run
 from test_optimiser_equivalence import _Context
 
 
+def faults(plc):
+    return [(f.code, f.line) for f in plc.faults]
+
+
 # ----------------------------------------------- `ranges`: a store that may fault
 
 def test_a_store_that_may_fault_keeps_the_union_of_both_ranges():
@@ -187,3 +191,26 @@ def test_inputs_whose_products_could_overflow_take_the_python_run_without_a_warn
     exec("\n".join(line[4:] for line in lines), {}, env)
     assert env["v_D"] == -math.inf                  # 1e160 * -1e160 = -inf, then -inf * 0.5
     assert dict(zip(outputs, got)) == {name: env[name] for name in outputs}
+
+
+def test_the_else_of_an_elsif_chain_starts_from_the_ranges_before_the_if():
+    # The first condition can fault (10 / d), so the chain is compiled through an index of
+    # the branch taken.  d = 3: 10 / 3 = 3 is not > 5, d is not > 100, so the ELSE runs with
+    # i = 0 (the ELSIF's i := 2 did not run): a[0] is outside 1..3, a fault (F-INDEX) at
+    # line 8, and G keeps its initial value 0.
+    main, plc = run("""
+FUNCTION G : INT
+VAR_INPUT d : INT; END_VAR
+VAR i : INT; a : ARRAY[1..3] OF INT := [10, 20, 30]; END_VAR
+i := 0;
+IF 10 / d > 5 THEN G := 1;
+ELSIF d > 100 THEN i := 2;
+ELSE G := a[i];
+END_IF;
+END_FUNCTION
+PROGRAM Main
+VAR r : INT; END_VAR
+r := G(d := 3);
+END_PROGRAM""")
+    assert main["r"] == 0
+    assert faults(plc) == [("F-INDEX", 8)]
