@@ -214,3 +214,15 @@ r := G(d := 3);
 END_PROGRAM""")
     assert main["r"] == 0
     assert faults(plc) == [("F-INDEX", 8)]
+
+
+def test_an_operator_in_call_form_used_as_a_statement():
+    # IEC 61131-3 Table 24: ADD and GT are the functions of + and >; called as statements
+    # their results are dropped and nothing changes: x stays 4, and y := x + 1 is 5.
+    main, plc = run("""PROGRAM Main
+VAR x : INT := 4; y : INT; END_VAR
+ADD(x, 1);
+GT(x, 1);
+y := x + 1;
+END_PROGRAM""")
+    assert (main["x"], main["y"], plc.faults) == (4, 5, [])
