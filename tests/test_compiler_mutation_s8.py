@@ -1,5 +1,5 @@
-"""Compiler behaviours that survivors of the mutation samples of seeds 21 and 22 pinned down
-(issue 16, session 8; docs/mutation.md, "st_runtime/compiler/").
+"""Compiler behaviours that survivors of the mutation samples of seeds 21, 22 and 23 pinned
+down (issue 16, session 8; docs/mutation.md, "st_runtime/compiler/").
 
 Each test loads ST through the public entry point (or calls a pass on its own lines) and
 takes its expected values from IEC 61131-3, OMRON's W501 manual as docs/nj501.md quotes
@@ -16,11 +16,8 @@ from st_runtime.api import load_text
 from st_runtime.compiler import compile_program
 from st_runtime.compiler.optimise import vector
 from test_compiler_mutants import run
+from test_compiler_mutation_s7 import faults
 from test_optimiser_equivalence import _Context
-
-
-def faults(plc):
-    return [(f.code, f.line) for f in plc.faults]
 
 
 # ----------------------------------------------- `ranges`: a store that may fault
