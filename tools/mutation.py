@@ -73,7 +73,12 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   # the optimiser passes' own tests and the shared prelude (fast, seed-19 run)
                   "tests/test_optimiser_ranges.py", "tests/test_optimiser_vector.py",
                   "tests/test_inline_selection.py", "tests/test_prelude_sharing.py",
-                  "tests/test_compiler_mutants_s19.py", "tests/test_compiler_mutation_s7.py"]),
+                  "tests/test_compiler_mutants_s19.py", "tests/test_compiler_mutation_s7.py",
+                  # session 8: the later passes' own tests and the nj expression rules', which it had missed
+                  "tests/test_optimiser_branches.py", "tests/test_optimiser_unguard.py",
+                  "tests/test_optimiser_absolute.py", "tests/test_optimiser_fastpath.py",
+                  "tests/test_nj_expression_overflow.py", "tests/test_nj_assignment_casts.py",
+                  "tests/test_compiler_mutation_s8.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",

@@ -678,7 +678,8 @@ class ExprCompiler:
                 return f"_subrange({value}, {e.lo}, {e.hi})"
             if node is not None and not plain_read:
                 source = int_bounds(src_r)
-                if source is not None and not (bounds[0] <= source[0] and source[1] <= bounds[1]):
+                if source is not None and not (bounds[0] <= source[0] and source[1] <= bounds[1]) \
+                        and bounds[1] - bounds[0] <= source[1] - source[0]:
                     return _wrapped(value, e)      # the target is no wider: its wrap settles it
                 value = self.settled(node, value)
             return _wrapped(value, e)
