@@ -121,6 +121,19 @@ class _Actions(dict):
         return actions
 
 
+class _Gotos(dict):
+    """State -> the state after a reduction to one rule `origin` on top of it (Lark's
+    goto), looked up in Lark's table on first use."""
+
+    def __init__(self, states, origin: str) -> None:
+        super().__init__()
+        self.states, self.origin = states, origin
+
+    def __missing__(self, state: int) -> int:
+        target = self[state] = self.states[state][self.origin][1]
+        return target
+
+
 class FastLalr:
     def __init__(self, lark, retype, retyped=None, keywords=None) -> None:
         """`keywords`, if given, is (the lexer callback `reserve`, a function giving the
@@ -132,6 +145,7 @@ class FastLalr:
         self.reserve, self.keyword_table = keywords if keywords is not None else (None, dict)
         self.rules: dict[int, tuple] = {}                 # id(Rule) -> its plan (_plan)
         self.actions = _Actions(self)                     # state -> its actions, with steps
+        self.gotos: dict[str, _Gotos] = {}                # rule name -> _Gotos
         self.units: dict[tuple, int] = {}                 # (state below, state, token) -> _unit_chain
         self.lexing: dict[int, tuple] = {}                # parser state -> _lexing
         try:
@@ -186,10 +200,18 @@ class FastLalr:
         return plan
 
     def _step(self, rule) -> tuple:
-        """(size, origin, how, function, pick): the rule's plan (_plan) as the loop
-        runs it; `pick` is an itemgetter (CALL_PICK), an index (CALL_ONE) or the plan
-        (GENERAL)."""
+        """(size, origin, how, function, pick, gotos): the rule's plan (_plan) as the
+        loop runs it; `pick` is an itemgetter (CALL_PICK), an index (CALL_ONE, LIST_ONE,
+        CALL_SPREAD) or the plan (GENERAL); `gotos` the rule's _Gotos."""
         plan = self.rules.get(id(rule)) or self._plan(rule)
+        size, origin, kind, function, keep, nones, _ = plan
+        if origin not in self.gotos:
+            self.gotos[origin] = _Gotos(self.states, origin)
+        return (*self._how(plan), self.gotos[origin])
+
+    @staticmethod
+    def _how(plan: tuple) -> tuple:
+        """(size, origin, how, function, pick) of a plan (see `_step`)."""
         size, origin, kind, function, keep, nones, _ = plan
         simple = nones == 0 and (keep is None or not any(splice or before for _, splice, before in keep))
         picked = tuple(range(size)) if keep is None else tuple(i for i, _, _ in keep)
@@ -211,9 +233,9 @@ class FastLalr:
 
     def _lexing(self, state: int) -> tuple:
         """What the loop reads of the state's lexer: (patterns, ignored types,
-        callbacks, types that may hold a newline, blanks); the patterns are the
+        callbacks, types that may hold a newline, blanks, scan); the patterns are the
         scanner's (Scanner.match, inline: the first that matches), built before
-        the callbacks.  `blanks` matches the ignored WS terminal alone, or is None:
+        the callbacks, and `scan` the match of the only one, if there is one.  `blanks` matches the ignored WS terminal alone, or is None:
         no other terminal of the grammar starts with a blank, so where WS matches
         it is the scanner's match, and the loop skips it without trying the others."""
         lexer = self.lexers[state]
@@ -224,7 +246,9 @@ class FastLalr:
             and not lexer.g_regex_flags
         if plain and "WS" in lexer.ignore_types and "WS" in lexer.newline_types and "WS" not in lexer.callback:
             blanks = re.compile(blank.pattern.value).match
-        entry = self.lexing[state] = (patterns, lexer.ignore_types, lexer.callback, lexer.newline_types, blanks)
+        scan = patterns[0].match if len(patterns) == 1 else None
+        entry = self.lexing[state] = (patterns, lexer.ignore_types, lexer.callback, lexer.newline_types,
+                                      blanks, scan)
         return entry
 
     def _unit_chain(self, below: int, top: int, kind: str) -> int:
@@ -254,7 +278,8 @@ class FastLalr:
         table, retype, units = self.actions, self.retype, self.units
         retyped, reserve, keywords = self.retyped, self.reserve, self.keyword_table()
         plain_tokens, str_new = PLAIN_TOKENS, str.__new__
-        state_stack = [self.start_states[start]]
+        state = self.start_states[start]        # (the top of state_stack)
+        state_stack = [state]
         value_stack: list = []
         push = value_stack.append
         end_state = self.end_states[start]
@@ -265,8 +290,7 @@ class FastLalr:
         while True:
             # Lark's contextual lexer: the next token the parser's state accepts
             # (BasicLexer.next_token, then the postlexer), inline
-            patterns, ignore, callbacks, newlines, blanks = \
-                lexing.get(state_stack[-1]) or self._lexing(state_stack[-1])
+            patterns, ignore, callbacks, newlines, blanks, scan = lexing.get(state) or self._lexing(state)
             token = _END
             while pos < end:
                 if blanks is not None:       # an ignored WS token: only the position moves
@@ -281,12 +305,17 @@ class FastLalr:
                         column = pos - line_start + 1
                         if pos == end:
                             break
-                for pattern in patterns:
-                    found = pattern.match(text, pos, end)
-                    if found:
-                        break
+                if scan is not None:        # the state's scanner is one regex
+                    found = scan(text, pos, end)
+                    if not found:
+                        raise ValueError("no terminal matches here")
                 else:
-                    raise ValueError("no terminal matches here")
+                    for pattern in patterns:
+                        found = pattern.match(text, pos, end)
+                        if found:
+                            break
+                    else:
+                        raise ValueError("no terminal matches here")
                 value, kind = found.group(0), found.lastgroup
                 start, start_line, start_column = pos, line, column
                 if kind in newlines:
@@ -318,21 +347,22 @@ class FastLalr:
                         break
             kind = token.type
             while True:
-                action, step = table[state_stack[-1]][kind]
+                action, step = table[state][kind]
                 if action is Shift:
                     if token is _END:
                         raise ValueError("shift at the end of the input")
-                    state_stack.append(step)
+                    state = step
+                    state_stack.append(state)
                     push(token)
                     break
-                size, origin, how, function, pick = step
+                size, origin, how, function, pick, gotos = step
                 if how == UNIT:         # the value stays; the state is the goto's
                     below = state_stack[-2]
-                    chain = (below, state_stack[-1], kind)
-                    top = units.get(chain)
-                    if top is None:
-                        top = units[chain] = self._unit_chain(below, table[below][origin][1], kind)
-                    state_stack[-1] = top
+                    chain = (below, state, kind)
+                    state = units.get(chain)
+                    if state is None:
+                        state = units[chain] = self._unit_chain(below, gotos[below], kind)
+                    state_stack[-1] = state
                     continue
                 if size:
                     values = value_stack[-size:]
@@ -381,7 +411,8 @@ class FastLalr:
                             push(children[0])
                         else:
                             push(function(*children) if how == SINGLE else function(children))
-                state_stack.append(table[state_stack[-1]][origin][1])
-                if token is _END and state_stack[-1] == end_state:
+                state = gotos[state_stack[-1]]
+                state_stack.append(state)
+                if token is _END and state == end_state:
                     return value_stack[-1]
 
