@@ -20,7 +20,7 @@ For each file set, side by side in one run and one process:
   and its grammar is not LALR(1): Lark reports reduce/reduce collisions).
   The raw text is parsed to Lark's parse tree, no summary or transform:
   blark's fastest path.  Its `parse_source_code` first blanks the comments
-  (`util.find_and_clean_comments`), which costs more than it saves (about 9%
+  (`util.find_and_clean_comments`), which costs more than it saves (9-12%
   more over an eighth of the accept corpus), so it is left out.
 
 File sets:
