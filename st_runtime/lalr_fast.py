@@ -204,7 +204,7 @@ class FastLalr:
         loop runs it; `pick` is an itemgetter (CALL_PICK), an index (CALL_ONE, LIST_ONE,
         CALL_SPREAD) or the plan (GENERAL); `gotos` the rule's _Gotos."""
         plan = self.rules.get(id(rule)) or self._plan(rule)
-        size, origin, kind, function, keep, nones, _ = plan
+        origin = plan[1]
         if origin not in self.gotos:
             self.gotos[origin] = _Gotos(self.states, origin)
         return (*self._how(plan), self.gotos[origin])
@@ -213,10 +213,10 @@ class FastLalr:
     def _how(plan: tuple) -> tuple:
         """(size, origin, how, function, pick) of a plan (see `_step`)."""
         size, origin, kind, function, keep, nones, _ = plan
-        simple = nones == 0 and (keep is None or not any(splice or before for _, splice, before in keep))
-        picked = tuple(range(size)) if keep is None else tuple(i for i, _, _ in keep)
         if kind == UNIT:
             return size, origin, UNIT, function, plan
+        simple = nones == 0 and (keep is None or not any(splice or before for _, splice, before in keep))
+        picked = tuple(range(size)) if keep is None else tuple(i for i, _, _ in keep)
         if simple and kind == INLINE:
             if picked == tuple(range(size)):
                 return size, origin, CALL_ALL, function, None
@@ -233,11 +233,12 @@ class FastLalr:
 
     def _lexing(self, state: int) -> tuple:
         """What the loop reads of the state's lexer: (patterns, ignored types,
-        callbacks, types that may hold a newline, blanks, scan); the patterns are the
-        scanner's (Scanner.match, inline: the first that matches), built before
-        the callbacks, and `scan` the match of the only one, if there is one.  `blanks` matches the ignored WS terminal alone, or is None:
-        no other terminal of the grammar starts with a blank, so where WS matches
-        it is the scanner's match, and the loop skips it without trying the others."""
+        callbacks, types that may hold a newline, blanks, scan); the patterns are
+        the scanner's (Scanner.match, inline: the first that matches), built before
+        the callbacks, and `scan` is the match of the only one, if there is one.
+        `blanks` matches the ignored WS terminal alone, or is None: no other
+        terminal of the grammar starts with a blank, so where WS matches it is the
+        scanner's match, and the loop skips it without trying the others."""
         lexer = self.lexers[state]
         patterns = lexer.scanner._mres
         blank = next((t for t in lexer.terminals if t.name == "WS"), None)
@@ -415,4 +416,3 @@ class FastLalr:
                 state_stack.append(state)
                 if token is _END and state == end_state:
                     return value_stack[-1]
-
