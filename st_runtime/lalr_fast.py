@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import re
 from functools import partial
+from operator import itemgetter
 
 from lark.lexer import Token
 from lark.parse_tree_builder import ChildFilterLALR, ChildFilterLALR_NoPlaceholders, ExpandSingleChild
@@ -59,6 +60,16 @@ SPLICE = 3      # an inlined `_rule`: the list of its children
 TREE = 4        # a rule with no method: Lark's Tree (the builder has one for every rule)
 LARK = 5        # a wrapper this loop does not know: Lark's callback on the raw children
 SINGLE_TREE = 6  # a `?rule` with no method: its one child, or else a Tree
+
+# How the loop runs a reduction (its step, _step): the commonest plans in one
+# operation each, every other plan the general way.
+CALL_ALL = 10    # INLINE keeping every child in order: the method on the popped values
+CALL_PICK = 11   # INLINE keeping two or more children, none spliced: the method on those
+CALL_ONE = 12    # INLINE keeping one child, not spliced: the method on it
+LIST_ALL = 13    # SPLICE keeping every child in order: the popped values are the list
+LIST_ONE = 14    # SPLICE keeping one spliced child only: that child's list itself
+CALL_SPREAD = 15  # INLINE keeping one spliced child only: the method on its items
+GENERAL = 16     # anything else: the plan, read child by child
 
 
 def _builds_tree(callback) -> bool:
@@ -94,11 +105,47 @@ class _End:
 _END = _End()
 
 
+class _Actions(dict):
+    """Parser state -> {terminal or rule name: (Shift, state) or (None, step)}: Lark's
+    action table with each rule replaced by its step (FastLalr._step), made per state
+    on first use."""
+
+    def __init__(self, fast: "FastLalr") -> None:
+        super().__init__()
+        self.fast = fast
+
+    def __missing__(self, state: int) -> dict:
+        fast = self.fast
+        actions = self[state] = {kind: (action, arg) if action is Shift else (None, fast._step(arg))
+                                 for kind, (action, arg) in fast.states[state].items()}
+        return actions
+
+
+class _Gotos(dict):
+    """State -> the state after a reduction to one rule `origin` on top of it (Lark's
+    goto), looked up in Lark's table on first use."""
+
+    def __init__(self, states, origin: str) -> None:
+        super().__init__()
+        self.states, self.origin = states, origin
+
+    def __missing__(self, state: int) -> int:
+        target = self[state] = self.states[state][self.origin][1]
+        return target
+
+
 class FastLalr:
-    def __init__(self, lark, retype, retyped=None) -> None:
+    def __init__(self, lark, retype, retyped=None, keywords=None) -> None:
+        """`keywords`, if given, is (the lexer callback `reserve`, a function giving the
+        current keyword table): `reserve(token)` must set the token's type to
+        table.get(token.value.upper()) when that is not None and do nothing else; the
+        loop then does that inline instead of calling it."""
         self.retype = retype                              # the postlexer's work on a token
         self.retyped = retyped if retyped is not None else _EVERY_TYPE   # ... of these types only
+        self.reserve, self.keyword_table = keywords if keywords is not None else (None, dict)
         self.rules: dict[int, tuple] = {}                 # id(Rule) -> its plan (_plan)
+        self.actions = _Actions(self)                     # state -> its actions, with steps
+        self.gotos: dict[str, _Gotos] = {}                # rule name -> _Gotos
         self.units: dict[tuple, int] = {}                 # (state below, state, token) -> _unit_chain
         self.lexing: dict[int, tuple] = {}                # parser state -> _lexing
         try:
@@ -152,13 +199,46 @@ class FastLalr:
         self.rules[id(rule)] = plan
         return plan
 
+    def _step(self, rule) -> tuple:
+        """(size, origin, how, function, pick, gotos): the rule's plan (_plan) as the
+        loop runs it; `pick` is an itemgetter (CALL_PICK), an index (CALL_ONE, LIST_ONE,
+        CALL_SPREAD) or the plan (GENERAL); `gotos` the rule's _Gotos."""
+        plan = self.rules.get(id(rule)) or self._plan(rule)
+        origin = plan[1]
+        if origin not in self.gotos:
+            self.gotos[origin] = _Gotos(self.states, origin)
+        return (*self._how(plan), self.gotos[origin])
+
+    @staticmethod
+    def _how(plan: tuple) -> tuple:
+        """(size, origin, how, function, pick) of a plan (see `_step`)."""
+        size, origin, kind, function, keep, nones, _ = plan
+        if kind == UNIT:
+            return size, origin, UNIT, function, plan
+        simple = nones == 0 and (keep is None or not any(splice or before for _, splice, before in keep))
+        picked = tuple(range(size)) if keep is None else tuple(i for i, _, _ in keep)
+        if simple and kind == INLINE:
+            if picked == tuple(range(size)):
+                return size, origin, CALL_ALL, function, None
+            if len(picked) == 1:
+                return size, origin, CALL_ONE, function, picked[0]
+            if picked:
+                return size, origin, CALL_PICK, function, itemgetter(*picked)
+        if simple and kind == SPLICE and picked == tuple(range(size)):
+            return size, origin, LIST_ALL, function, None
+        if nones == 0 and keep is not None and len(keep) == 1 and keep[0][1] and not keep[0][2] \
+                and kind in (SPLICE, INLINE):       # (the list itself, as the general way gives)
+            return size, origin, LIST_ONE if kind == SPLICE else CALL_SPREAD, function, keep[0][0]
+        return size, origin, GENERAL, function, plan
+
     def _lexing(self, state: int) -> tuple:
         """What the loop reads of the state's lexer: (patterns, ignored types,
-        callbacks, types that may hold a newline, blanks); the patterns are the
-        scanner's (Scanner.match, inline: the first that matches), built before
-        the callbacks.  `blanks` matches the ignored WS terminal alone, or is None:
-        no other terminal of the grammar starts with a blank, so where WS matches
-        it is the scanner's match, and the loop skips it without trying the others."""
+        callbacks, types that may hold a newline, blanks, scan); the patterns are
+        the scanner's (Scanner.match, inline: the first that matches), built before
+        the callbacks, and `scan` is the match of the only one, if there is one.
+        `blanks` matches the ignored WS terminal alone, or is None: no other
+        terminal of the grammar starts with a blank, so where WS matches it is the
+        scanner's match, and the loop skips it without trying the others."""
         lexer = self.lexers[state]
         patterns = lexer.scanner._mres
         blank = next((t for t in lexer.terminals if t.name == "WS"), None)
@@ -167,7 +247,9 @@ class FastLalr:
             and not lexer.g_regex_flags
         if plain and "WS" in lexer.ignore_types and "WS" in lexer.newline_types and "WS" not in lexer.callback:
             blanks = re.compile(blank.pattern.value).match
-        entry = self.lexing[state] = (patterns, lexer.ignore_types, lexer.callback, lexer.newline_types, blanks)
+        scan = patterns[0].match if len(patterns) == 1 else None
+        entry = self.lexing[state] = (patterns, lexer.ignore_types, lexer.callback, lexer.newline_types,
+                                      blanks, scan)
         return entry
 
     def _unit_chain(self, below: int, top: int, kind: str) -> int:
@@ -194,11 +276,13 @@ class FastLalr:
             return FAILED
 
     def _parse(self, text: str, start: str):
-        states, rules, retype, units = self.states, self.rules, self.retype, self.units
-        retyped = self.retyped
+        table, retype, units = self.actions, self.retype, self.units
+        retyped, reserve, keywords = self.retyped, self.reserve, self.keyword_table()
         plain_tokens, str_new = PLAIN_TOKENS, str.__new__
-        state_stack = [self.start_states[start]]
+        state = self.start_states[start]        # (the top of state_stack)
+        state_stack = [state]
         value_stack: list = []
+        push = value_stack.append
         end_state = self.end_states[start]
         lexing = self.lexing
         end = len(text)
@@ -207,8 +291,7 @@ class FastLalr:
         while True:
             # Lark's contextual lexer: the next token the parser's state accepts
             # (BasicLexer.next_token, then the postlexer), inline
-            patterns, ignore, callbacks, newlines, blanks = \
-                lexing.get(state_stack[-1]) or self._lexing(state_stack[-1])
+            patterns, ignore, callbacks, newlines, blanks, scan = lexing.get(state) or self._lexing(state)
             token = _END
             while pos < end:
                 if blanks is not None:       # an ignored WS token: only the position moves
@@ -223,12 +306,17 @@ class FastLalr:
                         column = pos - line_start + 1
                         if pos == end:
                             break
-                for pattern in patterns:
-                    found = pattern.match(text, pos, end)
-                    if found:
-                        break
+                if scan is not None:        # the state's scanner is one regex
+                    found = scan(text, pos, end)
+                    if not found:
+                        raise ValueError("no terminal matches here")
                 else:
-                    raise ValueError("no terminal matches here")
+                    for pattern in patterns:
+                        found = pattern.match(text, pos, end)
+                        if found:
+                            break
+                    else:
+                        raise ValueError("no terminal matches here")
                 value, kind = found.group(0), found.lastgroup
                 start, start_line, start_column = pos, line, column
                 if kind in newlines:
@@ -248,27 +336,34 @@ class FastLalr:
                     else:
                         made = new_token(kind, value, start, start_line, start_column, line, column, pos)
                     if kind in callbacks:
-                        made = callbacks[kind](made)
+                        callback = callbacks[kind]
+                        if callback is reserve:     # the keyword callback, inline
+                            keyword = keywords.get(value.upper())
+                            if keyword is not None:
+                                made.type = keyword
+                        else:
+                            made = callback(made)
                     if not ignored:
                         token = retype(made) if made.type in retyped else made
                         break
             kind = token.type
             while True:
-                action, arg = states[state_stack[-1]][kind]
+                action, step = table[state][kind]
                 if action is Shift:
                     if token is _END:
                         raise ValueError("shift at the end of the input")
-                    state_stack.append(arg)
-                    value_stack.append(token)
+                    state = step
+                    state_stack.append(state)
+                    push(token)
                     break
-                size, origin, how, function, keep, nones, _ = rules.get(id(arg)) or self._plan(arg)
+                size, origin, how, function, pick, gotos = step
                 if how == UNIT:         # the value stays; the state is the goto's
                     below = state_stack[-2]
-                    chain = (below, state_stack[-1], kind)
-                    top = units.get(chain)
-                    if top is None:
-                        top = units[chain] = self._unit_chain(below, states[below][origin][1], kind)
-                    state_stack[-1] = top
+                    chain = (below, state, kind)
+                    state = units.get(chain)
+                    if state is None:
+                        state = units[chain] = self._unit_chain(below, gotos[below], kind)
+                    state_stack[-1] = state
                     continue
                 if size:
                     values = value_stack[-size:]
@@ -276,33 +371,48 @@ class FastLalr:
                     del value_stack[-size:]
                 else:
                     values = []
-                if how == LARK:
-                    value_stack.append(function(values))
-                else:
-                    if keep is not None:        # Lark's ChildFilterLALR, inline
-                        children = []
-                        for i, splice, before in keep:
-                            if before:
-                                children += [None] * before
-                            if splice:
-                                if children:
-                                    children += values[i]
-                                else:       # left recursion: extend the list in place
-                                    children = values[i]
-                            else:
-                                children.append(values[i])
-                        if nones:
-                            children += [None] * nones
+                if how == CALL_ALL:
+                    push(function(*values))
+                elif how == LIST_ALL:
+                    push(values)
+                elif how == CALL_PICK:
+                    push(function(*pick(values)))
+                elif how == CALL_ONE:
+                    push(function(values[pick]))
+                elif how == LIST_ONE:
+                    push(values[pick])
+                elif how == CALL_SPREAD:
+                    push(function(*values[pick]))
+                else:       # GENERAL: Lark's ChildFilterLALR and the wrapper, inline
+                    _, _, how, function, keep, nones, _ = pick
+                    if how == LARK:
+                        push(function(values))
                     else:
-                        children = values
-                    if how == INLINE:
-                        value_stack.append(function(*children))
-                    elif how == SPLICE:
-                        value_stack.append(children)
-                    elif how != TREE and len(children) == 1:        # SINGLE, SINGLE_TREE
-                        value_stack.append(children[0])
-                    else:
-                        value_stack.append(function(*children) if how == SINGLE else function(children))
-                state_stack.append(states[state_stack[-1]][origin][1])
-                if token is _END and state_stack[-1] == end_state:
+                        if keep is not None:
+                            children = []
+                            for i, splice, before in keep:
+                                if before:
+                                    children += [None] * before
+                                if splice:
+                                    if children:
+                                        children += values[i]
+                                    else:       # left recursion: extend the list in place
+                                        children = values[i]
+                                else:
+                                    children.append(values[i])
+                            if nones:
+                                children += [None] * nones
+                        else:
+                            children = values
+                        if how == INLINE:
+                            push(function(*children))
+                        elif how == SPLICE:
+                            push(children)
+                        elif how != TREE and len(children) == 1:        # SINGLE, SINGLE_TREE
+                            push(children[0])
+                        else:
+                            push(function(*children) if how == SINGLE else function(children))
+                state = gotos[state_stack[-1]]
+                state_stack.append(state)
+                if token is _END and state == end_state:
                     return value_stack[-1]

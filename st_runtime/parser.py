@@ -82,11 +82,13 @@ class _Grammar:
         self.active = self.keywords          # parse_tests swaps in test_keywords
         self._fast: FastLalr | None = None
 
-        def reserve_keywords(token):
+        def reserve_keywords(token):     # (lalr_fast does the same inline: keep them alike)
             kind = self.active.get(token.value.upper())
             if kind is not None:
                 token.type = kind
             return token
+
+        self.reserve_keywords = reserve_keywords
 
         self.lark = cached_lark(         # tables kept in the user cache (grammar_cache.py)
             grammar,
@@ -99,7 +101,8 @@ class _Grammar:
     @property
     def fast(self) -> FastLalr:
         if self._fast is None:
-            self._fast = FastLalr(self.lark, self.retype, TEST_TERMINALS)   # (retype changes no other)
+            self._fast = FastLalr(self.lark, self.retype, TEST_TERMINALS,   # (retype changes no other)
+                                  keywords=(self.reserve_keywords, lambda: self.active))
         return self._fast
 
     def retype(self, token):

@@ -73,6 +73,10 @@ def is_untyped_constant(e, memo: dict | None = None) -> bool:
     return result
 
 
+#: The only nodes `is_untyped_constant` may find true (others need no look).
+_MAYBE_UNTYPED = (ast.IntLiteral, ast.RealLiteral, ast.Unary, ast.Binary)
+
+
 def start_pos(e) -> ast.Pos:
     """Where an expression starts in the source (a Binary's own pos is its operator)."""
     while True:
@@ -169,7 +173,7 @@ class ExprChecker:
         constant that does not fit `expected` an error."""
         if e is None:
             return ts.ERROR
-        if self.untyped(e):
+        if isinstance(e, _MAYBE_UNTYPED) and self.untyped(e):
             settled = self.settle(e, expected, strict)
             if settled is not None:
                 return settled

@@ -71,6 +71,9 @@ _LEAVES = frozenset({ast.Name, ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral,
                      ast.Return, ast.Empty})
 
 
+_LOOPS = (ast.For, ast.While, ast.Repeat)
+
+
 def _nodes(node) -> list:
     """The nodes under `node` in the walk's order: a node, then the nodes of its fields
     from the last to the first, the items of a tuple in order."""
@@ -107,9 +110,10 @@ class Usage:
         self.assigned: set[str] = set()      # direct stores to the variable (root)
         self.referenced: set[str] = set()    # passed whole to a VAR_IN_OUT
         self.count: dict[str, int] = {}      # occurrences; inside a loop they count 10
-        in_loops = {id(n) for loop in walk(body) if isinstance(loop, (ast.For, ast.While, ast.Repeat))
-                    for n in walk((loop,))}
+        in_loops: set[int] = set()      # every node of a loop (a walk meets the loop first)
         for node in walk(body):
+            if isinstance(node, _LOOPS):
+                in_loops.update(map(id, _nodes(node)))
             if isinstance(node, ast.Name):
                 key = node.name.upper()
                 self.used.add(key)
