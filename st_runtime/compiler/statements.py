@@ -40,7 +40,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import aliases, branches, cse, fastpath, fold, gather, ranges, unguard, unroll
+from .optimise import aliases, branches, chains, cse, fastpath, fold, gather, ranges, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -162,6 +162,8 @@ class BodyCompiler(ExprCompiler):
         try:
             fast()
             o.lines[inner:] = self._segments.resolve(o.lines[inner:])
+            if self.opt.chains:
+                chains.merge(o.lines, inner)
         finally:
             self._segments = None
             self.listed_in_outs = {}
