@@ -12,7 +12,12 @@ includes everything an iteration does (residual, Jacobian, determinant, LU
 solve, update, checks) and the small per-solve overhead spread over the
 iterations. The reference is timed the same way: NewtonRaphsonSolver over the
 same cases, time / iterations. Best of R rounds, CPU time of this process
-(time.process_time), all in the same run.
+(time.process_time), all in the same run; the rounds are interleaved (each
+round times every variant and the reference in turn), so a slow stretch of a
+shared machine reaches every figure alike instead of all the rounds of one.
+(Timed one variant after the other, five rounds fill 0.15 s: on a machine with
+load 13 the table variant read 45.7 us timed first after the reference and
+30.7 us timed again later in the same process.)
 
 The study's NJ501 takes about 49.5 us per iteration (docs/mathematics.md section 3).
 Target (issue 4): the table variant at most 0.5 ms per iteration here.
@@ -39,43 +44,36 @@ NJ501_US_PER_ITERATION = 49.5
 TARGET_MS = 0.5
 
 
-def _best(rounds: int, run) -> float:
+def time_st(variant: str, positions, start, solver, rounds: int) -> tuple[float, int]:
+    """(best CPU seconds per iteration, iterations) of `rounds` runs of one variant in a row."""
+    runtime = load_kinematics(CONFIG, RenderOptions(variant), capacity=len(positions))
     best = float("inf")
     for _ in range(rounds):
-        started = time.process_time()
-        run()
-        best = min(best, time.process_time() - started)
-    return best
+        seconds, iterations = _solve_st(runtime, positions, start, solver)
+        best = min(best, seconds)
+    return best / iterations, iterations
 
 
-def time_st(variant: str, positions, start, solver, rounds: int) -> tuple[float, int]:
-    runtime = load_kinematics(CONFIG, RenderOptions(variant), capacity=len(positions))
-    result = {}
-
-    def run():
-        result["run"] = runtime.forward_kinematics(positions, start, solver)
-
-    seconds = _best(rounds, run)
-    fk = result["run"]
-    assert fk.done.all(), f"{variant}: not every solve converged"
-    return seconds / int(fk.iterations.sum()), int(fk.iterations.sum())
+def _solve_st(runtime, positions, start, solver) -> tuple[float, int]:
+    """(CPU seconds, Newton iterations) of one run of every case in `runtime`."""
+    started = time.process_time()
+    fk = runtime.forward_kinematics(positions, start, solver)
+    seconds = time.process_time() - started
+    assert fk.done.all(), "not every solve converged"
+    return seconds, int(fk.iterations.sum())
 
 
-def time_reference(positions, start, solver, rounds: int) -> tuple[float, int]:
-    total = {}
-
-    def run():
-        iterations = 0
-        for target in positions:
-            machine = NewtonRaphsonSolver(CONFIG.geometry, solver)
-            machine.start(target, start)
-            while not machine.done:
-                machine.step()
-            iterations += machine.iterations
-        total["iterations"] = iterations
-
-    seconds = _best(rounds, run)
-    return seconds / total["iterations"], total["iterations"]
+def _solve_reference(positions, start, solver) -> tuple[float, int]:
+    """(CPU seconds, Newton iterations) of the NumPy reference solving every case."""
+    started = time.process_time()
+    iterations = 0
+    for target in positions:
+        machine = NewtonRaphsonSolver(CONFIG.geometry, solver)
+        machine.start(target, start)
+        while not machine.done:
+            machine.step()
+        iterations += machine.iterations
+    return time.process_time() - started, iterations
 
 
 CONFIG = PlatformConfig.default()
@@ -92,13 +90,23 @@ def main() -> int:
     positions = inverse_kinematics(CONFIG.geometry, poses, CONFIG.stroke).positions
     start = np.asarray(CONFIG.solver.start_pose)
 
+    variants = (("table", "ST, Leibniz table"), ("unrolled", "ST, Leibniz unrolled"),
+                ("lu", "ST, det from LU diagonal"))
+    best = {name: float("inf") for name, _ in variants + (("reference", ""),)}
+    iterations = {}
+    runtimes = {name: load_kinematics(CONFIG, RenderOptions(name), capacity=len(positions)) for name, _ in variants}
+    for _ in range(args.rounds):            # interleaved: every figure sees the same stretch of time
+        for name, _ in variants:
+            seconds, iterations[name] = _solve_st(runtimes[name], positions, start, solver)
+            best[name] = min(best[name], seconds)
+        seconds, iterations["reference"] = _solve_reference(positions, start, solver)
+        best["reference"] = min(best["reference"], seconds)
+    ref_iterations = iterations["reference"]
+    ref_seconds = best["reference"] / ref_iterations
     rows = []
-    ref_seconds, ref_iterations = time_reference(positions, start, solver, args.rounds)
-    for variant, label in (("table", "ST, Leibniz table"), ("unrolled", "ST, Leibniz unrolled"),
-                           ("lu", "ST, det from LU diagonal")):
-        seconds, iterations = time_st(variant, positions, start, solver, args.rounds)
-        assert iterations == ref_iterations, f"{variant}: {iterations} iterations, reference {ref_iterations}"
-        rows.append((label, seconds))
+    for name, label in variants:
+        assert iterations[name] == ref_iterations, f"{name}: {iterations[name]} iterations, reference {ref_iterations}"
+        rows.append((label, best[name] / ref_iterations))
     rows.append(("NumPy reference", ref_seconds))
 
     print(f"FK Newton-Raphson, {args.poses} solves from p_NR, {ref_iterations} iterations "

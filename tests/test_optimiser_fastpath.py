@@ -241,3 +241,82 @@ def test_fk_cut_by_f_period_at_many_budgets_lands_the_same():
         assert on == off
         landed.update((f[1], f[2]) for f in on[1])
     assert {"SP_ForwardKinematics", "SP_LuSolve", "SP_LeibnizDeterminant"} <= {pou for pou, _ in landed}
+
+
+
+# A FUNCTION whose in-out M the fast copy reads and stores at indices in range (Best is
+# within 1..4 by ranges.py), called with a list, and from an FB that passes on its own
+# in-out: run directly, that one is the NullRef of an unconnected in-out.
+IN_OUTS = """
+FUNCTION Scale : BOOL
+VAR_IN_OUT M : ARRAY[1..4] OF LREAL; END_VAR
+VAR I, Best : INT; END_VAR
+Best := 1;
+FOR I := 2 TO 4 DO
+    IF ABS(M[I]) > ABS(M[Best]) THEN
+        Best := I;
+    END_IF;
+END_FOR;
+FOR I := 1 TO 4 DO
+    M[I] := M[I] - M[Best] * 0.5;
+END_FOR;
+Scale := TRUE;
+END_FUNCTION
+
+FUNCTION_BLOCK Relay
+VAR_IN_OUT M : ARRAY[1..4] OF LREAL; END_VAR
+VAR Done : BOOL; END_VAR
+Done := Scale(M := M);
+END_FUNCTION_BLOCK
+
+PROGRAM Main
+VAR
+    M : ARRAY[1..4] OF LREAL := [1.5, -6.0, 3.25, 0.5];
+    Done : BOOL;
+END_VAR
+Done := Scale(M := M);
+END_PROGRAM
+"""
+
+
+def test_the_fast_path_runs_with_the_in_out_arrays_as_lists_only():
+    """In Scale's fast copy, run only when M is a Python list, reads and stores of M at
+    indices in range cannot fault: the IF is tested in place and the stores have no
+    `try`; the exact copy keeps both guarded (M may be a NullRef there)."""
+    program = load_text(IN_OUTS, "inouts.st").program
+    source = compile_program(program, optimise=ON).python_sources["SCALE"]
+    fast, exact = source.split("\n        else:\n", 1)
+    assert "if _ctx.budget >= " in fast and " and _type(v_M) is _list:" in fast
+    assert "if (abs(v_M[1]) > abs(v_M[v_BEST - 1])):" in fast and "if (abs(v_M[" not in exact
+    lines = fast.splitlines()
+    store = next(i for i, line in enumerate(lines) if line.strip().startswith("v_M[0] = "))
+    assert lines[store - 1].strip() != "try:"
+    lines = exact.splitlines()
+    store = next(i for i, line in enumerate(lines) if line.strip().startswith("v_M[0] = "))
+    assert lines[store - 1].strip() == "try:"
+    assert "_type(v_M)" not in compile_program(program, optimise=OFF).python_sources["SCALE"]
+    # by hand: Best = 2 (|-6.0| the largest); M[I] - M[2] * 0.5 with M[2] already -3.0 from I = 2
+    state = {}
+    for optimise in (OFF, ON):
+        plc = Plc(Controller(compile_program(program, optimise=optimise), 1_000_000))
+        main = plc.add_program("Main")
+        plc.run(1)
+        state[optimise] = (main["M"], main["Done"], list(plc.controller.task_times["Primary"]))
+    assert state[ON] == state[OFF]
+    assert state[ON][:2] == ([4.5, -3.0, 4.75, 2.0], True)
+
+
+def test_an_unconnected_in_out_passed_on_takes_the_exact_path():
+    """M is not a list: the exact path runs, and every read of M faults F-NULL-REF at its
+    own line, as with the pass off (the same faults in the same order, the same time)."""
+    from test_optimiser_equivalence import _Context
+
+    program = load_text(IN_OUTS, "inouts.st").program
+    outcomes = []
+    for optimise in (OFF, ON):
+        compiled = compile_program(program, optimise=optimise)
+        fb, context = compiled.new("Relay"), _Context()
+        type(fb).execute(fb, context)
+        outcomes.append((context.faults, context.budget, fb.v_DONE))
+    assert outcomes[0] == outcomes[1]
+    assert {f[1] for f in outcomes[0][0]} == {"F-NULL-REF"} and len(outcomes[0][0]) > 4

@@ -113,3 +113,51 @@ def test_a_long_integer_product_meeting_a_real_keeps_its_guard(tmp_path):
     assert [(code, line) for code, _, line, _, _ in on[0]] == [("F-MATH", 4)]
     main = dict(on[1][0][1])["MAIN"]              # (class name, (slot, value), ...)
     assert dict(main[1:])["v_Y"] == ("f", (2.5).hex())
+
+
+ELEMENTS = """\
+FUNCTION_BLOCK Store
+VAR_IN_OUT Shared : ARRAY[1..3] OF LREAL; END_VAR
+VAR
+    Own : ARRAY[1..3] OF LREAL;
+    Counts : ARRAY[0..2] OF INT;
+    Scaled : ARRAY[1..2] OF REAL;
+    X : LREAL := 2.5;
+    N : INT := 7;
+    Y : REAL := 1.5;
+END_VAR
+Own[2] := X * X - 1.0;
+Counts[1] := N + 1;
+Shared[1] := X;
+Own[3] := Shared[2];
+Scaled[1] := Y * Y;
+Own[1] := X / 2.0;
+END_FUNCTION_BLOCK
+"""
+
+
+def test_element_stores_at_literal_indices_of_owned_arrays_lose_their_try():
+    """`Own[2] := X * X - 1.0` and `Counts[1] := N + 1` (the INT wrap is arithmetic) store
+    into the FB's own lists at indices in range: no `try`.  An in-out (a NullRef when
+    unconnected), a read of one, a REAL store (a call rounds it) and a division keep it."""
+    from st_runtime.api import load_text
+
+    program = load_text(ELEMENTS, "elements.st").program
+    source = compile_program(program, optimise=Optimisations()).python_sources["STORE"]
+    for fragment in ("v_OWN[1] = ", "v_COUNTS[1] = "):
+        assert not _guarded(source, fragment), fragment
+    for fragment in ("v_SHARED[0] = ", "v_OWN[2] = ", "v_SCALED[0] = ", "v_OWN[0] = "):
+        assert _guarded(source, fragment), fragment
+    without = compile_program(program, optimise=Optimisations.none()).python_sources["STORE"]
+    assert _guarded(without, "v_OWN[1] = ")
+    from test_optimiser_equivalence import _Context
+
+    outcomes = []
+    for optimise in (Optimisations.none(), Optimisations()):
+        compiled = compile_program(program, optimise=optimise)
+        fb, context = compiled.new("Store"), _Context()
+        type(fb).execute(fb, context)          # Shared unconnected: its store and read fault
+        outcomes.append((context.faults, fb.v_OWN, fb.v_COUNTS, fb.v_SCALED))
+    assert outcomes[0] == outcomes[1]
+    assert [f[1] for f in outcomes[0][0]] == ["F-NULL-REF", "F-NULL-REF"]
+    assert outcomes[0][1:3] == ([1.25, 5.25, 0.0], [0, 8, 0])     # 2.5 * 2.5 - 1.0; 7 + 1

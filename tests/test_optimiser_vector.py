@@ -69,6 +69,11 @@ def builds():
     return {name: compile_program(program, optimise=o) for name, o in (("on", ON), ("off", NO_VECTOR))}
 
 
+def helpers_in(compiled) -> list:
+    """The Vectorised helpers a build calls (the namespace binds each one's `run`)."""
+    return [v.__self__ for v in compiled.namespace.values() if isinstance(getattr(v, "__self__", None), vector.Vectorised)]
+
+
 def _run(compiled, matrix):
     fb, context = compiled.new("Det5"), _Context()
     fb.v_M = list(matrix)
@@ -83,10 +88,10 @@ def test_the_pass_fires_on_a_5x5_leibniz_table(builds):
     # that faults exactly when one of them would (an unconnected M)
     assert re.findall(r"= v_M\[(\d+)\]$", on, re.M) == [str(N * N - 1)]
     assert "((v_D + " in off and "((v_D + " not in on      # the fused sums: gone with the pass
-    helpers = [v for v in builds["on"].namespace.values() if isinstance(v, vector.Vectorised)]
+    helpers = helpers_in(builds["on"])
     assert len(helpers) == 1
     assert [stop - start for _, _, start, stop in helpers[0].levels] == [20, 60, 120, 120]   # partial products
-    assert not any(isinstance(v, vector.Vectorised) for v in builds["off"].namespace.values())
+    assert not helpers_in(builds["off"])
 
 
 SPECIALS = [0.0, -0.0, math.inf, -math.inf, math.nan, 1e308, -1e200, 5e-324, -2.5e-310, 1e60]
@@ -208,7 +213,7 @@ def test_inputs_that_struct_cannot_pack_take_the_python_run(builds):
     """The inputs are written into NumPy's buffer by one struct.pack_into; an input it
     cannot pack as a double (an int beyond the double range, a string) makes the call
     compute the run in Python (`exact`), as an input NumPy must not see does."""
-    helper = next(v for v in builds["on"].namespace.values() if isinstance(v, vector.Vectorised))
+    helper, = helpers_in(builds["on"])
     m = [float(i % 7) - 3.0 for i in range(N * N)]
     assert helper(m, (0.0,)) == helper.exact(m, (0.0,))
     assert helper(m, (0,)) == helper.exact(m, (0,))                    # an int packs exactly

@@ -40,7 +40,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import aliases, branches, cse, fastpath, fold, gather, ranges, unguard, unroll
+from .optimise import aliases, branches, chains, cse, fastpath, fold, gather, ranges, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -64,6 +64,7 @@ class BodyCompiler(ExprCompiler):
         # id(branch body) -> alias lines moved there from the prologue (optimise/aliases.py)
         self._late_loads = aliases.late_loads(self, body) if self.opt.aliases and not self._whole_region else {}
         self._segments: fastpath.Segments | None = None     # while the fast body is compiled
+        self.listed_in_outs: dict[str, str] = {}    # in-outs the fast body runs with as lists
 
     def _add_return_variable(self) -> None:
         key = self.pou.name.upper()
@@ -127,12 +128,14 @@ class BodyCompiler(ExprCompiler):
             self._statements_of_body()
         else:
             self._fast_or_exact(f"_ctx.budget >= {picoseconds(worst)}", self._statements_of_body,
-                                self._statements_of_body)
+                                self._statements_of_body, self.body)
 
-    def _fast_or_exact(self, test: str, fast, exact) -> None:
+    def _fast_or_exact(self, test: str, fast, exact, body) -> None:
         """The code `exact()` emits; when it has at least `fastpath.WORTH` budget checks,
         `if test:` the code `fast()` emits without them, its charges merged
-        (fastpath.Segments), `else:` the exact code.  Both from the same state."""
+        (fastpath.Segments), `else:` the exact code.  Both from the same state.
+        The fast code runs only when the FUNCTION's in-out arrays `body` names are
+        Python lists, and is compiled knowing it (fastpath.listed_in_outs)."""
         o = self.out
         mark = o.mark()
         before = self.flow.state() if self.flow is not None else None
@@ -150,15 +153,20 @@ class BodyCompiler(ExprCompiler):
         if self.flow is not None:
             after_exact = self.flow.state()
             self.flow.set(before)
-        o.line(f"if {test}:")
+        listed = fastpath.listed_in_outs(self, body) if self.opt.unguard or self.opt.branches else {}
+        o.line(f"if {test}{''.join(f' and _type({name}) is _list' for name in listed.values())}:")
         o.indent()
         inner = o.mark()
         self._segments = fastpath.Segments()
+        self.listed_in_outs = listed
         try:
             fast()
             o.lines[inner:] = self._segments.resolve(o.lines[inner:])
+            if self.opt.chains:
+                chains.merge(o.lines, inner)
         finally:
             self._segments = None
+            self.listed_in_outs = {}
         o.ensure_body(inner)
         o.dedent()
         o.line("else:")
@@ -713,7 +721,7 @@ class BodyCompiler(ExprCompiler):
         if worst is not None:       # each iteration: the fast path when the time left covers it
             self._fast_or_exact(f"_ctx.budget - _spent >= {picoseconds(worst + self.cost.loop())}",
                                 lambda: self.statements(s.body, self.cost.loop()),
-                                lambda: self.statements(s.body, self.cost.loop(), where))
+                                lambda: self.statements(s.body, self.cost.loop(), where), s.body)
         elif early:
             self.statements(s.body, self.cost.loop(), where)
         else:

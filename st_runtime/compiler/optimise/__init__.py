@@ -35,7 +35,8 @@ states bit for bit:
   1,950 products and 720 sums) is one call that computes the products depth
   by depth and each `D := D +- term` chain with `np.add.accumulate` (left to
   right); inputs that are not finite or could overflow take the same run in
-  Python, so the results are Python's bit for bit.
+  Python, so the results are Python's bit for bit.  Each run's call is one
+  generated function (no loop over the levels; its input check by `argmax`).
 * `ranges` (ranges.py): the values an integer local can hold are followed
   through the code as it is written (assignments, IF/CASE joins, loops), so
   a bounds check that can never fail is left out (`Matrix[PivotRow, K]`
@@ -50,7 +51,9 @@ states bit for bit:
   not located, whose attribute is a process-image property, nor VAR_IN_OUT,
   REF_TO or global) of an expression that cannot fault by the branches
   pass's rule (owned reads, literals, comparisons, logic, unary minus,
-  `+ - *`; no division, power, shift or call).  The handler catches
+  `+ - *`; no division, power, shift or call), or a store of such an
+  expression at a literal index (in range) into the POU's own array of
+  elementary elements.  The handler catches
   `_FAULTS` only, so where nothing can raise one it never runs: same
   results, faults and charges.
 * `branches` (branches.py): an IF whose conditions cannot fault (owned
@@ -67,7 +70,14 @@ states bit for bit:
   loop counts, callees bounded too, no METHOD or PROPERTY) and whose exact
   code has at least `fastpath.WORTH` budget checks is compiled a second time
   without the checks and with one charge per straight run of blocks; it runs
-  when the time left covers the worst case, the exact code otherwise.
+  when the time left covers the worst case, the exact code otherwise.  A
+  FUNCTION's in-out arrays are owned storage in that copy, which runs only
+  when each is a Python list (not an unconnected in-out's NullRef passed on),
+  so `unguard` and `branches` apply to their reads and stores there.
+* `chains` (chains.py): in a fast copy, two adjacent stores of one array
+  element, neither guarded (so neither can raise), the second of the form
+  `X[k] = (X[k] op rest)` where `rest` reads nothing at index k, are one
+  store of `(first op rest)`: the same operations in the same order.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -99,6 +109,7 @@ class Optimisations:
     branches: bool = True
     aliases: bool = True
     fastpath: bool = True
+    chains: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

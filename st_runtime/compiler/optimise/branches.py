@@ -13,7 +13,8 @@ charges are the branches' own lines, cost.py).
 What cannot fault, judged on the ST expression and on its Python code both:
 
 * ST: no dereference, every variable read owned storage (not a VAR_IN_OUT,
-  which may be unconnected: NullRef raises F-NULL-REF on any read, nor a
+  which may be unconnected: NullRef raises F-NULL-REF on any read, unless
+  the fast path being compiled runs only when it is a Python list; nor a
   REF_TO or interface), no member that is an FB's VAR_IN_OUT;
 * Python: names, literals, attribute reads and subscripts (of owned lists
   and objects: an IndexError or AttributeError is not caught by the
@@ -74,7 +75,8 @@ def expr_cannot_fault(compiler, node, code: str) -> bool:
             return False
         if isinstance(n, ast.Name):
             symbol = _symbol(compiler, n)
-            if symbol is not None and (symbol.kind == "VAR_IN_OUT" or not _owned(symbol.type)):
+            if symbol is not None and ((symbol.kind == "VAR_IN_OUT" and not listed(compiler, n))
+                                       or not _owned(symbol.type)):
                 return False
         elif isinstance(n, ast.Member):
             base = resolve_alias(compiler.ty(n.base))
@@ -88,6 +90,12 @@ def expr_cannot_fault(compiler, node, code: str) -> bool:
             if not _owned(member_type):
                 return False
     return True
+
+
+def listed(compiler, name) -> bool:
+    """`name` is a VAR_IN_OUT the fast path being compiled runs with only when it holds a
+    Python list (fastpath.listed_in_outs): owned storage there."""
+    return name.name.upper() in getattr(compiler, "listed_in_outs", ())
 
 
 def _symbol(compiler, name):

@@ -38,12 +38,31 @@ import re
 
 from ... import ast
 from ...native import NATIVE_FBS
+from ...types import ArrayType, resolve_alias
 from ..scope import walk
 
 _JUMPS = (ast.Exit, ast.Continue, ast.Return)
 WORTH = 8               # budget checks the exact code must have (the LU: 64, the FK: 23)
 MAX_VALUES = 64         # values of a loop variable the bound is worked out for one by one
 _TOKEN = re.compile("\x02([SA])([0-9:,]*)\x02")
+
+
+def listed_in_outs(compiler, body) -> dict[str, str]:
+    """A FUNCTION's VAR_IN_OUT arrays (not ARRAY[*]) that `body` names: upper name ->
+    the parameter's Python name.  The fast path runs only when each holds a Python list
+    (`_type(v) is _list`; not the NullRef of an unconnected in-out passed on), so in it
+    their reads and stores at indices in range cannot fault (branches.py, unguard.py)."""
+    if compiler.pou.kind != "FUNCTION":
+        return {}
+    named = {n.name.upper() for n in walk(body) if isinstance(n, ast.Name)}
+    found = {}
+    for key, symbol in compiler.pou.variables.items():
+        t = resolve_alias(symbol.type)
+        if symbol.kind == "VAR_IN_OUT" and key in named and isinstance(t, ArrayType) and not t.is_open:
+            place = compiler.scope.places.get(key)
+            if place is not None and place.how == "alias":
+                found[key] = place.name
+    return found
 
 
 def worst_case(compiler, body) -> int | None:

@@ -20,6 +20,13 @@ Two rules, either one suffices:
   division, power, shift or call but `abs min max`).  Storing into a slot
   or a local raises nothing; the conversion to the target's type, where one
   is needed, is a call and keeps the handler.
+* owned element store: `A[i, j] := expression` compiled to `v_A[k] = code`
+  with a literal index (the compiler writes one only where the index is
+  in range), where A is an array the POU owns as plain storage (as above;
+  or a FUNCTION's VAR_IN_OUT inside a fast path that runs only when it
+  is a Python list: fastpath.listed_in_outs) of an elementary element
+  type, and the expression cannot fault by the same rule.  A store into
+  a list at an index in range raises nothing.
 
 The handler catches `_FAULTS` only: when the code cannot raise one, the
 handler never runs and results, faults and the charged cost are the same.
@@ -32,12 +39,13 @@ from __future__ import annotations
 import re
 
 from ... import ast
-from ...types import ElementaryType, resolve_alias
+from ...types import ArrayType, ElementaryType, resolve_alias
 from . import branches
 
 _ASSIGNMENT = re.compile(r"\s*[A-Za-z_]\w* = ([\w\s()+\-*.]+)")
 _ATTRIBUTE_OR_CALL = re.compile(r"[A-Za-z_]\w*\s*[.(]")
 _STORE = re.compile(r"\s*(?:self\.)?[A-Za-z_]\w* = (.+)")
+_ELEMENT_STORE = re.compile(r"\s*(?:self\.)?[A-Za-z_]\w*\[\d+\] = (.+)")
 _PLAIN_KINDS = {"VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP", "RETURN"}
 
 
@@ -45,7 +53,7 @@ def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:
     """The assignment's code `lines` raises nothing `_FAULTS` catches (module docstring)."""
     if lines and all(_local_arithmetic(line) for line in lines):
         return True
-    return compiler is not None and _owned_store(compiler, node, lines)
+    return compiler is not None and (_owned_store(compiler, node, lines) or _owned_element_store(compiler, node, lines))
 
 
 def _local_arithmetic(line: str) -> bool:
@@ -62,6 +70,28 @@ def _owned_store(compiler, node, lines: list[str]) -> bool:
     if match is None or not _plain_variable(compiler, node.target):
         return False
     return branches.expr_cannot_fault(compiler, node.value, match.group(1))
+
+
+def _owned_element_store(compiler, node, lines: list[str]) -> bool:
+    if len(lines) != 1 or not isinstance(node, ast.Assign) or node.mode != ":=" \
+            or not isinstance(node.target, ast.Index) or not isinstance(node.target.base, ast.Name):
+        return False
+    match = _ELEMENT_STORE.fullmatch(lines[0])
+    if match is None or not _plain_array(compiler, node.target.base):
+        return False
+    return branches.expr_cannot_fault(compiler, node.value, match.group(1))
+
+
+def _plain_array(compiler, name) -> bool:
+    """`name` is an array of elementary elements the POU owns as a Python list (or an
+    in-out the fast path has seen to be one)."""
+    symbol = branches._symbol(compiler, name)
+    if symbol is None or not (symbol.kind in _PLAIN_KINDS or branches.listed(compiler, name)):
+        return False
+    if symbol.decl is not None and getattr(symbol.decl, "location", None) is not None:
+        return False
+    t = resolve_alias(symbol.type)
+    return isinstance(t, ArrayType) and not t.is_open and isinstance(resolve_alias(t.element), ElementaryType)
 
 
 def _plain_variable(compiler, name) -> bool:
