@@ -230,3 +230,24 @@ def test_the_hot_paths_run_in_place_of_the_call_do_what_the_call_does(monkeypatc
     assert {s[3] for s in every_call} == {0, ErrorID.AXIS_NOT_ASSIGNED}
     assert ErrorID.RE_EXECUTION_DISABLED in {s[4] for s in every_call}
     assert any(axes[1][1] for _, axes, *_ in every_call)        # Cyl2 powered while Cfg named it
+
+
+@pytest.fixture()
+def hot_paths_built_in_the_test(monkeypatch):
+    """MC_Power's and MC_SyncMoveAbsolute's `execute` built again from their HotPath inside the
+    test: the module builds them at import, before a test (or a mutation tool) can change
+    `HotPath.install`, so the tests above alone cannot tell a broken `install` (restored after)."""
+    for cls in (fbs.MC_Power, fbs.MC_SyncMoveAbsolute):
+        built_at_import = cls.execute
+        monkeypatch.setattr(cls, "execute", built_at_import)
+        cls.HOT_PATH.install(cls)
+        assert cls.execute is not built_at_import
+
+
+def test_mc_power_built_from_its_hot_path_in_the_test_follows_its_axis_ref(hot_paths_built_in_the_test):
+    test_mc_power_follows_the_axis_ref_it_is_given_every_call()
+
+
+def test_the_calls_built_from_the_hot_paths_in_the_test_do_what_the_hot_paths_do(
+        hot_paths_built_in_the_test, monkeypatch):
+    test_the_hot_paths_run_in_place_of_the_call_do_what_the_call_does(monkeypatch)
