@@ -251,3 +251,18 @@ def test_mc_power_built_from_its_hot_path_in_the_test_follows_its_axis_ref(hot_p
 def test_the_calls_built_from_the_hot_paths_in_the_test_do_what_the_hot_paths_do(
         hot_paths_built_in_the_test, monkeypatch):
     test_the_hot_paths_run_in_place_of_the_call_do_what_the_call_does(monkeypatch)
+
+
+def test_an_execute_fb_that_writes_its_own_execute_keeps_it_and_gets_the_idle_rules():
+    # `_spell_out_idle_call` runs as each class is made (module import for the library's FBs):
+    # a class made here shows what it does with a class that writes its own `execute`.
+    class Logged(fbs.MC_Stop):
+        def execute(self, ctx):
+            self._execute_rules(ctx)
+
+    class Plain(fbs.MC_Stop):
+        pass
+
+    assert Logged.execute.__qualname__.endswith("Logged.execute")
+    assert Plain.execute is Plain._execute_rules
+    assert Logged._execute_rules.__name__ == "_execute_rules"
