@@ -138,3 +138,25 @@ def test_a_controller_without_a_motion_attribute_takes_a_motion_task():
     second = MotionTask.from_tables([AXIS])
     second.install(controller)
     assert controller.motion is second and task is not second
+
+
+def test_an_axis_table_that_is_not_a_table_is_named_axis_by_default():
+    from st_runtime.motion.axis_config import AxisConfigError, axis_config_from_dict
+
+    with pytest.raises(AxisConfigError, match=r"^axis: expected a table of axis settings, found int$"):
+        axis_config_from_dict(5)
+
+
+def test_dir_follows_the_sign_of_a_slow_command_velocity():
+    # Dir.Posi / Dir.Nega show the sign of the command velocity, however small (a creep
+    # below 1 mm/s included): the writer rewrites them whenever that sign changes.
+    from st_runtime.motion.types import bind_axis_ref
+
+    axis = powered()
+    ref = make_axis_ref()
+    writer = bind_axis_ref(ref, axis)
+    assert (ref.v_DIR.v_POSI, ref.v_DIR.v_NEGA) == (False, False)
+    for velocity, shown in ((0.5, (True, False)), (-0.5, (False, True)), (0.0, (False, False))):
+        axis.cmd_vel = velocity
+        writer.write()
+        assert (ref.v_DIR.v_POSI, ref.v_DIR.v_NEGA) == shown, velocity
