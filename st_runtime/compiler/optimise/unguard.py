@@ -53,7 +53,7 @@ def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:
     """The assignment's code `lines` raises nothing `_FAULTS` catches (module docstring)."""
     if lines and all(_local_arithmetic(line) for line in lines):
         return True
-    return compiler is not None and (_owned_store(compiler, node, lines) or _owned_element_store(compiler, node, lines))
+    return compiler is not None and _owned_store(compiler, node, lines)
 
 
 def _local_arithmetic(line: str) -> bool:
@@ -63,32 +63,40 @@ def _local_arithmetic(line: str) -> bool:
 
 
 def _owned_store(compiler, node, lines: list[str]) -> bool:
-    if len(lines) != 1 or not isinstance(node, ast.Assign) or node.mode != ":=" \
-            or not isinstance(node.target, ast.Name):
+    """One `:=` into the POU's own storage (module docstring): an elementary variable
+    (`v = code`) or, at a literal index, an element of an array of elementary elements
+    (`v[k] = code`), whose expression cannot fault."""
+    if len(lines) != 1 or not isinstance(node, ast.Assign) or node.mode != ":=":
         return False
-    match = _STORE.fullmatch(lines[0])
-    if match is None or not _plain_variable(compiler, node.target):
+    target = node.target
+    if isinstance(target, ast.Name):
+        match = _STORE.fullmatch(lines[0])
+        owned = match is not None and _plain_variable(compiler, target)
+    elif isinstance(target, ast.Index) and isinstance(target.base, ast.Name):
+        match = _ELEMENT_STORE.fullmatch(lines[0])
+        owned = match is not None and _plain_array(compiler, target.base)
+    else:
         return False
-    return branches.expr_cannot_fault(compiler, node.value, match.group(1))
+    return owned and branches.expr_cannot_fault(compiler, node.value, match.group(1))
 
 
-def _owned_element_store(compiler, node, lines: list[str]) -> bool:
-    if len(lines) != 1 or not isinstance(node, ast.Assign) or node.mode != ":=" \
-            or not isinstance(node.target, ast.Index) or not isinstance(node.target.base, ast.Name):
-        return False
-    match = _ELEMENT_STORE.fullmatch(lines[0])
-    if match is None or not _plain_array(compiler, node.target.base):
-        return False
-    return branches.expr_cannot_fault(compiler, node.value, match.group(1))
+def _own_symbol(compiler, name, listed_in_outs: bool = False):
+    """The symbol of `name` when the POU holds it as plain storage: its own variable (a
+    global has kind VAR_GLOBAL) or, with `listed_in_outs`, an in-out the fast path has seen
+    to be a Python list; not located (AT %...).  Else None."""
+    symbol = branches._symbol(compiler, name)
+    if symbol is None or not (symbol.kind in _PLAIN_KINDS or listed_in_outs and branches.listed(compiler, name)):
+        return None
+    if symbol.decl is not None and getattr(symbol.decl, "location", None) is not None:
+        return None
+    return symbol
 
 
 def _plain_array(compiler, name) -> bool:
     """`name` is an array of elementary elements the POU owns as a Python list (or an
     in-out the fast path has seen to be one)."""
-    symbol = branches._symbol(compiler, name)
-    if symbol is None or not (symbol.kind in _PLAIN_KINDS or branches.listed(compiler, name)):
-        return False
-    if symbol.decl is not None and getattr(symbol.decl, "location", None) is not None:
+    symbol = _own_symbol(compiler, name, listed_in_outs=True)
+    if symbol is None:
         return False
     t = resolve_alias(symbol.type)
     return isinstance(t, ArrayType) and not t.is_open and isinstance(resolve_alias(t.element), ElementaryType)
@@ -96,9 +104,5 @@ def _plain_array(compiler, name) -> bool:
 
 def _plain_variable(compiler, name) -> bool:
     """`name` is the POU's own elementary variable held as a local or a slot."""
-    symbol = branches._symbol(compiler, name)       # a global has kind VAR_GLOBAL
-    if symbol is None or symbol.kind not in _PLAIN_KINDS:
-        return False
-    if symbol.decl is not None and getattr(symbol.decl, "location", None) is not None:
-        return False
-    return isinstance(resolve_alias(symbol.type), ElementaryType)
+    symbol = _own_symbol(compiler, name)
+    return symbol is not None and isinstance(resolve_alias(symbol.type), ElementaryType)
