@@ -27,7 +27,7 @@ from ..types import (
     string_size,
 )
 from .initial import CompileError
-from .optimise import Optimisations, absolute, fold
+from .optimise import Optimisations, absolute, fold, sets
 from .pysrc import pyliteral, pyident
 
 # Python source of the comparison/arithmetic operators that map one to one.
@@ -406,6 +406,10 @@ class ExprCompiler:
 
     def _binary(self, e):
         op = e.op
+        if self.opt.sets and op in ("OR", "AND"):
+            tests = sets.chain(self, e)         # `X = a OR X = b`: `X in (a, b)`
+            if tests is not None:
+                return tests
         lt, rt, t = self.ty(e.left), self.ty(e.right), self.ty(e)
         left, right = self.expr(e.left), self.expr(e.right)
         if op not in _BIT_OPS and not (op in ("+", "-", "*") and is_int_like(t)):

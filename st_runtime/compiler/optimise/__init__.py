@@ -79,6 +79,10 @@ states bit for bit:
   `X[k] = (X[k] op rest)` where `rest` reads nothing at index k, are one
   store of `(first op rest)`: the same operations in the same order.
 
+* `sets` (sets.py): in an OR chain, a run of `X = c` comparisons of one
+  plain integer variable with constants is `X in (c1, c2, ...)`; in an AND
+  chain a run of `X <> c` is `X not in (...)`: the same bool, X read once.
+
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
 checks; the fast path charges the same total, and leaves out only checks
@@ -110,6 +114,7 @@ class Optimisations:
     aliases: bool = True
     fastpath: bool = True
     chains: bool = True
+    sets: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
