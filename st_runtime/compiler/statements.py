@@ -40,7 +40,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import aliases, branches, chains, cse, fastpath, fold, gather, ranges, unguard, unroll
+from .optimise import aliases, branches, chains, cse, fastpath, fold, gather, ranges, stores, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -63,6 +63,9 @@ class BodyCompiler(ExprCompiler):
         self._whole_region = self.opt.cse and unit.guard_statements and cse.worth_a_region(self, body)
         # id(branch body) -> alias lines moved there from the prologue (optimise/aliases.py)
         self._late_loads = aliases.late_loads(self, body) if self.opt.aliases and not self._whole_region else {}
+        # id(branch body) -> store-back lines (and their loads) moved there (optimise/stores.py)
+        self._late_stores = stores.late_stores(self, body) if self.opt.stores and method and not self._whole_region \
+            else stores.LateStores()
         self._segments: fastpath.Segments | None = None     # while the fast body is compiled
         self.listed_in_outs: dict[str, str] = {}    # in-outs the fast body runs with as lists
 
@@ -237,6 +240,13 @@ class BodyCompiler(ExprCompiler):
             segments.enter()
         for line in self._late_loads.get(id(body), ()):
             self.out.line(line)
+        stored_back = self._late_stores.stores.get(id(body))
+        if stored_back:
+            for line in self._late_stores.loads.get(id(body), ()):
+                self.out.line(line)
+            self.out.line("try:")
+            self.out.indent()
+            mark = self.out.mark()
         first = True
         for simple, compound in _blocks(body):
             units = sum(self._simple_cost(st) for st in simple) + (self._head_cost(compound) if compound else 0)
@@ -249,6 +259,12 @@ class BodyCompiler(ExprCompiler):
                 self._statement_in_segment(stmt)
             if compound is not None:
                 self._statement_in_segment(compound)
+        if stored_back:
+            self.out.ensure_body(mark)
+            self.out.dedent()
+            self.out.line("finally:")
+            for line in stored_back:
+                self.out.line("    " + line)
         if segments is not None:
             segments.leave()
 

@@ -82,6 +82,10 @@ states bit for bit:
 * `sets` (sets.py): in an OR chain, a run of `X = c` comparisons of one
   plain integer variable with constants is `X in (c1, c2, ...)`; in an AND
   chain a run of `X <> c` is `X not in (...)`: the same bool, X read once.
+* `stores` (stores.py): a cached variable whose stores are all in one IF
+  branch or CASE clause is stored back to its slot in a `finally` around
+  that branch, not at the end of every call, and loaded at the branch's
+  start when every use is there too.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -115,6 +119,7 @@ class Optimisations:
     fastpath: bool = True
     chains: bool = True
     sets: bool = True
+    stores: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

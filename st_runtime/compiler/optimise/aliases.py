@@ -42,51 +42,77 @@ def late_loads(compiler, body) -> dict[int, list[str]]:
             candidates[names[match.group(1)]] = line
     if not candidates:
         return {}
-    paths: dict[str, list[tuple]] = {key: [] for key in candidates}
-    _visit(body, (), paths)
-    counts = {key: 0 for key in candidates}
-    for node in walk(body):
-        if isinstance(node, ast.Name) and node.name.upper() in counts:
-            counts[node.name.upper()] += 1
+    paths = branch_paths(body, set(candidates), names_in)
+    counts = name_counts(body, candidates)
     loads: dict[int, list[str]] = {}
     for key, line in candidates.items():
         found = paths[key]
-        if not found or len(found) != counts[key]:
+        if len(found) != counts[key]:
             continue
-        common = found[0]
-        for path in found[1:]:
-            n = 0
-            while n < min(len(common), len(path)) and common[n] == path[n]:
-                n += 1
-            common = common[:n]
+        common = common_branch(found)
         if common:
             scope.prologue.remove(line)
             loads.setdefault(common[-1], []).append(line)
     return loads
 
 
-def _visit(stmts, path: tuple, paths: dict) -> None:
+def branch_paths(body, keys: set[str], names_of) -> dict[str, list[tuple]]:
+    """For each name of `keys`: the path (ids of the IF branch and CASE clause bodies around
+    it, outermost first) of each of its occurrences `names_of(node)` yields, looking no
+    deeper than the first loop (a loop is one statement)."""
+    paths: dict[str, list[tuple]] = {key: [] for key in keys}
+    _visit(body, (), paths, names_of)
+    return paths
+
+
+def name_counts(body, keys) -> dict[str, int]:
+    """How often each name of `keys` occurs in `body` (what `branch_paths` must all find)."""
+    counts = {key: 0 for key in keys}
+    for node in walk(body):
+        if isinstance(node, ast.Name) and node.name.upper() in counts:
+            counts[node.name.upper()] += 1
+    return counts
+
+
+def common_branch(paths: list[tuple]) -> tuple | None:
+    """The longest path all of `paths` start with; None when there is none, or no path."""
+    if not paths:
+        return None
+    common = paths[0]
+    for path in paths[1:]:
+        n = 0
+        while n < min(len(common), len(path)) and common[n] == path[n]:
+            n += 1
+        common = common[:n]
+    return common or None
+
+
+def _visit(stmts, path: tuple, paths: dict, names_of) -> None:
     for stmt in stmts or ():
         if isinstance(stmt, ast.If):
             for branch in stmt.branches:
-                _names(branch.condition, path, paths)
-                _visit(branch.body, path + (id(branch.body),), paths)
+                _record(branch.condition, path, paths, names_of)
+                _visit(branch.body, path + (id(branch.body),), paths, names_of)
             if stmt.else_body:
-                _visit(stmt.else_body, path + (id(stmt.else_body),), paths)
+                _visit(stmt.else_body, path + (id(stmt.else_body),), paths, names_of)
         elif isinstance(stmt, ast.Case):
-            _names(stmt.selector, path, paths)
+            _record(stmt.selector, path, paths, names_of)
             for clause in stmt.clauses:
-                _names(clause.labels, path, paths)
-                _visit(clause.body, path + (id(clause.body),), paths)
+                _record(clause.labels, path, paths, names_of)
+                _visit(clause.body, path + (id(clause.body),), paths, names_of)
             if stmt.else_body:
-                _visit(stmt.else_body, path + (id(stmt.else_body),), paths)
+                _visit(stmt.else_body, path + (id(stmt.else_body),), paths, names_of)
         else:       # a simple statement, or a loop: every name in it at this path
-            _names(stmt, path, paths)
+            _record(stmt, path, paths, names_of)
 
 
-def _names(node, path: tuple, paths: dict) -> None:
-    for n in walk(node if isinstance(node, tuple) else (node,)):
-        if isinstance(n, ast.Name):
-            found = paths.get(n.name.upper())
-            if found is not None:
-                found.append(path)
+def _record(node, path: tuple, paths: dict, names_of) -> None:
+    for name in names_of(node):
+        found = paths.get(name)
+        if found is not None:
+            found.append(path)
+
+
+def names_in(node):
+    """The names `node` reads or stores, one per occurrence."""
+    return (n.name.upper() for n in walk(node if isinstance(node, tuple) else (node,)) if isinstance(n, ast.Name))

@@ -1,0 +1,131 @@
+"""`stores`: a cached variable stored in one branch only is written back at that branch's end.
+
+A FUNCTION_BLOCK or PROGRAM body caches an elementary variable it uses often in a
+Python local: loaded in the prologue (`v_X = self.v_X`), stored back in the
+`finally` that ends every call (`self.v_X = v_X`; scope.py).  When every store of
+the variable in the body is inside one IF branch or CASE clause (the innermost
+that holds them all, looking no deeper than the first loop around a store, as
+the `aliases` pass looks for uses), its store back moves to a `finally` around
+that branch's code:
+
+    <branch's loads>
+    try:
+        <the branch>
+    finally:
+        self.v_X = v_X
+
+and when every use is inside that branch too, the load moves to the start of the
+branch as well.  A call that does not take the branch neither loads nor stores
+the variable (TRJ_OceanWave's latch of a new wave, SP_Controller's cold states).
+
+Exact: no code but the body's can read or change the slot while the body runs
+(scope.py caches nothing a reference, a METHOD or THIS can reach), so the slot
+only has to hold the local's value when the call ends; outside the branch the
+local is not changed, so the store at the branch's end (on every way out: its
+end, RETURN, a fault that stops the run) leaves the slot as the store at the
+call's end would.  The store and the load cannot raise, and `try`/`finally`
+costs no instruction on CPython 3.11 when nothing is raised, so faults,
+charges and F-PERIOD are as before.  A branch nested more than `MAX_DEPTH`
+deep, or holding loops more than `MAX_LOOPS` deep, is left alone (CPython
+allows 20 nested blocks).
+Left as they are: a body compiled as one CSE region (its reads may move to
+the top), names the walk does not find as often as the body has them.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ... import ast
+from ..scope import _LOOPS, root_name, walk
+from .aliases import branch_paths, common_branch, name_counts, names_in
+
+_STORE_BACK = re.compile(r"self\.(v_\w+) = (v_\w+)")
+MAX_DEPTH = 4           # IF/CASE levels a branch may be nested in
+MAX_LOOPS = 4           # loops a branch with a store back may nest
+
+
+class LateStores:
+    """What moves: id(branch body) -> load lines, and -> store-back lines."""
+
+    def __init__(self):
+        self.loads: dict[int, list[str]] = {}
+        self.stores: dict[int, list[str]] = {}
+
+
+def late_stores(compiler, body) -> LateStores:
+    """Move eligible store-back lines out of `compiler.scope.epilogue` (and their loads out
+    of its prologue when every use is in the same branch)."""
+    scope = compiler.scope
+    late = LateStores()
+    candidates = {}
+    for line in scope.epilogue:
+        match = _STORE_BACK.fullmatch(line) if isinstance(line, str) else None
+        if match and match.group(1) == match.group(2):
+            key = next((k for k, p in scope.places.items() if p.how == "local" and p.name == match.group(1)), None)
+            if key is not None:
+                candidates[key] = line
+    if not candidates:
+        return late
+    uses = branch_paths(body, set(candidates), names_in)
+    stored = branch_paths(body, set(candidates), _stores_in)
+    counts = name_counts(body, candidates)
+    bodies = {id(b): b for node in walk(body) for b in _branch_bodies(node)}
+    for key, line in candidates.items():
+        if len(uses[key]) != counts[key]:
+            continue            # a use the walk of branches did not see: leave it
+        branch = common_branch(stored[key])
+        if branch is None or len(branch) > MAX_DEPTH or _loop_depth(bodies[branch[-1]]) > MAX_LOOPS:
+            continue
+        scope.epilogue.remove(line)
+        late.stores.setdefault(branch[-1], []).append(line)
+        load = f"{scope.places[key].name} = self.{scope.places[key].name}"
+        if load in scope.prologue and common_branch(uses[key]) == branch:
+            scope.prologue.remove(load)
+            late.loads.setdefault(branch[-1], []).append(load)
+    return late
+
+
+def _stores_in(node):
+    """The names `node` stores into: assignment targets, FOR variables, outputs `=>`."""
+    for n in walk(node if isinstance(node, tuple) else (node,)):
+        if isinstance(n, ast.Assign):
+            name = root_name(n.target)
+        elif isinstance(n, ast.For):
+            name = n.variable.upper()
+        elif isinstance(n, ast.Arg) and n.direction == "out":
+            name = root_name(n.value)
+        else:
+            continue
+        if name:
+            yield name
+
+
+def _loop_depth(node) -> int:
+    """How deep loops nest in `node` (a statement or a tuple of them)."""
+    inner = max((_loop_depth(child) for child in _children(node)), default=0)
+    return inner + (1 if isinstance(node, _LOOPS) else 0)
+
+
+def _branch_bodies(node) -> list[tuple]:
+    if isinstance(node, ast.If):
+        return [b.body for b in node.branches] + ([node.else_body] if node.else_body else [])
+    if isinstance(node, ast.Case):
+        return [c.body for c in node.clauses] + ([node.else_body] if node.else_body else [])
+    return []
+
+
+def _children(node):
+    if isinstance(node, tuple):
+        yield from node
+        return
+    for name in ast.CHILD_FIELDS.get(type(node), ()):
+        value = getattr(node, name)
+        if isinstance(value, ast.Node):
+            yield value
+        elif isinstance(value, tuple):
+            for item in value:
+                if isinstance(item, ast.Node):
+                    yield item
+                elif isinstance(item, tuple):
+                    yield from (i for i in item if isinstance(i, ast.Node))
