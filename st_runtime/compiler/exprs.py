@@ -584,6 +584,9 @@ class ExprCompiler:
             key = f"{key} - {-offset}" if key and offset < 0 else (f"{key} + {offset}" if key else str(offset))
         if not key:
             key = "0"
+        if self.opt.offsets and offset and len(terms) == 1 and len(e.indices) == 1 and terms[0] == values[0] \
+                and self._innermost_variable(e.indices[0]):
+            key = self._per_iteration(key)       # `A[i]` of ARRAY[1..n]: `i - 1` once per iteration
         if checks:
             if len(arr_t.dims) == 1:
                 fault = f"_index_fault({values[0]}, {arr_t.dims[0][0]}, {arr_t.dims[0][1]}, {name!r}, {self.where(e)})"
@@ -611,9 +614,17 @@ class ExprCompiler:
         top of the body (when used twice or more) or by the product itself.
         """
         text = f"{code} * {k}"
-        if not self.loops or not self.loops[-1].hoistable or not isinstance(index, ast.Name) \
-                or index.name.upper() != self.loops[-1].variable:
-            return text
+        return self._per_iteration(text) if self._innermost_variable(index) else text
+
+    def _innermost_variable(self, index) -> bool:
+        """`index` is the variable of the innermost FOR, a range-based one (`hoistable`)."""
+        return bool(self.loops) and self.loops[-1].hoistable and isinstance(index, ast.Name) \
+            and index.name.upper() == self.loops[-1].variable
+
+    def _per_iteration(self, text: str) -> str:
+        """A placeholder for `text`, a value of the innermost FOR's variable, that the FOR
+        compiler replaces by a temp set at the top of the body (used twice or more) or by
+        `text` itself."""
         entry = self.loops[-1].scaled.get(text)
         if entry is None:
             entry = self.loops[-1].scaled[text] = [f"\x00{self.temp()}\x00", 0]

@@ -89,6 +89,7 @@ class BodyCompiler(ExprCompiler):
         if not self.method and self.pou.owner is not None:
             params = ["self"] + params          # a METHOD: its instance first
         o.line(f"def {pyname}({', '.join(params)}):")
+        start = o.mark()
         o.indent()
         prologue = [self._prologue_line(item) for item in self.scope.prologue]
         if self.opt.gather:
@@ -121,6 +122,8 @@ class BodyCompiler(ExprCompiler):
             if not self.method:
                 o.line(self._return_statement())
         o.dedent()
+        if self.opt.unused:
+            aliases.drop_unused(o.lines, start)
         return o.source()
 
     def _body(self) -> None:

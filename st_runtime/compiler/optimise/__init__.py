@@ -86,6 +86,14 @@ states bit for bit:
   branch or CASE clause is stored back to its slot in a `finally` around
   that branch, not at the end of every call, and loaded at the branch's
   start when every use is there too.
+* `unused` (aliases.py `drop_unused`): a load `v_X = self.v_X` or
+  `v_X = _G.v_X` whose local the compiled function never names again (a
+  constant table every read of which was folded) is left out.
+* `offsets` (exprs.py `index_lvalue`): in the body of a range-based FOR,
+  the flat index `i - lo` of a one-dimensional array indexed by the loop's
+  variable is computed once per iteration into a temporary when the body
+  uses it twice or more (TRJ_OceanWave's `Wavenumber[Component]` and four
+  more arrays: `Component - 1` seven times an iteration), as `i * k` was.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -120,6 +128,8 @@ class Optimisations:
     chains: bool = True
     sets: bool = True
     stores: bool = True
+    unused: bool = True
+    offsets: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

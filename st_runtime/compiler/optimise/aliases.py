@@ -29,6 +29,32 @@ from ..scope import walk
 _ALIAS_LINE = re.compile(r"(v_\w+) = (?:self|_G)\.(v_\w+)")
 
 
+def drop_unused(lines: list[str], start: int) -> None:
+    """Leave out each load `v_X = self.v_X` / `v_X = _G.v_X` (from `start` on) whose local
+    nothing else in the function names: an alias of a constant array every read of which
+    was folded (SP_InverseKinematics' joint tables), a constant the compiler wrote as a
+    literal.  The load only binds the local, so leaving it out changes nothing else."""
+    text = "\n".join(lines[start:])
+    counts: dict[str, int] = {}
+    for name in _LOCAL_NAME.findall(text):
+        counts[name] = counts.get(name, 0) + 1
+    keep = []
+    for i in range(start, len(lines)):
+        line = lines[i]
+        match = _ALIAS_LINE.fullmatch(line.lstrip())
+        if match and match.group(1) == match.group(2) and counts.get(match.group(1)) == 1:
+            indent = len(line) - len(line.lstrip())
+            after = lines[i + 1] if i + 1 < len(lines) else ""
+            if not (keep and keep[-1].rstrip().endswith(":")
+                    and len(after) - len(after.lstrip()) < indent):
+                continue            # (the only line of its block stays)
+        keep.append(line)
+    lines[start:] = keep
+
+
+_LOCAL_NAME = re.compile(r"(?<![.\w])(v_\w+)")
+
+
 def late_loads(compiler, body) -> dict[int, list[str]]:
     """Move eligible alias lines out of `compiler.scope.prologue`; id(branch body) -> lines."""
     scope = compiler.scope

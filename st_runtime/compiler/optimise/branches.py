@@ -45,10 +45,18 @@ _CALLABLE = {"abs", "min", "max"}
 _WORDS = {"not", "and", "or", "if", "else", "in", "is", "True", "False", "None"}
 _EXPONENT = re.compile(r"\b\d+(?:\.\d*)?[eE][+-]\d+")
 MAX_ARITHMETIC = 14
+_PLACEHOLDER = re.compile("\x00(_t\\d+)\x00")
+
+
+def per_iteration_values(code: str) -> str:
+    """`code` with each placeholder of a FOR variable's per-iteration value (`i - 1`, `i * k`:
+    exprs.py `_per_iteration`) as the one operation it may be put back as."""
+    return _PLACEHOLDER.sub(r"(\1 * 1)", code) if "\x00" in code else code
 
 
 def code_cannot_fault(code: str) -> bool:
     """The Python expression `code` raises nothing `_FAULTS` catches (module docstring)."""
+    code = per_iteration_values(code)
     if not code.strip() or not _ALLOWED.fullmatch(code) or "**" in code or "<<" in code \
             or ">>" in code or _ASSIGNMENT.search(code):
         return False

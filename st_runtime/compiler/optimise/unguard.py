@@ -57,7 +57,7 @@ def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:
 
 
 def _local_arithmetic(line: str) -> bool:
-    match = _ASSIGNMENT.fullmatch(line)
+    match = _ASSIGNMENT.fullmatch(branches.per_iteration_values(line))
     return match is not None and not _ATTRIBUTE_OR_CALL.search(match.group(1)) \
         and branches.code_cannot_fault(match.group(1))   # no `**`, at most 14 `+ - *`
 

@@ -1,0 +1,84 @@
+"""Two passes that leave out repeated or useless work around variables, and nothing a program
+can see changes (results, faults with code, file, line, column and scan, instance states,
+F-PERIOD), with each on and off:
+
+* `offsets`: `A[i]` of an ARRAY[1..n] in a FOR over i: `i - 1` once per iteration;
+* `unused`: a load of a local nothing names (a constant table every read of which was folded).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import pytest
+
+from st_runtime import api
+from st_runtime.compiler import Optimisations, compile_program
+from test_optimiser_equivalence import run_both
+
+ON = Optimisations()
+
+SUMS = """
+VAR_GLOBAL CONSTANT Weights : ARRAY[1..3] OF LREAL := [0.5, 0.25, 2.0]; END_VAR
+FUNCTION_BLOCK Summer
+VAR_INPUT Count : INT; END_VAR
+VAR_OUTPUT Sum : LREAL; Weighted : LREAL; END_VAR
+VAR
+    A : ARRAY[1..8] OF LREAL := [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0];
+    B : ARRAY[2..9] OF LREAL := [0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5];
+    I : INT;
+END_VAR
+Sum := 0.0;
+FOR I := 1 TO Count DO                           (* Count 9: A[9] is out of range *)
+    Sum := Sum + A[I] * B[I + 1] + A[I] * A[I];
+    A[I] := A[I] + 0.125;
+END_FOR;
+Weighted := Weights[1] * Sum + Weights[3];       (* Weights: folded, no load *)
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR S : Summer; N : INT; END_VAR
+N := N + 1;
+S(Count := 5 + N MOD 5);
+END_PROGRAM
+"""
+
+
+def _program():
+    return api.load_text(SUMS).program
+
+
+def _source(optimise):
+    return compile_program(_program(), optimise=optimise).python_sources["SUMMER"]
+
+
+def test_the_index_is_computed_once_an_iteration():
+    lines = [line.strip() for line in _source(ON).splitlines()]
+    plain = _source(replace(ON, offsets=False))
+    temps = [line for line in lines if line.endswith(" = v_I - 1")]
+    assert temps and all(line.startswith("_t") for line in temps)
+    assert "v_A[v_I - 1]" in plain and "v_A[v_I - 1]" not in "\n".join(lines)
+    assert len(temps) == 2          # the loop without index checks and the loop with them
+    checked = temps[1].split(" = ")[0]
+    assert f"v_A[({checked}) if 1 <= v_I <= 8 else _index_fault(v_I, 1, 8, 'A', " in "\n".join(lines)
+
+
+def test_a_load_nothing_names_is_left_out():
+    lines = [line.strip() for line in _source(ON).splitlines()]
+    plain = [line.strip() for line in _source(replace(ON, unused=False)).splitlines()]
+    assert "v_WEIGHTS = _G.v_WEIGHTS" in plain and "v_WEIGHTS = _G.v_WEIGHTS" not in lines
+    assert "v_A = self.v_A" in lines
+
+
+@pytest.mark.parametrize("name", ["offsets", "unused"])
+def test_the_scans_see_the_same_with_and_without_the_pass(name):
+    off, on = run_both(_program(), 12, optimise=Optimisations.only(name))
+    assert on == off
+    assert {code for code, *_ in on[0]} == {"F-INDEX"}          # Count 9: A[9]
+    off, on = run_both(_program(), 12, optimise=ON)
+    assert on == off
+
+
+@pytest.mark.parametrize("budget_ns", [500, 2_000, 5_000])
+def test_f_period_lands_on_the_same_statement_with_the_passes(budget_ns):
+    off, on = run_both(_program(), 6, budget_ns, optimise=Optimisations.only("offsets", "unused"))
+    assert on == off
