@@ -3,7 +3,8 @@ can see changes (results, faults with code, file, line, column and scan, instanc
 F-PERIOD), with each on and off:
 
 * `offsets`: `A[i]` of an ARRAY[1..n] in a FOR over i: `i - 1` once per iteration;
-* `unused`: a load of a local nothing names (a constant table every read of which was folded).
+* `unused`: a load of a local nothing names (a constant table every read of which was folded),
+  or of a variable the body sets before it reads it and before anything can raise.
 """
 
 from __future__ import annotations
@@ -82,3 +83,36 @@ def test_the_scans_see_the_same_with_and_without_the_pass(name):
 def test_f_period_lands_on_the_same_statement_with_the_passes(budget_ns):
     off, on = run_both(_program(), 6, budget_ns, optimise=Optimisations.only("offsets", "unused"))
     assert on == off
+
+
+ROTATION = """
+FUNCTION_BLOCK Rotate
+VAR_INPUT Angle : LREAL; Divisor : INT; END_VAR
+VAR_OUTPUT X : LREAL; Y : LREAL; END_VAR
+VAR C : LREAL; S : LREAL; Q : LREAL; N : INT; K : INT; END_VAR
+C := COS(Angle);                           (* set before anything can raise: no load *)
+S := SIN(Angle);
+N := N + 1;                                (* read first: loaded *)
+Q := INT_TO_LREAL(10 / Divisor);           (* F-DIV-ZERO when Divisor is 0 *)
+K := N * 2;
+X := C * 2.0 + Q;                          (* set after what can raise: loaded *)
+Y := S * 2.0 + Q + INT_TO_LREAL(K);
+X := X + C; Y := Y + S + INT_TO_LREAL(K) + INT_TO_LREAL(N); C := C + X; S := S + Y;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR R : Rotate; I : INT; END_VAR
+I := I + 1;
+R(Angle := INT_TO_LREAL(I) * 0.3, Divisor := I MOD 3);
+END_PROGRAM
+"""
+
+
+def test_a_variable_set_before_it_is_read_is_not_loaded():
+    program = api.load_text(ROTATION).program
+    lines = [line.strip() for line in compile_program(program, optimise=ON).python_sources["ROTATE"].splitlines()]
+    prologue = lines[1:lines.index("_spent = 0")]
+    assert "v_C = self.v_C" not in prologue and "v_S = self.v_S" not in prologue
+    assert {"v_N = self.v_N", "v_X = self.v_X"} <= set(prologue)     # X: set after what can raise
+    assert {"self.v_C = v_C", "self.v_S = v_S"} <= set(lines[lines.index("_ctx.budget -= _spent"):])
+    off, on = run_both(program, 7, optimise=Optimisations.only("unused"))
+    assert on == off and {code for code, *_ in on[0]} == {"F-DIV-ZERO"}

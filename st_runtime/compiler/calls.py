@@ -348,7 +348,8 @@ class Calls:
         if name in _GUARDED and len(codes) == 1 and ec.opt.inline:
             fast, test = _GUARDED[name]
             tmp = ec.temp()
-            return f"({fast}({tmp}) if {test.format(x=f'({tmp} := {codes[0]})')} else {fn}({tmp}))"
+            text = f"({fast}({tmp}) if {test.format(x=f'({tmp} := {codes[0]})')} else {fn}({tmp}))"
+            return ec.reuse.math(name, ordered[0].value, codes[0], text) if ec.reuse is not None else text
         return f"{fn}({', '.join(codes)})"
 
 

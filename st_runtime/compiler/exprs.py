@@ -158,6 +158,8 @@ class ExprCompiler:
         self.opt = getattr(unit, "optimise", None) or Optimisations.none()
         self.unrolled: dict[str, int] = {}   # FOR variable -> its value in this unrolled copy
         self.region = None                   # optimise.cse.Region while one is compiled
+        self.reuse = None                    # optimise.reuse.Reuse of a body (statements.py)
+        self.plain_chains: set[int] = set()  # ids of OR/AND chains without a run for optimise/sets.py
 
     # ------------------------------------------------------------ helpers
 
@@ -378,7 +380,9 @@ class ExprCompiler:
             if value is not None:
                 return self.literal(value, self.ty(e))
         code = self.lvalue(e).read()
-        return self.region.read(code) if self.region is not None else code
+        if self.region is not None:
+            return self.region.read(code)
+        return self.reuse.element(e, code) if self.reuse is not None else code
 
     def x_Unary(self, e):
         operand = self.expr(e.operand)
@@ -432,6 +436,10 @@ class ExprCompiler:
             if chained is not None:
                 return chained
         if op in _PLAIN_OPS:
+            if self.reuse is not None:
+                kept = self.reuse.binary(e, op, left, right)      # computed before: its name
+                if kept is not None:
+                    return kept
             shared = self.region.binary(op, left, right, self.out, e is not self.region.whole) \
                 if self.region is not None else None
             return shared or f"({left} {_PLAIN_OPS[op]} {right})"

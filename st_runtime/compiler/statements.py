@@ -40,7 +40,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import aliases, branches, chains, cse, fastpath, fold, gather, ranges, stores, unguard, unroll
+from .optimise import aliases, branches, chains, cse, fastpath, fold, gather, ranges, reuse, stores, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -67,6 +67,7 @@ class BodyCompiler(ExprCompiler):
         self._late_stores = stores.late_stores(self, body) if self.opt.stores and method and not self._whole_region \
             else stores.LateStores()
         self._segments: fastpath.Segments | None = None     # while the fast body is compiled
+        self.reuse = reuse.Reuse(self) if self.opt.reuse else None
         self.listed_in_outs: dict[str, str] = {}    # in-outs the fast body runs with as lists
 
     def _add_return_variable(self) -> None:
@@ -122,8 +123,12 @@ class BodyCompiler(ExprCompiler):
             if not self.method:
                 o.line(self._return_statement())
         o.dedent()
+        if self.reuse is not None:
+            self.reuse.resolve(o.lines, start)
         if self.opt.unused:
             aliases.drop_unused(o.lines, start)
+            if self.method:
+                aliases.drop_unread(o.lines, start)
         return o.source()
 
     def _body(self) -> None:
@@ -241,6 +246,9 @@ class BodyCompiler(ExprCompiler):
         segments = self._segments if level else None
         if segments is not None:
             segments.enter()
+        values = self.reuse if level else None      # (an unrolled copy's values serve the next copy)
+        if values is not None:
+            values.enter()
         for line in self._late_loads.get(id(body), ()):
             self.out.line(line)
         stored_back = self._late_stores.stores.get(id(body))
@@ -259,9 +267,9 @@ class BodyCompiler(ExprCompiler):
                 self._charge(units, check if first else None)
             first = False
             for stmt in simple:
-                self._statement_in_segment(stmt)
+                self._statement_with_values(stmt)
             if compound is not None:
-                self._statement_in_segment(compound)
+                self._statement_with_values(compound)
         if stored_back:
             self.out.ensure_body(mark)
             self.out.dedent()
@@ -270,6 +278,18 @@ class BodyCompiler(ExprCompiler):
                 self.out.line("    " + line)
         if segments is not None:
             segments.leave()
+        if values is not None:
+            values.leave()
+
+    def _statement_with_values(self, stmt) -> None:
+        """The statement, the values it computes first set before it (optimise/reuse.py)."""
+        if self.reuse is None:
+            self._statement_in_segment(stmt)
+            return
+        began = self.reuse.begin(stmt)
+        mark = self.out.mark()
+        self._statement_in_segment(stmt)
+        self.reuse.end(began, mark)
 
     def _statement_in_segment(self, stmt) -> None:
         self.statement(stmt)

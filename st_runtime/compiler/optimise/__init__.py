@@ -94,6 +94,11 @@ states bit for bit:
   variable is computed once per iteration into a temporary when the body
   uses it twice or more (TRJ_OceanWave's `Wavenumber[Component]` and four
   more arrays: `Component - 1` seven times an iteration), as `i * k` was.
+* `reuse` (reuse.py): across the statements of a body, a float value
+  computed again over unchanged operands (an own array's element at a
+  literal index, `+ - *` of such values and plain variables, SIN, COS, TAN
+  or SQRT of one) is set once, before the statement that first computes
+  it, and read by name after; a value used once keeps its text.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -130,6 +135,7 @@ class Optimisations:
     stores: bool = True
     unused: bool = True
     offsets: bool = True
+    reuse: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

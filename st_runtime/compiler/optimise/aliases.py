@@ -22,9 +22,11 @@ names the walk does not find as often as the body has them (a safety net).
 from __future__ import annotations
 
 import re
+from collections import Counter
 
 from ... import ast
-from ..scope import walk
+from ..scope import _nodes, walk
+from . import branches
 
 _ALIAS_LINE = re.compile(r"(v_\w+) = (?:self|_G)\.(v_\w+)")
 
@@ -34,14 +36,11 @@ def drop_unused(lines: list[str], start: int) -> None:
     nothing else in the function names: an alias of a constant array every read of which
     was folded (SP_InverseKinematics' joint tables), a constant the compiler wrote as a
     literal.  The load only binds the local, so leaving it out changes nothing else."""
-    text = "\n".join(lines[start:])
-    counts: dict[str, int] = {}
-    for name in _LOCAL_NAME.findall(text):
-        counts[name] = counts.get(name, 0) + 1
+    counts = Counter(_LOCAL_NAME.findall("\n".join(lines[start:])))
     keep = []
     for i in range(start, len(lines)):
         line = lines[i]
-        match = _ALIAS_LINE.fullmatch(line.lstrip())
+        match = _ALIAS_LINE.fullmatch(line.lstrip()) if " = self.v_" in line or " = _G.v_" in line else None
         if match and match.group(1) == match.group(2) and counts.get(match.group(1)) == 1:
             indent = len(line) - len(line.lstrip())
             after = lines[i + 1] if i + 1 < len(lines) else ""
@@ -53,6 +52,43 @@ def drop_unused(lines: list[str], start: int) -> None:
 
 
 _LOCAL_NAME = re.compile(r"(?<![.\w])(v_\w+)")
+_SET = re.compile(r"        ((?:self\.)?\w+) = (.+)")
+_INLINE_TRIG = re.compile(r"\(_m_(?:sin|cos|tan)\((_t\d+)\) if _NINF < \(\1 := ((?:self\.)?\w+)\) < _INF"
+                          r" else _sf_(?:SIN|COS|TAN)\(\1\)\)")
+
+
+def drop_unread(lines: list[str], start: int) -> None:
+    """Leave out the load `v_X = self.v_X` of a method's cached variable that the body sets
+    before it reads it and before anything can raise: the straight lines the body begins
+    with (`try:` at the top, then charges and assignments that cannot raise) set it, so its
+    value is never read and the store back at the end finds it set (SP_InverseKinematics'
+    rotation matrix: 17 loads)."""
+    try:
+        body = lines.index("    try:", start)
+    except ValueError:
+        return
+    loads = {}
+    for i in range(start + 1, body):
+        match = _ALIAS_LINE.fullmatch(lines[i].strip())
+        if match and match.group(1) == match.group(2) and lines[i].startswith("    v_"):
+            loads[match.group(1)] = i
+    unread, seen = set(), set()
+    for line in lines[body + 1:]:
+        if line.startswith("        _spent += "):
+            continue
+        match = _SET.fullmatch(line)
+        if match is None:
+            break
+        value = _INLINE_TRIG.sub(lambda m: m.group(2), match.group(2))
+        if "\x03" in value or not branches.code_cannot_fault(value):
+            break
+        seen.update(_LOCAL_NAME.findall(value))
+        target = match.group(1)
+        if target in loads and target not in seen:
+            unread.add(loads[target])
+        seen.add(target)
+    if unread:
+        lines[start:] = [line for i, line in enumerate(lines[start:], start) if i not in unread]
 
 
 def late_loads(compiler, body) -> dict[int, list[str]]:
@@ -82,12 +118,13 @@ def late_loads(compiler, body) -> dict[int, list[str]]:
     return loads
 
 
-def branch_paths(body, keys: set[str], names_of) -> dict[str, list[tuple]]:
+def branch_paths(body, keys: set, names_of, bodies: dict | None = None) -> dict[str, list[tuple]]:
     """For each name of `keys`: the path (ids of the IF branch and CASE clause bodies around
     it, outermost first) of each of its occurrences `names_of(node)` yields, looking no
-    deeper than the first loop (a loop is one statement)."""
+    deeper than the first loop (a loop is one statement).  `bodies`: filled with
+    id -> branch body for every branch met."""
     paths: dict[str, list[tuple]] = {key: [] for key in keys}
-    _visit(body, (), paths, names_of)
+    _visit(body, (), paths, names_of, {} if bodies is None else bodies)
     return paths
 
 
@@ -113,23 +150,28 @@ def common_branch(paths: list[tuple]) -> tuple | None:
     return common or None
 
 
-def _visit(stmts, path: tuple, paths: dict, names_of) -> None:
+def _visit(stmts, path: tuple, paths: dict, names_of, bodies: dict) -> None:
     for stmt in stmts or ():
         if isinstance(stmt, ast.If):
             for branch in stmt.branches:
                 _record(branch.condition, path, paths, names_of)
-                _visit(branch.body, path + (id(branch.body),), paths, names_of)
+                _enter(branch.body, path, paths, names_of, bodies)
             if stmt.else_body:
-                _visit(stmt.else_body, path + (id(stmt.else_body),), paths, names_of)
+                _enter(stmt.else_body, path, paths, names_of, bodies)
         elif isinstance(stmt, ast.Case):
             _record(stmt.selector, path, paths, names_of)
             for clause in stmt.clauses:
                 _record(clause.labels, path, paths, names_of)
-                _visit(clause.body, path + (id(clause.body),), paths, names_of)
+                _enter(clause.body, path, paths, names_of, bodies)
             if stmt.else_body:
-                _visit(stmt.else_body, path + (id(stmt.else_body),), paths, names_of)
+                _enter(stmt.else_body, path, paths, names_of, bodies)
         else:       # a simple statement, or a loop: every name in it at this path
             _record(stmt, path, paths, names_of)
+
+
+def _enter(body, path: tuple, paths: dict, names_of, bodies: dict) -> None:
+    bodies[id(body)] = body
+    _visit(body, path + (id(body),), paths, names_of, bodies)
 
 
 def _record(node, path: tuple, paths: dict, names_of) -> None:
@@ -141,4 +183,4 @@ def _record(node, path: tuple, paths: dict, names_of) -> None:
 
 def names_in(node):
     """The names `node` reads or stores, one per occurrence."""
-    return (n.name.upper() for n in walk(node if isinstance(node, tuple) else (node,)) if isinstance(n, ast.Name))
+    return (n.name.upper() for n in _nodes(node) if isinstance(n, ast.Name))

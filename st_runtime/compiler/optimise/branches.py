@@ -36,6 +36,7 @@ import re
 from ... import ast
 from ...types import FBType, InterfaceType, RefType, StructType, resolve_alias
 from ..scope import walk
+from . import reuse
 
 # Characters an expression that cannot fault is made of: no quote, `/`, `%`, `:`, `@`.
 _ALLOWED = re.compile(r"[\w\s.()\[\],+\-*<>=!&|^~]*")
@@ -51,6 +52,8 @@ _PLACEHOLDER = re.compile("\x00(_t\\d+)\x00")
 def per_iteration_values(code: str) -> str:
     """`code` with each placeholder of a FOR variable's per-iteration value (`i - 1`, `i * k`:
     exprs.py `_per_iteration`) as the one operation it may be put back as."""
+    if "\x03" in code:
+        code = reuse.as_names(code)         # a value of the reuse pass: a name or what cannot raise
     return _PLACEHOLDER.sub(r"(\1 * 1)", code) if "\x00" in code else code
 
 

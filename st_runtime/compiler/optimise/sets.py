@@ -29,11 +29,14 @@ MIN_RUN = 2         # comparisons of one variable a membership test replaces
 def chain(compiler, e) -> str | None:
     """Python source of the OR/AND chain `e` with its runs of comparisons of one variable
     as membership tests; None when it has no such run."""
-    if e.op not in _TESTS:
+    if e.op not in _TESTS or id(e) in compiler.plain_chains:
         return None
     operands = _flatten(e, e.op)
     tested = [_tested(compiler, operand, e.op) for operand in operands]
-    parts, merged, i = [], False, 0
+    if not any(a is not None and b is not None and a[0] == b[0] for a, b in zip(tested, tested[1:])):
+        _inner_chains(e, e.op, compiler.plain_chains)      # no run in them either
+        return None
+    parts, i = [], 0
     while i < len(operands):
         j = i
         while tested[i] is not None and j + 1 < len(operands) and tested[j + 1] is not None \
@@ -42,16 +45,21 @@ def chain(compiler, e) -> str | None:
         if j - i + 1 >= MIN_RUN:
             values = ", ".join(str(tested[k][1]) for k in range(i, j + 1))
             parts.append(f"({tested[i][0]} {_TESTS[e.op][1]} ({values}))")
-            merged = True
         else:
             parts.extend(compiler.expr(operands[k]) for k in range(i, j + 1))
         i = j + 1
-    if not merged:
-        return None
     code = parts[0]
     for part in parts[1:]:
         code = f"({code} {_JOIN[e.op]} {part})"
     return code
+
+
+def _inner_chains(e, op: str, seen: set) -> None:
+    """Note the ids of the chain's `op` nodes below `e`: their operands are a run of `e`'s."""
+    for side in (e.left, e.right):
+        if isinstance(side, ast.Binary) and side.op == op:
+            seen.add(id(side))
+            _inner_chains(side, op, seen)
 
 
 def _flatten(e, op: str) -> list:

@@ -37,8 +37,8 @@ from __future__ import annotations
 import re
 
 from ... import ast
-from ..scope import _LOOPS, root_name, walk
-from .aliases import branch_paths, common_branch, name_counts, names_in
+from ..scope import _LOOPS, _nodes, root_name
+from .aliases import branch_paths, common_branch, name_counts
 
 _STORE_BACK = re.compile(r"self\.(v_\w+) = (v_\w+)")
 MAX_DEPTH = 4           # IF/CASE levels a branch may be nested in
@@ -58,37 +58,44 @@ def late_stores(compiler, body) -> LateStores:
     of its prologue when every use is in the same branch)."""
     scope = compiler.scope
     late = LateStores()
+    local_keys = {p.name: k for k, p in scope.places.items() if p.how == "local"}
     candidates = {}
     for line in scope.epilogue:
         match = _STORE_BACK.fullmatch(line) if isinstance(line, str) else None
-        if match and match.group(1) == match.group(2):
-            key = next((k for k, p in scope.places.items() if p.how == "local" and p.name == match.group(1)), None)
-            if key is not None:
-                candidates[key] = line
+        if match and match.group(1) == match.group(2) and match.group(1) in local_keys:
+            candidates[local_keys[match.group(1)]] = line
     if not candidates:
         return late
-    uses = branch_paths(body, set(candidates), names_in)
-    stored = branch_paths(body, set(candidates), _stores_in)
+    bodies: dict[int, tuple] = {}
+    paths = branch_paths(body, set(candidates) | {("=", key) for key in candidates}, _uses_and_stores, bodies)
     counts = name_counts(body, candidates)
-    bodies = {id(b): b for node in walk(body) for b in _branch_bodies(node)}
+    depths: dict[int, int] = {}
     for key, line in candidates.items():
-        if len(uses[key]) != counts[key]:
+        if len(paths[key]) != counts[key]:
             continue            # a use the walk of branches did not see: leave it
-        branch = common_branch(stored[key])
-        if branch is None or len(branch) > MAX_DEPTH or _loop_depth(bodies[branch[-1]]) > MAX_LOOPS:
+        branch = common_branch(paths["=", key])
+        if branch is None or len(branch) > MAX_DEPTH:
+            continue
+        if branch[-1] not in depths:
+            depths[branch[-1]] = _loop_depth(bodies[branch[-1]])
+        if depths[branch[-1]] > MAX_LOOPS:
             continue
         scope.epilogue.remove(line)
         late.stores.setdefault(branch[-1], []).append(line)
         load = f"{scope.places[key].name} = self.{scope.places[key].name}"
-        if load in scope.prologue and common_branch(uses[key]) == branch:
+        if load in scope.prologue and common_branch(paths[key]) == branch:
             scope.prologue.remove(load)
             late.loads.setdefault(branch[-1], []).append(load)
     return late
 
 
-def _stores_in(node):
-    """The names `node` stores into: assignment targets, FOR variables, outputs `=>`."""
-    for n in walk(node if isinstance(node, tuple) else (node,)):
+def _uses_and_stores(node):
+    """Each name `node` reads or stores (its key), and each it stores into (`("=", key)`:
+    assignment targets, FOR variables, outputs `=>`)."""
+    for n in _nodes(node):
+        if isinstance(n, ast.Name):
+            yield n.name.upper()
+            continue
         if isinstance(n, ast.Assign):
             name = root_name(n.target)
         elif isinstance(n, ast.For):
@@ -98,13 +105,17 @@ def _stores_in(node):
         else:
             continue
         if name:
-            yield name
+            yield "=", name
 
 
-def _loop_depth(node) -> int:
-    """How deep loops nest in `node` (a statement or a tuple of them)."""
-    inner = max((_loop_depth(child) for child in _children(node)), default=0)
-    return inner + (1 if isinstance(node, _LOOPS) else 0)
+def _loop_depth(body) -> int:
+    """How deep loops nest in the statements `body`."""
+    deepest = 0
+    for stmt in body:
+        inner = [b for b in _branch_bodies(stmt)] + ([stmt.body] if isinstance(stmt, _LOOPS) else [])
+        depth = max((_loop_depth(b) for b in inner), default=0) + (1 if isinstance(stmt, _LOOPS) else 0)
+        deepest = max(deepest, depth)
+    return deepest
 
 
 def _branch_bodies(node) -> list[tuple]:
@@ -113,19 +124,3 @@ def _branch_bodies(node) -> list[tuple]:
     if isinstance(node, ast.Case):
         return [c.body for c in node.clauses] + ([node.else_body] if node.else_body else [])
     return []
-
-
-def _children(node):
-    if isinstance(node, tuple):
-        yield from node
-        return
-    for name in ast.CHILD_FIELDS.get(type(node), ()):
-        value = getattr(node, name)
-        if isinstance(value, ast.Node):
-            yield value
-        elif isinstance(value, tuple):
-            for item in value:
-                if isinstance(item, ast.Node):
-                    yield item
-                elif isinstance(item, tuple):
-                    yield from (i for i in item if isinstance(i, ast.Node))

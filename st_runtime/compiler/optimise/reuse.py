@@ -1,0 +1,326 @@
+"""`reuse`: a float value computed again over unchanged operands is computed once.
+
+Across the statements of a body (not only inside a CSE region), these values
+are remembered as they are compiled, with the variables they read:
+
+* an element of the POU's own array read at a literal index (`v_POSE[2]`);
+* a `+ - *` of LREAL/REAL operands that are such values, literals or plain
+  variables (a local, a slot of the instance or of the globals; not located,
+  not reached through a reference);
+* SIN, COS, TAN or SQRT of such a value, compiled inline (calls.py `_GUARDED`).
+
+None of them can raise (float `+ - *` gives inf or NaN, a list read at a literal
+index in range cannot fail, the inline math calls test their argument), and none
+has a side effect.  When the same text comes again while it is valid, the second
+use reads a name the first statement set instead: `_cN = text` is put before
+the statement that first computed it, at that statement's own level (outside
+its guard and its conditions, so it runs whenever any later use can), and a
+value used only once keeps its text where it was.  SP_InverseKinematics' six
+legs read `v_POSE[0]`, `v_POSE[1]` and compute `(v_POSE[2] + 1374.0) - 95.0`
+once; TRJ_OceanWave's iteration computes `SIN(Psi)` once for two sums.
+
+A value stays valid while nothing can change what it read: a store into one of
+its variables ends it (after the statement that stores, or before a loop whose
+body stores it, which would run the use again after the store); a statement
+with a call of ST code, REF or a store through a reference, an in-out, a
+located or a global variable ends every value; the end of the IF branch, CASE
+clause or loop body it was computed in ends it (an unrolled copy of a loop runs
+where it is written: its values stay for the next copy).  The same operations
+on the same operands in the same order give the same float, so results,
+faults, charges and F-PERIOD are as before.  Left alone: a CSE region and a
+fast body (their own passes rearrange those lines).
+"""
+
+from __future__ import annotations
+
+import re
+
+from ... import ast
+from ...types import ArrayType, ElementaryType, resolve_alias
+from ..pysrc import pyident
+from ..scope import _LOOPS, _nodes, root_name
+
+_TOKEN = re.compile("\x03(\\d+)\x03")
+_MARKER = re.compile("( *)\x04([\\d,]+)\x04")
+_NUMBER = re.compile(r"-?\(?-?\d[\d.e+-]*\)?")
+_VARIABLE = re.compile(r"(?:self\.|_G\.)?(v_\w+)")
+_ELEMENT = re.compile(r"(v_\w+)\[\d+\]")
+_PLAIN_KINDS = {"VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP", "RETURN", "VAR_GLOBAL", "VAR_EXTERNAL"}
+_MATH = {"SIN", "COS", "TAN", "SQRT"}
+
+
+class _Value:
+    __slots__ = ("text", "deps", "uses", "level", "valid")
+
+    def __init__(self, text: str, deps: frozenset, level: int):
+        self.text, self.deps, self.uses, self.level, self.valid = text, deps, 1, level, True
+
+
+class Reuse:
+    """The values of one function being compiled (see the module docstring)."""
+
+    def __init__(self, compiler):
+        self.compiler = compiler
+        self.values: list[_Value] = []
+        self.known: dict[str, int] = {}          # text -> index of its value in `values`
+        self.readers: dict[str, list[str]] = {}  # variable -> the texts of the values that read it
+        self.levels = [0]                        # the statement lists being compiled, outermost first
+        self.opened = 0
+        self.pending: list[list[int]] = []       # per statement being compiled: values it computes first
+        self.closed = 0                          # > 0 inside a statement that ends every value
+        self._summaries: dict[int, tuple] = {}   # id(statement) -> _summary (the AST lives as long)
+
+    # ------------------------------------------------------------ levels
+
+    def enter(self) -> None:
+        self.opened += 1
+        self.levels.append(self.opened)
+
+    def leave(self) -> None:
+        self.levels.pop()
+
+    def begin(self, stmt) -> tuple:
+        stored, opaque, loops = self._summary(stmt)
+        if opaque:
+            self._forget_all()
+            self.closed += 1
+        elif loops:
+            self._forget(stored)
+        self.pending.append([])
+        return stored, opaque
+
+    def _summary(self, stmt) -> tuple[frozenset, bool, bool]:
+        """(Python names of the variables `stmt` stores into, whether it may change any
+        variable: a call of ST code or REF, a store through a reference, an in-out, a
+        located or a global variable; whether it holds a loop), built from its
+        statements' (each statement is summed up once: unrolled copies share them)."""
+        known = self._summaries.get(id(stmt))
+        if known is not None:
+            return known
+        c = self.compiler
+        stored: set[str] = set()
+        opaque, loops = False, isinstance(stmt, _LOOPS)
+        expressions, bodies = [], []
+        if isinstance(stmt, ast.Assign):
+            expressions = [stmt.target, stmt.value]
+            name = _stored(c, stmt.target)
+            opaque = name is None
+            stored.add(name)
+        elif isinstance(stmt, ast.CallStmt):
+            opaque = True
+        elif isinstance(stmt, ast.If):
+            expressions = [b.condition for b in stmt.branches]
+            bodies = [b.body for b in stmt.branches] + [stmt.else_body or ()]
+        elif isinstance(stmt, ast.Case):
+            expressions = [stmt.selector]
+            bodies = [clause.body for clause in stmt.clauses] + [stmt.else_body or ()]
+        elif isinstance(stmt, ast.For):
+            expressions = [e for e in (stmt.start, stmt.end, stmt.step) if e is not None]
+            bodies = [stmt.body]
+            name = _stored(c, ast.Name(stmt.variable, pos=stmt.pos))
+            opaque = name is None
+            stored.add(name)
+        elif isinstance(stmt, (ast.While, ast.Repeat)):
+            expressions, bodies = [stmt.condition], [stmt.body]
+        elif not isinstance(stmt, (ast.Exit, ast.Continue, ast.Return, ast.Empty)):
+            opaque = True
+        opaque = opaque or any(_calls_st(c, e) for e in expressions)
+        for body in bodies:
+            for inner in body:
+                s, o, l = self._summary(inner)
+                stored |= s
+                opaque, loops = opaque or o, loops or l
+        known = self._summaries[id(stmt)] = (frozenset(stored - {None}), opaque, loops)
+        return known
+
+    def end(self, began: tuple, mark: int) -> None:
+        stored, opaque = began
+        first = self.pending.pop()
+        if first:
+            self.compiler.out.insert(mark, [f"\x04{','.join(map(str, first))}\x04"])
+        if opaque:
+            self.closed -= 1
+            self._forget_all()
+        else:
+            self._forget(stored)
+
+    def _forget(self, names) -> None:
+        for name in names:
+            for key in self.readers.pop(name, ()):
+                self.known.pop(key, None)
+
+    def _forget_all(self) -> None:
+        self.known.clear()
+        self.readers.clear()
+
+    # ------------------------------------------------------------ values
+
+    def active(self) -> bool:
+        c = self.compiler
+        return bool(self.pending) and not self.closed and c.region is None and c._segments is None
+
+    def value(self, key: str, text: str, deps: frozenset) -> str:
+        """A token for the value `key`, computed by `text` (which cannot raise), that
+        `resolve` turns into a name or back into `text`."""
+        index = self.known.get(key)
+        if index is not None and self.values[index].level in self.levels:
+            self.values[index].uses += 1
+            return f"\x03{index}\x03"
+        index = len(self.values)
+        self.values.append(_Value(text, deps, self.levels[-1]))
+        self.known[key] = index
+        for name in deps:
+            self.readers.setdefault(name, []).append(key)
+        self.pending[-1].append(index)
+        return f"\x03{index}\x03"
+
+    def operand(self, node, code: str) -> frozenset | None:
+        """The variables `code` (of `node`) reads when it is a value this pass can use."""
+        match = _TOKEN.fullmatch(code)
+        if match:
+            return self.values[int(match.group(1))].deps
+        if _NUMBER.fullmatch(code):
+            return frozenset()
+        match = _VARIABLE.fullmatch(code)
+        if match and isinstance(node, ast.Name) and _plain(self.compiler, node):
+            return frozenset((match.group(1),))
+        return None
+
+    def element(self, node, code: str) -> str:
+        """An own array's element read at a literal index, as a value."""
+        match = _ELEMENT.fullmatch(code)
+        if not (match and self.active() and isinstance(node.base, ast.Name)):
+            return code
+        symbol = _own(self.compiler, node.base)
+        t = resolve_alias(symbol.type) if symbol is not None else None
+        if not (isinstance(t, ArrayType) and isinstance(resolve_alias(t.element), ElementaryType)):
+            return code
+        return self.value(code, code, frozenset((match.group(1),)))
+
+    def binary(self, e, op: str, left: str, right: str) -> str | None:
+        """`(left op right)` of floats as a value, or None."""
+        if not self.active() or op not in ("+", "-", "*") or not _is_float(self.compiler.ty(e)):
+            return None
+        a, b = self.operand(e.left, left), self.operand(e.right, right)
+        if a is None or b is None:
+            return None
+        text = f"({left} {op} {right})"
+        return self.value(text, text, a | b)
+
+    def math(self, name: str, arg, code: str, text: str) -> str:
+        """SIN/COS/TAN/SQRT of a float, compiled inline to `text`, as a value."""
+        if not (self.active() and name in _MATH and _is_float(self.compiler.ty(arg))):
+            return text
+        deps = self.operand(arg, code)
+        return text if deps is None else self.value(f"{name}({code})", text, deps)
+
+    # ------------------------------------------------------------ resolve
+
+    def resolve(self, lines: list[str], start: int) -> None:
+        """Tokens and markers out of `lines[start:]`: a value used twice or more is set
+        where it was first computed and read by name, one used once keeps its text."""
+        if not self.values:
+            return
+        self._count_uses(lines, start)
+        names = {}
+
+        def text_of(index: int) -> str:
+            return _TOKEN.sub(token, self.values[index].text)
+
+        def token(match) -> str:
+            index = int(match.group(1))
+            if self.values[index].uses >= 2:
+                return names.setdefault(index, f"_c{index}")
+            return text_of(index)
+
+        out = []
+        for i in range(start, len(lines)):
+            line = lines[i]
+            marker = _MARKER.fullmatch(line)
+            if marker:
+                indent = marker.group(1)
+                defs = [f"{indent}_c{index} = {text_of(index)}"
+                        for index in map(int, marker.group(2).split(",")) if self.values[index].uses >= 2]
+                if not defs and out and out[-1].rstrip().endswith(":"):
+                    after = lines[i + 1] if i + 1 < len(lines) else ""
+                    if len(after) - len(after.lstrip()) < len(indent):
+                        defs = [f"{indent}pass"]
+                out.extend(defs)
+            elif "\x03" in line:
+                out.append(_TOKEN.sub(token, line))
+            else:
+                out.append(line)
+        lines[start:] = out
+
+
+    def _count_uses(self, lines: list[str], start: int) -> None:
+        """Each value's uses in the code as it will be: its tokens in the lines, and in the
+        text of each value that uses it, once where that value is set (used twice or more)
+        or where its one use puts it back (a value's operands come before it)."""
+        counts = [0] * len(self.values)
+        for i in range(start, len(lines)):
+            if "\x03" in lines[i]:
+                for match in _TOKEN.finditer(lines[i]):
+                    counts[int(match.group(1))] += 1
+        for index in range(len(self.values) - 1, -1, -1):
+            if counts[index]:
+                for match in _TOKEN.finditer(self.values[index].text):
+                    counts[int(match.group(1))] += 1
+        for value, count in zip(self.values, counts):
+            value.uses = count
+
+
+def as_names(code: str) -> str:
+    """`code` with each token as a name (what it may become: a value that cannot raise)."""
+    return _TOKEN.sub(lambda m: f"_c{m.group(1)}", code) if "\x03" in code else code
+
+
+def _is_float(t) -> bool:
+    t = resolve_alias(t) if t is not None else None
+    return isinstance(t, ElementaryType) and t.kind == "real"
+
+
+def _own(compiler, name):
+    """The symbol of `name` when it is plain storage of the POU or the globals (no
+    reference, not located); else None."""
+    from .branches import _symbol
+
+    symbol = _symbol(compiler, name)
+    if symbol is None or symbol.kind not in _PLAIN_KINDS:
+        return None
+    if symbol.decl is not None and getattr(symbol.decl, "location", None) is not None:
+        return None
+    place = compiler.scope.places.get(name.name.upper())
+    if place is not None and place.how not in ("local", "self", "alias", "global"):
+        return None
+    return symbol
+
+
+def _plain(compiler, name) -> bool:
+    symbol = _own(compiler, name)
+    return symbol is not None and isinstance(resolve_alias(symbol.type), ElementaryType) \
+        and name.name.upper() not in compiler.unrolled
+
+
+def _stored(compiler, target) -> str | None:
+    """The Python name of the plain own variable a store into `target` changes; None for
+    a store through a reference, into an in-out, a located or a global variable."""
+    name = root_name(target)
+    if name is None or any(isinstance(x, ast.Deref) for x in _nodes(target)):
+        return None
+    symbol = _own(compiler, ast.Name(name, pos=target.pos))
+    if symbol is None or symbol.kind in ("VAR_GLOBAL", "VAR_EXTERNAL"):
+        return None
+    place = compiler.scope.places.get(name)
+    return place.name if place is not None else pyident(symbol.name)
+
+
+def _calls_st(compiler, expr) -> bool:
+    """`expr` calls code that may store (ST code, an FB, REF, a method): not only a
+    standard function or conversion."""
+    for n in _nodes(expr):
+        if isinstance(n, ast.Call):
+            target = compiler.program.call_targets.get(id(n))
+            if target is None or target.kind not in ("function", "conversion") or target.pou is not None:
+                return True
+    return False
