@@ -68,6 +68,16 @@ def run_both(program, scans: int, budget_ns: int = 500_000, optimise: Optimisati
     return outcomes
 
 
+def same_alone_and_with_all(make_program, scans: int, name: str):
+    """Run `scans` scans with pass `name` alone and with every pass, each the same as with
+    none; the outcome with the pass alone."""
+    off, alone = run_both(make_program(), scans, optimise=Optimisations.only(name))
+    assert alone == off
+    off, every = run_both(make_program(), scans, optimise=ON)
+    assert every == off
+    return alone
+
+
 @pytest.mark.parametrize("path", CORPUS, ids=[p.stem for p in CORPUS])
 def test_corpus_snippet_runs_the_same_with_and_without_the_passes(path):
     result = loader.load([str(path)])

@@ -14,7 +14,7 @@ import pytest
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.controller import Controller
-from test_optimiser_equivalence import run_both
+from test_optimiser_equivalence import run_both, same_alone_and_with_all
 
 ON = Optimisations()
 WITHOUT = replace(ON, reuse=False)
@@ -92,10 +92,7 @@ def test_a_value_is_set_once_and_read_by_name():
 
 
 def test_the_scans_see_the_same_with_and_without_the_pass():
-    off, on = run_both(_program(), 9, optimise=Optimisations.only("reuse"))
-    assert on == off
-    off, on = run_both(_program(), 9, optimise=ON)
-    assert on == off
+    same_alone_and_with_all(_program, 9, "reuse")
 
 
 def test_the_values_are_the_ones_worked_out_by_hand():

@@ -13,7 +13,7 @@ import pytest
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.controller import Controller
-from test_optimiser_equivalence import run_both
+from test_optimiser_equivalence import run_both, same_alone_and_with_all
 
 ON = Optimisations()
 WITHOUT = replace(ON, sets=False)
@@ -74,10 +74,7 @@ def test_runs_of_one_variable_become_membership_tests():
 
 
 def test_a_scan_sees_the_same_values_with_and_without_the_pass():
-    off, on = run_both(_program(), 14, optimise=Optimisations.only("sets"))
-    assert on == off
-    off, on = run_both(_program(), 14, optimise=ON)
-    assert on == off
+    same_alone_and_with_all(_program, 14, "sets")
 
 
 def test_the_tests_give_the_values_the_comparisons_give():

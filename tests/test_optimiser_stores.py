@@ -14,7 +14,7 @@ import pytest
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.controller import Controller
-from test_optimiser_equivalence import run_both, snapshot
+from test_optimiser_equivalence import run_both, same_alone_and_with_all, snapshot
 
 ON = Optimisations()
 WITHOUT = replace(ON, stores=False)
@@ -83,12 +83,8 @@ def test_stores_in_one_branch_are_stored_back_at_its_end():
 
 
 def test_the_scans_see_the_same_with_and_without_the_pass():
-    off, on = run_both(_program(), 24, optimise=Optimisations.only("stores"))
-    assert on == off
-    faults = on[0]
+    faults = same_alone_and_with_all(_program, 24, "stores")[0]
     assert [code for code, *_ in faults] == ["F-DIV-ZERO"] * len(faults) and faults
-    off, on = run_both(_program(), 24, optimise=ON)
-    assert on == off
 
 
 def test_the_latch_keeps_its_values_between_calls():
