@@ -25,7 +25,7 @@ import re
 from collections import Counter
 
 from ... import ast
-from ..scope import _nodes, walk
+from ..scope import _nodes, root_name, walk
 from . import branches
 
 _ALIAS_LINE = re.compile(r"(v_\w+) = (?:self|_G)\.(v_\w+)")
@@ -36,21 +36,26 @@ def drop_unused(lines: list[str], start: int) -> None:
     nothing else in the function names: an alias of a constant array every read of which
     was folded (SP_InverseKinematics' joint tables), a constant the compiler wrote as a
     literal.  The load only binds the local, so leaving it out changes nothing else."""
-    counts = Counter(_LOCAL_NAME.findall("\n".join(lines[start:])))
-    keep = []
-    for i in range(start, len(lines)):
-        line = lines[i]
-        match = _ALIAS_LINE.fullmatch(line.lstrip()) if " = self.v_" in line or " = _G.v_" in line else None
-        if match and match.group(1) == match.group(2) and counts.get(match.group(1)) == 1:
-            indent = len(line) - len(line.lstrip())
-            after = lines[i + 1] if i + 1 < len(lines) else ""
-            if not (keep and keep[-1].rstrip().endswith(":")
-                    and len(after) - len(after.lstrip()) < indent):
-                continue            # (the only line of its block stays)
-        keep.append(line)
-    lines[start:] = keep
+    text = "\n".join(lines[start:])
+    counts = Counter(_LOCAL_NAME.findall(text))
+    drop: set[int] = set()
+    for match in _LOAD_LINE.finditer(text):
+        if counts[match.group(2)] != 1:
+            continue
+        i = start + text.count("\n", 0, match.start())
+        indent = len(match.group(1))
+        j = i - 1
+        while j in drop:
+            j -= 1              # (the line before it that stays)
+        after = lines[i + 1] if i + 1 < len(lines) else ""
+        if lines[j].rstrip().endswith(":") and len(after) - len(after.lstrip()) < indent:
+            continue            # (the only line of its block stays)
+        drop.add(i)
+    for i in sorted(drop, reverse=True):
+        del lines[i]
 
 
+_LOAD_LINE = re.compile(r"^( *)(v_\w+) = (?:self|_G)\.\2$", re.M)
 _LOCAL_NAME = re.compile(r"(?<![.\w])(v_\w+)")
 _SET = re.compile(r"        ((?:self\.)?\w+) = (.+)")
 _INLINE_TRIG = re.compile(r"\(_m_(?:sin|cos|tan)\((_t\d+)\) if _NINF < \(\1 := ((?:self\.)?\w+)\) < _INF"
@@ -104,12 +109,11 @@ def late_loads(compiler, body) -> dict[int, list[str]]:
             candidates[names[match.group(1)]] = line
     if not candidates:
         return {}
-    paths = branch_paths(body, set(candidates), names_in)
-    counts = name_counts(body, candidates)
+    seen = occurrences(compiler, body)
     loads: dict[int, list[str]] = {}
     for key, line in candidates.items():
-        found = paths[key]
-        if len(found) != counts[key]:
+        found = seen.paths.get(key, [])
+        if len(found) != seen.counts[key]:
             continue
         common = common_branch(found)
         if common:
@@ -118,23 +122,28 @@ def late_loads(compiler, body) -> dict[int, list[str]]:
     return loads
 
 
-def branch_paths(body, keys: set, names_of, bodies: dict | None = None) -> dict[str, list[tuple]]:
-    """For each name of `keys`: the path (ids of the IF branch and CASE clause bodies around
-    it, outermost first) of each of its occurrences `names_of(node)` yields, looking no
-    deeper than the first loop (a loop is one statement).  `bodies`: filled with
-    id -> branch body for every branch met."""
-    paths: dict[str, list[tuple]] = {key: [] for key in keys}
-    _visit(body, (), paths, names_of, {} if bodies is None else bodies)
-    return paths
+class Occurrences:
+    """Where the names of a body occur: `paths[key]` has the path (ids of the IF branch and
+    CASE clause bodies around it, outermost first) of each occurrence of the name, and
+    `paths["=", key]` of each store into it (assignment targets, FOR variables, outputs
+    `=>`), looking no deeper than the first loop (a loop is one statement); `counts[key]`
+    how often the name occurs in the whole body (what the paths must all have found);
+    `bodies` the branch bodies by id."""
+
+    def __init__(self, body):
+        self.body = body
+        self.paths: dict = {}
+        self.bodies: dict[int, tuple] = {}
+        self.counts = Counter(node.name.upper() for node in walk(body) if isinstance(node, ast.Name))
+        _visit(body, (), self.paths, self.bodies)
 
 
-def name_counts(body, keys) -> dict[str, int]:
-    """How often each name of `keys` occurs in `body` (what `branch_paths` must all find)."""
-    counts = {key: 0 for key in keys}
-    for node in walk(body):
-        if isinstance(node, ast.Name) and node.name.upper() in counts:
-            counts[node.name.upper()] += 1
-    return counts
+def occurrences(compiler, body) -> Occurrences:
+    """The body's `Occurrences`, found once for the passes that ask (aliases, stores)."""
+    seen = getattr(compiler, "_occurrences", None)
+    if seen is None or seen.body is not body:
+        seen = compiler._occurrences = Occurrences(body)
+    return seen
 
 
 def common_branch(paths: list[tuple]) -> tuple | None:
@@ -150,37 +159,47 @@ def common_branch(paths: list[tuple]) -> tuple | None:
     return common or None
 
 
-def _visit(stmts, path: tuple, paths: dict, names_of, bodies: dict) -> None:
+def _visit(stmts, path: tuple, paths: dict, bodies: dict) -> None:
     for stmt in stmts or ():
         if isinstance(stmt, ast.If):
             for branch in stmt.branches:
-                _record(branch.condition, path, paths, names_of)
-                _enter(branch.body, path, paths, names_of, bodies)
+                _record(branch.condition, path, paths)
+                _enter(branch.body, path, paths, bodies)
             if stmt.else_body:
-                _enter(stmt.else_body, path, paths, names_of, bodies)
+                _enter(stmt.else_body, path, paths, bodies)
         elif isinstance(stmt, ast.Case):
-            _record(stmt.selector, path, paths, names_of)
+            _record(stmt.selector, path, paths)
             for clause in stmt.clauses:
-                _record(clause.labels, path, paths, names_of)
-                _enter(clause.body, path, paths, names_of, bodies)
+                _record(clause.labels, path, paths)
+                _enter(clause.body, path, paths, bodies)
             if stmt.else_body:
-                _enter(stmt.else_body, path, paths, names_of, bodies)
+                _enter(stmt.else_body, path, paths, bodies)
         else:       # a simple statement, or a loop: every name in it at this path
-            _record(stmt, path, paths, names_of)
+            _record(stmt, path, paths)
 
 
-def _enter(body, path: tuple, paths: dict, names_of, bodies: dict) -> None:
+def _enter(body, path: tuple, paths: dict, bodies: dict) -> None:
     bodies[id(body)] = body
-    _visit(body, path + (id(body),), paths, names_of, bodies)
+    _visit(body, path + (id(body),), paths, bodies)
 
 
-def _record(node, path: tuple, paths: dict, names_of) -> None:
-    for name in names_of(node):
-        found = paths.get(name)
-        if found is not None:
-            found.append(path)
-
-
-def names_in(node):
-    """The names `node` reads or stores, one per occurrence."""
-    return (n.name.upper() for n in _nodes(node) if isinstance(n, ast.Name))
+def _record(node, path: tuple, paths: dict) -> None:
+    for n in _nodes(node):
+        if isinstance(n, ast.Name):
+            name = n.name.upper()
+        elif isinstance(n, ast.Assign):
+            name = root_name(n.target)
+            name = name and ("=", name)
+        elif isinstance(n, ast.For):
+            name = "=", n.variable.upper()
+        elif isinstance(n, ast.Arg) and n.direction == "out":
+            name = root_name(n.value)
+            name = name and ("=", name)
+        else:
+            continue
+        if name:
+            found = paths.get(name)
+            if found is None:
+                paths[name] = [path]
+            else:
+                found.append(path)

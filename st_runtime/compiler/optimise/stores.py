@@ -37,8 +37,8 @@ from __future__ import annotations
 import re
 
 from ... import ast
-from ..scope import _LOOPS, _nodes, root_name
-from .aliases import branch_paths, common_branch, name_counts
+from ..scope import _LOOPS
+from .aliases import common_branch, occurrences
 
 _STORE_BACK = re.compile(r"self\.(v_\w+) = (v_\w+)")
 MAX_DEPTH = 4           # IF/CASE levels a branch may be nested in
@@ -66,46 +66,26 @@ def late_stores(compiler, body) -> LateStores:
             candidates[local_keys[match.group(1)]] = line
     if not candidates:
         return late
-    bodies: dict[int, tuple] = {}
-    paths = branch_paths(body, set(candidates) | {("=", key) for key in candidates}, _uses_and_stores, bodies)
-    counts = name_counts(body, candidates)
+    seen = occurrences(compiler, body)
     depths: dict[int, int] = {}
     for key, line in candidates.items():
-        if len(paths[key]) != counts[key]:
+        uses = seen.paths.get(key, [])
+        if len(uses) != seen.counts[key]:
             continue            # a use the walk of branches did not see: leave it
-        branch = common_branch(paths["=", key])
+        branch = common_branch(seen.paths.get(("=", key), []))
         if branch is None or len(branch) > MAX_DEPTH:
             continue
         if branch[-1] not in depths:
-            depths[branch[-1]] = _loop_depth(bodies[branch[-1]])
+            depths[branch[-1]] = _loop_depth(seen.bodies[branch[-1]])
         if depths[branch[-1]] > MAX_LOOPS:
             continue
         scope.epilogue.remove(line)
         late.stores.setdefault(branch[-1], []).append(line)
         load = f"{scope.places[key].name} = self.{scope.places[key].name}"
-        if load in scope.prologue and common_branch(paths[key]) == branch:
+        if load in scope.prologue and common_branch(uses) == branch:
             scope.prologue.remove(load)
             late.loads.setdefault(branch[-1], []).append(load)
     return late
-
-
-def _uses_and_stores(node):
-    """Each name `node` reads or stores (its key), and each it stores into (`("=", key)`:
-    assignment targets, FOR variables, outputs `=>`)."""
-    for n in _nodes(node):
-        if isinstance(n, ast.Name):
-            yield n.name.upper()
-            continue
-        if isinstance(n, ast.Assign):
-            name = root_name(n.target)
-        elif isinstance(n, ast.For):
-            name = n.variable.upper()
-        elif isinstance(n, ast.Arg) and n.direction == "out":
-            name = root_name(n.value)
-        else:
-            continue
-        if name:
-            yield "=", name
 
 
 def _loop_depth(body) -> int:
