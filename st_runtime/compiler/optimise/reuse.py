@@ -69,6 +69,7 @@ class Reuse:
         self.pending: list[list[int]] = []       # per statement being compiled: values it computes first
         self.closed = 0                          # > 0 inside a statement that ends every value
         self._summaries: dict[int, tuple] = {}   # id(statement) -> _summary (the AST lives as long)
+        self.owned: dict[str, object] = {}       # name -> its symbol when plain storage (`_own`)
 
     # ------------------------------------------------------------ levels
 
@@ -182,16 +183,25 @@ class Reuse:
         if _NUMBER.fullmatch(code):
             return frozenset()
         match = _VARIABLE.fullmatch(code)
-        if match and isinstance(node, ast.Name) and _plain(self.compiler, node):
-            return frozenset((match.group(1),))
+        if match and isinstance(node, ast.Name) and node.name.upper() not in self.compiler.unrolled:
+            symbol = self._own(node)
+            if symbol is not None and isinstance(resolve_alias(symbol.type), ElementaryType):
+                return frozenset((match.group(1),))
         return None
+
+    def _own(self, name):
+        """`_own` of the name, found once."""
+        key = name.name.upper()
+        if key not in self.owned:
+            self.owned[key] = _own(self.compiler, name)
+        return self.owned[key]
 
     def element(self, node, code: str) -> str:
         """An own array's element read at a literal index, as a value."""
         match = _ELEMENT.fullmatch(code)
-        if not (match and self.active() and isinstance(node.base, ast.Name)):
+        if not (match and isinstance(node.base, ast.Name) and self.active()):
             return code
-        symbol = _own(self.compiler, node.base)
+        symbol = self._own(node.base)
         t = resolve_alias(symbol.type) if symbol is not None else None
         if not (isinstance(t, ArrayType) and isinstance(resolve_alias(t.element), ElementaryType)):
             return code
@@ -199,10 +209,11 @@ class Reuse:
 
     def binary(self, e, op: str, left: str, right: str) -> str | None:
         """`(left op right)` of floats as a value, or None."""
-        if not self.active() or op not in ("+", "-", "*") or not _is_float(self.compiler.ty(e)):
+        if op not in ("+", "-", "*"):
             return None
-        a, b = self.operand(e.left, left), self.operand(e.right, right)
-        if a is None or b is None:
+        a = self.operand(e.left, left)
+        b = self.operand(e.right, right) if a is not None else None
+        if b is None or not self.active() or not _is_float(self.compiler.ty(e)):
             return None
         text = f"({left} {op} {right})"
         return self.value(text, text, a | b)
@@ -294,12 +305,6 @@ def _own(compiler, name):
     if place is not None and place.how not in ("local", "self", "alias", "global"):
         return None
     return symbol
-
-
-def _plain(compiler, name) -> bool:
-    symbol = _own(compiler, name)
-    return symbol is not None and isinstance(resolve_alias(symbol.type), ElementaryType) \
-        and name.name.upper() not in compiler.unrolled
 
 
 def _stored(compiler, target) -> str | None:
