@@ -15,7 +15,7 @@ import pytest
 
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
-from test_optimiser_equivalence import run_both, same_alone_and_with_all
+from test_optimiser_equivalence import _Context, run_both, same_alone_and_with_all, snapshot
 
 ON = Optimisations()
 
@@ -113,3 +113,41 @@ def test_a_variable_set_before_it_is_read_is_not_loaded():
     assert {"self.v_C = v_C", "self.v_S = v_S"} <= set(lines[lines.index("_ctx.budget -= _spent"):])
     off, on = run_both(program, 7, optimise=Optimisations.only("unused"))
     assert on == off and {code for code, *_ in on[0]} == {"F-DIV-ZERO"}
+
+
+COPIES = """
+VAR_GLOBAL Shared : ARRAY[1..3] OF LREAL := [1.0, 2.0, 3.0]; END_VAR
+FUNCTION_BLOCK Keeper
+VAR_IN_OUT Outside : ARRAY[1..3] OF LREAL; END_VAR
+VAR Last, Before : ARRAY[1..3] OF LREAL; Fresh : INT; Seen : INT; END_VAR
+Before := Last;                 (* own arrays: no guard *)
+Last := Shared;                 (* from a global: no guard *)
+Fresh := 7;                     (* set before anything can raise: no load *)
+Outside := Last;                (* into an in-out: guarded (unconnected: F-NULL-REF) *)
+Seen := Seen + Fresh * Fresh + Fresh;           (* Fresh read often: a cached local *)
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR K : Keeper; Mine : ARRAY[1..3] OF LREAL; N : INT; END_VAR
+N := N + 1;
+Shared[1] := Shared[1] + 0.5;
+K(Outside := Mine);
+END_PROGRAM
+"""
+
+
+def test_array_copies_between_owned_lists_need_no_guard():
+    program = api.load_text(COPIES).program
+    lines = [line.strip() for line in compile_program(program, optimise=ON).python_sources["KEEPER"].splitlines()]
+    at = {line: i for i, line in enumerate(lines)}
+    assert lines[at["v_BEFORE[:] = v_LAST"] - 1] != "try:" and lines[at["v_LAST[:] = v_SHARED"] - 1] != "try:"
+    assert lines[at["v_OUTSIDE[:] = v_LAST"] - 1] == "try:"
+    assert "v_FRESH = self.v_FRESH" not in lines and "self.v_FRESH = v_FRESH" in lines
+    alone = same_alone_and_with_all(lambda: api.load_text(COPIES).program, 5, "unguard")
+    assert alone[0] == []
+    outcomes = []
+    for optimise in (Optimisations.none(), ON):        # unconnected in-out: the same fault
+        instance, context = compile_program(program, optimise=optimise).new("Keeper"), _Context()
+        type(instance).execute(instance, context)
+        outcomes.append((context.faults, context.budget, snapshot(instance)))
+    assert outcomes[0] == outcomes[1]
+    assert [code for _, code, _ in outcomes[1][0]] == ["F-NULL-REF"]

@@ -127,7 +127,7 @@ class BodyCompiler(ExprCompiler):
             self.reuse.resolve(o.lines, start)
         if self.opt.unused:
             aliases.drop_unused(o.lines, start)
-            if self.method:
+            if self.method and self.unit.guard_statements:   # (a line without `try` then cannot raise)
                 aliases.drop_unread(o.lines, start)
         return o.source()
 

@@ -58,6 +58,7 @@ def drop_unused(lines: list[str], start: int) -> None:
 _LOAD_LINE = re.compile(r"^( *)(v_\w+) = (?:self|_G)\.\2$", re.M)
 _LOCAL_NAME = re.compile(r"(?<![.\w])(v_\w+)")
 _SET = re.compile(r"        ((?:self\.)?\w+) = (.+)")
+_COPY = re.compile(r"        v_\w+\[:\] = v_\w+")
 _INLINE_TRIG = re.compile(r"\(_m_(?:sin|cos|tan)\((_t\d+)\) if _NINF < \(\1 := ((?:self\.)?\w+)\) < _INF"
                           r" else _sf_(?:SIN|COS|TAN)\(\1\)\)")
 
@@ -81,6 +82,8 @@ def drop_unread(lines: list[str], start: int) -> None:
     for line in lines[body + 1:]:
         if line.startswith("        _spent += "):
             continue
+        if _COPY.fullmatch(line):
+            continue            # (a copy of a list left without a guard: unguard.py)
         match = _SET.fullmatch(line)
         if match is None:
             break

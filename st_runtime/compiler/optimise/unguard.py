@@ -20,6 +20,9 @@ Two rules, either one suffices:
   division, power, shift or call but `abs min max`).  Storing into a slot
   or a local raises nothing; the conversion to the target's type, where one
   is needed, is a call and keeps the handler.
+* owned copy: `A := B` of arrays of one elementary element type and the same
+  bounds compiled to `v_A[:] = v_B`, A the POU's own (as above) and B its own
+  or a global's (not located, not a reference): a slice store of a list.
 * owned element store: `A[i, j] := expression` compiled to `v_A[k] = code`
   with a literal index (the compiler writes one only where the index is
   in range), where A is an array the POU owns as plain storage (as above;
@@ -47,6 +50,7 @@ _ATTRIBUTE_OR_CALL = re.compile(r"[A-Za-z_]\w*\s*[.(]")
 _STORE = re.compile(r"\s*(?:self\.)?[A-Za-z_]\w* = (.+)")
 _ELEMENT_STORE = re.compile(r"\s*(?:self\.)?[A-Za-z_]\w*\[\d+\] = (.+)")
 _PLAIN_KINDS = {"VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP", "RETURN"}
+_COPY = re.compile(r"\s*v_\w+\[:\] = v_\w+")
 
 
 def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:
@@ -69,6 +73,8 @@ def _owned_store(compiler, node, lines: list[str]) -> bool:
     if len(lines) != 1 or not isinstance(node, ast.Assign) or node.mode != ":=":
         return False
     target = node.target
+    if _COPY.fullmatch(lines[0]):
+        return _owned_copy(compiler, node)
     if isinstance(target, ast.Name):
         match = _STORE.fullmatch(lines[0])
         owned = match is not None and _plain_variable(compiler, target)
@@ -78,6 +84,24 @@ def _owned_store(compiler, node, lines: list[str]) -> bool:
     else:
         return False
     return owned and branches.expr_cannot_fault(compiler, node.value, match.group(1))
+
+
+def _owned_copy(compiler, node) -> bool:
+    """`A := B` of two arrays of the same elementary type, compiled to `v_A[:] = v_B`: A the
+    POU's own array, B its own or a global's (not located, not reached through a reference):
+    both Python lists of the same length, and a slice store of a list raises nothing."""
+    if not (isinstance(node.target, ast.Name) and isinstance(node.value, ast.Name)
+            and _plain_array(compiler, node.target)):
+        return False
+    source = branches._symbol(compiler, node.value)
+    if source is None or source.kind not in _PLAIN_KINDS | {"VAR_GLOBAL", "VAR_EXTERNAL"} \
+            or source.decl is not None and getattr(source.decl, "location", None) is not None:
+        return False
+    place = compiler.scope.places.get(node.value.name.upper())
+    if place is not None and place.how not in ("alias", "global"):
+        return False
+    a, b = resolve_alias(branches._symbol(compiler, node.target).type), resolve_alias(source.type)
+    return isinstance(b, ArrayType) and a.dims == b.dims and resolve_alias(a.element) == resolve_alias(b.element)
 
 
 def _own_symbol(compiler, name, listed_in_outs: bool = False):
