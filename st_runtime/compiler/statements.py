@@ -40,7 +40,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import aliases, branches, chains, cse, fastpath, fold, gather, ranges, reuse, stores, unguard, unroll
+from .optimise import aliases, branches, chains, charges, cse, fastpath, fold, gather, ranges, reuse, stores, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -129,6 +129,8 @@ class BodyCompiler(ExprCompiler):
             aliases.drop_unused(o.lines, start)
             if self.method and self.unit.guard_statements:   # (a line without `try` then cannot raise)
                 aliases.drop_unread(o.lines, start)
+        if self.opt.charges and charge and self.unit.guard_statements:
+            charges.merge(o.lines, start)
         return o.source()
 
     def _body(self) -> None:

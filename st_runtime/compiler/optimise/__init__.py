@@ -99,6 +99,10 @@ states bit for bit:
   literal index, `+ - *` of such values and plain variables, SIN, COS, TAN
   or SQRT of one) is set once, before the statement that first computes
   it, and read by name after; a value used once keeps its text.
+* `charges` (charges.py): a charge `_spent += N` of a block is added by the
+  charge before it in the same block level when nothing between them can
+  raise, check the budget or leave the level (assignments and IF tests that
+  cannot raise): the same total at every read of `_spent`.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -136,6 +140,7 @@ class Optimisations:
     unused: bool = True
     offsets: bool = True
     reuse: bool = True
+    charges: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

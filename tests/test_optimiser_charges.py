@@ -1,0 +1,82 @@
+"""The `charges` pass (st_runtime/compiler/optimise/charges.py): charges of one block level
+with nothing between them that can raise, check the budget or leave are one, and nothing a
+program can see changes: results, faults (code, file, line, column, scan), instance states and
+the time charged are equal with the pass on and off, also when F-PERIOD cuts the scan at many
+budgets or a fault stops the run between two charges.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import pytest
+
+from st_runtime import api
+from st_runtime.compiler import Optimisations, compile_program
+from st_runtime.controller import Controller
+from test_optimiser_equivalence import run_both, same_alone_and_with_all, snapshot
+
+ON = Optimisations()
+
+LEGS = """
+FUNCTION_BLOCK Legs
+VAR_INPUT X : LREAL; Divisor : INT; END_VAR
+VAR_OUTPUT Total : LREAL; Bad : INT; END_VAR
+VAR Leg : INT; A : LREAL; B : LREAL; Q : INT; END_VAR
+Total := 0.0;
+FOR Leg := 1 TO 4 DO                        (* unrolled: a charge a copy, IFs between them *)
+    A := X * INT_TO_LREAL(Leg);
+    IF A > 2.0 THEN Bad := Bad + 1; END_IF;
+    B := A * A;
+    Total := Total + B;
+END_FOR;
+Q := 10 / Divisor;                          (* a guard between two charges: not joined *)
+IF Q > 3 THEN Total := Total + 1.0; END_IF;
+Total := Total * 2.0;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR L : Legs; N : INT; END_VAR
+N := N + 1;
+L(X := INT_TO_LREAL(N) * 0.25, Divisor := N MOD 3);
+END_PROGRAM
+"""
+
+
+def _program():
+    return api.load_text(LEGS).program
+
+
+def _charges(optimise) -> list[int]:
+    source = compile_program(_program(), optimise=optimise).python_sources["LEGS"]
+    return [int(line.split("+=")[1]) for line in source.splitlines() if line.strip().startswith("_spent += ")
+            and line.split("+=")[1].strip().isdigit()]
+
+
+def test_charges_of_a_straight_run_are_one_and_add_up_the_same():
+    joined, plain = _charges(ON), _charges(replace(ON, charges=False))
+    assert len(joined) < len(plain)
+    guarded = compile_program(_program(), optimise=ON).python_sources["LEGS"]
+    assert "_idiv(10" in guarded and sum(joined) == sum(plain)
+
+
+def test_the_scans_see_the_same_with_and_without_the_pass():
+    faults = same_alone_and_with_all(_program, 9, "charges")[0]
+    assert {code for code, *_ in faults} == {"F-DIV-ZERO"}
+
+
+@pytest.mark.parametrize("budget_ns", [300, 600, 1_000, 1_500, 2_000, 3_000, 5_000])
+def test_f_period_lands_on_the_same_statement_with_the_pass(budget_ns):
+    off, on = run_both(_program(), 4, budget_ns, optimise=Optimisations.only("charges"))
+    assert on == off
+
+
+def test_a_fault_that_stops_the_run_leaves_the_same_time_charged():
+    outcomes = []
+    for optimise in (replace(ON, charges=False), ON):
+        controller = Controller(compile_program(_program(), optimise=optimise), stop_on_fault=True)
+        main = controller.add_program("Main")
+        controller.run(5)
+        outcomes.append(([(f.code, f.line, f.scan) for f in controller.faults], snapshot(main),
+                         controller.ctx.budget))
+    assert outcomes[0] == outcomes[1]
+    assert outcomes[1][0] == [("F-DIV-ZERO", 13, 3)]
