@@ -116,3 +116,33 @@ def test_the_values_are_the_ones_worked_out_by_hand():
 def test_f_period_lands_on_the_same_statement_with_the_pass(budget_ns):
     off, on = run_both(_program(), 4, budget_ns, optimise=Optimisations.only("reuse"))
     assert on == off
+
+
+WHILE_LOOP = """
+FUNCTION_BLOCK Climb
+VAR_OUTPUT Steps : INT; Seen : LREAL; END_VAR
+VAR X : LREAL; Y : LREAL; END_VAR
+X := 0.0; Steps := 0;
+WHILE X * 2.0 < 10.0 DO             (* the condition runs again after X changes *)
+    Y := X * 2.0;
+    Seen := Seen + Y;
+    X := X + 1.0;
+    Steps := Steps + 1;
+END_WHILE;
+Y := X * 2.0 + X * 2.0;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR C : Climb; END_VAR
+C();
+END_PROGRAM
+"""
+
+
+def test_a_while_condition_is_computed_each_time():
+    """By hand: X = 0..4 pass X * 2.0 < 10.0, so 5 steps and Seen = 0 + 2 + 4 + 6 + 8 a call."""
+    program = api.load_text(WHILE_LOOP).program
+    controller = Controller(compile_program(program, optimise=ON))
+    main = controller.add_program("Main")
+    controller.run(2)
+    assert (main.v_C.v_STEPS, main.v_C.v_SEEN, main.v_C.v_Y) == (5, 40.0, 20.0)
+    same_alone_and_with_all(lambda: api.load_text(WHILE_LOOP).program, 3, "reuse")

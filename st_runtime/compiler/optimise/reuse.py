@@ -23,7 +23,8 @@ A value stays valid while nothing can change what it read: a store into one of
 its variables ends it (after the statement that stores, or before a loop whose
 body stores it, which would run the use again after the store); a statement
 with a call of ST code, REF or a store through a reference, an in-out, a
-located or a global variable ends every value; the end of the IF branch, CASE
+located or a global variable ends every value, and so does a WHILE or REPEAT
+(its condition runs again after its body, so none is set for it or in it); the end of the IF branch, CASE
 clause or loop body it was computed in ends it (an unrolled copy of a loop runs
 where it is written: its values stay for the next copy).  The same operations
 on the same operands in the same order give the same float, so results,
@@ -122,7 +123,7 @@ class Reuse:
             opaque = name is None
             stored.add(name)
         elif isinstance(stmt, (ast.While, ast.Repeat)):
-            expressions, bodies = [stmt.condition], [stmt.body]
+            opaque = True       # (its condition runs again after its body: nothing to set before it)
         elif not isinstance(stmt, (ast.Exit, ast.Continue, ast.Return, ast.Empty)):
             opaque = True
         opaque = opaque or any(_calls_st(c, e) for e in expressions)
