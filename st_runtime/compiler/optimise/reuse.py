@@ -23,8 +23,9 @@ A value stays valid while nothing can change what it read: a store into one of
 its variables ends it (after the statement that stores, or before a loop whose
 body stores it, which would run the use again after the store); a statement
 with a call of ST code, REF or a store through a reference, an in-out, a
-located or a global variable ends every value, and so does a WHILE or REPEAT
-(its condition runs again after its body, so none is set for it or in it); the end of the IF branch, CASE
+located or a global variable ends every value; a WHILE's or REPEAT's condition
+runs again after its body, so no value is set for it (its body's statements set
+their own, in the body); the end of the IF branch, CASE
 clause or loop body it was computed in ends it (an unrolled copy of a loop runs
 where it is written: its values stay for the next copy).  The same operations
 on the same operands in the same order give the same float, so results,
@@ -88,7 +89,8 @@ class Reuse:
             self.closed += 1
         elif loops:
             self._forget(stored)
-        self.pending.append([])
+        # A WHILE's or REPEAT's condition runs again after its body: no value of it is set before it.
+        self.pending.append(None if isinstance(stmt, (ast.While, ast.Repeat)) else [])
         return stored, opaque
 
     def _summary(self, stmt) -> tuple[frozenset, bool, bool]:
@@ -123,7 +125,7 @@ class Reuse:
             opaque = name is None
             stored.add(name)
         elif isinstance(stmt, (ast.While, ast.Repeat)):
-            opaque = True       # (its condition runs again after its body: nothing to set before it)
+            expressions, bodies = [stmt.condition], [stmt.body]
         elif not isinstance(stmt, (ast.Exit, ast.Continue, ast.Return, ast.Empty)):
             opaque = True
         opaque = opaque or any(_calls_st(c, e) for e in expressions)
@@ -159,7 +161,8 @@ class Reuse:
 
     def active(self) -> bool:
         c = self.compiler
-        return bool(self.pending) and not self.closed and c.region is None and c._segments is None
+        return bool(self.pending) and self.pending[-1] is not None and not self.closed \
+            and c.region is None and c._segments is None
 
     def value(self, key: str, text: str, deps: frozenset) -> str:
         """A token for the value `key`, computed by `text` (which cannot raise), that
