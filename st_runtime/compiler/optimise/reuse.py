@@ -43,7 +43,7 @@ from ..pysrc import pyident
 from ..scope import _LOOPS, _nodes, root_name
 
 _TOKEN = re.compile("\x03(\\d+)\x03")
-_MARKER = re.compile("( *)\x04([\\d,]+)\x04")
+_MARKER = re.compile("^( *)\x04([\\d,]+)\x04$", re.M)
 _NUMBER = re.compile(r"-?\(?-?\d[\d.e+-]*\)?")
 _VARIABLE = re.compile(r"(?:self\.|_G\.)?(v_\w+)")
 _ELEMENT = re.compile(r"(v_\w+)\[\d+\]")
@@ -213,11 +213,11 @@ class Reuse:
 
     def binary(self, e, op: str, left: str, right: str) -> str | None:
         """`(left op right)` of floats as a value, or None."""
-        if op not in ("+", "-", "*"):
+        if op not in ("+", "-", "*") or not _is_float(self.compiler.ty(e)):
             return None
         a = self.operand(e.left, left)
         b = self.operand(e.right, right) if a is not None else None
-        if b is None or not self.active() or not _is_float(self.compiler.ty(e)):
+        if b is None or not self.active():
             return None
         text = f"({left} {op} {right})"
         return self.value(text, text, a | b)
@@ -236,7 +236,8 @@ class Reuse:
         where it was first computed and read by name, one used once keeps its text."""
         if not self.values:
             return
-        self._count_uses(lines, start)
+        text = "\n".join(lines[start:])
+        self._count_uses(text)
         names = {}
 
         def text_of(index: int) -> str:
@@ -248,39 +249,36 @@ class Reuse:
                 return names.setdefault(index, f"_c{index}")
             return text_of(index)
 
-        out = []
-        for i in range(start, len(lines)):
-            line = lines[i]
-            marker = _MARKER.fullmatch(line)
-            if marker:
-                indent = marker.group(1)
-                defs = [f"{indent}_c{index} = {text_of(index)}"
-                        for index in map(int, marker.group(2).split(",")) if self.values[index].uses >= 2]
-                if not defs and out and out[-1].rstrip().endswith(":"):
-                    after = lines[i + 1] if i + 1 < len(lines) else ""
-                    if len(after) - len(after.lstrip()) < len(indent):
-                        defs = [f"{indent}pass"]
-                out.extend(defs)
-            elif "\x03" in line:
-                out.append(_TOKEN.sub(token, line))
-            else:
-                out.append(line)
+        text = _TOKEN.sub(token, text)
+        new = text.split("\n")
+        out, done, line, at = [], 0, 0, 0
+        for marker in _MARKER.finditer(text):
+            line += text.count("\n", at, marker.start())
+            at = marker.start()
+            indent = marker.group(1)
+            defs = [f"{indent}_c{index} = {text_of(index)}"
+                    for index in map(int, marker.group(2).split(",")) if self.values[index].uses >= 2]
+            out.extend(new[done:line])
+            before = out[-1] if out else ""
+            after = new[line + 1] if line + 1 < len(new) else ""
+            if not defs and before.rstrip().endswith(":") and len(after) - len(after.lstrip()) < len(indent):
+                defs = [f"{indent}pass"]        # (the only line of its block)
+            out.extend(defs)
+            done = line + 1
+        out.extend(new[done:])
         lines[start:] = out
 
-
-    def _count_uses(self, lines: list[str], start: int) -> None:
+    def _count_uses(self, text: str) -> None:
         """Each value's uses in the code as it will be: its tokens in the lines, and in the
         text of each value that uses it, once where that value is set (used twice or more)
         or where its one use puts it back (a value's operands come before it)."""
         counts = [0] * len(self.values)
-        for i in range(start, len(lines)):
-            if "\x03" in lines[i]:
-                for match in _TOKEN.finditer(lines[i]):
-                    counts[int(match.group(1))] += 1
+        for index in _TOKEN.findall(text):
+            counts[int(index)] += 1
         for index in range(len(self.values) - 1, -1, -1):
             if counts[index]:
-                for match in _TOKEN.finditer(self.values[index].text):
-                    counts[int(match.group(1))] += 1
+                for inner in _TOKEN.findall(self.values[index].text):
+                    counts[int(inner)] += 1
         for value, count in zip(self.values, counts):
             value.uses = count
 
