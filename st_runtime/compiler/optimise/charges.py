@@ -16,33 +16,48 @@ from __future__ import annotations
 
 import re
 
-_CHARGE = re.compile(r"( *)_spent \+= (\d+)")
-_BARRIER = re.compile(r"\btry:|\bexcept\b|_ctx|_overrun|\breturn\b|\bbreak\b|\bcontinue\b|^\s*(?:for|while|with)\b"
-                      r"|\.execute\(|_fn_|\bfinally:")
+_CHARGE = re.compile(r"^( *)_spent \+= (\d+)$", re.M)
+_BARRIER = re.compile(r"\btry:|\bexcept\b|\bfinally:|_ctx|_overrun|\breturn\b|\bbreak\b|\bcontinue\b|\.execute\("
+                      r"|_fn_|^ *(?:for|while|with)\b|^(?! *(?:if |elif |else:))[^\n]*:$", re.M)
 
 
 def merge(lines: list[str], start: int) -> None:
     """Add each charge that may join the one before it in its level to that one."""
-    open_at: dict[int, int] = {}        # indentation -> index of the charge that takes later ones
-    drop = set()
-    for i in range(start, len(lines)):
-        line = lines[i]
-        indent = len(line) - len(line.lstrip(" "))
-        for level in [level for level in open_at if level > indent]:
-            del open_at[level]          # (that level has ended)
-        match = _CHARGE.fullmatch(line)
-        if match:
-            first = open_at.get(indent)
-            if first is not None:
-                head = _CHARGE.fullmatch(lines[first])
-                lines[first] = f"{head.group(1)}_spent += {int(head.group(2)) + int(match.group(2))}"
-                drop.add(i)
-            else:
-                open_at[indent] = i
-            continue
-        if _BARRIER.search(line):
-            open_at.clear()
-        elif line.rstrip().endswith(":") and not line.lstrip().startswith(("if ", "elif ", "else:")):
-            open_at.clear()
-    if drop:
-        lines[start:] = [line for i, line in enumerate(lines[start:], start) if i not in drop]
+    text = "\n".join(lines[start:])
+    found = list(_CHARGE.finditer(text))
+    if len(found) < 2:
+        return
+    line_of, line, at = [], 0, 0
+    for match in found:
+        line += text.count("\n", at, match.start())
+        at = match.start()
+        line_of.append(line)
+    totals = [int(match.group(2)) for match in found]
+    taker: dict[int, int] = {}          # indentation -> the charge that takes later ones
+    dropped = set()
+    for k, match in enumerate(found):
+        indent = len(match.group(1))
+        first = taker.get(indent)
+        if first is not None and _joinable(text, found[first].end(), match.start(), indent):
+            totals[first] += totals[k]
+            dropped.add(k)
+        else:
+            taker[indent] = k
+    if not dropped:
+        return
+    new = text.split("\n")
+    for k, match in enumerate(found):
+        if k in dropped:
+            new[line_of[k]] = None
+        elif totals[k] != int(match.group(2)):
+            new[line_of[k]] = f"{match.group(1)}_spent += {totals[k]}"
+    lines[start:] = [line for line in new if line is not None]
+
+
+def _joinable(text: str, start: int, end: int, indent: int) -> bool:
+    """Whether the code between two charges of one indentation is of their block (no line
+    less indented) and cannot raise, check the budget or leave it (no barrier)."""
+    between = text[start:end]
+    if indent and re.search(rf"\n {{0,{indent - 1}}}\S", between):
+        return False
+    return not _BARRIER.search(between)

@@ -49,6 +49,7 @@ _VARIABLE = re.compile(r"(?:self\.|_G\.)?(v_\w+)")
 _ELEMENT = re.compile(r"(v_\w+)\[\d+\]")
 _PLAIN_KINDS = {"VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP", "RETURN", "VAR_GLOBAL", "VAR_EXTERNAL"}
 _MATH = {"SIN", "COS", "TAN", "SQRT"}
+_NO_VARIABLES: frozenset = frozenset()
 
 
 class _Value:
@@ -181,13 +182,15 @@ class Reuse:
 
     def operand(self, node, code: str) -> frozenset | None:
         """The variables `code` (of `node`) reads when it is a value this pass can use."""
-        match = _TOKEN.fullmatch(code)
-        if match:
-            return self.values[int(match.group(1))].deps
-        if _NUMBER.fullmatch(code):
-            return frozenset()
+        if code[0] == "\x03":
+            match = _TOKEN.fullmatch(code)
+            return self.values[int(match.group(1))].deps if match else None
+        if not isinstance(node, ast.Name):
+            return _NO_VARIABLES if _NUMBER.fullmatch(code) else None
         match = _VARIABLE.fullmatch(code)
-        if match and isinstance(node, ast.Name) and node.name.upper() not in self.compiler.unrolled:
+        if match is None:
+            return _NO_VARIABLES if _NUMBER.fullmatch(code) else None
+        if node.name.upper() not in self.compiler.unrolled:
             symbol = self._own(node)
             if symbol is not None and isinstance(resolve_alias(symbol.type), ElementaryType):
                 return frozenset((match.group(1),))
