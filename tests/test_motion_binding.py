@@ -96,3 +96,16 @@ def test_values_that_cannot_be_watched_are_resolved_every_call():
     rig.call(power, "A0", Enable=True)
     assert power._bound_ref is fbs._UNBOUND and not binding.hold(power, rig.ref("A0"))
     assert rig.task.axes[0].power_requested
+
+
+def test_a_copy_of_the_same_values_every_scan_keeps_the_binding(monkeypatch):
+    """`Local := Cyl1` every scan stores the values Local holds: the FB is not resolved again."""
+    resolved = []
+    resolve = fbs.resolve_axis
+    monkeypatch.setattr(fbs, "resolve_axis", lambda ref, ctx: resolved.append(ref) or resolve(ref, ctx))
+    plc, main, task = make_plc(FOLLOWS_LOCAL, AXIS, dict(AXIS, name="Cyl2"))
+    plc.run(5)
+    assert len(resolved) == 1
+    main["UseSecond"] = True                              # other values: resolved once more
+    plc.run(5)
+    assert len(resolved) == 2 and task.axes[1].powered

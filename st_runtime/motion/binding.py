@@ -2,12 +2,13 @@
 
 An axis FB resolves its `Axis` in-out through `Cfg.AxEnable` and `Cfg.AxNo`
 (`fbs.resolve_axis`) and keeps the AXIS_REF value and the axis it found.  The binding
-holds while the FB is given the same AXIS_REF value and nothing is written to that
-value's `Cfg` (nor its `Cfg` replaced): so the test of a call is one identity test, and a
-write to a watched `Cfg` ends every binding (the next call of each FB resolves again,
-which finds what it found before unless the write changed it).  Writes to `Cfg` are rare
-(binding the axes, a program that points a variable at another axis), so ending every
-binding costs nothing a scan sees.
+holds while the FB is given the same AXIS_REF value and nothing else is stored in that
+value's `Cfg` (nor another `Cfg` put in its place): so the test of a call is one identity
+test, and a store of another value into a watched `Cfg` ends every binding (the next call
+of each FB resolves again, which finds what it found before unless the store changed it).
+Such stores are rare (binding the axes, a program that points a variable at another
+axis), so ending every binding costs nothing a scan sees; a store of the value a member
+already holds (a program that copies an AXIS_REF every scan) ends none.
 
 A watched value is the same object with its class swapped for a subclass whose
 `__setattr__` ends the bindings: its name and `__slots__` are its class's, so everything
@@ -27,7 +28,10 @@ _WATCHED: dict[type, type] = {}          # a struct class -> its watched subclas
 
 
 def _store_and_unbind(self, name: str, value) -> None:
+    unchanged = getattr(self, name, _HOLDERS) is value     # (a program copying an AXIS_REF each scan)
     object.__setattr__(self, name, value)
+    if unchanged:
+        return
     holders = list(_HOLDERS)
     _HOLDERS.clear()
     for holder in holders:
