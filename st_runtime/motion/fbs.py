@@ -457,18 +457,18 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
         return axis.start_sync()
 
     # The call of every scan while synchronized (no edge, command alive); everything else
-    # goes through the general rules.  InPosition: |act - target| <= range without the call of
-    # abs() (the same for every float); an LREAL input holds a float: float() only if not.
+    # goes through the general rules.  InPosition as `_poll` computes it (abs() and one
+    # comparison cost less than a chained comparison whose value is stored); an LREAL input
+    # holds a float: float() only if not.
     HOT_PATH = HotPath(
         pre=("{fb}.v_BUSY and ({command} := {fb}._command) is not None and not {command}.aborted"
              " and ({fb}._previous_execute or not {fb}.v_EXECUTE)"),
         body=("{fb}._previous_execute = True if {fb}.v_EXECUTE else False",
               "{fb}.v_ACTIVE = True",                         # _poll(axis, command, False), inlined
-              "{window} = {axis}.config.in_position_range",
-              "{fb}.v_INPOSITION = -{window} <= {axis}.act_pos - {command}.target <= {window}",
+              "{fb}.v_INPOSITION = abs({axis}.act_pos - {command}.target) <= {axis}.config.in_position_range",
               "{position} = {fb}.v_POSITION",
               "{command}.target = {position} if {position}.__class__ is float else float({position})"),
-        temps=("command", "window", "position"),
+        temps=("command", "position"),
         cold="_execute_rules")
 
     def _start(self, axis: Axis | None) -> None:
