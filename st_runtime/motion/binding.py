@@ -24,12 +24,11 @@ from ..objects import STObject
 
 # FBs that hold a binding (`end_binding` on each when a watched value is written).
 _HOLDERS: "weakref.WeakSet" = weakref.WeakSet()
-_WATCHED: dict[type, type] = {}          # a struct class -> its watched subclass
 
 
 def _store_and_unbind(self, name: str, value) -> None:
     unchanged = getattr(self, name, _HOLDERS) is value     # (a program copying an AXIS_REF each scan)
-    object.__setattr__(self, name, value)
+    type(self).__mro__[1].__setattr__(self, name, value)        # the struct class's own store
     if unchanged:
         return
     holders = list(_HOLDERS)
@@ -39,12 +38,14 @@ def _store_and_unbind(self, name: str, value) -> None:
 
 
 def _watched_class(cls: type) -> type:
-    watched = _WATCHED.get(cls)
+    """The watched subclass of struct class `cls`, made once and kept on `cls` (so it goes
+    with the compiled program that made `cls`)."""
+    watched = cls.__dict__.get("_st_watched")
     if watched is None:
         watched = type(cls.__name__, (cls,), {"__slots__": (), "__setattr__": _store_and_unbind,
                                               "__qualname__": cls.__qualname__, "__module__": cls.__module__})
         watched.__slots__ = cls.__slots__    # members as the struct's own (read member by member)
-        _WATCHED[cls] = watched
+        cls._st_watched = watched
     return watched
 
 
