@@ -8,7 +8,6 @@ import pytest
 
 from st_runtime.motion import binding, fbs
 from st_runtime.motion.error_ids import ErrorID
-from st_runtime.objects import STObject
 
 from test_motion_st import AXIS, make_plc
 
@@ -76,7 +75,7 @@ def test_a_watched_struct_reads_as_before():
              (("ref", ref), ("cfg", ref.v_CFG))}
     plc.run(1)                                              # MC_Power resolves Local
     local = plc.controller.instances["Main"].v_LOCAL
-    assert type(local.v_CFG).__setattr__ is not STObject.__setattr__    # watched now
+    assert type(local.v_CFG).__setattr__ is binding._store_and_unbind    # watched now
     assert {name: (type(value).__name__, type(value).__slots__) for name, value in
             (("ref", ref), ("cfg", ref.v_CFG))} == kinds
     local._assign(plc.controller.globals.v_CYL2)
