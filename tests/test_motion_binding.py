@@ -86,9 +86,8 @@ def test_a_watched_struct_reads_as_before():
 def test_values_that_cannot_be_watched_are_resolved_every_call():
     """A stand-in that is no ST struct (the FB bench's) is never held: the FB resolves it on
     every call, as if each call were the first."""
-    from motion_rig import make_fb
+    from motion_rig import Rig, make_fb
     from test_motion_fbs import axis_config
-    from motion_rig import Rig
 
     rig = Rig(axis_config(name="A0"), axis_config(name="A1"))
     power = make_fb(fbs.MC_Power)
