@@ -17,7 +17,9 @@ and `make_methods` gives each class:
   hash), read by an `attrgetter` (closures: nothing to compile);
 * `__getstate__`, `__setstate__` (pickling, as a frozen slotted dataclass
   has): the field values as a list, stored back through the descriptors;
-* `__setattr__`, `__delattr__`: `FrozenInstanceError` for any name.
+* `__setattr__`, `__delattr__`: `FrozenInstanceError` for any name
+  (`__dataclass_params__.frozen` is False: nothing reads it);
+* a class without a docstring gets dataclass's, its name and signature.
 
 No class given may have a `__post_init__`, a `default_factory`, an
 `init=False` field or a method of those names of its own (`make_methods`
@@ -27,6 +29,7 @@ with what `dataclass(frozen=True, slots=True)` makes of the same fields.
 
 from __future__ import annotations
 
+import inspect
 from dataclasses import MISSING, FrozenInstanceError, dataclass
 from operator import attrgetter
 
@@ -38,7 +41,15 @@ WRITTEN = ("__init__", "__repr__", "__eq__", "__hash__", "__getstate__", "__sets
 def frozen_dataclass(cls: type) -> type:
     """The fields and slots of `@dataclass(frozen=True, slots=True)`; the methods
     come from `make_methods`, which must be called before an instance is made."""
-    return dataclass(slots=True, init=False, repr=False, eq=False)(cls)
+    undocumented = not cls.__dict__.get("__doc__")
+    cls = dataclass(slots=True, init=False, repr=False, eq=False)(cls)
+    if undocumented:     # (dataclass's docstring spells the signature of an __init__ not yet made)
+        _UNDOCUMENTED.add(cls)
+    return cls
+
+
+#: Classes without a docstring: make_methods gives them dataclass's, the class's signature.
+_UNDOCUMENTED: set[type] = set()
 
 
 def _frozen_setattr(self, name, value):
@@ -68,6 +79,8 @@ def make_methods(classes: list[type]) -> None:
                 function.__qualname__ = f"{cls.__qualname__}.{function.__name__}"
             setattr(cls, function.__name__, function)
         cls.__setattr__, cls.__delattr__ = _frozen_setattr, _frozen_delattr
+        if cls in _UNDOCUMENTED:
+            cls.__doc__ = cls.__name__ + str(inspect.signature(cls)).replace(" -> None", "")
 
 
 def _write_init(cls: type, prefix: str, scope: dict, lines: list[str]) -> None:

@@ -259,7 +259,7 @@ def test_a_node_class_behaves_as_its_frozen_dataclass():
     """Every AST class (and Pos) takes the parameters a frozen slotted dataclass of
     its fields takes, with the same defaults and annotations, stores the same
     fields, and has the same repr, equality, hash, match arguments, refusal of
-    stores and pickled round trip (frozen_dataclasses.make_methods)."""
+    stores, pickled round trip and generated docstring (frozen_dataclasses.make_methods)."""
     import dataclasses
     import inspect
     import pickle
@@ -272,6 +272,8 @@ def test_a_node_class_behaves_as_its_frozen_dataclass():
         reference = _as_dataclass_made_it(cls)
         assert inspect.signature(cls.__init__) == inspect.signature(reference.__init__)
         assert cls.__match_args__ == reference.__match_args__
+        if cls.__doc__.startswith(cls.__name__ + "("):     # no docstring of its own: dataclass's
+            assert cls.__doc__ == reference.__doc__
         assert not hasattr(cls(*[None] * len(cls.__match_args__)), "__dict__")   # slotted
         fields = dataclasses.fields(cls)
         values = {f.name: f"v_{f.name}" for f in fields}
