@@ -11,11 +11,13 @@ Tuples, never lists, hold children so that every node is hashable.
 
 from __future__ import annotations
 
-from dataclasses import MISSING, dataclass, field
+from dataclasses import field
 from typing import Union
 
+from .frozen_dataclasses import frozen_dataclass, make_methods
 
-@dataclass(frozen=True, slots=True)
+
+@frozen_dataclass
 class Pos:
     """A place in a source file: 1-based line and column."""
 
@@ -27,6 +29,7 @@ class Pos:
         return f"{self.file}:{self.line}:{self.col}"
 
 
+make_methods([Pos])
 NOWHERE = Pos("<builtin>", 0, 0)
 
 
@@ -67,7 +70,7 @@ class _ChildFields(dict):
 CHILD_FIELDS: dict[type, tuple[str, ...]] = _ChildFields()
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Node:
     pos: Pos = field(default=NOWHERE, compare=False, repr=False, kw_only=True)
 
@@ -76,14 +79,14 @@ class Node:
 # Type references as written in declarations; the checker resolves them.
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class NamedType(Node):
     """An elementary type (`LREAL`), a user type, or an FB type, by name."""
 
     name: str
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class StringType(Node):
     """`STRING` or `STRING[n]` (`length` None means the default, 80)."""
 
@@ -91,13 +94,13 @@ class StringType(Node):
     wide: bool = False
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Subrange(Node):
     lo: Expr
     hi: Expr
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class SubrangeType(Node):
     """`INT (0..100)`: an integer type limited to a range."""
 
@@ -105,7 +108,7 @@ class SubrangeType(Node):
     range: Subrange
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class RefType(Node):
     """`REF_TO INT` (3rd ed. 6.4.4.10); `POINTER TO INT` in the codesys dialect."""
 
@@ -113,7 +116,7 @@ class RefType(Node):
     pointer: bool = False
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class ArrayType(Node):
     """`ARRAY[lo..hi, ...] OF element` (up to three dimensions); a range of
     None is `*` (ARRAY[*] in a VAR_IN_OUT: the bounds come with the argument)."""
@@ -122,7 +125,7 @@ class ArrayType(Node):
     element: TypeRef
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class StructType(Node):
     """`STRUCT ... END_STRUCT` (or `UNION ... END_UNION`: the members share
     their storage), only inside a TYPE declaration."""
@@ -131,13 +134,13 @@ class StructType(Node):
     union: bool = False
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class EnumValue(Node):
     name: str
     value: Expr | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class EnumType(Node):
     """`(Red, Green := 5, Blue)`, only inside a TYPE declaration."""
 
@@ -151,7 +154,7 @@ TypeSpec = Union[NamedType, StringType, ArrayType, SubrangeType, StructType, Enu
 # --------------------------------------------------------------- expressions
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class IntLiteral(Node):
     """An integer literal; `type_prefix` is e.g. `INT` for `INT#-5`."""
 
@@ -159,19 +162,19 @@ class IntLiteral(Node):
     type_prefix: str | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class RealLiteral(Node):
     value: float
     type_prefix: str | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class BoolLiteral(Node):
     value: bool
     type_prefix: str | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class StringLiteral(Node):
     """The decoded text (`$N` already a newline); `wide` for `"..."`."""
 
@@ -179,14 +182,14 @@ class StringLiteral(Node):
     wide: bool = False
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class TimeLiteral(Node):
     """A duration in integer nanoseconds (`T#1s500ms`, `TIME#-2.5s`)."""
 
     nanoseconds: int
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class DateTimeLiteral(Node):
     """DATE, TIME_OF_DAY or DATE_AND_TIME; `value` in ns since epoch/midnight."""
 
@@ -194,7 +197,7 @@ class DateTimeLiteral(Node):
     nanoseconds: int
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class EnumLiteral(Node):
     """`Color#Red`: an enumeration value qualified by its type."""
 
@@ -202,14 +205,14 @@ class EnumLiteral(Node):
     value_name: str
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Name(Node):
     """A variable, constant, or unqualified enumeration value."""
 
     name: str
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Member(Node):
     """`base.name`: a struct member or FB instance variable."""
 
@@ -217,7 +220,7 @@ class Member(Node):
     name: str
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Index(Node):
     """`base[i, j]`."""
 
@@ -225,13 +228,13 @@ class Index(Node):
     indices: tuple[Expr, ...]
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Unary(Node):
     op: str  # "-" | "+" | "NOT"
     operand: Expr
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Binary(Node):
     """op is one of: ** * / MOD + - < > <= >= = <> AND XOR OR  (& is AND)."""
 
@@ -240,14 +243,14 @@ class Binary(Node):
     right: Expr
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Deref(Node):
     """`r^`: the variable a reference refers to."""
 
     base: Expr
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class BitAccess(Node):
     """`x.3`: bit 3 of an integer or bit-string variable (CODESYS, NJ); with a
     `size` the 3rd edition's partial access `x.%X3`, `w.%B1`, `d.%W0` (6.5.5.2)."""
@@ -257,19 +260,19 @@ class BitAccess(Node):
     size: str = ""          # "" (x.3) | X | B | W | D | L
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class DirectVar(Node):
     """`%IX0.0`, `%QW3` used in code: a place of the process image (6.5.5)."""
 
     address: str
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class NullLiteral(Node):
     """NULL: a reference (or interface variable) that refers to nothing."""
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Arg(Node):
     """One argument of a call.
 
@@ -284,7 +287,7 @@ class Arg(Node):
     negated: bool = False
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Call(Node):
     """A function call, or (as a statement) an FB instance call.
 
@@ -306,25 +309,25 @@ Expr = Union[
 # ---------------------------------------------------------------- statements
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Assign(Node):
     target: Expr
     value: Expr
     mode: str = ":="     # CODESYS "S=" (set the BOOL when value) / "R=" (reset)
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class CallStmt(Node):
     call: Call
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class IfBranch(Node):
     condition: Expr
     body: tuple[Stmt, ...]
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class If(Node):
     """`branches[0]` is the IF, the rest the ELSIFs; `else_body` None = none."""
 
@@ -332,13 +335,13 @@ class If(Node):
     else_body: tuple[Stmt, ...] | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class CaseRange(Node):
     lo: Expr
     hi: Expr
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class CaseClause(Node):
     """`labels` are expressions (constants, enum values) or CaseRanges."""
 
@@ -346,14 +349,14 @@ class CaseClause(Node):
     body: tuple[Stmt, ...]
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Case(Node):
     selector: Expr
     clauses: tuple[CaseClause, ...]
     else_body: tuple[Stmt, ...] | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class For(Node):
     variable: str
     start: Expr
@@ -362,34 +365,34 @@ class For(Node):
     body: tuple[Stmt, ...]
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class While(Node):
     condition: Expr
     body: tuple[Stmt, ...]
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Repeat(Node):
     body: tuple[Stmt, ...]
     condition: Expr
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Exit(Node):
     pass
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Continue(Node):
     pass
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Return(Node):
     pass
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Empty(Node):
     """A lone `;`."""
 
@@ -400,7 +403,7 @@ Stmt = Union[Assign, CallStmt, If, Case, For, While, Repeat, Exit, Continue, Ret
 # -------------------------------------------------------------- declarations
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class ArrayInitItem(Node):
     """`value` or `count(value)`; `count(())` is written `count()`: value None."""
 
@@ -408,18 +411,18 @@ class ArrayInitItem(Node):
     count: Expr | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class ArrayInit(Node):
     items: tuple[ArrayInitItem, ...]
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class FieldInit(Node):
     name: str
     value: Initializer
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class StructInit(Node):
     fields: tuple[FieldInit, ...]
 
@@ -427,7 +430,7 @@ class StructInit(Node):
 Initializer = Union[Expr, ArrayInit, StructInit]
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class VarDecl(Node):
     """One variable (`a, b : INT` yields two VarDecls); pos is the name's."""
 
@@ -444,7 +447,7 @@ VAR_KINDS = (
 )
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class VarBlock(Node):
     kind: str  # one of VAR_KINDS
     decls: tuple[VarDecl, ...]
@@ -452,7 +455,7 @@ class VarBlock(Node):
     retain: bool = False
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class TypeDecl(Node):
     """One entry of a TYPE ... END_TYPE block."""
 
@@ -462,7 +465,7 @@ class TypeDecl(Node):
     namespace: str = ""      # "A.B" inside NAMESPACE A.B (3rd ed. 6.9)
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Method(Node):
     """`METHOD PUBLIC Area : LREAL ... END_METHOD` (IEC 61131-3 3rd ed. 6.6.5)."""
 
@@ -474,7 +477,7 @@ class Method(Node):
     modifiers: tuple[str, ...] = ()       # ABSTRACT, FINAL, OVERRIDE
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class ActionAssociation(Node):
     """`Fill(N);` in a step: an action with its qualifier (IEC 61131-3 3rd ed. 6.7.4.5)."""
 
@@ -484,7 +487,7 @@ class ActionAssociation(Node):
     indicator: str | None = None          # an indicator variable (table 59)
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Step(Node):
     """`INITIAL_STEP Start: ... END_STEP` or `STEP Fill: ... END_STEP` (6.7.2)."""
 
@@ -493,7 +496,7 @@ class Step(Node):
     actions: tuple[ActionAssociation, ...] = ()
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Transition(Node):
     """`TRANSITION FROM (A, B) TO C := cond; END_TRANSITION` (6.7.3)."""
 
@@ -503,7 +506,7 @@ class Transition(Node):
     name: str | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Sfc(Node):
     """A POU body written as a Sequential Function Chart in its textual form (6.7)."""
 
@@ -512,7 +515,7 @@ class Sfc(Node):
     actions: tuple[Method, ...]           # ACTION name: ... END_ACTION (modifiers ("ACTION",))
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Pou(Node):
     kind: str  # "PROGRAM" | "FUNCTION" | "FUNCTION_BLOCK" | "INTERFACE"
     name: str
@@ -529,14 +532,14 @@ class Pou(Node):
     access: tuple[AccessPath, ...] = ()   # a PROGRAM's VAR_ACCESS
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class TaskDecl(Node):
     name: str
     interval: Expr | None
     priority: Expr | None
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class ProgramInstance(Node):
     name: str
     task: str | None
@@ -545,7 +548,7 @@ class ProgramInstance(Node):
     connections: tuple[Arg, ...] = ()
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class AccessPath(Node):
     """`Name : Prog.Var : INT READ_ONLY;` in VAR_ACCESS (3rd ed. 6.8.2, table 62)."""
 
@@ -555,7 +558,7 @@ class AccessPath(Node):
     read_write: bool = False
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class ConfigInit(Node):
     """`Res.Prog.Inst.Var AT %QX1.0 : BOOL := TRUE;` in VAR_CONFIG (3rd ed. 6.8.2)."""
 
@@ -565,7 +568,7 @@ class ConfigInit(Node):
     location: str | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class Configuration(Node):
     """CONFIGURATION/RESOURCE/TASK: accepted, flattened to its contents."""
 
@@ -580,7 +583,7 @@ class Configuration(Node):
 Item = Union[Pou, TypeDecl, VarBlock, Configuration]
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class SourceFile(Node):
     """A parsed file: POUs, type declarations, VAR_GLOBAL blocks in order."""
 
@@ -593,7 +596,7 @@ class SourceFile(Node):
 # form.  They appear only in the SourceFile that `parser.parse_tests` returns.
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class TestSetup(Node):
     """SETUP [VAR ...] statements END_SETUP: run before each test of the file."""
 
@@ -603,7 +606,7 @@ class TestSetup(Node):
     body: tuple[Stmt, ...]
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class TestTeardown(Node):
     """TEARDOWN statements END_TEARDOWN: run after each test of the file."""
 
@@ -612,7 +615,7 @@ class TestTeardown(Node):
     body: tuple[Stmt, ...]
 
 
-@dataclass(frozen=True, slots=True)
+@frozen_dataclass
 class TestCase(Node):
     """TEST 'name' [VAR ...] statements END_TEST."""
 
@@ -624,35 +627,7 @@ class TestCase(Node):
 
 
 # ------------------------------------------------------------ construction
-# A parse makes thousands of nodes and positions.  A frozen dataclass's
-# __init__ stores each field through `object.__setattr__(self, name, value)`;
-# the one below stores it through the slot's own descriptor, which does the
-# same at a third of the cost.  Same parameters (the fields in order, their defaults, `pos` keyword
-# only), same stores, and no node class has a __post_init__ or a default_factory.
+# Every node class is what @dataclass(frozen=True, slots=True) makes of it,
+# its methods compiled in one go (frozen_dataclasses.py: a fifth of start-up).
 
-
-def _fast_init(cls: type) -> None:
-    fields = list(cls.__dataclass_fields__.values())
-    scope: dict = {}
-    positional, keyword, stores = [], [], []
-    for f in fields:
-        scope[f"_set_{f.name}"] = getattr(cls, f.name).__set__
-        if f.default is not MISSING:
-            scope[f"_default_{f.name}"] = f.default
-        spelled = f.name if f.default is MISSING else f"{f.name}=_default_{f.name}"
-        (keyword if f.kw_only else positional).append(spelled)
-        stores.append(f"    _set_{f.name}(self, {f.name})\n")
-    parameters = ", ".join(["self", *positional] + (["*", *keyword] if keyword else []))
-    exec(f"def __init__({parameters}):\n{''.join(stores)}", scope)
-    init = scope["__init__"]
-    init.__qualname__ = f"{cls.__qualname__}.__init__"
-    init.__annotations__ = dict(cls.__init__.__annotations__)
-    _DATACLASS_INITS[cls] = cls.__init__
-    cls.__init__ = init
-
-
-#: class -> the __init__ dataclass wrote (the tests compare the two)
-_DATACLASS_INITS: dict[type, object] = {}
-
-for _cls in [Pos] + [c for c in list(globals().values()) if isinstance(c, type) and issubclass(c, Node)]:
-    _fast_init(_cls)
+make_methods([c for c in list(globals().values()) if isinstance(c, type) and issubclass(c, Node)])

@@ -11,6 +11,8 @@ refused entry is rebuilt.
 The contextual lexer (one small lexer per parser state) is built per state
 when the parser first reaches that state: a short file needs a few dozen of
 the 200-odd, and building them all was a fifth of `stgen check`'s start-up.
+The parse table (13,000 actions) is read back without a call per action
+(`_parse_table`): Lark's own reading was half of loading the grammar.
 """
 
 from __future__ import annotations
@@ -23,7 +25,10 @@ from copy import copy
 
 import lark
 from lark import Lark
+from lark.grammar import Rule
 from lark.lexer import ContextualLexer
+from lark.parsers.lalr_analysis import IntParseTable, Reduce, Shift
+from lark.parsers.lalr_parser import LALR_Parser, _Parser
 
 from . import user_cache
 
@@ -34,7 +39,7 @@ def cached_lark(grammar: str, options: dict, runtime: dict) -> Lark:
     `options` shape the tables (part of the key); `runtime` holds the objects
     given again on every load (transformer, postlex, callbacks), never stored.
     """
-    runtime = {**runtime, "_plugins": {"ContextualLexer": LazyContextualLexer}}
+    runtime = {**runtime, "_plugins": {"ContextualLexer": LazyContextualLexer, "LALR_Parser": CachedLalrParser}}
     name = f"lark-{_key(grammar, options)}.pickle"
     data = user_cache.read(name)
     if data is not None:
@@ -54,6 +59,39 @@ def _key(grammar: str, options: dict) -> str:
     text = "\0".join([user_cache.FORMAT, grammar, repr(sorted(options.items())), lark.__version__,
                       sys.version.split()[0]])
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:40]
+
+
+class CachedLalrParser(LALR_Parser):
+    """Lark's LALR parser; read from the cache, its table is made by `_parse_table`."""
+
+    @classmethod
+    def deserialize(cls, data, memo, callbacks, debug=False):   # LALR_Parser.deserialize's steps
+        inst = cls.__new__(cls)
+        inst._parse_table = _parse_table(data, memo)
+        inst.parser = _Parser(inst._parse_table, callbacks, debug)
+        return inst
+
+
+def _parse_table(data: dict, memo: dict) -> IntParseTable:
+    """`IntParseTable.deserialize(data, memo)`: the same states, actions and order.
+
+    A reduction's rule is stored as a reference into `memo` ({'@': n}), which
+    `Rule.deserialize` looks up with some ten Python operations; here each
+    action's pair is made once, for its first state, and shared by the others
+    (a pair is only ever unpacked).
+    """
+    tokens = data["tokens"]
+    pairs: dict = {}          # (1, n) -> (Reduce, memo[n]); (0, state) -> (Shift, state)
+    states = {}
+    for state, row in data["states"].items():
+        table = states[state] = {}
+        for token, (kind, arg) in row.items():
+            key = (kind, arg["@"] if kind == 1 else arg)
+            pair = pairs.get(key)
+            if pair is None:
+                pair = pairs[key] = (Reduce, Rule.deserialize(arg, memo)) if kind == 1 else (Shift, arg)
+            table[tokens[token]] = pair
+    return IntParseTable(states, data["start_states"], data["end_states"])
 
 
 class LazyContextualLexer(ContextualLexer):

@@ -74,8 +74,8 @@ def prelude_file(dialect: str = "iec") -> tuple[str, ast.SourceFile | None, list
 # accept far beyond the AST's node classes.
 
 #: The files whose content decides the AST parsed from a text.
-PARSER_FILES = ("grammar.lark", "parser.py", "lalr_fast.py", "grammar_cache.py", "ast_builder.py", "ast.py", "literals.py",
-                "diagnostics.py", "user_cache.py")
+PARSER_FILES = ("grammar.lark", "parser.py", "lalr_fast.py", "grammar_cache.py", "ast_builder.py", "ast.py",
+                "frozen_dataclasses.py", "literals.py", "diagnostics.py", "user_cache.py")
 
 
 def _entry_name(text: str) -> str:

@@ -244,32 +244,65 @@ def test_programs_without_globals_share_one_empty_globals_class():
     assert with_globals.globals.v_G == 7 and compiler._NO_GLOBALS._st_vars == {}
 
 
-def test_a_node_is_made_as_its_dataclass_init_made_it():
-    """Every AST class (and Pos) takes the parameters its dataclass __init__ took,
-    with the same defaults, and stores the same fields (ast._fast_init)."""
+def _as_dataclass_made_it(cls: type) -> type:
+    """What @dataclass(frozen=True, slots=True) makes of a class with cls's fields
+    (in order, with their defaults, compare, repr and kw_only) and its name."""
+    import dataclasses
+
+    fields = [(f.name, f.type, dataclasses.field(default=f.default, compare=f.compare, repr=f.repr,
+                                                 kw_only=f.kw_only))
+              for f in dataclasses.fields(cls)]
+    return dataclasses.make_dataclass(cls.__name__, fields, frozen=True, slots=True)
+
+
+def test_a_node_class_behaves_as_its_frozen_dataclass():
+    """Every AST class (and Pos) takes the parameters a frozen slotted dataclass of
+    its fields takes, with the same defaults and annotations, stores the same
+    fields, and has the same repr, equality, hash, match arguments, refusal of
+    stores, pickled round trip and generated docstring (frozen_dataclasses.make_methods)."""
     import dataclasses
     import inspect
+    import pickle
 
     from st_runtime import ast
 
     classes = [ast.Pos] + [c for c in vars(ast).values() if isinstance(c, type) and issubclass(c, ast.Node)]
-    assert set(ast._DATACLASS_INITS) == set(classes) and len(classes) > 60
+    assert len(classes) > 60
     for cls in classes:
-        original = ast._DATACLASS_INITS[cls]
-        assert inspect.signature(cls.__init__) == inspect.signature(original)
+        reference = _as_dataclass_made_it(cls)
+        assert inspect.signature(cls.__init__) == inspect.signature(reference.__init__)
+        assert cls.__match_args__ == reference.__match_args__
+        if cls.__doc__.startswith(cls.__name__ + "("):     # no docstring of its own: dataclass's
+            assert cls.__doc__ == reference.__doc__
+        assert not hasattr(cls(*[None] * len(cls.__match_args__)), "__dict__")   # slotted
         fields = dataclasses.fields(cls)
-        values = {f.name: object() for f in fields}
+        values = {f.name: f"v_{f.name}" for f in fields}
         args = [values[f.name] for f in fields if not f.kw_only]
         kwargs = {f.name: values[f.name] for f in fields if f.kw_only}
-        made, by_dataclass = object.__new__(cls), object.__new__(cls)
-        cls.__init__(made, *args, **kwargs)
-        original(by_dataclass, *args, **kwargs)
-        assert all(getattr(made, f.name) is getattr(by_dataclass, f.name) is values[f.name] for f in fields)
-        with_defaults, by_dataclass = object.__new__(cls), object.__new__(cls)
+        made, by_dataclass = cls(*args, **kwargs), reference(*args, **kwargs)
+        assert all(getattr(made, f.name) is values[f.name] for f in fields)
+        assert repr(made) == repr(by_dataclass) and hash(made) == hash(by_dataclass)
         required = [values[f.name] for f in fields if not f.kw_only and f.default is dataclasses.MISSING]
-        cls.__init__(with_defaults, *required)
-        original(by_dataclass, *required)
-        assert all(getattr(with_defaults, f.name) is getattr(by_dataclass, f.name) for f in fields)
+        defaults, by_dataclass_defaults = cls(*required), reference(*required)
+        assert all(getattr(defaults, f.name) is getattr(by_dataclass_defaults, f.name) for f in fields)
+        assert (made == defaults) == (by_dataclass == by_dataclass_defaults)
+        assert (made == cls(*args, **kwargs)) and made.__eq__(by_dataclass) is NotImplemented
+        for f in fields:     # equal but for one field: unequal exactly when that field is compared
+            other = dataclasses.replace(made, **{f.name: f"w_{f.name}"})
+            other_ref = dataclasses.replace(by_dataclass, **{f.name: f"w_{f.name}"})
+            assert (made == other) == (by_dataclass == other_ref) == (not f.compare)
+            assert (hash(made) == hash(other)) == (hash(by_dataclass) == hash(other_ref))
+            refusals = []
+            for node in (made, by_dataclass):
+                with pytest.raises(dataclasses.FrozenInstanceError) as stored:
+                    setattr(node, f.name, 1)
+                with pytest.raises(dataclasses.FrozenInstanceError) as deleted:
+                    delattr(node, f.name)
+                refusals.append((str(stored.value), str(deleted.value)))
+            assert refusals[0] == refusals[1]
+        copy = pickle.loads(pickle.dumps(made))
+        assert type(copy) is cls and all(getattr(copy, f.name) == values[f.name] for f in fields)
+        assert made.__getstate__() == by_dataclass.__getstate__()
 
 
 def test_the_prelude_text_is_made_again_when_a_native_is_registered(monkeypatch):

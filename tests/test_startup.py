@@ -269,3 +269,34 @@ def test_a_read_only_home_falls_back_to_a_private_folder_in_the_temp_dir(tmp_pat
     fallback.rmdir()
     fallback.symlink_to(tmp_path)                 # planted by someone: not followed
     assert user_cache.directory() is None
+
+
+def test_the_parse_table_read_from_the_cache_is_lark_s_own_reading(tmp_path, monkeypatch):
+    """grammar_cache._parse_table makes from a cache entry the table Lark's
+    IntParseTable.deserialize makes of it: the same states, in order, each with
+    the same terminals and rules in order and the same actions on the same
+    rule objects."""
+    import io
+
+    from lark.grammar import Rule
+    from lark.lexer import TerminalDef
+    from lark.parsers.lalr_analysis import IntParseTable, Reduce
+    from lark.utils import SerializeMemoizer
+
+    monkeypatch.setenv("ST_RUNTIME_CACHE_DIR", str(tmp_path))
+    built = parser._Grammar().lark            # a fresh build stores the entry
+    buffer = io.BytesIO()
+    built.save(buffer, exclude_options=("transformer", "postlex", "lexer_callbacks", "_plugins"))
+    stored = pickle.loads(buffer.getvalue())
+    data, memo_data = stored["data"]["parser"]["parser"], stored["memo"]
+    memo = SerializeMemoizer.deserialize(memo_data, {"Rule": Rule, "TerminalDef": TerminalDef}, {})
+    ours, larks = grammar_cache._parse_table(data, memo), IntParseTable.deserialize(data, memo)
+    assert len(ours.states) > 500 and list(ours.states) == list(larks.states)
+    for state, actions in larks.states.items():
+        assert list(ours.states[state].items()) == list(actions.items())
+        assert all(ours.states[state][kind][1] is rule for kind, (action, rule) in actions.items()
+                   if action is Reduce)
+    assert (ours.start_states, ours.end_states) == (larks.start_states, larks.end_states)
+    loaded = parser._Grammar().lark            # read back from the entry
+    assert type(loaded.parser.parser) is grammar_cache.CachedLalrParser
+    assert list(loaded.parser.parser._parse_table.states) == list(larks.states)

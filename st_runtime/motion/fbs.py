@@ -30,6 +30,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..native import NativeFB, fb_declaration, native_fb
+from . import binding
 from . import types as _types  # noqa: F401  (registers AXIS_REF before the FBs)
 from .axis import Axis, MotionAborted, MotionCommand, MotionRefused
 from .error_ids import ErrorID
@@ -49,31 +50,31 @@ _UNBOUND = object()  # `_AxisFB._bound_ref` while no AXIS_REF value is resolved
 
 
 class _AxisFB(NativeFB):
-    """A native FB with an `Axis` in-out; remembers which axis it resolved."""
+    """A native FB with an `Axis` in-out; remembers which axis it resolved (`binding`)."""
 
     def __init__(self) -> None:
         super().__init__()
-        # The AXIS_REF value last resolved, its axis and that axis's number (fixed per Axis).
-        self._bound_ref, self._bound_axis, self._bound_no = _UNBOUND, None, -1
+        # The AXIS_REF value last resolved and its axis, while `binding.hold` watches its Cfg.
+        self._bound_ref, self._bound_axis = _UNBOUND, None
 
     def _axis(self, ctx) -> Axis | None:
         ref = self.v_AXIS
         if ref is self._bound_ref:
-            cfg = ref.v_CFG
-            if cfg.v_AXENABLE and cfg.v_AXNO == self._bound_no:
-                return self._bound_axis
+            return self._bound_axis
         axis = resolve_axis(ref, ctx)
-        if axis is None:
-            self._bound_ref, self._bound_axis, self._bound_no = _UNBOUND, None, -1
+        if axis is not None and binding.hold(self, ref):
+            self._bound_ref, self._bound_axis = ref, axis
         else:
-            self._bound_ref, self._bound_axis, self._bound_no = ref, axis, axis.axis_no
+            self.end_binding()
         return axis
 
+    def end_binding(self) -> None:
+        """Resolve the axis again at the next call (its AXIS_REF's Cfg was written)."""
+        self._bound_ref, self._bound_axis = _UNBOUND, None
 
-# `_AxisFB._axis`'s cached case as an expression: the AXIS_REF is the one resolved before and
-# its Cfg still names that axis.
-_BOUND = ("{fb}.v_AXIS is {fb}._bound_ref and ({cfg} := {fb}.v_AXIS.v_CFG).v_AXENABLE"
-          " and {cfg}.v_AXNO == {fb}._bound_no")
+
+# `_AxisFB._axis`'s cached case as an expression: the AXIS_REF is the one resolved before.
+_BOUND = "{fb}.v_AXIS is {fb}._bound_ref"
 
 # An axis FB's `execute`, spelt out from its HotPath (`{pre}`: `True` when it has none).
 _HOT_EXECUTE = """
@@ -110,13 +111,13 @@ class HotPath:
 
     def inline(self, fb: str, temp) -> tuple[str, list[str]]:
         """(test, statements) of the call of `fb` (a Python name), new locals from `temp()`."""
-        names = {"fb": fb, "axis": temp(), "cfg": temp(), **{name: temp() for name in self.temps}}
+        names = {"fb": fb, "axis": temp(), **{name: temp() for name in self.temps}}
         test = " and ".join(part for part in (self.pre, _BOUND) if part).format(**names)
         return test, [f"{names['axis']} = {fb}._bound_axis"] + [line.format(**names) for line in self.body]
 
     def install(self, cls) -> None:
         """`cls.execute` from this path."""
-        names = {"fb": "self", "axis": "axis", "cfg": "cfg", **{name: name for name in self.temps}}
+        names = {"fb": "self", "axis": "axis", **{name: name for name in self.temps}}
         body = "\n".join(" " * 12 + line.format(**names) for line in self.body)
         source = _HOT_EXECUTE.format(pre=(self.pre or "True").format(**names), bound=_BOUND.format(**names),
                                      body=body, cold=self.cold)
@@ -456,18 +457,18 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
         return axis.start_sync()
 
     # The call of every scan while synchronized (no edge, command alive); everything else
-    # goes through the general rules.  InPosition: |act - target| <= range without the call of
-    # abs() (the same for every float); an LREAL input holds a float: float() only if not.
+    # goes through the general rules.  InPosition as `_poll` computes it (abs() and one
+    # comparison cost less than a chained comparison whose value is stored); an LREAL input
+    # holds a float: float() only if not.
     HOT_PATH = HotPath(
         pre=("{fb}.v_BUSY and ({command} := {fb}._command) is not None and not {command}.aborted"
              " and ({fb}._previous_execute or not {fb}.v_EXECUTE)"),
         body=("{fb}._previous_execute = True if {fb}.v_EXECUTE else False",
               "{fb}.v_ACTIVE = True",                         # _poll(axis, command, False), inlined
-              "{window} = {axis}.config.in_position_range",
-              "{fb}.v_INPOSITION = -{window} <= {axis}.act_pos - {command}.target <= {window}",
+              "{fb}.v_INPOSITION = abs({axis}.act_pos - {command}.target) <= {axis}.config.in_position_range",
               "{position} = {fb}.v_POSITION",
               "{command}.target = {position} if {position}.__class__ is float else float({position})"),
-        temps=("command", "window", "position"),
+        temps=("command", "position"),
         cold="_execute_rules")
 
     def _start(self, axis: Axis | None) -> None:

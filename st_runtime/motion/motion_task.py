@@ -34,6 +34,71 @@ from .types import AxisRefWriter, bind_axis_ref
 _ERRORSTOP = AxisState.ERRORSTOP
 
 
+# `Axis.step` and `AxisRefWriter.write` of one axis (`{axis}`, its writer `{writer}`, its Cmd and
+# Act structs `{cmd}` and `{act}`) in one period of `dt` s.  An ideal, powered axis following a
+# sync Position within one period's reach (every scan of a stream) is spelt out as one: each
+# value is stored in the axis and in its variable at once.  Anything else takes Axis.step and
+# the writer.  The actual position becomes the command, so the deviation is 0.0 and neither
+# following-error check can fire; nothing completes a sync command.  AxisRefWriter.write's
+# flags test is spelt out with what this path knows: a command (so idle is decided by it),
+# VelLimit FALSE, the axis powered.  |new_vel| > |old_vel| without two calls of abs(): a
+# comparison does not see the sign of a NaN, so the negations give the same answer.  The signs
+# against 0.0, not 0: the same answer, and CPython compares a float with a float much faster.
+_LANE_STEP = """\
+command = {axis}.command
+if (command is not None and command.kind == "sync" and (powered := {axis}.powered)
+        and {axis}.power_requested == powered and dt == {axis}._stream_dt
+        and -(slack := {axis}._step_slack) <= (delta := (target := command.target) - {axis}.cmd_pos) <= slack
+        and {axis}._soft_min <= target <= {axis}._soft_max):
+    {axis}.vel_limit = False
+    {act}.v_VEL = {axis}.act_vel = (target - {axis}.act_pos) / dt
+    {cmd}.v_POS = {act}.v_POS = {axis}.cmd_pos = {axis}.act_pos = target
+    old_vel = {axis}.cmd_vel
+    {cmd}.v_VEL = {axis}.cmd_vel = new_vel = delta / dt
+    if new_vel != old_vel:
+        magnitude = abs(new_vel - old_vel) / dt
+        grows = ((new_vel if new_vel >= 0.0 else -new_vel)
+                 > (old_vel if old_vel >= 0.0 else -old_vel))
+        {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude if grows else -magnitude
+    else:
+        {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
+    state, waiting = {axis}.state, {axis}.in_pos_waiting
+    idle = ((command.done or command.reached) and not waiting
+            and not (state == _ERRORSTOP and new_vel != 0.0))
+    shown = (state, {axis}.homed, {axis}.fault_code, {axis}.observation_code, False,
+             waiting, idle, powered, new_vel > 0.0, new_vel < 0.0)
+    if shown != {writer}._shown:
+        {writer}._shown = shown
+        {writer}._write_flags({axis}, (new_vel > 0.0) - (new_vel < 0.0))
+else:
+    {axis}.step(dt)
+    {writer}.write()
+"""
+
+
+def _indented(source: str, depth: int) -> str:
+    return "".join(" " * depth + line if line.strip() else line for line in source.splitlines(True))
+
+
+def _compiled(source: str, name: str, values: dict):
+    namespace = {"_ERRORSTOP": _ERRORSTOP, **values}
+    exec(compile(source, f"<motion task {name}>", "exec"), namespace)   # our own text only
+    return namespace[name]
+
+
+def _straight_line_process(lanes: list[tuple]):
+    """`process(dt)` for these lanes as straight-line code: the lane step of every axis in
+    turn, the axes, writers and structs as the function's constants (no loop, no unpacking)."""
+    names, steps = {}, []
+    for number, lane in enumerate(lanes):
+        parts = {role: f"{role}{number}" for role in ("axis", "writer", "cmd", "act")}
+        names.update(zip(parts.values(), lane))
+        steps.append(_LANE_STEP.format(**parts))
+    arguments = "".join(f", {name}={name}" for name in names)
+    body = "".join(_indented(step, 4) for step in steps) or "    pass\n"
+    return _compiled(f"def process(dt{arguments}):\n{body}", "process", names)
+
+
 def motion_of(ctx) -> "MotionTask | None":
     """The motion task of the controller running `ctx` (None if it has none).
 
@@ -53,7 +118,7 @@ class MotionTask:
         if len(self._by_name) != len(self.axes):
             raise ValueError("axis names must be unique (case-insensitive)")
         self._writers: list[AxisRefWriter] = []
-        self._lanes: list[tuple] = []
+        self._step_lanes = self._step_axes      # `process`: see bind
         # The axis variables show the axes as they are: the motion processing has published
         # them and no other hook runs in the scan (see _before_programs).
         self._published = False
@@ -91,7 +156,8 @@ class MotionTask:
         """Tie each axis to its global AXIS_REF value; `lookup(name)` finds it."""
         self._writers = [bind_axis_ref(lookup(axis.name), axis) for axis in self.axes]
         # What `process` works with, per axis: the axis, its writer and the Cmd and Act structs.
-        self._lanes = [(writer.axis, writer, writer._cmd, writer._act) for writer in self._writers]
+        self._step_lanes = _straight_line_process(
+            [(writer.axis, writer, writer._cmd, writer._act) for writer in self._writers])
 
     def install(self, controller) -> None:
         """Bind to `controller`'s global axis variables and run in its scans.
@@ -129,7 +195,7 @@ class MotionTask:
 
     def _after_programs(self, ctx) -> None:
         self._published = False
-        self.process(ctx.period_ns * 1e-9)
+        self._step_lanes(ctx.period_ns * 1e-9)
         controller = ctx.controller
         self._published = len(controller.before_hooks) == 1 and len(controller.after_hooks) == 1
 
@@ -142,48 +208,10 @@ class MotionTask:
     def process(self, dt: float) -> None:
         """After the programs: every axis advances one period of `dt` seconds and its
         variable shows the result (an axis and its variable at a time: neither step nor
-        publication reads another axis)."""
-        if not self._writers:                           # no variables bound (bind: all or none)
-            for axis in self.axes:
-                axis.step(dt)
-            return
-        for axis, writer, cmd, act in self._lanes:
-            command = axis.command
-            # Axis.step and AxisRefWriter.write of an ideal, powered axis following a sync
-            # Position within one period's reach (every scan of a stream), spelt out as one:
-            # each value is stored in the axis and in its variable at once.  Anything else takes
-            # Axis.step and the writer.  The actual position becomes the command, so the
-            # deviation is 0.0 and neither following-error check can fire; nothing completes a
-            # sync command.
-            if (command is not None and command.kind == "sync" and (powered := axis.powered)
-                    and axis.power_requested == powered and dt == axis._stream_dt):
-                target, old_cmd = command.target, axis.cmd_pos
-                slack = axis._step_slack
-                if -slack <= (delta := target - old_cmd) <= slack and axis._soft_min <= target <= axis._soft_max:
-                    axis.vel_limit = False
-                    act.v_VEL = axis.act_vel = (target - axis.act_pos) / dt
-                    cmd.v_POS = act.v_POS = axis.cmd_pos = axis.act_pos = target
-                    old_vel = axis.cmd_vel
-                    cmd.v_VEL = axis.cmd_vel = new_vel = delta / dt
-                    if new_vel != old_vel:
-                        magnitude = abs(new_vel - old_vel) / dt
-                        # |new_vel| > |old_vel| without two calls of abs(): a comparison does not
-                        # see the sign of a NaN, so the negations give the same answer
-                        grows = ((new_vel if new_vel >= 0.0 else -new_vel)
-                                 > (old_vel if old_vel >= 0.0 else -old_vel))
-                        cmd.v_ACCDEC = axis.cmd_accdec = magnitude if grows else -magnitude
-                    else:
-                        cmd.v_ACCDEC = axis.cmd_accdec = 0.0
-                    # AxisRefWriter.write's flags test, with what this path knows: a command
-                    # (so idle is decided by it), VelLimit FALSE, the axis powered.
-                    state, waiting = axis.state, axis.in_pos_waiting
-                    idle = ((command.done or command.reached) and not waiting
-                            and not (state == _ERRORSTOP and new_vel != 0.0))
-                    shown = (state, axis.homed, axis.fault_code, axis.observation_code, False,
-                             waiting, idle, powered, new_vel > 0, new_vel < 0)
-                    if shown != writer._shown:
-                        writer._shown = shown
-                        writer._write_flags(axis, (new_vel > 0) - (new_vel < 0))
-                    continue
+        publication reads another axis; `_straight_line_process` once bound)."""
+        self._step_lanes(dt)
+
+    def _step_axes(self, dt: float) -> None:
+        """`process` while no variables are bound (bind: all or none)."""
+        for axis in self.axes:
             axis.step(dt)
-            writer.write()

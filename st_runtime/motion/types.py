@@ -201,10 +201,10 @@ class AxisRefWriter:
         idle = ((command is None or command.done or command.reached) and not waiting
                 and not (state == _ERRORSTOP and velocity != 0.0))
         shown = (state, axis.homed, axis.fault_code, axis.observation_code, axis.vel_limit,
-                 waiting, idle, axis.powered, velocity > 0, velocity < 0)
+                 waiting, idle, axis.powered, velocity > 0.0, velocity < 0.0)
         if shown != self._shown:
             self._shown = shown
-            self._write_flags(axis, (velocity > 0) - (velocity < 0))
+            self._write_flags(axis, (velocity > 0.0) - (velocity < 0.0))
 
     def _write_flags(self, axis: Axis, direction: int) -> None:
         status = self._status
