@@ -376,6 +376,10 @@ class CallChecker:
         t = self.ex.infer(value)
         if t is ts.ERROR:
             return
+        if isinstance(value, ast.BitAccess):    # passed by reference: a bit has no address
+            self.ctx.error("E-CALL-007", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
+                           f"variable, found a bit access", start_pos(value))
+            return
         ref = self.program.name_refs.get(id(root_name(value)))
         if not hasattr(ref, "kind"):
             self.ctx.error("E-CALL-007", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "

@@ -1,0 +1,85 @@
+"""Compiler behaviours that survivors of the mutation sample of seed 24 pinned down (issue 16,
+session 9; docs/mutation.md, "st_runtime/compiler/", "Session 9").
+
+Each test loads ST through the public entry point (or calls a pass on its own lines) and
+takes its expected values from IEC 61131-3, the CODESYS rules the codesys dialect follows,
+the passes' own documented contracts, or a hand calculation stated beside it.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from st_runtime.api import LoadError, load_text
+from st_runtime.compiler.optimise import chains
+from test_compiler_mutants import run
+
+
+# ------------------------------------------------------------ a CASE with an ELSE only
+
+def test_a_case_without_labels_runs_its_else():
+    # IEC 61131-3 7.3.3.3.3: the ELSE's statements run when the selector matches no label;
+    # with no label at all they always run: y = 5, z = 7 (the statement after the CASE).
+    main, plc = run("""
+PROGRAM Main
+VAR x : INT := 3; y : INT; z : INT; END_VAR
+CASE x OF
+ELSE
+    y := 5;
+END_CASE;
+z := 7;
+END_PROGRAM""")
+    assert (main["y"], main["z"], plc.faults) == (5, 7, [])
+
+
+# ------------------------------------------- a bit of a variable passed to a VAR_IN_OUT
+
+BIT_TO_IN_OUT = """
+FUNCTION_BLOCK Setter
+VAR_IN_OUT b : BOOL; END_VAR
+b := TRUE;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR w : WORD; f : Setter; END_VAR
+f(b := w.3);
+END_PROGRAM"""
+
+
+@pytest.mark.parametrize("dialect", ["nj", "codesys"])
+def test_a_bit_access_is_refused_as_an_in_out_argument(dialect: str):
+    # CODESYS: "A bit access must not be assigned to a VAR_IN_OUT variable" (a VAR_IN_OUT is
+    # passed by reference; a bit has no address of its own): the checker refuses it on the
+    # call's line (8) as it refuses an expression there (E-CALL-007), not an internal error.
+    with pytest.raises(LoadError) as raised:
+        load_text(BIT_TO_IN_OUT, "m.st", dialect)
+    assert [(d.code, d.pos.line) for d in raised.value.diagnostics] == [("E-CALL-007", 8)]
+
+
+# ------------------------------------------------------ the prelude's STRUCTs' __init__
+
+def test_the_prelude_structs_init_sources_are_kept_under_their_init_keys():
+    # CompiledProgram.python_sources keeps each STRUCT's __init__ source under "init:" + its
+    # upper-case name, whether the STRUCT is the program's own or the shared prelude's
+    # (AXIS_REF, the prelude's axis variable, is a STRUCT): the same key for both.
+    compiled = load_text("""
+TYPE Pt : STRUCT x : INT; END_STRUCT; END_TYPE
+PROGRAM Main
+VAR p : Pt; a : AXIS_REF; END_VAR
+END_PROGRAM""", "m.st", "nj").compiled
+    keys = [k for k in compiled.python_sources if k[:5].lower() == "init:"]
+    assert "init:PT" in keys and "init:AXIS_REF" in keys
+    assert all(k.startswith("init:") for k in keys)
+
+
+# ------------------------------------- `chains`: a second store that does not read the element
+
+@pytest.mark.parametrize("lines", [
+    ["v_S[3] = v_R[1]", "v_S[3] = (v_YYYY + 1.0)"],     # reads another variable only
+    ["v_S[3] = v_R[1]", "v_S[3] = 2.0"],                # a constant
+])
+def test_a_store_that_does_not_read_the_element_is_not_merged(lines):
+    # chains.py: merged only when the second store reads the element as the left operand
+    # of its outermost `+ - *`; these replace it, so both lines stay as they are.
+    out = list(lines)
+    chains.merge(out, 0)
+    assert out == lines
