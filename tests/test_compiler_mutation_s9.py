@@ -55,6 +55,37 @@ def test_a_bit_access_is_refused_as_an_in_out_argument(dialect: str):
     assert [(d.code, d.pos.line) for d in raised.value.diagnostics] == [("E-CALL-007", 8)]
 
 
+HOLDER = """FUNCTION_BLOCK Setter
+VAR_IN_OUT b : INT; END_VAR
+b := 1;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Holder
+VAR v : INT; END_VAR
+PROPERTY P : INT
+GET P := v; END_GET
+SET v := P; END_SET
+END_PROPERTY
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR h : Holder; s : Setter; w : WORD; r : REF_TO INT; q : REF_TO BOOL; p : POINTER TO BOOL; END_VAR
+"""
+
+
+@pytest.mark.parametrize("statement, code", [
+    ("s(b := h.P);", "E-CALL-007"),             # a PROPERTY to a VAR_IN_OUT
+    ("r := REF(h.P);", "E-TYPE-014"),           # REF of a PROPERTY
+    ("q := REF(w.3);", "E-TYPE-014"),           # REF and ADR of a bit
+    ("p := ADR(w.3);", "E-TYPE-014"),
+])
+def test_what_has_no_address_is_refused_where_a_reference_is_taken(statement: str, code: str):
+    # A PROPERTY's accessors run code and a bit has no address of its own: neither can be
+    # passed by reference (the codesys dialect, where PROPERTY, REF and ADR all exist); the
+    # statement (line 14) is refused, where the load ended in an internal compiler error.
+    with pytest.raises(LoadError) as raised:
+        load_text(HOLDER + statement + "\nEND_PROGRAM\n", "m.st", "codesys")
+    assert [(d.code, d.pos.line) for d in raised.value.diagnostics] == [(code, 14)]
+
+
 # ------------------------------------------------------ the prelude's STRUCTs' __init__
 
 def test_the_prelude_structs_init_sources_are_kept_under_their_init_keys():
