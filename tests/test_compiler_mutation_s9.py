@@ -11,7 +11,10 @@ from __future__ import annotations
 import pytest
 
 from st_runtime.api import LoadError, load_text
-from st_runtime.compiler.optimise import chains
+from st_runtime.compiler import CompileUnit, Optimisations
+from st_runtime.compiler.cost import WEIGHTS
+from st_runtime.compiler.optimise import chains, fastpath
+from st_runtime.compiler.statements import BodyCompiler
 from test_compiler_mutants import run
 
 
@@ -114,3 +117,38 @@ def test_a_store_that_does_not_read_the_element_is_not_merged(lines):
     out = list(lines)
     chains.merge(out, 0)
     assert out == lines
+
+
+# ---------------------------------------- fastpath: a body that calls a function block
+
+def test_a_body_calling_a_plain_function_block_has_a_worst_case():
+    # fastpath.py: a body qualifies when every FB written in ST that it calls qualifies (not
+    # one that extends or is extended).  Acc's body, Total := Total + Step, charges
+    # 2 loads + an integer operation + a store (the weights table); Main's call of it is
+    # bounded too, and more than that (the call itself is charged).
+    program = load_text("""
+FUNCTION_BLOCK Acc
+VAR_INPUT Step : INT; END_VAR
+VAR_OUTPUT Total : INT; END_VAR
+Total := Total + Step;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Base
+VAR n : INT; END_VAR
+n := n + 1;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Derived EXTENDS Base
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR a : Acc; d : Derived; END_VAR
+a(Step := 2);
+d();
+END_PROGRAM""").program
+    unit = CompileUnit(program)
+    unit.optimise = Optimisations()
+    w = WEIGHTS
+    body = 2 * w["load"] + w["int_op"] + w["store"]
+    acc = BodyCompiler(program, program.pous["ACC"], unit, method=True)
+    assert fastpath.worst_case(acc, acc.body) == body
+    main = BodyCompiler(program, program.pous["MAIN"], unit, method=True)
+    assert fastpath.worst_case(main, main.body[:1]) > body
+    assert fastpath.worst_case(main, main.body[1:]) is None     # Derived: another body may run
