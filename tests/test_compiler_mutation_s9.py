@@ -152,3 +152,53 @@ END_PROGRAM""").program
     main = BodyCompiler(program, program.pous["MAIN"], unit, method=True)
     assert fastpath.worst_case(main, main.body[:1]) > body
     assert fastpath.worst_case(main, main.body[1:]) is None     # Derived: another body may run
+
+
+# ------------------------------------------------------------------ MOD, compiled and run
+
+def test_mod_takes_the_sign_of_the_dividend():
+    # IEC 61131-3 Table 30 (MOD): a = b * (a / b) + a MOD b, with / truncating toward zero:
+    # 17 MOD 5 = 2, -17 MOD 5 = -2, 17 MOD -5 = 2.
+    main, plc = run("""
+PROGRAM Main
+VAR a : INT := 17; n : INT := -17; b : INT := 5; m : INT := -5; x : INT; y : INT; z : INT; END_VAR
+x := a MOD b;
+y := n MOD b;
+z := a MOD m;
+END_PROGRAM""")
+    assert (main["x"], main["y"], main["z"], plc.faults) == (2, -2, 2, [])
+
+
+# ------------------------------------------- an array input that the FUNCTION modifies
+
+def test_a_function_modifies_its_own_copy_of_an_array_input():
+    # A VAR_INPUT is passed by value (IEC 61131-3 6.5.1); the codesys dialect lets a POU
+    # write its inputs, and the FUNCTION's stores then change its own copy, not the
+    # caller's array.  Sum of [1, 2, 3] after V[1] := 10: 10 + 2 + 3 = 15; a stays [1, 2, 3].
+    main, plc = run("""
+FUNCTION Bump : INT
+VAR_INPUT V : ARRAY[1..3] OF INT; END_VAR
+V[1] := 10;
+Bump := V[1] + V[2] + V[3];
+END_FUNCTION
+PROGRAM Main
+VAR a : ARRAY[1..3] OF INT := [1, 2, 3]; s : INT; END_VAR
+s := Bump(V := a);
+END_PROGRAM""", dialect="codesys")
+    assert (main["s"], main["a"], plc.faults) == (15, [1, 2, 3], [])
+
+
+# ------------------------- nj: a narrower sum inside a wider one overflows in its own type
+
+@pytest.mark.parametrize("dialect, expected", [("nj", -32768), ("iec", 32768)])
+def test_a_narrower_sum_inside_a_wider_one(dialect: str, expected: int):
+    # W501 6-5-3 (docs/nj501.md; test_nj_expression_overflow): under nj an addition is
+    # evaluated in the type of its highest-ranked operand and overflows there: i1 + i2 is
+    # INT + INT, 32767 + 1 overflows to -32768 before the DINT addition takes it (0 + it).
+    # Under iec the intermediate stays exact: 32768.
+    main, plc = run("""
+PROGRAM Main
+VAR d0 : DINT := 0; i1 : INT := 32767; i2 : INT := 1; d : DINT; END_VAR
+d := d0 + (i1 + i2);
+END_PROGRAM""", dialect=dialect)
+    assert (main["d"], plc.faults) == (expected, [])
