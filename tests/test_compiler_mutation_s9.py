@@ -202,3 +202,23 @@ VAR d0 : DINT := 0; i1 : INT := 32767; i2 : INT := 1; d : DINT; END_VAR
 d := d0 + (i1 + i2);
 END_PROGRAM""", dialect=dialect)
     assert (main["d"], plc.faults) == (expected, [])
+
+
+# -------------------------- `ranges`: a bit store changes the variable it is a bit of
+
+def test_a_bit_store_forgets_the_known_range_of_its_variable():
+    # x := 1 puts x in 1..4, but x.0 := FALSE clears bit 0: x = 0, outside a's bounds 1..4,
+    # so a[x] faults (F-INDEX, line 6) and Pick keeps its initial 0 (IEC 61131-3: an index
+    # out of the bounds is an error; the runtime's fault).  The codesys dialect (bit access).
+    main, plc = run("""
+FUNCTION Pick : INT
+VAR x : INT; a : ARRAY[1..4] OF INT := [10, 20, 30, 40]; END_VAR
+x := 1;
+x.0 := FALSE;
+Pick := a[x];
+END_FUNCTION
+PROGRAM Main
+VAR r : INT; END_VAR
+r := Pick();
+END_PROGRAM""", dialect="codesys")
+    assert (main["r"], [(f.code, f.line) for f in plc.faults]) == (0, [("F-INDEX", 6)])
