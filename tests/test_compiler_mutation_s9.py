@@ -11,7 +11,7 @@ from __future__ import annotations
 import pytest
 
 from st_runtime.api import LoadError, load_text
-from st_runtime.compiler import CompileUnit, Optimisations
+from st_runtime.compiler import CompileUnit, Optimisations, compile_program
 from st_runtime.compiler.cost import WEIGHTS
 from st_runtime.compiler.optimise import chains, fastpath
 from st_runtime.compiler.statements import BodyCompiler
@@ -222,3 +222,14 @@ VAR r : INT; END_VAR
 r := Pick();
 END_PROGRAM""", dialect="codesys")
     assert (main["r"], [(f.code, f.line) for f in plc.faults]) == (0, [("F-INDEX", 6)])
+
+
+# ------------------------------------- a POU without statements, compiled without charges
+
+def test_a_program_without_statements_compiles_without_charges():
+    # compile_program(charge_costs=False) leaves out the time charges; a PROGRAM whose body has
+    # no statement (the ST grammar allows it) still becomes a Python function (a `pass`), and
+    # an instance of it keeps its initial values.
+    program = load_text("PROGRAM Main\nVAR x : INT := 4; END_VAR\nEND_PROGRAM\n").program
+    compiled = compile_program(program, charge_costs=False)
+    assert compiled.new("Main").v_X == 4
