@@ -233,3 +233,21 @@ def test_a_program_without_statements_compiles_without_charges():
     program = load_text("PROGRAM Main\nVAR x : INT := 4; END_VAR\nEND_PROGRAM\n").program
     compiled = compile_program(program, charge_costs=False)
     assert compiled.new("Main").v_X == 4
+
+
+# ------------------------------------------------- a call statement with ENO and no EN
+
+def test_a_call_with_eno_only_runs_and_sets_eno():
+    # IEC 61131-3 6.6.1.5 (EN/ENO): without EN the call runs (EN is TRUE), and ENO is TRUE
+    # after a call that ran without error: Total = 0 + 2, ok = TRUE.
+    main, plc = run("""
+FUNCTION_BLOCK Acc
+VAR_INPUT Step : INT; END_VAR
+VAR_OUTPUT Total : INT; END_VAR
+Total := Total + Step;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR a : Acc; ok : BOOL; END_VAR
+a(Step := 2, ENO => ok);
+END_PROGRAM""")
+    assert (main["a.Total"], main["ok"], plc.faults) == (2, True, [])
