@@ -11,7 +11,7 @@ from __future__ import annotations
 import pytest
 
 from st_runtime.api import LoadError, load_text
-from st_runtime.compiler import CompileUnit, Optimisations, compile_program
+from st_runtime.compiler import CompileUnit, Optimisations, SharedPrelude, compile_program
 from st_runtime.compiler.cost import WEIGHTS
 from st_runtime.compiler.optimise import chains, fastpath
 from st_runtime.compiler.statements import BodyCompiler
@@ -94,15 +94,18 @@ def test_what_has_no_address_is_refused_where_a_reference_is_taken(statement: st
 def test_the_prelude_structs_init_sources_are_kept_under_their_init_keys():
     # CompiledProgram.python_sources keeps each STRUCT's __init__ source under "init:" + its
     # upper-case name, whether the STRUCT is the program's own or the shared prelude's
-    # (AXIS_REF, the prelude's axis variable, is a STRUCT): the same key for both.
-    compiled = load_text("""
+    # (AXIS_REF, the prelude's axis variable, is a STRUCT): the same key for both.  The
+    # prelude is compiled once per process; a SharedPrelude made here gives the same keys.
+    project = load_text("""
 TYPE Pt : STRUCT x : INT; END_STRUCT; END_TYPE
 PROGRAM Main
 VAR p : Pt; a : AXIS_REF; END_VAR
-END_PROGRAM""", "m.st", "nj").compiled
-    keys = [k for k in compiled.python_sources if k[:5].lower() == "init:"]
+END_PROGRAM""", "m.st", "nj")
+    keys = [k for k in project.compiled.python_sources if k[:5].lower() == "init:"]
     assert "init:PT" in keys and "init:AXIS_REF" in keys
     assert all(k.startswith("init:") for k in keys)
+    fresh = SharedPrelude(project.program.prelude)
+    assert "init:AXIS_REF" in fresh.init_sources and all(k.startswith("init:") for k in fresh.init_sources)
 
 
 # ------------------------------------- `chains`: a second store that does not read the element
