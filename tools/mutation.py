@@ -78,7 +78,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   "tests/test_optimiser_branches.py", "tests/test_optimiser_unguard.py",
                   "tests/test_optimiser_absolute.py", "tests/test_optimiser_fastpath.py",
                   "tests/test_nj_expression_overflow.py", "tests/test_nj_assignment_casts.py",
-                  "tests/test_compiler_mutation_s8.py"]),
+                  "tests/test_compiler_mutation_s8.py",
+                  # session 9: the chains pass's own tests, which the selection had missed, and seed 24's
+                  "tests/test_optimiser_chains.py", "tests/test_compiler_mutation_s9.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",

@@ -15,7 +15,7 @@ from .oo import find_method, interface_methods, may_call
 from .operator_calls import OPERATOR_FUNCTIONS, lower, ordered_inputs
 from . import typesys as ts
 from .expressions import start_pos
-from .stores import check_store, in_out_problem, is_variable_path, root_name
+from .stores import check_store, in_out_problem, is_variable_path, no_address, root_name
 
 _PIN_KINDS = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
 # _namespaced's answer for `NS.F` when NAMESPACE NS declares no F (already reported).
@@ -166,6 +166,11 @@ class CallChecker:
         value = args[0].value
         t = check_store(self.ex, value, f"{name}(...)")
         if t is ts.ERROR:
+            return self.ex.record(call, ts.ERROR)
+        unaddressable = no_address(self.ex, value)
+        if unaddressable is not None:
+            self.ctx.error("E-TYPE-014", f"{name}(...): expected a variable, found {unaddressable}",
+                           start_pos(value))
             return self.ex.record(call, ts.ERROR)
         self.program.call_targets[id(call)] = CallTarget("ref", name)
         return self.ex.record(call, T.RefType(t, name == "ADR"))
@@ -375,6 +380,11 @@ class CallChecker:
             return
         t = self.ex.infer(value)
         if t is ts.ERROR:
+            return
+        unaddressable = no_address(self.ex, value)
+        if unaddressable is not None:       # passed by reference
+            self.ctx.error("E-CALL-007", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
+                           f"variable, found {unaddressable}", start_pos(value))
             return
         ref = self.program.name_refs.get(id(root_name(value)))
         if not hasattr(ref, "kind"):

@@ -58,7 +58,7 @@ CHECKER_CODES = register({
     "E-CALL-004": "a call omits a VAR_IN_OUT parameter (required at every call)",
     "E-CALL-005": "a parameter is passed in the wrong direction (:= on an output, => on an input)",
     "E-CALL-006": "a call has more positional arguments than the callee has inputs",
-    "E-CALL-007": "a VAR_IN_OUT argument is not a writable variable (an expression, a CONSTANT, an input of the calling POU, a FOR control variable)",
+    "E-CALL-007": "a VAR_IN_OUT argument is not a writable variable (an expression, a bit access, a CONSTANT, an input of the calling POU, a FOR control variable)",
     "E-CALL-008": "a positional argument follows a formal (named) argument",
     "E-CALL-009": "a call has fewer arguments than the callee requires",
     "E-CALL-010": "a function block instance is called inside an expression (FB calls are statements)",

@@ -98,6 +98,18 @@ def in_out_problem(ex, target, sym) -> str | None:
     return None
 
 
+def no_address(ex, target) -> str | None:
+    """What the typed variable path `target` is when it has no address of its own to pass by
+    reference (to a VAR_IN_OUT, REF, ADR): a bit of a variable, or a PROPERTY, whose accessors
+    run code (CODESYS: "A bit access must not be assigned to a VAR_IN_OUT variable"); None for
+    a variable."""
+    if isinstance(target, ast.BitAccess):
+        return "a bit access"
+    if id(target) in ex.program.properties:
+        return f"property '{target.name}'"
+    return None
+
+
 def _fb_member(ex, target):
     """(FBType, Symbol) when the path writes a non-input variable of an FB instance."""
     e = target
