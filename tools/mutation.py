@@ -91,7 +91,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                 "tests/test_motion_idle_calls.py", "tests/test_motion_publish.py",
                 "tests/test_motion_mutation_s7.py",
                 # seed-23 run (issue 16, session 8)
-                "tests/test_motion_mutation_s8.py"]),
+                "tests/test_motion_mutation_s8.py",
+                # seed-24 run (issue 16, session 9)
+                "tests/test_motion_mutation_s9.py"]),
     "checker": (["st_runtime/checker/*"],
                 ["tests/test_checker_rules.py", "tests/test_checker_typing.py", "tests/test_checker_program.py",
                  "tests/test_checker_loader.py", "tests/test_checker_corpus.py",
