@@ -107,7 +107,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                  # seed-19 run: prelude_base.py's own tests (the shared prelude), and round three
                  "tests/test_prelude_sharing.py", "tests/test_checker_mutants_third.py",
                  # seed-21 run (issue 16, session 7)
-                 "tests/test_checker_mutation_s7.py"]),
+                 "tests/test_checker_mutation_s7.py",
+                 # seed-24 run (issue 16, session 9)
+                 "tests/test_checker_mutation_s9.py"]),
     "reference": (["stgen/reference/*"],
                   ["tests/test_reference_brake.py", "tests/test_reference_cycloidal.py",
                    "tests/test_reference_error_codes.py", "tests/test_reference_forward.py",
