@@ -93,7 +93,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                 "tests/test_motion_idle_calls.py", "tests/test_motion_publish.py",
                 "tests/test_motion_mutation_s7.py",
                 # seed-23 run (issue 16, session 8)
-                "tests/test_motion_mutation_s8.py"]),
+                "tests/test_motion_mutation_s8.py",
+                # seed-24 run (issue 16, session 9)
+                "tests/test_motion_mutation_s9.py"]),
     "checker": (["st_runtime/checker/*"],
                 ["tests/test_checker_rules.py", "tests/test_checker_typing.py", "tests/test_checker_program.py",
                  "tests/test_checker_loader.py", "tests/test_checker_corpus.py",
@@ -107,7 +109,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                  # seed-19 run: prelude_base.py's own tests (the shared prelude), and round three
                  "tests/test_prelude_sharing.py", "tests/test_checker_mutants_third.py",
                  # seed-21 run (issue 16, session 7)
-                 "tests/test_checker_mutation_s7.py"]),
+                 "tests/test_checker_mutation_s7.py",
+                 # seed-24 run (issue 16, session 9)
+                 "tests/test_checker_mutation_s9.py"]),
     "reference": (["stgen/reference/*"],
                   ["tests/test_reference_brake.py", "tests/test_reference_cycloidal.py",
                    "tests/test_reference_error_codes.py", "tests/test_reference_forward.py",

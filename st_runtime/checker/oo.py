@@ -86,6 +86,9 @@ class ObjectModel:
                            f"function blocks: expected one (interfaces are IMPLEMENTed)", node.pos)
         if node.extends:
             parent = self._pou(node.extends[0], "FUNCTION_BLOCK", node.pos, "EXTENDS")
+            if parent is not None:
+                # The base first: a cycle through it (A EXTENDS B, B EXTENDS A) shows only then.
+                self.decls.ensure_interface(parent)
             if parent is not None and parent.descends_from(info):
                 self.ctx.error("E-DECL-016", f"FUNCTION_BLOCK {node.name} extends itself "
                                f"(through {parent.name})", node.pos)
@@ -94,7 +97,6 @@ class ObjectModel:
                 self.ctx.error("E-DECL-016", f"{node.name} EXTENDS {parent.name}, which is FINAL",
                                node.pos)
             if parent is not None:
-                self.decls.ensure_interface(parent)
                 info.parent = parent
                 info.variables.update(parent.variables)
                 info.methods.update(parent.methods)
