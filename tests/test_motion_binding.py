@@ -71,13 +71,17 @@ def test_a_watched_struct_reads_as_before():
     plc, main, task = make_plc(FOLLOWS_LOCAL, AXIS, dict(AXIS, name="Cyl2"))
     ref = plc.controller.globals.v_CYL1
     cfg_class = type(ref.v_CFG)
-    kinds = {name: (type(value).__name__, type(value).__slots__) for name, value in
-             (("ref", ref), ("cfg", ref.v_CFG))}
+    kinds = {name: (type(value).__name__, type(value).__qualname__, type(value).__slots__)
+             for name, value in (("ref", ref), ("cfg", ref.v_CFG))}
     plc.run(1)                                              # MC_Power resolves Local
     local = plc.controller.instances["Main"].v_LOCAL
     assert type(local.v_CFG).__setattr__ is binding._store_and_unbind    # watched now
-    assert {name: (type(value).__name__, type(value).__slots__) for name, value in
-            (("ref", ref), ("cfg", ref.v_CFG))} == kinds
+    assert {name: (type(value).__name__, type(value).__qualname__, type(value).__slots__)
+            for name, value in (("ref", ref), ("cfg", ref.v_CFG))} == kinds
+    # One watched subclass per struct class, made once: Cyl1's and Local's are the same.
+    assert type(ref) is not type(local)                     # Cyl1 itself is not watched yet
+    assert binding.hold(plc.controller.instances["Main"].v_POWER, ref)
+    assert type(ref) is type(local) and type(ref.v_CFG) is type(local.v_CFG)
     local._assign(plc.controller.globals.v_CYL2)
     assert (local.v_CFG.v_AXNO, local.v_CFG.v_AXENABLE) == (1, True)
     assert type(local.v_CFG).__mro__[1] is cfg_class
