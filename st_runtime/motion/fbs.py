@@ -34,6 +34,7 @@ from . import binding
 from . import types as _types  # noqa: F401  (registers AXIS_REF before the FBs)
 from .axis import Axis, MotionAborted, MotionCommand, MotionRefused
 from .error_ids import ErrorID
+from .generated import define
 from .motion_task import motion_of
 from .types import BUFFER_MODE_ABORTING
 
@@ -121,9 +122,7 @@ class HotPath:
         body = "\n".join(" " * 12 + line.format(**names) for line in self.body)
         source = _HOT_EXECUTE.format(pre=(self.pre or "True").format(**names), bound=_BOUND.format(**names),
                                      body=body, cold=self.cold)
-        namespace: dict = {}
-        exec(compile(source, f"<{cls.__name__} hot path>", "exec"), namespace)   # our own text only
-        cls.execute = namespace["execute"]
+        cls.execute = define(source, f"{cls.__name__} hot path")["execute"]
 
 
 class _ExecuteFB(_AxisFB):
@@ -246,9 +245,7 @@ def _spell_out_idle_call(cls) -> None:
     if not all(output.isidentifier() for output in outputs):
         raise ValueError(f"{cls.__name__}.FINAL_OUTPUTS: attribute names only, not {outputs!r}")
     shown = " or ".join(f"self.{output}" for output in outputs)
-    namespace: dict = {}
-    code = compile(_IDLE_CALL.format(shown=shown), f"<{cls.__name__} idle call>", "exec")
-    exec(code, namespace)       # attribute names only (checked above)
+    namespace = define(_IDLE_CALL.format(shown=shown), f"{cls.__name__} idle call")   # names checked above
     cls._final_shown = namespace["_final_shown"]
     cls._execute_rules = namespace["_execute_rules"]
     if "execute" not in cls.__dict__:

@@ -24,10 +24,12 @@ context (`motion_of(ctx)`: `ctx.controller.motion`).
 
 from __future__ import annotations
 
+import textwrap
 from typing import Callable, Iterable, Mapping
 
 from .axis import Axis, AxisState
 from .axis_config import AxisConfig, axis_configs_from_tables, axis_configs_from_toml
+from .generated import define
 from ..native import mangle
 from .types import AxisRefWriter, bind_axis_ref
 
@@ -76,16 +78,6 @@ else:
 """
 
 
-def _indented(source: str, depth: int) -> str:
-    return "".join(" " * depth + line if line.strip() else line for line in source.splitlines(True))
-
-
-def _compiled(source: str, name: str, values: dict):
-    namespace = {"_ERRORSTOP": _ERRORSTOP, **values}
-    exec(compile(source, f"<motion task {name}>", "exec"), namespace)   # our own text only
-    return namespace[name]
-
-
 def _straight_line_process(lanes: list[tuple]):
     """`process(dt)` for these lanes as straight-line code: the lane step of every axis in
     turn, the axes, writers and structs as the function's constants (no loop, no unpacking)."""
@@ -95,8 +87,9 @@ def _straight_line_process(lanes: list[tuple]):
         names.update(zip(parts.values(), lane))
         steps.append(_LANE_STEP.format(**parts))
     arguments = "".join(f", {name}={name}" for name in names)
-    body = "".join(_indented(step, 4) for step in steps) or "    pass\n"
-    return _compiled(f"def process(dt{arguments}):\n{body}", "process", names)
+    body = "".join(textwrap.indent(step, "    ") for step in steps) or "    pass\n"
+    return define(f"def process(dt{arguments}):\n{body}", "motion task process",
+                  {"_ERRORSTOP": _ERRORSTOP, **names})["process"]
 
 
 def motion_of(ctx) -> "MotionTask | None":
