@@ -92,7 +92,7 @@ def _loop_depth(body) -> int:
     """How deep loops nest in the statements `body`."""
     deepest = 0
     for stmt in body:
-        inner = [b for b in _branch_bodies(stmt)] + ([stmt.body] if isinstance(stmt, _LOOPS) else [])
+        inner = _branch_bodies(stmt) + ([stmt.body] if isinstance(stmt, _LOOPS) else [])
         depth = max((_loop_depth(b) for b in inner), default=0) + (1 if isinstance(stmt, _LOOPS) else 0)
         deepest = max(deepest, depth)
     return deepest
