@@ -310,3 +310,30 @@ def test_axis_variable_has_omrons_members_and_no_dev():
         assert diagnostics(ok) == [], ok
     rejected = diagnostics("x := Cyl1.Dev.Pos")
     assert rejected and "no member 'Dev'" in rejected[0].message
+
+
+def test_status_ready_is_the_same_as_standstill_in_every_state():
+    # OMRON W508, 2-1-2 Axis Variables: Status.Ready is "TRUE when preparations
+    # for axis execution are finished and the axis is stopped", the same status
+    # as Status.Standstill.  Walk the axis through Disabled, Standstill,
+    # Discrete (a 0.05 mm move at 10 mm/s: five periods), Stopping (MC_Stop
+    # held) and ErrorStop (a move to 60 mm, beyond the +50 mm limit).
+    plc, main, _ = make_plc(START_REFUSED)
+    states = ("Disabled", "Standstill", "Discrete", "Stopping", "ErrorStop")
+    names = ("Cyl1.Status.Ready", *(f"Cyl1.Status.{s}" for s in states))
+    before = tuple(plc.globals[name] for name in names)  # before the first scan: Disabled
+    scans = per_scan(plc, *names)
+    main["MoveTarget"] = 0.05
+    plc.run(3)
+    main["DoMove"] = True
+    plc.run(10)
+    main["DoMove"], main["DoStop"] = False, True
+    plc.run(3)
+    main["DoStop"] = False
+    plc.run(2)
+    main["MoveTarget"], main["DoMove"] = 60.0, True
+    plc.run(2)
+    rows = [before, *scans]
+    seen = {state for row in rows for state, on in zip(states, row[1:]) if on}
+    assert seen == set(states)
+    assert [row[0] for row in rows] == [row[2] for row in rows]

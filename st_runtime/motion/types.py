@@ -29,7 +29,7 @@ NJ it may be an enumeration (unconfirmed).
     Axis.Cmd.Pos / .Vel / .AccDec       command position / velocity / acc.-dec.
     Axis.Act.Pos / .Vel                 actual position / velocity
     Axis.Status.Disabled ... .Homing    PLCopen state, exactly one TRUE
-                                        (.Ready: TRUE at Standstill, assumed)
+                                        (.Ready: the same as .Standstill, W508 2-1-2)
     Axis.Details.Idle / .InPosWaiting / .Homed / .VelLimit
     Axis.Dir.Posi / .Nega               command velocity direction
     Axis.DrvStatus.ServoOn / .Ready / .MainPower
