@@ -103,6 +103,12 @@ states bit for bit:
   charge before it in the same block level when nothing between them can
   raise, check the budget or leave the level (assignments and IF tests that
   cannot raise): the same total at every read of `_spent`.
+* `spread` (aliases.py `spread_branches`, with `aliases` and `stores`): a
+  variable every use of which lies in branches of one IF or CASE, no use at
+  their common level, is loaded at the start of each such branch (and stored
+  back in a `finally` around each that stores it), not once around them all:
+  SP_Controller's CASE loads its FB instances and flags in the clause that
+  names them.  A call runs one of those branches at most.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -141,6 +147,7 @@ class Optimisations:
     offsets: bool = True
     reuse: bool = True
     charges: bool = True
+    spread: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

@@ -13,7 +13,11 @@ the start of that branch's code: a call that does not take the branch does not l
 line is the same load of the same object, made before any use of the local (every use
 is compiled inside that branch), and the load cannot raise; nothing else changes.
 A variable the body stores keeps its load in the prologue (its store at the end runs
-on every call).
+on every call).  With `spread`, names used in branches of one IF or CASE and not
+around them (SP_Controller's CASE of states, each state naming its own FB instances)
+are loaded at the start of each branch that names them (`spread_branches`): a call
+runs one at most, so it loads no more than before, and a state that names none loads
+none.
 
 Left as they are: a body compiled as one CSE region (its reads may move to the top),
 names the walk does not find as often as the body has them (a safety net).
@@ -118,10 +122,11 @@ def late_loads(compiler, body) -> dict[int, list[str]]:
         found = seen.paths.get(key, [])
         if len(found) != seen.counts[key]:
             continue
-        common = common_branch(found)
-        if common:
+        places = spread_branches(found, seen.parents) if compiler.opt.spread else [common_branch(found)]
+        if places and all(places):
             scope.prologue.remove(line)
-            loads.setdefault(common[-1], []).append(line)
+            for place in places:
+                loads.setdefault(place[-1], []).append(line)
     return loads
 
 
@@ -131,14 +136,15 @@ class Occurrences:
     `paths["=", key]` of each store into it (assignment targets, FOR variables, outputs
     `=>`), looking no deeper than the first loop (a loop is one statement); `counts[key]`
     how often the name occurs in the whole body (what the paths must all have found);
-    `bodies` the branch bodies by id."""
+    `bodies` the branch bodies by id, `parents` the id of the IF or CASE of each."""
 
     def __init__(self, body):
         self.body = body
         self.paths: dict = {}
         self.bodies: dict[int, tuple] = {}
+        self.parents: dict[int, int] = {}
         self.counts = Counter(node.name.upper() for node in walk(body) if isinstance(node, ast.Name))
-        _visit(body, (), self.paths, self.bodies)
+        _visit(body, (), self)
 
 
 def occurrences(compiler, body) -> Occurrences:
@@ -162,28 +168,47 @@ def common_branch(paths: list[tuple]) -> tuple | None:
     return common or None
 
 
-def _visit(stmts, path: tuple, paths: dict, bodies: dict) -> None:
+def spread_branches(paths: list[tuple], parents: dict[int, int]) -> list[tuple] | None:
+    """The paths of branches that hold `paths` between them and of which one call runs one at
+    most (optimise `spread`): the longest common path, or, when every path goes on below it
+    into branches of one IF or CASE (none ends there), each of those branches that holds some,
+    spread again.  None when the paths have no common branch and cannot be spread."""
+    if not paths:
+        return None
+    common = common_branch(paths) or ()
+    depth = len(common)
+    if any(len(path) == depth for path in paths):
+        return [common] if common else None
+    below = list(dict.fromkeys(path[depth] for path in paths))
+    if len({parents[branch] for branch in below}) != 1:
+        return [common] if common else None
+    return [place for branch in below
+            for place in spread_branches([path for path in paths if path[depth] == branch], parents)]
+
+
+def _visit(stmts, path: tuple, seen: Occurrences) -> None:
     for stmt in stmts or ():
         if isinstance(stmt, ast.If):
             for branch in stmt.branches:
-                _record(branch.condition, path, paths)
-                _enter(branch.body, path, paths, bodies)
+                _record(branch.condition, path, seen.paths)
+                _enter(stmt, branch.body, path, seen)
             if stmt.else_body:
-                _enter(stmt.else_body, path, paths, bodies)
+                _enter(stmt, stmt.else_body, path, seen)
         elif isinstance(stmt, ast.Case):
-            _record(stmt.selector, path, paths)
+            _record(stmt.selector, path, seen.paths)
             for clause in stmt.clauses:
-                _record(clause.labels, path, paths)
-                _enter(clause.body, path, paths, bodies)
+                _record(clause.labels, path, seen.paths)
+                _enter(stmt, clause.body, path, seen)
             if stmt.else_body:
-                _enter(stmt.else_body, path, paths, bodies)
+                _enter(stmt, stmt.else_body, path, seen)
         else:       # a simple statement, or a loop: every name in it at this path
-            _record(stmt, path, paths)
+            _record(stmt, path, seen.paths)
 
 
-def _enter(body, path: tuple, paths: dict, bodies: dict) -> None:
-    bodies[id(body)] = body
-    _visit(body, path + (id(body),), paths, bodies)
+def _enter(stmt, body, path: tuple, seen: Occurrences) -> None:
+    seen.bodies[id(body)] = body
+    seen.parents[id(body)] = id(stmt)
+    _visit(body, path + (id(body),), seen)
 
 
 def _record(node, path: tuple, paths: dict) -> None:
