@@ -63,7 +63,7 @@ _LOAD_LINE = re.compile(r"^( *)(v_\w+) = (?:self|_G)\.\2$", re.M)
 _LOCAL_NAME = re.compile(r"(?<![.\w])(v_\w+)")
 _SET = re.compile(r"        ((?:self\.)?\w+) = (.+)")
 _COPY = re.compile(r"        v_\w+\[:\] = v_\w+")
-_INLINE_TRIG = re.compile(r"\(_m_(?:sin|cos|tan)\((_t\d+)\) if _NINF < \(\1 := ((?:self\.)?\w+)\) < _INF"
+_INLINE_TRIG = re.compile(r"\(_m_(?:sin|cos|tan)\((_t\d+)\) if \(\1 := ((?:self\.)?\w+)\) - \1 == 0\.0"
                           r" else _sf_(?:SIN|COS|TAN)\(\1\)\)")
 
 
