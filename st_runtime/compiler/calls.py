@@ -20,6 +20,7 @@ Conventions of the generated code:
 
 from __future__ import annotations
 
+from .. import ast
 from ..objects import is_aggregate
 from ..types import BOOL, ArrayType, ElementaryType, FBType, StructType, resolve_alias
 from .exprs import elementary, is_real
@@ -47,6 +48,19 @@ _GUARDED = {
     "TAN": ("_m_tan", "{x} - {t} == 0.0"),
     "SQRT": ("_m_sqrt", "{x} >= 0.0"),
 }
+
+
+def _sum_of_squares(ec, node) -> bool:
+    """`node` is a REAL/LREAL sum of squares of variables (`X * X + Y * Y`, the IK's leg
+    lengths): each square +0.0 or more, +inf or NaN (a variable read twice is one value),
+    and so their sum; never below zero, where alone SQRT's wrapper does more than
+    `math.sqrt` (NaN gives NaN either way, +inf +inf)."""
+    if not (isinstance(node, ast.Binary) and is_real(ec.ty(node))):
+        return False
+    if node.op == "*":
+        return isinstance(node.left, ast.Name) and isinstance(node.right, ast.Name) \
+            and node.left.name.upper() == node.right.name.upper()
+    return node.op == "+" and _sum_of_squares(ec, node.left) and _sum_of_squares(ec, node.right)
 
 
 class Calls:
@@ -350,8 +364,11 @@ class Calls:
         fn = self.unit.bind_function(name, call.pos)
         if name in _GUARDED and len(codes) == 1 and ec.opt.inline:
             fast, test = _GUARDED[name]
-            tmp = ec.temp()
-            text = f"({fast}({tmp}) if {test.format(x=f'({tmp} := {codes[0]})', t=tmp)} else {fn}({tmp}))"
+            if name == "SQRT" and _sum_of_squares(ec, ordered[0].value):
+                text = f"{fast}({codes[0]})"        # never below zero: the wrapper would only call it
+            else:
+                tmp = ec.temp()
+                text = f"({fast}({tmp}) if {test.format(x=f'({tmp} := {codes[0]})', t=tmp)} else {fn}({tmp}))"
             return ec.reuse.math(name, ordered[0].value, codes[0], text) if ec.reuse is not None else text
         return f"{fn}({', '.join(codes)})"
 
