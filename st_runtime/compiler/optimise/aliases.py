@@ -159,13 +159,13 @@ def common_branch(paths: list[tuple]) -> tuple | None:
     """The longest path all of `paths` start with; None when there is none, or no path."""
     if not paths:
         return None
-    common = paths[0]
-    for path in paths[1:]:
-        n = 0
-        while n < min(len(common), len(path)) and common[n] == path[n]:
-            n += 1
-        common = common[:n]
-    return common or None
+    first, last = min(paths), max(paths)    # (what the first and last in order share, all share)
+    n = 0
+    for a, b in zip(first, last):
+        if a != b:
+            break
+        n += 1
+    return first[:n] or None
 
 
 def spread_branches(paths: list[tuple], parents: dict[int, int]) -> list[tuple] | None:
@@ -173,17 +173,19 @@ def spread_branches(paths: list[tuple], parents: dict[int, int]) -> list[tuple] 
     most (optimise `spread`): the longest common path, or, when every path goes on below it
     into branches of one IF or CASE (none ends there), each of those branches that holds some,
     spread again.  None when the paths have no common branch and cannot be spread."""
-    if not paths:
-        return None
-    common = common_branch(paths) or ()
-    depth = len(common)
-    if any(len(path) == depth for path in paths):
-        return [common] if common else None
-    below = list(dict.fromkeys(path[depth] for path in paths))
-    if len({parents[branch] for branch in below}) != 1:
-        return [common] if common else None
-    return [place for branch in below
-            for place in spread_branches([path for path in paths if path[depth] == branch], parents)]
+    shortest = min(map(len, paths), default=0)
+    if not shortest:
+        return None             # (no path, or one at the top level)
+    common = common_branch(paths)
+    depth = len(common) if common else 0
+    if shortest == depth:
+        return [common]
+    groups: dict[int, list[tuple]] = {}
+    for path in paths:
+        groups.setdefault(path[depth], []).append(path)
+    if len({parents[branch] for branch in groups}) != 1:
+        return [common] if common else None     # (branches of two statements: both may run)
+    return [place for group in groups.values() for place in spread_branches(group, parents)]
 
 
 def _visit(stmts, path: tuple, seen: Occurrences) -> None:
