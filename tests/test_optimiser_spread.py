@@ -38,6 +38,7 @@ VAR
     Level : LREAL;                  (* read and stored in clauses 1, 2 and 3 only *)
     Hold : LREAL;                   (* stored in clause 2 only, read after the CASE too *)
 END_VAR
+VAR CONSTANT Steps : ARRAY[1..2] OF LREAL := [1.0, 1.0]; END_VAR     (* every read folded *)
 CASE State OF
 0:
     State := 1;
@@ -47,7 +48,7 @@ CASE State OF
     IF Level > Limit * 40.0 THEN Level := Limit; END_IF;
     State := 2;
 2:
-    Tool(Step := 1.0);
+    Tool(Step := Steps[1]);
     IF Level > 12.0 THEN
         Level := Level - 12.0;
         Hold := Level;
@@ -58,7 +59,7 @@ CASE State OF
     Hold := Hold + 1.0;
     State := 3;
 3:
-    Level := Level + Limit;
+    Level := Level + Limit * Steps[2];
     Level := Level + INT_TO_LREAL(100 / Divisor);       (* Divisor 0: F-DIV-ZERO *)
     Level := Level - Limit;
     State := 1;
@@ -95,6 +96,7 @@ def test_each_clause_that_uses_a_variable_loads_it_and_stores_it_back():
     assert lines.count("v_TOOL = self.v_TOOL") == 2 and lines.count("v_LIMIT = self.v_LIMIT") == 2
     assert lines.count("v_LEVEL = self.v_LEVEL") == 3 and lines.count("self.v_LEVEL = v_LEVEL") == 3
     assert "v_HOLD = self.v_HOLD" in prologue         # read after the CASE: loaded on entry
+    assert "v_STEPS = self.v_STEPS" not in lines      # (`unused`: no clause loads the folded table)
 
 
 def test_the_scans_see_the_same_with_and_without_the_pass():

@@ -39,12 +39,14 @@ def drop_unused(lines: list[str], start: int) -> None:
     """Leave out each load `v_X = self.v_X` / `v_X = _G.v_X` (from `start` on) whose local
     nothing else in the function names: an alias of a constant array every read of which
     was folded (SP_InverseKinematics' joint tables), a constant the compiler wrote as a
-    literal.  The load only binds the local, so leaving it out changes nothing else."""
+    literal (with `spread`, one such load in each branch that named it).  The load only
+    binds the local, so leaving it out changes nothing else."""
     text = "\n".join(lines[start:])
     counts = Counter(_LOCAL_NAME.findall(text))
+    loads = Counter(match.group(2) for match in _LOAD_LINE.finditer(text))
     drop: set[int] = set()
     for match in _LOAD_LINE.finditer(text):
-        if counts[match.group(2)] != 1:
+        if counts[match.group(2)] != loads[match.group(2)]:
             continue
         i = start + text.count("\n", 0, match.start())
         indent = len(match.group(1))
