@@ -19,7 +19,7 @@ from st_runtime.controller import Controller
 
 PROGRAM = """
 PROGRAM Main
-VAR x, b : LREAL; i : DINT; le, lt, le_lit, lt_zero, ge, int_le : BOOL; END_VAR
+VAR x, b : LREAL; i : DINT; le, lt, le_lit, lt_zero, ge, int_le, finite : BOOL; END_VAR
 VAR_TEMP local : LREAL; END_VAR
 local := b;
 le := ABS(x) <= local;
@@ -28,10 +28,11 @@ le_lit := ABS(x) <= 2.5;
 lt_zero := ABS(x) < 0.0;
 ge := ABS(x) >= local;
 int_le := ABS(i) <= 3;
+finite := ABS(local) <= 1.7976931348623157E308;      (* the largest LREAL: finiteness *)
 END_PROGRAM
 """
 
-VALUES = [math.nan, math.inf, -math.inf, 0.0, -0.0, 2.5, -2.5, -3.0, 1e308, -5e-324]
+VALUES = [math.nan, math.inf, -math.inf, 0.0, -0.0, 2.5, -2.5, -3.0, 1e308, -5e-324, -1.7976931348623157e308]
 ON = Optimisations()
 OFF = replace(ON, inline=False)
 
@@ -44,10 +45,11 @@ def builds():
 
 def test_the_calls_go_where_the_bound_allows(builds):
     on, off = builds["on"].python_sources["MAIN"], builds["off"].python_sources["MAIN"]
-    assert off.count("abs(") == 6
+    assert off.count("abs(") == 7
     # `>=` keeps its call, and so would a bound read from the instance (`self.v_B`)
     assert on.count("abs(") == 1 and "(-v_LOCAL <= v_X <= v_LOCAL)" in on and "v_X < v_LOCAL)" in on
     assert "(-2.5 <= v_X <= 2.5)" in on and "(-0.0 < v_X < 0.0)" in on and "(-3 <= self.v_I <= 3)" in on
+    assert "(v_LOCAL - v_LOCAL == 0.0)" in on          # a local against the largest double
 
 
 @pytest.mark.parametrize("build", ["on", "off"])
@@ -57,8 +59,8 @@ def test_every_pair_of_special_values(builds, build):
     for x, b in itertools.product(VALUES, VALUES):
         main["x"], main["b"] = x, b
         plc.run(1)
-        expected = (abs(x) <= b, abs(x) < b, abs(x) <= 2.5, abs(x) < 0.0, abs(x) >= b)
-        assert (main["le"], main["lt"], main["le_lit"], main["lt_zero"], main["ge"]) == expected, (x, b)
+        expected = (abs(x) <= b, abs(x) < b, abs(x) <= 2.5, abs(x) < 0.0, abs(x) >= b, math.isfinite(b))
+        assert (main["le"], main["lt"], main["le_lit"], main["lt_zero"], main["ge"], main["finite"]) == expected, (x, b)
     for i in (-2147483648, -4, -3, 0, 3, 4, 2147483647):
         main["i"] = i
         plc.run(1)

@@ -160,10 +160,13 @@ END_PROGRAM
 
 
 def test_a_variable_used_in_one_branch_is_loaded_there():
-    source = compile_program(_program(COLD), optimise=ON).python_sources["MOVER"]
+    source = compile_program(_program(COLD), optimise=replace(ON, spread=False)).python_sources["MOVER"]
     lines = [line.strip() for line in source.splitlines()]
     prologue = lines[1:lines.index("_spent = 0")]
     assert "v_BOTH = self.v_BOTH" in prologue                     # used in both branches
+    spread = [line.strip() for line in compile_program(_program(COLD), optimise=ON).python_sources["MOVER"].splitlines()]
+    assert "v_BOTH = self.v_BOTH" not in spread[1:spread.index("_spent = 0")]
+    assert spread.count("v_BOTH = self.v_BOTH") == 2              # (spread: in each branch)
     assert "v_TABLE = self.v_TABLE" not in prologue and "v_GAIN = self.v_GAIN" not in prologue
     inner = lines.index("if (self.v_CALLS > 2):")
     assert {"v_TABLE = self.v_TABLE", "v_GAIN = self.v_GAIN"} <= set(lines[inner + 1:inner + 4])

@@ -380,3 +380,41 @@ def test_inlined_math_functions_match_the_library_on_special_arguments():
     assert all(math.isnan(r[i]) for i in (2, 3, 4, 9, 10, 11, 16, 17, 18, 22, 24, 25))
     assert r[21] == math.sqrt(0.5) and r[0] == math.sin(0.5) and r[7 + 6] == math.cos(1.0e300)
     assert math.copysign(1.0, r[26]) == -1.0 and r[26] == 0.0 and r[23] == math.inf
+
+
+SQUARES = """
+PROGRAM Main
+VAR X : ARRAY[1..9] OF LREAL; R : ARRAY[1..9] OF LREAL; S : ARRAY[1..9] OF LREAL; I : INT;
+    A, B, Z : LREAL; F : REAL; G : REAL; END_VAR
+X[1] := 3.0; X[2] := -0.0; X[3] := 1.0 / Z; X[4] := -1.0 / Z; X[5] := Z / Z; X[6] := 1.0E300;
+X[7] := -1.0E-200; X[8] := 0.0; X[9] := -5.0E-324;
+FOR I := 1 TO 9 DO
+    A := X[I]; B := X[10 - I];
+    R[I] := SQRT(A * A + B * B);         (* a sum of squares: math.sqrt without the test *)
+    S[I] := SQRT(A * B);                 (* not one: the test stays *)
+END_FOR;
+F := -2.0; G := SQRT(F * F);
+END_PROGRAM
+"""
+
+
+def test_the_root_of_a_sum_of_squares_needs_no_test():
+    """IEEE 754: a square is +0.0 or more, +inf or NaN, so is a sum of them; SQRT of it equals
+    the library's on every special value (NaN, +-inf, -0.0, overflow to inf, underflow to 0)."""
+    program = _text_program(SQUARES)
+    source = compile_program(program, optimise=ON).python_sources["MAIN"]
+    assert "_m_sqrt(((v_A * v_A) + (v_B * v_B)))" in source
+    assert source.count("_sf_SQRT(") == 9            # S's nine (the loop unrolled), none for R nor G
+    off, on = run_both(program, 1)
+    assert on == off
+    controller = Controller(compile_program(program, optimise=ON), time_limit_ns=500_000)
+    controller.add_program("Main")
+    controller.run(1)
+    main = controller.instances["Main"]
+    x = [3.0, -0.0, math.inf, -math.inf, math.nan, 1.0e300, -1.0e-200, 0.0, -5.0e-324]
+    for i in range(9):      # the library's SQRT: NaN below zero, math.sqrt otherwise
+        for got, value in ((main.v_R[i], x[i] * x[i] + x[8 - i] * x[8 - i]), (main.v_S[i], x[i] * x[8 - i])):
+            expected = math.nan if value < 0 else math.sqrt(value)
+            assert got == expected or (math.isnan(expected) and math.isnan(got)), (i, got, expected)
+    assert main.v_R[0] == 3.0 and main.v_R[5] == math.inf and math.isnan(main.v_R[2]) is False
+    assert math.isnan(main.v_S[0]) and main.v_G == 2.0      # 3.0 * -5e-324 < 0; SQRT(-2.0 * -2.0)

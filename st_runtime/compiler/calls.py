@@ -20,6 +20,7 @@ Conventions of the generated code:
 
 from __future__ import annotations
 
+from .. import ast
 from ..objects import is_aggregate
 from ..types import BOOL, ArrayType, ElementaryType, FBType, StructType, resolve_alias
 from .exprs import elementary, is_real
@@ -37,13 +38,29 @@ _SELECTION = {"MIN": "min", "MAX": "max"}
 # Optimisations.inline: the math function itself where the library's wrapper
 # (stdlib/functions.py) would only call it, with the wrapper kept for the rest:
 # SIN/COS/TAN raise ValueError only for an infinite argument (the wrapper gives
-# NaN), SQRT returns NaN below zero.  `{x}` is the argument, evaluated once.
+# NaN), SQRT returns NaN below zero.  `{x}` is the argument, evaluated once, `{t}`
+# the temporary it is kept in.  `t - t == 0.0` is finiteness (an infinity or NaN
+# gives NaN), a float subtraction and one comparison: cheaper than the chained
+# `-inf < t < inf`.
 _GUARDED = {
-    "SIN": ("_m_sin", "_NINF < {x} < _INF"),
-    "COS": ("_m_cos", "_NINF < {x} < _INF"),
-    "TAN": ("_m_tan", "_NINF < {x} < _INF"),
+    "SIN": ("_m_sin", "{x} - {t} == 0.0"),
+    "COS": ("_m_cos", "{x} - {t} == 0.0"),
+    "TAN": ("_m_tan", "{x} - {t} == 0.0"),
     "SQRT": ("_m_sqrt", "{x} >= 0.0"),
 }
+
+
+def _sum_of_squares(ec, node) -> bool:
+    """`node` is a REAL/LREAL sum of squares of variables (`X * X + Y * Y`, the IK's leg
+    lengths): each square +0.0 or more, +inf or NaN (a variable read twice is one value),
+    and so their sum; never below zero, where alone SQRT's wrapper does more than
+    `math.sqrt` (NaN gives NaN either way, +inf +inf)."""
+    if not (isinstance(node, ast.Binary) and is_real(ec.ty(node))):
+        return False
+    if node.op == "*":
+        return isinstance(node.left, ast.Name) and isinstance(node.right, ast.Name) \
+            and node.left.name.upper() == node.right.name.upper()
+    return node.op == "+" and _sum_of_squares(ec, node.left) and _sum_of_squares(ec, node.right)
 
 
 class Calls:
@@ -347,8 +364,11 @@ class Calls:
         fn = self.unit.bind_function(name, call.pos)
         if name in _GUARDED and len(codes) == 1 and ec.opt.inline:
             fast, test = _GUARDED[name]
-            tmp = ec.temp()
-            text = f"({fast}({tmp}) if {test.format(x=f'({tmp} := {codes[0]})')} else {fn}({tmp}))"
+            if name == "SQRT" and _sum_of_squares(ec, ordered[0].value):
+                text = f"{fast}({codes[0]})"        # never below zero: the wrapper would only call it
+            else:
+                tmp = ec.temp()
+                text = f"({fast}({tmp}) if {test.format(x=f'({tmp} := {codes[0]})', t=tmp)} else {fn}({tmp}))"
             return ec.reuse.math(name, ordered[0].value, codes[0], text) if ec.reuse is not None else text
         return f"{fn}({', '.join(codes)})"
 

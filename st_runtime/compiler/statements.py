@@ -253,10 +253,10 @@ class BodyCompiler(ExprCompiler):
             values.enter()
         for line in self._late_loads.get(id(body), ()):
             self.out.line(line)
+        for line in self._late_stores.loads.get(id(body), ()):
+            self.out.line(line)
         stored_back = self._late_stores.stores.get(id(body))
         if stored_back:
-            for line in self._late_stores.loads.get(id(body), ()):
-                self.out.line(line)
             self.out.line("try:")
             self.out.indent()
             mark = self.out.mark()

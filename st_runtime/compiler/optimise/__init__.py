@@ -26,10 +26,12 @@ states bit for bit:
   PYTHONHASHSEED (measured in gather.py's docstring).
 * `inline` (calls.py, `_GUARDED`): SIN, COS, TAN and SQRT call Python's
   math function directly where the library's wrapper would only call it
-  (a finite argument; SQRT: not below zero), the wrapper otherwise; MIN and
+  (a finite argument, tested as `t - t == 0.0`; SQRT: not below zero, with no
+  test for a REAL sum of squares of variables), the wrapper otherwise; MIN and
   MAX of two or more inputs are Python's min/max (the library's MIN is min of
   the tuple: the same comparisons in the same order); `ABS(x) <= B` and
-  `ABS(x) < B` are chained comparisons without the call (absolute.py).
+  `ABS(x) < B` are chained comparisons without the call, `ABS(x) <= ` the
+  largest LREAL `x - x == 0.0` for a local x (absolute.py).
 * `vector` (vector.py): in a CSE region, a straight run of at least
   `vector.MIN_OPERATIONS` float `+ - *` (the unrolled Leibniz determinant:
   1,950 products and 720 sums) is one call that computes the products depth
@@ -103,6 +105,12 @@ states bit for bit:
   charge before it in the same block level when nothing between them can
   raise, check the budget or leave the level (assignments and IF tests that
   cannot raise): the same total at every read of `_spent`.
+* `spread` (aliases.py `spread_branches`, with `aliases` and `stores`): a
+  variable every use of which lies in branches of one IF or CASE, no use at
+  their common level, is loaded at the start of each such branch (and stored
+  back in a `finally` around each that stores it), not once around them all:
+  SP_Controller's CASE loads its FB instances and flags in the clause that
+  names them.  A call runs one of those branches at most.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -141,6 +149,7 @@ class Optimisations:
     offsets: bool = True
     reuse: bool = True
     charges: bool = True
+    spread: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

@@ -6,14 +6,17 @@ x either way (-B > B), and B = -0.0 admits only the zeros with `<=`, none with `
 -0.0 and 0.0 compare equal; ints and floats compare exactly.  The chained comparison
 evaluates x once, as the call did (`abs` of a number cannot raise), and B is a literal
 or a local, read twice with the same value.  Two float comparisons cost less than a
-builtin call: the FK's finiteness tests (`NOT (ABS(J[r, c]) <= SP_LREAL_MAX)`), its
-convergence test and the LU's zero-pivot test take this form.  `>` and `>=` keep the
-call.
+builtin call: the FK's convergence test and the LU's zero-pivot test take this form.
+With B the largest double and x a local or a value of the `reuse` pass (a name, read
+twice with the same value), `abs(x) <= B` is finiteness, `x - x == 0.0` (an infinity
+or a NaN gives NaN, an int 0; one subtraction, one comparison): the IK's and FK's
+`NOT (ABS(Position[Leg]) <= SP_LREAL_MAX)`.  `>` and `>=` keep the call.
 """
 
 from __future__ import annotations
 
 import math
+import sys
 
 from ... import ast
 from ..pysrc import pyliteral
@@ -39,7 +42,12 @@ def bounded(compiler, e, left: str, right: str) -> str | None:
     value = _literal(right)
     if value is None or not math.isfinite(value):
         return None
-    return f"({pyliteral(-value)} {op} {left[4:-1]} {op} {right})"
+    from .reuse import is_token     # (reuse imports the compiler's scope, which imports exprs)
+
+    x = left[4:-1]
+    if op == "<=" and value == sys.float_info.max and (x.isidentifier() or is_token(x)):
+        return f"({x} - {x} == 0.0)"
+    return f"({pyliteral(-value)} {op} {x} {op} {right})"
 
 
 def _literal(code: str):

@@ -13,7 +13,11 @@ the start of that branch's code: a call that does not take the branch does not l
 line is the same load of the same object, made before any use of the local (every use
 is compiled inside that branch), and the load cannot raise; nothing else changes.
 A variable the body stores keeps its load in the prologue (its store at the end runs
-on every call).
+on every call).  With `spread`, names used in branches of one IF or CASE and not
+around them (SP_Controller's CASE of states, each state naming its own FB instances)
+are loaded at the start of each branch that names them (`spread_branches`): a call
+runs one at most, so it loads no more than before, and a state that names none loads
+none.
 
 Left as they are: a body compiled as one CSE region (its reads may move to the top),
 names the walk does not find as often as the body has them (a safety net).
@@ -35,12 +39,14 @@ def drop_unused(lines: list[str], start: int) -> None:
     """Leave out each load `v_X = self.v_X` / `v_X = _G.v_X` (from `start` on) whose local
     nothing else in the function names: an alias of a constant array every read of which
     was folded (SP_InverseKinematics' joint tables), a constant the compiler wrote as a
-    literal.  The load only binds the local, so leaving it out changes nothing else."""
+    literal (with `spread`, one such load in each branch that named it).  The load only
+    binds the local, so leaving it out changes nothing else."""
     text = "\n".join(lines[start:])
     counts = Counter(_LOCAL_NAME.findall(text))
+    loads = Counter(match.group(2) for match in _LOAD_LINE.finditer(text))
     drop: set[int] = set()
     for match in _LOAD_LINE.finditer(text):
-        if counts[match.group(2)] != 1:
+        if counts[match.group(2)] != loads[match.group(2)]:
             continue
         i = start + text.count("\n", 0, match.start())
         indent = len(match.group(1))
@@ -59,7 +65,7 @@ _LOAD_LINE = re.compile(r"^( *)(v_\w+) = (?:self|_G)\.\2$", re.M)
 _LOCAL_NAME = re.compile(r"(?<![.\w])(v_\w+)")
 _SET = re.compile(r"        ((?:self\.)?\w+) = (.+)")
 _COPY = re.compile(r"        v_\w+\[:\] = v_\w+")
-_INLINE_TRIG = re.compile(r"\(_m_(?:sin|cos|tan)\((_t\d+)\) if _NINF < \(\1 := ((?:self\.)?\w+)\) < _INF"
+_INLINE_TRIG = re.compile(r"\(_m_(?:sin|cos|tan)\((_t\d+)\) if \(\1 := ((?:self\.)?\w+)\) - \1 == 0\.0"
                           r" else _sf_(?:SIN|COS|TAN)\(\1\)\)")
 
 
@@ -118,10 +124,11 @@ def late_loads(compiler, body) -> dict[int, list[str]]:
         found = seen.paths.get(key, [])
         if len(found) != seen.counts[key]:
             continue
-        common = common_branch(found)
-        if common:
+        places = spread_branches(found, seen.parents) if compiler.opt.spread else [common_branch(found)]
+        if places and all(places):
             scope.prologue.remove(line)
-            loads.setdefault(common[-1], []).append(line)
+            for place in places:
+                loads.setdefault(place[-1], []).append(line)
     return loads
 
 
@@ -131,14 +138,15 @@ class Occurrences:
     `paths["=", key]` of each store into it (assignment targets, FOR variables, outputs
     `=>`), looking no deeper than the first loop (a loop is one statement); `counts[key]`
     how often the name occurs in the whole body (what the paths must all have found);
-    `bodies` the branch bodies by id."""
+    `bodies` the branch bodies by id, `parents` the id of the IF or CASE of each."""
 
     def __init__(self, body):
         self.body = body
         self.paths: dict = {}
         self.bodies: dict[int, tuple] = {}
+        self.parents: dict[int, int] = {}
         self.counts = Counter(node.name.upper() for node in walk(body) if isinstance(node, ast.Name))
-        _visit(body, (), self.paths, self.bodies)
+        _visit(body, (), self)
 
 
 def occurrences(compiler, body) -> Occurrences:
@@ -153,37 +161,58 @@ def common_branch(paths: list[tuple]) -> tuple | None:
     """The longest path all of `paths` start with; None when there is none, or no path."""
     if not paths:
         return None
-    common = paths[0]
-    for path in paths[1:]:
-        n = 0
-        while n < min(len(common), len(path)) and common[n] == path[n]:
-            n += 1
-        common = common[:n]
-    return common or None
+    first, last = min(paths), max(paths)    # (what the first and last in order share, all share)
+    n = 0
+    for a, b in zip(first, last):
+        if a != b:
+            break
+        n += 1
+    return first[:n] or None
 
 
-def _visit(stmts, path: tuple, paths: dict, bodies: dict) -> None:
+def spread_branches(paths: list[tuple], parents: dict[int, int]) -> list[tuple] | None:
+    """The paths of branches that hold `paths` between them and of which one call runs one at
+    most (optimise `spread`): the longest common path, or, when every path goes on below it
+    into branches of one IF or CASE (none ends there), each of those branches that holds some,
+    spread again.  None when the paths have no common branch and cannot be spread."""
+    shortest = min(map(len, paths), default=0)
+    if not shortest:
+        return None             # (no path, or one at the top level)
+    common = common_branch(paths)
+    depth = len(common) if common else 0
+    if shortest == depth:
+        return [common]
+    groups: dict[int, list[tuple]] = {}
+    for path in paths:
+        groups.setdefault(path[depth], []).append(path)
+    if len({parents[branch] for branch in groups}) != 1:
+        return [common] if common else None     # (branches of two statements: both may run)
+    return [place for group in groups.values() for place in spread_branches(group, parents)]
+
+
+def _visit(stmts, path: tuple, seen: Occurrences) -> None:
     for stmt in stmts or ():
         if isinstance(stmt, ast.If):
             for branch in stmt.branches:
-                _record(branch.condition, path, paths)
-                _enter(branch.body, path, paths, bodies)
+                _record(branch.condition, path, seen.paths)
+                _enter(stmt, branch.body, path, seen)
             if stmt.else_body:
-                _enter(stmt.else_body, path, paths, bodies)
+                _enter(stmt, stmt.else_body, path, seen)
         elif isinstance(stmt, ast.Case):
-            _record(stmt.selector, path, paths)
+            _record(stmt.selector, path, seen.paths)
             for clause in stmt.clauses:
-                _record(clause.labels, path, paths)
-                _enter(clause.body, path, paths, bodies)
+                _record(clause.labels, path, seen.paths)
+                _enter(stmt, clause.body, path, seen)
             if stmt.else_body:
-                _enter(stmt.else_body, path, paths, bodies)
+                _enter(stmt, stmt.else_body, path, seen)
         else:       # a simple statement, or a loop: every name in it at this path
-            _record(stmt, path, paths)
+            _record(stmt, path, seen.paths)
 
 
-def _enter(body, path: tuple, paths: dict, bodies: dict) -> None:
-    bodies[id(body)] = body
-    _visit(body, path + (id(body),), paths, bodies)
+def _enter(stmt, body, path: tuple, seen: Occurrences) -> None:
+    seen.bodies[id(body)] = body
+    seen.parents[id(body)] = id(stmt)
+    _visit(body, path + (id(body),), seen)
 
 
 def _record(node, path: tuple, paths: dict) -> None:

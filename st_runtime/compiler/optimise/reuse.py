@@ -286,6 +286,11 @@ class Reuse:
             value.uses = count
 
 
+def is_token(code: str) -> bool:
+    """`code` is one value of this pass (a name once resolved, or text that cannot raise)."""
+    return _TOKEN.fullmatch(code) is not None
+
+
 def as_names(code: str) -> str:
     """`code` with each token as a name (what it may become: a value that cannot raise)."""
     return _TOKEN.sub(lambda m: f"_c{m.group(1)}", code) if "\x03" in code else code

@@ -18,6 +18,11 @@ and when every use is inside that branch too, the load moves to the start of the
 branch as well.  A call that does not take the branch neither loads nor stores
 the variable (TRJ_OceanWave's latch of a new wave, SP_Controller's cold states).
 
+With `spread`, a variable whose uses all lie in branches of one IF or CASE and not
+around them (`aliases.spread_branches`) is loaded at the start of each of those
+branches and stored back around each that stores it (SP_Controller's flags of the
+locate and point-to-point states): a call runs one of them at most.
+
 Exact: no code but the body's can read or change the slot while the body runs
 (scope.py caches nothing a reference, a METHOD or THIS can reach), so the slot
 only has to hold the local's value when the call ends; outside the branch the
@@ -38,7 +43,7 @@ import re
 
 from ... import ast
 from ..scope import _LOOPS
-from .aliases import common_branch, occurrences
+from .aliases import common_branch, occurrences, spread_branches
 
 _STORE_BACK = re.compile(r"self\.(v_\w+) = (v_\w+)")
 MAX_DEPTH = 4           # IF/CASE levels a branch may be nested in
@@ -68,20 +73,41 @@ def late_stores(compiler, body) -> LateStores:
         return late
     seen = occurrences(compiler, body)
     depths: dict[int, int] = {}
+
+    def fits(places: list) -> bool:
+        """Each branch nested and holding loops no deeper than the limits."""
+        for place in places:
+            if place is None or len(place) > MAX_DEPTH:
+                return False
+            if place[-1] not in depths:
+                depths[place[-1]] = _loop_depth(seen.bodies[place[-1]])
+            if depths[place[-1]] > MAX_LOOPS:
+                return False
+        return True
+
     for key, line in candidates.items():
         uses = seen.paths.get(key, [])
         if len(uses) != seen.counts[key]:
             continue            # a use the walk of branches did not see: leave it
-        branch = common_branch(seen.paths.get(("=", key), []))
-        if branch is None or len(branch) > MAX_DEPTH:
-            continue
-        if branch[-1] not in depths:
-            depths[branch[-1]] = _loop_depth(seen.bodies[branch[-1]])
-        if depths[branch[-1]] > MAX_LOOPS:
+        stores = seen.paths.get(("=", key), [])
+        load = f"{scope.places[key].name} = self.{scope.places[key].name}"
+        if compiler.opt.spread and load in scope.prologue:
+            places = spread_branches(uses, seen.parents)
+            if places and len(places) > 1 and fits(places):
+                # every use in branches of which a call runs one at most: load in each,
+                # store back in each that stores
+                scope.epilogue.remove(line)
+                scope.prologue.remove(load)
+                for place in places:
+                    late.loads.setdefault(place[-1], []).append(load)
+                    if any(path[:len(place)] == place for path in stores):
+                        late.stores.setdefault(place[-1], []).append(line)
+                continue
+        branch = common_branch(stores)
+        if not fits([branch]):
             continue
         scope.epilogue.remove(line)
         late.stores.setdefault(branch[-1], []).append(line)
-        load = f"{scope.places[key].name} = self.{scope.places[key].name}"
         if load in scope.prologue and common_branch(uses) == branch:
             scope.prologue.remove(load)
             late.loads.setdefault(branch[-1], []).append(load)
