@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..native import NativeFB, fb_declaration, native_fb
+from ..native import NativeFB, RestTest, fb_declaration, native_fb
 from . import binding
 from . import types as _types  # noqa: F401  (registers AXIS_REF before the FBs)
 from .axis import Axis, MotionAborted, MotionCommand, MotionRefused
@@ -143,6 +143,7 @@ class _ExecuteFB(_AxisFB):
         super().__init__()
         self._previous_execute = False
         self._command: MotionCommand | None = None
+        self._at_rest = None    # the ScanContext.seal under which a caller found the FB at rest
 
     def __init_subclass__(cls, **kwargs) -> None:
         super().__init_subclass__(**kwargs)
@@ -228,6 +229,7 @@ def _final_shown(self):
     return {shown}
 
 def _execute_rules(self, ctx):
+    self._at_rest = None
     if not self.v_EXECUTE and not self.v_BUSY:
         if {shown}:
             self._clear_outputs()
@@ -236,6 +238,9 @@ def _execute_rules(self, ctx):
             return
     self._run(ctx)
 """
+
+
+_REST = RestTest(awake="{fb}.v_EXECUTE or {fb}._at_rest is not _ctx.seal", note="{fb}._at_rest = _ctx.seal")
 
 
 def _spell_out_idle_call(cls) -> None:
@@ -254,6 +259,10 @@ def _spell_out_idle_call(cls) -> None:
     # FALSE (and, with `_after_call`, no command is left): the compiled caller tests that itself.
     rest = ("_previous_execute", *(("_command is not None",) if cls.AFTER_CALL else ()))
     cls.CALL_NEEDED = " or ".join("{fb}." + test for test in ("v_EXECUTE", "v_BUSY", *outputs, *rest))
+    # Found at rest once (CALL_NEEDED false), the FB stays so until it is called (`_execute_rules`
+    # forgets it) or until code other than the scans may have written it (a new seal).  Only
+    # for a class whose calls all go through `_execute_rules` (not one with a HotPath).
+    cls.REST = _REST if cls.HOT_PATH is None and cls.execute is cls._execute_rules else None
 
 
 _spell_out_idle_call(_ExecuteFB)

@@ -157,7 +157,8 @@ class MotionTask:
 
         The globals must have been declared with `globals_source()` in the
         loaded program.  Feedback in becomes a `before` hook, motion processing
-        an `after` hook; the controller gets a `motion` attribute for the FBs.
+        an `after` hook (quiet: they write axes and AXIS_REF variables, no FB instance);
+        the controller gets a `motion` attribute for the FBs.
         """
         if getattr(controller, "motion", None) is not None:
             raise ValueError("this controller already has a motion task")
@@ -173,7 +174,7 @@ class MotionTask:
                 )
         self.bind(lambda name: getattr(globals_object, mangle(name)))
         controller.motion = self
-        controller.add_io_hook(before=self._before_programs, after=self._after_programs)
+        controller.add_io_hook(before=self._before_programs, after=self._after_programs, quiet=True)
 
     def _before_programs(self, ctx) -> None:
         """Feedback in, unless the axis variables already show the axes: the previous scan's
