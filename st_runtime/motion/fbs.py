@@ -465,11 +465,13 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
     # The call of every scan while synchronized (no edge, command alive); everything else
     # goes through the general rules.  InPosition as `_poll` computes it (abs() and one
     # comparison cost less than a chained comparison whose value is stored); an LREAL input
-    # holds a float: float() only if not.
+    # holds a float: float() only if not.  With Execute TRUE, `pre` found the Execute the FB
+    # remembers TRUE (the FB only ever stores a bool there): only a FALSE one is stored.
     HOT_PATH = HotPath(
         pre=("{fb}.v_BUSY and ({command} := {fb}._command) is not None and not {command}.aborted"
              " and ({fb}._previous_execute or not {fb}.v_EXECUTE)"),
-        body=("{fb}._previous_execute = True if {fb}.v_EXECUTE else False",
+        body=("if not {fb}.v_EXECUTE:",
+              "    {fb}._previous_execute = False",
               "{fb}.v_ACTIVE = True",                         # _poll(axis, command, False), inlined
               "{fb}.v_INPOSITION = abs({axis}.act_pos - {command}.target) <= {axis}.config.in_position_range",
               "{position} = {fb}.v_POSITION",
