@@ -223,7 +223,8 @@ class _ExecuteFB(_AxisFB):
 # of its final outputs, spelt out from the class's FINAL_OUTPUTS: attribute loads in the
 # call itself, no call of a helper (each costs more than the test; any() over an
 # attrgetter five times the loads).  Held (or one-call) final outputs end; nothing starts
-# or runs and `_after_call` has nothing to do, so the axis need not be looked up.
+# or runs and `_after_call` has nothing to do, so the axis need not be looked up.  Every call
+# forgets that a caller found the FB at rest (`_REST`).
 _IDLE_CALL = """
 def _final_shown(self):
     return {shown}
@@ -240,6 +241,8 @@ def _execute_rules(self, ctx):
 """
 
 
+# An idle Execute FB at rest: noted by its compiled caller under the controller's seal, which
+# is new whenever code other than the scans' own may have stored into the FB (ScanContext.seal).
 _REST = RestTest(awake="{fb}.v_EXECUTE or {fb}._at_rest is not _ctx.seal", note="{fb}._at_rest = _ctx.seal")
 
 
