@@ -104,9 +104,9 @@ def test_an_output_written_from_outside_an_fb_at_rest_is_cleared_by_its_next_cal
         controller.add_observer(lambda _: shown.append((instance.v_RESET.v_DONE, instance.v_STOP.v_ERRORID)),
                                 reads_only=True)
         if where == "in a hook":
-            controller.add_io_hook(after=lambda ctx: ctx.scan == 4 and meddle(instance))
+            controller.add_io_hook(after=lambda ctx: ctx.scan == 2 and meddle(instance))
         elif where == "in an observer":
-            controller.add_observer(lambda c: c.scan_count == 4 and meddle(instance))
+            controller.add_observer(lambda c: c.scan_count == 2 and meddle(instance))
         plc.run(4)
         if where == "between runs":
             meddle(instance)
