@@ -51,7 +51,7 @@ MAX_FAULT_RECORDS = 10_000       # kept in `faults`; `fault_count` counts them a
 class ScanContext:
     """What compiled code and native FBs see of the controller (`ctx`)."""
 
-    __slots__ = ("now_ns", "scan", "period_ns", "budget", "controller", "pou", "resumed")
+    __slots__ = ("now_ns", "scan", "period_ns", "budget", "controller", "pou", "resumed", "seal")
 
     def __init__(self, controller: "Controller"):
         self.controller = controller
@@ -63,6 +63,12 @@ class ScanContext:
         # no code that could change anything has run since the previous scan's
         # `after` hooks (the motion task then need not publish the axes again before the programs).
         self.resumed = False
+        # A new object whenever code other than the scans' own may have run since the previous
+        # scan: a caller between `run` calls, an observer that writes, an I/O hook not added as
+        # `quiet`.  While it stays the same, nothing but compiled ST (which cannot store into an
+        # FB's outputs: the checker refuses it) and each FB's own calls has touched an FB, so a
+        # fact an FB's caller noted under it still holds (`NativeFB.REST`: an idle FB at rest).
+        self.seal = object()
         # Estimated NJ501 time (ps) the running task has left; each task run
         # starts from its limit (code run outside a scan gets one period).
         self.budget = (controller.time_limit_ns or controller.period_ns) * 1000
@@ -102,6 +108,7 @@ class Controller:
         self.instances: dict[str, object] = {}
         self.before_hooks: list[Callable] = []
         self.after_hooks: list[Callable] = []
+        self._quiet_hooks = 0            # of them, added as quiet
         self.observers: list[Callable] = []
         self._reading_observers = 0      # of them, added with reads_only
         self.faults: list[FaultRecord] = []
@@ -151,15 +158,18 @@ class Controller:
                 return task
         raise KeyError(f"no task named {name}")
 
-    def add_io_hook(self, before: Callable | None = None, after: Callable | None = None) -> None:
+    def add_io_hook(self, before: Callable | None = None, after: Callable | None = None,
+                    quiet: bool = False) -> None:
         """Native code run each primary scan before / after the programs.
 
         Each hook is called as `hook(ctx)` (ctx.now_ns, ctx.scan, ctx.period_ns).
+        `quiet`: the hooks store nothing into an FB instance (the motion task's), so the
+        scans of a run keep their `ScanContext.seal`.
         """
-        if before is not None:
-            self.before_hooks.append(before)
-        if after is not None:
-            self.after_hooks.append(after)
+        for hook, hooks in ((before, self.before_hooks), (after, self.after_hooks)):
+            if hook is not None:
+                hooks.append(hook)
+                self._quiet_hooks += quiet
 
     def add_observer(self, observer: Callable, reads_only: bool = False) -> None:
         """Called as `observer(controller)` at the end of every scan (trace).
@@ -177,7 +187,10 @@ class Controller:
         """Run one primary period.  False when the run has stopped on a fault."""
         if self.stopped is not None:
             return False
-        self._scans(1, False)
+        try:
+            self._scans(1, False)
+        finally:
+            self.ctx.seal = object()         # the caller's code runs next
         return self.stopped is None
 
     def run(self, cycles: int) -> int:
@@ -188,6 +201,7 @@ class Controller:
             return self._scans(cycles, True)
         finally:
             self.ctx.resumed = False         # the caller's code runs next
+            self.ctx.seal = object()
 
     def _scans(self, cycles: int, resume: bool) -> int:
         """Up to `cycles` scans, each as `scan` describes it, in one frame: the hooks, the
@@ -202,6 +216,8 @@ class Controller:
             ctx.scan = index + 1
             ctx.now_ns = index * self.period_ns
             ctx.period_ns = self.period_ns
+            if not ctx.resumed or len(self.before_hooks) + len(self.after_hooks) != self._quiet_hooks:
+                ctx.seal = object()
             try:
                 for hook in self.before_hooks:
                     try:

@@ -31,6 +31,7 @@ The contract between a native FB and the compiled code (`NativeFB`):
 from __future__ import annotations
 
 import re
+from typing import NamedTuple
 
 from .dialects import DIALECTS
 
@@ -98,6 +99,15 @@ def prelude_source(dialect: str = "iec") -> str:
     return "\n".join(parts)
 
 
+class RestTest(NamedTuple):
+    """`NativeFB.REST`: Python of the instance `{fb}` and the caller's `_ctx`.  `awake` is false
+    only while the FB is known to be at rest (an earlier CALL_NEEDED test was false and nothing
+    has touched the FB since: `ScanContext.seal`); `note` is the statement that records it."""
+
+    awake: str
+    note: str
+
+
 class NativeFB:
     """Base class of FBs written in Python (see the module docstring).
 
@@ -117,6 +127,9 @@ class NativeFB:
     # the statements (new locals named by `temp()`) do what the call would do, so the compiled
     # caller runs them instead of the call (motion.fbs.HotPath).
     HOT_PATH = None
+    # None, or a RestTest: the compiled caller makes the CALL_NEEDED test only when `awake` is
+    # true, and when that test is false notes the FB at rest (`note`), for the scans to come.
+    REST: "RestTest | None" = None
 
     def __init__(self) -> None:
         init = type(self).__dict__.get("_st_initializers")

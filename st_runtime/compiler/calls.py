@@ -13,7 +13,8 @@ Conventions of the generated code:
   connects VAR_IN_OUTs (the aggregate itself, or a `Ref`), calls
   `inst.execute(_ctx)` and then copies the `=>` outputs.  With `inline`, a
   native FB whose class has a `CALL_NEEDED` test is called only when that
-  test is true (an idle MC_Stop would change nothing), and one whose class has
+  test is true (an idle MC_Stop would change nothing), only while its `REST`
+  test does not say it was found at rest before, and one whose class has
   a `HOT_PATH` runs that path's statements in place of the call when its test
   holds (MC_Power, and MC_SyncMoveAbsolute while synchronized).
 """
@@ -195,6 +196,10 @@ class Calls:
         needed = getattr(native, "CALL_NEEDED", None) if ec.opt.inline else None
         hot = getattr(native, "HOT_PATH", None) if ec.opt.inline else None
         call = f"{instance}.execute(_ctx)"
+        rest = getattr(native, "REST", None) if needed is not None and hot is None else None
+        if rest is not None:
+            return [f"if {rest.awake.format(fb=instance)}:", f"    if {needed.format(fb=instance)}:",
+                    f"        {call}", "    else:", f"        {rest.note.format(fb=instance)}"]
         if hot is None:
             return [call] if needed is None else [f"if {needed.format(fb=instance)}:", f"    {call}"]
         test, statements = hot.inline(instance, ec.temp)

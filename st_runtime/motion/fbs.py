@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..native import NativeFB, fb_declaration, native_fb
+from ..native import NativeFB, RestTest, fb_declaration, native_fb
 from . import binding
 from . import types as _types  # noqa: F401  (registers AXIS_REF before the FBs)
 from .axis import Axis, MotionAborted, MotionCommand, MotionRefused
@@ -143,6 +143,7 @@ class _ExecuteFB(_AxisFB):
         super().__init__()
         self._previous_execute = False
         self._command: MotionCommand | None = None
+        self._at_rest = None    # the ScanContext.seal under which a caller found the FB at rest
 
     def __init_subclass__(cls, **kwargs) -> None:
         super().__init_subclass__(**kwargs)
@@ -222,12 +223,14 @@ class _ExecuteFB(_AxisFB):
 # of its final outputs, spelt out from the class's FINAL_OUTPUTS: attribute loads in the
 # call itself, no call of a helper (each costs more than the test; any() over an
 # attrgetter five times the loads).  Held (or one-call) final outputs end; nothing starts
-# or runs and `_after_call` has nothing to do, so the axis need not be looked up.
+# or runs and `_after_call` has nothing to do, so the axis need not be looked up.  Every call
+# forgets that a caller found the FB at rest (`_REST`).
 _IDLE_CALL = """
 def _final_shown(self):
     return {shown}
 
 def _execute_rules(self, ctx):
+    self._at_rest = None
     if not self.v_EXECUTE and not self.v_BUSY:
         if {shown}:
             self._clear_outputs()
@@ -236,6 +239,11 @@ def _execute_rules(self, ctx):
             return
     self._run(ctx)
 """
+
+
+# An idle Execute FB at rest: noted by its compiled caller under the controller's seal, which
+# is new whenever code other than the scans' own may have stored into the FB (ScanContext.seal).
+_REST = RestTest(awake="{fb}.v_EXECUTE or {fb}._at_rest is not _ctx.seal", note="{fb}._at_rest = _ctx.seal")
 
 
 def _spell_out_idle_call(cls) -> None:
@@ -254,6 +262,10 @@ def _spell_out_idle_call(cls) -> None:
     # FALSE (and, with `_after_call`, no command is left): the compiled caller tests that itself.
     rest = ("_previous_execute", *(("_command is not None",) if cls.AFTER_CALL else ()))
     cls.CALL_NEEDED = " or ".join("{fb}." + test for test in ("v_EXECUTE", "v_BUSY", *outputs, *rest))
+    # Found at rest once (CALL_NEEDED false), the FB stays so until it is called (`_execute_rules`
+    # forgets it) or until code other than the scans may have written it (a new seal).  Only
+    # for a class whose calls all go through `_execute_rules` (not one with a HotPath).
+    cls.REST = _REST if cls.HOT_PATH is None and cls.execute is cls._execute_rules else None
 
 
 _spell_out_idle_call(_ExecuteFB)
@@ -456,11 +468,13 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
     # The call of every scan while synchronized (no edge, command alive); everything else
     # goes through the general rules.  InPosition as `_poll` computes it (abs() and one
     # comparison cost less than a chained comparison whose value is stored); an LREAL input
-    # holds a float: float() only if not.
+    # holds a float: float() only if not.  With Execute TRUE, `pre` found the Execute the FB
+    # remembers TRUE (the FB only ever stores a bool there): only a FALSE one is stored.
     HOT_PATH = HotPath(
         pre=("{fb}.v_BUSY and ({command} := {fb}._command) is not None and not {command}.aborted"
              " and ({fb}._previous_execute or not {fb}.v_EXECUTE)"),
-        body=("{fb}._previous_execute = True if {fb}.v_EXECUTE else False",
+        body=("if not {fb}.v_EXECUTE:",
+              "    {fb}._previous_execute = False",
               "{fb}.v_ACTIVE = True",                         # _poll(axis, command, False), inlined
               "{fb}.v_INPOSITION = abs({axis}.act_pos - {command}.target) <= {axis}.config.in_position_range",
               "{position} = {fb}.v_POSITION",

@@ -46,12 +46,18 @@ _ERRORSTOP = AxisState.ERRORSTOP
 # VelLimit FALSE, the axis powered.  |new_vel| > |old_vel| without two calls of abs(): a
 # comparison does not see the sign of a NaN, so the negations give the same answer.  The signs
 # against 0.0, not 0: the same answer, and CPython compares a float with a float much faster.
+# The general step comes first: the guard's jumps to it are then short, and CPython 3.11
+# specialises a comparison only when a short jump follows it (a jump past the stream's code
+# takes an EXTENDED_ARG); a comparison that jumps, not one whose value is stored, likewise.
 _LANE_STEP = """\
 command = {axis}.command
-if (command is not None and command.kind == "sync" and (powered := {axis}.powered)
+if not (command is not None and command.kind == "sync" and (powered := {axis}.powered)
         and {axis}.power_requested == powered and dt == {axis}._stream_dt
         and -(slack := {axis}._step_slack) <= (delta := (target := command.target) - {axis}.cmd_pos) <= slack
         and {axis}._soft_min <= target <= {axis}._soft_max):
+    {axis}.step(dt)
+    {writer}.write()
+else:
     {axis}.vel_limit = False
     {act}.v_VEL = {axis}.act_vel = (target - {axis}.act_pos) / dt
     {cmd}.v_POS = {act}.v_POS = {axis}.cmd_pos = {axis}.act_pos = target
@@ -59,9 +65,10 @@ if (command is not None and command.kind == "sync" and (powered := {axis}.powere
     {cmd}.v_VEL = {axis}.cmd_vel = new_vel = delta / dt
     if new_vel != old_vel:
         magnitude = abs(new_vel - old_vel) / dt
-        grows = ((new_vel if new_vel >= 0.0 else -new_vel)
-                 > (old_vel if old_vel >= 0.0 else -old_vel))
-        {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude if grows else -magnitude
+        if (new_vel if new_vel >= 0.0 else -new_vel) > (old_vel if old_vel >= 0.0 else -old_vel):
+            {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude
+        else:
+            {cmd}.v_ACCDEC = {axis}.cmd_accdec = -magnitude
     else:
         {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
     state, waiting = {axis}.state, {axis}.in_pos_waiting
@@ -72,9 +79,6 @@ if (command is not None and command.kind == "sync" and (powered := {axis}.powere
     if shown != {writer}._shown:
         {writer}._shown = shown
         {writer}._write_flags({axis}, (new_vel > 0.0) - (new_vel < 0.0))
-else:
-    {axis}.step(dt)
-    {writer}.write()
 """
 
 
@@ -157,7 +161,8 @@ class MotionTask:
 
         The globals must have been declared with `globals_source()` in the
         loaded program.  Feedback in becomes a `before` hook, motion processing
-        an `after` hook; the controller gets a `motion` attribute for the FBs.
+        an `after` hook (quiet: they write axes and AXIS_REF variables, no FB instance);
+        the controller gets a `motion` attribute for the FBs.
         """
         if getattr(controller, "motion", None) is not None:
             raise ValueError("this controller already has a motion task")
@@ -173,7 +178,7 @@ class MotionTask:
                 )
         self.bind(lambda name: getattr(globals_object, mangle(name)))
         controller.motion = self
-        controller.add_io_hook(before=self._before_programs, after=self._after_programs)
+        controller.add_io_hook(before=self._before_programs, after=self._after_programs, quiet=True)
 
     def _before_programs(self, ctx) -> None:
         """Feedback in, unless the axis variables already show the axes: the previous scan's
