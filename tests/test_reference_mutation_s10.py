@@ -1,0 +1,153 @@
+"""Reference details that mutation testing found unchecked, seed 24 (issue 16, docs/mutation.md).
+
+Written from the survivors of the fresh seed-24 sample of stgen/reference/ (session 9's run,
+judged in session 10). Expected values are worked out by hand from docs/mathematics.md and
+the docstrings (the crank's closed form, the study's motions, the time law's zero rate) or
+are the documented contracts (messages, defaults, no warning for a zero-length leg).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from stgen.config import PlatformConfig, load_config
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+CRANK = load_config(EXAMPLES / "crank_platform.toml")
+
+
+def _leg_one_offset(geometry) -> np.ndarray:
+    """B1 − P1 (platform frame) − (0, 0, h0): leg 1's Δ = P1 − B1 is pU + that offset's negative, by hand
+    from docs/mathematics.md section 1 [2-4] (θ1 = (2π − 3φb)/6, ϕ1 = (2π − 3φp)/6)."""
+    theta = (2.0 * math.pi - 3.0 * math.radians(geometry.phi_b_deg)) / 6.0
+    phi = (2.0 * math.pi - 3.0 * math.radians(geometry.phi_p_deg)) / 6.0
+    base = np.array([geometry.rb * math.cos(theta), geometry.rb * math.sin(theta), geometry.hb])
+    upper = np.array([geometry.rp * math.cos(phi), geometry.rp * math.sin(phi), geometry.hp + geometry.h0])
+    return base - upper
+
+
+def test_a_crank_whose_joint_lies_half_a_millimetre_from_its_plane_axis_is_solvable():
+    from stgen.reference.crank import crank_inverse_kinematics
+
+    # Leg 1's joint placed off the crank plane by w (perpendicular, horizontal) and 0.5 mm above the shaft:
+    # M = 0, Δz = 0.5, ρ = 0.5 mm; |Δ|² = w² + 0.25 = s² − a² makes H = 0, so cos = 0 and
+    # θ = atan2(0.5, 0) + acos(0) = 90° + 90° = 180° (section 6.1), inside 50..230°. Any ρ > 0 is solvable.
+    plane = math.radians(CRANK.crank.plane_angle_deg[0])
+    a, s = CRANK.crank.crank_length, CRANK.crank.rod_length
+    w = math.sqrt(s * s - a * a - 0.25)
+    delta = np.array([-math.sin(plane) * w, math.cos(plane) * w, 0.5])
+    pose = np.concatenate((delta + _leg_one_offset(CRANK.geometry), np.zeros(3)))
+    solution = crank_inverse_kinematics(CRANK, pose)
+    assert bool(solution.solvable[0]) and bool(solution.in_limits[0])
+    assert solution.cosine[0] == pytest.approx(0.0, abs=1e-9)
+    assert solution.angles_deg[0] == pytest.approx(180.0, abs=1e-6)
+
+
+def test_a_crank_whose_h_overflows_is_not_finite():
+    from stgen.reference.crank import crank_inverse_kinematics
+
+    # z = 1e200 mm: |Δ|² overflows to inf (H infinite) while ρ = hypot(M, Δz) stays finite. "finite" is
+    # H and ρ both finite, so every leg is not finite.
+    with np.errstate(over="ignore"):
+        solution = crank_inverse_kinematics(CRANK, np.array([0.0, 0.0, 1e200, 0.0, 0.0, 0.0]))
+    assert not solution.finite.any()
+    assert not solution.solvable.any()
+
+
+def test_a_zero_duration_move_has_zero_velocity_of_six_coordinates():
+    from stgen.reference.cycloidal import cycloidal_velocity
+
+    rates = cycloidal_velocity(np.zeros(6), np.ones(6), 0.0, np.array([0.0, 1.0]))
+    assert rates.shape == (2, 6) and not rates.any()
+
+
+def test_the_solver_refuses_other_than_six_positions():
+    from stgen.reference.forward import NewtonRaphsonSolver
+
+    with pytest.raises(ValueError):
+        NewtonRaphsonSolver(PlatformConfig().geometry).start(np.zeros(7))
+
+
+def test_a_leg_whose_length_underflows_to_zero_divides_without_a_warning():
+    from stgen.reference.moving_base import legs_of
+
+    # (1e-200)² underflows to 0, so the length is 0 and 1e-200 / 0 = inf: a division by zero, which legs_of
+    # does silently (its errstate), as it does 0 / 0.
+    upper = np.array([[1e-200, 0.0, 0.0]] * 6)
+    joints = SimpleNamespace(upper=upper, base=np.zeros((6, 3)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        state = legs_of(PlatformConfig(), joints)
+    assert state.lengths.tolist() == [0.0] * 6
+    assert state.directions[:, 0].tolist() == [math.inf] * 6
+
+
+def test_the_spherical_tilt_of_a_leg_rounded_past_minus_one_is_a_half_turn():
+    from stgen.reference.moving_base import spherical_tilt
+
+    # Each leg along −(normal) with a length rounding left a hair over 1: the tilt is π, not acos(< −1) = NaN.
+    directions = np.array([[0.0, 0.0, -(1.0 + 1e-12)]] * 6)
+    state = SimpleNamespace(joints=SimpleNamespace(upper_rotation=np.eye(3)), directions=directions)
+    assert spherical_tilt(state).tolist() == [math.pi] * 6
+
+
+def test_a_rotation_order_of_three_letters_that_repeats_an_axis_is_refused():
+    from stgen.reference.orientation import rotation
+
+    with pytest.raises(ValueError, match="permutation of XYZ, got 'XXY'"):
+        rotation("XXY", np.zeros(3))
+
+
+def test_an_unknown_axis_is_named_in_the_error():
+    from stgen.reference.orientation import axis_rotation
+
+    with pytest.raises(ValueError, match="unknown rotation axis 'W'"):
+        axis_rotation("W", 0.0)
+
+
+def test_trochoid_circles_below_one_millimetre_are_valid():
+    from stgen.reference.paths import PathSpec
+
+    # R/r = 2 = 2/1: the curve closes after 2π·1.
+    spec = PathSpec("epitrochoid", R=0.5, r=0.25, d=0.1)
+    assert spec.end == pytest.approx(2.0 * math.pi, rel=1e-15)
+
+
+def test_a_negative_duration_is_named_in_the_error():
+    from stgen.reference.paths import PathError, PathSpec
+
+    with pytest.raises(PathError, match=r"duration: must be a finite number > 0 s, got -1\.0"):
+        PathSpec("epitrochoid", duration=-1.0)
+
+
+def test_a_table_made_without_a_source_is_named_table():
+    from stgen.reference.playback import make_table
+
+    table = make_table([0.0, 2.0], [[0.0] * 6, [6.0, 0.0, 0.0, 0.0, 0.0, 0.0]])
+    assert table.source == "<table>"
+
+
+def test_a_feasible_study_motion_reports_no_first_violation():
+    from stgen.reference.study_motions import motion_report, moving_base_base, moving_base_upper
+
+    moving = load_config(EXAMPLES / "moving_base_platform.toml")
+    report = motion_report(moving, "first 10 ms", moving_base_upper, lambda t: moving_base_base(t, True),
+                           duration=0.01)
+    assert report.feasible and report.first_violation is None
+
+
+@pytest.mark.parametrize("reversed_angles, angles", [(True, [0.2, 0.3, 0.3]), (False, [0.3, 0.3, 0.2])])
+def test_the_moving_base_angles_at_one_second(reversed_angles, angles):
+    from stgen.reference.study_motions import moving_base_base
+
+    # docs/mathematics.md section 6.2: θB = (0.3 t, 0.3 t, 0.2 t) about (x, y, z), given to Rz·Ry·Rx as
+    # (about z, about y, about x) when reversed; pB = (0.4 t, −0.2 t, −3 cos πt): at t = 1, (0.4, −0.2, 3).
+    value, rate, _ = moving_base_base(np.array([1.0]), reversed_angles)
+    assert value[0].tolist() == pytest.approx([0.4, -0.2, 3.0, *angles], rel=1e-15)
+    assert rate[0, 3:].tolist() == angles
