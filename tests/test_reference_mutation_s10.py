@@ -1,7 +1,7 @@
-"""Reference details that mutation testing found unchecked, seed 24 (issue 16, docs/mutation.md).
+"""Reference details that mutation testing found unchecked, seeds 24 and 26 (issue 16, docs/mutation.md).
 
 Written from the survivors of the fresh seed-24 sample of stgen/reference/ (session 9's run,
-judged in session 10). Expected values are worked out by hand from docs/mathematics.md and
+judged in session 10), and, at the end, of the fresh seed-26 sample (session 10, after its run). Expected values are worked out by hand from docs/mathematics.md and
 the docstrings (the crank's closed form, the study's motions, the time law's zero rate) or
 are the documented contracts (messages, defaults, no warning for a zero-length leg).
 """
@@ -32,18 +32,23 @@ def _leg_one_offset(geometry) -> np.ndarray:
     return base - upper
 
 
+def _leg_one_at(m: float, dz: float) -> np.ndarray:
+    """The pose (a translation) that puts leg 1's joint at M = m, Δz = dz in its crank plane and off the
+    plane (horizontally) by w with w² = s² − a² − m² − dz², so that H = |Δ|² + a² − s² = 0 (section 6.1)."""
+    plane = math.radians(CRANK.crank.plane_angle_deg[0])
+    a, s = CRANK.crank.crank_length, CRANK.crank.rod_length
+    w = math.sqrt(s * s - a * a - m * m - dz * dz)
+    delta = np.array([math.cos(plane) * m - math.sin(plane) * w, math.sin(plane) * m + math.cos(plane) * w, dz])
+    return np.concatenate((delta + _leg_one_offset(CRANK.geometry), np.zeros(3)))
+
+
 def test_a_crank_whose_joint_lies_half_a_millimetre_from_its_plane_axis_is_solvable():
     from stgen.reference.crank import crank_inverse_kinematics
 
     # Leg 1's joint placed off the crank plane by w (perpendicular, horizontal) and 0.5 mm above the shaft:
     # M = 0, Δz = 0.5, ρ = 0.5 mm; |Δ|² = w² + 0.25 = s² − a² makes H = 0, so cos = 0 and
     # θ = atan2(0.5, 0) + acos(0) = 90° + 90° = 180° (section 6.1), inside 50..230°. Any ρ > 0 is solvable.
-    plane = math.radians(CRANK.crank.plane_angle_deg[0])
-    a, s = CRANK.crank.crank_length, CRANK.crank.rod_length
-    w = math.sqrt(s * s - a * a - 0.25)
-    delta = np.array([-math.sin(plane) * w, math.cos(plane) * w, 0.5])
-    pose = np.concatenate((delta + _leg_one_offset(CRANK.geometry), np.zeros(3)))
-    solution = crank_inverse_kinematics(CRANK, pose)
+    solution = crank_inverse_kinematics(CRANK, _leg_one_at(0.0, 0.5))
     assert bool(solution.solvable[0]) and bool(solution.in_limits[0])
     assert solution.cosine[0] == pytest.approx(0.0, abs=1e-9)
     assert solution.angles_deg[0] == pytest.approx(180.0, abs=1e-6)
@@ -151,3 +156,81 @@ def test_the_moving_base_angles_at_one_second(reversed_angles, angles):
     value, rate, _ = moving_base_base(np.array([1.0]), reversed_angles)
     assert value[0].tolist() == pytest.approx([0.4, -0.2, 3.0, *angles], rel=1e-15)
     assert rate[0, 3:].tolist() == angles
+
+
+# --- seed 26 (a fresh sample, session 10) ---------------------------------------------------------------
+
+
+def test_a_crank_angle_below_its_minimum_is_out_of_limits():
+    from stgen.reference.crank import crank_inverse_kinematics
+
+    # Leg 1 at ρ = 600 mm, 60° below the horizontal in its plane, H = 0: θ = −60° + acos 0 = 30° < 50°.
+    rho = 600.0
+    solution = crank_inverse_kinematics(CRANK, _leg_one_at(rho * math.cos(math.radians(-60.0)),
+                                                           rho * math.sin(math.radians(-60.0))))
+    assert bool(solution.solvable[0]) and solution.angles_deg[0] == pytest.approx(30.0, abs=1e-9)
+    assert not bool(solution.in_limits[0]) and not bool(solution.reachable)
+
+
+def test_a_newton_step_of_a_model_with_invalid_operations_reports_without_a_warning():
+    from stgen.config import GeometryConfig, SolverConfig
+    from stgen.error_codes import ErrorCode
+    from stgen.reference import NewtonRaphsonSolver
+
+    # inf − inf is an invalid operation (NaN): the solver reports it as NON_FINITE and does not warn.
+    class Model:
+        def residual(self, pose):
+            return np.full(6, np.inf) - np.inf
+
+        def jacobian(self, pose):
+            return np.eye(6)
+
+    machine = NewtonRaphsonSolver(GeometryConfig(), SolverConfig(singularity_threshold=0.0),
+                                  model_factory=lambda positions: Model())
+    machine.start(np.zeros(6), np.zeros(6))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert machine.step() is True
+    assert machine.status == ErrorCode.NON_FINITE and machine.iterations == 0
+
+
+def test_check_motion_keeps_the_sample_rates():
+    from stgen.reference.motion_limits import check_motion
+
+    poses = np.array([[0.0, 0.0, 20.0, 0.0, 0.0, 0.0]] * 2)
+    rates = np.array([[1.0, 0.0, 0.0, 0.0, 0.0, 0.0], [0.0, 2.0, 0.0, 0.0, 0.0, 0.0]])
+    check = check_motion(PlatformConfig(), [0.0, 0.25], poses, rates, np.zeros((2, 6)))
+    assert check.rates.tolist() == rates.tolist()
+
+
+def test_a_leg_at_exactly_the_stroke_minimum_breaks_no_limit():
+    from stgen.reference.motion_limits import MotionCheck
+
+    # stroke.min <= qi is inside (docs/mathematics.md section 2): leg 1 at 0 mm, the default stroke.min.
+    config = PlatformConfig()
+    positions = np.array([[config.stroke.min, 100.0, 100.0, 100.0, 100.0, 100.0]])
+    still = SimpleNamespace(velocities=np.zeros((1, 6)), accelerations=np.zeros((1, 6)))
+    check = MotionCheck(np.zeros(1), np.zeros((1, 6)), np.zeros((1, 6)), np.zeros((1, 6)), still, positions)
+    assert check.breaches(config) == []
+
+
+def test_a_wave_without_fade_is_the_study_wave_before_time_zero():
+    from stgen.reference.wave import AIRY, wave_pose
+
+    # A = 3 mm, Tw = 10 s, L = 100 m, φ = 10°, heading 0, x̃ = 0: at t = −2.5 s the phase is
+    # −ω t + φ = π/2 + 10°, so x = −A sin(phase) = −3 cos 10°, z = A cos(phase) = −3 sin 10° and
+    # β = −atan(∂η/∂x̃) with ∂η/∂x̃ = −A k sin(phase) = −3 (2π/1e5) cos 10°. fade_s = 0 is no fade.
+    c, s = math.cos(math.radians(10.0)), math.sin(math.radians(10.0))
+    expected = [-3.0 * c, 0.0, -3.0 * s, 0.0, math.degrees(math.atan(3.0 * 2.0 * math.pi / 1e5 * c)), 0.0]
+    assert wave_pose(AIRY, np.array(-2.5), fade_s=0.0).tolist() == pytest.approx(expected, rel=1e-12, abs=1e-12)
+
+
+def test_the_shortest_duration_samples_the_time_law_over_its_unit_interval():
+    from stgen.reference.paths import PathSpec, _scale_duration
+
+    # A circle of a = 10 mm (a spiral with b = 0) once round, cycloidal law, 3 plan samples: u = 0, 1/2, 1.
+    # At u = 1/2 (T = 1) dφ/dt = 2π·(1 − cos π) = 4π and d²φ/dt² = 0, so |acceleration| = a·(4π)² = 160π²
+    # mm/s²; the shortest T is at least that limit's sqrt(160π² / 500) (docs: largest of the candidates).
+    spec = PathSpec("spiral", a=10.0, b=0.0, phi_end=2.0 * math.pi, law="cycloidal")
+    shortest, _ = _scale_duration(spec, PlatformConfig(), 3)
+    assert shortest >= math.sqrt(160.0 * math.pi**2 / 500.0) * (1.0 - 1e-12)
