@@ -1,7 +1,7 @@
-"""Reference details that mutation testing found unchecked, seeds 24 and 26 (issue 16, docs/mutation.md).
+"""Reference details that mutation testing found unchecked, seeds 24, 26 and 27 (issue 16, docs/mutation.md).
 
 Written from the survivors of the fresh seed-24 sample of stgen/reference/ (session 9's run,
-judged in session 10), and, at the end, of the fresh seed-26 sample (session 10, after its run). Expected values are worked out by hand from docs/mathematics.md and
+judged in session 10), and, at the end, of the fresh seed-26 and seed-27 samples (session 10, after their runs). Expected values are worked out by hand from docs/mathematics.md and
 the docstrings (the crank's closed form, the study's motions, the time law's zero rate) or
 are the documented contracts (messages, defaults, no warning for a zero-length leg).
 """
@@ -32,12 +32,12 @@ def _leg_one_offset(geometry) -> np.ndarray:
     return base - upper
 
 
-def _leg_one_at(m: float, dz: float) -> np.ndarray:
+def _leg_one_at(m: float, dz: float, w: float | None = None) -> np.ndarray:
     """The pose (a translation) that puts leg 1's joint at M = m, Δz = dz in its crank plane and off the
-    plane (horizontally) by w with w² = s² − a² − m² − dz², so that H = |Δ|² + a² − s² = 0 (section 6.1)."""
+    plane (horizontally) by w, by default w² = s² − a² − m² − dz², so that H = |Δ|² + a² − s² = 0 (section 6.1)."""
     plane = math.radians(CRANK.crank.plane_angle_deg[0])
     a, s = CRANK.crank.crank_length, CRANK.crank.rod_length
-    w = math.sqrt(s * s - a * a - m * m - dz * dz)
+    w = math.sqrt(s * s - a * a - m * m - dz * dz) if w is None else w
     delta = np.array([math.cos(plane) * m - math.sin(plane) * w, math.sin(plane) * m + math.cos(plane) * w, dz])
     return np.concatenate((delta + _leg_one_offset(CRANK.geometry), np.zeros(3)))
 
@@ -234,3 +234,17 @@ def test_the_shortest_duration_samples_the_time_law_over_its_unit_interval():
     spec = PathSpec("spiral", a=10.0, b=0.0, phi_end=2.0 * math.pi, law="cycloidal")
     shortest, _ = _scale_duration(spec, PlatformConfig(), 3)
     assert shortest >= math.sqrt(160.0 * math.pi**2 / 500.0) * (1.0 - 1e-12)
+
+
+# --- seed 27 (a fresh sample, session 10) ---------------------------------------------------------------
+
+
+def test_a_crank_joint_on_the_shafts_perpendicular_divides_by_zero_without_a_warning():
+    from stgen.reference.crank import crank_inverse_kinematics
+
+    # Leg 1's joint 500 mm off its plane at shaft height: M = Δz = 0, so ρ = 0 and H = 500² + a² − s² < 0;
+    # H/(2aρ) = −inf, a division by zero done silently: no solution (ρ > 0 fails).
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        solution = crank_inverse_kinematics(CRANK, _leg_one_at(0.0, 0.0, 500.0))
+    assert solution.cosine[0] == -math.inf and not bool(solution.solvable[0])

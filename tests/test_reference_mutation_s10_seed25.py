@@ -1,7 +1,7 @@
-"""Reference details that mutation testing found unchecked, seed 25 (issue 16, docs/mutation.md).
+"""Reference details that mutation testing found unchecked, seeds 25 and 27 (issue 16, docs/mutation.md).
 
 Written from the survivors of the fresh seed-25 sample of stgen/reference/ (session 10), after its
-"before" run. Expected values are worked out by hand or by an independent NumPy computation from
+"before" run, and at the end from those of the fresh seed-27 sample. Expected values are worked out by hand or by an independent NumPy computation from
 docs/mathematics.md and the docstrings' contracts (the Jacobian's rows, the crank's wrap range, the
 ErrorID table, the fade-in's rate terms, the table at rest at both ends).
 """
@@ -179,3 +179,77 @@ def test_fade_in_set_by_the_acceleration_term_of_the_first_derivative():
     wave = OceanWave((WaveComponent(1.0, 2.0 * math.pi / 10.0, 100.0, 0.0),))
     limits = TrajectoryConfig(linear_velocity=1000.0, linear_acceleration=200.0, linear_jerk=1e6)
     assert fade_in_duration(wave, limits) == pytest.approx(0.8, rel=1e-12)
+
+
+# --- seed 27 (a fresh sample, session 10) ---------------------------------------------------------------
+
+
+def test_a_zero_duration_move_is_a_step_to_the_end_pose():
+    from stgen.reference.cycloidal import cycloidal_pose
+
+    # T <= 0: τ is 0 before t0 and 1 from t0 on (_progress), so the pose jumps from p0 to pf.
+    poses = cycloidal_pose(np.zeros(6), np.full(6, 4.0), 0.0, np.array([-1.0, 0.0, 1.0]))
+    assert poses.tolist() == [[0.0] * 6, [4.0] * 6, [4.0] * 6]
+
+
+def test_the_universal_joint_psi_excess_at_home():
+    from stgen.reference.feasibility import Limit, feasibility
+
+    # ψi = atan2(s·ex − c·ey, ez) (stgen.reference.moving_base), e the home leg direction by hand; excess
+    # |ψi| − universal_max_deg (negative at home, which is feasible).
+    moving = load_config(EXAMPLES / "moving_base_platform.toml")
+    geometry = moving.geometry
+    base, upper = _study_joints(geometry)
+    legs = upper + np.array([0.0, 0.0, geometry.h0]) - base
+    e = legs / np.linalg.norm(legs, axis=-1)[:, None]
+    polar = np.arctan2(base[:, 1], base[:, 0])
+    psi = np.degrees(np.arctan2(np.sin(polar) * e[:, 0] - np.cos(polar) * e[:, 1], e[:, 2]))
+    result = feasibility(moving, np.zeros(6))
+    assert result.excess[:, Limit.UNIVERSAL_PSI] == pytest.approx(np.abs(psi) - 24.25, rel=1e-9, abs=1e-9)
+
+
+def test_the_progress_of_a_zero_duration_move_is_zero_then_one():
+    from stgen.reference.cycloidal import _progress
+
+    # Its docstring: τ clipped to [0, 1], a step at t0 when T <= 0 (cycloidal_fraction clips again after it).
+    assert _progress(0.0, np.array([-1.0, 0.0, 1.0]), 0.0).tolist() == [0.0, 1.0, 1.0]
+
+
+def test_feasibility_names_the_crank_angles():
+    from stgen.reference.feasibility import feasibility
+
+    # examples/crank_platform.toml: h0 = 1180 mm puts every crank at 140.66° at home (its comment).
+    angles = feasibility(CRANK, np.zeros(6)).values["crank_angle_deg"]
+    assert angles == pytest.approx([140.66] * 6, abs=0.005)
+
+
+def test_lu_of_an_integer_matrix_keeps_its_fractions():
+    from stgen.reference.linalg import solve
+
+    # 2x + y = 3, x + 3y = 5: x = 4/5, y = 7/5. The pivot 2 gives l21 = 1/2, which an integer array would lose.
+    assert solve(np.array([[2, 1], [1, 3]]), [3.0, 5.0]).tolist() == pytest.approx([0.8, 1.4], rel=1e-15)
+
+
+def test_check_motion_keeps_the_sample_accelerations():
+    from stgen.reference.motion_limits import check_motion
+
+    poses = np.array([[0.0, 0.0, 20.0, 0.0, 0.0, 0.0]] * 2)
+    accelerations = np.array([[0.0, 0.0, 3.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0, 0.0, 0.0]])
+    check = check_motion(PlatformConfig(), [0.0, 0.25], poses, np.zeros((2, 6)), accelerations)
+    assert check.accelerations.tolist() == accelerations.tolist()
+
+
+def test_a_two_row_table_that_starts_later_gets_knots_at_its_thirds():
+    from stgen.reference.playback import make_table
+
+    # Rows at 1 s and 4 s: the inserted knots at 1 + 3/3 = 2 s and 1 + 2·3/3 = 3 s.
+    table = make_table([1.0, 4.0], [[0.0] * 6, [6.0, 0.0, 0.0, 0.0, 0.0, 0.0]])
+    assert table.t.tolist() == [1.0, 2.0, 3.0, 4.0]
+
+
+def test_the_moving_base_reads_its_angles_reversed_by_default():
+    from stgen.reference.study_motions import moving_base_base
+
+    # reversed_angles defaults to True: θB given to Rz·Ry·Rx as (about z, about y, about x) = (0.2, 0.3, 0.3) t.
+    value, _, _ = moving_base_base(np.array([1.0]))
+    assert value[0, 3:].tolist() == pytest.approx([0.2, 0.3, 0.3], rel=1e-15)
