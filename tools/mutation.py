@@ -123,7 +123,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                    "tests/test_reference_playback.py", "tests/test_study_motions.py",
                    "tests/test_reference_mutants.py",
                    # seed-21 run (issue 16, session 7)
-                   "tests/test_reference_mutation_s7.py"]),
+                   "tests/test_reference_mutation_s7.py",
+                   # seeds 24 and 25 (issue 16, session 10)
+                   "tests/test_reference_mutation_s10.py", "tests/test_reference_mutation_s10_seed25.py"]),
 }
 
 # Extra [tool.mutmut] settings of one module. The compiler's mutants include
