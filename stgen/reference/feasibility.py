@@ -72,10 +72,6 @@ class FeasibilityMap:
         return limit, leg
 
 
-def _excess_above(value, bound) -> np.ndarray:
-    return np.asarray(value, dtype=float) - bound
-
-
 def feasibility(config: PlatformConfig, upper_pose_deg, base_pose_deg=None) -> FeasibilityMap:
     """Evaluate every limit of every leg for poses ``[..., 6]`` (mm, degrees), vectorised."""
     upper = np.asarray(upper_pose_deg, dtype=float)
