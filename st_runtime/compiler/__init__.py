@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import functools
 import math
+import os
 from dataclasses import dataclass, field
 from itertools import islice
 from operator import is_, methodcaller
@@ -45,6 +46,7 @@ from ..native import NATIVE_FBS
 from ..objects import AttrRef, ItemRef, NullRef, STObject, assign_list, native_initializers
 from ..types import StructType, fit_string, resolve_alias
 from .. import values
+from ..collector import collector_paused
 from ..process_image import ProcessImage, located_property, parse_address, union_property
 from . import support
 from .calls import Calls
@@ -187,6 +189,20 @@ def _code_of(source: str, filename: str):
     return code
 
 
+def _optimisations_of_environment() -> Optimisations:
+    """`Optimisations.from_environment()`, made again only when ST_RUNTIME_OPTIMISE
+    changes (the options are frozen: one serves every compile)."""
+    global _ENVIRONMENT_OPTIMISATIONS
+    value = os.environ.get("ST_RUNTIME_OPTIMISE")
+    if _ENVIRONMENT_OPTIMISATIONS is None or _ENVIRONMENT_OPTIMISATIONS[0] != value:
+        _ENVIRONMENT_OPTIMISATIONS = (value, Optimisations.from_environment())
+    return _ENVIRONMENT_OPTIMISATIONS[1]
+
+
+_ENVIRONMENT_OPTIMISATIONS: tuple | None = None
+
+
+@collector_paused
 def compile_program(program, guard_statements: bool = True, charge_costs: bool = True,
                     optimise: Optimisations | None = None) -> CompiledProgram:
     """Translate a CheckedProgram; raises CompileError on unsupported input.
@@ -199,7 +215,7 @@ def compile_program(program, guard_statements: bool = True, charge_costs: bool =
     `Optimisations.from_environment()` (all, unless ST_RUNTIME_OPTIMISE says).
     """
     unit = CompileUnit(program)
-    unit.optimise = optimise if optimise is not None else Optimisations.from_environment()
+    unit.optimise = optimise if optimise is not None else _optimisations_of_environment()
     unit.guard_statements = guard_statements
     unit.charge_costs = charge_costs
     shared = _shared_prelude(program)
