@@ -36,7 +36,6 @@ from dataclasses import dataclass, field
 from .process_image import ImageView
 from .controller import DEFAULT_BUDGET, Controller
 from .ast import Pos
-from .collector import collector_paused
 from .diagnostics import Diagnostic
 from .faults import FaultRecord
 from .native import mangle
@@ -60,7 +59,6 @@ class LoadError(Exception):
 # ------------------------------------------------------------------ loading
 
 
-@collector_paused      # (one pause over the load and the compile)
 def load(paths, dialect: str = "iec", extra_sources: dict[str, str] | None = None,
          memory_limit: int | None = None) -> "Project":
     """Load ST files and directories as one program: parse, check, compile.
@@ -81,7 +79,6 @@ def load_text(text: str, path: str = "<text>", dialect: str = "iec", memory_limi
     return load_sources({path: text}, dialect, memory_limit)
 
 
-@collector_paused
 def load_sources(sources: dict[str, str], dialect: str = "iec", memory_limit: int | None = None) -> "Project":
     """Load in-memory ST texts (path -> text) as one program."""
     from . import loader

@@ -23,7 +23,6 @@ from dataclasses import dataclass, field
 
 from . import ast, xml_reader
 from .checker import check
-from .collector import collector_paused
 from .checker.limits import file_too_large
 from .checker import codes as _codes  # noqa: F401  (registers E-LOAD-*)
 from .diagnostics import Diagnostic, ERROR, WARNING
@@ -154,7 +153,6 @@ def parse_texts(texts: dict[str, str], dialect: str = "iec", parser_for=None):
     return prelude, files, diagnostics
 
 
-@collector_paused
 def load_texts(texts: dict[str, str], dialect: str = "iec", memory_limit: int | None = None) -> LoadResult:
     """Parse (`parse_texts`) and check in-memory sources (path -> text), with the native prelude;
     `sources` keeps the text of each, an XML file's XML."""

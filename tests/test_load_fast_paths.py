@@ -326,40 +326,6 @@ def test_the_prelude_text_is_made_again_when_a_native_is_registered(monkeypatch)
     assert "PROBE" not in prelude.prelude_text("iec") and "PROBE" not in prelude.prelude_text("nj")
 
 
-# ------------------------------------------------- the collector during a load
-
-_SMALL = "PROGRAM P\nVAR x : INT; END_VAR\nx := x + 1;\nEND_PROGRAM\n"
-
-
-def test_the_collector_is_paused_while_a_load_compiles(monkeypatch):
-    import gc
-    import st_runtime.compiler as compiler
-    from st_runtime import api
-
-    seen = []
-    real = compiler._code_of
-    monkeypatch.setattr(compiler, "_code_of", lambda *args: seen.append(gc.isenabled()) or real(*args))
-    assert gc.isenabled()
-    api.load_text(_SMALL)
-    assert seen and not any(seen)       # off while the body was compiled
-    assert gc.isenabled()               # and on again after
-
-
-def test_a_load_leaves_the_collector_as_the_caller_had_it():
-    import gc
-    from st_runtime import api
-
-    gc.disable()
-    try:
-        api.load_text(_SMALL)
-        assert not gc.isenabled()       # the caller's choice, not switched on behind its back
-    finally:
-        gc.enable()
-    with pytest.raises(api.LoadError):  # a load that fails restores it as well
-        api.load_text("PROGRAM P\nx := ;\nEND_PROGRAM\n")
-    assert gc.isenabled()
-
-
 def test_charges_join_along_a_level_until_a_barrier():
     """charges.merge reads the code between a taker and each later charge of its level
     once (not again from the taker): the same joins as reading it whole.  By the rule:

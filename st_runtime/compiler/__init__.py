@@ -46,7 +46,6 @@ from ..native import NATIVE_FBS
 from ..objects import AttrRef, ItemRef, NullRef, STObject, assign_list, native_initializers
 from ..types import StructType, fit_string, resolve_alias
 from .. import values
-from ..collector import collector_paused
 from ..process_image import ProcessImage, located_property, parse_address, union_property
 from . import support
 from .calls import Calls
@@ -202,7 +201,6 @@ def _optimisations_of_environment() -> Optimisations:
 _ENVIRONMENT_OPTIMISATIONS: tuple | None = None
 
 
-@collector_paused
 def compile_program(program, guard_statements: bool = True, charge_costs: bool = True,
                     optimise: Optimisations | None = None) -> CompiledProgram:
     """Translate a CheckedProgram; raises CompileError on unsupported input.
