@@ -324,3 +324,24 @@ def test_the_prelude_text_is_made_again_when_a_native_is_registered(monkeypatch)
     assert "PROBE_T" in prelude.prelude_text("nj") and prelude.prelude_text("nj") == native.prelude_source("nj")
     monkeypatch.undo()
     assert "PROBE" not in prelude.prelude_text("iec") and "PROBE" not in prelude.prelude_text("nj")
+
+
+def test_charges_join_along_a_level_until_a_barrier():
+    """charges.merge reads the code between a taker and each later charge of its level
+    once (not again from the taker): the same joins as reading it whole.  By the rule:
+    a charge joins the one before it in its level when no line between is less
+    indented and none can raise, check the budget or leave (`return`)."""
+    from st_runtime.compiler.optimise import charges
+
+    body = ["def f(self, _ctx):", "    _spent = 0", "    try:",
+            "        _spent += 1", "        x = 1", "        _spent += 2", "        y = 2",
+            "        _spent += 3", "        if x:", "            _spent += 10", "            z = 3",
+            "            _spent += 20", "        _spent += 4", "        return x",
+            "        _spent += 5", "        w = 1", "        _spent += 6",
+            "    finally:", "        _ctx.budget -= _spent"]
+    charges.merge(body, 0)
+    assert body == ["def f(self, _ctx):", "    _spent = 0", "    try:",
+                    "        _spent += 10", "        x = 1", "        y = 2", "        if x:",
+                    "            _spent += 30", "            z = 3", "        return x",
+                    "        _spent += 11", "        w = 1",
+                    "    finally:", "        _ctx.budget -= _spent"]

@@ -116,6 +116,19 @@ def same_referenced(a, b) -> bool:
     return a is b or ts.same_type(a, b) or str(a) == str(b)
 
 
+#: calls.CallChecker, imported on first use (calls imports this module): once, not in
+#: every ExprChecker (a function-level import costs microseconds, some 800 a corpus round).
+_CALL_CHECKER = None
+
+
+def _call_checker():
+    global _CALL_CHECKER
+    from .calls import CallChecker
+
+    _CALL_CHECKER = CallChecker
+    return CallChecker
+
+
 class ExprChecker:
     """Types expressions inside one scope."""
 
@@ -125,8 +138,7 @@ class ExprChecker:
         self.program = ctx.program
         self.loop_vars: list = []  # Symbols of the enclosing FOR loops
         self._untyped_memo: dict[int, bool] = {}
-        from .calls import CallChecker  # calls needs ExprChecker; import late
-        self.calls = CallChecker(self)
+        self.calls = (_CALL_CHECKER or _call_checker())(self)
 
     def untyped(self, e) -> bool:
         return is_untyped_constant(e, self._untyped_memo)

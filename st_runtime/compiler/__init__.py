@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import functools
 import math
+import os
 from dataclasses import dataclass, field
 from itertools import islice
 from operator import is_, methodcaller
@@ -187,6 +188,19 @@ def _code_of(source: str, filename: str):
     return code
 
 
+def _optimisations_of_environment() -> Optimisations:
+    """`Optimisations.from_environment()`, made again only when ST_RUNTIME_OPTIMISE
+    changes (the options are frozen: one serves every compile)."""
+    global _ENVIRONMENT_OPTIMISATIONS
+    value = os.environ.get("ST_RUNTIME_OPTIMISE")
+    if _ENVIRONMENT_OPTIMISATIONS is None or _ENVIRONMENT_OPTIMISATIONS[0] != value:
+        _ENVIRONMENT_OPTIMISATIONS = (value, Optimisations.from_environment())
+    return _ENVIRONMENT_OPTIMISATIONS[1]
+
+
+_ENVIRONMENT_OPTIMISATIONS: tuple | None = None
+
+
 def compile_program(program, guard_statements: bool = True, charge_costs: bool = True,
                     optimise: Optimisations | None = None) -> CompiledProgram:
     """Translate a CheckedProgram; raises CompileError on unsupported input.
@@ -199,7 +213,7 @@ def compile_program(program, guard_statements: bool = True, charge_costs: bool =
     `Optimisations.from_environment()` (all, unless ST_RUNTIME_OPTIMISE says).
     """
     unit = CompileUnit(program)
-    unit.optimise = optimise if optimise is not None else Optimisations.from_environment()
+    unit.optimise = optimise if optimise is not None else _optimisations_of_environment()
     unit.guard_statements = guard_statements
     unit.charge_costs = charge_costs
     shared = _shared_prelude(program)

@@ -34,15 +34,22 @@ def merge(lines: list[str], start: int) -> None:
         line_of.append(line)
     totals = [int(match.group(2)) for match in found]
     taker: dict[int, int] = {}          # indentation -> the charge that takes later ones
+    # indentation -> where the code between the taker and the next charge is still to be
+    # read: the text up to a joined charge's line was read and is joinable, and no match
+    # of _joinable's patterns crosses that line's start (they stay within a line, and
+    # the line is indented as the taker), so only the text after it is read again
+    checked: dict[int, int] = {}
     dropped = set()
     for k, match in enumerate(found):
         indent = len(match.group(1))
         first = taker.get(indent)
-        if first is not None and _joinable(text, found[first].end(), match.start(), indent):
+        if first is not None and _joinable(text, checked[indent], match.start(), indent):
             totals[first] += totals[k]
             dropped.add(k)
+            checked[indent] = match.start()
         else:
             taker[indent] = k
+            checked[indent] = match.end()
     if not dropped:
         return
     new = text.split("\n")

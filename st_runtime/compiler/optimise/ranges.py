@@ -36,6 +36,7 @@ where it can never fail, which is what the compiler did already for FOR variable
 from __future__ import annotations
 
 from ... import ast
+from ..exprs import int_bounds
 from ..scope import root_name, walk
 
 _LVALUES = (ast.Name, ast.Member, ast.Index, ast.Deref, ast.BitAccess)
@@ -45,8 +46,6 @@ class Flow:
     """The followed variables of one body and their ranges (kept in `compiler.known_ranges`)."""
 
     def __init__(self, compiler, body):
-        from ..exprs import int_bounds
-
         excluded: set[str] = set(compiler.scope.usage.referenced)
         for node in walk(body):
             if isinstance(node, ast.For):

@@ -41,6 +41,7 @@ from ... import ast
 from ...types import ArrayType, ElementaryType, resolve_alias
 from ..pysrc import pyident
 from ..scope import _LOOPS, _nodes, root_name
+from . import branches      # (branches imports this module: its names are read at call time)
 
 _TOKEN = re.compile("\x03(\\d+)\x03")
 _MARKER = re.compile("^( *)\x04([\\d,]+)\x04$", re.M)
@@ -304,9 +305,7 @@ def _is_float(t) -> bool:
 def _own(compiler, name):
     """The symbol of `name` when it is plain storage of the POU or the globals (no
     reference, not located); else None."""
-    from .branches import _symbol
-
-    symbol = _symbol(compiler, name)
+    symbol = branches._symbol(compiler, name)
     if symbol is None or symbol.kind not in _PLAIN_KINDS:
         return None
     if symbol.decl is not None and getattr(symbol.decl, "location", None) is not None:
