@@ -41,3 +41,43 @@ def test_a_method_reading_its_blocks_array_at_literal_indices(dialect: str):
     # 1 + 2 + ... + 8 = 36, and 1 * 2 = 2: Sum = 38.
     main, plc = run(METHOD_OVER_FB_ARRAY, dialect=dialect)
     assert (main["r"], plc.faults) == (38.0, [])
+
+
+# ------------------------------------------------ where an integer division by zero faults
+
+def test_an_integer_division_by_zero_faults_at_its_operator():
+    # IEC 61131-3: an integer division by zero is an error; the fault record names the
+    # division itself, whose position is its operator's: line 3, column 8 of `x := a / b;`
+    # (x at column 1), not the statement's start.
+    main, plc = run("""PROGRAM Main
+VAR a : INT := 7; b : INT; x : INT; END_VAR
+x := a / b;
+END_PROGRAM""")
+    assert [(f.code, f.line, f.col) for f in plc.faults] == [("F-DIV-ZERO", 3, 8)]
+    assert main["x"] == 0
+
+
+# ----------------------------- an integer output stored into an LREAL through `=>`
+
+@pytest.mark.parametrize("call", ["f(q => lr);", "n := g(q => lr);"])
+def test_a_lint_output_is_rounded_where_an_lreal_takes_it(call: str):
+    # LINT widens implicitly to LREAL (IEC 61131-3, 6.4.2, implicit conversions), rounded
+    # to the nearest double, ties to even: 2**53 + 1 lies halfway between 2**53 and
+    # 2**53 + 2 and becomes 2**53 = 9007199254740992.0 (IEEE 754), as LINT_TO_LREAL gives;
+    # compared in ST with that value, it is equal and not above it.
+    main, plc = run("""FUNCTION_BLOCK Fb
+VAR_OUTPUT q : LINT; END_VAR
+q := 9007199254740993;
+END_FUNCTION_BLOCK
+FUNCTION g : INT
+VAR_OUTPUT q : LINT; END_VAR
+q := 9007199254740993;
+g := 1;
+END_FUNCTION
+PROGRAM Main
+VAR f : Fb; lr : LREAL; n : INT; same : BOOL; above : BOOL; END_VAR
+""" + call + """
+same := lr = 9007199254740992.0;
+above := lr > 9007199254740992.0;
+END_PROGRAM""")
+    assert (main["lr"], main["same"], main["above"], plc.faults) == (9007199254740992.0, True, False, [])
