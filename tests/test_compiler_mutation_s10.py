@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import pytest
 
+from st_runtime.api import load_text
+from st_runtime.compiler import SharedPrelude
 from test_compiler_mutants import run
 
 
@@ -81,3 +83,23 @@ same := lr = 9007199254740992.0;
 above := lr > 9007199254740992.0;
 END_PROGRAM""")
     assert (main["lr"], main["same"], main["above"], plc.faults) == (9007199254740992.0, True, False, [])
+
+
+# ------------------------------------------- the prelude's STRUCTs' __init__ sources
+
+def test_the_prelude_structs_init_sources_are_their_python_sources():
+    # CompiledProgram.python_sources maps each key to the Python source compiled for it;
+    # a STRUCT of the shared prelude (AXIS_REF) keeps its `__init__` source there as the
+    # program's own STRUCTs do: a `def` that compiles.  A SharedPrelude made here is read
+    # the same way (the process-wide one was made before this test ran).
+    project = load_text("""
+TYPE Pt : STRUCT x : INT; END_STRUCT; END_TYPE
+PROGRAM Main
+VAR p : Pt; a : AXIS_REF; END_VAR
+END_PROGRAM""", "m.st", "nj")
+    fresh = SharedPrelude(project.program.prelude)
+    sources = project.compiled.python_sources
+    for key, source in [("init:PT", sources["init:PT"]), ("init:AXIS_REF", sources["init:AXIS_REF"]),
+                        ("init:AXIS_REF", fresh.init_sources["init:AXIS_REF"])]:
+        assert isinstance(source, str) and source.startswith("def ")
+        compile(source, key, "exec")
