@@ -59,10 +59,10 @@ END_PROGRAM""")
     assert main["x"] == 0
 
 
-# ----------------------------- an integer output stored into an LREAL through `=>`
+# ------------------ a LINT stored into an LREAL: through `=>`, a read, an expression
 
-@pytest.mark.parametrize("call", ["f(q => lr);", "n := g(q => lr);"])
-def test_a_lint_output_is_rounded_where_an_lreal_takes_it(call: str):
+@pytest.mark.parametrize("call", ["f(q => lr);", "n := g(q => lr);", "lr := li;", "lr := li + 0;"])
+def test_a_lint_is_rounded_where_an_lreal_takes_it(call: str):
     # LINT widens implicitly to LREAL (IEC 61131-3, 6.4.2, implicit conversions), rounded
     # to the nearest double, ties to even: 2**53 + 1 lies halfway between 2**53 and
     # 2**53 + 2 and becomes 2**53 = 9007199254740992.0 (IEEE 754), as LINT_TO_LREAL gives;
@@ -77,7 +77,7 @@ q := 9007199254740993;
 g := 1;
 END_FUNCTION
 PROGRAM Main
-VAR f : Fb; lr : LREAL; n : INT; same : BOOL; above : BOOL; END_VAR
+VAR f : Fb; lr : LREAL; n : INT; same : BOOL; above : BOOL; li : LINT := 9007199254740993; END_VAR
 """ + call + """
 same := lr = 9007199254740992.0;
 above := lr > 9007199254740992.0;
