@@ -103,3 +103,23 @@ END_PROGRAM""", "m.st", "nj")
                         ("init:AXIS_REF", fresh.init_sources["init:AXIS_REF"])]:
         assert isinstance(source, str) and source.startswith("def ")
         compile(source, key, "exec")
+
+
+def test_every_kept_python_source_compiles_even_of_a_type_without_variables():
+    # python_sources keeps what each POU and type was compiled to, and for a PROGRAM (made
+    # once per run) or a type whose `__init__` sets nothing, the `__init__` source that the
+    # stores stand for: an `__init__` of nothing is still a Python function (its body
+    # `pass`), as every other kept source.
+    project = load_text("""
+FUNCTION_BLOCK Empty
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR e : Empty; END_VAR
+e();
+END_PROGRAM
+PROGRAM Idle
+END_PROGRAM""", "m.st", "iec")
+    sources = project.compiled.python_sources
+    assert {"init:EMPTY", "init:IDLE"} <= set(sources)
+    for key, source in sources.items():
+        compile(source, key, "exec")
