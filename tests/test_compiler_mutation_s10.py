@@ -123,3 +123,22 @@ END_PROGRAM""", "m.st", "iec")
     assert {"init:EMPTY", "init:IDLE"} <= set(sources)
     for key, source in sources.items():
         compile(source, key, "exec")
+
+
+# ------------------------------------ an operator in call form costs what the operator costs
+
+@pytest.mark.parametrize("body, units", [
+    # ADD(a, b) is the function form of a + b (IEC 61131-3, the standard arithmetic functions:
+    # ADD is written + as an operator), compiled to the same expression: load, load, an
+    # integer operation, and the store of x, as `x := a + b;` is charged.
+    ("x := ADD(a, b);", lambda w: 2 * w["load"] + w["int_op"] + w["store"]),
+    ("x := a + b;", lambda w: 2 * w["load"] + w["int_op"] + w["store"]),
+    # GT(a, b) is a > b: two loads, a comparison, the store of g
+    ("g := GT(a, b);", lambda w: 2 * w["load"] + w["compare"] + w["store"]),
+])
+def test_an_operator_in_call_form_is_charged_as_the_operator(body: str, units):
+    from st_runtime.compiler.cost import WEIGHTS
+    from test_compiler_mutants import _ps, _scan_ps
+
+    src = f"PROGRAM Main\nVAR a : INT := 2; b : INT := 3; x : INT; g : BOOL; END_VAR\n{body}\nEND_PROGRAM\n"
+    assert _scan_ps(src) == _ps(units(WEIGHTS))
