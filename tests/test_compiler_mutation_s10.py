@@ -142,3 +142,18 @@ def test_an_operator_in_call_form_is_charged_as_the_operator(body: str, units):
 
     src = f"PROGRAM Main\nVAR a : INT := 2; b : INT := 3; x : INT; g : BOOL; END_VAR\n{body}\nEND_PROGRAM\n"
     assert _scan_ps(src) == _ps(units(WEIGHTS))
+
+
+# ---------------------------------------------------- a TIME sum past its 64 bits wraps
+
+def test_a_time_sum_past_64_bits_wraps_to_a_negative_duration():
+    # TIME is signed 64-bit nanoseconds and wraps to its width when stored (README,
+    # "Semantics"): T#106751D is 106751 * 86400 * 10**9 = 9223286400000000000 ns, twice that
+    # is 18446572800000000000, past 2**63 - 1, and wraps to 18446572800000000000 - 2**64
+    # = -171273709551616 ns: a negative duration.
+    main, plc = run("""PROGRAM Main
+VAR t1 : TIME := T#106751D; t : TIME; neg : BOOL; END_VAR
+t := t1 + t1;
+neg := t < T#0S;
+END_PROGRAM""")
+    assert (main["neg"], plc.faults) == (True, [])
