@@ -80,7 +80,12 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   "tests/test_nj_expression_overflow.py", "tests/test_nj_assignment_casts.py",
                   "tests/test_compiler_mutation_s8.py",
                   # session 9: the chains pass's own tests, which the selection had missed, and seed 24's
-                  "tests/test_optimiser_chains.py", "tests/test_compiler_mutation_s9.py"]),
+                  "tests/test_optimiser_chains.py", "tests/test_compiler_mutation_s9.py",
+                  # session 10: the old open mutants and seed 25's, and the later passes' own tests,
+                  # which the selection had missed
+                  "tests/test_compiler_mutation_s10.py", "tests/test_optimiser_reuse.py",
+                  "tests/test_optimiser_charges.py", "tests/test_optimiser_loads.py",
+                  "tests/test_optimiser_sets.py", "tests/test_optimiser_stores.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",

@@ -163,6 +163,9 @@ class CostModel:
     def call(self, call) -> float:
         """A call: its own instruction and the arguments passed; the body of a
         user POU is charged by the callee's own blocks when it runs."""
+        lowered = self.program.lowered.get(id(call))
+        if lowered is not None:     # ADD(a, b) and the like: compiled as the operator, charged so
+            return self.expr(lowered)
         w = self.w
         target = self.program.call_targets.get(id(call))
         pou = getattr(target, "pou", None)
