@@ -42,3 +42,26 @@ def test_a_method_that_never_assigns_its_result_returns_the_default_value():
             "END_FUNCTION_BLOCK\n" + program("    c : Counter; a, b : INT := -1;", "a := c.Untouched();\nb := c.Next();"))
     main = after_one_scan(text)
     assert (main["a"], main["b"]) == (0, 20)
+
+
+def test_a_real_constant_beyond_real_is_refused_only_where_it_is_stored():
+    """The literal typing rule (checker/expressions.py): a constant that does not fit is
+    an error in an assignment, initial value or input argument (E-TYPE-005), not as an
+    operand.  `r < 1.0E40` compares, stores nothing: accepted, and TRUE for r = 3.0E38."""
+    text = program("    r : REAL := 3.0E38; b : BOOL;", "b := r < 1.0E40;")
+    assert diagnostics(text) == []
+    assert after_one_scan(text)["b"] is True
+
+
+def test_a_global_of_a_prelude_structure_orders_the_types_as_a_full_check():
+    """checker/prelude_base.py: a load that shares the checked prelude gives exactly the
+    program of a full check, its tables in the same order.  A global AXIS_REF resolves
+    that prelude TYPE before the others; its member types enter first, as resolving it
+    does in the full check."""
+    from test_prelude_sharing import _both_ways, _layout
+
+    texts = {"g.st": "VAR_GLOBAL gax : AXIS_REF; END_VAR\n"
+                     + program("    p : LREAL;", "p := gax.Cmd.Pos;")}
+    (shared, program_shared), (full, program_full) = _both_ways(texts, "iec")
+    assert shared == full == []
+    assert _layout(program_shared) == _layout(program_full)
