@@ -9,7 +9,7 @@ in the snippet and values worked out by hand.
 
 from __future__ import annotations
 
-from checker_helpers import diagnostics, program
+from checker_helpers import diagnostics, only, program
 from test_checker_mutants_third import after_one_scan
 
 
@@ -65,3 +65,111 @@ def test_a_global_of_a_prelude_structure_orders_the_types_as_a_full_check():
     (shared, program_shared), (full, program_full) = _both_ways(texts, "iec")
     assert shared == full == []
     assert _layout(program_shared) == _layout(program_full)
+
+
+# ------------------------------------------------------------ seed 25: diagnostics, their words and places
+
+def test_the_until_condition_is_named_in_its_diagnostic():
+    text = program("    i : INT;", "REPEAT\n  i := i + 1;\nUNTIL i\nEND_REPEAT;")
+    assert only(text) == ("E-TYPE-003", 7, 7, "UNTIL condition: expected BOOL, found INT")
+
+
+def test_a_zero_step_is_reported_at_the_step():
+    text = program("    i : INT;", "FOR i := 1 TO 5 BY 0 DO\nEND_FOR;")
+    assert only(text) == ("E-TYPE-010", 5, 20, "FOR ... BY 0: the step must not be zero")
+
+
+def test_a_case_label_of_a_wider_type_is_refused():
+    """A DINT label cannot select an INT (DINT does not convert implicitly to INT)."""
+    text = program("    i : INT;", "CASE i OF\n  DINT#5: i := 1;\nEND_CASE;")
+    assert only(text) == ("E-TYPE-012", 6, 3, "CASE label: expected a constant of type INT, found DINT")
+
+
+def test_nj_rule_007_gives_no_hint_for_a_label_without_a_value():
+    text = program("    i, j : INT;", "CASE i OF\n  j: i := 1;\nEND_CASE;")
+    assert diagnostics(text, "nj") == [
+        ("E-TYPE-012", 6, 3, "CASE label: expected a constant of type INT, found a non-constant expression"),
+        ("E-NJ-007", 6, 3, "CASE label 'j' is not an integer literal or an enumerator; "
+                           "OMRON documents CASE labels as integer constants")]
+
+
+def test_nj_rule_008_writes_a_false_initial_value_as_false():
+    """NOT TRUE is FALSE, written as the ST literal FALSE."""
+    assert only(program("    b : BOOL := NOT TRUE;", ""), "nj") == \
+        ("E-NJ-008", 3, 17, "initial value of 'b': 'NOT TRUE' is not a literal; a variable table in "
+                            "Sysmac Studio takes literals: write FALSE (* NOT TRUE *)")
+
+
+def test_an_operator_function_has_no_output_to_read():
+    assert only(program("    x, y : INT;", "x := ADD(1, 2, OUT => y);")) == \
+        ("E-CALL-005", 5, 6, "ADD has no outputs: 'OUT' cannot be read with =>")
+
+
+def test_lower_bound_with_one_argument_lacks_one():
+    text = program("    a : ARRAY[1..3] OF INT; x : DINT;", "x := LOWER_BOUND(a);")
+    assert only(text) == \
+        ("E-CALL-009", 5, 6, "LOWER_BOUND: expected an array and a dimension number, found 1 argument(s)")
+
+
+def test_ref_of_a_bit_is_refused_at_the_bit():
+    text = program("    w : WORD; r : REF_TO BOOL;", "r := REF(w.%X3);")
+    assert only(text) == ("E-TYPE-014", 5, 10, "REF(...): expected a variable, found a bit access")
+
+
+def test_an_unknown_parameter_of_a_fixed_function_lists_its_parameters():
+    """ABS is not extensible: its one parameter, no ', ...'."""
+    assert only(program("    x : INT;", "x := ABS(Y := 1);")) == \
+        ("E-CALL-002", 5, 10, "ABS has no parameter 'Y' (parameters: IN)")
+
+
+def test_arguments_without_a_common_type_are_reported_at_the_second():
+    assert only(program("    i : INT; t : TIME; x : INT;", "x := MAX(i, t);")) == \
+        ("E-TYPE-002", 5, 13, "MAX: arguments of types INT and TIME have no common type")
+
+
+def test_a_wildcard_address_read_in_code():
+    """%I* (3rd ed. 6.5.5: a located variable to be placed later) has no place to read."""
+    assert only(program("    x : BOOL;", "x := %I*;")) == \
+        ("E-DECL-015", 5, 6, "%I*: %I* has no place in the process image to read")
+
+
+def test_arrays_are_not_compared():
+    text = program("    a, c : ARRAY[1..2] OF INT; b : BOOL;", "b := a < c;")
+    assert only(text) == \
+        ("E-TYPE-001", 5, 8, "<: expected elementary, string or enumeration operands, found ARRAY[1..2] OF INT")
+
+
+def test_an_unknown_type_of_a_known_namespace():
+    """NS exists: only the type is unknown (no "(no NAMESPACE NS)")."""
+    text = "NAMESPACE NS\nTYPE T1 : INT; END_TYPE\nEND_NAMESPACE\n" + program("    x : NS.Unknown;", "")
+    assert only(text) == ("E-DECL-004", 6, 9, "unknown type 'NS.Unknown'")
+
+
+def test_a_variable_subrange_limit_is_named():
+    assert only(program("    j : INT; s : INT(j..10);", "")) == \
+        ("E-DECL-006", 3, 22, "subrange lower limit: expected a constant integer, found a non-constant expression")
+
+
+def test_a_subrange_of_one_value():
+    """3rd ed. 6.4.4.4: lower <= upper; INT(5..5) holds 5 alone."""
+    text = program("    s : INT(5..5) := 5;", "")
+    assert diagnostics(text) == []
+    assert after_one_scan(text)["s"] == 5
+
+
+# ------------------------------------------------------------ seed 25: enumeration values typed by the context
+
+ENUMS = "TYPE Color : (Red, Blue); Light : (Red, Off); END_TYPE\n"
+
+
+def test_an_ambiguous_enumeration_value_takes_the_type_of_the_assignment():
+    """Red is a Color and a Light; assigned to a Color through SEL, it is Color's Red."""
+    text = ENUMS + program("    c : Color := Blue; g : BOOL;", "c := SEL(g, Red, Blue);")
+    assert diagnostics(text) == []
+    assert after_one_scan(text)["c"] == "Red"
+
+
+def test_an_undeclared_argument_is_the_one_error_of_a_call():
+    """After an undeclared first argument, Red is still typed by the assignment's Color."""
+    text = ENUMS + program("    c : Color;", "c := MAX(nothere, Red);")
+    assert only(text) == ("E-DECL-001", 6, 10, "undeclared name 'nothere'")
