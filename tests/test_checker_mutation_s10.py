@@ -173,3 +173,15 @@ def test_an_undeclared_argument_is_the_one_error_of_a_call():
     """After an undeclared first argument, Red is still typed by the assignment's Color."""
     text = ENUMS + program("    c : Color;", "c := MAX(nothere, Red);")
     assert only(text) == ("E-DECL-001", 6, 10, "undeclared name 'nothere'")
+
+
+def test_a_p_underscore_name_is_reserved_on_the_nj():
+    """Names starting with P_ are the NJ's system-defined variables (P_On; W501 6-3-12)."""
+    assert only(program("    P_count : INT;", ""), "nj") == \
+        ("E-NJ-005", 3, 5, "identifier 'P_count' starts with 'P_', which the NJ reserves for system-defined variables")
+
+
+def test_date_and_time_minus_time_is_a_date_and_time():
+    """3rd ed. table 30, SUB_DT_TIME: DT - TIME is DT; 00:00:10 - 10 s = 00:00:00."""
+    main = after_one_scan(program("    d : DT := DT#2024-01-01-00:00:10; e : DT;", "e := d - T#10s;"))
+    assert main["e"] == "DT#2024-01-01-00:00:00"
