@@ -185,3 +185,19 @@ def test_date_and_time_minus_time_is_a_date_and_time():
     """3rd ed. table 30, SUB_DT_TIME: DT - TIME is DT; 00:00:10 - 10 s = 00:00:00."""
     main = after_one_scan(program("    d : DT := DT#2024-01-01-00:00:10; e : DT;", "e := d - T#10s;"))
     assert main["e"] == "DT#2024-01-01-00:00:00"
+
+
+# ------------------------------------------------------------ seed 25: a bug (references and subranges)
+
+def test_a_reference_and_its_target_agree_on_a_subrange():
+    """3rd ed. 6.4.4.10: a reference refers to a variable of its declared type, and a
+    subrange's limits are part of that type (6.4.4.4: a value outside them is an
+    error).  A REF_TO INT to an INT(1..5) would let `R^ := 100` write 100 into it; a
+    REF_TO INT(1..5) to an INT would read 100 as a value of INT(1..5)."""
+    into_subrange = program("    s : INT(1..5) := 1; r : REF_TO INT;", "r := REF(s);")
+    assert only(into_subrange) == ("E-TYPE-004", 5, 6, "assignment: expected REF_TO INT, found REF_TO INT (1..5)")
+    from_int = program("    i : INT; r : REF_TO INT(1..5);", "r := REF(i);")
+    assert only(from_int) == ("E-TYPE-004", 5, 6, "assignment: expected REF_TO INT (1..5), found REF_TO INT")
+    same = program("    s : INT(1..5) := 1; r : REF_TO INT(1..5); k : INT;", "r := REF(s);\nk := r^;")
+    assert diagnostics(same) == []
+    assert after_one_scan(same)["k"] == 1
