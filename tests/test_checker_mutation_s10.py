@@ -201,3 +201,25 @@ def test_a_reference_and_its_target_agree_on_a_subrange():
     same = program("    s : INT(1..5) := 1; r : REF_TO INT(1..5); k : INT;", "r := REF(s);\nk := r^;")
     assert diagnostics(same) == []
     assert after_one_scan(same)["k"] == 1
+
+
+# ------------------------------------------------------------ seed 25: calls
+
+def test_a_function_block_type_is_not_called():
+    text = "FUNCTION_BLOCK B\nEND_FUNCTION_BLOCK\n" + program("    x : INT;", "B();")
+    assert only(text) == \
+        ("E-CALL-001", 7, 1, "'B' is a FUNCTION_BLOCK type: declare an instance (inst : B;) and call the instance")
+
+
+def test_a_namespaced_call_has_its_function_s_type():
+    """checker/__init__.py: every expression node has a type in expr_types (the callee
+    Name and an FB call statement excepted); NS.F(2) is F's INT, and 2 * 3 + 1 = 7."""
+    from checker_helpers import body, checked, nodes
+    from st_runtime import ast, types as T
+
+    text = ("NAMESPACE NS\nFUNCTION F : INT\nVAR_INPUT a : INT; END_VAR\nF := a * 3;\nEND_FUNCTION\n"
+            "END_NAMESPACE\n" + program("    x : INT;", "x := NS.F(2) + 1;"))
+    checked_program = checked(text)
+    (call,) = nodes(body(checked_program), ast.Call)
+    assert checked_program.expr_types[id(call)] is T.INT
+    assert after_one_scan(text)["x"] == 7
