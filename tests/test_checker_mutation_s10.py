@@ -223,3 +223,14 @@ def test_a_namespaced_call_has_its_function_s_type():
     (call,) = nodes(body(checked_program), ast.Call)
     assert checked_program.expr_types[id(call)] is T.INT
     assert after_one_scan(text)["x"] == 7
+
+
+def test_a_type_is_not_called():
+    text = "TYPE Speed : INT; END_TYPE\n" + program("    x : INT;", "x := Speed(5);")
+    assert only(text) == ("E-CALL-001", 6, 6, "'Speed' is a type, not a function")
+
+
+def test_greater_than_of_equal_constants_is_false():
+    """3rd ed. 6.5.1.5: constant initial values; 2 > 2 is FALSE, 3 > 2 TRUE."""
+    main = after_one_scan(program("    b : BOOL := 2 > 2; c : BOOL := 3 > 2;", ""))
+    assert (main["b"], main["c"]) == (False, True)
