@@ -234,3 +234,17 @@ def test_greater_than_of_equal_constants_is_false():
     """3rd ed. 6.5.1.5: constant initial values; 2 > 2 is FALSE, 3 > 2 TRUE."""
     main = after_one_scan(program("    b : BOOL := 2 > 2; c : BOOL := 3 > 2;", ""))
     assert (main["b"], main["c"]) == (False, True)
+
+
+# ------------------------------------------------------------ seed 25: declared types
+
+def test_a_namespaced_function_is_not_a_type():
+    text = "NAMESPACE NS\nFUNCTION Fn : INT\nFn := 1;\nEND_FUNCTION\nEND_NAMESPACE\n" + program("    x : NS.Fn;", "")
+    assert only(text) == ("E-DECL-004", 8, 9, "'Fn' is a FUNCTION, not a type")
+
+
+def test_a_pointer_is_named_a_pointer():
+    """CODESYS's POINTER TO INT is shown as written, not as a REF_TO."""
+    text = program("    i : INT; p : POINTER TO INT;", "p := i;")
+    assert only(text, "codesys") == \
+        ("E-TYPE-004", 5, 6, "assignment: expected POINTER TO INT, found INT; take a reference with REF(...)")
