@@ -248,3 +248,13 @@ def test_a_pointer_is_named_a_pointer():
     text = program("    i : INT; p : POINTER TO INT;", "p := i;")
     assert only(text, "codesys") == \
         ("E-TYPE-004", 5, 6, "assignment: expected POINTER TO INT, found INT; take a reference with REF(...)")
+
+
+def test_a_function_block_that_holds_itself_has_no_size():
+    """An FB that declares an instance of itself would be infinitely large (E-REC-001): its
+    size, and so the memory limits, are not computed (checker/__init__.py: sizes need
+    acyclic types), whatever else it holds (here 200,000,000 LREALs, 1.6 GB)."""
+    text = ("FUNCTION_BLOCK A\nVAR inner : A; big : ARRAY[1..200000000] OF LREAL; END_VAR\nEND_FUNCTION_BLOCK\n"
+            + program("    a : A;", ""))
+    assert only(text) == \
+        ("E-REC-001", 2, 5, "recursion: A declares an instance of A; IEC 61131-3 and OMRON NJ forbid recursion")
