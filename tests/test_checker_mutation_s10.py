@@ -60,17 +60,18 @@ def test_a_global_of_a_prelude_structure_orders_the_types_as_a_full_check():
     does in the full check."""
     from test_prelude_sharing import _both_ways, _layout
 
-    from st_runtime.checker import prelude_base
+    import importlib
 
+    bases = importlib.import_module("st_runtime.checker.prelude_base")   # (the package exports its function)
     texts = {"g.st": "VAR_GLOBAL gax : AXIS_REF; END_VAR\n"
                      + program("    p : LREAL;", "p := gax.Cmd.Pos;")}
-    kept = dict(prelude_base._BASES)    # a base built afresh here, not one of an earlier load
-    prelude_base._BASES.clear()
+    kept = dict(bases._BASES)    # a base built afresh here, not one of an earlier load
+    bases._BASES.clear()
     try:
         (shared, program_shared), (full, program_full) = _both_ways(texts, "iec")
     finally:
-        prelude_base._BASES.clear()
-        prelude_base._BASES.update(kept)
+        bases._BASES.clear()
+        bases._BASES.update(kept)
     assert shared == full == []
     assert _layout(program_shared) == _layout(program_full)
 
