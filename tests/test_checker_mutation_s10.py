@@ -9,6 +9,8 @@ in the snippet and values worked out by hand.
 
 from __future__ import annotations
 
+import importlib
+
 from checker_helpers import diagnostics, only, program
 from test_checker_mutants_third import after_one_scan
 
@@ -59,8 +61,6 @@ def test_a_global_of_a_prelude_structure_orders_the_types_as_a_full_check():
     that prelude TYPE before the others; its member types enter first, as resolving it
     does in the full check."""
     from test_prelude_sharing import _both_ways, _layout
-
-    import importlib
 
     bases = importlib.import_module("st_runtime.checker.prelude_base")   # (the package exports its function)
     texts = {"g.st": "VAR_GLOBAL gax : AXIS_REF; END_VAR\n"
