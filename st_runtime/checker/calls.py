@@ -172,6 +172,9 @@ class CallChecker:
             self.ctx.error("E-TYPE-014", f"{name}(...): expected a variable, found {unaddressable}",
                            start_pos(value))
             return self.ex.record(call, ts.ERROR)
+        sym = self.program.name_refs.get(id(value)) if isinstance(value, ast.Name) else None
+        if isinstance(T.resolve_alias(getattr(sym, "type", None)), T.SubrangeType):
+            t = T.resolve_alias(sym.type)   # the declared subrange, not the base type it reads as
         self.program.call_targets[id(call)] = CallTarget("ref", name)
         return self.ex.record(call, T.RefType(t, name == "ADR"))
 

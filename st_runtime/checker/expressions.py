@@ -113,6 +113,10 @@ def same_referenced(a, b) -> bool:
         return a.wide == b.wide and a.length == b.length
     if isinstance(a, T.ArrayType) and isinstance(b, T.ArrayType):
         return a.dims == b.dims and same_referenced(a.element, b.element)
+    if isinstance(a, T.SubrangeType) or isinstance(b, T.SubrangeType):
+        # its limits are part of the type (6.4.4.4): a REF_TO INT to an INT(1..5)
+        # would write 100 into it (same_type compares the base types only)
+        return str(a) == str(b)
     return a is b or ts.same_type(a, b) or str(a) == str(b)
 
 
