@@ -10,7 +10,7 @@ from ..ast import key
 from . import typesys as ts
 from .constfold import NOT_CONSTANT
 from .expressions import ExprChecker, start_pos
-from .stores import check_store
+from .stores import check_store, declared_subrange
 
 
 class StatementChecker:
@@ -42,7 +42,8 @@ class StatementChecker:
             if s.value is not None:
                 self.ex.infer(s.value)
             return
-        self.ex.check_value(s.value, target, "assignment")
+        # A constant outside a subrange target's limits is refused here, as it is for an input.
+        self.ex.check_value(s.value, declared_subrange(self.program, s.target) or target, "assignment")
 
     def _CallStmt(self, s: ast.CallStmt) -> None:
         self.ex.calls.check_call(s.call, None, statement=True)

@@ -20,6 +20,7 @@ from ..types import (
     ArrayType,
     ElementaryType,
     FBType,
+    RefType,
     StringType,
     StructType,
     Type,
@@ -513,8 +514,11 @@ class ExprCompiler:
             return LValue("bit", self.ty(e), key=str(e.bit), inner=inner)
         if isinstance(e, ast.Deref):
             # What a reference refers to: a Ref (elementary) or the object itself;
-            # `_deref` faults on NULL.
-            t = self.ty(e)
+            # `_deref` faults on NULL.  A REF_TO a subrange stores within its limits
+            # (the dereference reads as the base type).
+            ref = resolve_alias(self.ty(e.base))
+            t = ref.target if isinstance(ref, RefType) and isinstance(resolve_alias(ref.target), SubrangeType) \
+                else self.ty(e)
             target = f"_deref({self.expr(e.base)})"
             return LValue("local", t, name=target) if is_aggregate(t) else LValue("ref", t, name=target)
         self.fail("this expression cannot be assigned or referenced", e)
@@ -669,7 +673,8 @@ class ExprCompiler:
         plain_read = node is not None and isinstance(node, (ast.Name, ast.Member, ast.Index))
         if e is not None and node is not None:
             const = self.constant_of(node)
-            if isinstance(const, (bool, int, float)):
+            outside = isinstance(e, SubrangeType) and isinstance(const, int) and not e.lo <= const <= e.hi
+            if isinstance(const, (bool, int, float)) and not outside:
                 try:                  # a constant is stored as the literal it becomes
                     return self.literal(store_value(e, const), e)
                 except (TypeError, ValueError, OverflowError):
