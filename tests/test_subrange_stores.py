@@ -11,10 +11,15 @@ import pytest
 from st_runtime.api import LoadError, load_sources
 
 DECLS = """TYPE S3 : STRUCT M : INT(1..5); N : INT; END_STRUCT END_TYPE
+FUNCTION_BLOCK F
+VAR_INPUT K : INT(1..5) := 1; END_VAR
+END_FUNCTION_BLOCK
 PROGRAM Main
 VAR S : INT(1..5) := 1; A : ARRAY[1..2] OF INT(1..5) := [1, 1]; St : S3 := (M := 1);
-    X : INT; R : REF_TO INT; RS : REF_TO INT(1..5); END_VAR
+    X : INT; R : REF_TO INT; RS : REF_TO INT(1..5); Fb : F; END_VAR
 """
+
+LINE = DECLS.count("\n") + 1      # the line of the statements under test
 
 
 def _load(body: str):
@@ -34,9 +39,10 @@ def _after_one_scan(body: str):
     return main, [(f.code, f.line) for f in plc.controller.faults]
 
 
-@pytest.mark.parametrize("store", ["S := 100;", "A[2] := 0;", "St.M := 6;", "S := 2 + 4;"])
+@pytest.mark.parametrize("store", ["S := 100;", "A[2] := 0;", "St.M := 6;", "S := 2 + 4;", "Fb.K := 0;",
+                                   "Fb(K := 6);"])
 def test_a_constant_outside_the_limits_is_refused(store):
-    assert _errors(store) == [("E-TYPE-005", 5)]
+    assert _errors(store) == [("E-TYPE-005", LINE)]
 
 
 @pytest.mark.parametrize("store", ["S := 5;", "A[2] := 1;", "St.M := 2 + 2;", "St.N := 100;"])
@@ -51,18 +57,18 @@ def test_a_constant_inside_the_limits_is_stored(store):
 @pytest.mark.parametrize("store", ["S := INT#100;", "A[1] := INT#0;", "X := 100; S := X;", "X := 0; A[1] := X;"])
 def test_a_typed_constant_or_a_variable_outside_faults_and_leaves_the_value(store):
     main, faults = _after_one_scan(store)
-    assert faults == [("F-SUBRANGE", 5)]
+    assert faults == [("F-SUBRANGE", LINE)]
     assert (main["S"], main["A[1]"]) == (1, 1)
 
 
 @pytest.mark.parametrize("place", ["S", "A[1]", "St.M"])
 def test_a_reference_to_a_subrange_place_keeps_its_limits(place):
-    assert _errors(f"R := REF({place});") == [("E-TYPE-004", 5)]
+    assert _errors(f"R := REF({place});") == [("E-TYPE-004", LINE)]
     main, faults = _after_one_scan(f"RS := REF({place}); RS^ := 4;")
     assert faults == [] and main[place] == 4
     main, faults = _after_one_scan(f"RS := REF({place}); X := 9; RS^ := X;")
-    assert faults == [("F-SUBRANGE", 5)] and main[place] == 1
-    assert _errors(f"RS := REF({place}); RS^ := 9;") == [("E-TYPE-005", 5)]
+    assert faults == [("F-SUBRANGE", LINE)] and main[place] == 1
+    assert _errors(f"RS := REF({place}); RS^ := 9;") == [("E-TYPE-005", LINE)]
 
 
 def test_a_reference_to_a_plain_member_is_a_plain_reference():

@@ -81,8 +81,8 @@ def check_store(ex, target, what: str = "assignment"):
 
 
 def declared_subrange(program, place):
-    """The subrange a variable, an array element, a struct member or a reference's target
-    is declared with, else None: each reads as the subrange's base type
+    """The subrange a variable, an array element, a struct or FB member or a reference's
+    target is declared with, else None: each reads as the subrange's base type
     (`ExprChecker.record`), but a store into it and a reference to it keep its limits
     (IEC 61131-3 6.4.4.4)."""
     if isinstance(place, ast.Name):
@@ -93,6 +93,8 @@ def declared_subrange(program, place):
             declared = base.element
         elif isinstance(place, ast.Member) and isinstance(base, T.StructType):
             declared = base.fields.get(place.name.upper(), (None, None))[1]
+        elif isinstance(place, ast.Member) and isinstance(base, T.FBType):
+            declared = getattr(base.variables.get(place.name.upper()), "type", None)
         elif isinstance(place, ast.Deref) and isinstance(base, T.RefType):
             declared = base.target
         else:
