@@ -118,6 +118,9 @@ class CheckedProgram:
     dialect: str = "iec"                                           # "iec" or "nj", as checked
     # Added by the checker: id(For) -> the Symbol of its control variable.
     for_vars: dict[int, Symbol] = field(default_factory=dict)
+    # id(expr) -> the subrange a place (variable, element, member, dereference) is declared
+    # with; its `expr_types` entry is the base type it reads as (IEC 61131-3 6.4.4.4).
+    subranges: dict[int, Type] = field(default_factory=dict)
     # id(Call) -> the operator expression a call such as ADD(a, b) stands for.
     lowered: dict[int, ast.Expr] = field(default_factory=dict)
     dialect: str = "iec"                                           # --dialect checked under

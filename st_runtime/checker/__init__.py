@@ -31,6 +31,8 @@ What the CheckedProgram holds (the compiler's contract):
   variables, enumeration values, operators on them), stored as the runtime
   stores them in the node's type (integers wrapped, REAL rounded to float32).
 * `for_vars`: id(For) -> Symbol of its control variable.
+* `subranges`: every place typed with a subrange (variable, element, member,
+  dereference) -> that SubrangeType; its `expr_types` entry is the base type.
 """
 
 from __future__ import annotations

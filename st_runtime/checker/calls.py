@@ -15,7 +15,7 @@ from .oo import find_method, interface_methods, may_call
 from .operator_calls import OPERATOR_FUNCTIONS, lower, ordered_inputs
 from . import typesys as ts
 from .expressions import start_pos
-from .stores import check_store, declared_subrange, in_out_problem, is_variable_path, no_address, root_name
+from .stores import check_store, in_out_problem, is_variable_path, no_address, root_name
 
 _PIN_KINDS = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
 # _namespaced's answer for `NS.F` when NAMESPACE NS declares no F (already reported).
@@ -172,9 +172,7 @@ class CallChecker:
             self.ctx.error("E-TYPE-014", f"{name}(...): expected a variable, found {unaddressable}",
                            start_pos(value))
             return self.ex.record(call, ts.ERROR)
-        declared = declared_subrange(self.program, value)
-        if declared is not None:
-            t = declared                    # the declared subrange, not the base type it reads as
+        t = self.program.subranges.get(id(value), t)     # a subrange's limits go with it
         self.program.call_targets[id(call)] = CallTarget("ref", name)
         return self.ex.record(call, T.RefType(t, name == "ADR"))
 

@@ -150,8 +150,9 @@ class ExprChecker:
     # ------------------------------------------------------------ recording
     def record(self, e, t, value=NOT_CONSTANT):
         if isinstance(t, T.SubrangeType):
-            # A subrange variable reads as its base type; its limits are
-            # checked where it is stored (the compiler reads the symbol's type).
+            # A subrange variable reads as its base type; its limits are kept apart
+            # (`subranges`) for a store into it and a reference to it.
+            self.program.subranges[id(e)] = t
             t = T.ELEMENTARY[t.name]
         self.program.expr_types[id(e)] = t
         if value is not NOT_CONSTANT and value is not None and t is not ts.ERROR:

@@ -10,7 +10,7 @@ from ..ast import key
 from . import typesys as ts
 from .constfold import NOT_CONSTANT
 from .expressions import ExprChecker, start_pos
-from .stores import check_store, declared_subrange
+from .stores import check_store
 
 
 class StatementChecker:
@@ -43,7 +43,7 @@ class StatementChecker:
                 self.ex.infer(s.value)
             return
         # A constant outside a subrange target's limits is refused here, as it is for an input.
-        self.ex.check_value(s.value, declared_subrange(self.program, s.target) or target, "assignment")
+        self.ex.check_value(s.value, self.program.subranges.get(id(s.target), target), "assignment")
 
     def _CallStmt(self, s: ast.CallStmt) -> None:
         self.ex.calls.check_call(s.call, None, statement=True)

@@ -80,29 +80,6 @@ def check_store(ex, target, what: str = "assignment"):
     return t
 
 
-def declared_subrange(program, place):
-    """The subrange a variable, an array element, a struct or FB member or a reference's
-    target is declared with, else None: each reads as the subrange's base type
-    (`ExprChecker.record`), but a store into it and a reference to it keep its limits
-    (IEC 61131-3 6.4.4.4)."""
-    if isinstance(place, ast.Name):
-        declared = getattr(program.name_refs.get(id(place)), "type", None)
-    else:
-        base = T.resolve_alias(program.expr_types.get(id(getattr(place, "base", None))))
-        if isinstance(place, ast.Index) and isinstance(base, T.ArrayType):
-            declared = base.element
-        elif isinstance(place, ast.Member) and isinstance(base, T.StructType):
-            declared = base.fields.get(place.name.upper(), (None, None))[1]
-        elif isinstance(place, ast.Member) and isinstance(base, T.FBType):
-            declared = getattr(base.variables.get(place.name.upper()), "type", None)
-        elif isinstance(place, ast.Deref) and isinstance(base, T.RefType):
-            declared = base.target
-        else:
-            return None
-    declared = T.resolve_alias(declared)
-    return declared if isinstance(declared, T.SubrangeType) else None
-
-
 def in_out_problem(ex, target, sym) -> str | None:
     """Why the variable path `target` (root variable `sym`) cannot be passed
     to a VAR_IN_OUT, which the callee may write; None when it can."""

@@ -20,7 +20,6 @@ from ..types import (
     ArrayType,
     ElementaryType,
     FBType,
-    RefType,
     StringType,
     StructType,
     Type,
@@ -516,9 +515,7 @@ class ExprCompiler:
             # What a reference refers to: a Ref (elementary) or the object itself;
             # `_deref` faults on NULL.  A REF_TO a subrange stores within its limits
             # (the dereference reads as the base type).
-            ref = resolve_alias(self.ty(e.base))
-            t = ref.target if isinstance(ref, RefType) and isinstance(resolve_alias(ref.target), SubrangeType) \
-                else self.ty(e)
+            t = self.program.subranges.get(id(e)) or self.ty(e)
             target = f"_deref({self.expr(e.base)})"
             return LValue("local", t, name=target) if is_aggregate(t) else LValue("ref", t, name=target)
         self.fail("this expression cannot be assigned or referenced", e)
