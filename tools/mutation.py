@@ -132,7 +132,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                    # seed-21 run (issue 16, session 7)
                    "tests/test_reference_mutation_s7.py",
                    # seeds 24 and 25 (issue 16, session 10)
-                   "tests/test_reference_mutation_s10.py", "tests/test_reference_mutation_s10_seed25.py"]),
+                   "tests/test_reference_mutation_s10.py", "tests/test_reference_mutation_s10_seed25.py",
+                   # seed 27's last and the seed-28 run (issue 16, session 11)
+                   "tests/test_reference_mutation_s11.py"]),
 }
 
 # Extra [tool.mutmut] settings of one module. The compiler's mutants include
