@@ -102,7 +102,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                 # seed-24 run (issue 16, session 9)
                 "tests/test_motion_mutation_s9.py",
                 # the binding of axis FBs (session 9's speed work), tested in its own file
-                "tests/test_motion_binding.py"]),
+                "tests/test_motion_binding.py",
+                # seeds 25 and 26 (issue 16, session 11)
+                "tests/test_motion_mutation_s11.py"]),
     "checker": (["st_runtime/checker/*"],
                 ["tests/test_checker_rules.py", "tests/test_checker_typing.py", "tests/test_checker_program.py",
                  "tests/test_checker_loader.py", "tests/test_checker_corpus.py",
