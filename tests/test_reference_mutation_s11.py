@@ -127,3 +127,38 @@ def test_a_fade_in_set_by_the_jerk_term_of_a_small_second_derivative():
     # acceleration terms are 49.5, 6.3 and 62. The least (jerk, D2 term): T_F = 1/0.25 = 4 s.
     limits = TrajectoryConfig(linear_jerk=5.5)
     assert fade_in_duration(_one_component_wave(1.0, 1.0), limits) == pytest.approx(4.0, rel=1e-12)
+
+
+# --- seed 29 (a fresh sample after the tests above, session 11) --------------------------------------
+
+
+def test_the_time_law_before_the_start_is_the_law_at_the_start():
+    from stgen.reference.paths import PathSpec, time_law
+
+    # time_law: u = t/T is clipped to [0, 1]; at u = 0 the blend law has τ = 0, sin 0 = 0, cos 0 = 1, so
+    # f = Ω·b·(0 + 0) = 0 and f' = f'' = f''' = 0: the path is at rest at its start before it.
+    law = time_law(PathSpec("epitrochoid", blend=0.1), np.array([-0.5, 0.0]))
+    assert [values.tolist() for values in law] == [[0.0, 0.0]] * 4
+
+
+def test_a_wave_whose_velocity_alone_reaches_the_limit_has_no_fade_in():
+    from stgen.reference.wave import fade_in_duration
+
+    # A = 5 mm, ω = 1 rad/s: D1 = 5 mm/s on x, the velocity limit 5 mm/s: nothing is left for the fade
+    # (docstring: ValueError when the wave alone reaches a limit), here in coordinate 1 (x).
+    with pytest.raises(ValueError, match="pose coordinate 1"):
+        fade_in_duration(_one_component_wave(5.0, 1.0), TrajectoryConfig(linear_velocity=5.0))
+
+
+def test_a_motion_report_samples_every_period_to_the_period_nearest_its_duration():
+    from stgen.reference.study_motions import motion_report
+
+    # Samples at k·period for k·period < duration + period/2: the last one is the period nearest the
+    # duration. 0.026 s at 10 ms is 2.6 periods, so 0, 10, 20, 30 ms: 4 samples (a platform at home).
+    def home(t):
+        value = np.zeros(t.shape + (6,))
+        return value, value, value
+
+    moving = load_config(EXAMPLES / "moving_base_platform.toml")
+    assert motion_report(moving, "home", home, duration=0.026, period=0.01).samples == 4
+    assert motion_report(moving, "home", home, duration=0.024, period=0.01).samples == 3
