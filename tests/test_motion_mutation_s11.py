@@ -16,7 +16,8 @@ import traceback
 
 import pytest
 
-from st_runtime.motion import binding, fbs
+from st_runtime.api import load_sources
+from st_runtime.motion import MotionTask, binding, fbs
 from st_runtime.motion.axis import Axis, AxisState, MotionRefused
 from st_runtime.motion.axis_config import AxisConfig
 from st_runtime.motion.error_ids import ErrorID
@@ -77,6 +78,7 @@ def test_a_store_of_another_value_into_a_watched_cfg_ends_the_binding():
     assert binding.hold(holder, ref)
     cfg = ref.v_CFG
     assert type(cfg).__name__ == "FreshCfg" and type(cfg).__mro__[1] is cfg_class
+    assert (type(cfg).__qualname__, type(cfg).__module__) == (cfg_class.__qualname__, cfg_class.__module__)
     cfg.v_AXNO = 0                       # the value it holds
     assert holder.ended == 0
     cfg.v_AXNO = 1                       # another axis
@@ -151,3 +153,18 @@ def test_only_an_execute_fb_whose_every_call_runs_the_idle_rules_may_be_left_at_
 
     assert Plain.REST is fbs._REST
     assert OwnExecute.REST is None
+
+
+# --- seed 27 (a fresh sample after the tests above) -----------------------------------------------------
+
+
+def test_a_motion_task_with_no_axes_installs_and_runs():
+    # No [[axis]] table: no global, no lane; the motion processing is an empty step and the programs run.
+    task = MotionTask.from_tables([])
+    project = load_sources({"axes.st": task.globals_source(),
+                            "main.st": "PROGRAM Main\nVAR n : INT; END_VAR\nn := n + 1;\nEND_PROGRAM\n"}, dialect="nj")
+    plc = project.controller(period="1ms")
+    task.install(plc.controller)
+    main = plc.add_program("Main")
+    plc.run(3)
+    assert main["n"] == 3 and task.axes == []
