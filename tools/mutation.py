@@ -102,7 +102,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                 # seed-24 run (issue 16, session 9)
                 "tests/test_motion_mutation_s9.py",
                 # the binding of axis FBs (session 9's speed work), tested in its own file
-                "tests/test_motion_binding.py"]),
+                "tests/test_motion_binding.py",
+                # seeds 25 and 26 (issue 16, session 11)
+                "tests/test_motion_mutation_s11.py"]),
     "checker": (["st_runtime/checker/*"],
                 ["tests/test_checker_rules.py", "tests/test_checker_typing.py", "tests/test_checker_program.py",
                  "tests/test_checker_loader.py", "tests/test_checker_corpus.py",
@@ -132,7 +134,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                    # seed-21 run (issue 16, session 7)
                    "tests/test_reference_mutation_s7.py",
                    # seeds 24 and 25 (issue 16, session 10)
-                   "tests/test_reference_mutation_s10.py", "tests/test_reference_mutation_s10_seed25.py"]),
+                   "tests/test_reference_mutation_s10.py", "tests/test_reference_mutation_s10_seed25.py",
+                   # seed 27's last and the seed-28 run (issue 16, session 11)
+                   "tests/test_reference_mutation_s11.py"]),
 }
 
 # Extra [tool.mutmut] settings of one module. The compiler's mutants include
