@@ -2,7 +2,7 @@
 and has not been changed since but by that step (its epoch, `MotionTask._epoch`) is stepped
 testing only the new target and the direction of its velocity.  Held, scan by scan, to the
 same program run one scan per call, where every scan starts a new epoch and so takes the
-whole test: through direction changes, a held target (velocity 0), a target out of reach
+whole test, and to a run whose motion processing is `Axis.step` and the writer: through direction changes, a held target (velocity 0), a target out of reach
 (VelLimit), a soft limit (ErrorStop) and its reset, a re-execution error (16#543B), MC_Stop,
 power off and on, and changes made to an axis from Python between runs.
 """
@@ -61,12 +61,22 @@ AXIS_FIELDS = ("state", "power_requested", "powered", "homed", "cmd_pos", "act_p
                "act_vel", "fault_code", "observation_code", "vel_limit", "in_pos_waiting")
 
 
-def make_plc():
+def make_plc(general: bool = False):
+    """The program on the two axes; `general`: the motion processing as `Axis.step` and the
+    writer on every axis (no stream step, short or whole)."""
     task = MotionTask.from_tables(AXES)
     project = load_sources({"axes.st": task.globals_source(), "main.st": PROGRAM}, dialect="nj")
     assert not [d for d in project.diagnostics if d.is_error]
     plc = project.controller(period="1ms")
     task.install(plc.controller)
+    if general:
+        def after_programs(ctx):
+            for writer in task._writers:
+                Axis.step(writer.axis, ctx.period_ns * 1e-9)
+                writer.write()
+            task._published = False                 # a feedback in every scan
+
+        plc.controller.after_hooks[:] = [after_programs]
     main = plc.add_program("Main")
     return plc, main, task
 
@@ -115,9 +125,12 @@ def test_a_run_with_the_short_stream_step_ends_every_scan_as_the_whole_test():
     fast, short_steps = run_observed(plc, task, [400])
     reference, _, reference_task = make_plc()
     whole, whole_short = run_observed(reference, reference_task, [1] * 400)
-    for scan, (got, expected) in enumerate(zip(fast, whole), start=1):
+    general, _, general_task = make_plc(general=True)
+    steps, _ = run_observed(general, general_task, [400])
+    for scan, (got, expected, stepped) in enumerate(zip(fast, whole, steps), start=1):
         assert got == expected, scan
-    assert len(fast) == len(whole) == 400
+        assert got == stepped, scan
+    assert len(fast) == len(whole) == len(steps) == 400
     assert whole_short == 0                         # one scan a run: every scan a new epoch
     assert short_steps > 400                        # the short step ran on both axes
     assert len(fast[0][2]) == 7                     # the motion FBs are compared too

@@ -53,38 +53,59 @@ _ERRORSTOP = AxisState.ERRORSTOP
 # The epoch (`epoch`, see MotionTask._before_programs): while an axis carries the epoch of
 # the run it streams in, nothing but the stream's own step has changed it since it last took
 # one (every Axis method that changes it, and MC_Power's changed request, end it).  So its
-# command is still that sync command, powered as requested, the period the same, and the
-# flags members show what they showed then: of the guard only the data are tested, and the
-# flags only when the direction changes (a velocity of the same sign as the one they show;
-# neither is a NaN, whose target fails the guard).
+# command is still that sync command, powered as requested, the period the same, VelLimit
+# FALSE, the actual position the command (so the actual velocity is the command's), and the
+# flags members show what they showed then: the short step tests only the data (|delta| <=
+# slack is -slack <= delta <= slack for every float), and the flags only when the direction
+# changes (neither velocity is a NaN then: the target passed the guard).  While the
+# direction holds, |new_vel| > |old_vel| is new_vel > old_vel (both positive) or
+# new_vel < old_vel (both negative).
 _LANE_STEP = """\
 command = {axis}.command
-if not (({axis}._stream_epoch is epoch
-         or command is not None and command.kind == "sync" and (powered := {axis}.powered)
-         and {axis}.power_requested == powered and dt == {axis}._stream_dt)
-        and -(slack := {axis}._step_slack) <= (delta := (target := command.target) - {axis}.cmd_pos) <= slack
-        and {axis}._soft_min <= target <= {axis}._soft_max):
+if {axis}._stream_epoch is not epoch:
+    if not (command is not None and command.kind == "sync" and (powered := {axis}.powered)
+            and {axis}.power_requested == powered and dt == {axis}._stream_dt
+            and -(slack := {axis}._step_slack) <= (delta := (target := command.target) - {axis}.cmd_pos) <= slack
+            and {axis}._soft_min <= target <= {axis}._soft_max):
+        {axis}.step(dt)
+        {writer}.write()
+    else:
+        {axis}.vel_limit = False
+        {act}.v_VEL = {axis}.act_vel = (target - {axis}.act_pos) / dt
+        {cmd}.v_POS = {act}.v_POS = {axis}.cmd_pos = {axis}.act_pos = target
+        old_vel = {axis}.cmd_vel
+        {cmd}.v_VEL = {axis}.cmd_vel = new_vel = delta / dt
+        if new_vel != old_vel:
+            magnitude = abs(new_vel - old_vel) / dt
+            if (new_vel if new_vel >= 0.0 else -new_vel) > (old_vel if old_vel >= 0.0 else -old_vel):
+                {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude
+            else:
+                {cmd}.v_ACCDEC = {axis}.cmd_accdec = -magnitude
+        else:
+            {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
+{flags8}
+elif not (abs(delta := (target := command.target) - {axis}.cmd_pos) <= {axis}._step_slack
+          and {axis}._soft_min <= target <= {axis}._soft_max):
     {axis}.step(dt)
     {writer}.write()
 else:
-    {axis}.vel_limit = False
-    {act}.v_VEL = {axis}.act_vel = (target - {axis}.act_pos) / dt
     {cmd}.v_POS = {act}.v_POS = {axis}.cmd_pos = {axis}.act_pos = target
     old_vel = {axis}.cmd_vel
-    {cmd}.v_VEL = {axis}.cmd_vel = new_vel = delta / dt
+    {act}.v_VEL = {axis}.act_vel = {cmd}.v_VEL = {axis}.cmd_vel = new_vel = delta / dt
     if new_vel != old_vel:
         magnitude = abs(new_vel - old_vel) / dt
-        if (new_vel if new_vel >= 0.0 else -new_vel) > (old_vel if old_vel >= 0.0 else -old_vel):
-            {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude
+        if new_vel > 0.0 and old_vel > 0.0:
+            {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude if new_vel > old_vel else -magnitude
+        elif new_vel < 0.0 and old_vel < 0.0:
+            {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude if new_vel < old_vel else -magnitude
         else:
-            {cmd}.v_ACCDEC = {axis}.cmd_accdec = -magnitude
-        if {axis}._stream_epoch is not epoch or not (new_vel > 0.0 and old_vel > 0.0
-                                                     or new_vel < 0.0 and old_vel < 0.0):
-{flags8}
+            if (new_vel if new_vel >= 0.0 else -new_vel) > (old_vel if old_vel >= 0.0 else -old_vel):
+                {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude
+            else:
+                {cmd}.v_ACCDEC = {axis}.cmd_accdec = -magnitude
+{flags12}
     else:
         {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
-        if {axis}._stream_epoch is not epoch:
-{flags8}
 """
 
 # The flags of a stream's step, as AxisRefWriter.write decides them; the axis then carries
@@ -123,8 +144,9 @@ def _straight_line_process(task: "MotionTask", lanes: list[tuple]):
     for number, lane in enumerate(lanes):
         parts = {role: f"{role}{number}" for role in ("axis", "writer", "cmd", "act")}
         names.update(zip(parts.values(), lane))
-        flags = textwrap.indent(_LANE_FLAGS.format(**parts), " " * 12)
-        steps.append(_LANE_STEP.format(flags8=flags.rstrip("\n"), **parts))
+        flags = _LANE_FLAGS.format(**parts)
+        steps.append(_LANE_STEP.format(flags8=textwrap.indent(flags, " " * 8).rstrip("\n"),
+                                       flags12=textwrap.indent(flags, " " * 12).rstrip("\n"), **parts))
     arguments = "".join(f", {name}={name}" for name in names)
     body = "".join(textwrap.indent(step, "    ") for step in steps) or "    pass\n"
     namespace = define(_AFTER_PROGRAMS.format(arguments=arguments, body=body), "motion task process",
