@@ -21,11 +21,10 @@ from st_runtime.native import NativeFB
 
 from test_optimiser_equivalence import snapshot
 from test_motion_fbs import axis_config
+from test_motion_publish import AXES as PUBLISH_AXES
 
-AXES = [
-    {"name": "Cyl1", "max_velocity": 1000.0, "soft_limit_min": -50.0, "soft_limit_max": 50.0},
-    {"name": "Cyl2", "max_velocity": 1000.0, "soft_limit_min": -50.0, "soft_limit_max": 5.0},
-]
+# Both ideal (no servo lag): the axes a sync stream's step is spelt out for.
+AXES = [{key: value for key, value in axis.items() if key != "servo_lag"} for axis in PUBLISH_AXES]
 
 # Cyl1 follows a sine (a direction change about every 45 scans), holds it for 7 scans of
 # every 37 (velocity 0), jumps 40 mm out of one period's reach at scan 90 (VelLimit), falls
