@@ -225,3 +225,22 @@ def test_binding_again_replaces_the_installed_after_hook():
     reference, _, reference_task = make_plc()
     reference.run(100)
     assert state(plc, task) == state(reference, reference_task)
+
+
+def test_a_foreign_before_hook_in_place_of_the_feedback_in_ends_every_epoch():
+    """With another `before` hook in place of the task's own, that hook runs between two
+    motion processings: no epoch goes on, so its changes are stepped as in a scan of its own."""
+    states = []
+    for chunks in ([1] * 120, [120]):
+        plc, main, task = make_plc()
+
+        def foreign(ctx, task=task):
+            if ctx.scan == 61:
+                assert task.axes[0].command.kind == "sync"
+                task.axes[0].command = None          # the stream's command taken from the axis
+
+        plc.controller.before_hooks[:] = [foreign]
+        for scans in chunks:
+            plc.run(scans)
+        states.append(state(plc, task))
+    assert states[0] == states[1]

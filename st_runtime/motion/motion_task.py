@@ -50,7 +50,7 @@ _ERRORSTOP = AxisState.ERRORSTOP
 # specialises a comparison only when a short jump follows it (a jump past the stream's code
 # takes an EXTENDED_ARG); a comparison that jumps, not one whose value is stored, likewise.
 #
-# The epoch (`epoch`, see MotionTask._before_programs): while an axis carries the epoch of
+# The epoch (`epoch`, see `_AFTER_PROGRAMS`): while an axis carries the epoch of
 # the run it streams in, nothing but the stream's own step has changed it since it last took
 # one (every Axis method that changes it, and MC_Power's changed request, end it).  So its
 # command is still that sync command, powered as requested, the period the same, VelLimit
@@ -123,14 +123,21 @@ if shown != {writer}._shown:
 """
 
 # The motion task's `after` hook: the lanes of every axis with the task's bookkeeping around
-# them (MotionTask._after_programs), one Python call a scan.
+# them (MotionTask._after_programs), one Python call a scan.  The epoch goes on while the
+# previous scan's motion processing ran in this run (`ctx.resumed`: no observer but read-only
+# ones since) and found the task's own hooks the controller's only ones: then nothing but
+# the programs and the feedback-in hook has run since.
 _AFTER_PROGRAMS = """\
 def after_programs(ctx{arguments}):
-    task._published = False
+    if not (ctx.resumed and task._continuing):
+        task._epoch = object()
+    task._published = task._continuing = False
     dt = ctx.period_ns * 1e-9
     epoch = task._epoch
 {body}    controller = ctx.controller
-    task._published = len(controller.before_hooks) == 1 and len(controller.after_hooks) == 1
+    task._published = published = (len(hooks := controller.before_hooks) == 1
+                                   and len(controller.after_hooks) == 1)
+    task._continuing = published and hooks[0] is task._before_hook
 
 def process(dt, epoch{arguments}):
 {body}"""
@@ -177,13 +184,15 @@ class MotionTask:
         self._writers: list[AxisRefWriter] = []
         self._step_lanes = self._step_axes      # `process`: see bind
         self._after_programs = self._step_after_programs    # the `after` hook: see bind
+        self._before_hook = self._before_programs               # the `before` hook installed
         self._controller = None                 # the controller it is installed in
         # The axis variables show the axes as they are: the motion processing has published
         # them and no other hook runs in the scan (see _before_programs).
         self._published = False
         # New whenever code other than the programs' motion FBs may have changed an axis
-        # since the previous motion processing (see _before_programs, `_LANE_STEP`).
+        # since the previous motion processing (see `_AFTER_PROGRAMS`, `_LANE_STEP`).
         self._epoch = object()
+        self._continuing = False
 
     @classmethod
     def from_tables(cls, tables: Iterable[Mapping]) -> "MotionTask":
@@ -250,20 +259,17 @@ class MotionTask:
         self.bind(lambda name: getattr(globals_object, mangle(name)))
         controller.motion = self
         self._controller = controller
-        controller.add_io_hook(before=self._before_programs, after=self._after_programs, quiet=True)
+        controller.add_io_hook(before=self._before_hook, after=self._after_programs, quiet=True)
 
     def _before_programs(self, ctx) -> None:
         """Feedback in, unless the axis variables already show the axes: the previous scan's
         motion processing published them, it is the only hook of the controller, and nothing
         has run since (`ctx.resumed`: the next scan of one `Controller.run`, no observer but
         read-only ones), so
-        a second publication would store the same values (the programs run after it).
-        Otherwise code other than the programs' motion FBs may have changed an axis since the
-        previous motion processing: a new epoch (no axis takes the stream's short step)."""
+        a second publication would store the same values (the programs run after it)."""
         published, self._published = self._published, False
         if published and ctx.resumed:
             return
-        self._epoch = object()
         self.feedback_in()
 
     def _step_after_programs(self, ctx) -> None:
