@@ -142,6 +142,10 @@ class Axis:
         self._max_step = self._step_slack = 0.0
         self._lag_gain = 1.0
         self._stream_dt = None  # _dt for an ideal axis (no servo lag), else None: MotionTask.process
+        # The motion task's epoch in which this axis last took a sync stream's step, while
+        # nothing has changed it since but that step's data (MotionTask.process); every
+        # method that changes the axis ends it (`_changed`).
+        self._stream_epoch = None
 
     # ------------------------------------------------------------ queries
     @property
@@ -170,13 +174,19 @@ class Axis:
         return not (busy or self.in_pos_waiting or self.decelerating_for_error)
 
     # ------------------------------------------------ requests from FBs
+    def _changed(self) -> None:
+        """Something beyond a sync stream's step may change: the next step checks it all."""
+        self._stream_epoch = None
+
     def request_power(self, on: bool) -> None:
         """MC_Power's Enable; applied by the next motion processing."""
+        self._changed()
         self.power_requested = bool(on)
 
     def start_sync(self) -> MotionCommand:
         """MC_SyncMoveAbsolute: the axis follows Position every period, in
         Status.Discrete (SPEC 7)."""
+        self._changed()
         self._check_can_move()
         command = MotionCommand("sync", target=self.cmd_pos)
         self._take(command, AxisState.DISCRETE)
@@ -186,6 +196,7 @@ class Axis:
         self, position: float, velocity: float, acceleration: float, deceleration: float
     ) -> MotionCommand:
         """MC_MoveAbsolute: trapezoidal move to `position`."""
+        self._changed()
         self._check_can_move()
         limit = self.config.max_velocity * (1 + _LIMIT_SLACK)
         if not (math.isfinite(position) and 0 < velocity <= limit):
@@ -207,6 +218,7 @@ class Axis:
         Deceleration = 0, or an axis under MC_SyncMoveAbsolute, is an
         immediate stop: the command position holds where it is (SPEC 7).
         """
+        self._changed()
         if self.state == AxisState.ERRORSTOP:
             raise MotionAborted()
         if not self.powered:
@@ -221,12 +233,14 @@ class Axis:
 
     def release_stop(self, command: MotionCommand) -> None:
         """MC_Stop's Execute fell: leave Stopping for Standstill once stopped."""
+        self._changed()
         command.released = True
         if command is self.command and command.done:
             self._finish(AxisState.STANDSTILL)
 
     def start_home(self) -> MotionCommand:
         """MC_Home for an absolute encoder: no motion, the axis becomes homed."""
+        self._changed()
         self._check_can_move()
         if self.state != AxisState.STANDSTILL:
             raise MotionRefused(ErrorID.AXIS_MOVING)
@@ -239,6 +253,7 @@ class Axis:
         while the command still decelerates for the error (SPEC 7), or while
         the following error is still above its limit (the simulator's own
         rule: the error would come back at once)."""
+        self._changed()
         if self.state != AxisState.ERRORSTOP:
             self.observation_code = ErrorID.NONE
             return True
@@ -255,6 +270,7 @@ class Axis:
         """Enter ErrorStop with `code` (the first fault's code is kept).
 
         The command stops at once, or decelerates at `error_deceleration`."""
+        self._changed()
         if self.state == AxisState.ERRORSTOP:
             return
         self._abort_command()
@@ -270,6 +286,7 @@ class Axis:
         (The motion task spells out the common case, an ideal axis following a
         sync Position within one period's reach: `MotionTask.process`.)
         """
+        self._stream_epoch = None    # _changed(), without the call
         if self.power_requested != self.powered:
             self._apply_power()
         if not self.powered:

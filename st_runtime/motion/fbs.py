@@ -300,11 +300,15 @@ class MC_Power(_AxisFB):
         inputs="Enable : BOOL;",
         outputs="Status : BOOL; Busy : BOOL; Error : BOOL; ErrorID : WORD;")
 
-    # Every scan of every axis: Status follows the servo, Busy while it switches.
+    # Every scan of every axis: Status follows the servo, Busy while it switches.  The
+    # request is stored only when it is not that bool already: a change ends the axis's
+    # stream epoch as `Axis.request_power` does (the store of the same object changes nothing).
     HOT_PATH = HotPath(
         pre="",
         body=("{enable} = True if {fb}.v_ENABLE else False",    # bool(), without the call
-              "{axis}.power_requested = {enable}",              # axis.request_power, inlined
+              "if {axis}.power_requested is not {enable}:",     # axis.request_power, inlined
+              "    {axis}.power_requested = {enable}",
+              "    {axis}._stream_epoch = None",
               "{powered} = {axis}.powered",
               "{fb}.v_STATUS = {powered}",
               "{fb}.v_BUSY = {enable} != {powered}",

@@ -49,51 +49,118 @@ _ERRORSTOP = AxisState.ERRORSTOP
 # The general step comes first: the guard's jumps to it are then short, and CPython 3.11
 # specialises a comparison only when a short jump follows it (a jump past the stream's code
 # takes an EXTENDED_ARG); a comparison that jumps, not one whose value is stored, likewise.
+#
+# The epoch (`epoch`, see `_AFTER_PROGRAMS`): while an axis carries the epoch of
+# the run it streams in, nothing but the stream's own step has changed it since it last took
+# one (every Axis method that changes it, and MC_Power's changed request, end it).  So its
+# command is still that sync command, powered as requested, the period the same, VelLimit
+# FALSE, the actual position the command (so the actual velocity is the command's), and the
+# flags members show what they showed then: the short step tests only the data (|delta| <=
+# slack is -slack <= delta <= slack for every float), and the flags only when the direction
+# changes (neither velocity is a NaN then: the target passed the guard).  While the
+# direction holds, |new_vel| > |old_vel| is new_vel > old_vel (both positive) or
+# new_vel < old_vel (both negative).
 _LANE_STEP = """\
 command = {axis}.command
-if not (command is not None and command.kind == "sync" and (powered := {axis}.powered)
-        and {axis}.power_requested == powered and dt == {axis}._stream_dt
-        and -(slack := {axis}._step_slack) <= (delta := (target := command.target) - {axis}.cmd_pos) <= slack
-        and {axis}._soft_min <= target <= {axis}._soft_max):
+if {axis}._stream_epoch is not epoch:
+    if not (command is not None and command.kind == "sync" and (powered := {axis}.powered)
+            and {axis}.power_requested == powered and dt == {axis}._stream_dt
+            and -(slack := {axis}._step_slack) <= (delta := (target := command.target) - {axis}.cmd_pos) <= slack
+            and {axis}._soft_min <= target <= {axis}._soft_max):
+        {axis}.step(dt)
+        {writer}.write()
+    else:
+        {axis}.vel_limit = False
+        {act}.v_VEL = {axis}.act_vel = (target - {axis}.act_pos) / dt
+        {cmd}.v_POS = {act}.v_POS = {axis}.cmd_pos = {axis}.act_pos = target
+        old_vel = {axis}.cmd_vel
+        {cmd}.v_VEL = {axis}.cmd_vel = new_vel = delta / dt
+        if new_vel != old_vel:
+            magnitude = abs(new_vel - old_vel) / dt
+            if (new_vel if new_vel >= 0.0 else -new_vel) > (old_vel if old_vel >= 0.0 else -old_vel):
+                {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude
+            else:
+                {cmd}.v_ACCDEC = {axis}.cmd_accdec = -magnitude
+        else:
+            {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
+{flags8}
+elif not (abs(delta := (target := command.target) - {axis}.cmd_pos) <= {axis}._step_slack
+          and {axis}._soft_min <= target <= {axis}._soft_max):
     {axis}.step(dt)
     {writer}.write()
 else:
-    {axis}.vel_limit = False
-    {act}.v_VEL = {axis}.act_vel = (target - {axis}.act_pos) / dt
     {cmd}.v_POS = {act}.v_POS = {axis}.cmd_pos = {axis}.act_pos = target
     old_vel = {axis}.cmd_vel
-    {cmd}.v_VEL = {axis}.cmd_vel = new_vel = delta / dt
+    {act}.v_VEL = {axis}.act_vel = {cmd}.v_VEL = {axis}.cmd_vel = new_vel = delta / dt
     if new_vel != old_vel:
         magnitude = abs(new_vel - old_vel) / dt
-        if (new_vel if new_vel >= 0.0 else -new_vel) > (old_vel if old_vel >= 0.0 else -old_vel):
-            {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude
+        if new_vel > 0.0 and old_vel > 0.0:
+            {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude if new_vel > old_vel else -magnitude
+        elif new_vel < 0.0 and old_vel < 0.0:
+            {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude if new_vel < old_vel else -magnitude
         else:
-            {cmd}.v_ACCDEC = {axis}.cmd_accdec = -magnitude
+            if (new_vel if new_vel >= 0.0 else -new_vel) > (old_vel if old_vel >= 0.0 else -old_vel):
+                {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude
+            else:
+                {cmd}.v_ACCDEC = {axis}.cmd_accdec = -magnitude
+{flags12}
     else:
         {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
-    state, waiting = {axis}.state, {axis}.in_pos_waiting
-    idle = ((command.done or command.reached) and not waiting
-            and not (state == _ERRORSTOP and new_vel != 0.0))
-    shown = (state, {axis}.homed, {axis}.fault_code, {axis}.observation_code, False,
-             waiting, idle, powered, new_vel > 0.0, new_vel < 0.0)
-    if shown != {writer}._shown:
-        {writer}._shown = shown
-        {writer}._write_flags({axis}, (new_vel > 0.0) - (new_vel < 0.0))
 """
 
+# The flags of a stream's step, as AxisRefWriter.write decides them; the axis then carries
+# the epoch.
+_LANE_FLAGS = """\
+{axis}._stream_epoch = epoch
+state, waiting = {axis}.state, {axis}.in_pos_waiting
+idle = ((command.done or command.reached) and not waiting
+        and not (state == _ERRORSTOP and new_vel != 0.0))
+shown = (state, {axis}.homed, {axis}.fault_code, {axis}.observation_code, False,
+         waiting, idle, {axis}.powered, new_vel > 0.0, new_vel < 0.0)
+if shown != {writer}._shown:
+    {writer}._shown = shown
+    {writer}._write_flags({axis}, (new_vel > 0.0) - (new_vel < 0.0))
+"""
 
-def _straight_line_process(lanes: list[tuple]):
-    """`process(dt)` for these lanes as straight-line code: the lane step of every axis in
-    turn, the axes, writers and structs as the function's constants (no loop, no unpacking)."""
-    names, steps = {}, []
+# The motion task's `after` hook: the lanes of every axis with the task's bookkeeping around
+# them (MotionTask._after_programs), one Python call a scan.  The epoch goes on while the
+# previous scan's motion processing ran in this run (`ctx.resumed`: no observer but read-only
+# ones since) and found the task's own hooks the controller's only ones: then nothing but
+# the programs and the feedback-in hook has run since.
+_AFTER_PROGRAMS = """\
+def after_programs(ctx{arguments}):
+    if not (ctx.resumed and task._continuing):
+        task._epoch = object()
+    task._published = task._continuing = False
+    dt = ctx.period_ns * 1e-9
+    epoch = task._epoch
+{body}    controller = ctx.controller
+    task._published = published = (len(hooks := controller.before_hooks) == 1
+                                   and len(controller.after_hooks) == 1)
+    task._continuing = published and hooks[0] is task._before_hook
+
+def process(dt, epoch{arguments}):
+{body}"""
+
+
+def _straight_line_process(task: "MotionTask", lanes: list[tuple]):
+    """(`after` hook, `process(dt, epoch)`) for these lanes as straight-line code: the lane
+    step of every axis in turn, the task, axes, writers and structs as the functions'
+    constants (no loop, no unpacking)."""
+    names, steps = {"task": task}, []
     for number, lane in enumerate(lanes):
         parts = {role: f"{role}{number}" for role in ("axis", "writer", "cmd", "act")}
         names.update(zip(parts.values(), lane))
-        steps.append(_LANE_STEP.format(**parts))
+        flags = _LANE_FLAGS.format(**parts)
+        steps.append(_LANE_STEP.format(flags8=textwrap.indent(flags, " " * 8).rstrip("\n"),
+                                       flags12=textwrap.indent(flags, " " * 12).rstrip("\n"), **parts))
     arguments = "".join(f", {name}={name}" for name in names)
     body = "".join(textwrap.indent(step, "    ") for step in steps) or "    pass\n"
-    return define(f"def process(dt{arguments}):\n{body}", "motion task process",
-                  {"_ERRORSTOP": _ERRORSTOP, **names})["process"]
+    namespace = define(_AFTER_PROGRAMS.format(arguments=arguments, body=body), "motion task process",
+                       {"_ERRORSTOP": _ERRORSTOP, **names})
+    after = namespace["after_programs"]
+    after.__qualname__ = "MotionTask._after_programs"     # as a fault in a hook names it
+    return after, namespace["process"]
 
 
 def motion_of(ctx) -> "MotionTask | None":
@@ -116,9 +183,16 @@ class MotionTask:
             raise ValueError("axis names must be unique (case-insensitive)")
         self._writers: list[AxisRefWriter] = []
         self._step_lanes = self._step_axes      # `process`: see bind
+        self._after_programs = self._step_after_programs    # the `after` hook: see bind
+        self._before_hook = self._before_programs               # the `before` hook installed
+        self._controller = None                 # the controller it is installed in
         # The axis variables show the axes as they are: the motion processing has published
         # them and no other hook runs in the scan (see _before_programs).
         self._published = False
+        # New whenever code other than the programs' motion FBs may have changed an axis
+        # since the previous motion processing (see `_AFTER_PROGRAMS`, `_LANE_STEP`).
+        self._epoch = object()
+        self._continuing = False
 
     @classmethod
     def from_tables(cls, tables: Iterable[Mapping]) -> "MotionTask":
@@ -153,8 +227,14 @@ class MotionTask:
         """Tie each axis to its global AXIS_REF value; `lookup(name)` finds it."""
         self._writers = [bind_axis_ref(lookup(axis.name), axis) for axis in self.axes]
         # What `process` works with, per axis: the axis, its writer and the Cmd and Act structs.
-        self._step_lanes = _straight_line_process(
-            [(writer.axis, writer, writer._cmd, writer._act) for writer in self._writers])
+        hook = self._after_programs
+        self._after_programs, self._step_lanes = _straight_line_process(
+            self, [(writer.axis, writer, writer._cmd, writer._act) for writer in self._writers])
+        self._epoch = object()
+        hooks = getattr(self._controller, "after_hooks", ())
+        for index, registered in enumerate(hooks):     # bound again once installed
+            if registered is hook:
+                hooks[index] = self._after_programs
 
     def install(self, controller) -> None:
         """Bind to `controller`'s global axis variables and run in its scans.
@@ -178,7 +258,8 @@ class MotionTask:
                 )
         self.bind(lambda name: getattr(globals_object, mangle(name)))
         controller.motion = self
-        controller.add_io_hook(before=self._before_programs, after=self._after_programs, quiet=True)
+        self._controller = controller
+        controller.add_io_hook(before=self._before_hook, after=self._after_programs, quiet=True)
 
     def _before_programs(self, ctx) -> None:
         """Feedback in, unless the axis variables already show the axes: the previous scan's
@@ -191,7 +272,9 @@ class MotionTask:
             return
         self.feedback_in()
 
-    def _after_programs(self, ctx) -> None:
+    def _step_after_programs(self, ctx) -> None:
+        """The `after` hook while no variables are bound (`bind` makes it straight-line code:
+        `_AFTER_PROGRAMS`)."""
         self._published = False
         self._step_lanes(ctx.period_ns * 1e-9)
         controller = ctx.controller
@@ -206,10 +289,12 @@ class MotionTask:
     def process(self, dt: float) -> None:
         """After the programs: every axis advances one period of `dt` seconds and its
         variable shows the result (an axis and its variable at a time: neither step nor
-        publication reads another axis; `_straight_line_process` once bound)."""
-        self._step_lanes(dt)
+        publication reads another axis; `_straight_line_process` once bound).  Called from
+        outside a scan: a new epoch."""
+        self._epoch = object()
+        self._step_lanes(dt, self._epoch)
 
-    def _step_axes(self, dt: float) -> None:
+    def _step_axes(self, dt: float, epoch=None) -> None:
         """`process` while no variables are bound (bind: all or none)."""
         for axis in self.axes:
             axis.step(dt)
