@@ -134,3 +134,26 @@ def test_every_survivor_listed_equivalent_or_not():
 def test_a_run_of_listed_mutants_only_has_no_score_of_the_not_equivalent():
     t = registry.tally({NAME: "survived"}, registry.Verdicts(equivalent={NAME: entry()}))
     assert registry.score_line("motion", t).endswith("score 0.0 % raw, n/a of the not equivalent")
+
+
+def test_an_audit_sorts_entries_into_holding_stale_and_gone():
+    other = "st_runtime.motion.axis.xǁAxisǁ_set_period__mutmut_4"
+    gone = "st_runtime.motion.axis.xǁAxisǁ_set_period__mutmut_9"
+    listed = entries(entry(), entry(mutant=other), entry(mutant=gone),
+                     entry(mutant="elsewhere", module="checker"))
+    now = {NAME: SHOWN, other: "-    self._dt = dt\n+    self._dt = 0"}
+    found = registry.audit("motion", now, listed)
+    assert (found.holding, found.stale, found.gone) == ([NAME], [other], [gone])
+
+
+def test_removing_entries_leaves_the_others_as_written(tmp_path):
+    path = tmp_path / "registry.toml"
+    keep = entry(mutant="kept_1", reason="a reason with 'quotes'")
+    path.write_text("# a header line\n" + "".join(registry.entry_toml(e) for e in (
+        entry(mutant="gone_1"), keep, entry(mutant="gone_2"), entry(mutant="gone_1", module="checker"))))
+    assert registry.without(path, "motion", {"gone_1", "gone_2", "never_listed"}) == 2
+    text = path.read_text()
+    assert text.startswith("# a header line\n")
+    assert text == "# a header line\n" + registry.entry_toml(keep) + registry.entry_toml(
+        entry(mutant="gone_1", module="checker"))
+    assert set(registry.load(path)) == {("motion", "kept_1"), ("checker", "gone_1")}

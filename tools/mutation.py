@@ -291,6 +291,21 @@ def register(name: str, mutant: str, reason: str) -> str:
     return registry.changed_lines(diff)
 
 
+def audit(name: str, prune: bool) -> list[str]:
+    """The module's registry entries against its mutants now (generated, no test run): lines on the
+    stale and gone ones; with `prune`, the gone ones are removed (a stale one waits for a new judgement)."""
+    work = prepare(name)
+    found = registry.audit(name, mutant_diffs(work, all_mutant_names(work)), registry.load())
+    lines = [f"{name:10s} registry: {len(found.holding)} entries hold, {len(found.stale)} stale, "
+             f"{len(found.gone)} name no mutant any more"]
+    lines += [f"    stale (the name makes another change now): {n}" for n in found.stale]
+    lines += [f"    gone: {n}" for n in found.gone]
+    if prune and found.gone:
+        removed = registry.without(registry.REGISTRY, name, set(found.gone))
+        lines.append(f"    removed the {removed} gone entries from {registry.REGISTRY.name}")
+    return lines
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     # `[]` among the choices: argparse checks the empty default of nargs="*" against them.
@@ -309,6 +324,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--register", metavar="MUTANT", help="add MUTANT of the module's last run to the "
                         f"registry of equivalent mutants ({registry.REGISTRY.name}), with --reason")
     parser.add_argument("--reason", help="why no test can kill the --register'ed mutant (one line)")
+    parser.add_argument("--audit", action="store_true", help="check the registry's entries of the "
+                        "modules against their mutants now, without running a test")
+    parser.add_argument("--prune", action="store_true", help="with --audit: remove the entries whose "
+                        "mutant no longer exists")
     args = parser.parse_args(argv)
     names = list(MODULES) if args.all else args.modules
     if not names:
@@ -317,6 +336,11 @@ def main(argv: list[str] | None = None) -> int:
         if len(names) != 1 or not args.reason:
             parser.error("--register needs one module and a --reason")
         print(register(names[0], args.register, args.reason))
+        return 0
+    if args.prune and not args.audit:
+        parser.error("--prune goes with --audit")
+    if args.audit:
+        print("\n".join(line for name in names for line in audit(name, args.prune)))
         return 0
     entries = registry.load()
     lines = []

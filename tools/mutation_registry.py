@@ -29,6 +29,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 REGISTRY = Path(__file__).with_name("mutation_equivalent.toml")
+# what starts each entry in the file (entry_toml writes it so)
+TABLE = "[[equivalent]]\n"
 
 # mutmut's states that count as killed: a timeout is a mutant that hung the tests.
 KILLED = ("killed", "timeout")
@@ -105,6 +107,44 @@ def judge(module: str, status: dict[str, str], diffs: dict[str, str],
         else:
             verdicts.listed_killed[name] = entry
     return verdicts
+
+
+@dataclass
+class Audit:
+    """Every entry of one module against the module's mutants as the source is now, without a run."""
+    holding: list[str] = field(default_factory=list)   # the mutant exists with the recorded change
+    stale: list[str] = field(default_factory=list)     # the name now makes another change
+    gone: list[str] = field(default_factory=list)      # no mutant of that name any more
+
+
+def audit(module: str, diffs: dict[str, str], entries: dict[tuple[str, str], Entry]) -> Audit:
+    """Sort a module's entries by `diffs`, name -> `mutmut show` diff of every mutant of the module now.
+    A source edit renumbers a function's mutants, so entries go stale or gone between runs: this finds
+    them before a sample happens to draw them."""
+    result = Audit()
+    for (mod, name), entry in sorted(entries.items()):
+        if mod != module:
+            continue
+        if name not in diffs:
+            result.gone.append(name)
+        elif changed_lines(diffs[name]) != entry.diff:
+            result.stale.append(name)
+        else:
+            result.holding.append(name)
+    return result
+
+
+def without(path: Path, module: str, names: set[str]) -> int:
+    """Remove the named entries of `module` from the registry at `path`, leaving every other table
+    as it is written; the number removed."""
+    def named(table: str) -> bool:
+        entry = tomllib.loads(table)
+        return entry["module"] == module and entry["mutant"] in names
+
+    head, *tables = path.read_text().split(TABLE)
+    kept = [t for t in tables if not named(t)]
+    path.write_text(head + "".join(TABLE + t for t in kept))
+    return len(tables) - len(kept)
 
 
 @dataclass(frozen=True)
