@@ -157,3 +157,16 @@ def test_removing_entries_leaves_the_others_as_written(tmp_path):
     assert text == "# a header line\n" + registry.entry_toml(keep) + registry.entry_toml(
         entry(mutant="gone_1", module="checker"))
     assert set(registry.load(path)) == {("motion", "kept_1"), ("checker", "gone_1")}
+
+
+def test_an_audit_finds_where_a_stale_entrys_change_went():
+    renumbered = "st_runtime.motion.axis.xǁAxisǁ_set_period__mutmut_4"
+    elsewhere = "st_runtime.motion.axis.xǁAxisǁstep__mutmut_3"
+    now = {NAME: "-    self._dt = dt\n+    self._dt = 0", renumbered: SHOWN, elsewhere: SHOWN}
+    found = registry.audit("motion", now, entries(entry()))
+    assert found.stale == [NAME]
+    assert found.moved == {NAME: renumbered}    # the same change in another function is not it
+    holding_already = registry.audit("motion", now, entries(entry(), entry(mutant=renumbered)))
+    assert holding_already.moved == {}
+    shifted = registry.audit("motion", now, entries(entry(), entry(mutant=renumbered, diff="-a\n+b")))
+    assert shifted.moved == {NAME: renumbered}     # a renumbering moves every listed change one on

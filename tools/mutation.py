@@ -298,8 +298,9 @@ def audit(name: str, prune: bool) -> list[str]:
     found = registry.audit(name, mutant_diffs(work, all_mutant_names(work)), registry.load())
     lines = [f"{name:10s} registry: {len(found.holding)} entries hold, {len(found.stale)} stale, "
              f"{len(found.gone)} name no mutant any more"]
-    lines += [f"    stale (the name makes another change now): {n}" for n in found.stale]
-    lines += [f"    gone: {n}" for n in found.gone]
+    moved = {n: f" (its change is {found.moved[n]} now)" for n in found.moved}
+    lines += [f"    stale (the name makes another change now): {n}{moved.get(n, '')}" for n in found.stale]
+    lines += [f"    gone: {n}{moved.get(n, '')}" for n in found.gone]
     if prune and found.gone:
         removed = registry.without(registry.REGISTRY, name, set(found.gone))
         lines.append(f"    removed the {removed} gone entries from {registry.REGISTRY.name}")

@@ -115,22 +115,30 @@ class Audit:
     holding: list[str] = field(default_factory=list)   # the mutant exists with the recorded change
     stale: list[str] = field(default_factory=list)     # the name now makes another change
     gone: list[str] = field(default_factory=list)      # no mutant of that name any more
+    moved: dict[str, str] = field(default_factory=dict)  # stale or gone -> the name making its change now
 
 
 def audit(module: str, diffs: dict[str, str], entries: dict[tuple[str, str], Entry]) -> Audit:
     """Sort a module's entries by `diffs`, name -> `mutmut show` diff of every mutant of the module now.
     A source edit renumbers a function's mutants, so entries go stale or gone between runs: this finds
-    them before a sample happens to draw them."""
+    them before a sample happens to draw them.  A stale or gone entry whose change another mutant
+    of the same function (not one whose own entry holds) makes now is `moved` to it: the change is
+    the same, but whether the reason still holds in the edited function is for a person to judge."""
     result = Audit()
-    for (mod, name), entry in sorted(entries.items()):
-        if mod != module:
-            continue
+    own = {name: entry for (mod, name), entry in sorted(entries.items()) if mod == module}
+    for name, entry in own.items():
         if name not in diffs:
             result.gone.append(name)
         elif changed_lines(diffs[name]) != entry.diff:
             result.stale.append(name)
         else:
             result.holding.append(name)
+    holding = set(result.holding)
+    for name in result.stale + result.gone:
+        function = name.rpartition("__mutmut_")[0]
+        result.moved.update((name, other) for other in sorted(diffs) if other not in holding
+                            and other.rpartition("__mutmut_")[0] == function
+                            and changed_lines(diffs[other]) == own[name].diff)
     return result
 
 
