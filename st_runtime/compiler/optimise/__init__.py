@@ -111,6 +111,11 @@ states bit for bit:
   back in a `finally` around each that stores it), not once around them all:
   SP_Controller's CASE loads its FB instances and flags in the clause that
   names them.  A call runs one of those branches at most.
+* `halves` (halves.py): a CASE of at least `halves.MIN_CLAUSES` clauses with
+  integer labels and no ELSE tests `selector < P` first, P a value no clause's
+  labels lie on both sides of, and so on by halves down to groups of
+  `halves.LEAF` clauses tested in the order written: the same clause for
+  every selector, with the same charges.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -150,6 +155,7 @@ class Optimisations:
     reuse: bool = True
     charges: bool = True
     spread: bool = True
+    halves: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
