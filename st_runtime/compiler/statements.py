@@ -40,7 +40,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, ranges, reuse, stores, unguard, unroll
+from .optimise import aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, ranges, reuse, shortcut, stores, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -494,8 +494,8 @@ class BodyCompiler(ExprCompiler):
         ends = self._branches_begin()
         if len(s.branches) == 1:
             code = self.expr(s.branches[0].condition)
-            test, guarded = (code, False) if self._tested_in_place(s.branches[0].condition, code) \
-                else self.guarded_value(s, code, "None")
+            test, guarded = (shortcut.condition(self, s.branches[0].condition, code), False) \
+                if self._tested_in_place(s.branches[0].condition, code) else self.guarded_value(s, code, "None")
             o.line(f"if {test}:")
             self._branch(ends, s.branches[0].body, leads[0])
             if s.else_body:
@@ -510,7 +510,7 @@ class BodyCompiler(ExprCompiler):
         conditions = [self.expr(branch.condition) for branch in s.branches]
         if all(self._tested_in_place(b.condition, c) for b, c in zip(s.branches, conditions)):
             for i, (branch, condition) in enumerate(zip(s.branches, conditions)):   # branches.py
-                o.line(f"{'if' if i == 0 else 'elif'} {condition}:")
+                o.line(f"{'if' if i == 0 else 'elif'} {shortcut.condition(self, branch.condition, condition)}:")
                 self._branch(ends, branch.body, leads[i])
             if s.else_body:
                 o.line("else:")

@@ -116,6 +116,9 @@ states bit for bit:
   labels lie on both sides of, and so on by halves down to groups of
   `halves.LEAF` clauses tested in the order written: the same clause for
   every selector, with the same charges.
+* `shortcut` (shortcut.py): an IF condition tested in place (`branches`)
+  tests its AND and OR of BOOLs as Python's `and` and `or`: the same truth,
+  and the operand left out reads, stores and raises nothing.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -156,6 +159,7 @@ class Optimisations:
     charges: bool = True
     spread: bool = True
     halves: bool = True
+    shortcut: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
