@@ -16,7 +16,7 @@ from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.compiler.optimise import halves
 from st_runtime.controller import Controller
-from test_optimiser_equivalence import run_both, same_alone_and_with_all, snapshot
+from test_optimiser_equivalence import run_both, same_alone_and_with_all, stopped_runs
 
 ON = Optimisations()
 WITHOUT = replace(ON, halves=False)
@@ -139,14 +139,6 @@ def test_f_period_lands_on_the_same_statement_with_the_pass(budget_ns):
 
 def test_the_time_charged_and_a_stopping_fault_are_the_same():
     """stop_on_fault: S = 20 at N = 13 (7 * 13 = 91 = 3 * 23 + 22), in the eighth clause."""
-    outcomes = []
-    for optimise in (WITHOUT, ON):
-        controller = Controller(compile_program(_program(), optimise=optimise), stop_on_fault=True)
-        main = controller.add_program("Main")
-        charged = []
-        for _ in range(15):
-            controller.run(1)
-            charged.append(controller.ctx.budget)
-        outcomes.append(([(f.code, f.line, f.scan) for f in controller.faults], snapshot(main), charged))
+    outcomes = stopped_runs(_program(), 15, WITHOUT, ON)
     assert outcomes[0] == outcomes[1]
     assert outcomes[1][0] == [("F-DIV-ZERO", DIVISION, 13)]

@@ -14,7 +14,7 @@ import pytest
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.controller import Controller
-from test_optimiser_equivalence import run_both, same_alone_and_with_all, snapshot
+from test_optimiser_equivalence import run_both, same_alone_and_with_all, stopped_runs
 
 ON = Optimisations()
 WITHOUT = replace(ON, shortcut=False)
@@ -96,14 +96,6 @@ def test_f_period_lands_on_the_same_statement_with_the_pass(budget_ns):
 
 
 def test_the_time_charged_and_a_stopping_fault_are_the_same():
-    outcomes = []
-    for optimise in (WITHOUT, ON):
-        controller = Controller(compile_program(_program(), optimise=optimise), stop_on_fault=True)
-        main = controller.add_program("Main")
-        charged = []
-        for _ in range(4):
-            controller.run(1)
-            charged.append(controller.ctx.budget)
-        outcomes.append(([(f.code, f.line, f.scan) for f in controller.faults], snapshot(main), charged))
+    outcomes = stopped_runs(_program(), 4, WITHOUT, ON)
     assert outcomes[0] == outcomes[1]
     assert outcomes[1][0] == [("F-DIV-ZERO", FAULT, 1)]
