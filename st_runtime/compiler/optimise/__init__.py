@@ -119,6 +119,9 @@ states bit for bit:
 * `shortcut` (shortcut.py): an IF condition tested in place (`branches`)
   tests its AND and OR of BOOLs as Python's `and` and `or`: the same truth,
   and the operand left out reads, stores and raises nothing.
+* `finite` (reuse.py `finite`, with `reuse`): the finite test `x - x == 0.0`
+  of inline SIN, COS and TAN of a float local is a value of `reuse`: SIN(Psi)
+  and COS(Psi) of one unchanged Psi test it once.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -160,6 +163,7 @@ class Optimisations:
     spread: bool = True
     halves: bool = True
     shortcut: bool = True
+    finite: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
