@@ -77,7 +77,7 @@ def test_safe_conditions_are_tested_in_place_and_the_rest_keep_their_guard():
     source = compile_program(_program(CHAINS), optimise=ON).python_sources["MAIN"]
     plain = compile_program(_program(CHAINS), optimise=WITHOUT).python_sources["MAIN"]
     lines, plain_lines = source.splitlines(), plain.splitlines()
-    first = [i for i, line in enumerate(lines) if line.strip() == "if (self.v_EDGE & (v_STATE == 0)):"]
+    first = [i for i, line in enumerate(lines) if line.strip() == "if (self.v_EDGE and (v_STATE == 0)):"]   # shortcut
     plain_first = [i for i, line in enumerate(plain_lines) if line.strip() == "if (self.v_EDGE & (v_STATE == 0)):"]
     assert lines[first[0] + 1].strip() == "v_PATH = 1"                 # the branch itself, in place
     assert plain_lines[plain_first[0] + 1].strip().endswith(" = 0")    # without: the branch's index

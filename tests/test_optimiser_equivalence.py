@@ -68,6 +68,21 @@ def run_both(program, scans: int, budget_ns: int = 500_000, optimise: Optimisati
     return outcomes
 
 
+def stopped_runs(program, scans: int, *optimisations: Optimisations) -> list:
+    """With stop_on_fault, for each of `optimisations`: (faults (code, line, scan), Main's
+    state, the budget left after each of `scans` scans: the time charged)."""
+    outcomes = []
+    for optimise in optimisations:
+        controller = Controller(compile_program(program, optimise=optimise), stop_on_fault=True)
+        main = controller.add_program("Main")
+        charged = []
+        for _ in range(scans):
+            controller.run(1)
+            charged.append(controller.ctx.budget)
+        outcomes.append(([(f.code, f.line, f.scan) for f in controller.faults], snapshot(main), charged))
+    return outcomes
+
+
 def same_alone_and_with_all(make_program, scans: int, name: str):
     """Run `scans` scans with pass `name` alone and with every pass, each the same as with
     none; the outcome with the pass alone."""

@@ -75,7 +75,7 @@ def test_stores_in_one_branch_are_stored_back_at_its_end():
         assert f"self.{name} = {name}" not in epilogue and f"{name} = self.{name}" in prologue
     assert "self.v_PHASE = v_PHASE" in epilogue      # stored in both branches
     assert "self.v_COUNT = v_COUNT" in epilogue
-    latch = lines.index("try:", lines.index("if (self.v_ENABLE & (not self.v_PREVIOUS)):"))
+    latch = lines.index("try:", lines.index("if (self.v_ENABLE and (not self.v_PREVIOUS)):"))     # (shortcut)
     assert {"v_LATCHES = self.v_LATCHES", "v_SPARE = self.v_SPARE", "v_K = self.v_K"} == set(lines[latch - 3:latch])
     back = lines.index("finally:", latch)
     assert {"self.v_LATCHES = v_LATCHES", "self.v_SPARE = v_SPARE", "self.v_GAIN = v_GAIN",

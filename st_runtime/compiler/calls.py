@@ -371,6 +371,9 @@ class Calls:
             fast, test = _GUARDED[name]
             if name == "SQRT" and _sum_of_squares(ec, ordered[0].value):
                 text = f"{fast}({codes[0]})"        # never below zero: the wrapper would only call it
+            elif name != "SQRT" and ec.reuse is not None \
+                    and (finite := ec.reuse.finite(ordered[0].value, codes[0])) is not None:
+                text = f"({fast}({codes[0]}) if {finite} else {fn}({codes[0]}))"     # a local, tested once
             else:
                 tmp = ec.temp()
                 text = f"({fast}({tmp}) if {test.format(x=f'({tmp} := {codes[0]})', t=tmp)} else {fn}({tmp}))"

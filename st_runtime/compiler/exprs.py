@@ -27,7 +27,7 @@ from ..types import (
     string_size,
 )
 from .initial import CompileError
-from .optimise import Optimisations, absolute, fold, sets
+from .optimise import Optimisations, absolute, fold, sets, shortcut
 from .pysrc import pyliteral, pyident
 
 # Python source of the comparison/arithmetic operators that map one to one.
@@ -159,6 +159,7 @@ class ExprCompiler:
         self.unrolled: dict[str, int] = {}   # FOR variable -> its value in this unrolled copy
         self.region = None                   # optimise.cse.Region while one is compiled
         self.reuse = None                    # optimise.reuse.Reuse of a body (statements.py)
+        self.logic_parts: dict[int, tuple[str, str]] = {}   # optimise/shortcut.py
         self.plain_chains: set[int] = set()  # ids of OR/AND chains without a run for optimise/sets.py
 
     # ------------------------------------------------------------ helpers
@@ -425,6 +426,8 @@ class ExprCompiler:
             # An operand of a narrower type is seen by this wider + - *: `DintVar + (IntVar + IntVar)`.
             left, right = self.settled_narrower(e.left, left, t), self.settled_narrower(e.right, right, t)
         if op in _BIT_OPS:
+            if self.opt.shortcut:
+                shortcut.record(self, e, left, right)      # an IF condition's `and`/`or`
             return f"({left} {_BIT_OPS[op]} {right})"
         if op == "*" and elementary(t) is not None and elementary(t).kind == "time" \
                 and (is_real(lt) or is_real(rt)):

@@ -40,7 +40,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import aliases, branches, chains, charges, cse, fastpath, fold, gather, ranges, reuse, stores, unguard, unroll
+from .optimise import aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, ranges, reuse, shortcut, stores, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -494,8 +494,8 @@ class BodyCompiler(ExprCompiler):
         ends = self._branches_begin()
         if len(s.branches) == 1:
             code = self.expr(s.branches[0].condition)
-            test, guarded = (code, False) if self._tested_in_place(s.branches[0].condition, code) \
-                else self.guarded_value(s, code, "None")
+            test, guarded = (shortcut.condition(self, s.branches[0].condition, code), False) \
+                if self._tested_in_place(s.branches[0].condition, code) else self.guarded_value(s, code, "None")
             o.line(f"if {test}:")
             self._branch(ends, s.branches[0].body, leads[0])
             if s.else_body:
@@ -510,7 +510,7 @@ class BodyCompiler(ExprCompiler):
         conditions = [self.expr(branch.condition) for branch in s.branches]
         if all(self._tested_in_place(b.condition, c) for b, c in zip(s.branches, conditions)):
             for i, (branch, condition) in enumerate(zip(s.branches, conditions)):   # branches.py
-                o.line(f"{'if' if i == 0 else 'elif'} {condition}:")
+                o.line(f"{'if' if i == 0 else 'elif'} {shortcut.condition(self, branch.condition, condition)}:")
                 self._branch(ends, branch.body, leads[i])
             if s.else_body:
                 o.line("else:")
@@ -575,33 +575,54 @@ class BodyCompiler(ExprCompiler):
         self.out.indent()
         t = self.ty(s.selector)
         ends = self._branches_begin()
-        first = True
         leads, _ = self._case_entries(s)     # labels compared to reach a clause, charged by that clause
-        for index, clause in enumerate(s.clauses):
-            singles: list[str] = []
-            tests: list[str] = []
-            for label in clause.labels:
-                if isinstance(label, ast.CaseRange):
-                    lo = self.literal(self._label(label.lo), t)
-                    hi = self.literal(self._label(label.hi), t)
-                    tests.append(f"{lo} <= {selector} <= {hi}")
-                else:
-                    singles.append(self.literal(self._label(label), t))
-            if len(singles) == 1:
-                tests.insert(0, f"{selector} == {singles[0]}")
-            elif singles:
-                tests.insert(0, f"{selector} in ({', '.join(singles)},)")
-            self.out.line(f"{'if' if first else 'elif'} {' or '.join(tests) or 'False'}:")
-            first = False
-            self._branch(ends, clause.body, leads[index])
+        tests = [self._clause_test(clause, selector, t) for clause in s.clauses]
+        dispatch: halves.Split | list[int] = list(range(len(s.clauses)))
+        if self.opt.halves and not s.else_body and halves.selector_is_integer(t):
+            extent = halves.spans([halves.label_spans(self, clause, t) for clause in s.clauses])
+            if extent is not None:
+                dispatch = halves.tree(extent)
+        self._dispatch(dispatch, selector, tests, s.clauses, ends, leads)
         if s.else_body:
-            if first:
+            if not s.clauses:
                 self.out.line("if True:")
             else:
                 self.out.line("else:")
             self._branch(ends, s.else_body, leads[-1])
         self._branches_end(ends)
         self.out.dedent()
+
+    def _clause_test(self, clause, selector: str, t) -> str:
+        """The Python test of a CASE clause's labels."""
+        singles: list[str] = []
+        tests: list[str] = []
+        for label in clause.labels:
+            if isinstance(label, ast.CaseRange):
+                lo = self.literal(self._label(label.lo), t)
+                hi = self.literal(self._label(label.hi), t)
+                tests.append(f"{lo} <= {selector} <= {hi}")
+            else:
+                singles.append(self.literal(self._label(label), t))
+        if len(singles) == 1:
+            tests.insert(0, f"{selector} == {singles[0]}")
+        elif singles:
+            tests.insert(0, f"{selector} in ({', '.join(singles)},)")
+        return ' or '.join(tests) or 'False'
+
+    def _dispatch(self, node, selector: str, tests: list[str], clauses, ends, leads) -> None:
+        """The clauses of `node` (optimise/halves.py): in a row, or `selector < pivot` first."""
+        if isinstance(node, halves.Split):
+            self.out.line(f"if {selector} < {node.pivot}:")
+            for index, side in enumerate((node.below, node.above)):
+                if index:
+                    self.out.line("else:")
+                self.out.indent()
+                self._dispatch(side, selector, tests, clauses, ends, leads)
+                self.out.dedent()
+            return
+        for position, index in enumerate(node):
+            self.out.line(f"{'elif' if position else 'if'} {tests[index]}:")
+            self._branch(ends, clauses[index].body, leads[index])
 
     def _label(self, label):
         value = self.constant_of(label)

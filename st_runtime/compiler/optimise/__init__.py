@@ -111,6 +111,17 @@ states bit for bit:
   back in a `finally` around each that stores it), not once around them all:
   SP_Controller's CASE loads its FB instances and flags in the clause that
   names them.  A call runs one of those branches at most.
+* `halves` (halves.py): a CASE of at least `halves.MIN_CLAUSES` clauses with
+  integer labels and no ELSE tests `selector < P` first, P a value no clause's
+  labels lie on both sides of, and so on by halves down to groups of
+  `halves.LEAF` clauses tested in the order written: the same clause for
+  every selector, with the same charges.
+* `shortcut` (shortcut.py): an IF condition tested in place (`branches`)
+  tests its AND and OR of BOOLs as Python's `and` and `or`: the same truth,
+  and the operand left out reads, stores and raises nothing.
+* `finite` (reuse.py `finite`, with `reuse`): the finite test `x - x == 0.0`
+  of inline SIN, COS and TAN of a float local is a value of `reuse`: SIN(Psi)
+  and COS(Psi) of one unchanged Psi test it once.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -150,6 +161,9 @@ class Optimisations:
     reuse: bool = True
     charges: bool = True
     spread: bool = True
+    halves: bool = True
+    shortcut: bool = True
+    finite: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

@@ -47,6 +47,7 @@ _TOKEN = re.compile("\x03(\\d+)\x03")
 _MARKER = re.compile("^( *)\x04([\\d,]+)\x04$", re.M)
 _NUMBER = re.compile(r"-?\(?-?\d[\d.e+-]*\)?")
 _VARIABLE = re.compile(r"(?:self\.|_G\.)?(v_\w+)")
+_LOCAL = re.compile(r"v_\w+")
 _ELEMENT = re.compile(r"(v_\w+)\[\d+\]")
 _PLAIN_KINDS = {"VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP", "RETURN", "VAR_GLOBAL", "VAR_EXTERNAL"}
 _MATH = {"SIN", "COS", "TAN", "SQRT"}
@@ -232,6 +233,18 @@ class Reuse:
             return text
         deps = self.operand(arg, code)
         return text if deps is None else self.value(f"{name}({code})", text, deps)
+
+    def finite(self, arg, code: str) -> str | None:
+        """`code - code == 0.0` of a float local (finite: an infinity or NaN gives NaN), as a
+        value: inline SIN, COS and TAN of one unchanged local test it once (`finite`)."""
+        if not (self.compiler.opt.finite and self.active() and _LOCAL.fullmatch(code)
+                and _is_float(self.compiler.ty(arg))):
+            return None
+        deps = self.operand(arg, code)
+        if deps is None:
+            return None
+        text = f"({code} - {code} == 0.0)"
+        return self.value(text, text, deps)
 
     # ------------------------------------------------------------ resolve
 

@@ -1,0 +1,101 @@
+"""The `shortcut` pass (st_runtime/compiler/optimise/shortcut.py): an IF condition tested in
+place tests its AND and OR of BOOLs as Python's `and` and `or`.  Nothing a program can see
+changes: the branch each scan takes, results, faults (code, file, line, column, scan),
+instance states and the NJ time charged are equal bit for bit with the pass on and off, also
+when F-PERIOD cuts the scan or a fault stops the run.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import pytest
+
+from st_runtime import api
+from st_runtime.compiler import Optimisations, compile_program
+from st_runtime.controller import Controller
+from test_optimiser_equivalence import run_both, same_alone_and_with_all, stopped_runs
+
+ON = Optimisations()
+WITHOUT = replace(ON, shortcut=False)
+
+EDGES = """
+PROGRAM Main
+VAR
+    N : INT; A, B, C, D : BOOL; W : WORD; K : INT; Zero : INT;
+    Both, Any, Mixed, Chain, Words, Faulting : INT;
+    Flags : ARRAY[1..3] OF BOOL;
+END_VAR
+N := N + 1;
+A := N MOD 2 = 1; B := N MOD 3 = 0; C := N MOD 5 < 2; D := N > 6;
+Flags[1] := A; Flags[2] := B; Flags[3] := NOT C;
+W := INT_TO_WORD(N);
+K := N MOD 4;
+IF A AND B THEN Both := Both + 1; END_IF;
+IF A OR B OR Flags[3] THEN Any := Any + 1; ELSE Any := Any - 1; END_IF;
+IF (A OR B) AND NOT (C AND D) THEN Mixed := Mixed + 1; END_IF;
+IF K = 0 AND A THEN Chain := 1;
+ELSIF K = 1 OR (B AND C) THEN Chain := 2;
+ELSIF Flags[1] & Flags[2] THEN Chain := 3;
+ELSE Chain := 4;
+END_IF;
+IF (W AND WORD#16#3) = WORD#16#2 OR (W OR WORD#16#1) = WORD#16#7 THEN Words := Words + 1; END_IF;
+IF A AND 10 / Zero > 1 THEN Faulting := Faulting + 1; END_IF;    (* can fault: left as it was *)
+END_PROGRAM
+"""
+
+FAULT = EDGES.split("\n").index("IF A AND 10 / Zero > 1 THEN Faulting := Faulting + 1; END_IF;    (* can fault: left as it was *)") + 1
+
+
+def _program():
+    return api.load_text(EDGES).program
+
+
+def test_conditions_that_cannot_fault_use_and_or():
+    source = compile_program(_program(), optimise=ON).python_sources["MAIN"]
+    plain = compile_program(_program(), optimise=WITHOUT).python_sources["MAIN"]
+    assert "if (v_A and v_B):" in source and "if (v_A & v_B):" in plain
+    assert "if ((v_A or v_B) or v_FLAGS[2]):" in source
+    assert "elif (v_FLAGS[0] and v_FLAGS[1]):" in source          # `&` is AND too
+    assert "and (not (v_C & " in source                          # (under NOT: as it was)
+    assert " and " not in plain and " or " not in plain
+    # WORD AND / OR stay bit operations; a condition that can fault keeps its `&`
+    assert "& 3)" in source and "| 1)" in source
+    fault_line = [line for line in source.splitlines() if "_idiv" in line]
+    assert fault_line and all(" and " not in line for line in fault_line)
+
+
+def test_each_scan_takes_the_branch_worked_by_hand():
+    controller = Controller(compile_program(_program(), optimise=ON))
+    main = controller.add_program("Main")
+    both = any_ = mixed = words = 0
+    for n in range(1, 31):
+        controller.run(1)
+        a, b, c, d = n % 2 == 1, n % 3 == 0, n % 5 < 2, n > 6
+        both += a and b
+        any_ += 1 if (a or b or not c) else -1
+        mixed += (a or b) and not (c and d)
+        words += (n & 3) == 2 or (n | 1) == 7
+        k = n % 4
+        chain = 1 if (k == 0 and a) else 2 if (k == 1 or (b and c)) else 3 if (a and b) else 4
+        assert (main.v_BOTH, main.v_ANY, main.v_MIXED, main.v_CHAIN, main.v_WORDS) == (both, any_, mixed, chain, words)
+    assert main.v_FAULTING == 0
+    assert {(f.code, f.line) for f in controller.faults} == {("F-DIV-ZERO", FAULT)}
+    assert len(controller.faults) == 30          # ST evaluates both operands: every scan divides
+
+
+def test_the_scans_see_the_same_with_and_without_the_pass():
+    faults = same_alone_and_with_all(_program, 20, "shortcut")[0]
+    assert {code for code, *_ in faults} == {"F-DIV-ZERO"}
+
+
+@pytest.mark.parametrize("budget_ns", [200, 500, 900, 1_500, 3_000])
+def test_f_period_lands_on_the_same_statement_with_the_pass(budget_ns):
+    off, on = run_both(_program(), 12, budget_ns, optimise=Optimisations.only("branches", "shortcut"))
+    assert on == off
+
+
+def test_the_time_charged_and_a_stopping_fault_are_the_same():
+    outcomes = stopped_runs(_program(), 4, WITHOUT, ON)
+    assert outcomes[0] == outcomes[1]
+    assert outcomes[1][0] == [("F-DIV-ZERO", FAULT, 1)]
