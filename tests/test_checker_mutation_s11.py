@@ -257,3 +257,33 @@ def test_a_shift_of_an_integer_suggests_the_bit_string_of_its_width(int_name, bi
     assert (code, line, col) == ("E-TYPE-004", 5, 10)
     assert message == (f"SHL: expected a bit string BYTE, WORD, DWORD or LWORD, found {int_name}; "
                        f"convert explicitly with {int_name}_TO_{bits_name}")
+
+
+def test_a_time_initial_value_is_suggested_as_a_time_literal():
+    """W-NJ-008's way out is the literal to write in Sysmac Studio's variable table: for
+    a TIME that is a TIME literal (3rd ed. table 8), T#10s / 4 = T#2s500ms, not the
+    2500000000 nanoseconds the value is kept as; TIME / a REAL rounds to the ns, to
+    even: T#10ns / 4.0 = T#2ns (2.5 ns), T#14ns / 4.0 = T#4ns (3.5 ns)."""
+    text = program("    u : TIME := T#10s / 4; v : TIME := T#10ns / 4.0; w : TIME := T#14ns / 4.0;", "")
+    hints = [message.rpartition(": write ")[2] for _, _, _, message in diagnostics(text)]
+    assert hints == ["T#2s500ms (* T#10s / 4 *)", "T#2ns (* T#10ns / 4.0 *)", "T#4ns (* T#14ns / 4.0 *)"]
+
+
+# ------------------------------------------------------------ constant folding of every comparison, both sides
+
+COMPARED = [("=", (False, True, False)), ("<>", (True, False, True)), ("<", (True, False, False)),
+            (">", (False, False, True)), ("<=", (True, True, False)), (">=", (False, True, True))]
+
+
+@pytest.mark.parametrize("op, expected", COMPARED)
+def test_every_comparison_of_constants_is_a_constant(op, expected):
+    """An initial value is a constant expression (3rd ed. 6.5.1.5, E-DECL-008 otherwise),
+    and a comparison of constants is one: 2 op 3, 3 op 3 and 3 op 2, by hand, for each
+    of the six comparisons (3rd ed. table 29), of untyped and of typed literals."""
+    decls = (f"    a : BOOL := 2 {op} 3; b : BOOL := 3 {op} 3; c : BOOL := 3 {op} 2;\n"
+             f"    d : BOOL := INT#2 {op} INT#3; e : BOOL := INT#3 {op} INT#3; f : BOOL := INT#3 {op} INT#2;")
+    text = program(decls, "")
+    assert {d[0] for d in diagnostics(text)} == {"W-NJ-008"}    # not literals, but constant
+    main = after_one_scan(text)
+    assert (main["a"], main["b"], main["c"]) == expected
+    assert (main["d"], main["e"], main["f"]) == expected
