@@ -287,3 +287,10 @@ def test_every_comparison_of_constants_is_a_constant(op, expected):
     main = after_one_scan(text)
     assert (main["a"], main["b"], main["c"]) == expected
     assert (main["d"], main["e"], main["f"]) == expected
+
+
+@pytest.mark.parametrize("access", ["nope^", "nope.m", "nope[1]", "nope.%X0"])
+def test_an_access_to_an_undeclared_name_is_one_diagnostic(access):
+    """One root cause, one diagnostic (the reject corpus's contract, test_checker_corpus): a
+    dereference, member, index or bit access of an undeclared name reports the name only."""
+    assert only(program("    x : INT;", f"x := {access};")) == ("E-DECL-001", 5, 6, "undeclared name 'nope'")
