@@ -24,6 +24,7 @@ from __future__ import annotations
 from .. import ast
 from .. import types as T
 from ..printer import format_expr as _text
+from ..values import FORMATTERS
 from .context import BUILTIN_FILE, Context
 
 _LITERALS = (ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral, ast.StringLiteral,
@@ -122,7 +123,8 @@ def _initial_value(ctx: Context, name: str, init) -> None:
     if _is_literal(ctx, init, integer_only=False):
         return
     value = ctx.program.constants.get(id(init))
-    hint = f": write {_st_value(value)} (* {_text(init)} *)" if value is not None else ""
+    kind = getattr(ctx.program.expr_types.get(id(init)), "kind", None)
+    hint = f": write {_st_value(value, kind)} (* {_text(init)} *)" if value is not None else ""
     ctx.nj_rule("008", f"initial value of '{name}': '{_text(init)}' is not a literal; a "
                 f"variable table in Sysmac Studio takes literals{hint}", _start(init))
 
@@ -143,11 +145,13 @@ def _is_literal(ctx: Context, e, integer_only: bool) -> bool:
     return not integer_only and isinstance(e, _LITERALS)
 
 
-def _st_value(value) -> str:
+def _st_value(value, kind: str | None) -> str:
     if isinstance(value, bool):
         return "TRUE" if value else "FALSE"
     if isinstance(value, float):
         return repr(value)
+    if kind in FORMATTERS:      # a TIME or date is kept in ns: show its literal
+        return FORMATTERS[kind](value)
     return str(value)
 
 
