@@ -1,0 +1,104 @@
+"""Compiler behaviours that survivors of the mutation sample of seed 26 left open, pinned down
+(issue 16, session 11; docs/mutation.md, "st_runtime/compiler/", "Session 11").
+
+Each test loads ST through the public entry point and takes its expected values from
+IEC 61131-3, the CODESYS rules the codesys dialect follows, OMRON's manuals as docs/nj501.md
+cites them, NumPy, or a hand calculation stated beside it.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from test_compiler_mutants import run
+
+
+# ------------------------------------------- a bit written into a negative signed integer
+
+@pytest.mark.parametrize("dialect", ["codesys", "nj"])   # (bit access is not IEC: E-DIALECT-001)
+def test_a_bit_written_into_a_negative_signed_integer_keeps_its_range(dialect: str):
+    # Two's complement, by hand: -1 is all ones; clearing bit 0 gives -2, clearing the sign bit
+    # gives the type's maximum (INT 32767, DINT 2**31 - 1, LINT 2**63 - 1); SINT -128 is
+    # 16#80, and setting bit 0 gives 16#81 = -127. The result stays in the type's range.
+    main, plc = run("""PROGRAM Main
+VAR s : SINT := -128; i : INT := -1; j : INT := -1; d : DINT := -1; l : LINT := -1; END_VAR
+s.0 := TRUE;
+i.0 := FALSE;
+j.15 := FALSE;
+d.31 := FALSE;
+l.0 := FALSE;
+END_PROGRAM""", dialect=dialect)
+    assert [main[n] for n in "sijdl"] == [-127, -2, 32767, 2**31 - 1, -2]
+    assert plc.faults == []
+
+
+# ------------------------------------- an INT sum passed to a wider input, under each dialect
+
+ARGUMENT = """FUNCTION Wide : DINT
+VAR_INPUT d : DINT; END_VAR
+Wide := d;
+END_FUNCTION
+FUNCTION Real64 : LREAL
+VAR_INPUT x : LREAL; END_VAR
+Real64 := x;
+END_FUNCTION
+FUNCTION_BLOCK Keep
+VAR_INPUT d : DINT; END_VAR
+VAR_OUTPUT q : DINT; END_VAR
+q := d;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR i1 : INT := 32767; i2 : INT := 1; a : DINT; b : LREAL; c : DINT; k : Keep; END_VAR
+a := Wide(i1 + i2);
+b := Real64(i1 + i2);
+k(d := i1 + i2);
+c := k.q;
+END_PROGRAM"""
+
+
+@pytest.mark.parametrize("dialect, total", [("iec", 32768), ("codesys", 32768), ("nj", -32768)])
+def test_an_int_sum_passed_to_a_wider_input_overflows_first_under_nj(dialect: str, total: int):
+    # W501 6-5-3 "Implicit Casts" (docs/nj501.md, "Integer overflow inside an expression"):
+    # under nj the INT sum 32767 + 1 overflows to -32768 before it is cast to the wider
+    # DINT or LREAL input; under iec and codesys it stays exact, 32768.
+    main, plc = run(ARGUMENT, dialect=dialect)
+    assert (main["a"], main["b"], main["c"], plc.faults) == (total, float(total), total, [])
+
+
+# --------------------------------- a standard function's REAL result, under each dialect
+
+@pytest.mark.parametrize("dialect", ["iec", "codesys", "nj"])
+def test_a_standard_function_of_real_is_rounded_where_computed_under_nj(dialect: str):
+    # docs/nj501.md, "REAL arithmetic in single precision": under nj a standard function with
+    # a REAL result (SQRT, ...) is rounded to float32 where it is computed, so an LREAL
+    # receives the single-precision root; elsewhere the double result is stored as it is.
+    main, plc = run("""PROGRAM Main
+VAR r : REAL := 2.0; l : LREAL; END_VAR
+l := SQRT(r);
+END_PROGRAM""", dialect=dialect)
+    single = float(np.sqrt(np.float32(2.0)))          # 1.4142135381698608
+    assert main["l"] == (single if dialect == "nj" else math.sqrt(2.0))
+    assert plc.faults == []
+
+
+# -------------------------------------------- a TIME sum in a FUNCTION's own local variable
+
+def test_a_time_sum_in_a_function_local_wraps_past_64_bits():
+    # TIME is signed 64-bit nanoseconds and wraps to its width when stored (README,
+    # "Semantics"). A FUNCTION's locals are Python locals whose ranges the compiler follows
+    # from the constants stored into them: T#106751D is 9223286400000000000 ns, twice that is past 2**63 - 1 and wraps to
+    # 18446572800000000000 - 2**64 = -171273709551616 ns, a negative duration.
+    main, plc = run("""FUNCTION Twice : BOOL
+VAR t : TIME; END_VAR
+t := T#106751D;
+t := t + t;
+Twice := t < T#0S;
+END_FUNCTION
+PROGRAM Main
+VAR neg : BOOL; END_VAR
+neg := Twice();
+END_PROGRAM""")
+    assert (main["neg"], plc.faults) == (True, [])
