@@ -102,3 +102,59 @@ VAR neg : BOOL; END_VAR
 neg := Twice();
 END_PROGRAM""")
     assert (main["neg"], plc.faults) == (True, [])
+
+
+# ------------------------------------------------------- the estimated cost of unary operators
+
+@pytest.mark.parametrize("decls, body, units", [
+    # docs/nj501.md's weights: a negation or NOT of an integer, bit string or BOOL is one
+    # int_op; a REAL/LREAL negation costs as a REAL addition (real_add); load a, store x
+    ("a : INT := 3; x : INT;", "x := -a;", lambda w: w["load"] + w["int_op"] + w["store"]),
+    ("a : WORD := 3; x : WORD;", "x := NOT a;", lambda w: w["load"] + w["int_op"] + w["store"]),
+    ("a : BOOL; x : BOOL;", "x := NOT a;", lambda w: w["load"] + w["int_op"] + w["store"]),
+    ("a : REAL := 3.0; x : REAL;", "x := -a;", lambda w: w["load"] + w["real_add"] + w["store"]),
+    ("a : LREAL := 3.0; x : LREAL;", "x := -a;", lambda w: w["load"] + w["real_add"] + w["store"]),
+], ids=["neg-int", "not-word", "not-bool", "neg-real", "neg-lreal"])
+def test_a_unary_operator_costs_its_operand_and_its_operation(decls: str, body: str, units):
+    from st_runtime.compiler.cost import WEIGHTS
+    from test_compiler_mutants import _ps, _scan_ps
+
+    assert _scan_ps(f"PROGRAM Main\nVAR {decls} END_VAR\n{body}\nEND_PROGRAM\n") == _ps(units(WEIGHTS))
+
+
+def test_an_aggregate_argument_at_a_subscript_costs_its_subscript():
+    # A structure passed by value costs one `argument` per element (three here) and locating
+    # it: a plain variable is located for free, an array element costs its subscript (load i,
+    # one `index`). The two calls differ by exactly that.
+    from st_runtime.compiler.cost import WEIGHTS
+    from test_compiler_mutants import _ps, _scan_ps
+
+    def scan(argument: str) -> int:
+        return _scan_ps(f"""TYPE P : STRUCT a : INT; b : INT; c : INT; END_STRUCT END_TYPE
+FUNCTION F : INT
+VAR_INPUT p : P; END_VAR
+F := p.a;
+END_FUNCTION
+PROGRAM Main
+VAR ps : ARRAY[1..2] OF P; q : P; i : INT := 2; x : INT; END_VAR
+x := F({argument});
+END_PROGRAM
+""")
+
+    assert scan("ps[i]") - scan("q") == _ps(WEIGHTS["load"] + WEIGHTS["index"])
+
+
+# ---------------------------------------------- a store through a reference ends reused values
+
+@pytest.mark.parametrize("dialect", ["iec", "codesys"])
+def test_a_store_through_a_reference_ends_a_reused_float_value(dialect: str):
+    # r points at x; `r^ := 5.0` changes x, so the second `x + 1.0` is 6.0, not the 2.0 the
+    # first computed (IEC 61131-3 references: a dereference designates the variable itself).
+    main, plc = run("""PROGRAM Main
+VAR x : LREAL := 1.0; r : REF_TO LREAL; a : LREAL; b : LREAL; END_VAR
+r := REF(x);
+a := x + 1.0;
+r^ := 5.0;
+b := x + 1.0;
+END_PROGRAM""", dialect=dialect)
+    assert (main["a"], main["b"], plc.faults) == (2.0, 6.0, [])
