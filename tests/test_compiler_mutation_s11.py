@@ -158,3 +158,19 @@ r^ := 5.0;
 b := x + 1.0;
 END_PROGRAM""", dialect=dialect)
     assert (main["a"], main["b"], plc.faults) == (2.0, 6.0, [])
+
+
+# -------------------------------------------- a REAL divided by a constant zero, not folded
+
+@pytest.mark.parametrize("t", ["REAL", "LREAL"])
+def test_a_real_divided_by_a_constant_zero_follows_ieee_754(t: str):
+    # The runtime divides REAL/LREAL as IEEE 754 does (values.real_div; the checker folds
+    # 1.0 / 0.0 to +inf "as at run time"): a finite non-zero dividend over zero gives an
+    # infinity of the dividend's sign, 0.0 / 0.0 a NaN (which is not equal to itself); no fault.
+    main, plc = run(f"""PROGRAM Main
+VAR p : {t} := 1.0; n : {t} := -1.0; z : {t}; up : BOOL; down : BOOL; nan : BOOL; END_VAR
+up := p / 0.0 > 1.0E38;
+down := n / 0.0 < -1.0E38;
+nan := z / 0.0 <> z / 0.0;
+END_PROGRAM""")
+    assert (main["up"], main["down"], main["nan"], plc.faults) == (True, True, True, [])
