@@ -174,3 +174,40 @@ down := n / 0.0 < -1.0E38;
 nan := z / 0.0 <> z / 0.0;
 END_PROGRAM""")
     assert (main["up"], main["down"], main["nan"], plc.faults) == (True, True, True, [])
+
+
+# ------------------------------------------- a value written to a PROPERTY takes its type
+
+def test_a_value_written_to_a_property_is_converted_to_the_propertys_type():
+    # CODESYS dialect: `B.Value := r * 3.0` calls the SET accessor with the product converted
+    # to the PROPERTY's type, as an assignment to a variable of that type would. CODESYS
+    # computes REAL intermediate results in double precision and rounds them when stored
+    # (docs/nj501.md, "REAL arithmetic in single precision"): float32(float32(0.1) * 3.0) by
+    # NumPy; an INT 32767 + 1 wraps to -32768 (two's complement, INT's 16 bits).
+    main, plc = run("""FUNCTION_BLOCK Box
+VAR Raw : REAL; Count : INT; END_VAR
+PROPERTY Value : REAL
+GET
+    Value := Raw;
+END_GET
+SET
+    Raw := Value;
+END_SET
+END_PROPERTY
+PROPERTY Items : INT
+GET
+    Items := Count;
+END_GET
+SET
+    Count := Items;
+END_SET
+END_PROPERTY
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR B : Box; r : REAL := 0.1; back : LREAL; i : INT := 32767; n : DINT; END_VAR
+B.Value := r * 3.0;
+back := B.Value;
+B.Items := i + 1;
+n := B.Items;
+END_PROGRAM""", dialect="codesys")
+    assert (main["back"], main["n"], plc.faults) == (float(np.float32(np.float64(np.float32(0.1)) * 3.0)), -32768, [])
