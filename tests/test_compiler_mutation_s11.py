@@ -211,3 +211,4 @@ B.Items := i + 1;
 n := B.Items;
 END_PROGRAM""", dialect="codesys")
     assert (main["back"], main["n"], plc.faults) == (float(np.float32(np.float64(np.float32(0.1)) * 3.0)), -32768, [])
+
