@@ -212,3 +212,27 @@ n := B.Items;
 END_PROGRAM""", dialect="codesys")
     assert (main["back"], main["n"], plc.faults) == (float(np.float32(np.float64(np.float32(0.1)) * 3.0)), -32768, [])
 
+
+
+# --------------------------- a FOR variable that is an in-out aliasing an element the body reads
+
+@pytest.mark.parametrize("dialect", ["iec", "codesys", "nj"])
+def test_a_for_variable_passed_as_an_element_of_the_array_the_loop_reads(dialect: str):
+    # k is an in-out bound to a[1] and arr to a itself (IEC 61131-3: an in-out is the caller's
+    # variable), so each `k := ...` of the FOR changes arr[1]: iteration 1 reads
+    # 1 + 7 * 1 = 8, iteration 2 reads 2 + 7 = 9, r = 17; k ends one step past its end
+    # value, 3 (FOR increments before its end test), which a[1] holds afterwards.
+    main, plc = run("""FUNCTION F : INT
+VAR_IN_OUT k : INT; arr : ARRAY[1..8] OF INT; END_VAR
+VAR s : INT; END_VAR
+FOR k := 1 TO 2 DO
+    s := s + arr[1] + arr[2] + arr[3] + arr[4] + arr[5] + arr[6] + arr[7] + arr[8];
+END_FOR;
+F := s;
+END_FUNCTION
+PROGRAM Main
+VAR a : ARRAY[1..8] OF INT := [0, 1, 1, 1, 1, 1, 1, 1]; r : INT; last : INT; END_VAR
+r := F(k := a[1], arr := a);
+last := a[1];
+END_PROGRAM""", dialect=dialect)
+    assert (main["r"], main["last"], plc.faults) == (17, 3, [])
