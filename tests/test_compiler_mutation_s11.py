@@ -236,3 +236,21 @@ r := F(k := a[1], arr := a);
 last := a[1];
 END_PROGRAM""", dialect=dialect)
     assert (main["r"], main["last"], plc.faults) == (17, 3, [])
+
+
+# --------------------------------------------- a variable of a named type takes its default
+
+def test_a_variable_of_a_named_type_takes_the_types_initial_value():
+    # IEC 61131-3 (derived data types): a variable, a structure member or an array element
+    # declared with a derived type and no initial value of its own starts with the type's;
+    # one with its own keeps its own.
+    main, plc = run("""TYPE Level : INT := 42; END_TYPE
+TYPE Gain : LREAL := 2.5; END_TYPE
+TYPE Pair : STRUCT m : Level; n : Gain; END_STRUCT END_TYPE
+PROGRAM Main
+VAR a : Level; b : Level := 7; g : Gain; p : Pair; arr : ARRAY[1..2] OF Level;
+    x : INT; y : INT; z : LREAL; pm : INT; pn : LREAL; e : INT; END_VAR
+x := a; y := b; z := g; pm := p.m; pn := p.n; e := arr[2];
+END_PROGRAM""")
+    assert (main["x"], main["y"], main["z"], plc.faults) == (42, 7, 2.5, [])
+    assert (main["pm"], main["pn"], main["e"]) == (42, 2.5, 42)
