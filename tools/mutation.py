@@ -151,9 +151,9 @@ SETTINGS: dict[str, dict[str, float | str]] = {
 # each, 190 of the selection's 245 s in mutmut's stats) made every survivor cost
 # 4-10 minutes under load, and a sample of 150 never finished (seed 25: 64 run).
 # Each runs whole programs (FK solves, the study's scan times, loads in a row)
-# through every pass: a mutant they alone would kill is a survivor here, judged
-# by hand with them (docs/mutation.md, compiler, session 11), so the score is a
-# lower bound of the whole selection's.
+# through every pass: a mutant only they would kill is a survivor here, judged
+# by hand like the others, so the score is a lower bound of the whole
+# selection's (docs/mutation.md, compiler, session 11).
 DESELECTED: dict[str, list[str]] = {
     "compiler": [
         "tests/test_prelude_sharing.py::test_loads_in_a_row_do_not_leak_into_each_other",
