@@ -13,7 +13,8 @@ import math
 import numpy as np
 import pytest
 
-from test_compiler_mutants import run
+from st_runtime.api import load_text
+from test_compiler_mutants import _Context, run
 
 
 # ------------------------------------------- a bit written into a negative signed integer
@@ -254,3 +255,26 @@ x := a; y := b; z := g; pm := p.m; pn := p.n; e := arr[2];
 END_PROGRAM""")
     assert (main["x"], main["y"], main["z"], plc.faults) == (42, 7, 2.5, [])
     assert (main["pm"], main["pn"], main["e"]) == (42, 2.5, 42)
+
+
+# ------------------------- the exact path of a CSE region, taken when an in-out is unconnected
+
+def test_the_exact_path_of_a_region_checks_indices_from_the_bodys_start():
+    # A body with eight reads of io at literal indices is compiled twice: with the reads made
+    # once, and as written, which runs when a read faults. The checker requires io at every
+    # call, so only a direct run of the body leaves it unconnected (as in
+    # test_compiler_mutants). Then the body runs as written from its start: x is still -1,
+    # outside b's bounds 0..1, so `y := b[x]` is F-INDEX (line 4) before the read of io is
+    # F-NULL-REF (line 6); `x := 1` later in the body does not make b[x] safe.
+    project = load_text("""FUNCTION_BLOCK F
+VAR_IN_OUT io : ARRAY[1..8] OF INT; END_VAR
+VAR x : INT := -1; y : INT; s : INT; b : ARRAY[0..1] OF INT := [5, 7]; END_VAR
+y := b[x];
+x := 1;
+s := io[1] + io[2] + io[3] + io[4] + io[5] + io[6] + io[7] + io[8] + x + x + y + y + y;
+s := s + s + s;
+END_FUNCTION_BLOCK
+PROGRAM Main VAR f : F; a : ARRAY[1..8] OF INT; END_VAR f(io := a); END_PROGRAM""", "m.st")
+    fb, context = project.compiled.new("F"), _Context()
+    type(fb).execute(fb, context)
+    assert [(code, line) for code, _, line in context.faults] == [("F-INDEX", 4), ("F-NULL-REF", 6)]
