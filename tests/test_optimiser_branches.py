@@ -16,7 +16,7 @@ import pytest
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.compiler.optimise.branches import code_cannot_fault
-from test_optimiser_equivalence import _Context, run_both, snapshot
+from test_optimiser_equivalence import _Context, compiled_lines, run_both, snapshot
 
 ON = Optimisations()
 WITHOUT = replace(ON, branches=False)
@@ -164,7 +164,7 @@ def test_a_variable_used_in_one_branch_is_loaded_there():
     lines = [line.strip() for line in source.splitlines()]
     prologue = lines[1:lines.index("_spent = 0")]
     assert "v_BOTH = self.v_BOTH" in prologue                     # used in both branches
-    spread = [line.strip() for line in compile_program(_program(COLD), optimise=ON).python_sources["MOVER"].splitlines()]
+    spread = compiled_lines(_program(COLD), "MOVER", ON)
     assert "v_BOTH = self.v_BOTH" not in spread[1:spread.index("_spent = 0")]
     assert spread.count("v_BOTH = self.v_BOTH") == 2              # (spread: in each branch)
     assert "v_TABLE = self.v_TABLE" not in prologue and "v_GAIN = self.v_GAIN" not in prologue

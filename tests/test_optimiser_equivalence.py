@@ -68,6 +68,11 @@ def run_both(program, scans: int, budget_ns: int = 500_000, optimise: Optimisati
     return outcomes
 
 
+def compiled_lines(program, pou: str, optimise: Optimisations) -> list[str]:
+    """The lines of `pou`'s generated Python, stripped: what the pass tests read."""
+    return [line.strip() for line in compile_program(program, optimise=optimise).python_sources[pou].splitlines()]
+
+
 def stopped_runs(program, scans: int, *optimisations: Optimisations) -> list:
     """With stop_on_fault, for each of `optimisations`: (faults (code, line, scan), Main's
     state, the budget left after each of `scans` scans: the time charged)."""

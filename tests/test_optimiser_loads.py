@@ -15,7 +15,7 @@ import pytest
 
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
-from test_optimiser_equivalence import _Context, run_both, same_alone_and_with_all, snapshot
+from test_optimiser_equivalence import _Context, compiled_lines, run_both, same_alone_and_with_all, snapshot
 
 ON = Optimisations()
 
@@ -106,7 +106,7 @@ END_PROGRAM
 
 def test_a_variable_set_before_it_is_read_is_not_loaded():
     program = api.load_text(ROTATION).program
-    lines = [line.strip() for line in compile_program(program, optimise=ON).python_sources["ROTATE"].splitlines()]
+    lines = compiled_lines(program, "ROTATE", ON)
     prologue = lines[1:lines.index("_spent = 0")]
     assert "v_C = self.v_C" not in prologue and "v_S = self.v_S" not in prologue
     assert {"v_N = self.v_N", "v_X = self.v_X"} <= set(prologue)     # X: set after what can raise
@@ -137,7 +137,7 @@ END_PROGRAM
 
 def test_array_copies_between_owned_lists_need_no_guard():
     program = api.load_text(COPIES).program
-    lines = [line.strip() for line in compile_program(program, optimise=ON).python_sources["KEEPER"].splitlines()]
+    lines = compiled_lines(program, "KEEPER", ON)
     at = {line: i for i, line in enumerate(lines)}
     assert lines[at["v_BEFORE[:] = v_LAST"] - 1] != "try:" and lines[at["v_LAST[:] = v_SHARED"] - 1] != "try:"
     assert lines[at["v_OUTSIDE[:] = v_LAST"] - 1] == "try:"

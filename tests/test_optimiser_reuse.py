@@ -14,7 +14,7 @@ import pytest
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.controller import Controller
-from test_optimiser_equivalence import run_both, same_alone_and_with_all
+from test_optimiser_equivalence import compiled_lines, run_both, same_alone_and_with_all
 
 ON = Optimisations()
 WITHOUT = replace(ON, reuse=False)
@@ -70,8 +70,7 @@ def _program():
 
 
 def _lines(optimise):
-    return [line.strip() for line in
-            compile_program(_program(), optimise=optimise).python_sources["LEGS"].splitlines()]
+    return compiled_lines(_program(), "LEGS", optimise)
 
 
 def test_a_value_is_set_once_and_read_by_name():

@@ -16,7 +16,7 @@ import pytest
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.controller import Controller
-from test_optimiser_equivalence import run_both, snapshot
+from test_optimiser_equivalence import compiled_lines, run_both, snapshot
 
 ON = Optimisations()
 WITHOUT = replace(ON, spread=False)
@@ -83,7 +83,7 @@ def _program():
 
 
 def _lines(optimise):
-    return [line.strip() for line in compile_program(_program(), optimise=optimise).python_sources["MACHINE"].splitlines()]
+    return compiled_lines(_program(), "MACHINE", optimise)
 
 
 def test_each_clause_that_uses_a_variable_loads_it_and_stores_it_back():

@@ -14,7 +14,7 @@ import pytest
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.controller import Controller
-from test_optimiser_equivalence import run_both, same_alone_and_with_all, snapshot
+from test_optimiser_equivalence import compiled_lines, run_both, same_alone_and_with_all, snapshot
 
 ON = Optimisations()
 WITHOUT = replace(ON, stores=False)
@@ -61,7 +61,7 @@ def _program():
 
 
 def _lines(optimise):
-    return [line.strip() for line in compile_program(_program(), optimise=optimise).python_sources["WAVE"].splitlines()]
+    return compiled_lines(_program(), "WAVE", optimise)
 
 
 def test_stores_in_one_branch_are_stored_back_at_its_end():

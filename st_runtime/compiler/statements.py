@@ -579,7 +579,7 @@ class BodyCompiler(ExprCompiler):
         tests = [self._clause_test(clause, selector, t) for clause in s.clauses]
         dispatch: halves.Split | list[int] = list(range(len(s.clauses)))
         if self.opt.halves and not s.else_body and halves.selector_is_integer(t):
-            extent = halves.spans([halves.label_spans(self, clause, t) for clause in s.clauses])
+            extent = halves.spans([halves.label_spans(self, clause) for clause in s.clauses])
             if extent is not None:
                 dispatch = halves.tree(extent)
         self._dispatch(dispatch, selector, tests, s.clauses, ends, leads)

@@ -75,7 +75,7 @@ def _split(indices: list[int], extent) -> "Split | list[int]":
     return Split(pivot, _split(below, extent), _split(above, extent))
 
 
-def label_spans(compiler, clause, t) -> list[tuple[object, object]]:
+def label_spans(compiler, clause) -> list[tuple[object, object]]:
     """The clause's labels as (low, high) values: a single label is (v, v)."""
     out = []
     for label in clause.labels:
