@@ -27,7 +27,7 @@ from ..types import (
     string_size,
 )
 from .initial import CompileError
-from .optimise import Optimisations, absolute, fold, sets, shortcut
+from .optimise import Optimisations, absolute, fold, sets, shortcut, wraps
 from .pysrc import pyliteral, pyident
 
 # Python source of the comparison/arithmetic operators that map one to one.
@@ -696,6 +696,8 @@ class ExprCompiler:
             bounds = int_bounds(e)
             if node is not None:
                 known = self.static_range(node)
+                if known is None and self.opt.wraps:
+                    known = wraps.selection_range(self, node)       # MIN(SyncCalls + 1, 2)
                 if known is not None and bounds[0] <= known[0] and known[1] <= bounds[1]:
                     return value
                 if plain_read:
