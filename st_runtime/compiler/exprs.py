@@ -160,6 +160,7 @@ class ExprCompiler:
         self.region = None                   # optimise.cse.Region while one is compiled
         self.reuse = None                    # optimise.reuse.Reuse of a body (statements.py)
         self.logic_parts: dict[int, tuple[str, str]] = {}   # optimise/shortcut.py
+        self.logic_short: set[int] = set()                   # ids of AND/ORs compiled as and/or (shortcut)
         self.plain_chains: set[int] = set()  # ids of OR/AND chains without a run for optimise/sets.py
 
     # ------------------------------------------------------------ helpers
@@ -428,6 +429,9 @@ class ExprCompiler:
         if op in _BIT_OPS:
             if self.opt.shortcut:
                 shortcut.record(self, e, left, right)      # an IF condition's `and`/`or`
+                short = shortcut.of_comparisons(self, e, left, right)
+                if short is not None:
+                    return short
             return f"({left} {_BIT_OPS[op]} {right})"
         if op == "*" and elementary(t) is not None and elementary(t).kind == "time" \
                 and (is_real(lt) or is_real(rt)):
