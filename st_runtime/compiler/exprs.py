@@ -152,6 +152,8 @@ class ExprCompiler:
         self.scope = scope
         self.unit = unit              # the CompileUnit: namespace, functions, classes
         self.temp_count = 0
+        self.temp_floor = 0           # temps up to this one stay taken (`lasting_temp`)
+        self.temp_high = 0            # the highest temp given
         self.known_ranges: dict[str, tuple[int, int]] = {}   # upper var name -> range
         self._index_probe: dict[str, list] = {}   # FOR variable -> (lo, hi) of checks on it (statements._versioned)
         self.loops: list = []      # FOR loops being compiled, innermost last (hoisting)
@@ -167,6 +169,15 @@ class ExprCompiler:
 
     def temp(self) -> str:
         self.temp_count += 1
+        self.temp_high = max(self.temp_high, self.temp_count)
+        return f"_t{self.temp_count}"
+
+    def lasting_temp(self) -> str:
+        """A temp set where other statements run too (a loop's hoisted value, before the
+        loop; a per-iteration value, at the top of its body): a number no statement had,
+        and none takes again (`temps`, statements.py)."""
+        self.temp_high += 1
+        self.temp_count = self.temp_floor = self.temp_high
         return f"_t{self.temp_count}"
 
     def ty(self, expr) -> Type | None:
@@ -643,7 +654,7 @@ class ExprCompiler:
         `text` itself."""
         entry = self.loops[-1].scaled.get(text)
         if entry is None:
-            entry = self.loops[-1].scaled[text] = [f"\x00{self.temp()}\x00", 0]
+            entry = self.loops[-1].scaled[text] = [f"\x00{self.lasting_temp()}\x00", 0]
         entry[1] += 1
         return entry[0]
 
@@ -662,7 +673,7 @@ class ExprCompiler:
         loop = self.loops[-1]
         name = loop.hoisted.get(code)
         if name is None:
-            name = self.temp()
+            name = self.lasting_temp()
             loop.hoisted[code] = name
         rest = [t for t in terms if t not in invariant]
         return [name] + rest, 0

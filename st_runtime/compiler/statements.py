@@ -284,14 +284,18 @@ class BodyCompiler(ExprCompiler):
             values.leave()
 
     def _statement_with_values(self, stmt) -> None:
-        """The statement, the values it computes first set before it (optimise/reuse.py)."""
+        """The statement, the values it computes first set before it (optimise/reuse.py);
+        with `temps`, the next statement takes the temps' numbers again."""
+        taken = self.temp_count
         if self.reuse is None:
             self._statement_in_segment(stmt)
-            return
-        began = self.reuse.begin(stmt)
-        mark = self.out.mark()
-        self._statement_in_segment(stmt)
-        self.reuse.end(began, mark)
+        else:
+            began = self.reuse.begin(stmt)
+            mark = self.out.mark()
+            self._statement_in_segment(stmt)
+            self.reuse.end(began, mark)
+        if self.opt.temps and self.region is None:
+            self.temp_count = max(taken, self.temp_floor)
 
     def _statement_in_segment(self, stmt) -> None:
         self.statement(stmt)

@@ -135,6 +135,13 @@ states bit for bit:
   `reuse` stored as it is into an own array at a literal index, a read of `X[k]` is
   that value while X and what v reads are unchanged: IK's `Position[Leg]`, stored
   and read back by three tests, is computed into a name once.
+* `temps` (statements.py `_statement_with_values`): the temporaries `_tN` of a
+  statement are its own (its guards, walrus operands, ranges, the motion FBs' call
+  sites), so once it is compiled the next statement takes the same numbers again;
+  a loop's hoisted and per-iteration temps, set where other statements run too, take
+  a number no statement had and keep it (`lasting_temp`), and a CSE region's temps
+  are not given again inside the region.  Fewer local slots: a
+  call creates and clears each one (SP_Controller 116 -> 59, TRJ_OceanWave 165 -> 110).
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -180,6 +187,7 @@ class Optimisations:
     deferred: bool = True
     wraps: bool = True
     stores_read: bool = True
+    temps: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
