@@ -29,6 +29,7 @@ from typing import Callable, Iterable, Mapping
 
 from .axis import Axis, AxisState
 from .axis_config import AxisConfig, axis_configs_from_tables, axis_configs_from_toml
+from . import steady_scans
 from .generated import define
 from ..native import mangle
 from .types import AxisRefWriter, bind_axis_ref
@@ -144,9 +145,9 @@ def process(dt, epoch{arguments}):
 
 
 def _straight_line_process(task: "MotionTask", lanes: list[tuple]):
-    """(`after` hook, `process(dt, epoch)`) for these lanes as straight-line code: the lane
-    step of every axis in turn, the task, axes, writers and structs as the functions'
-    constants (no loop, no unpacking)."""
+    """(`after` hook, `process(dt, epoch)`, the steady loop of `steady_scans`) for these lanes
+    as straight-line code: the lane step of every axis in turn, the task, axes, writers and
+    structs as the functions' constants (no loop, no unpacking)."""
     names, steps = {"task": task}, []
     for number, lane in enumerate(lanes):
         parts = {role: f"{role}{number}" for role in ("axis", "writer", "cmd", "act")}
@@ -156,11 +157,12 @@ def _straight_line_process(task: "MotionTask", lanes: list[tuple]):
                                        flags12=textwrap.indent(flags, " " * 12).rstrip("\n"), **parts))
     arguments = "".join(f", {name}={name}" for name in names)
     body = "".join(textwrap.indent(step, "    ") for step in steps) or "    pass\n"
-    namespace = define(_AFTER_PROGRAMS.format(arguments=arguments, body=body), "motion task process",
-                       {"_ERRORSTOP": _ERRORSTOP, **names})
+    loop, values = steady_scans.source("".join(steps), names)
+    namespace = define(_AFTER_PROGRAMS.format(arguments=arguments, body=body) + loop, "motion task process",
+                       {"_ERRORSTOP": _ERRORSTOP, **values})
     after = namespace["after_programs"]
     after.__qualname__ = "MotionTask._after_programs"     # as a fault in a hook names it
-    return after, namespace["process"]
+    return after, namespace["process"], namespace["steady_scans"]
 
 
 def motion_of(ctx) -> "MotionTask | None":
@@ -184,6 +186,7 @@ class MotionTask:
         self._writers: list[AxisRefWriter] = []
         self._step_lanes = self._step_axes      # `process`: see bind
         self._after_programs = self._step_after_programs    # the `after` hook: see bind
+        self._steady_scans = None                # a run's scans fused with the hooks: see bind
         self._before_hook = self._before_programs               # the `before` hook installed
         self._controller = None                 # the controller it is installed in
         # The axis variables show the axes as they are: the motion processing has published
@@ -228,7 +231,7 @@ class MotionTask:
         self._writers = [bind_axis_ref(lookup(axis.name), axis) for axis in self.axes]
         # What `process` works with, per axis: the axis, its writer and the Cmd and Act structs.
         hook = self._after_programs
-        self._after_programs, self._step_lanes = _straight_line_process(
+        self._after_programs, self._step_lanes, self._steady_scans = _straight_line_process(
             self, [(writer.axis, writer, writer._cmd, writer._act) for writer in self._writers])
         self._epoch = object()
         hooks = getattr(self._controller, "after_hooks", ())
@@ -260,6 +263,12 @@ class MotionTask:
         controller.motion = self
         self._controller = controller
         controller.add_io_hook(before=self._before_hook, after=self._after_programs, quiet=True)
+        controller.steady_scans = self._offer_steady_scans
+
+    def _offer_steady_scans(self, controller):
+        """The run's scans fused with this task's hooks while the controller's shape allows
+        (`steady_scans.offer`), else None."""
+        return steady_scans.offer(self, controller)
 
     def _before_programs(self, ctx) -> None:
         """Feedback in, unless the axis variables already show the axes: the previous scan's
