@@ -18,9 +18,9 @@ from st_runtime.motion.axis import Axis
 from test_motion_stream_epoch import make_plc, state
 
 
-def observed_run(chunks, steady: bool, setup=None):
+def observed_run(chunks, steady: bool, setup=None, between=None):
     """States after every scan of `chunks` runs (a read-only observer), and the scans the
-    steady loop ran."""
+    steady loop ran; `between(plc, task)` after each run."""
     plc, main, task = make_plc()
     controller = plc.controller
     if setup is not None:
@@ -40,12 +40,14 @@ def observed_run(chunks, steady: bool, setup=None):
     controller.add_observer(lambda c: states.append(state(plc, task)), reads_only=True)
     for scans in chunks:
         plc.run(scans)
+        if between is not None:
+            between(plc, task)
     return states, sum(fused), controller
 
 
-def assert_same_runs(chunks, setup=None, steady_at_least=1):
-    got, fused, controller = observed_run(chunks, True, setup)
-    expected, none, reference = observed_run(chunks, False, setup)
+def assert_same_runs(chunks, setup=None, steady_at_least=1, between=None):
+    got, fused, controller = observed_run(chunks, True, setup, between)
+    expected, none, reference = observed_run(chunks, False, setup, between)
     assert len(got) == len(expected) and got
     for scan, (one, other) in enumerate(zip(got, expected), start=1):
         assert one == other, scan
@@ -63,6 +65,18 @@ def test_a_run_of_the_stream_program_ends_every_scan_as_the_general_loop():
 
 def test_runs_of_several_lengths_start_each_through_the_general_loop():
     assert_same_runs([1, 2, 57, 140, 200], steady_at_least=390)
+
+
+def test_a_new_period_between_runs_is_stepped_with_its_own_slack():
+    """The steady loop keeps each axis's step slack in a local: a new period (a new slack,
+    set by the axis's general step) between two runs is seen as in the general loop."""
+    periods = {100: 2_000_000, 160: 500_000, 300: 1_000_000}
+
+    def new_period(plc, task):
+        controller = plc.controller
+        controller.period_ns = controller.tasks[0].period_ns = periods.get(controller.scan_count, controller.period_ns)
+
+    assert_same_runs([100, 60, 140, 100], steady_at_least=390, between=new_period)
 
 
 def test_f_period_in_steady_scans():

@@ -66,7 +66,7 @@ command = {axis}.command
 if {axis}._stream_epoch is not epoch:
     if not (command is not None and command.kind == "sync" and (powered := {axis}.powered)
             and {axis}.power_requested == powered and dt == {axis}._stream_dt
-            and -(slack := {axis}._step_slack) <= (delta := (target := command.target) - {axis}.cmd_pos) <= slack
+            and -({slack_read} := {axis}._step_slack) <= (delta := (target := command.target) - {axis}.cmd_pos) <= {slack_read}
             and {axis}._soft_min <= target <= {axis}._soft_max):
         {axis}.step(dt)
         {writer}.write()
@@ -85,8 +85,8 @@ if {axis}._stream_epoch is not epoch:
         else:
             {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
 {flags8}
-elif not (abs(delta := (target := command.target) - {axis}.cmd_pos) <= {axis}._step_slack
-          and {axis}._soft_min <= target <= {axis}._soft_max):
+elif not (abs(delta := (target := command.target) - {axis}.cmd_pos) <= {slack}
+          and {soft_min} <= target <= {soft_max}):
     {axis}.step(dt)
     {writer}.write()
 else:
@@ -144,20 +144,38 @@ def process(dt, epoch{arguments}):
 {body}"""
 
 
+# The steady loop's copies of an axis's step slack and soft limits, read once a call (see
+# `_straight_line_process`).
+_LANE_CONSTANTS = "slack{n}, soft_min{n}, soft_max{n} = axis{n}._step_slack, axis{n}._soft_min, axis{n}._soft_max\n"
+
+
 def _straight_line_process(task: "MotionTask", lanes: list[tuple]):
     """(`after` hook, `process(dt, epoch)`, the steady loop of `steady_scans`) for these lanes
     as straight-line code: the lane step of every axis in turn, the task, axes, writers and
-    structs as the functions' constants (no loop, no unpacking)."""
-    names, steps = {"task": task}, []
+    structs as the functions' constants (no loop, no unpacking).
+
+    The steady loop, which runs the lanes scan after scan, keeps each axis's step slack and
+    soft limits in locals for the short step.  The soft limits only change as an axis is made.
+    The slack changes only with the period (`Axis._set_period`, inside `Axis.step`, which ends
+    the epoch), and the whole test that stamps an axis with the epoch reads it again: so while
+    the axis carries the epoch, its local is the slack that test saw."""
+    names, steps, steady, constants = {"task": task}, [], [], []
     for number, lane in enumerate(lanes):
         parts = {role: f"{role}{number}" for role in ("axis", "writer", "cmd", "act")}
         names.update(zip(parts.values(), lane))
         flags = _LANE_FLAGS.format(**parts)
-        steps.append(_LANE_STEP.format(flags8=textwrap.indent(flags, " " * 8).rstrip("\n"),
-                                       flags12=textwrap.indent(flags, " " * 12).rstrip("\n"), **parts))
+        indented = {"flags8": textwrap.indent(flags, " " * 8).rstrip("\n"),
+                    "flags12": textwrap.indent(flags, " " * 12).rstrip("\n")}
+        axis = parts["axis"]
+        steps.append(_LANE_STEP.format(slack_read="slack", slack=f"{axis}._step_slack", soft_min=f"{axis}._soft_min",
+                                       soft_max=f"{axis}._soft_max", **indented, **parts))
+        steady.append(_LANE_STEP.format(slack_read=f"slack{number}", slack=f"slack{number}",
+                                        soft_min=f"soft_min{number}", soft_max=f"soft_max{number}",
+                                        **indented, **parts))
+        constants.append(_LANE_CONSTANTS.format(n=number))
     arguments = "".join(f", {name}={name}" for name in names)
     body = "".join(textwrap.indent(step, "    ") for step in steps) or "    pass\n"
-    loop, values = steady_scans.source("".join(steps), names)
+    loop, values = steady_scans.source("".join(constants), "".join(steady), names)
     namespace = define(_AFTER_PROGRAMS.format(arguments=arguments, body=body) + loop, "motion task process",
                        {"_ERRORSTOP": _ERRORSTOP, **values})
     after = namespace["after_programs"]

@@ -20,9 +20,12 @@ observers.
 
 from __future__ import annotations
 
+import textwrap
+
 from ..faults import ScanOverrun, StopRun, STFault
 
-# `{lanes}`: the lane step of every axis (motion_task._LANE_STEP), as the `after` hook runs it.
+# `{lanes}`: the lane step of every axis (motion_task._LANE_STEP), as the `after` hook runs it
+# but for the locals `{constants}` sets once a call.
 # `task._published` and `task._continuing` stay TRUE from scan to scan, as the hooks leave
 # them in the shape; only the hooks read them, so they are stored only where an exception
 # leaves the programs (the feedback-in hook had stored FALSE) or the motion processing (the
@@ -40,7 +43,7 @@ def steady_scans(controller, cycles{arguments}):
     period = controller.period_ns
     dt = period * 1e-9
     epoch = task._epoch
-    for done in range(1, cycles + 1):
+{constants}    for done in range(1, cycles + 1):
         index = controller.scan_count
         ctx.scan = scan = index + 1
         ctx.now_ns = index * period
@@ -85,12 +88,13 @@ def steady_scans(controller, cycles{arguments}):
 _VALUES = {"ScanOverrun": ScanOverrun, "StopRun": StopRun, "STFault": STFault}
 
 
-def source(lanes: str, names: dict) -> tuple[str, dict]:
+def source(constants: str, lanes: str, names: dict) -> tuple[str, dict]:
     """(the loop's source, the values it names) for `lanes`, the lane steps' source at no
-    indentation, which name the entries of `names` (the task under `task`)."""
+    indentation, and `constants`, statements run once a call before the scans; both name the
+    entries of `names` (the task under `task`)."""
     arguments = "".join(f", {name}={name}" for name in names)
-    indented = "".join("                " + line + "\n" if line else "\n" for line in lanes.splitlines())
-    return _STEADY_SCANS.format(arguments=arguments, lanes=indented or "                pass\n"), {**_VALUES, **names}
+    return _STEADY_SCANS.format(arguments=arguments, constants=textwrap.indent(constants, " " * 4),
+                                lanes=textwrap.indent(lanes, " " * 16) or " " * 16 + "pass\n"), {**_VALUES, **names}
 
 
 def offer(task, controller):
