@@ -66,7 +66,7 @@ command = {axis}.command
 if {axis}._stream_epoch is not epoch:
     if not (command is not None and command.kind == "sync" and (powered := {axis}.powered)
             and {axis}.power_requested == powered and dt == {axis}._stream_dt
-            and -({slack_read} := {axis}._step_slack) <= (delta := (target := command.target) - {axis}.cmd_pos) <= {slack_read}
+            and {floor_read} <= (delta := (target := command.target) - {axis}.cmd_pos) <= {slack_read}
             and {axis}._soft_min <= target <= {axis}._soft_max):
         {axis}.step(dt)
         {writer}.write()
@@ -85,7 +85,7 @@ if {axis}._stream_epoch is not epoch:
         else:
             {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
 {flags8}
-elif not (abs(delta := (target := command.target) - {axis}.cmd_pos) <= {slack}
+elif not ({short_test}
           and {soft_min} <= target <= {soft_max}):
     {axis}.step(dt)
     {writer}.write()
@@ -144,9 +144,16 @@ def process(dt, epoch{arguments}):
 {body}"""
 
 
-# The steady loop's copies of an axis's step slack and soft limits, read once a call (see
-# `_straight_line_process`).
-_LANE_CONSTANTS = "slack{n}, soft_min{n}, soft_max{n} = axis{n}._step_slack, axis{n}._soft_min, axis{n}._soft_max\n"
+# The steady loop's copies of an axis's step slack, its negation and soft limits, read once a
+# call (see `_straight_line_process`).
+_LANE_CONSTANTS = ("slack{n}, soft_min{n}, soft_max{n} = axis{n}._step_slack, axis{n}._soft_min, axis{n}._soft_max\n"
+                   "floor{n} = -slack{n}\n")
+
+# The short step's test of the data, as the `after` hook and `process` make it and as the
+# steady loop does: -slack <= delta <= slack is |delta| <= slack for every float (a NaN or an
+# infinity fails both), without the call of abs() and the float it makes.
+_SHORT_TEST = "abs(delta := (target := command.target) - {axis}.cmd_pos) <= {axis}._step_slack"
+_STEADY_SHORT_TEST = "floor{n} <= (delta := (target := command.target) - {axis}.cmd_pos) <= slack{n}"
 
 
 def _straight_line_process(task: "MotionTask", lanes: list[tuple]):
@@ -154,8 +161,8 @@ def _straight_line_process(task: "MotionTask", lanes: list[tuple]):
     as straight-line code: the lane step of every axis in turn, the task, axes, writers and
     structs as the functions' constants (no loop, no unpacking).
 
-    The steady loop, which runs the lanes scan after scan, keeps each axis's step slack and
-    soft limits in locals for the short step.  The soft limits only change as an axis is made.
+    The steady loop, which runs the lanes scan after scan, keeps each axis's step slack (and
+    its negation) and soft limits in locals for the short step.  The soft limits only change as an axis is made.
     The slack changes only with the period (`Axis._set_period`, inside `Axis.step`, which ends
     the epoch), and the whole test that stamps an axis with the epoch reads it again: so while
     the axis carries the epoch, its local is the slack that test saw."""
@@ -167,9 +174,12 @@ def _straight_line_process(task: "MotionTask", lanes: list[tuple]):
         indented = {"flags8": textwrap.indent(flags, " " * 8).rstrip("\n"),
                     "flags12": textwrap.indent(flags, " " * 12).rstrip("\n")}
         axis = parts["axis"]
-        steps.append(_LANE_STEP.format(slack_read="slack", slack=f"{axis}._step_slack", soft_min=f"{axis}._soft_min",
+        steps.append(_LANE_STEP.format(floor_read=f"-(slack := {axis}._step_slack)", slack_read="slack",
+                                       short_test=_SHORT_TEST.format(axis=axis), soft_min=f"{axis}._soft_min",
                                        soft_max=f"{axis}._soft_max", **indented, **parts))
-        steady.append(_LANE_STEP.format(slack_read=f"slack{number}", slack=f"slack{number}",
+        steady.append(_LANE_STEP.format(floor_read=f"(floor{number} := -(slack{number} := {axis}._step_slack))",
+                                        slack_read=f"slack{number}",
+                                        short_test=_STEADY_SHORT_TEST.format(axis=axis, n=number),
                                         soft_min=f"soft_min{number}", soft_max=f"soft_max{number}",
                                         **indented, **parts))
         constants.append(_LANE_CONSTANTS.format(n=number))
