@@ -19,7 +19,9 @@ text `VAR_GLOBAL <name> : AXIS_REF; ... END_VAR` to load with the user's
 files, and `bind(lookup)` ties each global variable to its simulation.
 `install(controller)` does the binding and hooks the two stages into the
 controller's scan; native motion FBs then reach the task through the scan
-context (`motion_of(ctx)`: `ctx.controller.motion`).
+context (`motion_of(ctx)`: `ctx.controller.motion`).  Inside one `Controller.run`,
+the scans after the first run as one loop fused with the two stages while the
+controller keeps this shape (`steady_scans.py`).
 """
 
 from __future__ import annotations

@@ -12,10 +12,10 @@ already decides (`Controller._scans` re-reads hooks, tasks and the seal's counts
 `offer(task, controller)` gives the loop only while the shape holds, and the loop checks it
 again at the end of every scan; a scan that leaves it (a fault in the motion processing, a
 hook or task added, an observer that writes, a fault that stops the run) ends as the general
-loop ends it, and the rest of the run takes `Controller._scans`.  What the loop reads once per call (the period, the time
-limit, the task's NJ time record, the motion epoch) only Python code between runs changes:
-inside a run the scans run compiled ST, the FBs' own calls, the motion hooks and read-only
-observers.
+loop ends it, and the rest of the run takes `Controller._scans`.  What the loop reads once a
+call (the period, the time limit, the task's NJ time record, the motion epoch, each axis's
+step slack and soft limits) only Python code between runs changes: inside a run the scans
+run compiled ST, the FBs' own calls, the motion hooks and read-only observers.
 """
 
 from __future__ import annotations
@@ -36,7 +36,8 @@ from ..faults import ScanOverrun, StopRun, STFault
 _STEADY_SCANS = """\
 def steady_scans(controller, cycles{arguments}):
     ctx = controller.ctx
-    hooks_before, hooks_after, tasks = list(controller.before_hooks), list(controller.after_hooks), list(controller.tasks)
+    hooks_before, hooks_after = list(controller.before_hooks), list(controller.after_hooks)
+    tasks = list(controller.tasks)
     primary = tasks[0]
     append_time = controller.task_times[primary.name].append
     limit_ps = (controller.time_limit_ns or primary.period_ns) * 1000
