@@ -64,11 +64,10 @@ _ERRORSTOP = AxisState.ERRORSTOP
 # direction holds, |new_vel| > |old_vel| is new_vel > old_vel (both positive) or
 # new_vel < old_vel (both negative).
 _LANE_STEP = """\
-command = {axis}.command
-if {axis}._stream_epoch is not epoch:
-    if not (command is not None and command.kind == "sync" and (powered := {axis}.powered)
+{command_before}if {axis}._stream_epoch is not epoch:
+{command_inside}    if not ({command} is not None and {command}.kind == "sync" and (powered := {axis}.powered)
             and {axis}.power_requested == powered and dt == {axis}._stream_dt
-            and {floor_read} <= (delta := (target := command.target) - {axis}.cmd_pos) <= {slack_read}
+            and {floor_read} <= (delta := (target := {command}.target) - {axis}.cmd_pos) <= {slack_read}
             and {axis}._soft_min <= target <= {axis}._soft_max):
         {axis}.step(dt)
         {writer}.write()
@@ -116,7 +115,7 @@ else:
 _LANE_FLAGS = """\
 {axis}._stream_epoch = epoch
 state, waiting = {axis}.state, {axis}.in_pos_waiting
-idle = ((command.done or command.reached) and not waiting
+idle = (({command}.done or {command}.reached) and not waiting
         and not (state == _ERRORSTOP and new_vel != 0.0))
 shown = (state, {axis}.homed, {axis}.fault_code, {axis}.observation_code, False,
          waiting, idle, {axis}.powered, new_vel > 0.0, new_vel < 0.0)
@@ -146,16 +145,23 @@ def process(dt, epoch{arguments}):
 {body}"""
 
 
-# The steady loop's copies of an axis's step slack, its negation and soft limits, read once a
-# call (see `_straight_line_process`).
+# The steady loop's copies of an axis's step slack, its negation, soft limits and command, read
+# once a call (see `_straight_line_process`).
 _LANE_CONSTANTS = ("slack{n}, soft_min{n}, soft_max{n} = axis{n}._step_slack, axis{n}._soft_min, axis{n}._soft_max\n"
-                   "floor{n} = -slack{n}\n")
+                   "floor{n}, command{n} = -slack{n}, axis{n}.command\n")
 
 # The short step's test of the data, as the `after` hook and `process` make it and as the
 # steady loop does: -slack <= delta <= slack is |delta| <= slack for every float (a NaN or an
 # infinity fails both), without the call of abs() and the float it makes.
 _SHORT_TEST = "abs(delta := (target := command.target) - {axis}.cmd_pos) <= {axis}._step_slack"
-_STEADY_SHORT_TEST = "floor{n} <= (delta := (target := command.target) - {axis}.cmd_pos) <= slack{n}"
+_STEADY_SHORT_TEST = "floor{n} <= (delta := (target := command{n}.target) - {axis}.cmd_pos) <= slack{n}"
+
+
+def _lane_step(parts: dict, **names) -> str:
+    """`_LANE_STEP` of one axis (`parts`: its names), with the `_LANE_FLAGS` of `names["command"]`."""
+    flags = _LANE_FLAGS.format(command=names["command"], **parts)
+    return _LANE_STEP.format(flags8=textwrap.indent(flags, " " * 8).rstrip("\n"),
+                             flags12=textwrap.indent(flags, " " * 12).rstrip("\n"), **names, **parts)
 
 
 def _straight_line_process(task: "MotionTask", lanes: list[tuple]):
@@ -164,26 +170,25 @@ def _straight_line_process(task: "MotionTask", lanes: list[tuple]):
     structs as the functions' constants (no loop, no unpacking).
 
     The steady loop, which runs the lanes scan after scan, keeps each axis's step slack (and
-    its negation) and soft limits in locals for the short step.  The soft limits only change as an axis is made.
-    The slack changes only with the period (`Axis._set_period`, inside `Axis.step`, which ends
-    the epoch), and the whole test that stamps an axis with the epoch reads it again: so while
-    the axis carries the epoch, its local is the slack that test saw."""
+    its negation), soft limits and command in locals for the short step.  The soft limits only
+    change as an axis is made.  The command changes only through Axis methods, the slack only
+    with the period (`Axis._set_period`, inside `Axis.step`): both end the epoch, and the whole
+    test that stamps an axis with the epoch reads them again.  So while the axis carries the
+    epoch, its locals are what that test saw."""
     names, steps, steady, constants = {"task": task}, [], [], []
     for number, lane in enumerate(lanes):
         parts = {role: f"{role}{number}" for role in ("axis", "writer", "cmd", "act")}
         names.update(zip(parts.values(), lane))
-        flags = _LANE_FLAGS.format(**parts)
-        indented = {"flags8": textwrap.indent(flags, " " * 8).rstrip("\n"),
-                    "flags12": textwrap.indent(flags, " " * 12).rstrip("\n")}
-        axis = parts["axis"]
-        steps.append(_LANE_STEP.format(floor_read=f"-(slack := {axis}._step_slack)", slack_read="slack",
-                                       short_test=_SHORT_TEST.format(axis=axis), soft_min=f"{axis}._soft_min",
-                                       soft_max=f"{axis}._soft_max", **indented, **parts))
-        steady.append(_LANE_STEP.format(floor_read=f"(floor{number} := -(slack{number} := {axis}._step_slack))",
-                                        slack_read=f"slack{number}",
-                                        short_test=_STEADY_SHORT_TEST.format(axis=axis, n=number),
-                                        soft_min=f"soft_min{number}", soft_max=f"soft_max{number}",
-                                        **indented, **parts))
+        axis, steady_command = parts["axis"], f"command{number}"
+        steps.append(_lane_step(parts, command="command", command_before=f"command = {axis}.command\n",
+                                command_inside="", floor_read=f"-(slack := {axis}._step_slack)",
+                                slack_read="slack", short_test=_SHORT_TEST.format(axis=axis),
+                                soft_min=f"{axis}._soft_min", soft_max=f"{axis}._soft_max"))
+        steady.append(_lane_step(parts, command=steady_command, command_before="",
+                                 command_inside=f"    {steady_command} = {axis}.command\n",
+                                 floor_read=f"(floor{number} := -(slack{number} := {axis}._step_slack))",
+                                 slack_read=f"slack{number}", short_test=_STEADY_SHORT_TEST.format(axis=axis, n=number),
+                                 soft_min=f"soft_min{number}", soft_max=f"soft_max{number}"))
         constants.append(_LANE_CONSTANTS.format(n=number))
     arguments = "".join(f", {name}={name}" for name in names)
     body = "".join(textwrap.indent(step, "    ") for step in steps) or "    pass\n"
