@@ -40,7 +40,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, ranges, reuse, shortcut, stores, unguard, unroll
+from .optimise import aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, ranges, reuse, seal, shortcut, stores, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -131,6 +131,8 @@ class BodyCompiler(ExprCompiler):
                 aliases.drop_unread(o.lines, start, self.opt.deferred)
         if self.opt.charges and charge and self.unit.guard_statements:
             charges.merge(o.lines, start)
+        if self.opt.seal:
+            seal.hoist(o.lines, start)
         return o.source()
 
     def _body(self) -> None:

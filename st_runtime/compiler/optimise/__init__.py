@@ -142,6 +142,9 @@ states bit for bit:
   a number no statement had and keep it (`lasting_temp`), and a CSE region's temps
   are not given again inside the region.  Fewer local slots: a
   call creates and clears each one (SP_Controller 116 -> 59, TRJ_OceanWave 165 -> 110).
+* `seal` (seal.py): a body that reads the controller's seal twice or more (the
+  idle Execute FBs' rest tests and notes) reads it once, `_seal = _ctx.seal` at its
+  start: the seal is replaced only between the programs' runs.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -188,6 +191,7 @@ class Optimisations:
     wraps: bool = True
     stores_read: bool = True
     temps: bool = True
+    seal: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
