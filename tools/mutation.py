@@ -143,7 +143,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                    # seeds 24 and 25 (issue 16, session 10)
                    "tests/test_reference_mutation_s10.py", "tests/test_reference_mutation_s10_seed25.py",
                    # seed 27's last and the seed-28 run (issue 16, session 11)
-                   "tests/test_reference_mutation_s11.py"]),
+                   "tests/test_reference_mutation_s11.py",
+                   # seed 30 (issue 16, session 12)
+                   "tests/test_reference_mutation_s12.py"]),
 }
 
 # Extra [tool.mutmut] settings of one module. The compiler's mutants include
