@@ -130,6 +130,10 @@ def test_a_playback_csv_is_read_as_utf8_whatever_the_locale(tmp_path):
     # Python whose locale encoding is ASCII (C locale, no UTF-8 mode), the file must still be UTF-8.
     path = tmp_path / "moves.csv"
     path.write_text(HEADER + "0,0,0,0,0,0,0\n1.0\u00a0,1,0,0,0,0,0\n", encoding="utf-8")
+    from stgen.reference.playback import read_playback_csv
+
+    # Here first (a mutation tool runs a test only for the functions it saw the test call in its own process).
+    assert read_playback_csv(path).t[-1] > 0.0
     env = {**os.environ, "LC_ALL": "C", "LANG": "C", "PYTHONUTF8": "0", "PYTHONCOERCECLOCALE": "0",
            "PYTHONPATH": os.pathsep.join([str(Path(stgen.__file__).resolve().parent.parent),
                                           os.environ.get("PYTHONPATH", "")])}
