@@ -186,3 +186,36 @@ def test_spline_slopes_of_float32_knots_are_computed_in_float64():
         rhs[row] = 3.0 * (h[k] * delta[k - 1] + h[k - 1] * delta[k])
     expected = np.concatenate(([0.0], np.linalg.solve(system, rhs), [0.0]))
     np.testing.assert_allclose(clamped_spline_slopes(knots, y)[:, 0], expected, rtol=1e-13, atol=0)
+
+
+# --- seed 31 (a fresh sample after the tests above) ------------------------------------------------------
+
+
+def test_a_cycloidal_move_shorter_than_a_period_is_output_at_once():
+    from stgen.reference.cycloidal import executed_duration
+
+    # TRJ_Cycloidal: T < one task period runs as T = 0; T of a period or more runs as it is.
+    assert executed_duration(0.0005, 0.001) == 0.0
+    assert executed_duration(0.001, 0.001) == 0.001 and executed_duration(0.25, 0.001) == 0.25
+
+
+def test_inverse_kinematics_reports_the_stroke_it_is_given():
+    from stgen.config import StrokeConfig
+    from stgen.reference.kinematics import inverse_kinematics
+
+    # qi = |Li| − l0 >= −l0 > −99999 mm: no leg can be inside a stroke of −100000 .. −99999 mm (the default
+    # stroke, 0 .. 600 mm, holds the home pose).
+    geometry = GeometryConfig()
+    assert geometry.l0 < 99999.0
+    result = inverse_kinematics(geometry, np.zeros(6), StrokeConfig(min=-100000.0, max=-99999.0))
+    assert not np.any(result.in_stroke)
+
+
+def test_path_phi_end_below_one_radian_and_a_zero_duration():
+    from stgen.reference.paths import PathError, PathSpec
+
+    # phi_end: a finite number > 0 (half a radian is a valid end); duration: > 0 when given.
+    assert PathSpec("epitrochoid", phi_end=0.5).phi_end == 0.5
+    with pytest.raises(PathError) as raised:
+        PathSpec("epitrochoid", duration=0.0)
+    assert str(raised.value) == "duration: must be a finite number > 0 s, got 0.0"
