@@ -219,3 +219,16 @@ def test_path_phi_end_below_one_radian_and_a_zero_duration():
     with pytest.raises(PathError) as raised:
         PathSpec("epitrochoid", duration=0.0)
     assert str(raised.value) == "duration: must be a finite number > 0 s, got 0.0"
+
+
+@pytest.mark.parametrize("limit, value, binding", [("linear_acceleration", 5.0, "x/y acceleration"),
+                                                   ("linear_jerk", 5.0, "x/y jerk")])
+def test_a_path_plan_names_the_limit_that_sets_its_duration(limit, value, binding):
+    from stgen.config import PlatformConfig
+    from stgen.reference.paths import PathSpec, plan_path
+
+    # The lowest x/y acceleration (or jerk) limit the configuration allows, 5 mm/s² (mm/s³), stretches the
+    # default epitrochoid far beyond what the velocity limits need: that limit sets T, and the plan says so.
+    config = PlatformConfig()
+    config = dataclasses.replace(config, trajectory=dataclasses.replace(config.trajectory, **{limit: value}))
+    assert plan_path(PathSpec("epitrochoid"), config, samples=16).binding == binding
