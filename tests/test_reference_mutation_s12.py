@@ -232,3 +232,28 @@ def test_a_path_plan_names_the_limit_that_sets_its_duration(limit, value, bindin
     config = PlatformConfig()
     config = dataclasses.replace(config, trajectory=dataclasses.replace(config.trajectory, **{limit: value}))
     assert plan_path(PathSpec("epitrochoid"), config, samples=16).binding == binding
+
+
+def test_a_leg_exactly_at_its_stroke_maximum_is_no_breach():
+    from stgen.config import PlatformConfig
+    from stgen.reference.motion_limits import check_motion
+
+    # MotionCheck.breaches: "stroke max" only for a position above the maximum. The maximum is put on the
+    # longest leg at home; resting there, nothing is broken.
+    config = PlatformConfig()
+    rest = np.zeros((1, 6))
+    longest = float(check_motion(config, [0.0], rest, rest, rest).positions.max())
+    at_limit = dataclasses.replace(config, stroke=dataclasses.replace(config.stroke, max=longest))
+    check = check_motion(at_limit, [0.0], rest, rest, rest)
+    assert check.positions.max() == at_limit.stroke.max
+    assert check.breaches(at_limit) == []
+
+
+def test_a_path_plan_checks_its_samples_at_their_times():
+    from stgen.config import PlatformConfig
+    from stgen.reference.paths import PathSpec, plan_path
+
+    # The plan's MotionCheck holds the samples' times (16 points from 0 to T), not a placeholder.
+    plan = plan_path(PathSpec("epitrochoid"), PlatformConfig(), samples=16)
+    assert plan.check.t.shape == (16,) and plan.check.t[0] == 0.0
+    assert np.array_equal(plan.check.t, plan.samples.t)
