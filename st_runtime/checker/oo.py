@@ -16,6 +16,7 @@ from .. import ast
 from .. import types as T
 from ..ast import key
 from ..symbols import PouInfo
+from .context import a_or_an
 
 ACCESS_DEFAULT = "PUBLIC"
 
@@ -70,8 +71,8 @@ class ObjectModel:
     def _pou(self, name: str, kind: str, pos, what: str) -> PouInfo | None:
         info = self.program.pous.get(key(name))
         if info is None or info.kind != kind:
-            found = f"a {info.kind}" if info is not None else "nothing of that name"
-            self.ctx.error("E-DECL-016", f"{what} '{name}': expected a {kind}, found {found}", pos)
+            found = a_or_an(info.kind) if info is not None else "nothing of that name"
+            self.ctx.error("E-DECL-016", f"{what} '{name}': expected {a_or_an(kind)}, found {found}", pos)
             return None
         return info
 
