@@ -330,3 +330,375 @@ STATEMENTS = rows(
 @pytest.mark.parametrize("dialect, source, expected", STATEMENTS)
 def test_statements(dialect, source, expected):
     check(dialect, source, expected)
+
+
+# ================================================================ stores.py (what may be written)
+
+FB_IO = "FUNCTION_BLOCK Fb\nVAR_INPUT i : INT; END_VAR\nVAR_OUTPUT o : INT; END_VAR\nVAR v : INT; END_VAR\nEND_FUNCTION_BLOCK\n"
+IN_OUT_F = "FUNCTION F : INT\nVAR_IN_OUT x : INT; END_VAR\nF := x;\nEND_FUNCTION\n"
+
+STORES = rows(
+    ("an_enumeration_value_written", "iec",
+     "TYPE Color : (Red, Green); END_TYPE\n" + P("    c : Color;", "Red := c;"),
+     [("E-TYPE-014", 6, 1, "assignment: 'Red' is an enumeration value, not a variable")]),
+    ("a_constant_written", "iec", "PROGRAM Main\nVAR CONSTANT\n    k : INT := 1;\nEND_VAR\nk := 2;\nEND_PROGRAM\n",
+     [("E-ASSIGN-001", 5, 1, "assignment: 'k' is CONSTANT and cannot be written")]),
+    ("an_own_input_written", "iec", "FUNCTION_BLOCK Fb\nVAR_INPUT i : INT; END_VAR\ni := 2;\nEND_FUNCTION_BLOCK\n",
+     [("E-ASSIGN-002", 3, 1, "assignment: 'i' is a VAR_INPUT of Fb and is read-only inside it "
+                             "(--dialect codesys accepts writing it)")]),
+    ("an_own_input_written_under_codesys", "codesys",
+     "FUNCTION_BLOCK Fb\nVAR_INPUT i : INT; END_VAR\ni := 2;\nEND_FUNCTION_BLOCK\n", []),
+    ("a_for_variable_written_in_its_loop", "iec", P("    i : INT;", "FOR i := 1 TO 2 DO\n    i := 3;\nEND_FOR;\ni := 4;"),
+     [("E-ASSIGN-003", 6, 5, "assignment: 'i' is the control variable of an enclosing FOR loop")]),
+    ("an_instances_output_written", "iec", FB_IO + P("    f : Fb;", "f.o := 1;\nf.i := 3;"),
+     [("E-ASSIGN-004", 10, 1, "assignment: 'o' is a VAR_OUTPUT of function block Fb; only its inputs may be "
+                              "written from outside")]),
+    ("a_set_of_an_int", "codesys", P("    x : INT;\n    b : BOOL;", "x S= b;"),
+     [("E-TYPE-004", 6, 1, "S=: expected INT, found BOOL; convert explicitly with BOOL_TO_INT")]),
+    ("a_property_without_set_written", "codesys",
+     "FUNCTION_BLOCK Fb\nVAR n : INT; END_VAR\nPROPERTY P : INT\nGET\nP := n;\nEND_GET\nEND_PROPERTY\nEND_FUNCTION_BLOCK\n"
+     + P("    f : Fb;\n    k : INT;", "f.P := 1;\nk := f.P;"),
+     [("E-ASSIGN-004", 14, 1, "assignment: property 'P' has no SET")]),
+    ("a_constant_to_an_in_out", "iec",
+     IN_OUT_F + "PROGRAM Main\nVAR CONSTANT\n    k : INT := 1;\nEND_VAR\nVAR\n    r : INT;\nEND_VAR\nr := F(x := k);\nEND_PROGRAM\n",
+     [("E-CALL-007", 12, 13, "VAR_IN_OUT 'x' of F: expected a writable variable, found CONSTANT 'k'")]),
+    ("an_own_input_to_an_in_out", "iec",
+     IN_OUT_F + "FUNCTION_BLOCK Fb\nVAR_INPUT i : INT; END_VAR\nVAR r : INT; END_VAR\nr := F(x := i);\nEND_FUNCTION_BLOCK\n",
+     [("E-CALL-007", 8, 13, "VAR_IN_OUT 'x' of F: expected a writable variable, found VAR_INPUT 'i' of Fb "
+                            "(inputs are read-only inside their POU)")]),
+    ("a_for_variable_to_an_in_out", "iec",
+     IN_OUT_F + P("    i : INT;\n    r : INT;", "FOR i := 1 TO 2 DO\n    r := F(x := i);\nEND_FOR;\nr := F(x := i);"),
+     [("E-CALL-007", 11, 17, "VAR_IN_OUT 'x' of F: expected a writable variable, found 'i', the control "
+                             "variable of an enclosing FOR loop")]),
+    ("an_instances_output_to_an_in_out", "iec",
+     IN_OUT_F + FB_IO + P("    m : Fb;\n    r : INT;", "r := F(x := m.o);\nr := F(x := m.i);"),
+     [("E-CALL-007", 15, 13, "VAR_IN_OUT 'x' of F: expected a writable variable, found 'o', a VAR_OUTPUT of "
+                             "function block Fb (only its inputs may be written from outside)")]),
+    ("a_bit_to_an_in_out", "nj",
+     "FUNCTION F : INT\nVAR_IN_OUT x : BOOL; END_VAR\nF := 1;\nEND_FUNCTION\n" + P("    w : WORD;\n    r : INT;", "r := F(x := w.3);"),
+     [("E-CALL-007", 10, 13, "VAR_IN_OUT 'x' of F: expected a variable, found a bit access")]),
+)
+
+
+@pytest.mark.parametrize("dialect, source, expected", STORES)
+def test_stores(dialect, source, expected):
+    check(dialect, source, expected)
+
+
+# ================================================================ oo.py
+
+I_RUN = "INTERFACE IRun\nMETHOD Run : BOOL\nEND_METHOD\nEND_INTERFACE\n"
+RUN = "METHOD Run : BOOL\nRun := TRUE;\nEND_METHOD\n"
+
+OBJECTS = rows(
+    ("extends_nothing", "iec", "FUNCTION_BLOCK B EXTENDS Nope\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-016", 1, 1, "EXTENDS 'Nope': expected a FUNCTION_BLOCK, found nothing of that name")]),
+    ("extends_a_function", "iec", "FUNCTION F : INT\nF := 1;\nEND_FUNCTION\nFUNCTION_BLOCK B EXTENDS F\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-016", 4, 1, "EXTENDS 'F': expected a FUNCTION_BLOCK, found a FUNCTION")]),
+    ("extends_an_interface", "iec", "INTERFACE I\nEND_INTERFACE\nFUNCTION_BLOCK B EXTENDS I\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-016", 3, 1, "EXTENDS 'I': expected a FUNCTION_BLOCK, found an INTERFACE")]),
+    ("extends_two", "iec",
+     "FUNCTION_BLOCK A\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK C\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK B EXTENDS A, C\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-016", 5, 1, "FUNCTION_BLOCK B EXTENDS 2 function blocks: expected one (interfaces are IMPLEMENTed)")]),
+    ("extends_itself_through_another", "iec",
+     "FUNCTION_BLOCK A EXTENDS B\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK B EXTENDS A\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-016", 1, 1, "FUNCTION_BLOCK A extends itself (through B)")]),
+    ("extends_a_final_one", "iec", "FUNCTION_BLOCK FINAL A\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK B EXTENDS A\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-016", 3, 1, "B EXTENDS A, which is FINAL")]),
+    ("implements_a_function_block", "iec", "FUNCTION_BLOCK A\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK B IMPLEMENTS A\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-016", 3, 1, "IMPLEMENTS 'A': expected an INTERFACE, found a FUNCTION_BLOCK")]),
+    ("an_interface_extends_a_function_block", "iec", "FUNCTION_BLOCK A\nEND_FUNCTION_BLOCK\nINTERFACE I EXTENDS A\nEND_INTERFACE\n",
+     [("E-DECL-016", 3, 1, "EXTENDS 'A': expected an INTERFACE, found a FUNCTION_BLOCK")]),
+    ("a_method_named_like_a_variable", "iec", "FUNCTION_BLOCK A\nVAR Run : INT; END_VAR\n" + RUN + "END_FUNCTION_BLOCK\n",
+     [("E-DECL-002", 3, 8, "method Run has the name of a variable of A")]),
+    ("a_property_named_like_a_variable", "codesys",
+     "FUNCTION_BLOCK A\nVAR Speed : INT; END_VAR\nPROPERTY Speed : INT\nGET\nSpeed := 1;\nEND_GET\nEND_PROPERTY\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-002", 3, 10, "property Speed has the name of a variable of A")]),
+    ("a_method_twice", "iec", "FUNCTION_BLOCK A\n" + RUN + "METHOD run : BOOL\nrun := FALSE;\nEND_METHOD\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-002", 5, 8, "method run is declared twice in A")]),
+    ("a_final_method_overridden", "iec",
+     "FUNCTION_BLOCK A\nMETHOD FINAL Run : BOOL\nRun := TRUE;\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
+     "FUNCTION_BLOCK B EXTENDS A\n" + RUN + "END_FUNCTION_BLOCK\n",
+     [("E-DECL-016", 7, 8, "method Run overrides the FINAL method of A")]),
+    ("a_method_overridden", "iec",
+     "FUNCTION_BLOCK A\n" + RUN + "END_FUNCTION_BLOCK\nFUNCTION_BLOCK B EXTENDS A\n" + RUN + "END_FUNCTION_BLOCK\n", []),
+    ("an_abstract_method_left_unimplemented", "iec",
+     "FUNCTION_BLOCK ABSTRACT A\nMETHOD ABSTRACT Run : BOOL\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
+     "FUNCTION_BLOCK B EXTENDS A\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-016", 5, 1, "B must implement the ABSTRACT method Run of A (or be ABSTRACT itself)")]),
+    ("an_abstract_method_implemented", "iec",
+     "FUNCTION_BLOCK ABSTRACT A\nMETHOD ABSTRACT Run : BOOL\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
+     "FUNCTION_BLOCK B EXTENDS A\n" + RUN + "END_FUNCTION_BLOCK\n", []),
+    ("an_interface_method_missing", "iec", I_RUN + "FUNCTION_BLOCK B IMPLEMENTS IRun\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-016", 5, 1, "B IMPLEMENTS IRun but has no method Run")]),
+    ("an_interface_method_inherited", "iec",
+     I_RUN + "FUNCTION_BLOCK A\n" + RUN + "END_FUNCTION_BLOCK\nFUNCTION_BLOCK B EXTENDS A IMPLEMENTS IRun\nEND_FUNCTION_BLOCK\n", []),
+    ("a_base_interfaces_method_missing", "iec",
+     I_RUN + "INTERFACE IStop EXTENDS IRun\nMETHOD Halt : BOOL\nEND_METHOD\nEND_INTERFACE\n"
+     "FUNCTION_BLOCK B IMPLEMENTS IStop\nMETHOD Halt : BOOL\nHalt := TRUE;\nEND_METHOD\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-016", 9, 1, "B IMPLEMENTS IStop but has no method Run")]),
+    ("an_interface_implemented_by_the_base", "iec",
+     I_RUN + "FUNCTION_BLOCK A IMPLEMENTS IRun\n" + RUN + "END_FUNCTION_BLOCK\nFUNCTION_BLOCK B EXTENDS A\nEND_FUNCTION_BLOCK\n", []),
+    ("an_interface_of_an_abstract_base_left_to_the_derived", "iec",
+     I_RUN + "FUNCTION_BLOCK ABSTRACT A IMPLEMENTS IRun\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK B EXTENDS A\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-016", 7, 1, "B IMPLEMENTS IRun but has no method Run")]),
+)
+
+
+@pytest.mark.parametrize("dialect, source, expected", OBJECTS)
+def test_objects(dialect, source, expected):
+    check(dialect, source, expected)
+
+
+def test_an_abstract_method_of_a_concrete_function_block_is_one_diagnostic():
+    """One root cause, one diagnostic: the method is refused where it is declared; the
+    function block is not told as well to implement its own ABSTRACT method."""
+    check("iec", "FUNCTION_BLOCK A\nMETHOD ABSTRACT Run : BOOL\nEND_METHOD\nEND_FUNCTION_BLOCK\n",
+          [("E-DECL-016", 2, 17, "ABSTRACT method Run in A, which is not ABSTRACT")])
+
+
+# ================================================================ configuration.py
+
+MAIN_IO = ("PROGRAM Main\nVAR_INPUT Start : BOOL; END_VAR\nVAR_OUTPUT Done : INT; END_VAR\n"
+           "VAR Level : INT; END_VAR\nEND_PROGRAM\n")
+
+
+def cell(*lines: str) -> str:
+    """CONFIGURATION C with `lines` at lines 2, 3, ..., then PROGRAM Main."""
+    return "CONFIGURATION C\n" + "".join(f"    {line}\n" for line in lines) + "END_CONFIGURATION\n" + MAIN_IO
+
+
+CONFIGURATIONS = rows(
+    ("a_positional_connection", "iec", cell("VAR_GLOBAL g : BOOL; END_VAR", "PROGRAM P1 : Main (g);"),
+     [("E-CALL-002", 3, 24, "program instance P1: a connection names an input or output of Main "
+                            "(In := %IX0.0, Out => %QX0.0)")]),
+    ("a_connection_to_no_pin", "iec", cell("PROGRAM P1 : Main (Stop := TRUE);"),
+     [("E-CALL-002", 2, 24, "connection P1.Stop: PROGRAM Main has no input or output 'Stop'")]),
+    ("a_connection_to_a_local", "iec", cell("PROGRAM P1 : Main (Level := 1);"),
+     [("E-CALL-002", 2, 24, "connection P1.Level: PROGRAM Main has no input or output 'Level'")]),
+    ("an_output_connected_with_assign", "iec", cell("PROGRAM P1 : Main (Done := 1);"),
+     [("E-CALL-005", 2, 24, "connection P1.Done: 'Done' is a VAR_OUTPUT: connect an input with :=, an "
+                            "output with =>")]),
+    ("an_input_connected_with_arrow", "iec", cell("VAR_GLOBAL g : BOOL; END_VAR", "PROGRAM P1 : Main (Start => g);"),
+     [("E-CALL-005", 3, 24, "connection P1.Start: 'Start' is a VAR_INPUT: connect an input with :=, an "
+                            "output with =>")]),
+    ("an_input_connection_of_another_type", "iec", cell("PROGRAM P1 : Main (Start := 5);"),
+     [("E-TYPE-004", 2, 33, "connection P1.Start: expected BOOL, found SINT; convert explicitly with SINT_TO_BOOL")]),
+    ("an_output_connection_of_another_type", "iec", cell("VAR_GLOBAL g : BOOL; END_VAR", "PROGRAM P1 : Main (Done => g);"),
+     [("E-TYPE-004", 3, 32, "connection P1.Done: expected BOOL, found INT; convert explicitly with INT_TO_BOOL")]),
+    ("connections_accepted", "iec",
+     cell("VAR_GLOBAL g : INT; b : BOOL; END_VAR", "PROGRAM P1 : Main (Start := b, Done => g);"), []),
+    ("an_access_path_with_an_index", "iec",
+     "CONFIGURATION C\n    PROGRAM P1 : Main;\n    VAR_ACCESS A1 : P1.Arr[1] : INT READ_ONLY; END_VAR\n"
+     "END_CONFIGURATION\nPROGRAM Main\nVAR Arr : ARRAY[0..1] OF INT; END_VAR\nEND_PROGRAM\n",
+     [("E-TYPE-014", 3, 21, "VAR_ACCESS A1: expected a path Resource.Program.Variable")]),
+    ("an_access_path_of_another_type", "iec", cell("PROGRAM P1 : Main;", "VAR_ACCESS A1 : P1.Level : REAL READ_ONLY; END_VAR"),
+     [("E-TYPE-004", 3, 16, "VAR_ACCESS A1: declared REAL, the variable is INT")]),
+    ("an_access_path_of_no_instance", "iec", cell("PROGRAM P1 : Main;", "VAR_ACCESS A1 : P2.Level : INT READ_ONLY; END_VAR"),
+     [("E-DECL-001", 3, 16, "VAR_ACCESS A1: the path names no program instance of C (instances: P1)")]),
+    ("an_access_path_and_no_instances", "iec", cell("VAR_ACCESS A1 : P2.Level : INT READ_ONLY; END_VAR"),
+     [("E-DECL-001", 2, 16, "VAR_ACCESS A1: the path names no program instance of C (instances: none)")]),
+    ("an_access_path_of_no_variable", "iec", cell("PROGRAM P1 : Main;", "VAR_ACCESS A1 : P1.Nope : INT READ_ONLY; END_VAR"),
+     [("E-DECL-001", 3, 16, "VAR_ACCESS A1: Main has no variable 'Nope'")]),
+    ("access_paths_through_a_resource_and_a_struct", "iec",
+     "TYPE S : STRUCT a : INT; END_STRUCT; END_TYPE\nCONFIGURATION C\n    PROGRAM P1 : Main;\n    VAR_ACCESS\n"
+     "        A1 : P1.s.a : INT READ_ONLY;\n        A2 : P1.s.b : INT READ_ONLY;\n        A3 : R.P1.s.a : REAL READ_ONLY;\n"
+     "    END_VAR\nEND_CONFIGURATION\nPROGRAM Main\nVAR s : S; END_VAR\nEND_PROGRAM\n",
+     [("E-DECL-001", 6, 9, "VAR_ACCESS A2: s has no variable 'b'"),
+      ("E-TYPE-004", 7, 9, "VAR_ACCESS A3: declared REAL, the variable is INT")]),
+    ("an_access_path_accepted", "iec", cell("PROGRAM P1 : Main;", "VAR_ACCESS A1 : P1.Level : INT READ_ONLY; END_VAR"), []),
+    ("a_var_config_of_another_type", "iec", cell("PROGRAM P1 : Main;", "VAR_CONFIG P1.Level : REAL := 1.0; END_VAR"),
+     [("E-TYPE-004", 3, 16, "VAR_CONFIG P1.Level: declared REAL, the variable is INT")]),
+    ("a_var_config_value_of_another_type", "iec", cell("PROGRAM P1 : Main;", "VAR_CONFIG P1.Level : INT := TRUE; END_VAR"),
+     [("E-TYPE-004", 3, 34, "VAR_CONFIG P1.Level: expected INT, found BOOL; convert explicitly with BOOL_TO_INT")]),
+    ("a_programs_access_path_of_another_type", "iec",
+     "PROGRAM Tank\nVAR Level : INT; END_VAR\nVAR_ACCESS Fill : Level : REAL READ_ONLY; END_VAR\nEND_PROGRAM\n",
+     [("E-TYPE-004", 3, 12, "VAR_ACCESS Fill: declared REAL, the variable is INT")]),
+)
+
+
+@pytest.mark.parametrize("dialect, source, expected", CONFIGURATIONS)
+def test_configurations(dialect, source, expected):
+    check(dialect, source, expected)
+
+
+# ================================================================ memory.py
+# docs/limits.md: 64 MiB = 67,108,864 bytes by default; an LREAL is 8 bytes, a BYTE 1.
+
+HALF = "ARRAY[0..4194303] OF LREAL"     # 4,194,304 LREALs: 33,554,432 bytes, half the limit
+
+MEMORY = rows(
+    ("a_variable_at_the_limit", "iec", P("    a : ARRAY[0..8388607] OF LREAL;", ""), []),
+    ("a_variable_8_bytes_over", "iec", P("    a : ARRAY[0..8388608] OF LREAL;", ""),
+     [("E-LIMIT-008", 3, 5, "Main.a needs 67,108,872 bytes (ARRAY[0..8388608] OF LREAL), above the memory "
+                           "limit of 67,108,864 bytes")]),
+    ("a_global_8_bytes_over", "iec", "VAR_GLOBAL\n    g : ARRAY[0..8388608] OF LREAL;\nEND_VAR\n",
+     [("E-LIMIT-008", 2, 5, "global g needs 67,108,872 bytes (ARRAY[0..8388608] OF LREAL), above the memory "
+                           "limit of 67,108,864 bytes")]),
+    ("an_instance_at_the_limit", "iec", f"FUNCTION_BLOCK Big\nVAR\n    a : {HALF};\n    b : {HALF};\nEND_VAR\nEND_FUNCTION_BLOCK\n", []),
+    ("an_instance_a_byte_over", "iec",
+     f"FUNCTION_BLOCK Big\nVAR\n    a : {HALF};\n    b : {HALF};\n    c : BYTE;\nEND_VAR\nEND_FUNCTION_BLOCK\n",
+     [("E-LIMIT-009", 1, 1, "an instance of Big needs 67,108,865 bytes, above the memory limit of 67,108,864 bytes")]),
+    ("the_project_at_the_limit", "iec",
+     f"VAR_GLOBAL\n    g : {HALF};\nEND_VAR\nPROGRAM Main\nVAR\n    a : {HALF};\nEND_VAR\nEND_PROGRAM\n", []),
+    # At the project's first POU, in its own file (it was the built-in TON's line 91).
+    ("the_project_a_byte_over", "iec",
+     f"VAR_GLOBAL\n    g : {HALF};\nEND_VAR\nPROGRAM Main\nVAR\n    a : {HALF};\n    c : BYTE;\nEND_VAR\nEND_PROGRAM\n",
+     [("E-LIMIT-010", 4, 1, "the project's variables need 67,108,865 bytes (globals and one instance of each "
+                           "PROGRAM), above the memory limit of 67,108,864 bytes")]),
+    ("globals_alone_a_byte_over", "iec", f"VAR_GLOBAL\n    g : {HALF};\n    h : {HALF};\n    c : BYTE;\nEND_VAR\n",
+     [("E-LIMIT-010", 2, 5, "the project's variables need 67,108,865 bytes (globals and one instance of each "
+                           "PROGRAM), above the memory limit of 67,108,864 bytes")]),
+    # OMRON W501: STRING[n] reserves n bytes, the NULL included; 1986 the largest.
+    ("the_nj_largest_string", "nj", P("    s : STRING[1986];", ""), []),
+    ("an_nj_string_a_byte_over", "nj", P("    s : STRING[1987];\n    t : ARRAY[0..1] OF STRING[1987];", ""),
+     [("E-LIMIT-011", 3, 5, "s: STRING[1987] is longer than the NJ's largest STRING, STRING[1986] (1,986 "
+                           "bytes with the NULL)"),
+      ("E-LIMIT-011", 4, 5, "t: STRING[1987] is longer than the NJ's largest STRING, STRING[1986] (1,986 "
+                           "bytes with the NULL)")]),
+    ("a_long_string_under_iec", "iec", P("    s : STRING[1987];", ""), []),
+)
+
+
+@pytest.mark.parametrize("dialect, source, expected", MEMORY)
+def test_memory(dialect, source, expected):
+    check(dialect, source, expected)
+
+
+# ================================================================ limits.py (docs/limits.md)
+
+def nested(opening: str, closing: str, n: int) -> str:
+    return opening * n + "b := FALSE;\n" + closing * n
+
+
+def elsifs(n: int) -> str:
+    return "IF b THEN\nb := FALSE;\n" + "ELSIF b THEN\nb := FALSE;\n" * n + "END_IF;"
+
+
+def clauses(n: int) -> str:
+    return "CASE x OF\n" + "".join(f"{i}: x := 0;\n" for i in range(n)) + "END_CASE;"
+
+
+def parenthesised(n: int) -> str:
+    """`x := (((1 + 1) + 1) ...)`: n additions nested, the innermost's right operand at depth n + 1."""
+    return "x := " + "(" * n + "1" + " + 1)" * n + ";"
+
+
+LIMITS = rows(
+    ("loops_12_deep", "iec", P("    b : BOOL;", nested("WHILE b DO\n", "END_WHILE;\n", 12)), []),
+    ("loops_13_deep", "iec", P("    b : BOOL;", nested("WHILE b DO\n", "END_WHILE;\n", 13)),
+     [("E-LIMIT-004", 17, 1, "loops nested more than 12 levels deep in Main")]),
+    ("statements_40_deep", "iec", P("    b : BOOL;", nested("IF b THEN\n", "END_IF;\n", 40)), []),
+    ("statements_41_deep", "iec", P("    b : BOOL;", nested("IF b THEN\n", "END_IF;\n", 41)),
+     [("E-LIMIT-003", 45, 1, "statements nested more than 40 levels deep (IF here) in Main")]),
+    ("elsif_150", "iec", P("    b : BOOL;", elsifs(150)), []),
+    ("elsif_151", "iec", P("    b : BOOL;", elsifs(151)),
+     [("E-LIMIT-005", 5, 1, "IF with 151 ELSIF branches (at most 150; a CASE takes many more) in Main")]),
+    ("case_clauses_1500", "iec", P("    x : INT;", clauses(1500)), []),
+    ("case_clauses_1501", "iec", P("    x : INT;", clauses(1501)),
+     [("E-LIMIT-006", 5, 1, "CASE with 1501 clauses (at most 1500) in Main")]),
+    ("an_expression_64_deep", "iec", P("    x : INT;", parenthesised(63)), []),
+    # The innermost `1 + 1` is at column 70: 5 for `x := `, 64 for the brackets; its right operand at 74.
+    ("an_expression_65_deep", "iec", P("    x : INT;", parenthesised(64)),
+     [("E-LIMIT-002", 5, 74, "expression nested more than 64 levels deep (split it with intermediate "
+                             "variables or types) in Main")]),
+)
+
+
+@pytest.mark.parametrize("dialect, source, expected", LIMITS)
+def test_limits(dialect, source, expected):
+    check(dialect, source, expected)
+
+
+# ================================================================ sfc.py, recursion.py, dialects.py
+
+CHARTS = rows(
+    ("a_step_twice", "iec",
+     "PROGRAM P\nVAR Go : BOOL; END_VAR\nINITIAL_STEP Idle:\nEND_STEP\nSTEP Run:\nEND_STEP\nSTEP run:\nEND_STEP\n"
+     "TRANSITION FROM Idle TO Run := Go;\nEND_TRANSITION\nEND_PROGRAM\n",
+     [("E-SFC-002", 7, 1, "step 'run' is declared twice in P")]),
+    ("no_initial_step", "iec",
+     "PROGRAM P\nVAR Go : BOOL; END_VAR\nSTEP Idle:\nEND_STEP\nSTEP Run:\nEND_STEP\n"
+     "TRANSITION FROM Idle TO Run := Go;\nEND_TRANSITION\nEND_PROGRAM\n",
+     [("E-SFC-002", 3, 1, "the chart of P has no INITIAL_STEP")]),
+    ("a_transition_to_no_step", "iec",
+     "PROGRAM P\nVAR Go : BOOL; END_VAR\nINITIAL_STEP Idle:\nEND_STEP\nTRANSITION FROM Idle TO Running := Go;\n"
+     "END_TRANSITION\nEND_PROGRAM\n",
+     [("E-SFC-002", 5, 1, "transition from Idle to Running: no step 'Running' in P")]),
+    ("a_transition_between_steps_of_which_two_are_missing", "iec",
+     "PROGRAM P\nVAR Go : BOOL; END_VAR\nINITIAL_STEP Idle:\nEND_STEP\nTRANSITION FROM (Idle, A) TO (B, Idle) := Go;\n"
+     "END_TRANSITION\nEND_PROGRAM\n",
+     [("E-SFC-002", 5, 1, "transition from Idle, A to B, Idle: no step 'A' in P"),
+      ("E-SFC-002", 5, 1, "transition from Idle, A to B, Idle: no step 'B' in P")]),
+    ("a_function_calling_itself", "iec", "FUNCTION F : INT\nVAR_INPUT n : INT; END_VAR\nF := F(n - 1);\nEND_FUNCTION\n",
+     [("E-REC-001", 3, 6, "recursion: F calls F; IEC 61131-3 and OMRON NJ forbid recursion")]),
+    ("two_functions_calling_each_other", "iec", "FUNCTION F : INT\nF := G();\nEND_FUNCTION\nFUNCTION G : INT\nG := F();\nEND_FUNCTION\n",
+     [("E-REC-001", 2, 6, "recursion: F calls G, G calls F; IEC 61131-3 and OMRON NJ forbid recursion")]),
+    ("two_function_blocks_holding_each_other", "iec",
+     "FUNCTION_BLOCK A\nVAR b : B; END_VAR\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK B\nVAR a : A; END_VAR\nEND_FUNCTION_BLOCK\n",
+     [("E-REC-001", 2, 5, "recursion: A declares an instance of B, B declares an instance of A; IEC 61131-3 "
+                          "and OMRON NJ forbid recursion")]),
+    ("a_construct_of_another_dialect_three_times", "iec", P("    w : WORD;\n    b : BOOL;", "b := w.1;\nb := w.2;\nb := w.3;"),
+     [("E-DIALECT-001", 6, 6, "bit access x.3 is not accepted by --dialect iec; --dialect codesys or --dialect nj "
+                              "accepts it (2 more use(s) in this file)")]),
+    ("a_construct_of_another_dialect_once", "iec", P("    w : WORD;\n    b : BOOL;", "b := w.1;"),
+     [("E-DIALECT-001", 6, 6, "bit access x.3 is not accepted by --dialect iec; --dialect codesys or --dialect nj "
+                              "accepts it")]),
+)
+
+
+@pytest.mark.parametrize("dialect, source, expected", CHARTS)
+def test_charts_recursion_and_dialects(dialect, source, expected):
+    check(dialect, source, expected)
+
+
+# ================================================================ nj_rules.py, nj_build.py
+# OMRON NJ identifier rules (W501 6-3-12): warnings under iec, errors under nj.
+
+NAMES = "    _x : INT;\n    y_ : INT;\n    a__b : INT;\n    p_on : INT;\n    Round : INT;\n    INT_TO_DINT : INT;"
+FB_ARRAY = "FUNCTION_BLOCK Fb\nVAR_OUTPUT a : ARRAY[0..2] OF INT; END_VAR\nEND_FUNCTION_BLOCK\n"
+
+NJ = rows(
+    ("an_identifier_of_128_bytes_and_of_127", "iec", P(f"    {'a' * 128} : INT;\n    {'b' * 127} : INT;", ""),
+     [("W-NJ-001", 3, 5, f"identifier '{'a' * 32}...' is 128 bytes long: expected at most 127 bytes (UTF-8) "
+                         "on an OMRON NJ")]),
+    ("identifiers_the_nj_refuses_warned", "iec", P(NAMES, ""),
+     [("W-NJ-002", 3, 5, "identifier '_x' starts or ends with '_': not allowed on an OMRON NJ"),
+      ("W-NJ-002", 4, 5, "identifier 'y_' starts or ends with '_': not allowed on an OMRON NJ"),
+      ("W-NJ-003", 5, 5, "identifier 'a__b' contains '__': not allowed on an OMRON NJ"),
+      ("W-NJ-005", 6, 5, "identifier 'p_on' starts with 'P_', which the NJ reserves for system-defined variables"),
+      ("W-NJ-004", 7, 5, "identifier 'Round' is the name of an NJ instruction: choose another name"),
+      ("W-NJ-004", 8, 5, "identifier 'INT_TO_DINT' is the name of an NJ instruction: choose another name")]),
+    ("identifiers_the_nj_refuses", "nj", P("    _x : INT;\n    a__b : INT;\n    P_On : INT;\n    Round : INT;", ""),
+     [("E-NJ-002", 3, 5, "identifier '_x' starts or ends with '_': not allowed on an OMRON NJ"),
+      ("E-NJ-003", 4, 5, "identifier 'a__b' contains '__': not allowed on an OMRON NJ"),
+      ("E-NJ-005", 5, 5, "identifier 'P_On' starts with 'P_', which the NJ reserves for system-defined variables"),
+      ("E-NJ-004", 6, 5, "identifier 'Round' is the name of an NJ instruction: choose another name")]),
+    ("identifiers_the_nj_takes", "nj", P("    x_y : INT;\n    Rounded : INT;\n    Pump : INT;", ""), []),
+    ("an_element_of_an_instances_array", "iec", FB_ARRAY + P("    f : Fb;\n    x : INT;", "x := f.a[1];"),
+     [("W-NJ-006", 9, 6, "an element of 'f.a', a variable of a function block instance: Sysmac Studio refuses it "
+                         "at Build (\"Cannot use an element of array or a member of structure for the reference of "
+                         "function block instance variables\"); copy 'f.a' whole into a local variable first")]),
+    ("a_case_label_of_a_constant_expression", "iec",
+     "PROGRAM Main\nVAR CONSTANT\n    K : INT := 3;\nEND_VAR\nVAR\n    x : INT;\nEND_VAR\nCASE x OF\nK + 1: x := 0;\nEND_CASE;\nEND_PROGRAM\n",
+     [("W-NJ-007", 9, 1, "CASE label 'K + 1' is not an integer literal or an enumerator; OMRON documents CASE "
+                         "labels as integer constants: write 4 (* K + 1 *)")]),
+    ("case_labels_of_enumerators", "iec",
+     "TYPE Color : (Red, Green); END_TYPE\n" + P("    c : Color;", "CASE c OF\nRed: c := Green;\nColor#Green: c := Red;\nEND_CASE;"), []),
+    ("initial_values_of_constant_expressions", "iec",
+     P("    x : INT := 2 * 3;\n    r : REAL := 1.0 / 4.0;\n    a : ARRAY[0..1] OF INT := [1 + 1, 2];", ""),
+     [("W-NJ-008", 3, 16, "initial value of 'x': '2 * 3' is not a literal; a variable table in Sysmac Studio "
+                          "takes literals: write 6 (* 2 * 3 *)"),
+      ("W-NJ-008", 4, 17, "initial value of 'r': '1.0 / 4.0' is not a literal; a variable table in Sysmac "
+                          "Studio takes literals: write 0.25 (* 1.0 / 4.0 *)"),
+      ("W-NJ-008", 5, 32, "initial value of 'a': '1 + 1' is not a literal; a variable table in Sysmac Studio "
+                          "takes literals: write 2 (* 1 + 1 *)")]),
+    ("an_initial_value_of_a_constant_expression_under_nj", "nj", P("    x : INT := 2 * 3;", ""),
+     [("E-NJ-008", 3, 16, "initial value of 'x': '2 * 3' is not a literal; a variable table in Sysmac Studio "
+                          "takes literals: write 6 (* 2 * 3 *)")]),
+)
+
+
+@pytest.mark.parametrize("dialect, source, expected", NJ)
+def test_nj_rules(dialect, source, expected):
+    check(dialect, source, expected)

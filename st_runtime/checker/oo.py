@@ -137,7 +137,8 @@ class ObjectModel:
         if node.kind != "FUNCTION_BLOCK" or "ABSTRACT" in node.modifiers:
             return
         for method in info.methods.values():
-            if "ABSTRACT" in method.modifiers:
+            # (its own ABSTRACT method is refused where it is declared: one diagnostic)
+            if "ABSTRACT" in method.modifiers and method.owner is not info:
                 self.ctx.error("E-DECL-016", f"{node.name} must implement the ABSTRACT method "
                                f"{method.name} of {method.owner.name} (or be ABSTRACT itself)", node.pos)
         seen = set()
