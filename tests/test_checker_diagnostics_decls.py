@@ -237,10 +237,6 @@ DECLARATIONS = rows(
 )
 
 
-@pytest.mark.parametrize("dialect, source, expected", DECLARATIONS)
-def test_declarations(dialect, source, expected):
-    check(dialect, source, expected)
-
 
 # ================================================================ statements.py
 
@@ -331,10 +327,6 @@ STATEMENTS = rows(
 )
 
 
-@pytest.mark.parametrize("dialect, source, expected", STATEMENTS)
-def test_statements(dialect, source, expected):
-    check(dialect, source, expected)
-
 
 # ================================================================ stores.py (what may be written)
 
@@ -404,10 +396,6 @@ STORES = rows(
 )
 
 
-@pytest.mark.parametrize("dialect, source, expected", STORES)
-def test_stores(dialect, source, expected):
-    check(dialect, source, expected)
-
 
 # ================================================================ oo.py
 
@@ -468,10 +456,6 @@ OBJECTS = rows(
      [("E-DECL-016", 7, 1, "B IMPLEMENTS IRun but has no method Run")]),
 )
 
-
-@pytest.mark.parametrize("dialect, source, expected", OBJECTS)
-def test_objects(dialect, source, expected):
-    check(dialect, source, expected)
 
 
 def test_an_abstract_method_of_a_concrete_function_block_is_one_diagnostic():
@@ -541,10 +525,6 @@ CONFIGURATIONS = rows(
 )
 
 
-@pytest.mark.parametrize("dialect, source, expected", CONFIGURATIONS)
-def test_configurations(dialect, source, expected):
-    check(dialect, source, expected)
-
 
 # ================================================================ memory.py
 # docs/limits.md: 64 MiB = 67,108,864 bytes by default; an LREAL is 8 bytes, a BYTE 1.
@@ -583,10 +563,6 @@ MEMORY = rows(
     ("a_long_string_under_iec", "iec", P("    s : STRING[1987];", ""), []),
 )
 
-
-@pytest.mark.parametrize("dialect, source, expected", MEMORY)
-def test_memory(dialect, source, expected):
-    check(dialect, source, expected)
 
 
 # ================================================================ limits.py (docs/limits.md)
@@ -629,10 +605,6 @@ LIMITS = rows(
 )
 
 
-@pytest.mark.parametrize("dialect, source, expected", LIMITS)
-def test_limits(dialect, source, expected):
-    check(dialect, source, expected)
-
 
 # ================================================================ sfc.py, recursion.py, dialects.py
 
@@ -670,10 +642,6 @@ CHARTS = rows(
                               "accepts it")]),
 )
 
-
-@pytest.mark.parametrize("dialect, source, expected", CHARTS)
-def test_charts_recursion_and_dialects(dialect, source, expected):
-    check(dialect, source, expected)
 
 
 # ================================================================ nj_rules.py, nj_build.py
@@ -723,6 +691,9 @@ NJ = rows(
 )
 
 
-@pytest.mark.parametrize("dialect, source, expected", NJ)
-def test_nj_rules(dialect, source, expected):
+# ================================================================ the test
+
+@pytest.mark.parametrize("dialect, source, expected",
+                         DECLARATIONS + STATEMENTS + STORES + OBJECTS + CONFIGURATIONS + MEMORY + LIMITS + CHARTS + NJ)
+def test_every_diagnostic_in_full(dialect, source, expected):
     check(dialect, source, expected)
