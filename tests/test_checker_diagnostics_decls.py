@@ -26,6 +26,7 @@ from __future__ import annotations
 import pytest
 
 from checker_helpers import diagnostics, program as P
+from test_checker_mutants_third import after_one_scan
 
 #: `program(...)` puts the declarations at line 3 and the body at line 5.
 
@@ -463,6 +464,18 @@ def test_an_abstract_method_of_a_concrete_function_block_is_one_diagnostic():
     function block is not told as well to implement its own ABSTRACT method."""
     check("iec", "FUNCTION_BLOCK A\nMETHOD ABSTRACT Run : BOOL\nEND_METHOD\nEND_FUNCTION_BLOCK\n",
           [("E-DECL-016", 2, 17, "ABSTRACT method Run in A, which is not ABSTRACT")])
+
+
+def test_a_base_interfaces_method_called_through_a_derived_interface():
+    """3rd ed. 6.6.6: an interface that EXTENDS another has its methods; s.Run() through an
+    IStop variable runs the instance's Run (7 and 8 by hand from the bodies)."""
+    text = (I_RUN.replace("BOOL", "INT") + "INTERFACE IStop EXTENDS IRun\nMETHOD Halt : INT\nEND_METHOD\nEND_INTERFACE\n"
+            "FUNCTION_BLOCK B IMPLEMENTS IStop\nMETHOD Run : INT\nRun := 7;\nEND_METHOD\n"
+            "METHOD Halt : INT\nHalt := 8;\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
+            + P("    b : B;\n    s : IStop;\n    r : INT;\n    h : INT;", "s := b;\nr := s.Run();\nh := s.Halt();"))
+    assert diagnostics(text) == []
+    main = after_one_scan(text)
+    assert (main["r"], main["h"]) == (7, 8)
 
 
 # ================================================================ configuration.py
