@@ -657,6 +657,29 @@ CHARTS = rows(
 
 
 
+def test_a_reset_listed_after_a_stored_limited_action_still_dominates():
+    """IEC 61131-3 6.7.4.5: an action's control is reset-dominant whatever the order of its
+    associations.  S2's R comes after S1's SL in the text; on the scan S2 is active the SL
+    flip-flop is cleared, so when S3 follows, Lamp (SL for 10 s, not yet over) stays off.
+    By hand: scan 1 S1 sets Lamp; scan 2 S2 resets it; scan 3 S3, Lamp still FALSE."""
+    from st_runtime.api import load_text
+    text = ("PROGRAM Main\nVAR Go : BOOL; Lamp : BOOL; END_VAR\n"
+            "INITIAL_STEP S1:\n    Lamp(SL, T#10s);\nEND_STEP\nTRANSITION FROM S1 TO S2 := Go; END_TRANSITION\n"
+            "STEP S2:\n    Lamp(R);\nEND_STEP\nTRANSITION FROM S2 TO S3 := Go; END_TRANSITION\n"
+            "STEP S3:\nEND_STEP\nEND_PROGRAM\n")
+    plc = load_text(text).controller(period="1ms")
+    main = plc.add_program("Main")
+    plc.run(1)
+    seen = [(main["S1.X"], main["Lamp"])]
+    main["Go"] = True
+    plc.run(1)
+    seen.append((main["S2.X"], main["Lamp"]))
+    plc.run(1)
+    seen.append((main["S3.X"], main["Lamp"]))
+    assert seen == [(True, True), (True, False), (True, False)]
+    assert plc.faults == []
+
+
 # ================================================================ nj_rules.py, nj_build.py
 # OMRON NJ identifier rules (W501 6-3-12): warnings under iec, errors under nj.
 
