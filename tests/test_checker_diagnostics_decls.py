@@ -680,6 +680,74 @@ def test_a_reset_listed_after_a_stored_limited_action_still_dominates():
     assert plc.faults == []
 
 
+# ---------------------------------------------------------------- each construct in each dialect
+# st_runtime/dialects.py CONSTRUCTS: who accepts what.  Each snippet uses one construct (two
+# where one needs the other: a dereference needs a reference) at a place counted by hand; in
+# the dialects that accept it, it checks clean.
+
+def refused(line: int, col: int, what: str, dialect: str, accepted_by: str) -> tuple:
+    return ("E-DIALECT-001", line, col, f"{what} is not accepted by --dialect {dialect}; {accepted_by} accepts it")
+
+
+IEC_CODESYS = "--dialect codesys or --dialect iec"
+CODESYS = "--dialect codesys"
+IEC = "--dialect iec"
+CODESYS_NJ = "--dialect codesys or --dialect nj"
+
+# name: (source, {dialect: expected}); a dialect not named accepts the snippet.
+CONSTRUCT_SNIPPETS = {
+    "METHOD": ("FUNCTION_BLOCK A\nMETHOD Run : BOOL\nRun := TRUE;\nEND_METHOD\nEND_FUNCTION_BLOCK\n",
+               {"nj": [refused(2, 8, "METHOD", "nj", IEC_CODESYS)]}),
+    "INTERFACE": ("INTERFACE I\nEND_INTERFACE\n", {"nj": [refused(1, 1, "INTERFACE", "nj", IEC_CODESYS)]}),
+    "EXTENDS": ("FUNCTION_BLOCK A\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK B EXTENDS A\nEND_FUNCTION_BLOCK\n",
+                {"nj": [refused(3, 1, "EXTENDS", "nj", IEC_CODESYS)]}),
+    "IMPLEMENTS": ("INTERFACE I\nEND_INTERFACE\nFUNCTION_BLOCK B IMPLEMENTS I\nEND_FUNCTION_BLOCK\n",
+                   {"nj": [refused(1, 1, "INTERFACE", "nj", IEC_CODESYS),
+                           refused(3, 1, "IMPLEMENTS", "nj", IEC_CODESYS)]}),
+    "REF_TO": (P("    r : REF_TO INT;", ""), {"nj": [refused(3, 9, "REF_TO", "nj", IEC_CODESYS)]}),
+    "DEREF_AND_NULL": ("FUNCTION F : INT\nVAR_INPUT r : REF_TO INT; END_VAR\nIF r <> NULL THEN\n    F := r^;\nEND_IF;\nEND_FUNCTION\n",
+                       {"nj": [refused(2, 15, "REF_TO", "nj", IEC_CODESYS),
+                               refused(3, 9, "NULL", "nj", IEC_CODESYS),
+                               refused(4, 10, "the dereference ^", "nj", IEC_CODESYS)]}),   # at r: where r^ starts
+    "POINTER": (P("    p : POINTER TO INT;", ""),
+                {d: [refused(3, 9, "POINTER TO", d, CODESYS)] for d in ("iec", "nj")}),
+    "ADR": (P("    x : INT;\n    p : POINTER TO INT;", "p := ADR(x);"),
+            {d: [refused(4, 9, "POINTER TO", d, CODESYS), refused(6, 6, "ADR()", d, CODESYS)] for d in ("iec", "nj")}),
+    "TRAILING_COMMA": (P("    x : INT;", "x := MAX(1, 2,);"),
+                       {d: [refused(5, 6, "a comma after the last argument", d, CODESYS)] for d in ("iec", "nj")}),
+    "UNION": ("TYPE U :\nUNION\n    a : INT;\n    b : WORD;\nEND_UNION;\nEND_TYPE\n",
+              {"iec": [refused(2, 1, "UNION", "iec", CODESYS_NJ)]}),
+    "PROPERTY": ("FUNCTION_BLOCK A\nVAR n : INT; END_VAR\nPROPERTY P : INT\nGET\nP := n;\nEND_GET\nEND_PROPERTY\nEND_FUNCTION_BLOCK\n",
+                 {d: [refused(3, 10, "PROPERTY", d, CODESYS)] for d in ("iec", "nj")}),
+    "ACTION": ("FUNCTION_BLOCK F\nACTION Reset:\nEND_ACTION\nEND_FUNCTION_BLOCK\n",
+               {d: [refused(2, 8, "ACTION", d, CODESYS)] for d in ("iec", "nj")}),
+    "NAMESPACE": ("NAMESPACE Lib\nTYPE T : INT; END_TYPE\nEND_NAMESPACE\n",
+                  {d: [refused(2, 6, "NAMESPACE", d, IEC)] for d in ("nj", "codesys")}),
+    "SET_RESET": (P("    b : BOOL;", "b S= TRUE;\nb R= FALSE;"),
+                  {d: [("E-DIALECT-001", 5, 1, f"S= / R= is not accepted by --dialect {d}; --dialect codesys "
+                                               "accepts it (1 more use(s) in this file)")] for d in ("iec", "nj")}),
+    "SUPER_BODY": ("FUNCTION_BLOCK A\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK B EXTENDS A\nSUPER^();\nEND_FUNCTION_BLOCK\n",
+                   {"iec": [refused(4, 1, "SUPER^() (the base FB's body)", "iec", CODESYS)],
+                    # SUPER^() is no dereference the user wrote: refused as what it is, once.
+                    "nj": [refused(3, 1, "EXTENDS", "nj", IEC_CODESYS),
+                           refused(4, 1, "SUPER^() (the base FB's body)", "nj", CODESYS)]}),
+    "SFC": ("PROGRAM P\nINITIAL_STEP S:\nEND_STEP\nEND_PROGRAM\n",
+            {d: [refused(2, 1, "a Sequential Function Chart body (INITIAL_STEP, TRANSITION)", d, IEC)]
+             for d in ("nj", "codesys")}),
+    "EDGE_NAME": (P("    R_EDGE : BOOL;", ""),
+                  {d: [refused(3, 5, "a variable named R_EDGE or F_EDGE (IEC 61131-3 keywords)", d, CODESYS)]
+                   for d in ("iec", "nj")}),
+    "ENUM_DOT": ("TYPE Color : (Red, Green); END_TYPE\n" + P("    c : Color;", "c := Color.Green;"),
+                 {d: [refused(6, 6, "an enumeration value written Type.Value", d, CODESYS)] for d in ("iec", "nj")}),
+    "BIT_ACCESS": (P("    w : WORD;\n    b : BOOL;", "b := w.3;\nb := w.%X3;"),
+                   {"iec": [refused(6, 6, "bit access x.3", "iec", CODESYS_NJ)]}),
+}
+
+CONSTRUCTS = rows(*((f"{name}_under_{dialect}", dialect, source, refusals.get(dialect, []))
+                    for name, (source, refusals) in CONSTRUCT_SNIPPETS.items()
+                    for dialect in ("iec", "nj", "codesys")))
+
+
 # ================================================================ nj_rules.py, nj_build.py
 # OMRON NJ identifier rules (W501 6-3-12): warnings under iec, errors under nj.
 
@@ -730,6 +798,6 @@ NJ = rows(
 # ================================================================ the test
 
 @pytest.mark.parametrize("dialect, source, expected",
-                         DECLARATIONS + STATEMENTS + STORES + OBJECTS + CONFIGURATIONS + MEMORY + LIMITS + CHARTS + NJ)
+                         DECLARATIONS + STATEMENTS + STORES + OBJECTS + CONFIGURATIONS + MEMORY + LIMITS + CHARTS + CONSTRUCTS + NJ)
 def test_every_diagnostic_in_full(dialect, source, expected):
     check(dialect, source, expected)
