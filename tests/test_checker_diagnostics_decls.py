@@ -334,6 +334,10 @@ STATEMENTS = rows(
 FB_IO = "FUNCTION_BLOCK Fb\nVAR_INPUT i : INT; END_VAR\nVAR_OUTPUT o : INT; END_VAR\nVAR v : INT; END_VAR\nEND_FUNCTION_BLOCK\n"
 IN_OUT_F = "FUNCTION F : INT\nVAR_IN_OUT x : INT; END_VAR\nF := x;\nEND_FUNCTION\n"
 
+NJ_006 = ("{what} '{path}', a variable of a function block instance: Sysmac Studio refuses it at Build "
+          "(\"Cannot use an element of array or a member of structure for the reference of function block "
+          "instance variables\"); copy '{path}' whole into a local variable first")
+
 STORES = rows(
     ("an_enumeration_value_written", "iec",
      "TYPE Color : (Red, Green); END_TYPE\n" + P("    c : Color;", "Red := c;"),
@@ -350,6 +354,19 @@ STORES = rows(
     ("an_instances_output_written", "iec", FB_IO + P("    f : Fb;", "f.o := 1;\nf.i := 3;"),
      [("E-ASSIGN-004", 10, 1, "assignment: 'o' is a VAR_OUTPUT of function block Fb; only its inputs may be "
                               "written from outside")]),
+    # Through an element or a member the written variable is still the instance's output;
+    # an input's member may be written (W-NJ-006: the NJ refuses parts of instance variables).
+    ("parts_of_an_instances_outputs_written", "iec",
+     "TYPE S : STRUCT x : INT; END_STRUCT; END_TYPE\nFUNCTION_BLOCK Fb\n"
+     "VAR_OUTPUT a : ARRAY[0..2] OF INT; s : S; END_VAR\nVAR_INPUT i : S; END_VAR\nEND_FUNCTION_BLOCK\n"
+     + P("    m : Fb;", "m.a[1] := 5;\nm.s.x := 6;\nm.i.x := 7;"),
+     [("E-ASSIGN-004", 10, 1, "assignment: 'a' is a VAR_OUTPUT of function block Fb; only its inputs may be "
+                              "written from outside"),
+      ("W-NJ-006", 10, 1, NJ_006.format(what="an element of", path="m.a")),
+      ("E-ASSIGN-004", 11, 1, "assignment: 's' is a VAR_OUTPUT of function block Fb; only its inputs may be "
+                              "written from outside"),
+      ("W-NJ-006", 11, 1, NJ_006.format(what="a member of", path="m.s")),
+      ("W-NJ-006", 12, 1, NJ_006.format(what="a member of", path="m.i"))]),
     ("a_set_of_an_int", "codesys", P("    x : INT;\n    b : BOOL;", "x S= b;"),
      [("E-TYPE-004", 6, 1, "S=: expected INT, found BOOL; convert explicitly with BOOL_TO_INT")]),
     ("a_property_without_set_written", "codesys",
@@ -772,9 +789,7 @@ NJ = rows(
       ("E-NJ-004", 6, 5, "identifier 'Round' is the name of an NJ instruction: choose another name")]),
     ("identifiers_the_nj_takes", "nj", P("    x_y : INT;\n    Rounded : INT;\n    Pump : INT;", ""), []),
     ("an_element_of_an_instances_array", "iec", FB_ARRAY + P("    f : Fb;\n    x : INT;", "x := f.a[1];"),
-     [("W-NJ-006", 9, 6, "an element of 'f.a', a variable of a function block instance: Sysmac Studio refuses it "
-                         "at Build (\"Cannot use an element of array or a member of structure for the reference of "
-                         "function block instance variables\"); copy 'f.a' whole into a local variable first")]),
+     [("W-NJ-006", 9, 6, NJ_006.format(what="an element of", path="f.a"))]),
     ("a_case_label_of_a_constant_expression", "iec",
      "PROGRAM Main\nVAR CONSTANT\n    K : INT := 3;\nEND_VAR\nVAR\n    x : INT;\nEND_VAR\nCASE x OF\nK + 1: x := 0;\nEND_CASE;\nEND_PROGRAM\n",
      [("W-NJ-007", 9, 1, "CASE label 'K + 1' is not an integer literal or an enumerator; OMRON documents CASE "
