@@ -446,6 +446,13 @@ OBJECTS = rows(
      [("E-DECL-002", 3, 10, "property Speed has the name of a variable of A")]),
     ("a_method_twice", "iec", "FUNCTION_BLOCK A\n" + RUN + "METHOD run : BOOL\nrun := FALSE;\nEND_METHOD\nEND_FUNCTION_BLOCK\n",
      [("E-DECL-002", 5, 8, "method run is declared twice in A")]),
+    # After each refused method the FB's other methods are still declared: a.Stop() is found.
+    ("methods_after_refused_ones", "iec",
+     "FUNCTION_BLOCK A\nVAR n : INT; END_VAR\nMETHOD Run : INT\nRun := 1;\nEND_METHOD\nMETHOD run : INT\nrun := 2;\n"
+     "END_METHOD\nMETHOD n : INT\nn := 3;\nEND_METHOD\nMETHOD Stop : INT\nStop := 4;\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
+     + P("    a : A;\n    k : INT;", "k := a.Stop();"),
+     [("E-DECL-002", 6, 8, "method run is declared twice in A"),
+      ("E-DECL-002", 9, 8, "method n has the name of a variable of A")]),
     ("a_final_method_overridden", "iec",
      "FUNCTION_BLOCK A\nMETHOD FINAL Run : BOOL\nRun := TRUE;\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
      "FUNCTION_BLOCK B EXTENDS A\n" + RUN + "END_FUNCTION_BLOCK\n",
@@ -493,6 +500,17 @@ def test_a_base_interfaces_method_called_through_a_derived_interface():
     assert diagnostics(text) == []
     main = after_one_scan(text)
     assert (main["r"], main["h"]) == (7, 8)
+
+
+def test_omron_ranks_signed_and_unsigned_of_one_size_as_the_unsigned():
+    """W501 6-5-3 (data type ranking): of a signed and an unsigned integer of one size the
+    unsigned one is the type of `a + b`, whichever side it is on; the NJ computes there.
+    By hand: SINT -2 + USINT 1 = -1, as a USINT 255; INT -2 + UINT 1 = -1, as a UINT 65535."""
+    text = P("    s : SINT := -2;\n    u : USINT := 1;\n    i : INT := -2;\n    w : UINT := 1;\n"
+             "    x : INT;\n    y : INT;\n    z : DINT;", "x := s + u;\ny := u + s;\nz := i + w;")
+    assert diagnostics(text, "nj") == []
+    main = after_one_scan(text, "nj")
+    assert (main["x"], main["y"], main["z"]) == (255, 255, 65535)
 
 
 # ================================================================ configuration.py
