@@ -682,6 +682,19 @@ CHARTS = rows(
      "FUNCTION_BLOCK A\nVAR b : B; END_VAR\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK B\nVAR a : A; END_VAR\nEND_FUNCTION_BLOCK\n",
      [("E-REC-001", 2, 5, "recursion: A declares an instance of B, B declares an instance of A; IEC 61131-3 "
                           "and OMRON NJ forbid recursion")]),
+    # An FB held in a STRUCT, or in an array of them, is an instance as surely as a variable.
+    ("a_function_block_holding_itself_in_an_array_of_structs", "iec",
+     "TYPE Axis : STRUCT f : F; END_STRUCT; END_TYPE\nFUNCTION_BLOCK F\nVAR a : ARRAY[0..1] OF Axis; END_VAR\n"
+     "END_FUNCTION_BLOCK\n",
+     [("E-REC-001", 3, 5, "recursion: F declares an Axis holding an instance of F; IEC 61131-3 and OMRON NJ "
+                          "forbid recursion")]),
+    ("a_function_block_holding_itself_in_a_struct", "iec",
+     "TYPE S : STRUCT f : F; END_STRUCT; END_TYPE\nFUNCTION_BLOCK F\nVAR s : S; END_VAR\nEND_FUNCTION_BLOCK\n",
+     [("E-REC-001", 3, 5, "recursion: F declares a S holding an instance of F; IEC 61131-3 and OMRON NJ "
+                          "forbid recursion")]),
+    ("a_function_block_holding_an_array_of_itself", "iec",
+     "FUNCTION_BLOCK F\nVAR a : ARRAY[0..1] OF F; END_VAR\nEND_FUNCTION_BLOCK\n",
+     [("E-REC-001", 2, 5, "recursion: F declares an instance of F; IEC 61131-3 and OMRON NJ forbid recursion")]),
     ("a_construct_of_another_dialect_three_times", "iec", P("    w : WORD;\n    b : BOOL;", "b := w.1;\nb := w.2;\nb := w.3;"),
      [("E-DIALECT-001", 6, 6, "bit access x.3 is not accepted by --dialect iec; --dialect codesys or --dialect nj "
                               "accepts it (2 more use(s) in this file)")]),
@@ -822,6 +835,14 @@ NJ = rows(
                           "Studio takes literals: write 0.25 (* 1.0 / 4.0 *)"),
       ("W-NJ-008", 5, 32, "initial value of 'a': '1 + 1' is not a literal; a variable table in Sysmac Studio "
                           "takes literals: write 2 (* 1 + 1 *)")]),
+    # A signed literal is a literal (+5, -5); a signed constant's name is not (-K: write -3).
+    ("signed_literals_and_a_signed_constant", "iec",
+     "PROGRAM Main\nVAR CONSTANT\n    K : INT := 3;\nEND_VAR\nVAR\n    x : INT := +5;\n    y : INT := -5;\n"
+     "    z : INT := -K;\nEND_VAR\nCASE x OF\n-1, +2: x := 0;\n-K: x := 1;\nEND_CASE;\nEND_PROGRAM\n",
+     [("W-NJ-008", 8, 16, "initial value of 'z': '-K' is not a literal; a variable table in Sysmac Studio "
+                          "takes literals: write -3 (* -K *)"),
+      ("W-NJ-007", 12, 1, "CASE label '-K' is not an integer literal or an enumerator; OMRON documents CASE "
+                          "labels as integer constants: write -3 (* -K *)")]),
     ("an_initial_value_of_a_constant_expression_under_nj", "nj", P("    x : INT := 2 * 3;", ""),
      [("E-NJ-008", 3, 16, "initial value of 'x': '2 * 3' is not a literal; a variable table in Sysmac Studio "
                           "takes literals: write 6 (* 2 * 3 *)")]),
