@@ -674,6 +674,10 @@ CHARTS = rows(
      "END_TRANSITION\nEND_PROGRAM\n",
      [("E-SFC-002", 5, 1, "transition from Idle, A to B, Idle: no step 'A' in P"),
       ("E-SFC-002", 5, 1, "transition from Idle, A to B, Idle: no step 'B' in P")]),
+    # The step type (__SFC_STEP) joins a program only with a chart: without one the name is free.
+    ("the_step_types_name_in_a_program_without_a_chart", "iec", "TYPE __SFC_STEP : INT; END_TYPE\n",
+     [("W-NJ-002", 1, 6, "identifier '__SFC_STEP' starts or ends with '_': not allowed on an OMRON NJ"),
+      ("W-NJ-003", 1, 6, "identifier '__SFC_STEP' contains '__': not allowed on an OMRON NJ")]),
     ("a_function_calling_itself", "iec", "FUNCTION F : INT\nVAR_INPUT n : INT; END_VAR\nF := F(n - 1);\nEND_FUNCTION\n",
      [("E-REC-001", 3, 6, "recursion: F calls F; IEC 61131-3 and OMRON NJ forbid recursion")]),
     ("two_functions_calling_each_other", "iec", "FUNCTION F : INT\nF := G();\nEND_FUNCTION\nFUNCTION G : INT\nG := F();\nEND_FUNCTION\n",
