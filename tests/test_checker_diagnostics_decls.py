@@ -227,8 +227,14 @@ DECLARATIONS = rows(
     ("an_initial_value_of_variables", "iec", P("    a : INT;\n    b : INT := a + 1;", ""),
      [("W-NJ-008", 4, 16, "initial value of 'b': 'a + 1' is not a literal; a variable table in Sysmac Studio "
                           "takes literals"),
-      ("E-DECL-008", 4, 18, "initial value of 'b': expected a constant expression, found an expression that "
-                            "depends on variables")]),
+      ("E-DECL-008", 4, 18, "initial value of 'b': expected a constant expression, found one that reads "
+                            "variables or calls a function")]),
+    # A call is not folded (SHL of constants included): it was said to 'depend on variables'.
+    ("an_initial_value_of_a_call", "iec", P("    w : WORD := SHL(WORD#1, 2);", ""),
+     [("E-DECL-008", 3, 17, "initial value of 'w': expected a constant expression, found one that reads "
+                            "variables or calls a function"),
+      ("W-NJ-008", 3, 17, "initial value of 'w': 'SHL(WORD#1, 2)' is not a literal; a variable table in Sysmac "
+                          "Studio takes literals")]),
     ("a_type_initial_value", "iec", "TYPE T : INT := 2.5; END_TYPE\n",
      [("E-TYPE-004", 1, 17, "initial value of type T: expected INT, found LREAL; convert explicitly with "
                             "LREAL_TO_INT")]),

@@ -547,8 +547,8 @@ class Declarations:
         src = ex.check_value(init, t, what)
         if src is not ts.ERROR and ex.constant(init) is NOT_CONSTANT \
                 and self.program.expr_types.get(id(init)) is not ts.ERROR:
-            self.ctx.error("E-DECL-008", f"{what}: expected a constant expression, found an "
-                           f"expression that depends on variables", init.pos)
+            self.ctx.error("E-DECL-008", f"{what}: expected a constant expression, found one "
+                           f"that reads variables or calls a function", init.pos)
 
     def _array_items(self, init: ast.ArrayInit, element, ex: ExprChecker, what: str) -> int:
         """Check the items of an array initializer; return how many elements they give.
