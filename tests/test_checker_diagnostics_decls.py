@@ -519,6 +519,17 @@ def test_omron_ranks_signed_and_unsigned_of_one_size_as_the_unsigned():
     assert (main["x"], main["y"], main["z"]) == (255, 255, 65535)
 
 
+def test_a_methods_variables_see_their_function_blocks_constants():
+    """A METHOD's declarations are checked in its FB's scope (3rd ed. 6.6.5.8): its initial
+    values and array bounds may name the FB's constants.  By hand: y = K = 5 and
+    UPPER_BOUND(a, 1) = K = 5, so M() = 10."""
+    text = ("FUNCTION_BLOCK Fb\nVAR CONSTANT\n    K : INT := 5;\nEND_VAR\nMETHOD M : DINT\nVAR\n    y : DINT := K;\n"
+            "    a : ARRAY[0..K] OF INT;\nEND_VAR\nM := y + UPPER_BOUND(a, 1);\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
+            + P("    f : Fb;\n    r : DINT;", "r := f.M();"))
+    assert diagnostics(text) == []
+    assert after_one_scan(text)["r"] == 10
+
+
 # ================================================================ configuration.py
 
 MAIN_IO = ("PROGRAM Main\nVAR_INPUT Start : BOOL; END_VAR\nVAR_OUTPUT Done : INT; END_VAR\n"
@@ -698,6 +709,10 @@ CHARTS = rows(
      "END_FUNCTION_BLOCK\n",
      [("E-REC-001", 3, 5, "recursion: F declares an Axis holding an instance of F; IEC 61131-3 and OMRON NJ "
                           "forbid recursion")]),
+    ("a_function_block_holding_itself_in_a_lower_case_struct", "iec",
+     "TYPE engine : STRUCT f : F; END_STRUCT; END_TYPE\nFUNCTION_BLOCK F\nVAR e : engine; END_VAR\nEND_FUNCTION_BLOCK\n",
+     [("E-REC-001", 3, 5, "recursion: F declares an engine holding an instance of F; IEC 61131-3 and OMRON NJ "
+                          "forbid recursion")]),
     ("a_function_block_holding_itself_in_a_struct", "iec",
      "TYPE S : STRUCT f : F; END_STRUCT; END_TYPE\nFUNCTION_BLOCK F\nVAR s : S; END_VAR\nEND_FUNCTION_BLOCK\n",
      [("E-REC-001", 3, 5, "recursion: F declares a S holding an instance of F; IEC 61131-3 and OMRON NJ "
@@ -857,6 +872,27 @@ NJ = rows(
      [("E-NJ-008", 3, 16, "initial value of 'x': '2 * 3' is not a literal; a variable table in Sysmac Studio "
                           "takes literals: write 6 (* 2 * 3 *)")]),
 )
+
+
+# ================================================================ __init__.py: an exception in a pass
+
+@pytest.mark.parametrize("error, expected", [
+    (RecursionError(), ("E-LIMIT-001", "t.st", 1, 1, "the program is nested too deeply to be checked "
+                                                      "(expressions or statements nested hundreds of levels)")),
+    (ValueError("boom"), ("E-CHECK-999", "t.st", 1, 1, "internal checker error: ValueError: boom")),
+])
+def test_an_exception_in_a_pass_is_one_diagnostic_at_the_first_user_file(monkeypatch, error, expected):
+    """Loaded as a user loads (the built-in prelude file first): the diagnostic is at the
+    user's file, line 1, column 1, not in <builtin>."""
+    import st_runtime.checker as checker
+    from checker_helpers import load
+
+    def failing(ctx):
+        raise error
+
+    monkeypatch.setattr(checker, "check_recursion", failing)
+    result, _ = load("PROGRAM Main\nEND_PROGRAM\n")
+    assert [(d.code, d.pos.file, d.pos.line, d.pos.col, d.message) for d in result.diagnostics] == [expected]
 
 
 # ================================================================ the test
