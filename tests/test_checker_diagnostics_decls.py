@@ -739,27 +739,34 @@ CHARTS = rows(
 
 
 
-def test_a_reset_listed_after_a_stored_limited_action_still_dominates():
-    """IEC 61131-3 6.7.4.5: an action's control is reset-dominant whatever the order of its
-    associations.  S2's R comes after S1's SL in the text; on the scan S2 is active the SL
-    flip-flop is cleared, so when S3 follows, Lamp (SL for 10 s, not yet over) stays off.
-    By hand: scan 1 S1 sets Lamp; scan 2 S2 resets it; scan 3 S3, Lamp still FALSE."""
+def reset_chart(association: str, scans_in_s1: int) -> list:
+    """(step flag, Lamp) after each scan of S1 (`association` of Lamp, Go FALSE), then of S2
+    (Lamp(R), listed after S1's association in the text) and S3 (nothing), Go TRUE."""
     from st_runtime.api import load_text
     text = ("PROGRAM Main\nVAR Go : BOOL; Lamp : BOOL; END_VAR\n"
-            "INITIAL_STEP S1:\n    Lamp(SL, T#10s);\nEND_STEP\nTRANSITION FROM S1 TO S2 := Go; END_TRANSITION\n"
+            f"INITIAL_STEP S1:\n    Lamp({association});\nEND_STEP\nTRANSITION FROM S1 TO S2 := Go; END_TRANSITION\n"
             "STEP S2:\n    Lamp(R);\nEND_STEP\nTRANSITION FROM S2 TO S3 := Go; END_TRANSITION\n"
             "STEP S3:\nEND_STEP\nEND_PROGRAM\n")
     plc = load_text(text).controller(period="1ms")
     main = plc.add_program("Main")
-    plc.run(1)
-    seen = [(main["S1.X"], main["Lamp"])]
-    main["Go"] = True
-    plc.run(1)
-    seen.append((main["S2.X"], main["Lamp"]))
-    plc.run(1)
-    seen.append((main["S3.X"], main["Lamp"]))
-    assert seen == [(True, True), (True, False), (True, False)]
+    seen = []
+    for step in ["S1"] * scans_in_s1 + ["S2", "S3"]:
+        main["Go"] = step != "S1"
+        plc.run(1)
+        seen.append((main[f"{step}.X"], main["Lamp"]))
     assert plc.faults == []
+    return seen
+
+
+def test_a_reset_listed_after_a_stored_action_still_dominates():
+    """IEC 61131-3 6.7.4.5: an action's control is reset-dominant whatever the order of its
+    associations.  S2's R comes after S1's association in the text; on the scan S2 is active
+    the stored flip-flop is cleared, so when S3 follows Lamp stays off.  By hand (1 ms scans):
+    SL for 10 s sets Lamp at once; DS for 2 ms sets it when its timer is done, on scan 3
+    (ET 0, 1, 2 ms); the reset clears either on S2's scan, and S3 leaves it FALSE."""
+    assert reset_chart("SL, T#10s", 1) == [(True, True), (True, False), (True, False)]
+    assert reset_chart("DS, T#2ms", 4) == [(True, False), (True, False), (True, True), (True, True),
+                                           (True, False), (True, False)]
 
 
 # ---------------------------------------------------------------- each construct in each dialect
