@@ -680,6 +680,16 @@ LIMITS = rows(
 
 
 
+def test_too_many_statements_in_full(monkeypatch):
+    """E-LIMIT-007 at the POU, with the count and the limit in its words; 100,000 statements
+    take seconds to parse, so the limit is lowered to 3 here: 3 accepted, 4 refused."""
+    from st_runtime.checker import limits
+    monkeypatch.setattr(limits, "MAX_STATEMENTS", 3)
+    assert diagnostics(P("    x : INT;", "x := 1;\nx := 2;\nx := 3;")) == []
+    assert diagnostics(P("    x : INT;", "x := 1;\nx := 2;\nx := 3;\nx := 4;")) == \
+        [("E-LIMIT-007", 1, 1, "4 statements (at most 3; split the POU) in Main")]
+
+
 # ================================================================ sfc.py, recursion.py, dialects.py
 
 CHARTS = rows(
