@@ -530,6 +530,16 @@ def test_a_methods_variables_see_their_function_blocks_constants():
     assert after_one_scan(text)["r"] == 10
 
 
+def test_a_global_of_a_prelude_enumeration_takes_its_bare_values():
+    """A global declared with a prelude TYPE enters that type (and its values) before the
+    other prelude types; its values are then usable bare (motion's _eMC_DIRECTION).
+    By hand: g starts as _mcNegativeDirection, so n = 1."""
+    text = ("VAR_GLOBAL\n    g : _eMC_DIRECTION := _mcNegativeDirection;\nEND_VAR\n"
+            + P("    n : INT;", "IF g = _mcNegativeDirection THEN\n    n := 1;\nEND_IF;\ng := _mcShortestWay;"))
+    assert diagnostics(text) == []
+    assert after_one_scan(text)["n"] == 1
+
+
 # ================================================================ configuration.py
 
 MAIN_IO = ("PROGRAM Main\nVAR_INPUT Start : BOOL; END_VAR\nVAR_OUTPUT Done : INT; END_VAR\n"
