@@ -628,6 +628,12 @@ MEMORY = rows(
     ("globals_alone_a_byte_over", "iec", f"VAR_GLOBAL\n    g : {HALF};\n    h : {HALF};\n    c : BYTE;\nEND_VAR\n",
      [("E-LIMIT-010", 2, 5, "the project's variables need 67,108,865 bytes (globals and one instance of each "
                            "PROGRAM), above the memory limit of 67,108,864 bytes")]),
+    # A variable of an unknown type (refused) takes no room and no alignment: Big is a BYTE and
+    # 67,108,863 BYTEs, the limit exactly, and an instance of it is within the limit.
+    ("a_variable_of_an_unknown_type_takes_no_room", "iec",
+     "FUNCTION_BLOCK Big\nVAR\n    b : BYTE;\n    u : Nope;\n    a : ARRAY[0..67108862] OF BYTE;\nEND_VAR\n"
+     "END_FUNCTION_BLOCK\n" + P("    f : Big;", ""),
+     [("E-DECL-004", 4, 9, "unknown type 'Nope'")]),
     # OMRON W501: STRING[n] reserves n bytes, the NULL included; 1986 the largest.
     ("the_nj_largest_string", "nj", P("    s : STRING[1986];", ""), []),
     ("an_nj_string_a_byte_over", "nj", P("    s : STRING[1987];\n    t : ARRAY[0..1] OF STRING[1987];", ""),
