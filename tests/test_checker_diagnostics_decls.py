@@ -13,7 +13,9 @@ list of what it gives, (code, line, column, message), compared with ==.  Lines a
 columns are counted by hand in the snippet; the messages are each site's wording,
 read for being right.  Each rule's boundary has a row on both sides (the value just
 inside accepted, just outside refused), the ranges from IEC 61131-3 3rd ed. table 10
-and the limits from docs/limits.md and OMRON's manuals (docs/nj501.md).
+and the limits from docs/limits.md and OMRON's manuals (docs/nj501.md).  Where the
+checker's result is no diagnostic (an SFC lowering, a method's scope, OMRON's type
+ranking, a prelude type's values), a program is run and its values are traced by hand.
 
 A positional note: the AST builder places an array or struct initializer
 (`[1, 2]`, `(a := 1)`) at its first item, a binary operation at its operator
