@@ -117,7 +117,7 @@ def test_each_kind_of_non_variable_is_named(target, found, col):
     refused, each named (a binary expression's place is its operator)."""
     text = "FUNCTION F : INT\nF := 1;\nEND_FUNCTION\n" + \
         program("    x : INT; p : REF_TO INT;", f"p := REF({target});")
-    assert only(text) == ("E-TYPE-014", 8, col, f"REF(...): expected a variable on the left, found {found}")
+    assert only(text) == ("E-TYPE-014", 8, col, f"REF(...): expected a variable, found {found}")
 
 
 # ------------------------------------------------------------ declarations

@@ -62,7 +62,7 @@ def test_an_index_out_of_bounds_names_its_dimension():
 
 def test_ref_of_a_literal_names_ref():
     assert only(program("    r : REF_TO INT;", "r := REF(5);")) == \
-        ("E-TYPE-014", 5, 10, "REF(...): expected a variable on the left, found a literal")
+        ("E-TYPE-014", 5, 10, "REF(...): expected a variable, found a literal")
 
 
 def test_an_output_of_the_wrong_type_is_reported_at_its_variable():

@@ -14,6 +14,11 @@ from ..symbols import CheckedProgram, PouInfo, Symbol
 BUILTIN_FILE = "<builtin>"
 
 
+def a_or_an(word: str) -> str:
+    """`word` after its indefinite article, for messages: "an INTERFACE", "a FUNCTION"."""
+    return ("an " if word[0] in "AEIOUaeiou" else "a ") + word
+
+
 @dataclass
 class FastSink(DiagnosticSink):
     """A DiagnosticSink whose duplicate test is a set lookup, not a list scan

@@ -20,7 +20,7 @@ from . import builtins as B
 from . import typesys as ts
 from .configuration import check_config_inits, check_connections, check_program_access
 from .constfold import NOT_CONSTANT
-from .context import BUILTIN_FILE, Context, Scope
+from .context import BUILTIN_FILE, Context, Scope, a_or_an
 from .expressions import ExprChecker
 from .oo import ObjectModel
 
@@ -105,7 +105,7 @@ class Declarations:
         for inst in config.programs:
             pou = self.ctx.pou_decls.get(key(inst.program_type))
             if pou is None or pou.kind != "PROGRAM":
-                found = f"a {pou.kind}" if pou is not None else "nothing of that name"
+                found = a_or_an(pou.kind) if pou is not None else "nothing of that name"
                 self.ctx.error("E-DECL-004", f"program instance {inst.name}: expected a PROGRAM "
                                f"'{inst.program_type}', found {found}", inst.pos)
             if inst.task is not None and key(inst.task) not in tasks:
@@ -440,7 +440,7 @@ class Declarations:
         if decl.edge and (kind != "VAR_INPUT" or pou is None or pou.kind == "FUNCTION"
                           or (t is not ts.ERROR and not ts.is_bool(t))):
             self.ctx.error("E-DECL-013", f"'{decl.name}' is declared {decl.edge}: expected a BOOL "
-                           f"VAR_INPUT of a FUNCTION_BLOCK or PROGRAM, found a {t} {kind}"
+                           f"VAR_INPUT of a FUNCTION_BLOCK or PROGRAM, found {a_or_an(f'{t} {kind}')}"
                            + (f" of FUNCTION {pou.name}" if pou is not None and pou.kind == "FUNCTION" else ""),
                            decl.pos)
         constant = block.constant
@@ -496,7 +496,7 @@ class Declarations:
             self.ctx.error("E-DECL-015", f"{where}: in a FUNCTION_BLOCK only %I*, %Q* or %M* "
                            f"(a place chosen by the configuration), found a full address", decl.pos)
         elif address is not None and t is not ts.ERROR and not type_fits(address, t):
-            self.ctx.error("E-DECL-015", f"{where}: a {address.size} address holds "
+            self.ctx.error("E-DECL-015", f"{where}: an address of size {address.size} holds "
                            f"{address.bits} bit(s); expected a type of that width, found {t}", decl.pos)
         elif address is not None and t is not ts.ERROR:
             self.ctx.direct_types.setdefault(address.text, t)    # `%IW1` in code reads as t
@@ -547,8 +547,8 @@ class Declarations:
         src = ex.check_value(init, t, what)
         if src is not ts.ERROR and ex.constant(init) is NOT_CONSTANT \
                 and self.program.expr_types.get(id(init)) is not ts.ERROR:
-            self.ctx.error("E-DECL-008", f"{what}: expected a constant expression, found an "
-                           f"expression that depends on variables", init.pos)
+            self.ctx.error("E-DECL-008", f"{what}: expected a constant expression, found one "
+                           f"that reads variables or calls a function", init.pos)
 
     def _array_items(self, init: ast.ArrayInit, element, ex: ExprChecker, what: str) -> int:
         """Check the items of an array initializer; return how many elements they give.

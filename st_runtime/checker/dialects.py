@@ -60,8 +60,8 @@ def construct_of(node) -> str | None:
     kind = type(node)
     if kind is ast.RefType:
         return "POINTER" if node.pointer else "REF_TO"
-    if kind is ast.Deref:
-        return "DEREF"
+    if kind is ast.Deref:       # (CODESYS's SUPER^() is refused as SUPER_BODY, at the call)
+        return None if isinstance(node.base, ast.Name) and node.base.name.upper() == "SUPER" else "DEREF"
     if kind is ast.Assign:
         return "SET_RESET" if node.mode != ":=" else None
     if kind is ast.Call:

@@ -48,6 +48,7 @@ from itertools import islice
 from .. import types as T
 from ..dialects import DIALECTS
 from ..diagnostics import register
+from .context import BUILTIN_FILE
 
 #: Bytes a variable, a POU instance or the project may need by default (64 MiB).
 DEFAULT_LIMIT = 64 * 2**20
@@ -157,7 +158,10 @@ def check_memory(ctx, limit: int | None = None) -> None:
         if info.kind == "PROGRAM":
             total += instance
     if total > limit and len(ctx.sink.items) == reported:     # not already said variable by variable
-        first = next((info.node.pos for info in program.pous.values() if info.node is not None), None)
+        # at the project's first POU (the prelude's TON leads the table), else its first global
+        places = [info.node.pos for info in program.pous.values() if info.node is not None] + \
+            [sym.decl.pos for sym in program.globals.values() if sym.decl is not None]
+        first = next((pos for pos in places if pos.file != BUILTIN_FILE), None)
         if first is not None:
             ctx.error("E-LIMIT-010", f"the project's variables need {total:,} bytes (globals and one"
                       f" instance of each PROGRAM), above the memory limit of {limit:,} bytes", first)

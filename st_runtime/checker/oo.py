@@ -16,6 +16,7 @@ from .. import ast
 from .. import types as T
 from ..ast import key
 from ..symbols import PouInfo
+from .context import a_or_an
 
 ACCESS_DEFAULT = "PUBLIC"
 
@@ -70,8 +71,8 @@ class ObjectModel:
     def _pou(self, name: str, kind: str, pos, what: str) -> PouInfo | None:
         info = self.program.pous.get(key(name))
         if info is None or info.kind != kind:
-            found = f"a {info.kind}" if info is not None else "nothing of that name"
-            self.ctx.error("E-DECL-016", f"{what} '{name}': expected a {kind}, found {found}", pos)
+            found = a_or_an(info.kind) if info is not None else "nothing of that name"
+            self.ctx.error("E-DECL-016", f"{what} '{name}': expected {a_or_an(kind)}, found {found}", pos)
             return None
         return info
 
@@ -136,7 +137,8 @@ class ObjectModel:
         if node.kind != "FUNCTION_BLOCK" or "ABSTRACT" in node.modifiers:
             return
         for method in info.methods.values():
-            if "ABSTRACT" in method.modifiers:
+            # (its own ABSTRACT method is refused where it is declared: one diagnostic)
+            if "ABSTRACT" in method.modifiers and method.owner is not info:
                 self.ctx.error("E-DECL-016", f"{node.name} must implement the ABSTRACT method "
                                f"{method.name} of {method.owner.name} (or be ABSTRACT itself)", node.pos)
         seen = set()

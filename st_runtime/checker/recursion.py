@@ -13,7 +13,7 @@ from itertools import islice
 
 from .. import types as T
 from ..ast import key
-from .context import Context
+from .context import Context, a_or_an
 from .declarations import _INSTANCE_KINDS, fb_type_of
 
 
@@ -48,7 +48,7 @@ def _declared_edges(info) -> list[tuple[str, object, str]]:
         if fb is not None:
             edges.append((key(fb.name), sym.decl.pos, "declares an instance of"))
         for struct, inner in _fbs_inside_structs(sym.type):
-            how = f"declares a {struct} holding an instance of"
+            how = f"declares {a_or_an(struct)} holding an instance of"
             edges.append((key(inner.name), sym.decl.pos, how))
     return edges
 

@@ -40,7 +40,7 @@ def check_store(ex, target, what: str = "assignment"):
         return ex.infer(target)
     if not is_variable_path(target):
         ex.infer(target)
-        ex.ctx.error("E-TYPE-014", f"{what}: expected a variable on the left, found "
+        ex.ctx.error("E-TYPE-014", f"{what}: expected a variable, found "
                      f"{_describe(target)}", target.pos)
         return ts.ERROR
     t = ex.infer(target)
