@@ -126,7 +126,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                  # seed 24's last survivors and the seed-25 run (issue 16, session 10)
                  "tests/test_checker_mutation_s10.py",
                  # the seed-26 run (issue 16, session 11)
-                 "tests/test_checker_mutation_s11.py"]),
+                 "tests/test_checker_mutation_s11.py",
+                 # every diagnostic of expressions, calls and standard functions (session 12)
+                 "tests/test_checker_diagnostics_exprs.py"]),
     "reference": (["stgen/reference/*"],
                   ["tests/test_reference_brake.py", "tests/test_reference_cycloidal.py",
                    "tests/test_reference_error_codes.py", "tests/test_reference_forward.py",
