@@ -23,7 +23,8 @@ from typing import NamedTuple
 
 import pytest
 
-from checker_helpers import diagnostics, program
+from checker_helpers import body, checked, diagnostics, program
+from test_checker_mutants_third import after_one_scan
 
 
 class Row(NamedTuple):
@@ -565,3 +566,125 @@ ROWS = {**EXPRESSION_ROWS, **CALL_ROWS}
 def test_the_one_diagnostic_of_each_site_in_full(name):
     r = ROWS[name]
     assert diagnostics(r.text, r.dialect) == [expected(r)]
+
+
+# ------------------------------------------------------------------ boundaries, both sides
+
+# IEC 61131-3 3rd ed. table 10: the ranges of the integer and bit-string types.
+RANGES = {
+    "SINT": (-2**7, 2**7 - 1), "INT": (-2**15, 2**15 - 1), "DINT": (-2**31, 2**31 - 1),
+    "LINT": (-2**63, 2**63 - 1), "USINT": (0, 2**8 - 1), "UINT": (0, 2**16 - 1),
+    "UDINT": (0, 2**32 - 1), "ULINT": (0, 2**64 - 1), "BYTE": (0, 2**8 - 1),
+    "WORD": (0, 2**16 - 1), "DWORD": (0, 2**32 - 1), "LWORD": (0, 2**64 - 1),
+}
+
+
+@pytest.mark.parametrize("name", list(RANGES))
+def test_an_untyped_constant_fits_its_type_up_to_each_end(name):
+    """The ends of the range are accepted (and stored as written), one beyond each
+    end refused at the constant (E-TYPE-005, with the range)."""
+    lo, hi = RANGES[name]
+    decls = f"    x : {name}; y : {name};"
+    main = after_one_scan(program(decls, f"x := {lo};\ny := {hi};"))
+    assert (main["x"], main["y"]) == (lo, hi)
+    for value in (lo - 1, hi + 1):
+        body = f"x := {value};"
+        assert diagnostics(program(decls, body)) == [
+            ("E-TYPE-005", 5, 6, f"constant {value} does not fit {name} (range {lo}..{hi})")]
+
+
+@pytest.mark.parametrize("name", list(RANGES))
+def test_a_typed_literal_fits_its_type_up_to_each_end(name):
+    lo, hi = RANGES[name]
+    decls = f"    x : {name}; y : {name};"
+    main = after_one_scan(program(decls, f"x := {name}#{lo};\ny := {name}#{hi};"))
+    assert (main["x"], main["y"]) == (lo, hi)
+    for value in (lo - 1, hi + 1):
+        assert diagnostics(program(decls, f"x := {name}#{value};")) == [
+            ("E-TYPE-005", 5, 6, f"literal {value} does not fit {name} (range {lo}..{hi})")]
+
+
+def test_real_constants_up_to_the_largest_real():
+    """binary32's largest finite value is 3.4028234664e38; a constant rounds to
+    infinity as a REAL from half an ulp above it (3.40282357e38), so 3.4028235E38
+    is a REAL and 3.4028236E38 (either sign) is not.  An LREAL holds up to
+    1.7976931348623157e308; 1.8E308 is no double at all (an infinite literal)."""
+    main = after_one_scan(program("    r : REAL; l : LREAL;", "r := -3.4028235E38;\nl := 1.7976931348623157E308;"))
+    # (a REAL reads back as the shortest decimal of its binary32 value)
+    assert (main["r"], main["l"]) == (-3.4028235e38, 1.7976931348623157e308)
+    assert diagnostics(program("    r : REAL;", "r := -3.4028236E38;")) == [
+        ("E-TYPE-005", 5, 6, "constant -3.4028236e+38 does not fit REAL (largest magnitude 3.4028235e+38)")]
+    assert diagnostics(program("    l : LREAL;", "l := 1.8E308;")) == [
+        ("E-TYPE-005", 5, 6, "a real literal does not fit LREAL (largest magnitude 1.7976931348623157e+308)")]
+
+
+def test_the_sides_of_the_other_rules_that_are_accepted():
+    """The value just inside each refused row of the table above: accepted, and
+    where the value is seen, the value the standard gives."""
+    cases = [
+        ("    s : STRING[3];", "s := 'abc';", "iec"),                     # 3 characters fit STRING[3]
+        ("    s : STRING[3];", "s := 'äb';", "nj"),                       # 3 bytes
+        ("    u : UINT; i : INT;", "u := i;", "nj"),                      # the NJ casts INT to UINT
+        ("    u : UDINT; d : DINT;", "u := d;", "nj"),                    # ... and DINT to UDINT
+        ("    i : INT;", "i := i + 32767;", "iec"),
+        ("    b : BOOL;", "b := 18446744073709551615 > 0;", "iec"),
+        ("    x : INT;", "x := x / 1 + x MOD 1;", "iec"),
+        ("    r : REF_TO INT; i : INT;", "r := REF(i); r := NULL;", "iec"),
+        ("    b : BYTE; x : BOOL;", "x := b.7;", "nj"),
+        ("    w : WORD; x : BYTE;", "x := w.%B1;", "codesys"),
+        ("    w : LWORD; x : DWORD;", "x := w.%D1;", "codesys"),
+        ("    a : ARRAY[1..3] OF INT; x : INT;", "x := a[1] + a[3];", "iec"),
+        ("    m : ARRAY[1..2, 0..4] OF INT; x : INT;", "x := m[2, 4] + m[1, 0];", "iec"),
+        ("    t : TIME; x : INT;", "t := t * x + x * t - t / x;", "iec"),
+        ("    r : REF_TO INT; b : BOOL;", "b := r = NULL AND r <> r;", "iec"),
+    ]
+    for decls, body, dialect in cases:
+        assert diagnostics(program(decls, body), dialect) == [], body
+
+
+def test_boolean_zero_and_one_and_the_index_and_dimension_ends():
+    main = after_one_scan(program(
+        "    b0, b1 : BOOL; a : ARRAY[1..3, 5..9] OF INT; lo1, hi2 : DINT; s0, s1 : INT;",
+        "b0 := 0; b1 := 1;\nlo1 := LOWER_BOUND(a, 1); hi2 := UPPER_BOUND(a, 2);\n"
+        "s0 := SEL(0, 10, 20); s1 := SEL(1, 10, 20);"))
+    assert (main["b0"], main["b1"]) == (False, True)
+    assert (main["lo1"], main["hi2"]) == (1, 9)
+    assert (main["s0"], main["s1"]) == (10, 20)
+
+
+# ------------------------------------------------------------------ results the compiler reads
+
+def test_calls_compute_what_the_standard_says():
+    """Each kind of call the checker records a target (and a lowering) for, run:
+    the values by hand (3rd ed. 6.6.2.5, tables 22-31)."""
+    text = (
+        "NAMESPACE NS\nFUNCTION Twice : INT\nVAR_INPUT\n    v : INT;\nEND_VAR\nTwice := 2 * v;\n"
+        "END_FUNCTION\nEND_NAMESPACE\n"
+        + F2 + program(
+            "    i : INT := -5; d : DINT; r : REF_TO INT; x, y, z : INT; b1, b2, b3, e1, e2 : BOOL;"
+            " w : WORD; t : TIME; k, q : INT;",
+            "d := INT_TO_DINT(i);\nr := REF(i); x := r^ + 1;\ny := NS.Twice(21);\nz := F(b := 3, a := 4);\n"
+            "b1 := GT(3, 2, 1); b2 := GT(3, 1, 2); b3 := NE(1, 2);\nk := ADD(1, 2, 3) + MUL(2, 3, 4) - SUB(10, 4);\n"
+            "w := SHL(WORD#1, 4);\nt := MUL_TIME(T#1s, 3);\n"
+            "i := ABS(EN := TRUE, IN := i, ENO => e1);\nq := q + ABS(EN := FALSE, IN := -7, ENO => e2);"))
+    main = after_one_scan(text)
+    assert (main["d"], main["x"], main["y"], main["z"]) == (-5, -4, 42, 7)
+    assert (main["b1"], main["b2"], main["b3"]) == (True, False, True)
+    assert main["k"] == 6 + 24 - 6
+    assert main["w"] == 16
+    assert main["t"] == "T#3s"
+    assert (main["i"], main["e1"]) == (5, True)
+    assert main["e2"] is False     # (the result of a call not executed is the implementation's: not read)
+
+
+def test_folded_constants_are_recorded_with_their_values():
+    """An expression of constants carries its folded value (`constants`: the
+    compiler emits it instead of the expression): NOT of a bit string within its
+    width, unary minus, a folded comparison, TIME scaled."""
+    program_ = checked(program(
+        "    w : WORD; y : BYTE; b : BOOL; i : INT; t : TIME;",
+        "w := NOT WORD#0;\ny := NOT BYTE#5;\nb := NOT TRUE;\ni := -INT#5;\nb := 2 < 3;\nt := T#10s / 4;"))
+    values = [program_.constants.get(id(s.value)) for s in body(program_)]
+    assert values == [0xFFFF, 0xFA, False, -5, True, 2_500_000_000]
+    assert [str(program_.expr_types[id(s.value)]) for s in body(program_)] == \
+        ["WORD", "BYTE", "BOOL", "INT", "BOOL", "TIME"]
