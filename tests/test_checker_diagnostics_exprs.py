@@ -307,6 +307,38 @@ EXPRESSION_ROWS = {
     "STRING compared with WSTRING": row(
         "E-TYPE-002", "=", "=: cannot compare STRING[8] with WSTRING[8]",
         decls="    s : STRING[8]; w : WSTRING[8]; b : BOOL;", body="b := s = w;", nth=2),
+    # what a direct address, a date, a subrange and an array are
+    "a whole area read": row(
+        "E-DECL-015", "%IW*", "%IW*: %I* has no place in the process image to read",
+        decls="    x : WORD;", body="x := %IW*;"),
+    "an address beyond the area": row(
+        "E-DECL-015", "%IW70000", "'%IW70000' lies beyond the 65536-byte %I area",
+        decls="    x : WORD;", body="x := %IW70000;"),
+    "a word address is a WORD": row(
+        "E-TYPE-004", "%IW0", "assignment: expected INT, found WORD; convert explicitly with WORD_TO_INT",
+        decls="    x : INT;", body="x := %IW0;"),
+    "a date is no TIME": row(
+        "E-TYPE-004", "D#", "assignment: expected TIME, found DATE; convert explicitly with DATE_TO_TIME",
+        decls="    t : TIME;", body="t := D#2020-01-01;"),
+    "a time of day is no DATE": row(
+        "E-TYPE-004", "TOD#", "assignment: expected DATE, found TIME_OF_DAY; convert explicitly with TOD_TO_DATE",
+        decls="    d : DATE;", body="d := TOD#12:00:00;"),
+    "a reference to a subrange is no REF_TO its base": row(
+        "E-TYPE-004", "REF", "assignment: expected REF_TO INT, found REF_TO INT (1..5)",
+        decls="    r : REF_TO INT; s : INT(1..5);", body="r := REF(s);"),
+    "a reference to an array of other bounds": row(
+        "E-TYPE-004", "REF", "assignment: expected REF_TO ARRAY[1..3] OF INT, found REF_TO ARRAY[0..2] OF INT",
+        decls="    r : REF_TO ARRAY[1..3] OF INT; a : ARRAY[0..2] OF INT;", body="r := REF(a);"),
+    "a PROGRAM read as a variable": _r(
+        "E-TYPE-016", "Other", "'Other' is a PROGRAM, not a variable", "PROGRAM Other\nEND_PROGRAM\n",
+        "    x : INT;", "x := Other;"),
+    # the type of a sum: IEC's common type, the NJ's higher-ranked operand
+    "INT + UINT is a DINT (iec)": row(
+        "E-TYPE-004", "i +", "assignment: expected INT, found DINT; convert explicitly with DINT_TO_INT",
+        decls="    i : INT; u : UINT;", body="i := i + u;"),
+    "INT + UINT is a UINT (nj)": row(
+        "E-TYPE-004", "i +", "assignment: expected INT, found UINT; convert explicitly with UINT_TO_INT",
+        decls="    i : INT; u : UINT;", body="i := i + u;", dialect="nj"),
 }
 
 
@@ -550,6 +582,20 @@ CALL_ROWS = {
     "conversion of the target type": row(
         "E-TYPE-004", "d)", "argument of INT_TO_DINT: expected INT, found DINT; the value is a DINT already: "
         "no conversion is needed", decls="    d : DINT;", body="d := INT_TO_DINT(d);"),
+    "a conversion's result is its target type": row(
+        "E-TYPE-004", "INT_TO_DINT", "assignment: expected INT, found DINT; convert explicitly with DINT_TO_INT",
+        decls="    i : INT;", body="i := INT_TO_DINT(i);"),
+    "a constant widens MAX's type": row(
+        "E-TYPE-004", "MAX", "assignment: expected INT, found DINT; convert explicitly with DINT_TO_INT",
+        decls="    i : INT;", body="i := MAX(i, 40000);"),
+    "MAX of enumeration values": _r(
+        "E-TYPE-004", "c,", "MAX: expected an elementary value (ANY_ELEMENTARY), found Color",
+        COLOR, "    c : Color;", "c := MAX(c, c);"),
+    "ARRAY[*] in-out of another rank": _r(
+        "E-CALL-011", "m)", "VAR_IN_OUT 'v' of S: expected a variable of type ARRAY[*] OF INT, found "
+        "ARRAY[1..2, 1..2] OF INT (in-out parameters are passed by reference, without conversion)",
+        "FUNCTION S : INT\nVAR_IN_OUT\n    v : ARRAY[*] OF INT;\nEND_VAR\nS := 1;\nEND_FUNCTION\n",
+        "    m : ARRAY[1..2, 1..2] OF INT; x : INT;", "x := S(m);"),
     # EN / ENO
     "EN an INT": row(
         "E-TYPE-004", "i,", "EN: expected BOOL, found INT; convert explicitly with INT_TO_BOOL",
@@ -688,3 +734,85 @@ def test_folded_constants_are_recorded_with_their_values():
     assert values == [0xFFFF, 0xFA, False, -5, True, 2_500_000_000]
     assert [str(program_.expr_types[id(s.value)]) for s in body(program_)] == \
         ["WORD", "BYTE", "BOOL", "INT", "BOOL", "TIME"]
+
+
+def test_a_call_refused_still_types_its_arguments():
+    """One diagnostic per root cause, and none lost: the arguments of a call that is
+    refused (an undeclared function, an unknown parameter, an argument too many)
+    are still checked, so their own errors show."""
+    assert diagnostics(program("    x : INT;", "x := Foo(zzz);")) == [
+        ("E-DECL-001", 5, 6, "undeclared function 'Foo'"), ("E-DECL-001", 5, 10, "undeclared name 'zzz'")]
+    assert diagnostics(F2 + program("    x : INT;", "x := F(c := zzz);")) == [
+        ("E-CALL-002", 12, 8, "F has no parameter 'c' (parameters: a, b)"),
+        ("E-DECL-001", 12, 13, "undeclared name 'zzz'")]
+    assert diagnostics(program("    x : INT;", "x := ABS(1, zzz);")) == [
+        ("E-CALL-006", 5, 13, "ABS: expected 1 argument(s), found 2"), ("E-DECL-001", 5, 13, "undeclared name 'zzz'")]
+    assert diagnostics(program("    x : INT;", "x := SUB(1, zzz, 3);")) == [
+        ("E-CALL-006", 5, 6, "SUB: expected 2 argument(s), found 3"), ("E-DECL-001", 5, 13, "undeclared name 'zzz'")]
+
+
+def test_the_sides_of_the_call_rules_that_are_accepted():
+    cases = [
+        (F2, "    x : INT;", "x := F(1, 2) + F(b := 1, a := 2) + F(1, b := 2);", "iec"),
+        ("FUNCTION S : INT\nVAR_IN_OUT\n    v : ARRAY[*] OF INT;\nEND_VAR\nS := 1;\nEND_FUNCTION\n",
+         "    a : ARRAY[1..3] OF INT; b : ARRAY[0..9] OF INT; x : INT;", "x := S(a) + S(b);", "iec"),
+        ("", "    i : INT; s : SINT; d : DINT;", "d := INT_TO_DINT(s) + INT_TO_DINT(IN := i);", "iec"),
+        ("", "    i : INT;", "i := MAX(i, 32767) + MAX(IN1 := 1, IN2 := 5, IN3 := 9);", "iec"),
+        ("TYPE\n    Color : (Red, Green);\n    Light : (Red, Amber);\nEND_TYPE\n",
+         "    c : Color; b : BOOL;", "b := c = Red; c := SEL(b, c, Red);", "iec"),
+        ("", "    t : TON; b : BOOL; e : TIME;", "t(IN := TRUE, PT := T#1s, NOT Q => b, ET => e);", "iec"),
+        ("", "    c : CTU;", "c(CU := TRUE, Reset := FALSE, PV := 3);", "nj"),
+    ]
+    for prefix, decls, body_, dialect in cases:
+        assert diagnostics(prefix + program(decls, body_), dialect) == [], body_
+
+
+def test_what_standard_functions_give():
+    """MUX's inputs after K are IN0, IN1, ... (3rd ed. table 31); TRUNC gives the
+    integer type its context wants (a LINT holds 10^12); SHL of an untyped literal
+    is in the smallest bit string holding it (1 << 9 leaves a BYTE), in a WORD
+    where a WORD is wanted; a function that declares its own EN runs its body
+    with EN FALSE (it is an ordinary input then, 6.6.1.2)."""
+    text = ("FUNCTION P : INT\nVAR_INPUT\n    EN : BOOL;\n    v : INT;\nEND_VAR\n"
+            "IF EN THEN P := v; ELSE P := -v; END_IF;\nEND_FUNCTION\n"
+            + program("    m1, m2, neg : INT; l : LINT; b : BOOL; w : WORD;",
+                      "m1 := MUX(K := 1, IN0 := 10, IN1 := 20, IN2 := 30); m2 := MUX(2, 10, 20, 30);\n"
+                      "l := TRUNC(1.0E12);\nb := SHL(1, 9) = 0; w := SHL(1, 9);\nneg := P(EN := FALSE, v := 3);"))
+    main = after_one_scan(text)
+    assert (main["m1"], main["m2"], main["l"]) == (20, 30, 10**12)
+    assert (main["b"], main["w"]) == (True, 512)
+    assert main["neg"] == -3
+
+
+def test_folding_follows_the_dialect():
+    """`(C + 1) / 2` with C = INT#32767: IEC computes the expression exactly and
+    wraps where it is stored (16384); the NJ wraps inside the expression (W501:
+    an expression is evaluated in its operands' type): 32768 wraps to -32768, /2
+    is -16384.  Likewise `(RC + 1.0) - RC` with RC = REAL#1.0E8: exact in a double
+    (1.0), but on the NJ each REAL operation rounds to binary32 (1e8 + 1 is 1e8): 0.0.
+    The NJ divides UDINT by DINT as UDINT (its ranking): DINT#-1 is 4294967295 there."""
+    decls = ("    x : INT; r : REAL; u, v : UDINT;\nEND_VAR\nVAR CONSTANT\n    C : INT := 32767;"
+             " RC : REAL := 1.0E8;")
+    body_ = "x := (C + 1) / 2;\nr := (RC + 1.0) - RC;\nu := UDINT#10 / DINT#-1; v := UDINT#4294967295 / DINT#-1;"
+    iec = after_one_scan(program(decls, body_.replace("u := UDINT#10 / DINT#-1; v := UDINT#4294967295 / DINT#-1;",
+                                                      "")))
+    assert (iec["x"], iec["r"]) == (16384, 1.0)
+    nj = after_one_scan(program(decls, body_), "nj")
+    assert (nj["x"], nj["r"], nj["u"], nj["v"]) == (-16384, 0.0, 0, 1)
+
+
+def test_time_arithmetic_of_constants():
+    """TIME * number rounds to the nearest ns, ties to even (T#10ns * 0.25 is 2.5 ns:
+    T#2ns), number * TIME is the same, TIME / number truncates like the run time."""
+    main = after_one_scan(program("    a, b, c, d : TIME;",
+                                  "a := T#10ns * 0.25; b := 3 * T#1s; c := T#1s / 4; d := -T#1s;"))
+    assert (main["a"], main["b"], main["c"], main["d"]) == ("T#2ns", "T#3s", "T#250ms", "T#-1s")
+
+
+def test_strings_take_the_length_of_their_literal():
+    """A string literal is a STRING of its length (at least 1), a "..." literal a
+    WSTRING; STRING lengths count bytes under --dialect nj (UTF-8)."""
+    found = checked(program("    s : STRING[10]; w : WSTRING[10];", "s := '';\ns := 'abc';\nw := \"äbc\";"))
+    assert [str(found.expr_types[id(st.value)]) for st in body(found)] == ["STRING[1]", "STRING[3]", "WSTRING[3]"]
+    nj = checked(program("    s : STRING[10];", "s := 'äbc';"), "nj")
+    assert str(nj.expr_types[id(body(nj)[0].value)]) == "STRING[4]"
