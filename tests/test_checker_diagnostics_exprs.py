@@ -596,6 +596,19 @@ CALL_ROWS = {
         "ARRAY[1..2, 1..2] OF INT (in-out parameters are passed by reference, without conversion)",
         "FUNCTION S : INT\nVAR_IN_OUT\n    v : ARRAY[*] OF INT;\nEND_VAR\nS := 1;\nEND_FUNCTION\n",
         "    m : ARRAY[1..2, 1..2] OF INT; x : INT;", "x := S(m);"),
+    "a function calling itself": Row(
+        "FUNCTION F : INT\nF := F() + 1;\nEND_FUNCTION\n", "E-REC-001", 2, "F()",
+        "recursion: F calls F; IEC 61131-3 and OMRON NJ forbid recursion"),
+    "two functions calling each other": Row(
+        "FUNCTION F : INT\nF := G();\nEND_FUNCTION\nFUNCTION G : INT\nG := F();\nEND_FUNCTION\n",
+        "E-REC-001", 2, "G()", "recursion: F calls G, G calls F; IEC 61131-3 and OMRON NJ forbid recursion"),
+    "a PRIVATE property read outside": _r(
+        "E-CALL-012", "k.P", "property K.P is PRIVATE",
+        "FUNCTION_BLOCK K\nPROPERTY PRIVATE P : INT\nGET\n    P := 1;\nEND_GET\nEND_PROPERTY\n"
+        "END_FUNCTION_BLOCK\n", "    k : K; x : INT;", "x := k.P;", "codesys"),
+    "a variable spelled like an enumeration type": _r(
+        "E-TYPE-009", "color.", "'.Red': expected a struct or function block instance, found INT",
+        "TYPE\n    Color : (Red, Green);\nEND_TYPE\n", "    color : INT; x : INT;", "x := color.Red;", "codesys"),
     # EN / ENO
     "EN an INT": row(
         "E-TYPE-004", "i,", "EN: expected BOOL, found INT; convert explicitly with INT_TO_BOOL",
@@ -816,3 +829,36 @@ def test_strings_take_the_length_of_their_literal():
     assert [str(found.expr_types[id(st.value)]) for st in body(found)] == ["STRING[1]", "STRING[3]", "WSTRING[3]"]
     nj = checked(program("    s : STRING[10];", "s := 'äbc';"), "nj")
     assert str(nj.expr_types[id(body(nj)[0].value)]) == "STRING[4]"
+
+
+OO = ("INTERFACE I\nMETHOD M : INT\nEND_METHOD\nEND_INTERFACE\n"
+      "FUNCTION_BLOCK A IMPLEMENTS I\nVAR\n    n : INT := 5;\nEND_VAR\n"
+      "METHOD PUBLIC M : INT\nM := 7;\nEND_METHOD\n"
+      "METHOD PUBLIC Twice : INT\nTwice := 2 * M();\nEND_METHOD\n"
+      "METHOD PUBLIC Nothing\nn := n + 1;\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
+      "FUNCTION_BLOCK B EXTENDS A\nMETHOD PUBLIC M : INT\nM := SUPER.M() + 100;\nEND_METHOD\n"
+      "END_FUNCTION_BLOCK\n")
+
+
+def test_each_kind_of_method_call_runs_its_method():
+    """3rd ed. 6.6.5: a method called on an instance (the most derived override), through
+    an interface, on the instance itself inside another method (M() alone), and the
+    parent's through SUPER; a method without a result as a statement."""
+    main = after_one_scan(OO + program(
+        "    a : A; b : B; it : I; x, y, z, w : INT;",
+        "it := b; x := a.M(); y := b.M(); z := it.M(); w := b.Twice(); a.Nothing(); a.Nothing();"))
+    assert (main["x"], main["y"], main["z"], main["w"]) == (7, 107, 107, 214)
+    assert main["a.n"] == 7
+
+
+def test_properties_and_this():
+    """CODESYS: a property reads through its GET; inside its FB, THIS.n reads a VAR that
+    is not visible from outside; an enumeration variable spelled like its type
+    takes the type's values with a dot."""
+    text = ("TYPE\n    State : (Idle, Run);\nEND_TYPE\n"
+            "FUNCTION_BLOCK K\nVAR\n    n : INT := 4;\nEND_VAR\nVAR_OUTPUT\n    q : INT;\nEND_VAR\n"
+            "PROPERTY PUBLIC P : INT\nGET\n    P := THIS.n * 10;\nEND_GET\nEND_PROPERTY\n"
+            "q := THIS.n + 1;\nEND_FUNCTION_BLOCK\n"
+            + program("    k : K; x, y : INT; state : State := State.Run;", "k(); x := k.P; y := k.q;"))
+    main = after_one_scan(text, "codesys")
+    assert (main["x"], main["y"], main["state"]) == (40, 5, "Run")
