@@ -609,6 +609,14 @@ CALL_ROWS = {
     "a variable spelled like an enumeration type": _r(
         "E-TYPE-009", "color.", "'.Red': expected a struct or function block instance, found INT",
         "TYPE\n    Color : (Red, Green);\nEND_TYPE\n", "    color : INT; x : INT;", "x := color.Red;", "codesys"),
+    "a conversion's output": row(
+        "E-CALL-002", "Q =>", "INT_TO_DINT has one input, IN; found 'Q'", decls="    d : DINT;",
+        body="d := INT_TO_DINT(Q => d);"),
+    "MAX of two literals in a SINT": row(
+        "E-TYPE-004", "MAX", "assignment: expected SINT, found INT; convert explicitly with INT_TO_SINT",
+        decls="    s : SINT;", body="s := MAX(1, 300);"),
+    "1.5 MOD 2 typed operator by operator": row(
+        "E-TYPE-001", "MOD", "MOD: expected integer operands, found LREAL", decls="    x : INT;", body="x := 1.5 MOD 2;"),
     # EN / ENO
     "EN an INT": row(
         "E-TYPE-004", "i,", "EN: expected BOOL, found INT; convert explicitly with INT_TO_BOOL",
@@ -862,3 +870,37 @@ def test_properties_and_this():
             + program("    k : K; x, y : INT; state : State := State.Run;", "k(); x := k.P; y := k.q;"))
     main = after_one_scan(text, "codesys")
     assert (main["x"], main["y"], main["state"]) == (40, 5, "Run")
+
+
+def test_constants_given_in_call_form_are_constants():
+    """ADD(1, 2) is the constant 3 wherever a constant is needed (an array bound);
+    an undeclared argument is the call's one diagnostic."""
+    main = after_one_scan(program("    a : ARRAY[0..ADD(1, 2)] OF INT; n : DINT;", "n := UPPER_BOUND(a, 1);"))
+    assert main["n"] == 3
+    assert diagnostics(program("    x : INT;", "x := ADD(zzz, 1) + MAX(zzz, 1);")) == [
+        ("E-DECL-001", 5, 10, "undeclared name 'zzz'"), ("E-DECL-001", 5, 24, "undeclared name 'zzz'")]
+
+
+def test_enable_runs_or_skips_a_function_block():
+    """6.6.1.2: an FB called with EN FALSE does not run (its CV stays 0) and gives
+    ENO FALSE; with EN TRUE it runs."""
+    main = after_one_scan(program("    c, d : CTU; e1, e2 : BOOL;",
+                                  "c(EN := FALSE, CU := TRUE, PV := 3, ENO => e1);\n"
+                                  "d(EN := TRUE, CU := TRUE, PV := 3, ENO => e2);"))
+    assert (main["c.CV"], main["e1"], main["d.CV"], main["e2"]) == (0, False, 1, True)
+
+
+def test_codesys_adr_and_strings_of_max():
+    main = after_one_scan(program("    i : INT := 41; p : POINTER TO INT; x : INT; s : STRING[5];",
+                                  "p := ADR(i); x := p^ + 1; s := MAX('ab', 'b');"), "codesys")
+    assert (main["x"], main["s"]) == (42, "b")
+
+
+def test_an_untyped_constant_is_typed_to_hold_every_intermediate_value():
+    """The module's rule: a folded `100 + 100 - 100` into a SINT is a SINT (100 fits)
+    but its part `100 + 100` (200) is an INT, and carries its value 200."""
+    found = checked(program("    s : SINT;", "s := 100 + 100 - 100;"))
+    outer = body(found)[0].value
+    inner = outer.left
+    assert (str(found.expr_types[id(outer)]), str(found.expr_types[id(inner)])) == ("SINT", "INT")
+    assert (found.constants[id(outer)], found.constants[id(inner)]) == (100, 200)
