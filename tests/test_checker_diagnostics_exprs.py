@@ -617,6 +617,12 @@ CALL_ROWS = {
         decls="    s : SINT;", body="s := MAX(1, 300);"),
     "1.5 MOD 2 typed operator by operator": row(
         "E-TYPE-001", "MOD", "MOD: expected integer operands, found LREAL", decls="    x : INT;", body="x := 1.5 MOD 2;"),
+    "too few arguments, the result not used": row(
+        "E-CALL-009", "LIMIT", "LIMIT: expected 3 argument(s), found 2", decls="    s : STRING[5];",
+        body="s := LIMIT(5, 7);"),
+    "a constant beyond a conversion's source type": row(
+        "E-TYPE-005", "40000", "constant 40000 does not fit INT (range -32768..32767)", decls="    d : DINT;",
+        body="d := INT_TO_DINT(40000);"),
     # EN / ENO
     "EN an INT": row(
         "E-TYPE-004", "i,", "EN: expected BOOL, found INT; convert explicitly with INT_TO_BOOL",
@@ -777,7 +783,8 @@ def test_the_sides_of_the_call_rules_that_are_accepted():
         (F2, "    x : INT;", "x := F(1, 2) + F(b := 1, a := 2) + F(1, b := 2);", "iec"),
         ("FUNCTION S : INT\nVAR_IN_OUT\n    v : ARRAY[*] OF INT;\nEND_VAR\nS := 1;\nEND_FUNCTION\n",
          "    a : ARRAY[1..3] OF INT; b : ARRAY[0..9] OF INT; x : INT;", "x := S(a) + S(b);", "iec"),
-        ("", "    i : INT; s : SINT; d : DINT;", "d := INT_TO_DINT(s) + INT_TO_DINT(IN := i);", "iec"),
+        ("", "    i : INT; s : SINT; d : DINT; l : LREAL;",
+         "d := INT_TO_DINT(s) + INT_TO_DINT(IN := i) + INT_TO_DINT(32767); l := REAL_TO_LREAL(1.5);", "iec"),
         ("", "    i : INT;", "i := MAX(i, 32767) + MAX(IN1 := 1, IN2 := 5, IN3 := 9);", "iec"),
         ("TYPE\n    Color : (Red, Green);\n    Light : (Red, Amber);\nEND_TYPE\n",
          "    c : Color; b : BOOL;", "b := c = Red; c := SEL(b, c, Red);", "iec"),
