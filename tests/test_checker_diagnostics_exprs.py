@@ -19,11 +19,16 @@ calls give.
 
 from __future__ import annotations
 
+import re
+from pathlib import Path
 from typing import NamedTuple
 
 import pytest
 
-from checker_helpers import body, checked, diagnostics, program
+from checker_helpers import body, checked, diagnostics, program, walk
+from st_runtime import ast
+from st_runtime import types as T
+from st_runtime.loader import load_texts
 from test_checker_mutants_third import after_one_scan
 
 
@@ -790,8 +795,11 @@ def test_the_sides_of_the_call_rules_that_are_accepted():
          "    c : Color; b : BOOL;", "b := c = Red; c := SEL(b, c, Red);", "iec"),
         ("", "    t : TON; b : BOOL; e : TIME;", "t(IN := TRUE, PT := T#1s, NOT Q => b, ET => e);", "iec"),
         ("", "    c : CTU;", "c(CU := TRUE, Reset := FALSE, PV := 3);", "nj"),
+        ("", "    r : REAL;", "r := ADD(1.5, 2.5); r := MUL(IN1 := 2.0, IN2 := 0.5);", "iec"),   # the REALs of r
+        ("", "    it : I; b : BOOL;", "it := NULL; b := it = NULL;", "iec"),
     ]
     for prefix, decls, body_, dialect in cases:
+        prefix = "INTERFACE I\nEND_INTERFACE\n" if "it : I" in decls else prefix
         assert diagnostics(prefix + program(decls, body_), dialect) == [], body_
 
 
@@ -799,17 +807,22 @@ def test_what_standard_functions_give():
     """MUX's inputs after K are IN0, IN1, ... (3rd ed. table 31); TRUNC gives the
     integer type its context wants (a LINT holds 10^12); SHL of an untyped literal
     is in the smallest bit string holding it (1 << 9 leaves a BYTE), in a WORD
-    where a WORD is wanted; a function that declares its own EN runs its body
-    with EN FALSE (it is an ordinary input then, 6.6.1.2)."""
+    where a WORD is wanted; a function or FB that declares its own EN runs its
+    body with EN FALSE (it is an ordinary input then, 6.6.1.2)."""
     text = ("FUNCTION P : INT\nVAR_INPUT\n    EN : BOOL;\n    v : INT;\nEND_VAR\n"
             "IF EN THEN P := v; ELSE P := -v; END_IF;\nEND_FUNCTION\n"
-            + program("    m1, m2, neg : INT; l : LINT; b : BOOL; w : WORD;",
+            "FUNCTION_BLOCK Q\nVAR_INPUT\n    EN : BOOL;\nEND_VAR\nVAR_OUTPUT\n    y : INT;\nEND_VAR\n"
+            "IF EN THEN y := 1; ELSE y := 2; END_IF;\nEND_FUNCTION_BLOCK\n"
+            + program("    m1, m2, neg : INT; l : LINT; b : BOOL; w : WORD; q : Q; r : REAL; x : LREAL;",
                       "m1 := MUX(K := 1, IN0 := 10, IN1 := 20, IN2 := 30); m2 := MUX(2, 10, 20, 30);\n"
-                      "l := TRUNC(1.0E12);\nb := SHL(1, 9) = 0; w := SHL(1, 9);\nneg := P(EN := FALSE, v := 3);"))
+                      "l := TRUNC(1.0E12);\nb := SHL(1, 9) = 0; w := SHL(1, 9);\nneg := P(EN := FALSE, v := 3);\n"
+                      "q(EN := FALSE);\nx := MAX(r, 0.1);"))
     main = after_one_scan(text)
     assert (main["m1"], main["m2"], main["l"]) == (20, 30, 10**12)
     assert (main["b"], main["w"]) == (True, 512)
-    assert main["neg"] == -3
+    assert (main["neg"], main["q.y"]) == (-3, 2)
+    # MAX(r, 0.1): the literal takes r's type REAL (6.6.2.5), widened to LREAL after
+    assert main["x"] == 0.10000000149011612
 
 
 def test_folding_follows_the_dialect():
@@ -911,3 +924,39 @@ def test_an_untyped_constant_is_typed_to_hold_every_intermediate_value():
     inner = outer.left
     assert (str(found.expr_types[id(outer)]), str(found.expr_types[id(inner)])) == ("SINT", "INT")
     assert (found.constants[id(outer)], found.constants[id(inner)]) == (100, 200)
+
+
+# ------------------------------------------------------------------ every expression typed
+
+_EXPRESSIONS = (ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral, ast.StringLiteral, ast.TimeLiteral,
+                ast.DateTimeLiteral, ast.EnumLiteral, ast.Name, ast.Member, ast.Index, ast.Deref,
+                ast.BitAccess, ast.DirectVar, ast.NullLiteral, ast.Unary, ast.Binary, ast.Call)
+ACCEPT = sorted((Path(__file__).parent / "corpus" / "accept").glob("*.st"))
+
+
+def test_every_expression_of_an_accepted_program_has_its_type():
+    """The contract of expressions.py ("every expression node gets a type in
+    CheckedProgram.expr_types"), which the compiler reads: over the accept
+    corpus, every expression of a body and of what a call in operator form is
+    lowered to has its type, but for what is no value: a callee (a POU's name),
+    a call as a statement, and the type named before the dot of a CODESYS
+    enumeration value (`Light.Red`)."""
+    untyped = []
+    for path in ACCEPT:
+        text = path.read_text(encoding="utf-8")
+        dialect = re.match(r"\(\* dialect (iec|nj|codesys)\b", text)
+        program_ = load_texts({path.name: text}, dialect[1] if dialect else "iec").program
+        roots = [[info.node.body for info in program_.pous.values()
+                  if info.node is not None and info.node.pos.file == path.name], list(program_.lowered.values())]
+        no_value = set()
+        for node in walk(roots):
+            if isinstance(node, ast.Call):
+                no_value.update(id(n) for n in walk(node.callee))
+            elif isinstance(node, ast.CallStmt):
+                no_value.add(id(node.call))
+            elif isinstance(node, ast.Member) and isinstance(node.base, ast.Name) \
+                    and isinstance(program_.expr_types.get(id(node)), T.EnumType):
+                no_value.add(id(node.base))
+        untyped += [(path.name, n.pos.line, type(n).__name__) for n in walk(roots)
+                    if isinstance(n, _EXPRESSIONS) and id(n) not in program_.expr_types and id(n) not in no_value]
+    assert untyped == []
