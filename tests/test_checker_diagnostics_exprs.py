@@ -161,6 +161,10 @@ EXPRESSION_ROWS = {
     "typed literal beyond its type": row(
         "E-TYPE-005", "INT#", "literal 32768 does not fit INT (range -32768..32767)",
         decls="    x : INT;", body="x := INT#32768;"),
+    "an initial value of a typed literal folded (nj)": Row(
+        program("    r : LREAL := LREAL#5 * 2.0;", "r := r;"), "E-NJ-008", 3, "LREAL#5",
+        "initial value of 'r': 'LREAL#5.0 * 2.0' is not a literal; a variable table in Sysmac Studio takes "
+        "literals: write 10.0 (* LREAL#5.0 * 2.0 *)", "nj"),
     "typed literal beyond BYTE": row(
         "E-TYPE-005", "BYTE#", "literal 256 does not fit BYTE (range 0..255)",
         decls="    x : BYTE;", body="x := BYTE#256;"),
@@ -845,9 +849,11 @@ def test_folding_follows_the_dialect():
 def test_time_arithmetic_of_constants():
     """TIME * number rounds to the nearest ns, ties to even (T#10ns * 0.25 is 2.5 ns:
     T#2ns), number * TIME is the same, TIME / number truncates like the run time."""
-    main = after_one_scan(program("    a, b, c, d : TIME;",
-                                  "a := T#10ns * 0.25; b := 3 * T#1s; c := T#1s / 4; d := -T#1s;"))
+    main = after_one_scan(program("    a, b, c, d, f : TIME; e : BOOL;",
+                                  "a := T#10ns * 0.25; b := 3 * T#1s; c := T#1s / 4; d := -T#1s;\n"
+                                  "e := T#10ns * 0.25 = T#2ns; f := T#10ns * 0.27;"))
     assert (main["a"], main["b"], main["c"], main["d"]) == ("T#2ns", "T#3s", "T#250ms", "T#-1s")
+    assert (main["e"], main["f"]) == (True, "T#3ns")
 
 
 def test_strings_take_the_length_of_their_literal():
@@ -960,3 +966,10 @@ def test_every_expression_of_an_accepted_program_has_its_type():
         untyped += [(path.name, n.pos.line, type(n).__name__) for n in walk(roots)
                     if isinstance(n, _EXPRESSIONS) and id(n) not in program_.expr_types and id(n) not in no_value]
     assert untyped == []
+
+
+def test_a_variable_named_super_is_a_variable():
+    """CODESYS: SUPER names the parent only where no variable has that name."""
+    main = after_one_scan("FUNCTION_BLOCK A\nMETHOD PUBLIC M : INT\nM := 1;\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
+                          + program("    SUPER : A; x : INT;", "x := SUPER.M();"), "codesys")
+    assert main["x"] == 1
