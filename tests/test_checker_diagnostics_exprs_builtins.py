@@ -168,7 +168,7 @@ def test_a_chained_comparison_is_every_neighbouring_pair():
 @pytest.mark.parametrize("op, a, b, value", [
     ("AND", True, False, False), ("&", True, True, True), ("OR", False, True, True), ("XOR", True, True, False),
     ("AND", 0b1100, 0b1010, 0b1000), ("&", 0b1100, 0b1010, 0b1000), ("OR", 0b1100, 0b1010, 0b1110),
-    ("XOR", 0b1100, 0b1010, 0b0110),
+    ("XOR", 0b1100, 0b1010, 0b0110), ("AND", True, 3, 1), ("XOR", True, 3, 2),     # BOOL as bit 1 with a bit string
     ("=", 2, 3, False), ("<>", 2, 3, True), ("<", 2, 3, True), (">", 2, 3, False), ("<=", 3, 3, True),
     (">=", 2, 3, False), ("<", "ab", "b", True), ("=", "a", 1, NOT_CONSTANT),
     ("+", 2, 3, 5), ("-", 2, 3, -1), ("*", 2, 3, 6),
