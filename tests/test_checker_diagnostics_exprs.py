@@ -223,6 +223,18 @@ EXPRESSION_ROWS = {
     "member of an INT": row(
         "E-TYPE-009", "i.y", "'.y': expected a struct or function block instance, found INT",
         decls="    i : INT; x : INT;", body="x := i.y;"),
+    "undeclared, with a global's name suggested": row(
+        "E-DECL-001", "countr", "undeclared name 'countr' (did you mean 'counter'?)",
+        prefix="VAR_GLOBAL\n    counter : INT;\nEND_VAR\n", decls="    x : INT;", body="x := countr;"),
+    "TOD + TOD": row(
+        "E-TYPE-001", "+", "+: expected numeric operands (ANY_NUM), found TIME_OF_DAY",
+        decls="    a : TOD;", body="a := a + a;"),
+    "DATE + TIME": row(
+        "E-TYPE-001", "+", "+: expected numeric operands (ANY_NUM), found DATE; TIME allows TIME + TIME, "
+        "TIME - TIME, TIME * number, TIME / number", decls="    d : DATE; t : TIME;", body="d := d + t;"),
+    "TIME - DATE": row(
+        "E-TYPE-001", "-", "-: expected numeric operands (ANY_NUM), found TIME; TIME allows TIME + TIME, "
+        "TIME - TIME, TIME * number, TIME / number", decls="    d : DATE; t : TIME;", body="t := t - d;"),
     # dereference, bits, direct addresses, indexes
     "dereference of an INT": row(
         "E-TYPE-001", "i^", "^: expected a reference (REF_TO or POINTER TO), found INT",
@@ -973,3 +985,18 @@ def test_a_variable_named_super_is_a_variable():
     main = after_one_scan("FUNCTION_BLOCK A\nMETHOD PUBLIC M : INT\nM := 1;\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
                           + program("    SUPER : A; x : INT;", "x := SUPER.M();"), "codesys")
     assert main["x"] == 1
+
+
+def test_time_and_date_arithmetic():
+    """3rd ed. table 36 (ADD/SUB of TIME, TOD, DT, DATE): the result types, checked by
+    comparing with literals of the expected type in the program itself."""
+    main = after_one_scan(program(
+        "    b : ARRAY[1..7] OF BOOL;",
+        "b[1] := TOD#10:00:00 + T#1h = TOD#11:00:00;\n"
+        "b[2] := DT#2020-01-01-00:00:00 + T#1d = DT#2020-01-02-00:00:00;\n"
+        "b[3] := D#2020-01-02 - D#2020-01-01 = T#24h;\n"
+        "b[4] := TOD#10:00:00 - TOD#09:30:00 = T#30m;\n"
+        "b[5] := DT#2020-01-02-00:00:00 - DT#2020-01-01-00:00:00 = T#1d;\n"
+        "b[6] := TOD#10:00:00 - T#1h = TOD#09:00:00;\n"
+        "b[7] := DT#2020-01-01-01:00:00 - T#1h = DT#2020-01-01-00:00:00;"))
+    assert [main[f"b[{i}]"] for i in range(1, 8)] == [True] * 7
