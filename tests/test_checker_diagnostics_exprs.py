@@ -485,6 +485,13 @@ CALL_ROWS = {
     "NOT on a TIME output": row(
         "E-TYPE-001", "NOT", "NOT on output 'ET': expected BOOL, found TIME",
         decls="    t : TON; b : BOOL;", body="t(IN := TRUE, PT := T#1s, NOT ET => b);"),
+    "an argument of another type": _r(
+        "E-TYPE-004", "d)", "argument 'a' of F: expected INT, found DINT; convert explicitly with DINT_TO_INT",
+        F2, "    x : INT; d : DINT;", "x := F(b := 1, a := d);"),
+    "a string argument truncated": _r(
+        "W-TYPE-001", "'abcdef'", "argument 's' of T3: string of 6 characters is truncated to STRING[3]",
+        "FUNCTION T3 : INT\nVAR_INPUT\n    s : STRING[3];\nEND_VAR\nT3 := 1;\nEND_FUNCTION\n",
+        "    x : INT;", "x := T3(s := 'abcdef');"),
     "an output into a narrower variable": row(
         "E-TYPE-004", "i)", "output 'CV' of CTU: expected SINT, found INT; convert explicitly with INT_TO_SINT",
         decls="    c : CTU; i : SINT;", body="c(CU := TRUE, PV := 3, CV => i);"),
