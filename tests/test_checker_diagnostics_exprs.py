@@ -651,6 +651,12 @@ CALL_ROWS = {
     "a constant beyond a conversion's source type": row(
         "E-TYPE-005", "40000", "constant 40000 does not fit INT (range -32768..32767)", decls="    d : DINT;",
         body="d := INT_TO_DINT(40000);"),
+    "a STRING conversion's input named X": row(
+        "E-CALL-002", "X :=", "STRING_TO_INT has one input, IN; found 'X'", decls="    s : STRING[4]; i : INT;",
+        body="i := STRING_TO_INT(X := s);"),
+    "ENO into a CONSTANT": row(
+        "E-ASSIGN-001", "k)", "ENO: 'k' is CONSTANT and cannot be written",
+        decls="    i : INT;\nEND_VAR\nVAR CONSTANT\n    k : BOOL := TRUE;", body="i := ABS(IN := 1, ENO => k);"),
     # EN / ENO
     "EN an INT": row(
         "E-TYPE-004", "i,", "EN: expected BOOL, found INT; convert explicitly with INT_TO_BOOL",
@@ -905,13 +911,14 @@ def test_each_kind_of_method_call_runs_its_method():
 
 
 def test_properties_and_this():
-    """CODESYS: a property reads through its GET; inside its FB, THIS.n reads a VAR that
-    is not visible from outside; an enumeration variable spelled like its type
+    """CODESYS: a property reads through its GET (a PRIVATE one inside its own FB); inside
+    its FB, THIS.n reads a VAR that is not visible from outside; an enumeration variable spelled like its type
     takes the type's values with a dot."""
     text = ("TYPE\n    State : (Idle, Run);\nEND_TYPE\n"
             "FUNCTION_BLOCK K\nVAR\n    n : INT := 4;\nEND_VAR\nVAR_OUTPUT\n    q : INT;\nEND_VAR\n"
             "PROPERTY PUBLIC P : INT\nGET\n    P := THIS.n * 10;\nEND_GET\nEND_PROPERTY\n"
-            "q := THIS.n + 1;\nEND_FUNCTION_BLOCK\n"
+            "PROPERTY PRIVATE Hidden : INT\nGET\n    Hidden := 1;\nEND_GET\nEND_PROPERTY\n"
+            "q := THIS.n + THIS.Hidden;\nEND_FUNCTION_BLOCK\n"
             + program("    k : K; x, y : INT; state : State := State.Run;", "k(); x := k.P; y := k.q;"))
     main = after_one_scan(text, "codesys")
     assert (main["x"], main["y"], main["state"]) == (40, 5, "Run")
