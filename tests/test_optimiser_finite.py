@@ -92,3 +92,61 @@ def test_the_time_charged_and_a_stopping_fault_are_the_same():
     outcomes = stopped_runs(_program(), 3, WITHOUT, ON)
     assert outcomes[0] == outcomes[1]
     assert [(code, scan) for code, _, scan in outcomes[1][0]] == [("F-DIV-ZERO", 1)]
+
+
+SLOTS = """
+FUNCTION_BLOCK Tilt
+VAR_INPUT Degrees : LREAL; END_VAR
+VAR_OUTPUT CosA, SinA, Rotated : LREAL; END_VAR
+VAR Alpha : LREAL; END_VAR
+Alpha := Degrees * 0.5;                         (* three occurrences: a slot, not cached *)
+CosA := COS(Alpha);
+SinA := SIN(Alpha);
+Rotated := CosA * 2.0 - SinA;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR T : Tilt; N : INT; Zero : LREAL; Inputs : ARRAY[0..5] OF LREAL; Q : INT; K : INT; END_VAR
+Inputs[0] := 0.5; Inputs[1] := -2.0; Inputs[2] := 1.0E300;
+Inputs[3] := 1.0 / Zero; Inputs[4] := -1.0 / Zero; Inputs[5] := Zero / Zero;
+T(Degrees := Inputs[N MOD 6]);
+Q := 7 / K;
+N := N + 1;
+END_PROGRAM
+"""
+
+
+def _slots():
+    return api.load_text(SLOTS).program
+
+
+def test_an_own_slot_is_tested_once_for_sin_and_cos():
+    source = compile_program(_slots(), optimise=ON).python_sources["TILT"]
+    plain = compile_program(_slots(), optimise=WITHOUT).python_sources["TILT"]
+    assert len(re.findall(r"_c\d+ = \(self\.v_ALPHA - self\.v_ALPHA == 0\.0\)", source)) == 1
+    assert "_m_cos(self.v_ALPHA) if _c" in source and "_m_sin(self.v_ALPHA) if _c" in source
+    assert "self.v_ALPHA - self.v_ALPHA" not in plain and plain.count(":= self.v_ALPHA) - ") == 2
+
+
+def test_the_slot_s_values_are_the_library_s():
+    """By hand: COS and SIN of half the input when finite, NaN otherwise."""
+    controller = Controller(compile_program(_slots(), optimise=ON))
+    main = controller.add_program("Main")
+    inputs = [0.5, -2.0, 1.0e300, math.inf, -math.inf, math.nan]
+    for n in range(12):
+        controller.run(1)
+        x = inputs[n % 6] * 0.5
+        c, s = _expected(x, math.cos), _expected(x, math.sin)
+        assert list(map(_bits, (main.v_T.v_COSA, main.v_T.v_SINA, main.v_T.v_ROTATED))) == \
+            list(map(_bits, (c, s, c * 2.0 - s))), x
+
+
+def test_the_slot_scans_see_the_same_with_and_without_the_pass():
+    off, on = run_both(_slots(), 12, optimise=Optimisations.only("reuse", "finite"))
+    assert on == off
+    assert {code for code, *_ in on[0]} == {"F-DIV-ZERO"}
+
+
+@pytest.mark.parametrize("budget_ns", [50, 100, 150, 1_200])
+def test_f_period_lands_on_the_same_statement_with_a_slot(budget_ns):
+    off, on = run_both(_slots(), 8, budget_ns, optimise=ON)
+    assert on == off

@@ -196,3 +196,46 @@ def test_the_versions_run_and_fault_the_same():
 def test_f_period_lands_on_the_same_statement_in_a_version(budget_ns):
     off, on = run_both(api.load_text(VERSIONED).program, 13, budget_ns, optimise=Optimisations.only("ranges"))
     assert on == off
+
+
+# The version without checks runs only when the end is at most the arrays' bound, so the
+# FOR variable's final value (the end + 1, or the start when the loop does not run) lies
+# in [1, 9]: stored without the wrap into INT the checked copy keeps.
+FINAL = """
+PROGRAM Main
+VAR
+    Count : INT; Scan : INT; I : INT; After : INT; Sum : LREAL;
+    A : ARRAY[1..8] OF LREAL := [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0];
+END_VAR
+Scan := Scan + 1;
+Count := (Scan * 3) MOD 11 - 1;         (* -1, 2, 5, 8, 0, 3, 6, 9, 1, 4, 7, -1, ... *)
+Sum := 0.0;
+FOR I := 1 TO Count DO
+    Sum := Sum + A[I];
+END_FOR;
+After := I;
+END_PROGRAM
+"""
+
+
+def test_the_version_stores_the_final_value_without_a_wrap():
+    source = compile_program(api.load_text(FINAL).program, optimise=ON).python_sources["MAIN"]
+    fast, checked = source.split("for v_I in", 2)[1:]
+    assert "32768" not in fast.split("else:", 2)[1].splitlines()[1]
+    assert "32768 & 65535" in checked.split("else:", 1)[1].splitlines()[1]
+
+
+def test_the_final_value_is_the_end_plus_one_or_the_start():
+    """By hand: I after the loop is Count + 1 when Count >= 1, else 1; F-INDEX at Count 9 (scan 7)."""
+    from st_runtime.controller import Controller
+
+    controller = Controller(compile_program(api.load_text(FINAL).program, optimise=ON))
+    main = controller.add_program("Main")
+    for scan in range(1, 14):
+        controller.run(1)
+        count = (scan * 3) % 11 - 1
+        if count <= 8:
+            assert (main.v_I, main.v_AFTER) == ((count + 1 if count >= 1 else 1),) * 2, count
+    assert [(f.code, f.scan) for f in controller.faults] == [("F-INDEX", 7)]
+    off, on = run_both(api.load_text(FINAL).program, 13, optimise=Optimisations.only("ranges"))
+    assert on == off

@@ -70,7 +70,8 @@ def test_runs_of_one_variable_become_membership_tests():
     assert "(v_STATE in (2, 3))" in source
     assert "(v_STATE in (2, 2))" in source
     assert " in (" not in plain.replace("_t", "")      # without the pass: the comparisons
-    assert "(self.v_R == 1.0)" in source and "(v_STATE == 1) | (v_N == 3)" in source
+    # (two comparisons of different variables: `or` by shortcut, not a membership test)
+    assert "(self.v_R == 1.0)" in source and "(v_STATE == 1) or (v_N == 3)" in source
 
 
 def test_a_scan_sees_the_same_values_with_and_without_the_pass():

@@ -99,3 +99,58 @@ def test_the_time_charged_and_a_stopping_fault_are_the_same():
     outcomes = stopped_runs(_program(), 4, WITHOUT, ON)
     assert outcomes[0] == outcomes[1]
     assert outcomes[1][0] == [("F-DIV-ZERO", FAULT, 1)]
+
+
+# AND and OR of comparisons anywhere: each operand is a Python bool.
+STORES = """
+PROGRAM Main
+VAR
+    N : INT; X : LREAL; Zero : LREAL; Flag : BOOL; K : INT; Z : INT;
+    InRange, Outside, Nested, WithNot, WithBool, MayFault : BOOL;
+    Inputs : ARRAY[0..4] OF LREAL;
+END_VAR
+Inputs[0] := 12.5; Inputs[1] := -1.0; Inputs[2] := 700.0; Inputs[3] := Zero / Zero; Inputs[4] := 600.0;
+X := Inputs[N MOD 5];
+Flag := N MOD 2 = 1;
+InRange := X >= 0.0 AND X <= 600.0;
+Outside := X < 0.0 OR X > 600.0;
+Nested := (X >= 0.0 AND X <= 600.0) OR X = 700.0;
+WithNot := NOT Flag AND X > 1.0;
+WithBool := Flag AND X > 1.0;                       (* Flag may be 0/1 elsewhere: `&` *)
+MayFault := X > 1.0 AND 10 / Z > 1;                 (* the right one can fault: `&` *)
+N := N + 1;
+END_PROGRAM
+"""
+
+
+def test_comparisons_anywhere_use_and_or():
+    source = compile_program(api.load_text(STORES).program, optimise=ON).python_sources["MAIN"]
+    plain = compile_program(api.load_text(STORES).program, optimise=WITHOUT).python_sources["MAIN"]
+    assert "self.v_INRANGE = ((v_X >= 0.0) and (v_X <= 600.0))" in source
+    assert "self.v_OUTSIDE = ((v_X < 0.0) or (v_X > 600.0))" in source
+    assert "self.v_NESTED = (((v_X >= 0.0) and (v_X <= 600.0)) or (v_X == 700.0))" in source
+    assert "self.v_WITHNOT = ((not self.v_FLAG) and (v_X > 1.0))" in source
+    assert "self.v_WITHBOOL = (self.v_FLAG & (v_X > 1.0))" in source
+    assert " and " not in plain and " or " not in plain
+    assert "self.v_MAYFAULT = ((v_X > 1.0) & (_idiv(10, self.v_Z, " in source
+
+
+def test_comparisons_anywhere_hold_the_values_worked_by_hand():
+    controller = Controller(compile_program(api.load_text(STORES).program, optimise=ON))
+    main = controller.add_program("Main")
+    for n, x in enumerate([12.5, -1.0, 700.0, float("nan"), 600.0] * 2):
+        controller.run(1)
+        flag = n % 2 == 1
+        assert (main.v_INRANGE, main.v_OUTSIDE, main.v_NESTED, main.v_WITHNOT, main.v_WITHBOOL) == \
+            (0.0 <= x <= 600.0, x < 0.0 or x > 600.0, 0.0 <= x <= 600.0 or x == 700.0,
+             not flag and x > 1.0, flag and x > 1.0), (n, x)
+        assert type(main.v_INRANGE) is bool and type(main.v_NESTED) is bool
+
+
+@pytest.mark.parametrize("budget_ns", [100, 200, 400, 500_000])
+def test_comparisons_anywhere_run_the_same(budget_ns):
+    off, alone = run_both(api.load_text(STORES).program, 10, budget_ns, optimise=Optimisations.only("shortcut"))
+    assert alone == off
+    off, every = run_both(api.load_text(STORES).program, 10, budget_ns, optimise=ON)
+    assert every == off
+    assert [code for code, *_ in every[0]].count("F-DIV-ZERO") in (10, 0)   # each scan, unless cut before

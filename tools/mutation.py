@@ -106,7 +106,10 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                 # the binding of axis FBs (session 9's speed work), tested in its own file
                 "tests/test_motion_binding.py",
                 # seeds 25 and 26 (issue 16, session 11)
-                "tests/test_motion_mutation_s11.py"]),
+                "tests/test_motion_mutation_s11.py",
+                # seed 28 (issue 16, session 12), and the two motion files session 11's merge added
+                "tests/test_motion_mutation_s12.py", "tests/test_motion_stream_epoch.py",
+                "tests/test_motion_rest.py"]),
     "checker": (["st_runtime/checker/*"],
                 ["tests/test_checker_rules.py", "tests/test_checker_typing.py", "tests/test_checker_program.py",
                  "tests/test_checker_loader.py", "tests/test_checker_corpus.py",
@@ -142,7 +145,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                    # seeds 24 and 25 (issue 16, session 10)
                    "tests/test_reference_mutation_s10.py", "tests/test_reference_mutation_s10_seed25.py",
                    # seed 27's last and the seed-28 run (issue 16, session 11)
-                   "tests/test_reference_mutation_s11.py"]),
+                   "tests/test_reference_mutation_s11.py",
+                   # seed 30 (issue 16, session 12)
+                   "tests/test_reference_mutation_s12.py"]),
 }
 
 # Extra [tool.mutmut] settings of one module. The compiler's mutants include

@@ -27,7 +27,7 @@ from ..types import (
     string_size,
 )
 from .initial import CompileError
-from .optimise import Optimisations, absolute, fold, sets, shortcut
+from .optimise import Optimisations, absolute, fold, sets, shortcut, wraps
 from .pysrc import pyliteral, pyident
 
 # Python source of the comparison/arithmetic operators that map one to one.
@@ -152,6 +152,8 @@ class ExprCompiler:
         self.scope = scope
         self.unit = unit              # the CompileUnit: namespace, functions, classes
         self.temp_count = 0
+        self.temp_floor = 0           # temps up to this one stay taken (`lasting_temp`)
+        self.temp_high = 0            # the highest temp given
         self.known_ranges: dict[str, tuple[int, int]] = {}   # upper var name -> range
         self._index_probe: dict[str, list] = {}   # FOR variable -> (lo, hi) of checks on it (statements._versioned)
         self.loops: list = []      # FOR loops being compiled, innermost last (hoisting)
@@ -160,12 +162,22 @@ class ExprCompiler:
         self.region = None                   # optimise.cse.Region while one is compiled
         self.reuse = None                    # optimise.reuse.Reuse of a body (statements.py)
         self.logic_parts: dict[int, tuple[str, str]] = {}   # optimise/shortcut.py
+        self.logic_short: set[int] = set()                   # ids of AND/ORs compiled as and/or (shortcut)
         self.plain_chains: set[int] = set()  # ids of OR/AND chains without a run for optimise/sets.py
 
     # ------------------------------------------------------------ helpers
 
     def temp(self) -> str:
         self.temp_count += 1
+        self.temp_high = max(self.temp_high, self.temp_count)
+        return f"_t{self.temp_count}"
+
+    def lasting_temp(self) -> str:
+        """A temp set where other statements run too (a loop's hoisted value, before the
+        loop; a per-iteration value, at the top of its body): a number no statement had,
+        and none takes again (`temps`, statements.py)."""
+        self.temp_high += 1
+        self.temp_count = self.temp_floor = self.temp_high
         return f"_t{self.temp_count}"
 
     def ty(self, expr) -> Type | None:
@@ -428,6 +440,9 @@ class ExprCompiler:
         if op in _BIT_OPS:
             if self.opt.shortcut:
                 shortcut.record(self, e, left, right)      # an IF condition's `and`/`or`
+                short = shortcut.of_comparisons(self, e, left, right)
+                if short is not None:
+                    return short
             return f"({left} {_BIT_OPS[op]} {right})"
         if op == "*" and elementary(t) is not None and elementary(t).kind == "time" \
                 and (is_real(lt) or is_real(rt)):
@@ -639,7 +654,7 @@ class ExprCompiler:
         `text` itself."""
         entry = self.loops[-1].scaled.get(text)
         if entry is None:
-            entry = self.loops[-1].scaled[text] = [f"\x00{self.temp()}\x00", 0]
+            entry = self.loops[-1].scaled[text] = [f"\x00{self.lasting_temp()}\x00", 0]
         entry[1] += 1
         return entry[0]
 
@@ -658,7 +673,7 @@ class ExprCompiler:
         loop = self.loops[-1]
         name = loop.hoisted.get(code)
         if name is None:
-            name = self.temp()
+            name = self.lasting_temp()
             loop.hoisted[code] = name
         rest = [t for t in terms if t not in invariant]
         return [name] + rest, 0
@@ -696,6 +711,8 @@ class ExprCompiler:
             bounds = int_bounds(e)
             if node is not None:
                 known = self.static_range(node)
+                if known is None and self.opt.wraps:
+                    known = wraps.selection_range(self, node)       # MIN(SyncCalls + 1, 2)
                 if known is not None and bounds[0] <= known[0] and known[1] <= bounds[1]:
                     return value
                 if plain_read:

@@ -40,7 +40,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, ranges, reuse, shortcut, stores, unguard, unroll
+from .optimise import aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, ranges, reuse, seal, shortcut, stores, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, walk
 
@@ -128,9 +128,11 @@ class BodyCompiler(ExprCompiler):
         if self.opt.unused:
             aliases.drop_unused(o.lines, start)
             if self.method and self.unit.guard_statements:   # (a line without `try` then cannot raise)
-                aliases.drop_unread(o.lines, start)
+                aliases.drop_unread(o.lines, start, self.opt.deferred)
         if self.opt.charges and charge and self.unit.guard_statements:
             charges.merge(o.lines, start)
+        if self.opt.seal:
+            seal.hoist(o.lines, start)
         return o.source()
 
     def _body(self) -> None:
@@ -284,14 +286,18 @@ class BodyCompiler(ExprCompiler):
             values.leave()
 
     def _statement_with_values(self, stmt) -> None:
-        """The statement, the values it computes first set before it (optimise/reuse.py)."""
+        """The statement, the values it computes first set before it (optimise/reuse.py);
+        with `temps`, the next statement takes the temps' numbers again."""
+        taken = self.temp_count
         if self.reuse is None:
             self._statement_in_segment(stmt)
-            return
-        began = self.reuse.begin(stmt)
-        mark = self.out.mark()
-        self._statement_in_segment(stmt)
-        self.reuse.end(began, mark)
+        else:
+            began = self.reuse.begin(stmt)
+            mark = self.out.mark()
+            self._statement_in_segment(stmt)
+            self.reuse.end(began, mark)
+        if self.opt.temps and self.region is None:
+            self.temp_count = max(taken, self.temp_floor)
 
     def _statement_in_segment(self, stmt) -> None:
         self.statement(stmt)
@@ -482,6 +488,8 @@ class BodyCompiler(ExprCompiler):
             self.region.whole = s.value
         value = self.convert(self.expr(s.value), self.ty(s.value), t, s.value)
         self.out.line(target.store(value))
+        if self.reuse is not None:
+            self.reuse.stored(s.target, target.read(), value)
 
     def s_CallStmt(self, s):
         for line in self.unit.calls.call_statement(self, s.call):
@@ -704,11 +712,11 @@ class BodyCompiler(ExprCompiler):
         if self.flow is not None:       # (each copy of the loop forgets its body: _range_loop)
             self.flow.set(before)
 
-        def emit_loop():
+        def emit_loop(end_high=None):
             self._range_loop(s, key, assigned, target, rng, early, where, saved,
                              lambda: self._after_for(target, var_t, final, lo_r, hi_r,
                                                      step_value if const_step else None,
-                                                     not early and not straight, where))
+                                                     not early and not straight, where, end_high))
 
         if self.opt.ranges and step_value == 1 and count is None and lo_r is not None:
             self._versioned(key, rng, lo_r[0], emit_loop)
@@ -751,7 +759,7 @@ class BodyCompiler(ExprCompiler):
         o.indent()
         saved = self.known_ranges.get(key)
         self.known_ranges[key] = (low, high)
-        emit_loop()
+        emit_loop(high)
         if saved is None:
             self.known_ranges.pop(key, None)
         else:
@@ -802,12 +810,18 @@ class BodyCompiler(ExprCompiler):
         after()
         o.dedent()
 
-    def _after_for(self, target, var_t, final, lo_r, hi_r, step_value, test: bool, where) -> None:
+    def _after_for(self, target, var_t, final, lo_r, hi_r, step_value, test: bool, where,
+                   end_high: int | None = None) -> None:
         bounds = int_bounds(var_t)
-        if lo_r and hi_r and step_value is not None and bounds:
+        ends = None
+        if lo_r and hi_r and step_value is not None:
             ends = (lo_r[0], lo_r[1], hi_r[0] + step_value, hi_r[1] + step_value)
-            if bounds[0] <= min(ends) and max(ends) <= bounds[1]:
-                var_t = None          # the final value cannot leave the type: no wrap
+        elif lo_r and end_high is not None:
+            # A loop version run when the end is at most `end_high` (step 1): the final value
+            # is the start when the loop does not run, else the end + 1, above the start.
+            ends = (lo_r[0], lo_r[1], end_high + 1)
+        if ends and bounds and bounds[0] <= min(ends) and max(ends) <= bounds[1]:
+            var_t = None              # the final value cannot leave the type: no wrap
         self.out.line(target.store(final if var_t is None else self.convert(final, None, var_t)))
         if test:
             self._charge(0, where)          # what the body's blocks charged, tested once

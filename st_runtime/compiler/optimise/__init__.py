@@ -121,7 +121,30 @@ states bit for bit:
   and the operand left out reads, stores and raises nothing.
 * `finite` (reuse.py `finite`, with `reuse`): the finite test `x - x == 0.0`
   of inline SIN, COS and TAN of a float local is a value of `reuse`: SIN(Psi)
-  and COS(Psi) of one unchanged Psi test it once.
+  and COS(Psi) of one unchanged Psi test it once; of an own slot too (`self.v_X`,
+  IK's Alpha, Beta and Gamma).
+* `deferred` (aliases.py `drop_unread`, with `unused`): the load of a cached variable
+  the body sets before it reads it is left out also when budget checks come before
+  the set; each such check loads it in its branch, before `_overrun` (IK's U, V, W,
+  LegX, LegY and LegZ): an overrun stores back the same value, a call that passes
+  the checks loads nothing.
+* `wraps` (wraps.py): a store of MIN or MAX of integers is not wrapped when their
+  range (an input's declared type, a literal, `+ -` of such) lies inside the
+  target's type: `SyncCalls := MIN(SyncCalls + 1, 2)` is at most 2.
+* `stores_read` (reuse.py `stored`, with `reuse`): after `X[k] := v`, v a value of
+  `reuse` stored as it is into an own array at a literal index, a read of `X[k]` is
+  that value while X and what v reads are unchanged: IK's `Position[Leg]`, stored
+  and read back by three tests, is computed into a name once.
+* `temps` (statements.py `_statement_with_values`): the temporaries `_tN` of a
+  statement are its own (its guards, walrus operands, ranges, the motion FBs' call
+  sites), so once it is compiled the next statement takes the same numbers again;
+  a loop's hoisted and per-iteration temps, set where other statements run too, take
+  a number no statement had and keep it (`lasting_temp`), and a CSE region's temps
+  are not given again inside the region.  Fewer local slots: a
+  call creates and clears each one (SP_Controller 116 -> 59, TRJ_OceanWave 165 -> 110).
+* `seal` (seal.py): a body that reads the controller's seal twice or more (the
+  idle Execute FBs' rest tests and notes) reads it once, `_seal = _ctx.seal` at its
+  start: the seal is replaced only between the programs' runs.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -164,6 +187,11 @@ class Optimisations:
     halves: bool = True
     shortcut: bool = True
     finite: bool = True
+    deferred: bool = True
+    wraps: bool = True
+    stores_read: bool = True
+    temps: bool = True
+    seal: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

@@ -73,14 +73,23 @@ _SET = re.compile(r"        ((?:self\.)?\w+) = (.+)")
 _COPY = re.compile(r"        v_\w+\[:\] = v_\w+")
 _INLINE_TRIG = re.compile(r"\(_m_(?:sin|cos|tan)\((_t\d+)\) if \(\1 := ((?:self\.)?\w+)\) - \1 == 0\.0"
                           r" else _sf_(?:SIN|COS|TAN)\(\1\)\)")
+#: The same with the finite test a value of `reuse` (`finite`): `_cN` is `x - x == 0.0` of x.
+_TESTED_TRIG = re.compile(r"\(_m_(?:sin|cos|tan)\(((?:self\.)?v_\w+)\) if _c\d+ else _sf_(?:SIN|COS|TAN)\(\1\)\)")
 
 
-def drop_unread(lines: list[str], start: int) -> None:
+def drop_unread(lines: list[str], start: int, deferred: bool = False) -> None:
     """Leave out the load `v_X = self.v_X` of a method's cached variable that the body sets
     before it reads it and before anything can raise: the straight lines the body begins
     with (`try:` at the top, then charges and assignments that cannot raise) set it, so its
     value is never read and the store back at the end finds it set (SP_InverseKinematics'
-    rotation matrix: 17 loads)."""
+    rotation matrix: 17 loads).
+
+    `deferred`: budget checks among those lines do not end them; a load left out for a
+    variable set after a check is made in that check's branch instead, before `_overrun`
+    (SP_InverseKinematics' U, V, W, LegX, LegY, LegZ).  An overrun there stores back the
+    value the load at entry would have given (nothing before the check stores the
+    variable or calls code that could), so the instance ends the same; a call that
+    passes the checks loads nothing."""
     try:
         body = lines.index("    try:", start)
     except ValueError:
@@ -91,24 +100,37 @@ def drop_unread(lines: list[str], start: int) -> None:
         if match and match.group(1) == match.group(2) and lines[i].startswith("    v_"):
             loads[match.group(1)] = i
     unread, seen = set(), set()
-    for line in lines[body + 1:]:
+    checks: dict[int, list[str]] = {}          # line of a budget check -> the loads it makes
+    for i in range(body + 1, len(lines)):
+        line = lines[i]
         if line.startswith("        _spent += "):
             continue
         if _COPY.fullmatch(line):
             continue            # (a copy of a list left without a guard: unguard.py)
+        if deferred and line.startswith(_CHECK + "_overrun("):
+            checks[i] = []
+            continue
         match = _SET.fullmatch(line)
         if match is None:
             break
-        value = _INLINE_TRIG.sub(lambda m: m.group(2), match.group(2))
+        value = _TESTED_TRIG.sub(r"\1", _INLINE_TRIG.sub(lambda m: m.group(2), match.group(2)))
         if "\x03" in value or not branches.code_cannot_fault(value):
             break
         seen.update(_LOCAL_NAME.findall(value))
         target = match.group(1)
         if target in loads and target not in seen:
             unread.add(loads[target])
+            for made in checks.values():
+                made.append(lines[loads[target]].strip())
         seen.add(target)
+    for i, made in checks.items():
+        if made:
+            lines[i] = _CHECK + "; ".join(made) + "; " + lines[i][len(_CHECK):]
     if unread:
         lines[start:] = [line for i, line in enumerate(lines[start:], start) if i not in unread]
+
+
+_CHECK = "        if _ctx.budget < _spent: "
 
 
 def late_loads(compiler, body) -> dict[int, list[str]]:

@@ -47,7 +47,7 @@ _TOKEN = re.compile("\x03(\\d+)\x03")
 _MARKER = re.compile("^( *)\x04([\\d,]+)\x04$", re.M)
 _NUMBER = re.compile(r"-?\(?-?\d[\d.e+-]*\)?")
 _VARIABLE = re.compile(r"(?:self\.|_G\.)?(v_\w+)")
-_LOCAL = re.compile(r"v_\w+")
+_TESTABLE = re.compile(r"(?:self\.)?v_\w+")      # a local, or a slot of the instance itself
 _ELEMENT = re.compile(r"(v_\w+)\[\d+\]")
 _PLAIN_KINDS = {"VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP", "RETURN", "VAR_GLOBAL", "VAR_EXTERNAL"}
 _MATH = {"SIN", "COS", "TAN", "SQRT"}
@@ -55,10 +55,10 @@ _NO_VARIABLES: frozenset = frozenset()
 
 
 class _Value:
-    __slots__ = ("text", "deps", "uses", "level", "valid")
+    __slots__ = ("key", "text", "deps", "uses", "level", "valid")
 
-    def __init__(self, text: str, deps: frozenset, level: int):
-        self.text, self.deps, self.uses, self.level, self.valid = text, deps, 1, level, True
+    def __init__(self, key: str, text: str, deps: frozenset, level: int):
+        self.key, self.text, self.deps, self.uses, self.level, self.valid = key, text, deps, 1, level, True
 
 
 class Reuse:
@@ -75,6 +75,7 @@ class Reuse:
         self.closed = 0                          # > 0 inside a statement that ends every value
         self._summaries: dict[int, tuple] = {}   # id(statement) -> _summary (the AST lives as long)
         self.owned: dict[str, object] = {}       # name -> its symbol when plain storage (`_own`)
+        self.element_store: tuple | None = None   # (element, value index) the statement stores (`stored`)
 
     # ------------------------------------------------------------ levels
 
@@ -145,11 +146,14 @@ class Reuse:
         first = self.pending.pop()
         if first:
             self.compiler.out.insert(mark, [f"\x04{','.join(map(str, first))}\x04"])
+        element_store, self.element_store = self.element_store, None
         if opaque:
             self.closed -= 1
             self._forget_all()
         else:
             self._forget(stored)
+            if element_store is not None:
+                self._read_back(*element_store)
 
     def _forget(self, names) -> None:
         for name in names:
@@ -175,7 +179,7 @@ class Reuse:
             self.values[index].uses += 1
             return f"\x03{index}\x03"
         index = len(self.values)
-        self.values.append(_Value(text, deps, self.levels[-1]))
+        self.values.append(_Value(key, text, deps, self.levels[-1]))
         self.known[key] = index
         for name in deps:
             self.readers.setdefault(name, []).append(key)
@@ -235,9 +239,10 @@ class Reuse:
         return text if deps is None else self.value(f"{name}({code})", text, deps)
 
     def finite(self, arg, code: str) -> str | None:
-        """`code - code == 0.0` of a float local (finite: an infinity or NaN gives NaN), as a
-        value: inline SIN, COS and TAN of one unchanged local test it once (`finite`)."""
-        if not (self.compiler.opt.finite and self.active() and _LOCAL.fullmatch(code)
+        """`code - code == 0.0` of a float local or own slot (`self.v_X`: finite, an infinity
+        or NaN gives NaN), as a value: inline SIN, COS and TAN of one unchanged variable test
+        it once (`finite`).  A slot is read twice, with nothing run between the reads."""
+        if not (self.compiler.opt.finite and self.active() and _TESTABLE.fullmatch(code)
                 and _is_float(self.compiler.ty(arg))):
             return None
         deps = self.operand(arg, code)
@@ -245,6 +250,31 @@ class Reuse:
             return None
         text = f"({code} - {code} == 0.0)"
         return self.value(text, text, deps)
+
+    def stored(self, target, code: str, value: str) -> None:
+        """`code = value` was compiled for `target := ...`: when it stores a value of this
+        pass as it is into an own array's element at a literal index (a store that cannot
+        fail), a later read of that element is that value (`stores_read`)."""
+        if not (self.compiler.opt.stores_read and self.active() and isinstance(target, ast.Index)
+                and isinstance(target.base, ast.Name)):
+            return
+        match, element = _TOKEN.fullmatch(value), _ELEMENT.fullmatch(code)
+        if match is None or element is None:
+            return
+        symbol = self._own(target.base)
+        t = resolve_alias(symbol.type) if symbol is not None else None
+        if isinstance(t, ArrayType) and isinstance(resolve_alias(t.element), ElementaryType):
+            self.element_store = (code, element.group(1), int(match.group(1)))
+
+    def _read_back(self, code: str, array: str, index: int) -> None:
+        """After the store `code = <value index>` (its array forgotten): the element read
+        is that value while neither the array nor what the value reads changes."""
+        value = self.values[index]
+        if self.known.get(value.key) != index or value.level not in self.levels:
+            return              # (the value read the array it was stored into: it ended)
+        self.known[code] = index
+        for name in value.deps | {array}:
+            self.readers.setdefault(name, []).append(code)
 
     # ------------------------------------------------------------ resolve
 

@@ -14,13 +14,21 @@ rest; its axes' `SyncCalls >= 1 AND AxisSync[k].CommandAborted`: no `&`.)
 Each AND and OR of BOOLs records its operands' code as it is compiled (exprs.py); the
 condition is rebuilt from them only when they give back the code just compiled, `&` and `|`
 for `and` and `or`.
+
+An AND or OR of two comparisons (or NOTs, or such ANDs and ORs) is `and`/`or` wherever it stands (a store, an input), when
+the right one cannot fault (branches.py's rule): each comparison is a Python bool, so
+`a and b` is the bool `a & b` is, and the right one left out reads, stores and raises
+nothing (SP_InverseKinematics' `LegInStroke[Leg] := Position[Leg] >= 0.0 AND Position[Leg]
+<= Stroke`: no `&` of two bools, which goes through the number protocol).
 """
 
 from __future__ import annotations
 
+from ... import ast
 from ...types import ElementaryType
 
 _WORDS = {"AND": ("&", "and"), "&": ("&", "and"), "OR": ("|", "or")}
+_COMPARISONS = {"=", "<>", "<", ">", "<=", ">="}
 
 
 def condition(compiler, node, code: str) -> str:
@@ -36,6 +44,33 @@ def record(compiler, e, left: str, right: str) -> None:
     t = compiler.ty(e)
     if e.op in _WORDS and isinstance(t, ElementaryType) and t.kind == "bool":
         compiler.logic_parts[id(e)] = (left, right)
+
+
+def of_comparisons(compiler, e, left: str, right: str) -> str | None:
+    """`(left and right)` / `(left or right)` for an AND/OR of two Python bools (comparisons,
+    NOT of a BOOL, such an AND/OR itself) whose right one cannot fault; else None."""
+    if e.op not in _WORDS or compiler.region is not None:
+        return None
+    if not (_is_bool(compiler, e.left) and _is_bool(compiler, e.right)):
+        return None
+    from . import branches      # (branches imports scope, which imports exprs: read at call time)
+
+    if not branches.expr_cannot_fault(compiler, e.right, right):
+        return None
+    compiler.logic_short.add(id(e))
+    return f"({left} {_WORDS[e.op][1]} {right})"
+
+
+def _is_bool(compiler, e) -> bool:
+    """`e`'s code gives a Python bool (a BOOL variable may hold 0 or 1)."""
+    if isinstance(e, ast.Binary):
+        return e.op in _COMPARISONS or id(e) in compiler.logic_short
+    return isinstance(e, ast.Unary) and e.op.upper() == "NOT" and _is_bool_typed(compiler, e.operand)
+
+
+def _is_bool_typed(compiler, e) -> bool:
+    t = compiler.ty(e)
+    return isinstance(t, ElementaryType) and t.kind == "bool"
 
 
 def _rebuilt(compiler, node) -> tuple[str, str] | None:
