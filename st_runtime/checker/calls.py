@@ -20,6 +20,8 @@ from .stores import check_store, in_out_problem, is_variable_path, no_address, r
 _PIN_KINDS = ("VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT")
 # _namespaced's answer for `NS.F` when NAMESPACE NS declares no F (already reported).
 _NOT_IN_NAMESPACE = object()
+# _method_target's answer for `SUPER.M` when there is no M to call (already reported).
+_NO_SUPER_METHOD = object()
 
 
 
@@ -83,6 +85,8 @@ class CallChecker:
                 and key(callee.base.name) == "SUPER" and self.ex.scope.lookup("SUPER") is None:
             return self._super_body(call, statement)
         method = self._method_target(callee)
+        if method is _NO_SUPER_METHOD:      # one root cause, one diagnostic
+            return self._give_up(call)
         if method is not None:
             return self._method_call(call, method[0], method[1], statement)
         if isinstance(callee, ast.Name) and self._not_a_variable(callee):
@@ -197,7 +201,8 @@ class CallChecker:
 
     # ------------------------------------------------------------ methods
     def _method_target(self, callee):
-        """("super" | "virtual" | "interface" | "self", method PouInfo) or None."""
+        """("super" | "virtual" | "interface" | "self", method PouInfo) or None
+        (_NO_SUPER_METHOD, reported, for a SUPER.M with no M to call)."""
         fb = self.ex.scope.fb
         if isinstance(callee, ast.Member) and isinstance(callee.base, ast.Name) \
                 and key(callee.base.name) == "SUPER" and self.ex.scope.lookup("SUPER") is None:
@@ -207,7 +212,7 @@ class CallChecker:
                 self.ctx.error("E-DECL-016", f"SUPER.{callee.name}: " + (
                     f"{fb.name} extends no FB with a method {callee.name}" if fb is not None
                     else "SUPER is only valid inside a FUNCTION_BLOCK or its methods"), callee.pos)
-                return None
+                return _NO_SUPER_METHOD
             return "super", m
         if isinstance(callee, ast.Member):
             t = self.ex.infer(callee.base)
@@ -600,8 +605,7 @@ class CallChecker:
             return self.ex.record(call, ts.ERROR)
         if not ts.implicitly_converts(t, src):
             self.ctx.error("E-TYPE-004", f"argument of {canonical}: expected {src}, found {t}"
-                           + (f"; use {_short(t)}_TO_{_short(dst)}" if isinstance(t, T.ElementaryType)
-                              else ""), start_pos(value))
+                           + _conversion_hint(t, dst), start_pos(value))
             return self.ex.record(call, ts.ERROR)
         self.program.call_targets[id(call)] = CallTarget("conversion", canonical, None, dst)
         return self.ex.record(call, dst)
@@ -611,6 +615,16 @@ def _short(t) -> str:
     if isinstance(t, T.StringType):
         return "STRING"
     return ts.short_name(t)
+
+
+def _conversion_hint(t, dst) -> str:
+    """The conversion to use instead for an argument of type `t`; none from a type to
+    itself (issue 16: INT_TO_DINT of a DINT suggested DINT_TO_DINT, no such function)."""
+    if not isinstance(t, T.ElementaryType):
+        return ""
+    if _short(t) == _short(dst):
+        return f"; the value is a {dst} already: no conversion is needed"
+    return f"; use {_short(t)}_TO_{_short(dst)}"
 
 
 def _bits_for(t):
