@@ -74,3 +74,135 @@ VAR r : REAL; END_VAR
 r := F(2);
 END_PROGRAM""", EVERY)
     assert (main.v_R, faults) == (6.0, [])
+
+
+# -------------------------------- a FOR inside every compound statement of a FOR's body
+
+NESTED = {
+    # Each: FOR i := 1 TO 3 around a body whose inner FOR j := 1 TO 2 adds i * j, so
+    # s = (1 + 2 + 3) * (1 + 2) = 18 by hand, whichever statement holds the inner FOR.
+    "IF ... ELSE": "IF c THEN s := s + 100; ELSE FOR j := 1 TO 2 DO s := s + i * j; END_FOR; END_IF;",
+    "IF ... ELSIF": "IF c THEN s := s + 100; ELSIF NOT c THEN FOR j := 1 TO 2 DO s := s + i * j; END_FOR; "
+                    "END_IF;",
+    "CASE ... ELSE": "CASE i OF 9: s := s + 100; ELSE FOR j := 1 TO 2 DO s := s + i * j; END_FOR; END_CASE;",
+    "CASE clause": "CASE i OF 1..3: FOR j := 1 TO 2 DO s := s + i * j; END_FOR; END_CASE;",
+    "WHILE": "k := 0; WHILE k < 1 DO FOR j := 1 TO 2 DO s := s + i * j; END_FOR; k := k + 1; END_WHILE;",
+    "REPEAT": "REPEAT FOR j := 1 TO 2 DO s := s + i * j; END_FOR; UNTIL TRUE END_REPEAT;",
+    "IF in ELSE": "IF c THEN s := s + 100; ELSE IF NOT c THEN FOR j := 1 TO 2 DO s := s + i * j; END_FOR; "
+                  "END_IF; END_IF;",
+}
+
+
+@pytest.mark.parametrize("optimise", [EVERY, NONE], ids=["every pass", "no pass"])
+@pytest.mark.parametrize("body", NESTED.values(), ids=NESTED.keys())
+def test_a_for_nested_in_any_compound_statement_of_a_for(body: str, optimise: Optimisations):
+    main, faults = run_with(f"""PROGRAM Main
+VAR i : INT; j : INT; k : INT; c : BOOL; s : INT; END_VAR
+FOR i := 1 TO 3 DO
+  {body}
+END_FOR;
+END_PROGRAM""", optimise)
+    assert (main.v_S, main.v_I, faults) == (18, 4, [])
+
+
+# ------------------------------------- F-PERIOD in an unrolled FOR lands where the loop's does
+
+UNROLLED = {
+    # the body calls a FUNCTION: its charges reach the scan's budget in the middle of the loop
+    "a call in a straight body": """FUNCTION Heavy : LREAL
+VAR_INPUT x : LREAL; END_VAR
+Heavy := SQRT(x) + SQRT(x + 1.0) + SQRT(x + 2.0);
+END_FUNCTION
+PROGRAM Main
+VAR i : INT; s : LREAL; t : LREAL; END_VAR
+FOR i := 1 TO 3 DO
+  s := s + Heavy(INT_TO_LREAL(i));
+END_FOR;
+t := s + 1.0;
+t := t + 2.0;
+END_PROGRAM""",
+    "an IF in the body": """PROGRAM Main
+VAR i : INT; s : LREAL; t : LREAL; END_VAR
+FOR i := 1 TO 4 DO
+  IF i > 2 THEN s := s + SQRT(INT_TO_LREAL(i)); ELSE s := s - 1.0; END_IF;
+END_FOR;
+t := s + 1.0;
+END_PROGRAM""",
+    "a RETURN in the body": """FUNCTION G : INT
+VAR_INPUT n : INT; END_VAR
+VAR i : INT; s : INT; END_VAR
+FOR i := 1 TO 4 DO
+  IF i = n THEN G := s; RETURN; END_IF;
+  s := s + i;
+END_FOR;
+G := s;
+END_FUNCTION
+PROGRAM Main
+VAR r : INT; q : INT; END_VAR
+r := G(3);
+q := r + G(9);
+END_PROGRAM""",
+}
+
+
+@pytest.mark.parametrize("src", UNROLLED.values(), ids=UNROLLED.keys())
+def test_f_period_in_an_unrolled_for_lands_where_the_loops_does(src: str):
+    # Unrolling is exact (optimise/unroll.py: "the charges are the loop's ... the final test
+    # stays after it"): at every budget the scan ends with the same fault on the same line
+    # and the same state as the loop compiled without any pass.
+    program = api.load_text(src, "m.st").program
+
+    def outcome(optimise: Optimisations, budget_ns: int):
+        controller = Controller(compile_program(program, optimise=optimise), time_limit_ns=budget_ns)
+        main = controller.add_program("Main")
+        controller.run(1)
+        state = {name: getattr(main, name) for name in main.__slots__}
+        return [(f.code, f.line) for f in controller.faults], state, controller.ctx.budget
+
+    for budget_ns in range(20, 400, 10):
+        assert outcome(Optimisations.only("unroll"), budget_ns) == outcome(NONE, budget_ns), budget_ns
+
+
+# ------------------------------------------- the shared prelude serves the standard FBs
+
+def test_a_shared_prelude_made_again_serves_every_standard_function_block():
+    # IEC 61131-3 (2013) 6.6.3.5, standard function blocks: bistables SR and RS, edge detection
+    # R_TRIG and F_TRIG, counters CTU, CTD and CTUD, timers TP, TON and TOF; the runtime writes
+    # them in Python (st_runtime/stdlib/fbs.py). A SharedPrelude made from the checked prelude
+    # hands each compile the class of each, with its layout installed.
+    from st_runtime.compiler import SharedPrelude
+    from st_runtime.native import NATIVE_FBS
+
+    base = api.load_text("PROGRAM Main\nVAR x : INT; END_VAR\nx := 1;\nEND_PROGRAM").program.prelude
+    classes = SharedPrelude(base).install_layouts()
+    outputs = {"SR": {"Q1"}, "RS": {"Q1"}, "R_TRIG": {"Q"}, "F_TRIG": {"Q"}, "CTU": {"Q", "CV"},
+               "CTD": {"Q", "CV"}, "CTUD": {"QU", "QD", "CV"}, "TP": {"Q", "ET"}, "TON": {"Q", "ET"},
+               "TOF": {"Q", "ET"}}        # the standard's output variables of each
+    for name, names in outputs.items():
+        assert classes[name] is NATIVE_FBS[name], name
+        assert names <= set(classes[name]._st_vars), name
+
+
+# ----------------------------------- a value over a named constant is computed once (reuse)
+
+def test_a_value_over_a_named_constant_is_computed_once():
+    # optimise/reuse.py: a `+ - *` of LREAL operands that are literals or plain variables,
+    # computed again over unchanged operands, is computed once and read by name. K is a
+    # CONSTANT, compiled as the literal 2.0: `x * K + 1.0` is one value for a and b.
+    # By hand: x = 3.0, a = b = 3.0 * 2.0 + 1.0 = 7.0.
+    src = """FUNCTION_BLOCK B
+VAR_INPUT x : LREAL; END_VAR
+VAR_OUTPUT a : LREAL; b : LREAL; END_VAR
+VAR CONSTANT K : LREAL := 2.0; END_VAR
+a := x * K + 1.0;
+b := x * K + 1.0;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR f : B; END_VAR
+f(x := 3.0);
+END_PROGRAM"""
+    compiled = compile_program(api.load_text(src, "m.st").program, optimise=EVERY)
+    assert compiled.python_sources["B"].count("self.v_X * 2.0") == 1
+    for optimise in (EVERY, NONE):
+        main, faults = run_with(src, optimise)
+        assert (main.v_F.v_A, main.v_F.v_B, faults) == (7.0, 7.0, [])
