@@ -206,3 +206,71 @@ END_PROGRAM"""
     for optimise in (EVERY, NONE):
         main, faults = run_with(src, optimise)
         assert (main.v_F.v_A, main.v_F.v_B, faults) == (7.0, 7.0, [])
+
+
+# ---------------------------------------- a CONSTANT aggregate local of a FUNCTION or METHOD
+
+@pytest.mark.parametrize("optimise", [EVERY, NONE], ids=["every pass", "no pass"])
+def test_constant_aggregate_locals_read_at_a_variable_index(optimise: Optimisations):
+    # A CONSTANT array or structure local of a FUNCTION or a METHOD holds its initial values
+    # in every call (IEC 61131-3 VAR CONSTANT); read at an index known only at run time:
+    # T[3] = 30, T[1] = 10; P.b = 7; the METHOD's table W[2] = 2.5.
+    main, faults = run_with("""TYPE Pair : STRUCT a : INT; b : INT; END_STRUCT; END_TYPE
+FUNCTION Pick : INT
+VAR_INPUT i : INT; END_VAR
+VAR CONSTANT T : ARRAY[1..4] OF INT := [10, 20, 30, 40]; P : Pair := (a := 3, b := 7); END_VAR
+Pick := T[i] + P.b * 0;
+END_FUNCTION
+FUNCTION Second : INT
+VAR CONSTANT P : Pair := (a := 3, b := 7); END_VAR
+Second := P.b;
+END_FUNCTION
+FUNCTION_BLOCK Box
+METHOD Weight : LREAL
+VAR_INPUT k : INT; END_VAR
+VAR CONSTANT W : ARRAY[1..3] OF LREAL := [0.5, 2.5, 4.5]; END_VAR
+Weight := W[k];
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR i : INT := 3; x : INT; y : INT; z : INT; w : LREAL; b : Box; two : INT := 2; END_VAR
+x := Pick(i);
+y := Pick(1);
+z := Second();
+w := b.Weight(two);
+END_PROGRAM""", optimise)
+    assert (main.v_X, main.v_Y, main.v_Z, main.v_W, faults) == (30, 10, 7, 2.5, [])
+
+
+# ----------------------------- an aggregate named in several branches nested in one branch
+
+BRANCHES = {
+    "two IFs in an IF": "IF mode = 1 THEN IF a THEN n := arr[1]; END_IF; IF NOT a THEN n := arr[2]; END_IF; "
+                        "END_IF;",
+    "IF and ELSE in an IF": "IF mode = 1 THEN IF a THEN n := arr[1]; ELSE n := arr[2]; END_IF; END_IF;",
+    "two IFs in a CASE clause": "CASE mode OF 1: IF a THEN n := arr[1]; END_IF; IF NOT a THEN n := arr[3]; "
+                                "END_IF; 2: n := 9; END_CASE;",
+    "an IF and a CASE in an ELSIF": "IF mode = 0 THEN n := 9; ELSIF mode = 1 THEN IF a THEN n := arr[1]; END_IF; "
+                                    "CASE mode OF 5: n := arr[2]; END_CASE; END_IF;",
+    "a loop and an IF in an IF": "IF mode = 1 THEN FOR k := 1 TO 1 DO n := arr[k]; END_FOR; "
+                                 "IF NOT a THEN n := arr[2]; END_IF; END_IF;",
+}
+
+
+@pytest.mark.parametrize("optimise", [EVERY, Optimisations.only("aliases"), NONE],
+                         ids=["every pass", "aliases", "no pass"])
+@pytest.mark.parametrize("body", BRANCHES.values(), ids=BRANCHES.keys())
+def test_an_array_named_in_branches_nested_in_one_branch(body: str, optimise: Optimisations):
+    # With mode = 1 and a = TRUE each body takes the branch that stores arr[1] = 1 (by hand);
+    # the aliases pass loads arr where all its uses meet, the outer branch.
+    main, faults = run_with(f"""FUNCTION_BLOCK B
+VAR_INPUT mode : INT; a : BOOL; END_VAR
+VAR_OUTPUT n : INT; END_VAR
+VAR arr : ARRAY[1..3] OF INT := [1, 2, 3]; k : INT; END_VAR
+{body}
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR f : B; END_VAR
+f(mode := 1, a := TRUE);
+END_PROGRAM""", optimise)
+    assert (main.v_F.v_N, faults) == (1, [])
