@@ -274,3 +274,102 @@ VAR f : B; END_VAR
 f(mode := 1, a := TRUE);
 END_PROGRAM""", optimise)
     assert (main.v_F.v_N, faults) == (1, [])
+
+
+# ------------------------------------------------ a global variable stored past its range
+
+GLOBAL_STORES = [
+    # (type, initial value, expression, stored value by hand: two's complement of the width)
+    ("SINT", "127", "g + 1", -128), ("INT", "32767", "g + 1", -32768),
+    ("DINT", "2147483647", "g + 1", -2**31), ("LINT", "9223372036854775807", "g + 1", -2**63),
+    ("USINT", "255", "g + 1", 0), ("UINT", "0", "g - 1", 65535),
+    ("UDINT", "4294967295", "g + 2", 1), ("ULINT", "0", "g - 1", 2**64 - 1),
+]
+
+
+@pytest.mark.parametrize("where", ["PROGRAM", "FUNCTION", "FUNCTION_BLOCK"])
+@pytest.mark.parametrize("t, initial, expression, stored", GLOBAL_STORES, ids=[g[0] for g in GLOBAL_STORES])
+def test_a_global_integer_wraps_to_its_width_when_stored(t, initial, expression, stored, where):
+    # README, "Semantics": integers wrap to their width on every store; a global is stored
+    # from the PROGRAM's body, a FUNCTION's or an FB's (VAR_EXTERNAL).
+    body = f"g := {expression};"
+    pous = {"PROGRAM": "", "FUNCTION": f"FUNCTION Store : BOOL\nVAR_EXTERNAL g : {t}; END_VAR\n{body}\n"
+                                       f"Store := TRUE;\nEND_FUNCTION\n",
+            "FUNCTION_BLOCK": f"FUNCTION_BLOCK Keep\nVAR_EXTERNAL g : {t}; END_VAR\n{body}\nEND_FUNCTION_BLOCK\n"}
+    call = {"PROGRAM": body, "FUNCTION": "done := Store();", "FUNCTION_BLOCK": "k();"}[where]
+    main, faults = run_with(f"""VAR_GLOBAL g : {t} := {initial}; END_VAR
+{pous[where]}PROGRAM Main
+VAR_EXTERNAL g : {t}; END_VAR
+VAR x : {t}; done : BOOL; {"k : Keep;" if where == "FUNCTION_BLOCK" else ""} END_VAR
+{call}
+x := g;
+END_PROGRAM""", EVERY)
+    assert (main.v_X, faults) == (stored, [])
+
+
+def test_a_global_real_is_rounded_to_single_precision_when_stored():
+    # README: REAL is float32, rounded on every store. The two REAL operands are float32(0.1)
+    # and float32(0.2); their sum is exact in double and stored rounded to float32 (NumPy).
+    import numpy as np
+
+    main, faults = run_with("""VAR_GLOBAL r : REAL; END_VAR
+PROGRAM Main
+VAR_EXTERNAL r : REAL; END_VAR
+VAR a : REAL := 0.1; b : REAL := 0.2; x : LREAL; END_VAR
+r := a + b;
+x := r;
+END_PROGRAM""", EVERY)
+    exact = np.float64(np.float32(0.1)) + np.float64(np.float32(0.2))
+    assert (main.v_X, faults) == (float(np.float32(exact)), [])
+
+
+# ---------------------------------------- a METHOD reaches each kind of its FB's variables
+
+@pytest.mark.parametrize("dialect", ["iec", "codesys"])     # (nj: no METHOD, E-DIALECT-001)
+def test_a_method_reads_and_writes_each_kind_of_its_fbs_variables(dialect: str):
+    # A METHOD works on its instance's variables (IEC 61131-3 (2013) 6.6.5): the input a = 2,
+    # the output q, the local n, the elementary in-out io (bound to Main's x = 5) and the
+    # array in-out arr (bound to Main's v). Bump: io := 6 (x follows), n := 2 + 6 = 8,
+    # arr[2] := 8 (v[2] follows), q := 8 * 2 = 16; it returns q + io = 22.
+    main, faults = run_with("""FUNCTION_BLOCK Counter
+VAR_INPUT a : INT; END_VAR
+VAR_OUTPUT q : INT; END_VAR
+VAR_IN_OUT io : INT; arr : ARRAY[1..3] OF INT; END_VAR
+VAR n : INT; END_VAR
+METHOD Bump : INT
+io := io + 1;
+n := a + io;
+arr[2] := n;
+q := n * 2;
+Bump := q + io;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR x : INT := 5; v : ARRAY[1..3] OF INT; c : Counter; y : INT; END_VAR
+c(a := 2, io := x, arr := v);
+y := c.Bump();
+END_PROGRAM""", EVERY, dialect=dialect)
+    assert (main.v_X, main.v_V, main.v_C.v_Q, main.v_Y, faults) == (6, [0, 8, 0], 16, 22, [])
+
+
+# ------------------------------------------- an FB instance's variables, as the API shows them
+
+def test_an_fb_instance_shows_its_own_variables_not_its_externals():
+    # st_runtime.api Instance.to_json: "every variable (not VAR_IN_OUT/VAR_EXTERNAL/VAR_TEMP)
+    # by declared name"; a path names an instance's variables only. B reads and stores the
+    # global g through VAR_EXTERNAL (g = 4, q = 8): g is the global's, not one of f's.
+    main, faults = run_with("""VAR_GLOBAL g : INT := 4; END_VAR
+FUNCTION_BLOCK B
+VAR_EXTERNAL g : INT; END_VAR
+VAR_OUTPUT q : INT; END_VAR
+q := g * 2;
+g := g + 1;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR f : B; END_VAR
+f();
+END_PROGRAM""", EVERY)
+    view = api.Instance(main)
+    assert (view.to_json(), view["f.q"], faults) == ({"f": {"q": 8}}, 8, [])
+    with pytest.raises(KeyError, match="no variable 'g'"):
+        view["f.g"]
