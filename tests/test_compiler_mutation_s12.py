@@ -373,3 +373,35 @@ END_PROGRAM""", EVERY)
     assert (view.to_json(), view["f.q"], faults) == ({"f": {"q": 8}}, 8, [])
     with pytest.raises(KeyError, match="no variable 'g'"):
         view["f.g"]
+
+
+# ------------------------------ a FUNCTION local's known range after a store that wraps
+
+@pytest.mark.parametrize("optimise", [EVERY, NONE], ids=["every pass", "no pass"])
+@pytest.mark.parametrize("c, shift, result, faults", [
+    # y is -20000 or 10000 (both branches, after y := 0); x := y - 20000 is -40000, which wraps
+    # to INT's 25536 (-40000 + 65536), outside arr's -40000..0: F-INDEX on lines 8 and 9, F stays 0;
+    # or -10000, inside: arr[-10000] = 0.
+    (True, "y - 20000", 0, [("F-INDEX", 8), ("F-INDEX", 9)]), (False, "y - 20000", 0, []),
+    # the other end: x := y + 20000 is 0 (inside) or 30000 (outside, no wrap)
+    (True, "y + 20000", 0, []), (False, "y + 20000", 0, [("F-INDEX", 8), ("F-INDEX", 9)]),
+])
+def test_a_local_stored_with_a_sum_that_may_wrap_keeps_its_index_checked(c, shift, result, faults, optimise):
+    # README: integers wrap to their width on every store; arrays are checked on every access
+    # (F-INDEX). The ranges pass follows FUNCTION locals; a store that may wrap ends what it
+    # knew of x, so arr[x] stays checked.
+    main, found = run_with(f"""FUNCTION F : INT
+VAR_INPUT c : BOOL; END_VAR
+VAR y : INT; x : INT; arr : ARRAY[-40000..0] OF INT; END_VAR
+y := 0;
+IF c THEN y := -20000; ELSE y := 10000; END_IF;
+x := 0;
+x := {shift};
+F := arr[x];
+F := F + arr[x];
+END_FUNCTION
+PROGRAM Main
+VAR r : INT; END_VAR
+r := F({"TRUE" if c else "FALSE"});
+END_PROGRAM""", optimise)
+    assert (main.v_R, found) == (result, faults)
