@@ -405,3 +405,30 @@ VAR r : INT; END_VAR
 r := F({"TRUE" if c else "FALSE"});
 END_PROGRAM""", optimise)
     assert (main.v_R, found) == (result, faults)
+
+
+# --------------------------------------- an in-out costs one reference, whatever its size
+
+@pytest.mark.parametrize("call", ["f{n}(io := a{n});", "f{n}(EN := go, io := a{n});",
+                                  "f{n}(EN := go, io := a{n}, ENO => ok);"],
+                         ids=["plain", "EN", "EN and ENO"])
+def test_an_in_out_array_costs_one_reference_whatever_its_size(call: str):
+    # docs/nj501.md, "What a scan costs" (cost.py, CostModel._arguments): an argument passed
+    # by value costs one `argument` per element, a VAR_IN_OUT one `argument` (a reference)
+    # and its location. The FBs differ only in the in-out's size (2 or 10 elements) and run
+    # the same body, so the two scans cost the same, with EN / ENO or without.
+    from test_compiler_mutants import _scan_ps
+
+    def scan(n: int) -> int:
+        return _scan_ps(f"""FUNCTION_BLOCK B{n}
+VAR_IN_OUT io : ARRAY[1..{n}] OF INT; END_VAR
+VAR k : INT; END_VAR
+k := k + 1;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR f{n} : B{n}; a{n} : ARRAY[1..{n}] OF INT; go : BOOL := TRUE; ok : BOOL; END_VAR
+{call.format(n=n)}
+END_PROGRAM
+""")
+
+    assert scan(10) == scan(2)
