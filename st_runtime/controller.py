@@ -116,6 +116,10 @@ class Controller:
         self.stopped: FaultRecord | None = None
         self.scan_count = 0
         self.motion = None               # set by a motion task (st_runtime.motion) when installed
+        # `steady_scans(controller)`: a loop running the scans of a run fused with the I/O hooks,
+        # `loop(controller, cycles) -> scans run`, while the controller's shape allows, else
+        # None (the motion task's: st_runtime/motion/steady_scans.py).
+        self.steady_scans: Callable | None = None
         self.ctx = ScanContext(self)
 
     # ------------------------------------------------------------ setup
@@ -198,7 +202,11 @@ class Controller:
         if self.stopped is not None:
             return 0
         try:
-            return self._scans(cycles, True)
+            done = self._scans(min(cycles, 1), True)
+            while done < cycles and self.stopped is None:
+                steady = self.steady_scans and self.steady_scans(self)
+                done += steady(self, cycles - done) if steady else self._scans(cycles - done, True)
+            return done
         finally:
             self.ctx.resumed = False         # the caller's code runs next
             self.ctx.seal = object()

@@ -195,11 +195,11 @@ HOT_STEPS = [(3, {"PowerOn": True}, None), (6, {"DoSync": True}, None), (2, {}, 
              (1, {"DoSync": False}, None), (4, {"DoSync": True}, None)]
 
 
-def _run_hot_steps(monkeypatch, optimise: str, calls: list) -> list:
+def _run_hot_steps(monkeypatch, optimise: str, calls: list, program: str = HOT_PATHS) -> list:
     from test_motion_st import AXIS, make_plc
 
     monkeypatch.setenv("ST_RUNTIME_OPTIMISE", optimise)
-    plc, main, task = make_plc(HOT_PATHS, AXIS, dict(AXIS, name="Cyl2"))
+    plc, main, task = make_plc(program, AXIS, dict(AXIS, name="Cyl2"))
     instance = plc.controller.instances["Main"]
     cfg = plc.controller.globals.v_CYL1.v_CFG
     states = []
@@ -266,3 +266,27 @@ def test_an_execute_fb_that_writes_its_own_execute_keeps_it_and_gets_the_idle_ru
     assert Logged.execute.__qualname__.endswith("Logged.execute")
     assert Plain.execute is Plain._execute_rules
     assert Logged._execute_rules.__name__ == "_execute_rules"
+
+
+def test_the_inputs_stored_from_names_are_read_back_by_name(monkeypatch):
+    """Inputs given from locals of the generated body (an AXIS_REF global, VAR_TEMPs): the
+    hot paths' and the rest test's reads of Axis, Enable and Execute are those names
+    (compiler/calls.py `_read_back`), scan by scan the same as every call made."""
+    from test_motion_st import AXIS, make_plc
+
+    # The inputs given from VAR_TEMP variables: locals of the generated body.
+    program = HOT_PATHS.replace("END_VAR\n", "END_VAR\nVAR_TEMP Enabled, Go, Resetting : BOOL; END_VAR\n"
+                                "Enabled := PowerOn; Go := DoSync; Resetting := DoReset;\n")
+    for given, temp in (("Enable := PowerOn", "Enable := Enabled"), ("Execute := DoSync", "Execute := Go"),
+                        ("Execute := DoReset", "Execute := Resetting")):
+        program = program.replace(given, temp)
+    calls = counted_calls(monkeypatch, fbs.MC_Power, fbs.MC_SyncMoveAbsolute)
+    every_call = _run_hot_steps(monkeypatch, "none", calls, program)
+    all_passes = _run_hot_steps(monkeypatch, "all", calls, program)
+    assert [s[:2] for s in all_passes] == [s[:2] for s in every_call]
+    assert sum(s[2] for s in all_passes) < sum(s[2] for s in every_call) // 2
+    plc, _, _ = make_plc(program, AXIS, dict(AXIS, name="Cyl2"))
+    source = plc.controller.compiled.python_sources["MAIN"]
+    assert "if v_CYL1 is " in source and ".v_AXIS is " not in source
+    assert "True if v_ENABLED else False" in source and "or not v_GO)" in source
+    assert "if v_RESETTING or " in source

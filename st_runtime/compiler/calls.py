@@ -21,6 +21,8 @@ Conventions of the generated code:
 
 from __future__ import annotations
 
+import re
+
 from .. import ast
 from ..objects import is_aggregate
 from ..types import BOOL, ArrayType, ElementaryType, FBType, StructType, resolve_alias
@@ -49,6 +51,18 @@ _GUARDED = {
     "TAN": ("_m_tan", "{x} - {t} == 0.0"),
     "SQRT": ("_m_sqrt", "{x} >= 0.0"),
 }
+
+
+def _read_back(lines: list[str], instance: str, stored: dict[str, str]) -> list[str]:
+    """`lines` (the tests and hot path after an FB call's input stores) reading each input
+    stored from a Python name (`stored`: attribute -> name) as that name: the same object,
+    as nothing in them stores that input again, one attribute load fewer."""
+    text = "\n".join(lines)
+    for attr, name in stored.items():
+        member = rf"(?<![\w.]){re.escape(instance)}\.{attr}\b"
+        if not re.search(member + r"\s*=(?!=)", text):
+            text = re.sub(member, name, text)
+    return text.split("\n")
 
 
 def _sum_of_squares(ec, node) -> bool:
@@ -171,7 +185,7 @@ class Calls:
         params = [s for s in variables.values() if s.kind in ("VAR_INPUT", "VAR_IN_OUT")]
         inputs, outputs = self.bind(call, params, variables)
         instance = ec.aggregate(call.callee)
-        lines = []
+        lines, stored = [], {}
         if not instance.isidentifier():
             tmp = ec.temp()
             lines.append(f"{tmp} = {instance}")
@@ -184,8 +198,11 @@ class Calls:
             if symbol.kind != "VAR_IN_OUT" and is_aggregate(symbol.type):
                 lines.append(copy_statement(attr, ec.aggregate(arg.value), symbol.type))
             else:
-                lines.append(f"{attr} = {self.argument(ec, symbol, arg)}")
-        lines += self._execute(ec, target, call, instance)
+                value = self.argument(ec, symbol, arg)
+                lines.append(f"{attr} = {value}")
+                if value.isidentifier() and value != instance:
+                    stored[pyident(symbol.name)] = value
+        lines += _read_back(self._execute(ec, target, call, instance), instance, stored)
         for symbol, arg in outputs:
             lines.append(self.store_output(ec, f"{instance}.{pyident(symbol.name)}", symbol, arg))
         return lines

@@ -19,7 +19,9 @@ text `VAR_GLOBAL <name> : AXIS_REF; ... END_VAR` to load with the user's
 files, and `bind(lookup)` ties each global variable to its simulation.
 `install(controller)` does the binding and hooks the two stages into the
 controller's scan; native motion FBs then reach the task through the scan
-context (`motion_of(ctx)`: `ctx.controller.motion`).
+context (`motion_of(ctx)`: `ctx.controller.motion`).  Inside one `Controller.run`,
+the scans after the first run as one loop fused with the two stages while the
+controller keeps this shape (`steady_scans.py`).
 """
 
 from __future__ import annotations
@@ -29,6 +31,7 @@ from typing import Callable, Iterable, Mapping
 
 from .axis import Axis, AxisState
 from .axis_config import AxisConfig, axis_configs_from_tables, axis_configs_from_toml
+from . import steady_scans
 from .generated import define
 from ..native import mangle
 from .types import AxisRefWriter, bind_axis_ref
@@ -61,11 +64,10 @@ _ERRORSTOP = AxisState.ERRORSTOP
 # direction holds, |new_vel| > |old_vel| is new_vel > old_vel (both positive) or
 # new_vel < old_vel (both negative).
 _LANE_STEP = """\
-command = {axis}.command
-if {axis}._stream_epoch is not epoch:
-    if not (command is not None and command.kind == "sync" and (powered := {axis}.powered)
+{command_before}if {axis}._stream_epoch is not epoch:
+{command_inside}    if not ({command} is not None and {command}.kind == "sync" and (powered := {axis}.powered)
             and {axis}.power_requested == powered and dt == {axis}._stream_dt
-            and -(slack := {axis}._step_slack) <= (delta := (target := command.target) - {axis}.cmd_pos) <= slack
+            and {floor_read} <= (delta := (target := {command}.target) - {axis}.cmd_pos) <= {slack_read}
             and {axis}._soft_min <= target <= {axis}._soft_max):
         {axis}.step(dt)
         {writer}.write()
@@ -84,8 +86,8 @@ if {axis}._stream_epoch is not epoch:
         else:
             {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
 {flags8}
-elif not (abs(delta := (target := command.target) - {axis}.cmd_pos) <= {axis}._step_slack
-          and {axis}._soft_min <= target <= {axis}._soft_max):
+elif not ({short_test}
+          and {soft_min} <= target <= {soft_max}):
     {axis}.step(dt)
     {writer}.write()
 else:
@@ -113,7 +115,7 @@ else:
 _LANE_FLAGS = """\
 {axis}._stream_epoch = epoch
 state, waiting = {axis}.state, {axis}.in_pos_waiting
-idle = ((command.done or command.reached) and not waiting
+idle = (({command}.done or {command}.reached) and not waiting
         and not (state == _ERRORSTOP and new_vel != 0.0))
 shown = (state, {axis}.homed, {axis}.fault_code, {axis}.observation_code, False,
          waiting, idle, {axis}.powered, new_vel > 0.0, new_vel < 0.0)
@@ -143,24 +145,59 @@ def process(dt, epoch{arguments}):
 {body}"""
 
 
+# The steady loop's copies of an axis's step slack, its negation, soft limits and command, read
+# once a call (see `_straight_line_process`).
+_LANE_CONSTANTS = ("slack{n}, soft_min{n}, soft_max{n} = axis{n}._step_slack, axis{n}._soft_min, axis{n}._soft_max\n"
+                   "floor{n}, command{n} = -slack{n}, axis{n}.command\n")
+
+# The short step's test of the data, as the `after` hook and `process` make it and as the
+# steady loop does: -slack <= delta <= slack is |delta| <= slack for every float (a NaN or an
+# infinity fails both), without the call of abs() and the float it makes.
+_SHORT_TEST = "abs(delta := (target := command.target) - {axis}.cmd_pos) <= {axis}._step_slack"
+_STEADY_SHORT_TEST = "floor{n} <= (delta := (target := command{n}.target) - {axis}.cmd_pos) <= slack{n}"
+
+
+def _lane_step(parts: dict, **names) -> str:
+    """`_LANE_STEP` of one axis (`parts`: its names), with the `_LANE_FLAGS` of `names["command"]`."""
+    flags = _LANE_FLAGS.format(command=names["command"], **parts)
+    return _LANE_STEP.format(flags8=textwrap.indent(flags, " " * 8).rstrip("\n"),
+                             flags12=textwrap.indent(flags, " " * 12).rstrip("\n"), **names, **parts)
+
+
 def _straight_line_process(task: "MotionTask", lanes: list[tuple]):
-    """(`after` hook, `process(dt, epoch)`) for these lanes as straight-line code: the lane
-    step of every axis in turn, the task, axes, writers and structs as the functions'
-    constants (no loop, no unpacking)."""
-    names, steps = {"task": task}, []
+    """(`after` hook, `process(dt, epoch)`, the steady loop of `steady_scans`) for these lanes
+    as straight-line code: the lane step of every axis in turn, the task, axes, writers and
+    structs as the functions' constants (no loop, no unpacking).
+
+    The steady loop, which runs the lanes scan after scan, keeps each axis's step slack (and
+    its negation), soft limits and command in locals for the short step.  The soft limits only
+    change as an axis is made.  The command changes only through Axis methods, the slack only
+    with the period (`Axis._set_period`, inside `Axis.step`): both end the epoch, and the whole
+    test that stamps an axis with the epoch reads them again.  So while the axis carries the
+    epoch, its locals are what that test saw."""
+    names, steps, steady, constants = {"task": task}, [], [], []
     for number, lane in enumerate(lanes):
         parts = {role: f"{role}{number}" for role in ("axis", "writer", "cmd", "act")}
         names.update(zip(parts.values(), lane))
-        flags = _LANE_FLAGS.format(**parts)
-        steps.append(_LANE_STEP.format(flags8=textwrap.indent(flags, " " * 8).rstrip("\n"),
-                                       flags12=textwrap.indent(flags, " " * 12).rstrip("\n"), **parts))
+        axis, steady_command = parts["axis"], f"command{number}"
+        steps.append(_lane_step(parts, command="command", command_before=f"command = {axis}.command\n",
+                                command_inside="", floor_read=f"-(slack := {axis}._step_slack)",
+                                slack_read="slack", short_test=_SHORT_TEST.format(axis=axis),
+                                soft_min=f"{axis}._soft_min", soft_max=f"{axis}._soft_max"))
+        steady.append(_lane_step(parts, command=steady_command, command_before="",
+                                 command_inside=f"    {steady_command} = {axis}.command\n",
+                                 floor_read=f"(floor{number} := -(slack{number} := {axis}._step_slack))",
+                                 slack_read=f"slack{number}", short_test=_STEADY_SHORT_TEST.format(axis=axis, n=number),
+                                 soft_min=f"soft_min{number}", soft_max=f"soft_max{number}"))
+        constants.append(_LANE_CONSTANTS.format(n=number))
     arguments = "".join(f", {name}={name}" for name in names)
     body = "".join(textwrap.indent(step, "    ") for step in steps) or "    pass\n"
-    namespace = define(_AFTER_PROGRAMS.format(arguments=arguments, body=body), "motion task process",
-                       {"_ERRORSTOP": _ERRORSTOP, **names})
+    loop, values = steady_scans.source("".join(constants), "".join(steady), names)
+    namespace = define(_AFTER_PROGRAMS.format(arguments=arguments, body=body) + loop, "motion task process",
+                       {"_ERRORSTOP": _ERRORSTOP, **values})
     after = namespace["after_programs"]
     after.__qualname__ = "MotionTask._after_programs"     # as a fault in a hook names it
-    return after, namespace["process"]
+    return after, namespace["process"], namespace["steady_scans"]
 
 
 def motion_of(ctx) -> "MotionTask | None":
@@ -184,6 +221,7 @@ class MotionTask:
         self._writers: list[AxisRefWriter] = []
         self._step_lanes = self._step_axes      # `process`: see bind
         self._after_programs = self._step_after_programs    # the `after` hook: see bind
+        self._steady_scans = None                # a run's scans fused with the hooks: see bind
         self._before_hook = self._before_programs               # the `before` hook installed
         self._controller = None                 # the controller it is installed in
         # The axis variables show the axes as they are: the motion processing has published
@@ -228,7 +266,7 @@ class MotionTask:
         self._writers = [bind_axis_ref(lookup(axis.name), axis) for axis in self.axes]
         # What `process` works with, per axis: the axis, its writer and the Cmd and Act structs.
         hook = self._after_programs
-        self._after_programs, self._step_lanes = _straight_line_process(
+        self._after_programs, self._step_lanes, self._steady_scans = _straight_line_process(
             self, [(writer.axis, writer, writer._cmd, writer._act) for writer in self._writers])
         self._epoch = object()
         hooks = getattr(self._controller, "after_hooks", ())
@@ -260,6 +298,12 @@ class MotionTask:
         controller.motion = self
         self._controller = controller
         controller.add_io_hook(before=self._before_hook, after=self._after_programs, quiet=True)
+        controller.steady_scans = self._offer_steady_scans
+
+    def _offer_steady_scans(self, controller):
+        """The run's scans fused with this task's hooks while the controller's shape allows
+        (`steady_scans.offer`), else None."""
+        return steady_scans.offer(self, controller)
 
     def _before_programs(self, ctx) -> None:
         """Feedback in, unless the axis variables already show the axes: the previous scan's

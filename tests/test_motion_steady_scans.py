@@ -1,0 +1,212 @@
+"""The steady scans of a run (st_runtime/motion/steady_scans.py): the scan loop fused with the
+motion task's hooks, which runs every scan of a `Controller.run` after the first while the
+controller keeps the motion task's shape.  Held, scan by scan, to the same run through the
+general loop (`Controller._scans`, the hooks called as hooks): the program of
+test_motion_stream_epoch (direction changes, VelLimit, a soft limit and its reset, 16#543B,
+MC_Stop, power off and on) and the ways a scan leaves the loop: F-PERIOD, a fault that
+stops the run, a fault raised by the motion processing, an observer that adds a hook, a
+writing observer, another exception.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from st_runtime.faults import STFault
+from st_runtime.motion.axis import Axis
+
+from test_motion_stream_epoch import make_plc, state
+
+
+def observed_run(chunks, steady: bool, setup=None, between=None):
+    """States after every scan of `chunks` runs (a read-only observer), and the scans the
+    steady loop ran; `between(plc, task)` after each run."""
+    plc, main, task = make_plc()
+    controller = plc.controller
+    if setup is not None:
+        setup(plc, main, task)
+    fused = []
+    if steady:
+        loop = task._steady_scans
+
+        def counted(controller, cycles):
+            fused.append(loop(controller, cycles))
+            return fused[-1]
+
+        task._steady_scans = counted
+    else:
+        controller.steady_scans = None           # every scan through Controller._scans
+    states = []
+    controller.add_observer(lambda c: states.append(state(plc, task)), reads_only=True)
+    for scans in chunks:
+        plc.run(scans)
+        if between is not None:
+            between(plc, task)
+    return states, sum(fused), controller
+
+
+def assert_same_runs(chunks, setup=None, steady_at_least=1, between=None):
+    got, fused, controller = observed_run(chunks, True, setup, between)
+    expected, none, reference = observed_run(chunks, False, setup, between)
+    assert len(got) == len(expected) and got
+    for scan, (one, other) in enumerate(zip(got, expected), start=1):
+        assert one == other, scan
+    assert [(f.code, f.pou, f.line, f.scan) for f in controller.faults] == \
+        [(f.code, f.pou, f.line, f.scan) for f in reference.faults]
+    assert list(controller.task_times["Primary"]) == list(reference.task_times["Primary"])
+    assert (controller.stopped is None) == (reference.stopped is None)
+    assert fused >= steady_at_least and none == 0
+    return controller
+
+
+def test_a_run_of_the_stream_program_ends_every_scan_as_the_general_loop():
+    assert_same_runs([400], steady_at_least=399)
+
+
+def test_runs_of_several_lengths_start_each_through_the_general_loop():
+    assert_same_runs([1, 2, 57, 140, 200], steady_at_least=390)
+
+
+def test_a_new_period_between_runs_is_stepped_with_its_own_slack():
+    """The steady loop keeps each axis's step slack in a local: a new period (a new slack,
+    set by the axis's general step) between two runs is seen as in the general loop."""
+    periods = {100: 2_000_000, 160: 500_000, 300: 1_000_000}
+
+    def new_period(plc, task):
+        controller = plc.controller
+        controller.period_ns = controller.tasks[0].period_ns = periods.get(controller.scan_count, controller.period_ns)
+
+    assert_same_runs([100, 60, 140, 100], steady_at_least=390, between=new_period)
+
+
+def test_f_period_in_steady_scans():
+    """A time limit that the program's costlier scans pass: F-PERIOD after the program."""
+    def tight(plc, main, task):
+        plc.controller.time_limit_ns = 539
+
+    controller = assert_same_runs([400], tight, steady_at_least=300)
+    assert any(f.code == "F-PERIOD" for f in controller.faults)
+
+
+class _Wrapped:
+    """The task's program, and `after(ctx)` run after it in every scan."""
+
+    def __init__(self, program, after):
+        self.program, self.after = program, after
+
+    def execute(self, ctx):
+        self.program.execute(ctx)
+        self.after(ctx)
+
+
+def _wrap_program(plc, after) -> None:
+    programs = plc.controller.tasks[0].programs
+    name, program = programs[0]
+    programs[0] = (name, _Wrapped(program, after))
+
+
+def _faulting_program_at(scan: int):
+    """A setup whose program records a fault in `scan` (as compiled ST records one)."""
+    def after(ctx):
+        if ctx.scan == scan:
+            ctx.fault(STFault("F-TEST", "recorded by the program"), ("Main", "main.st", 3, 1))
+    return lambda plc, main, task: _wrap_program(plc, after)
+
+
+def test_a_fault_that_stops_the_run_in_a_steady_scan():
+    def stopping(plc, main, task):
+        plc.controller.stop_on_fault = True
+        _faulting_program_at(120)(plc, main, task)
+
+    controller = assert_same_runs([400], stopping, steady_at_least=118)
+    assert controller.stopped is not None and controller.stopped.scan == 120
+    assert controller.scan_count == 120
+
+
+def test_a_fault_in_the_motion_processing_that_stops_the_run():
+    def stopping(plc, main, task):
+        plc.controller.stop_on_fault = True
+        _raising_at(95, STFault("F-TEST", "raised by the motion processing"))(plc, main, task)
+
+    controller = assert_same_runs([400], stopping, steady_at_least=93)
+    assert controller.stopped is not None and controller.stopped.scan == 95
+
+
+def _raising_at(scan: int, exception: Exception):
+    """A setup whose Cyl1 raises `exception` from its general step in `scan` (the scans of
+    the jump to VelLimit take the general step)."""
+    def setup(plc, main, task):
+        cyl1 = task.axes[0]
+
+        def step(dt, axis=cyl1, controller=plc.controller):
+            if controller.ctx.scan == scan:
+                raise exception
+            Axis.step(axis, dt)
+
+        cyl1.step = step
+    return setup
+
+
+def test_a_fault_in_the_motion_processing_leaves_the_steady_loop():
+    controller = assert_same_runs([100, 300], _raising_at(95, STFault("F-TEST", "raised by the motion processing")),
+                                  steady_at_least=390)
+    assert [(f.code, f.pou, f.scan) for f in controller.faults if f.code == "F-TEST"] == \
+        [("F-TEST", "MotionTask._after_programs", 95)]
+
+
+def _escaping(setup) -> list:
+    """(the hooks' flags, scans run, state) after a run of 400 scans that an exception other
+    than a fault leaves, with the steady loop and without."""
+    outcomes = []
+    for steady in (True, False):
+        plc, main, task = make_plc()
+        setup(plc, main, task)
+        if not steady:
+            plc.controller.steady_scans = None
+        with pytest.raises(KeyError):
+            plc.run(400)
+        outcomes.append((task._published, task._continuing, plc.controller.scan_count, state(plc, task)))
+    return outcomes
+
+
+def test_an_exception_from_the_motion_processing_leaves_the_hooks_flags_as_the_hook_does():
+    outcomes = _escaping(_raising_at(95, KeyError("not a fault")))
+    assert outcomes[0] == outcomes[1]
+    assert outcomes[0][:3] == (False, False, 94)
+
+
+def test_an_exception_from_the_programs_leaves_the_hooks_flags_as_the_hook_does():
+    def raising(ctx):
+        if ctx.scan == 120:
+            raise KeyError("not a fault")
+
+    outcomes = _escaping(lambda plc, main, task: _wrap_program(plc, raising))
+    assert outcomes[0] == outcomes[1]
+    assert outcomes[0][:3] == (False, True, 119)
+
+
+def test_an_observer_that_adds_a_hook_ends_the_steady_loop():
+    """An observer that breaks its word and adds a hook: the next scan runs the hook, as in
+    the general loop (the shape is checked at the end of every scan)."""
+    calls = []
+
+    def setup(plc, main, task):
+        controller = plc.controller
+
+        def adding(controller):
+            if controller.scan_count == 150:
+                controller.add_io_hook(after=lambda ctx: calls.append(ctx.scan))
+        controller.add_observer(adding, reads_only=True)
+
+    assert_same_runs([400], setup, steady_at_least=140)
+    assert calls[:1] == [151] and len(calls) == 2 * 250
+
+
+def test_a_writing_observer_ends_the_steady_loop_at_once():
+    def setup(plc, main, task):
+        def writing(controller):
+            if controller.scan_count == 120:
+                controller.add_observer(lambda c: None)
+        plc.controller.add_observer(writing, reads_only=True)
+
+    assert_same_runs([400], setup, steady_at_least=110)
