@@ -87,7 +87,12 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   "tests/test_optimiser_charges.py", "tests/test_optimiser_loads.py",
                   "tests/test_optimiser_sets.py", "tests/test_optimiser_stores.py",
                   # session 11: seed 26's survivors
-                  "tests/test_compiler_mutation_s11.py"]),
+                  "tests/test_compiler_mutation_s11.py",
+                  # session 12: seed 25's last and seed 27's survivors, and the passes' own tests
+                  # that came with session 11's merges (halves, shortcut, finite, spread: 2 s)
+                  "tests/test_compiler_mutation_s12.py", "tests/test_optimiser_halves.py",
+                  "tests/test_optimiser_shortcut.py", "tests/test_optimiser_finite.py",
+                  "tests/test_optimiser_spread.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",
