@@ -164,6 +164,9 @@ DECLARATIONS = rows(
     ("an_edge_on_an_int_input", "iec", "FUNCTION_BLOCK Fb\nVAR_INPUT x : INT R_EDGE; END_VAR\nEND_FUNCTION_BLOCK\n",
      [("E-DECL-013", 2, 11, "'x' is declared R_EDGE: expected a BOOL VAR_INPUT of a FUNCTION_BLOCK or "
                             "PROGRAM, found an INT VAR_INPUT")]),
+    ("an_edge_on_a_uint_input", "iec", "FUNCTION_BLOCK Fb\nVAR_INPUT x : UINT R_EDGE; END_VAR\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-013", 2, 11, "'x' is declared R_EDGE: expected a BOOL VAR_INPUT of a FUNCTION_BLOCK or "
+                            "PROGRAM, found a UINT VAR_INPUT")]),       # "a UINT": the U said as "you"
     ("edges_where_they_belong", "iec",
      "FUNCTION_BLOCK Fb\nVAR_INPUT x : BOOL R_EDGE; END_VAR\nEND_FUNCTION_BLOCK\n"
      "PROGRAM Main\nVAR_INPUT y : BOOL F_EDGE; END_VAR\nEND_PROGRAM\n", []),

@@ -36,3 +36,21 @@ def test_fbs_at_rest_end_every_scan_as_with_every_call(monkeypatch):
         assert len(calls) < len(every_call) * 5 // 2          # the rest tests ran, under `_seal`
     for noted in outcomes:
         assert [s[:4] for s in noted] == [s[:4] for s in every_call]
+
+
+def test_a_string_that_spells_the_seal_is_left_as_written():
+    """ST text is data: a STRING literal '_ctx.seal' is a value, not a read of the seal, so
+    the pass neither rewrites it nor counts it (it did both: s held '_seal')."""
+    source = """
+PROGRAM Main
+VAR s : STRING; t : STRING; END_VAR
+s := '_ctx.seal';
+t := CONCAT(s, '_ctx.seal');
+END_PROGRAM
+"""
+    project = api.load_text(source)
+    plc = project.controller()
+    main = plc.add_program("Main")
+    plc.run(1)
+    assert main["s"] == "_ctx.seal" and main["t"] == "_ctx.seal_ctx.seal"
+    assert "_seal = " not in project.compiled.python_sources["MAIN"]

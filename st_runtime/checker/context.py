@@ -15,8 +15,9 @@ BUILTIN_FILE = "<builtin>"
 
 
 def a_or_an(word: str) -> str:
-    """`word` after its indefinite article, for messages: "an INTERFACE", "a FUNCTION"."""
-    return ("an " if word[0] in "AEIOUaeiou" else "a ") + word
+    """`word` after its indefinite article, for messages: "an INTERFACE", "a FUNCTION",
+    "a UINT" (a U said as "you": UINT, USINT, UDINT, ULINT, UNION)."""
+    return ("an " if word[0] in "AEIOaeio" else "a ") + word
 
 
 @dataclass
