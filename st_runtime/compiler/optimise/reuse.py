@@ -55,10 +55,10 @@ _NO_VARIABLES: frozenset = frozenset()
 
 
 class _Value:
-    __slots__ = ("key", "text", "deps", "uses", "level", "valid")
+    __slots__ = ("key", "text", "deps", "uses", "level")
 
     def __init__(self, key: str, text: str, deps: frozenset, level: int):
-        self.key, self.text, self.deps, self.uses, self.level, self.valid = key, text, deps, 1, level, True
+        self.key, self.text, self.deps, self.uses, self.level = key, text, deps, 1, level
 
 
 class Reuse:
