@@ -30,6 +30,9 @@ from .initial import CompileError
 from .optimise import Optimisations, absolute, fold, sets, shortcut, wraps
 from .pysrc import pyliteral, pyident
 
+_NUMBER_LITERALS = frozenset({ast.IntLiteral, ast.RealLiteral})
+_VALUE_LITERALS = _NUMBER_LITERALS | {ast.BoolLiteral, ast.StringLiteral}
+
 # Python source of the comparison/arithmetic operators that map one to one.
 _PLAIN_OPS = {"+": "+", "-": "-", "*": "*", "<": "<", ">": ">", "<=": "<=", ">=": ">=",
               "=": "==", "<>": "!="}
@@ -164,6 +167,10 @@ class ExprCompiler:
         self.logic_parts: dict[int, tuple[str, str]] = {}   # optimise/shortcut.py
         self.logic_short: set[int] = set()                   # ids of AND/ORs compiled as and/or (shortcut)
         self.plain_chains: set[int] = set()  # ids of OR/AND chains without a run for optimise/sets.py
+        # Memos of one body's compile (an unrolled loop compiles its body once per copy):
+        self._types: dict[int, Type | None] = {}    # id(expr) -> `ty` (the checker's types do not change)
+        self._wheres: dict[tuple, str] = {}         # (file, line, col) -> `where`
+        self._x_methods: dict[type, object] = {}    # node class -> its x_ method (`expr`)
 
     # ------------------------------------------------------------ helpers
 
@@ -181,13 +188,22 @@ class ExprCompiler:
         return f"_t{self.temp_count}"
 
     def ty(self, expr) -> Type | None:
-        t = self.program.expr_types.get(id(expr))
-        return resolve_alias(t) if t is not None else None
+        key = id(expr)
+        try:
+            return self._types[key]
+        except KeyError:
+            t = self.program.expr_types.get(key)
+            t = self._types[key] = resolve_alias(t) if t is not None else None
+            return t
 
     def where(self, node) -> str:
         """A constant tuple naming the position of `node` for fault records."""
         pos = node.pos
-        return pyliteral((self.pou.name, pos.file, pos.line, pos.col))
+        place = (pos.file, pos.line, pos.col)
+        text = self._wheres.get(place)
+        if text is None:
+            text = self._wheres[place] = pyliteral((self.pou.name,) + place)
+        return text
 
     def fail(self, message: str, node):
         raise CompileError(message, node.pos)
@@ -211,18 +227,19 @@ class ExprCompiler:
         value = self.folded(expr)
         if value is not None:
             return value
-        if isinstance(expr, (ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral, ast.StringLiteral)):
+        cls = type(expr)            # (the node classes have no subclasses)
+        if cls is ast.Name:
+            return self.unrolled.get(expr.name.upper()) if self.unrolled else None
+        if cls is ast.Index:
+            return fold.constant_element(self, expr) if self.opt.fold else None
+        if cls in _VALUE_LITERALS:
             return expr.value
-        if isinstance(expr, (ast.TimeLiteral, ast.DateTimeLiteral)):
+        if cls is ast.TimeLiteral or cls is ast.DateTimeLiteral:
             return expr.nanoseconds
-        if isinstance(expr, ast.Unary) and expr.op == "-" and isinstance(expr.operand, (ast.IntLiteral, ast.RealLiteral)):
+        if cls is ast.Unary and expr.op == "-" and type(expr.operand) in _NUMBER_LITERALS:
             return -expr.operand.value
-        if isinstance(expr, ast.Name) and self.unrolled:
-            return self.unrolled.get(expr.name.upper())
-        if isinstance(expr, ast.Binary) and self.unrolled and expr.op in ("+", "-", "*"):
+        if cls is ast.Binary and self.unrolled and expr.op in ("+", "-", "*"):
             return fold.constant_integer(self, expr)     # `Row - 1` in an unrolled copy
-        if isinstance(expr, ast.Index) and self.opt.fold:
-            return fold.constant_element(self, expr)
         return None
 
     def literal(self, value, t) -> str:
@@ -343,9 +360,12 @@ class ExprCompiler:
         value = self.folded(e)
         if value is not None and not isinstance(e, ast.Call):
             return self.literal(value, self.ty(e))
-        method = getattr(self, "x_" + type(e).__name__, None)
+        method = self._x_methods.get(type(e))
         if method is None:
-            self.fail(f"expression {type(e).__name__} is not supported by the runtime", e)
+            method = getattr(self, "x_" + type(e).__name__, None)
+            if method is None:
+                self.fail(f"expression {type(e).__name__} is not supported by the runtime", e)
+            self._x_methods[type(e)] = method
         return method(e)
 
     def x_IntLiteral(self, e):

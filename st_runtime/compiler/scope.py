@@ -46,14 +46,16 @@ class VarPlace:
 def walk(node):
     """Every AST node under `node` (tuples and dataclass fields), preorder.
 
-    A body (a tuple of statements) is walked by several passes of one compile
-    (usage, ranges, CSE, unrolling): its nodes are listed once and kept for
-    the next walk of the same tuple (the AST is immutable; `_WALKED` holds the
-    tuple itself, so its id cannot be another's while the entry lives)."""
-    if type(node) is not tuple:
-        return iter(_nodes(node))
-    if len(node) == 1 and type(node[0]) in _LEAVES:
-        return iter(node)            # (one leaf, as `walk((expr,))` often asks: nothing to keep)
+    A body (a tuple of statements) or a statement is walked by several passes of
+    one compile (usage, ranges, CSE, the fast path's tests, once per unrolled copy):
+    its nodes are listed once and kept for the next walk of the same node (the
+    AST is immutable; `_WALKED` holds the node itself, so its id cannot be
+    another's while the entry lives)."""
+    if type(node) is tuple:
+        if len(node) == 1 and type(node[0]) in _LEAVES:
+            return iter(node)            # (one leaf, as `walk((expr,))` often asks: nothing to keep)
+    elif type(node) in _LEAVES:
+        return iter((node,))
     hit = _WALKED.get(id(node))
     if hit is None or hit[0] is not node:
         if len(_WALKED) >= _WALKED_ENTRIES:
@@ -63,7 +65,7 @@ def walk(node):
 
 
 _WALKED: dict[int, tuple] = {}
-_WALKED_ENTRIES = 32
+_WALKED_ENTRIES = 4096      # (a compile of generated/iec walks about 900 distinct nodes)
 
 #: Node classes with no child node (a walk of one of them is the node alone).
 _LEAVES = frozenset({ast.Name, ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral, ast.StringLiteral,
@@ -112,7 +114,7 @@ class Usage:
         self.count: dict[str, int] = {}      # occurrences; inside a loop they count 10
         in_loops: set[int] = set()      # every node of a loop (a walk meets the loop first)
         for node in walk(body):
-            if isinstance(node, _LOOPS):
+            if isinstance(node, _LOOPS) and id(node) not in in_loops:    # (an inner loop's are in)
                 in_loops.update(map(id, _nodes(node)))
             if isinstance(node, ast.Name):
                 key = node.name.upper()

@@ -56,6 +56,7 @@ class BodyCompiler(ExprCompiler):
         self.out = Emitter()
         self.cost = CostModel(program)
         self._head_costs: dict[int, float] = {}
+        self._assigned_memo: dict[int, tuple] = {}     # id(loop body) -> (body, what it assigns)
         self.flow = ranges.Flow(self, body) if self.opt.ranges else None    # integer locals' ranges
         if not method:
             self._add_return_variable()
@@ -657,7 +658,7 @@ class BodyCompiler(ExprCompiler):
             o.line(f"_overrun({where})")     # BY 0 never ends: the period is exceeded
             return
         key = s.variable.upper()
-        assigned = Usage(self.program, s.body, None).assigned
+        assigned = self._assigned_in(s.body)
         if key in assigned or place.how == "global":
             # The body may change the variable (a global can change in any call).
             self._for_as_while(s, target, var_t, step_value if const_step else None, assigned)
@@ -730,6 +731,14 @@ class BodyCompiler(ExprCompiler):
             self.flow.forget(s.body)
             if unrolled is not None:
                 self.flow.join([unrolled, self.flow.state()])
+
+    def _assigned_in(self, body) -> set[str]:
+        """The variables `body` assigns (scope.Usage), once per body: an unrolled loop
+        compiles the loops in its body once per copy.  (Read only.)"""
+        known = self._assigned_memo.get(id(body))
+        if known is None or known[0] is not body:
+            known = self._assigned_memo[id(body)] = (body, Usage(self.program, body, None).assigned)
+        return known[1]
 
     def _versioned(self, key: str, rng: str, low: int, emit_loop) -> None:
         """A FOR with step 1 whose end is known only at run time, emitted: when the body
