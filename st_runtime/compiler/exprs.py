@@ -16,6 +16,7 @@ from ..dialects import DIALECTS
 from ..objects import is_aggregate, store_value
 from ..process_image import ImageCell, parse_address
 from ..types import (
+    AliasType,
     SubrangeType,
     ArrayType,
     ElementaryType,
@@ -118,7 +119,8 @@ class LValue:
 
 
 def elementary(t) -> ElementaryType | None:
-    t = resolve_alias(t) if t is not None else None
+    while isinstance(t, AliasType):         # (resolve_alias, inline: asked of every operand)
+        t = t.target
     return t if isinstance(t, ElementaryType) else None
 
 
@@ -391,7 +393,7 @@ class ExprCompiler:
         return pyliteral(self.unit.initial.enum_value(e.type_name, e.value_name, e.pos))
 
     def x_Name(self, e):
-        if e.name.upper() in self.unrolled:
+        if self.unrolled and e.name.upper() in self.unrolled:
             return self.literal(self.unrolled[e.name.upper()], self.ty(e))
         ref = self.program.name_refs.get(id(e))
         if isinstance(ref, int) and not isinstance(ref, bool):
@@ -588,6 +590,15 @@ class ExprCompiler:
             indices = ", ".join(self.expr(i) for i in e.indices)
             key = f"{base}.offset(({indices},), {_describe(e.base)!r}, {self.where(e)})"
             return LValue("item", arr_t.element, obj=f"{base}.seq", key=key)
+        consts = [self.constant_of(index) for index in e.indices]     # (pure: any order)
+        offset = 0
+        for const, (lo, hi) in zip(consts, arr_t.dims):     # all constant (an unrolled copy's reads)
+            if not (isinstance(const, int) and not isinstance(const, bool) and lo <= const <= hi):
+                break
+            offset = offset * (hi - lo + 1) + const - lo
+        else:
+            self._invariant_terms = []      # (as below: an enclosing index's hoisting sees it reset)
+            return LValue("item", arr_t.element, obj=base, key=str(offset))
         name = _describe(e.base)
         checks: list[str] = []
         terms: list[str] = []
@@ -600,9 +611,8 @@ class ExprCompiler:
             stride *= hi - lo + 1
         strides.reverse()
         self._invariant_terms = []
-        for index, (lo, hi), k in zip(e.indices, arr_t.dims, strides):
+        for index, (lo, hi), k, const in zip(e.indices, arr_t.dims, strides, consts):
             offset -= lo * k
-            const = self.constant_of(index)
             if isinstance(const, int) and not isinstance(const, bool) and lo <= const <= hi:
                 offset += const * k
                 values.append(pyliteral(const))
