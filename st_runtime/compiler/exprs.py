@@ -226,8 +226,9 @@ class ExprCompiler:
 
     def constant_of(self, expr):
         """The folded value of `expr`, or None when it is not constant."""
-        value = self.folded(expr)
-        if value is not None:
+        value = self.program.constants.get(id(expr))       # (`folded`, inline: asked most often)
+        if value is not None and not (isinstance(value, float) and not value.is_integer()
+                                      and is_int_like(self.ty(expr))):
             return value
         cls = type(expr)            # (the node classes have no subclasses)
         if cls is ast.Name:
@@ -359,8 +360,9 @@ class ExprCompiler:
     # ------------------------------------------------------- expressions
 
     def expr(self, e) -> str:
-        value = self.folded(e)
-        if value is not None and not isinstance(e, ast.Call):
+        value = self.program.constants.get(id(e))          # (`folded`, inline)
+        if value is not None and not isinstance(e, ast.Call) and not (
+                isinstance(value, float) and not value.is_integer() and is_int_like(self.ty(e))):
             return self.literal(value, self.ty(e))
         method = self._x_methods.get(type(e))
         if method is None:

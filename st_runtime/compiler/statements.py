@@ -57,6 +57,7 @@ class BodyCompiler(ExprCompiler):
         self.cost = CostModel(program)
         self._head_costs: dict[int, float] = {}
         self._assigned_memo: dict[int, tuple] = {}     # id(loop body) -> (body, what it assigns)
+        self._blocks_memo: dict[int, tuple] = {}       # id(body) -> (body, `_costed_blocks`)
         self.flow = ranges.Flow(self, body) if self.opt.ranges else None    # integer locals' ranges
         if not method:
             self._add_return_variable()
@@ -264,8 +265,7 @@ class BodyCompiler(ExprCompiler):
             self.out.indent()
             mark = self.out.mark()
         first = True
-        for simple, compound in _blocks(body):
-            units = sum(self._simple_cost(st) for st in simple) + (self._head_cost(compound) if compound else 0)
+        for simple, compound, units in self._costed_blocks(body):
             if first:
                 units += lead
             if charge and not (first and first_charged):
@@ -285,6 +285,16 @@ class BodyCompiler(ExprCompiler):
             segments.leave()
         if values is not None:
             values.leave()
+
+    def _costed_blocks(self, body) -> list[tuple[list, object, float]]:
+        """`_blocks(body)`, each with the units it charges, once per body (an unrolled
+        loop compiles its body once per copy)."""
+        known = self._blocks_memo.get(id(body))
+        if known is None or known[0] is not body:
+            blocks = [(simple, compound, sum(self._simple_cost(st) for st in simple)
+                       + (self._head_cost(compound) if compound else 0)) for simple, compound in _blocks(body)]
+            known = self._blocks_memo[id(body)] = (body, blocks)
+        return known[1]
 
     def _statement_with_values(self, stmt) -> None:
         """The statement, the values it computes first set before it (optimise/reuse.py);
@@ -681,7 +691,8 @@ class BodyCompiler(ExprCompiler):
         # tested up front for all iterations, its other blocks per iteration
         # without a test, and the total is tested when it ends.  One that may
         # leave early charges and tests per iteration.
-        straight = len(_blocks(s.body)) == 1 and _blocks(s.body)[0][1] is None
+        blocks = self._costed_blocks(s.body)
+        straight = len(blocks) == 1 and blocks[0][1] is None
         if not early and count != 0:
             units = self.cost.loop() + self._first_block(s.body)
             if count is None:
