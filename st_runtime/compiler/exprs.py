@@ -406,7 +406,14 @@ class ExprCompiler:
                 return self.literal(self.unit.initial.const(ref.init), ref.type)
             except CompileError:
                 pass
-        return self.lvalue(e).read()
+        return self._name_read(e)
+
+    def _name_read(self, e) -> str:
+        """`self.lvalue(e).read()` of a Name; a Python local's name without an LValue."""
+        place = self.scope.place_of(e)
+        if place.how == "local" or place.how == "alias":
+            return place.name           # (scope.lvalue_of_name's "local" LValue reads its name)
+        return self.scope.lvalue_of_name(self, e).read()
 
     def x_Member(self, e):
         return self.lvalue(e).read()
@@ -564,7 +571,9 @@ class ExprCompiler:
 
     def aggregate(self, e) -> str:
         """Python source that evaluates to the object/list of an aggregate."""
-        if isinstance(e, (ast.Name, ast.Member, ast.Index)):
+        if type(e) is ast.Name:
+            return self._name_read(e)
+        if isinstance(e, (ast.Member, ast.Index)):
             place = self.lvalue(e)
             return place.read()
         return self.expr(e)

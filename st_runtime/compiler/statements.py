@@ -58,6 +58,7 @@ class BodyCompiler(ExprCompiler):
         self._head_costs: dict[int, float] = {}
         self._assigned_memo: dict[int, tuple] = {}     # id(loop body) -> (body, what it assigns)
         self._blocks_memo: dict[int, tuple] = {}       # id(body) -> (body, `_costed_blocks`)
+        self._entries_memo: dict[int, tuple] = {}      # id(IF) -> (IF, `_if_entries`)
         self.flow = ranges.Flow(self, body) if self.opt.ranges else None    # integer locals' ranges
         if not method:
             self._add_return_variable()
@@ -353,7 +354,14 @@ class BodyCompiler(ExprCompiler):
         return [t - shared for t in tests], shared
 
     def _if_entries(self, s) -> tuple[list, float]:
-        """Leads of the IF's branches (then ELSE) and the shared first charge."""
+        """Leads of the IF's branches (then ELSE) and the shared first charge (read only;
+        once per IF: an unrolled loop compiles its body once per copy)."""
+        known = self._entries_memo.get(id(s))
+        if known is None or known[0] is not s:
+            known = self._entries_memo[id(s)] = (s, self._if_entries_of(s))
+        return known[1]
+
+    def _if_entries_of(self, s) -> tuple[list, float]:
         tests = [0.0]
         for branch in s.branches[1:]:       # the first test is charged before the IF
             tests.append(tests[-1] + self.cost.condition(branch.condition))
