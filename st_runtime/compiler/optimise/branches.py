@@ -44,6 +44,8 @@ _ASSIGNMENT = re.compile(r"(?<![=<>!])=(?!=)")          # `=` outside `== <= >= 
 _WORD = re.compile(r"\b([A-Za-z_]\w*)(\s*\()?")
 _CALLABLE = {"abs", "min", "max"}
 _WORDS = {"not", "and", "or", "if", "else", "in", "is", "True", "False", "None"}
+_KEYWORDS = frozenset(keyword.kwlist) - _WORDS     # Python keywords code that cannot fault has not
+_CALLS = _CALLABLE | _WORDS                          # words it may have before a `(`
 _EXPONENT = re.compile(r"\b\d+(?:\.\d*)?[eE][+-]\d+")
 MAX_ARITHMETIC = 14
 _PLACEHOLDER = re.compile("\x00(_t\\d+)\x00")
@@ -63,11 +65,8 @@ def code_cannot_fault(code: str) -> bool:
     if not code.strip() or not _ALLOWED.fullmatch(code) or "**" in code or "<<" in code \
             or ">>" in code or _ASSIGNMENT.search(code):
         return False
-    for match in _WORD.finditer(code):
-        word, called = match.group(1), match.group(2)
-        if keyword.iskeyword(word) and word not in _WORDS:
-            return False
-        if called and word not in _CALLABLE and word not in _WORDS:
+    for word, called in set(_WORD.findall(code)):
+        if word in _KEYWORDS or called and word not in _CALLS:
             return False
     bare = _EXPONENT.sub("0", code)        # the sign of 1e+308 is no operator
     return bare.count("+") + bare.count("-") + bare.count("*") <= MAX_ARITHMETIC

@@ -32,7 +32,9 @@ def merge(lines: list[str], start: int) -> None:
     """Merge such pairs in `lines[start:]`, in place."""
     out = lines[:start]
     for line in lines[start:]:
-        merged = _merged(out[-1], line) if len(out) > start and _free(out, len(out) - 1) else None
+        merged = _merged(out[-1], line) if len(out) > start else None
+        if merged is not None and not _free(out, len(out) - 1):     # (the longer test second)
+            merged = None
         if merged is None:
             out.append(line)
         else:
