@@ -80,7 +80,7 @@ def expr_cannot_fault(compiler, node, code: str) -> bool:
     """`node` (compiled to `code`) reads only owned storage and its code cannot raise."""
     if not code_cannot_fault(code):
         return False
-    for n in walk((node,)):
+    for n in walk(node):           # (not `(node,)`: a new tuple, no use keeping its walk)
         if isinstance(n, ast.Deref):
             return False
         if isinstance(n, ast.Name):

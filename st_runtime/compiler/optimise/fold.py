@@ -26,16 +26,17 @@ def constant_element(compiler, e: ast.Index):
     """The value of `e` when it reads a CONSTANT array at constant, in-range indices; else None."""
     if not isinstance(e.base, ast.Name):
         return None
-    cache = compiler.__dict__.setdefault("_constant_arrays", {})
-    key = id(e)
-    if key not in cache:
-        cache[key] = _constant_array(compiler, e)
-    found = cache[key]
+    cache = compiler.__dict__.get("_constant_arrays")
+    if cache is None:
+        cache = compiler._constant_arrays = {}
+    found = cache.get(id(e), cache)         # (the cache itself: not looked at yet)
+    if found is cache:
+        found = cache[id(e)] = _constant_array(compiler, e)
     if found is None:
         return None
     t, values = found
     offset, stride = 0, 1
-    for index, (lo, hi) in reversed(list(zip(e.indices, t.dims))):
+    for index, (lo, hi) in zip(reversed(e.indices), reversed(t.dims)):
         value = compiler.constant_of(index)
         if not _is_int(value) or not lo <= value <= hi:
             return None                         # out of range: left to the runtime's fault
