@@ -35,6 +35,7 @@ stops the run sees `_spent` as the exact path has it.
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 
 from ... import ast
 from ...native import NATIVE_FBS
@@ -141,12 +142,30 @@ def _pou_bound(compiler, pou) -> int | None:
     known = compiler.unit.__dict__.setdefault("worst_cases", {})
     key = pou.name.upper()
     if key not in known:
-        from ..statements import BodyCompiler
-
         known[key] = None           # (a recursive call: not bounded)
-        callee = BodyCompiler(program, pou, compiler.unit, method=pou.kind != "FUNCTION")
+        callee = _bounding_compiler(program, pou, compiler.unit)
         known[key] = worst_case(callee, callee.body)
     return known[key]
+
+
+# The passes whose analyses a BodyCompiler makes as it is created, for the code it will
+# write; a compiler that only bounds a callee writes none (load time).
+_CODE_ANALYSES = dict(ranges=False, cse=False, aliases=False, stores=False, reuse=False)
+
+
+def _bounding_compiler(program, pou, unit):
+    """A compiler of `pou` for `worst_case` only: its scope, constants (`fold`) and cost
+    model as when its code is compiled, none of the analyses only code generation reads."""
+    from ..statements import BodyCompiler
+
+    optimise = unit.optimise
+    unit.optimise = replace(optimise, **_CODE_ANALYSES)
+    try:
+        callee = BodyCompiler(program, pou, unit, method=pou.kind != "FUNCTION")
+    finally:
+        unit.optimise = optimise
+    callee.opt = optimise
+    return callee
 
 
 def may_leave(compiler, stmt) -> bool:
