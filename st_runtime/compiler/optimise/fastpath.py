@@ -69,9 +69,16 @@ def listed_in_outs(compiler, body) -> dict[str, str]:
 def worst_case(compiler, body) -> int | None:
     """Units the body charges at most in one run, its callees' charges included, or
     None when that is not bounded here."""
-    if any(id(node) in compiler.program.properties for node in walk(body)):
+    properties = compiler.program.properties
+    if properties and any(id(node) in properties for node in walk(body)):
         return None             # a PROPERTY's accessor runs ST code
-    return _bound(compiler, body)
+    if body is not compiler.body or compiler.unrolled:
+        return _bound(compiler, body)
+    # A POU's whole body is bounded once a load: for a caller (`_pou_bound`) and for itself.
+    known = compiler.unit.__dict__.setdefault("body_bounds", {})
+    if id(body) not in known:
+        known[id(body)] = _bound(compiler, body)
+    return known[id(body)]
 
 
 def _bound(compiler, body) -> int | None:
