@@ -177,7 +177,16 @@ def _bounding_compiler(program, pou, unit):
 
 def may_leave(compiler, stmt) -> bool:
     """Whether control may leave `stmt` other than by its end: a jump, or a call of ST code
-    (a fault in it with stop_on_fault ends the scan).  The charges that follow must wait."""
+    (a fault in it with stop_on_fault ends the scan).  The charges that follow must wait.
+    Asked once a statement (an unrolled loop's copies are its statements again)."""
+    known = compiler.__dict__.setdefault("_may_leave", {})
+    found = known.get(id(stmt))
+    if found is None:
+        found = known[id(stmt)] = _may_leave(compiler, stmt)
+    return found
+
+
+def _may_leave(compiler, stmt) -> bool:
     for n in walk(stmt) if not isinstance(stmt, _JUMPS) else (stmt,):
         if isinstance(n, _JUMPS):
             return True
