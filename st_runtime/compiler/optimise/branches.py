@@ -80,7 +80,7 @@ def expr_cannot_fault(compiler, node, code: str) -> bool:
     """`node` (compiled to `code`) reads only owned storage and its code cannot raise."""
     if not code_cannot_fault(code):
         return False
-    for n in walk(node):           # (not `(node,)`: a new tuple, no use keeping its walk)
+    for n in _read_nodes(compiler, node):
         if isinstance(n, ast.Deref):
             return False
         if isinstance(n, ast.Name):
@@ -100,6 +100,19 @@ def expr_cannot_fault(compiler, node, code: str) -> bool:
             if not _owned(member_type):
                 return False
     return True
+
+
+def _read_nodes(compiler, node) -> tuple:
+    """The Deref, Name and Member nodes under `node` in walk order, found once a node (an
+    unrolled loop's copies compile the same expressions again)."""
+    known = compiler.__dict__.setdefault("_read_nodes", {})
+    found = known.get(id(node))
+    if found is None:
+        found = known[id(node)] = tuple(n for n in walk(node) if isinstance(n, _READ_NODES))
+    return found
+
+
+_READ_NODES = (ast.Deref, ast.Name, ast.Member)
 
 
 def listed(compiler, name) -> bool:

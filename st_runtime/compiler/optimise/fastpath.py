@@ -228,16 +228,25 @@ def _iterations(compiler, s, values: range) -> int | None:
 
 def _values(compiler, s) -> range | None:
     """The values of a FOR that runs over a constant range, else None."""
-    from ..scope import Usage
-
     start, end = compiler.constant_of(s.start), compiler.constant_of(s.end)
     step = 1 if s.step is None else compiler.constant_of(s.step)
     if not all(type(v) is int for v in (start, end, step)) or step == 0:
         return None
     place = compiler.scope.place_of(ast.Name(s.variable, pos=s.pos))
-    if place.how == "global" or s.variable.upper() in Usage(compiler.program, s.body, None).assigned:
+    if place.how == "global" or s.variable.upper() in _assigned(compiler, s.body):
         return None         # a loop that tests its variable: its count is data
     return range(start, end + (1 if step > 0 else -1), step)
+
+
+def _assigned(compiler, body) -> set[str]:
+    """The variables `body` stores into (scope.Usage), found once a load: a loop whose
+    inner bounds depend on its variable bounds its body once a value."""
+    from ..scope import Usage
+
+    known = compiler.unit.__dict__.setdefault("assigned_in", {})
+    if id(body) not in known:
+        known[id(body)] = Usage(compiler.program, body, None).assigned
+    return known[id(body)]
 
 
 def worth_it(exact_lines: list[str]) -> bool:
