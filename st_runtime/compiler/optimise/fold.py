@@ -34,14 +34,13 @@ def constant_element(compiler, e: ast.Index):
         found = cache[id(e)] = _constant_array(compiler, e)
     if found is None:
         return None
-    t, values = found
-    offset, stride = 0, 1
-    for index, (lo, hi) in zip(reversed(e.indices), reversed(t.dims)):
+    dims, values = found
+    offset = 0
+    for index, (lo, hi, stride) in zip(reversed(e.indices), dims):     # (the last first, as ever)
         value = compiler.constant_of(index)
-        if not _is_int(value) or not lo <= value <= hi:
+        if not isinstance(value, int) or isinstance(value, bool) or not lo <= value <= hi:
             return None                         # out of range: left to the runtime's fault
         offset += (value - lo) * stride
-        stride *= hi - lo + 1
     if offset >= len(values):
         return None
     value = values[offset]
@@ -49,7 +48,8 @@ def constant_element(compiler, e: ast.Index):
 
 
 def _constant_array(compiler, e):
-    """(array type, flat initial values) when `e` indexes a whole CONSTANT array, else None."""
+    """((lo, hi, stride) per dimension from the last, flat initial values) when `e` indexes a whole
+    CONSTANT array, else None."""
     try:
         place = compiler.scope.place_of(e.base)
     except CompileError:
@@ -62,7 +62,16 @@ def _constant_array(compiler, e):
             or isinstance(resolve_alias(t.element), ArrayType) or len(e.indices) != len(t.dims):
         return None
     values = _flat_values(compiler, symbol)
-    return None if values is None else (t, values)
+    return None if values is None else (_strided(t.dims), values)
+
+
+def _strided(dims) -> tuple:
+    """(lo, hi, stride) of each dimension, the last first (it varies fastest)."""
+    out, stride = [], 1
+    for lo, hi in reversed(dims):
+        out.append((lo, hi, stride))
+        stride *= hi - lo + 1
+    return tuple(out)
 
 
 def _flat_values(compiler, symbol):
