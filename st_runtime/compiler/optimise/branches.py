@@ -44,6 +44,8 @@ _ASSIGNMENT = re.compile(r"(?<![=<>!])=(?!=)")          # `=` outside `== <= >= 
 _WORD = re.compile(r"\b([A-Za-z_]\w*)(\s*\()?")
 _CALLABLE = {"abs", "min", "max"}
 _WORDS = {"not", "and", "or", "if", "else", "in", "is", "True", "False", "None"}
+_KEYWORDS = frozenset(keyword.kwlist) - _WORDS     # Python keywords code that cannot fault has not
+_CALLS = _CALLABLE | _WORDS                          # words it may have before a `(`
 _EXPONENT = re.compile(r"\b\d+(?:\.\d*)?[eE][+-]\d+")
 MAX_ARITHMETIC = 14
 _PLACEHOLDER = re.compile("\x00(_t\\d+)\x00")
@@ -63,11 +65,8 @@ def code_cannot_fault(code: str) -> bool:
     if not code.strip() or not _ALLOWED.fullmatch(code) or "**" in code or "<<" in code \
             or ">>" in code or _ASSIGNMENT.search(code):
         return False
-    for match in _WORD.finditer(code):
-        word, called = match.group(1), match.group(2)
-        if keyword.iskeyword(word) and word not in _WORDS:
-            return False
-        if called and word not in _CALLABLE and word not in _WORDS:
+    for word, called in set(_WORD.findall(code)):
+        if word in _KEYWORDS or called and word not in _CALLS:
             return False
     bare = _EXPONENT.sub("0", code)        # the sign of 1e+308 is no operator
     return bare.count("+") + bare.count("-") + bare.count("*") <= MAX_ARITHMETIC
@@ -81,7 +80,7 @@ def expr_cannot_fault(compiler, node, code: str) -> bool:
     """`node` (compiled to `code`) reads only owned storage and its code cannot raise."""
     if not code_cannot_fault(code):
         return False
-    for n in walk((node,)):
+    for n in _read_nodes(compiler, node):
         if isinstance(n, ast.Deref):
             return False
         if isinstance(n, ast.Name):
@@ -101,6 +100,19 @@ def expr_cannot_fault(compiler, node, code: str) -> bool:
             if not _owned(member_type):
                 return False
     return True
+
+
+def _read_nodes(compiler, node) -> tuple:
+    """The Deref, Name and Member nodes under `node` in walk order, found once a node (an
+    unrolled loop's copies compile the same expressions again)."""
+    known = compiler.__dict__.setdefault("_read_nodes", {})
+    found = known.get(id(node))
+    if found is None:
+        found = known[id(node)] = tuple(n for n in walk(node) if isinstance(n, _READ_NODES))
+    return found
+
+
+_READ_NODES = (ast.Deref, ast.Name, ast.Member)
 
 
 def listed(compiler, name) -> bool:

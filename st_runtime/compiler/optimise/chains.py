@@ -30,13 +30,24 @@ _LITERAL_INDEX = re.compile(r"\[(\d+)\]")
 
 def merge(lines: list[str], start: int) -> None:
     """Merge such pairs in `lines[start:]`, in place."""
-    out = lines[:start]
-    for line in lines[start:]:
-        merged = _merged(out[-1], line) if len(out) > start and _free(out, len(out) - 1) else None
-        if merged is None:
-            out.append(line)
-        else:
-            out[-1] = merged
+    out: list[str] = []
+    # The lines a later line may stand in, innermost last: (indentation, is `try:`); the
+    # nearest line before out[-1] that is less indented is the last (one pass, not a
+    # search back from each pair: the LU's fast body has hundreds of pairs).
+    openers: list[tuple[int, bool]] = []
+    free = True             # out[-1] is not the body of a `try:` (a merge keeps its indentation)
+    for n, line in enumerate(lines):
+        if n >= start and len(out) > start and free:
+            merged = _merged(out[-1], line)
+            if merged is not None:
+                out[-1] = merged
+                continue
+        depth = len(line) - len(line.lstrip())
+        while openers and openers[-1][0] >= depth:
+            openers.pop()
+        free = not openers or not openers[-1][1]
+        openers.append((depth, line.strip() == "try:"))
+        out.append(line)
     lines[:] = out
 
 
@@ -68,13 +79,3 @@ def _atom(code: str) -> str:
         else:
             return code
     return f"({code})"
-
-
-def _free(lines: list[str], i: int) -> bool:
-    """`lines[i]` is a statement of its block, not the body of a `try:`."""
-    depth = len(lines[i]) - len(lines[i].lstrip())
-    for j in range(i - 1, -1, -1):
-        d = len(lines[j]) - len(lines[j].lstrip())
-        if d < depth:
-            return lines[j].strip() != "try:"
-    return True

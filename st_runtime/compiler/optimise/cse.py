@@ -119,10 +119,19 @@ def inline_single_uses(region, lines: list[str], start: int) -> None:
         if not head.startswith(f"{name} = "):
             continue
         text = head[len(name) + 3:]
-        lines[use] = re.sub(rf"\b{name}\b", lambda _: text, lines[use], count=1)
+        lines[use] = _put_in(lines[use], name, text)
         # a later inlining may read this line again: keep `where` lists pointing at it
         removed.add(definition)
     lines[start:] = [line for i, line in enumerate(lines[start:], start) if i not in removed]
+
+
+def _put_in(line: str, name: str, text: str) -> str:
+    """`line` with `text` in place of the first occurrence of the temporary `name` (a whole
+    word: the first `_TEMP` token that is `name`)."""
+    for match in _TEMP.finditer(line):
+        if match.group() == name:
+            return line[:match.start()] + text + line[match.end():]
+    return line
 
 
 def worth_a_region(compiler, body) -> bool:

@@ -35,6 +35,7 @@ stops the run sees `_spent` as the exact path has it.
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 
 from ... import ast
 from ...native import NATIVE_FBS
@@ -68,9 +69,16 @@ def listed_in_outs(compiler, body) -> dict[str, str]:
 def worst_case(compiler, body) -> int | None:
     """Units the body charges at most in one run, its callees' charges included, or
     None when that is not bounded here."""
-    if any(id(node) in compiler.program.properties for node in walk(body)):
+    properties = compiler.program.properties
+    if properties and any(id(node) in properties for node in walk(body)):
         return None             # a PROPERTY's accessor runs ST code
-    return _bound(compiler, body)
+    if body is not compiler.body or compiler.unrolled:
+        return _bound(compiler, body)
+    # A POU's whole body is bounded once a load: for a caller (`_pou_bound`) and for itself.
+    known = compiler.unit.__dict__.setdefault("body_bounds", {})
+    if id(body) not in known:
+        known[id(body)] = _bound(compiler, body)
+    return known[id(body)]
 
 
 def _bound(compiler, body) -> int | None:
@@ -141,17 +149,44 @@ def _pou_bound(compiler, pou) -> int | None:
     known = compiler.unit.__dict__.setdefault("worst_cases", {})
     key = pou.name.upper()
     if key not in known:
-        from ..statements import BodyCompiler
-
         known[key] = None           # (a recursive call: not bounded)
-        callee = BodyCompiler(program, pou, compiler.unit, method=pou.kind != "FUNCTION")
+        callee = _bounding_compiler(program, pou, compiler.unit)
         known[key] = worst_case(callee, callee.body)
     return known[key]
 
 
+# The passes whose analyses a BodyCompiler makes as it is created, for the code it will
+# write; a compiler that only bounds a callee writes none (load time).
+_CODE_ANALYSES = dict(ranges=False, cse=False, aliases=False, stores=False, reuse=False)
+
+
+def _bounding_compiler(program, pou, unit):
+    """A compiler of `pou` for `worst_case` only: its scope, constants (`fold`) and cost
+    model as when its code is compiled, none of the analyses only code generation reads."""
+    from ..statements import BodyCompiler
+
+    optimise = unit.optimise
+    unit.optimise = replace(optimise, **_CODE_ANALYSES)
+    try:
+        callee = BodyCompiler(program, pou, unit, method=pou.kind != "FUNCTION")
+    finally:
+        unit.optimise = optimise
+    callee.opt = optimise
+    return callee
+
+
 def may_leave(compiler, stmt) -> bool:
     """Whether control may leave `stmt` other than by its end: a jump, or a call of ST code
-    (a fault in it with stop_on_fault ends the scan).  The charges that follow must wait."""
+    (a fault in it with stop_on_fault ends the scan).  The charges that follow must wait.
+    Asked once a statement (an unrolled loop's copies are its statements again)."""
+    known = compiler.__dict__.setdefault("_may_leave", {})
+    found = known.get(id(stmt))
+    if found is None:
+        found = known[id(stmt)] = _may_leave(compiler, stmt)
+    return found
+
+
+def _may_leave(compiler, stmt) -> bool:
     for n in walk(stmt) if not isinstance(stmt, _JUMPS) else (stmt,):
         if isinstance(n, _JUMPS):
             return True
@@ -193,16 +228,25 @@ def _iterations(compiler, s, values: range) -> int | None:
 
 def _values(compiler, s) -> range | None:
     """The values of a FOR that runs over a constant range, else None."""
-    from ..scope import Usage
-
     start, end = compiler.constant_of(s.start), compiler.constant_of(s.end)
     step = 1 if s.step is None else compiler.constant_of(s.step)
     if not all(type(v) is int for v in (start, end, step)) or step == 0:
         return None
     place = compiler.scope.place_of(ast.Name(s.variable, pos=s.pos))
-    if place.how == "global" or s.variable.upper() in Usage(compiler.program, s.body, None).assigned:
+    if place.how == "global" or s.variable.upper() in _assigned(compiler, s.body):
         return None         # a loop that tests its variable: its count is data
     return range(start, end + (1 if step > 0 else -1), step)
+
+
+def _assigned(compiler, body) -> set[str]:
+    """The variables `body` stores into (scope.Usage), found once a load: a loop whose
+    inner bounds depend on its variable bounds its body once a value."""
+    from ..scope import Usage
+
+    known = compiler.unit.__dict__.setdefault("assigned_in", {})
+    if id(body) not in known:
+        known[id(body)] = Usage(compiler.program, body, None).assigned
+    return known[id(body)]
 
 
 def worth_it(exact_lines: list[str]) -> bool:

@@ -22,9 +22,6 @@ _COMPARE = {"=": operator.eq, "<>": operator.ne, "<": operator.lt, "<=": operato
 _INT_OPS = {"+": operator.add, "-": operator.sub, "*": operator.mul}
 
 
-_UNKNOWN = object()
-
-
 def constant_element(compiler, e: ast.Index):
     """The value of `e` when it reads a CONSTANT array at constant, in-range indices; else None."""
     if not isinstance(e.base, ast.Name):
@@ -32,19 +29,18 @@ def constant_element(compiler, e: ast.Index):
     cache = compiler.__dict__.get("_constant_arrays")
     if cache is None:
         cache = compiler._constant_arrays = {}
-    found = cache.get(id(e), _UNKNOWN)
-    if found is _UNKNOWN:
+    found = cache.get(id(e), cache)         # (the cache itself: not looked at yet)
+    if found is cache:
         found = cache[id(e)] = _constant_array(compiler, e)
     if found is None:
         return None
-    t, values = found
-    offset, stride = 0, 1
-    for index, (lo, hi) in zip(reversed(e.indices), reversed(t.dims)):
+    dims, values = found
+    offset = 0
+    for index, (lo, hi, stride) in zip(reversed(e.indices), dims):     # (the last first, as ever)
         value = compiler.constant_of(index)
-        if not _is_int(value) or not lo <= value <= hi:
+        if not isinstance(value, int) or isinstance(value, bool) or not lo <= value <= hi:
             return None                         # out of range: left to the runtime's fault
         offset += (value - lo) * stride
-        stride *= hi - lo + 1
     if offset >= len(values):
         return None
     value = values[offset]
@@ -52,7 +48,8 @@ def constant_element(compiler, e: ast.Index):
 
 
 def _constant_array(compiler, e):
-    """(array type, flat initial values) when `e` indexes a whole CONSTANT array, else None."""
+    """((lo, hi, stride) per dimension from the last, flat initial values) when `e` indexes a whole
+    CONSTANT array, else None."""
     try:
         place = compiler.scope.place_of(e.base)
     except CompileError:
@@ -65,7 +62,16 @@ def _constant_array(compiler, e):
             or isinstance(resolve_alias(t.element), ArrayType) or len(e.indices) != len(t.dims):
         return None
     values = _flat_values(compiler, symbol)
-    return None if values is None else (t, values)
+    return None if values is None else (_strided(t.dims), values)
+
+
+def _strided(dims) -> tuple:
+    """(lo, hi, stride) of each dimension, the last first (it varies fastest)."""
+    out, stride = [], 1
+    for lo, hi in reversed(dims):
+        out.append((lo, hi, stride))
+        stride *= hi - lo + 1
+    return tuple(out)
 
 
 def _flat_values(compiler, symbol):

@@ -29,6 +29,7 @@ its own (`Optimisations.fuse`).
 from __future__ import annotations
 
 import re
+from itertools import islice
 
 MERGE_CAP = 24
 
@@ -37,6 +38,8 @@ _TOKEN = re.compile(r"[A-Za-z_]\w*")
 _ACCUMULATE = re.compile(r"^(\s*)([A-Za-z_]\w*) = \(\2 ([+*-]) (.+)\)$")
 _TEMP = re.compile(r"\b_t\d+\b")
 _LOOP = re.compile(r"^\s*(for|while) ")
+_CALL_OR_ATTRIBUTE = re.compile(r"\w\s*\(|\.[A-Za-z_]")
+_PARENTHESIS = re.compile(r"[()]")
 
 
 def _pure(line: str):
@@ -45,46 +48,51 @@ def _pure(line: str):
     if match is None:
         return None
     expression = match.group(3)
-    if re.search(r"\w\s*\(|\.[A-Za-z_]", expression):   # a call or an attribute
+    if _CALL_OR_ATTRIBUTE.search(expression):
         return None
     return match.groups()
 
 
 def _mentions(text: str, name: str) -> int:
-    return sum(1 for token in _TOKEN.findall(text) if token == name)
+    return _TOKEN.findall(text).count(name)
 
 
 def _enclosed(text: str) -> bool:
     """Whether `text` is one parenthesised group (its first '(' closes at its end)."""
     if not (text.startswith("(") and text.endswith(")")):
         return False
-    depth = 0
-    for i, ch in enumerate(text):
-        depth += ch == "("
-        depth -= ch == ")"
-        if depth == 0 and i < len(text) - 1:
+    depth, last = 0, len(text) - 1
+    for match in _PARENTHESIS.finditer(text):    # (the depth changes only there)
+        depth += 1 if match.group() == "(" else -1
+        if depth == 0 and match.start() < last:
             return False
     return True
 
 
+_UNREAD = object()
+
+
 def substitute(lines: list[str], start: int) -> None:
-    i = start
+    i, head = start, _UNREAD
     while i < len(lines) - 1:
-        head, use = _pure(lines[i]), _pure(lines[i + 1])
+        if head is _UNREAD:
+            head = _pure(lines[i])
+        use = _pure(lines[i + 1])
         if head and use and head[0] == use[0] and head[1] != use[1] and not head[1].startswith("_t") \
                 and _mentions(head[2], head[1]) == 0 and _mentions(use[2], head[1]) == 1 \
                 and _set_again(lines, i + 2, head[0], head[1]):
             value = head[2] if _enclosed(head[2]) else f"({head[2]})"
             expression = re.sub(rf"\b{head[1]}\b", lambda _: value, use[2], count=1)
             lines[i:i + 2] = [f"{use[0]}{use[1]} = {expression}"]
+            head = _UNREAD
             continue
-        i += 1
+        i, head = i + 1, use          # (the next line's head: read once)
 
 
 def _set_again(lines: list[str], j: int, indent: str, name: str) -> bool:
     """Whether the next line mentioning `name` sets it from what does not read it, with
     only pure lines at `indent` before it."""
-    for line in lines[j:]:
+    for line in islice(lines, j, None):      # (not a copy of the rest)
         pure = _pure(line)
         if pure is None or pure[0] != indent:
             return False

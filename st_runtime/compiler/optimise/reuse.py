@@ -211,8 +211,8 @@ class Reuse:
 
     def element(self, node, code: str) -> str:
         """An own array's element read at a literal index, as a value."""
-        match = _ELEMENT.fullmatch(code)
-        if not (match and isinstance(node.base, ast.Name) and self.active()):
+        match = self.active() and _ELEMENT.fullmatch(code)
+        if not (match and isinstance(node.base, ast.Name)):
             return code
         symbol = self._own(node.base)
         t = resolve_alias(symbol.type) if symbol is not None else None
@@ -222,11 +222,11 @@ class Reuse:
 
     def binary(self, e, op: str, left: str, right: str) -> str | None:
         """`(left op right)` of floats as a value, or None."""
-        if op not in ("+", "-", "*") or not _is_float(self.compiler.ty(e)):
-            return None
+        if op not in ("+", "-", "*") or not self.active() or not _is_float(self.compiler.ty(e)):
+            return None         # (not active in a region or a fast body: asked first, it is cheaper)
         a = self.operand(e.left, left)
         b = self.operand(e.right, right) if a is not None else None
-        if b is None or not self.active():
+        if b is None:
             return None
         text = f"({left} {op} {right})"
         return self.value(text, text, a | b)

@@ -39,6 +39,7 @@ from ...types import ArrayType, resolve_alias
 
 MIN_OPERATIONS = 256         # a NumPy call costs ~20 float operations: below this, no gain
 _TEMP = re.compile(r"_t\d+\Z")
+_TEMP_WORD = re.compile(r"\b_t\d+\b")      # a temporary named in a line
 _ASSIGN = re.compile(r"([A-Za-z_]\w*) = (.*)\Z")
 np = _abs = _multiply = _accumulate = None     # NumPy, imported by the first run
 
@@ -411,10 +412,10 @@ def _replace_run(lines, i, j, indent, graph, register, element_of=None):
     None when the run does not qualify."""
     if len(graph.ops) < MIN_OPERATIONS:
         return None
-    later = "\n".join(lines[j:])
+    read_later = set(_TEMP_WORD.findall("\n".join(lines[j:])))
     stores, literals = [], []
     for name, bound in graph.env.items():
-        if _TEMP.match(name) and not re.search(rf"\b{name}\b", later):
+        if _TEMP.match(name) and name not in read_later:
             continue                               # a temporary no one reads after the run
         if bound[0] == "lit":
             literals.append(f"{name} = {bound[1]}")
