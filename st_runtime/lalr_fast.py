@@ -9,7 +9,11 @@ same order, calling the same callbacks (the AST builder) on the same values,
 so it builds the same AST: it keeps, per rule, its size, origin and callback
 (looked up once, by the rule's identity), and runs the contextual lexer's
 `next_token` and the postlexer's `retype` inline, with the same per-state
-lexers, token fields and line counting.
+terminals in the same order and the same token fields.  Two differences in
+how, not what: a state's scanner matches the blanks before a token and the
+token in one call (`_blanks_and_scanner`), and a token's line, column and
+end are worked out from its offset when read (`_Token`), not counted on
+every token.
 
 Each reduction also does, inline, what Lark's wrappers around the builder's
 method do (`parse_tree_builder.py`): it keeps the children that are not
@@ -32,6 +36,7 @@ syntax diagnostics (`recovery.py`) exactly as before.
 from __future__ import annotations
 
 import re
+from bisect import bisect_right
 from functools import partial
 from operator import itemgetter
 
@@ -40,6 +45,11 @@ from lark.parse_tree_builder import ChildFilterLALR, ChildFilterLALR_NoPlacehold
 from lark.parsers.lalr_analysis import Shift
 from lark.tree import Tree
 from lark.visitors import Transformer, _vargs_inline
+
+try:        # how Lark's lexer folds keywords into a regular expression's callback
+    from lark.lexer import _create_unless
+except ImportError:         # another Lark: its own loop only
+    _create_unless = None
 
 #: What Token(type, value, pos, line, column) calls (Lark 1.2 and later); without
 #: it, or with any other internal this loop reads missing, Lark's loop parses.
@@ -51,6 +61,52 @@ PLAIN_TOKENS = Token.__mro__[1] is str and getattr(Token, "__slots__", None) == 
     "type", "start_pos", "value", "line", "column", "end_line", "end_column", "end_pos")
 
 FAILED = object()
+
+
+def scanner_pattern(terminals) -> str:
+    """The one regular expression of Lark's Scanner for `terminals` (Scanner._build_mres)."""
+    return "|".join(f"(?P<{t.name}>{t.pattern.to_regexp()})" for t in terminals)
+
+#: An ignored blank run as this loop skips it inside a state's regular expression
+#: (`_scanner`): a WS terminal of one character class repeated.
+_CHAR_RUN = re.compile(r"\[(?:[^\]\\]|\\.)*\]\+")
+_NEWLINE = re.compile("\n")
+
+
+class _Lines:
+    """Where each line of a text starts, found on first use: the line and column of an
+    offset as Lark's line counter gives them (it counts '\n', in the tokens of the
+    terminals that may hold one: every '\n' of the text, `tests/test_parser_fast_path.py`
+    checks no other terminal can match one)."""
+
+    __slots__ = ("text", "starts")
+
+    def __init__(self, text: str) -> None:
+        self.text, self.starts = text, None
+
+    def at(self, pos: int) -> tuple[int, int]:
+        starts = self.starts
+        if starts is None:
+            starts = self.starts = [0, *(m.end() for m in _NEWLINE.finditer(self.text))]
+        line = bisect_right(starts, pos)
+        return line, pos - starts[line - 1] + 1
+
+
+class _Token(Token):
+    """A Lark Token whose line, column and end are worked out when read, from its
+    offset (most tokens are never asked: counting lines per token was a sixth of the loop)."""
+
+    __slots__ = ("lines",)
+
+    line = property(lambda self: self.lines.at(self.start_pos)[0])
+    column = property(lambda self: self.lines.at(self.start_pos)[1])
+    end_pos = property(lambda self: self.start_pos + len(self.value))
+    end_line = property(lambda self: self.lines.at(self.start_pos + len(self.value))[0])
+    end_column = property(lambda self: self.lines.at(self.start_pos + len(self.value))[1])
+
+    def __reduce__(self):       # a plain Token, every field filled
+        return (Token, (self.type, self.value, self.start_pos, self.line, self.column,
+                        self.end_line, self.end_column, self.end_pos))
 
 # What a reduction does with its children (see _plan):
 UNIT = 0        # a `?rule` of one kept symbol: the value stays, only the state changes
@@ -147,7 +203,9 @@ class FastLalr:
         self.actions = _Actions(self)                     # state -> its actions, with steps
         self.gotos: dict[str, _Gotos] = {}                # rule name -> _Gotos
         self.units: dict[tuple, int] = {}                 # (state below, state, token) -> _unit_chain
-        self.lexing: dict[int, tuple] = {}                # parser state -> _lexing
+        self.scanners: dict[int, object] = {}             # parser state -> _scanner
+        self.scanners_by_lexer: dict = {}                 # lexer -> _scanner (states share lexers)
+        self.blanks = None                                # WS's fullmatch
         try:
             frontend = lark.parser                        # ParsingFrontend
             self.lexers = frontend.lexer.lexer.lexers     # contextual lexer: parser state -> lexer
@@ -156,6 +214,9 @@ class FastLalr:
             self.start_states = parser.parse_table.start_states
             self.end_states = parser.parse_table.end_states
             self.callbacks = parser.callbacks
+            conf = frontend.lexer_conf
+            self.ignored = frozenset(conf.ignore)
+            self.reserving = frozenset(kind for kind, f in conf.callbacks.items() if f is self.reserve)
         except AttributeError:    # another Lark inside: its own loop only
             self.usable = False
             return
@@ -163,7 +224,7 @@ class FastLalr:
         # AST builder has none, and this loop is not used if one appears.  An
         # inlined `_rule` must build Lark's plain Tree, which this loop replaces
         # by a list (_plan).
-        self.usable = new_token is not None and not any(isinstance(k, str) for k in self.callbacks) \
+        self.usable = new_token is not None and PLAIN_TOKENS and _create_unless is not None and not any(isinstance(k, str) for k in self.callbacks) \
             and all(self._plan(rule)[2] == SPLICE for rule in self.callbacks
                     if rule.origin.name.startswith("_"))
         self.rules.clear()
@@ -231,26 +292,39 @@ class FastLalr:
             return size, origin, LIST_ONE if kind == SPLICE else CALL_SPREAD, function, keep[0][0]
         return size, origin, GENERAL, function, plan
 
-    def _lexing(self, state: int) -> tuple:
-        """What the loop reads of the state's lexer: (patterns, ignored types,
-        callbacks, types that may hold a newline, blanks, scan); the patterns are
-        the scanner's (Scanner.match, inline: the first that matches), built before
-        the callbacks, and `scan` is the match of the only one, if there is one.
-        `blanks` matches the ignored WS terminal alone, or is None: no other
-        terminal of the grammar starts with a blank, so where WS matches it is the
-        scanner's match, and the loop skips it without trying the others."""
+    def _scanner(self, state: int):
+        """The `match` of the state's lexer with the blanks before a token inside it
+        (`_blanks_and_scanner`), made once per lexer (states share them)."""
         lexer = self.lexers[state]
-        patterns = lexer.scanner._mres
-        blank = next((t for t in lexer.terminals if t.name == "WS"), None)
-        blanks = None
-        plain = blank is not None and blank.pattern.type == "re" and not blank.pattern.flags \
-            and not lexer.g_regex_flags
-        if plain and "WS" in lexer.ignore_types and "WS" in lexer.newline_types and "WS" not in lexer.callback:
-            blanks = re.compile(blank.pattern.value).match
-        scan = patterns[0].match if len(patterns) == 1 else None
-        entry = self.lexing[state] = (patterns, lexer.ignore_types, lexer.callback, lexer.newline_types,
-                                      blanks, scan)
-        return entry
+        scan = self.scanners_by_lexer.get(lexer)
+        if scan is None:
+            scan = self.scanners_by_lexer[lexer] = self._blanks_and_scanner(lexer)
+        self.scanners[state] = scan
+        return scan
+
+    def _blanks_and_scanner(self, lexer):
+        """`(?>(?:WS)*)(?:scanner)`.match, where `scanner` is the pattern Lark's lexer
+        scans with (`Scanner._build_mres`, its terminals after `_create_unless`; compiled
+        here instead, Lark compiles its own only when its loop runs, on an error).
+
+        The scanner's first terminal that matches at the first character after the
+        blanks is the token, as Lark's lexer finds it after skipping them one WS token
+        at a time: WS is one character class repeated and no other terminal of the
+        grammar starts with a blank, so the blanks are WS's and the scanner's
+        alternatives are tried at the same place (its groups keep their numbers, so
+        `lastgroup` is the same).  A lexer of another kind (a keyword folded into a
+        callback, another callback than the keywords', another regex module) raises:
+        Lark's loop parses."""
+        terminals, unless = _create_unless(lexer.terminals, lexer.g_regex_flags, lexer.re, lexer.use_bytes)
+        blank = next((t for t in terminals if t.name == "WS"), None)
+        callbacks = lexer.user_callbacks
+        if unless or lexer.re is not re or lexer.use_bytes or lexer.g_regex_flags or blank is None \
+                or blank.pattern.type != "re" or blank.pattern.flags or not _CHAR_RUN.fullmatch(blank.pattern.value) \
+                or lexer.ignore_types != self.ignored or "WS" not in self.ignored \
+                or callbacks.keys() != self.reserving or self.reserving & self.ignored:
+            raise ValueError("a lexer this loop does not know")
+        self.blanks = re.compile(blank.pattern.value).fullmatch
+        return re.compile(f"(?>(?:{blank.pattern.value})*)(?:{scanner_pattern(terminals)})").match
 
     def _unit_chain(self, below: int, top: int, kind: str) -> int:
         """The state after the UNIT reductions that follow one from `below`
@@ -277,76 +351,41 @@ class FastLalr:
 
     def _parse(self, text: str, start: str):
         table, retype, units = self.actions, self.retype, self.units
-        retyped, reserve, keywords = self.retyped, self.reserve, self.keyword_table()
-        plain_tokens, str_new = PLAIN_TOKENS, str.__new__
+        retyped, reserving, keywords = self.retyped, self.reserving, self.keyword_table()
+        str_new, lazy = str.__new__, _Token
         state = self.start_states[start]        # (the top of state_stack)
         state_stack = [state]
         value_stack: list = []
         push = value_stack.append
         end_state = self.end_states[start]
-        lexing = self.lexing
-        end = len(text)
-        # Lark's line counter (LineCounter.feed), inline
-        pos, line, column, line_start = 0, 1, 1, 0
+        scanners, ignored = self.scanners, self.ignored
+        lines = _Lines(text)                    # (a token's line and column, when asked)
+        pos = 0
         while True:
             # Lark's contextual lexer: the next token the parser's state accepts
             # (BasicLexer.next_token, then the postlexer), inline
-            patterns, ignore, callbacks, newlines, blanks, scan = lexing.get(state) or self._lexing(state)
-            token = _END
-            while pos < end:
-                if blanks is not None:       # an ignored WS token: only the position moves
-                    found = blanks(text, pos, end)
-                    if found:
-                        stop = found.end()
-                        count = text.count("\n", pos, stop)
-                        if count:
-                            line += count
-                            line_start = text.rindex("\n", pos, stop) + 1
-                        pos = stop
-                        column = pos - line_start + 1
-                        if pos == end:
-                            break
-                if scan is not None:        # the state's scanner is one regex
-                    found = scan(text, pos, end)
-                    if not found:
-                        raise ValueError("no terminal matches here")
-                else:
-                    for pattern in patterns:
-                        found = pattern.match(text, pos, end)
-                        if found:
-                            break
-                    else:
-                        raise ValueError("no terminal matches here")
-                value, kind = found.group(0), found.lastgroup
-                start, start_line, start_column = pos, line, column
-                if kind in newlines:
-                    count = value.count("\n")
-                    if count:
-                        line += count
-                        line_start = pos + value.rindex("\n") + 1
-                pos += len(value)
-                column = pos - line_start + 1
-                ignored = kind in ignore
-                if not ignored or kind in callbacks:
-                    if plain_tokens:        # Token._future_new, inline
-                        made = str_new(Token, value)
-                        made.type, made.start_pos, made.value, made.line, made.column = \
-                            kind, start, value, start_line, start_column
-                        made.end_line, made.end_column, made.end_pos = line, column, pos
-                    else:
-                        made = new_token(kind, value, start, start_line, start_column, line, column, pos)
-                    if kind in callbacks:
-                        callback = callbacks[kind]
-                        if callback is reserve:     # the keyword callback, inline
-                            keyword = keywords.get(value.upper())
-                            if keyword is not None:
-                                made.type = keyword
-                        else:
-                            made = callback(made)
-                    if not ignored:
-                        token = retype(made) if made.type in retyped else made
-                        break
-            kind = token.type
+            scan = scanners.get(state) or self._scanner(state)
+            while True:
+                found = scan(text, pos)
+                if found is None:
+                    break
+                kind = found.lastgroup
+                start, pos = found.span(kind)
+                if kind not in ignored:
+                    break
+            if found is None:                   # blanks to the end, or no terminal here
+                if pos < len(text) and not self.blanks(text, pos):
+                    raise ValueError("no terminal matches here")
+                token, kind = _END, "$END"
+            else:
+                value = text[start:pos]
+                if kind in reserving:           # the keyword callback (parser.reserve_keywords), inline
+                    kind = keywords.get(value.upper(), kind)
+                token = str_new(lazy, value)    # Token._future_new, inline, the positions when asked
+                token.type, token.start_pos, token.value, token.lines = kind, start, value, lines
+                if kind in retyped:
+                    token = retype(token)
+                    kind = token.type
             while True:
                 action, step = table[state][kind]
                 if action is Shift:

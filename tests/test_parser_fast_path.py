@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 
 from st_runtime import parser as st_parser
+from st_runtime.lalr_fast import FAILED
 
 ROOT = Path(__file__).resolve().parent.parent
 FILES = sorted({p for folder in ("tests", "generated", "examples", "stgen", "st_runtime")
@@ -144,3 +145,111 @@ def test_no_terminal_but_ws_starts_with_a_blank():
         for blank in blanks:
             for rest in after:
                 assert pattern.match(blank + rest) is None, (terminal.name, blank + rest)
+
+
+def _fields(token) -> tuple:
+    return (token.type, str(token), token.start_pos, token.line, token.column,
+            token.end_line, token.end_column, token.end_pos)
+
+
+@pytest.mark.parametrize("path", FILES[::7], ids=lambda p: str(p.relative_to(ROOT)))
+def test_fast_loop_makes_the_tokens_of_larks_lexer(path: Path):
+    """Every token of the fast loop (its line, column and end worked out when read,
+    lalr_fast._Token) has the fields of the token Lark's own lexer makes in its loop."""
+    text = path.read_text(encoding="utf-8", errors="replace")
+    grammar = st_parser.grammar()
+    fast = grammar.fast
+    made = []
+
+    def record(token):
+        made.append(_fields(grammar.retype(token)))
+        return token
+
+    retype, retyped = fast.retype, fast.retyped
+    fast.retype, fast.retyped = record, {t for row in fast.states.values() for t in row}
+    try:
+        grammar.reset_builder(path.name)
+        tree = fast.parse(text, "start")
+    finally:
+        fast.retype, fast.retyped = retype, retyped
+    if tree is FAILED:
+        pytest.skip("a syntax error: Lark's loop parses it")
+    grammar.reset_builder(path.name)
+    lark_tokens = [_fields(t) for t in grammar.lark.parse_interactive(text, start="start").iter_parse()]
+    assert made and made == lark_tokens
+
+
+def test_a_token_is_pickled_as_larks_own():
+    import pickle
+
+    from lark import Token
+
+    from st_runtime.lalr_fast import _Lines, _Token
+
+    text = "x\n  ab := 1;"
+    token = str.__new__(_Token, "ab")
+    token.type, token.start_pos, token.value, token.lines = "IDENT", 4, "ab", _Lines(text)
+    assert (token.line, token.column, token.end_line, token.end_column, token.end_pos) == (2, 3, 2, 5, 6)
+    copy = pickle.loads(pickle.dumps(token))
+    assert type(copy) is Token and _fields(copy) == _fields(token)
+
+
+def test_every_lexer_state_has_the_fast_scanner():
+    """Each state's lexer is one the loop scans with its blanks (lalr_fast._blanks_and_scanner),
+    and the pattern it builds is the one Lark's own Scanner builds for that lexer."""
+    from lark.lexer import _create_unless
+
+    from st_runtime.lalr_fast import scanner_pattern
+
+    fast = st_parser.grammar().fast
+    for state in fast.states:
+        fast._scanner(state)
+    for lexer in {id(fast.lexers[s]): fast.lexers[s] for s in fast.states}.values():
+        terminals, _ = _create_unless(lexer.terminals, lexer.g_regex_flags, lexer.re, lexer.use_bytes)
+        assert [p.pattern for p in lexer.scanner._mres] == [scanner_pattern(terminals)]
+
+
+def _may_match_a_line_end(items) -> bool:
+    """Whether a parsed pattern (re._parser) has a character that may match '\n'
+    (conservative: `.` and every class of categories but digits and words count)."""
+    from re import _constants as c
+
+    never = {c.CATEGORY_DIGIT, c.CATEGORY_WORD, c.CATEGORY_NOT_SPACE, c.CATEGORY_NOT_LINEBREAK,
+             c.CATEGORY_UNI_DIGIT, c.CATEGORY_UNI_WORD, c.CATEGORY_UNI_NOT_SPACE, c.CATEGORY_UNI_NOT_LINEBREAK}
+
+    def in_class(members) -> bool:
+        negate = bool(members) and members[0][0] is c.NEGATE
+        hit = any(op is c.LITERAL and arg == 10 or op is c.RANGE and arg[0] <= 10 <= arg[1]
+                  or op is c.CATEGORY and arg not in never for op, arg in members)
+        return hit != negate
+
+    for op, arg in items:
+        if (op is c.LITERAL and arg == 10 or op is c.NOT_LITERAL and arg != 10 or op is c.ANY
+                or op is c.IN and in_class(arg) or op is c.CATEGORY and arg not in never
+                or op is c.SUBPATTERN and _may_match_a_line_end(arg[3])
+                or op in (c.MAX_REPEAT, c.MIN_REPEAT, c.POSSESSIVE_REPEAT) and _may_match_a_line_end(arg[2])
+                or op is c.BRANCH and any(_may_match_a_line_end(b) for b in arg[1])
+                or op is c.ATOMIC_GROUP and _may_match_a_line_end(arg)):
+            return True
+    return False
+
+
+def test_only_larks_newline_terminals_can_hold_a_line_end():
+    """Lark counts lines only in the tokens of terminals whose pattern looks as if it
+    may hold a '\n' (`newline_types`); the fast loop counts every '\n' of the text
+    (lalr_fast._Lines).  The same lines, since no other terminal can match one."""
+    import re
+    from re import _parser
+
+    from lark.lexer import _regexp_has_newline      # Lark's look at a pattern (BasicLexer)
+
+    grammar = st_parser.grammar()
+    newline_types = {t.name for t in grammar.lark.terminals if _regexp_has_newline(t.pattern.to_regexp())}
+    assert {"WS", "COMMENT", "SSTRING"} <= newline_types
+    assert _may_match_a_line_end(_parser.parse("a|[^x]")) and not _may_match_a_line_end(_parser.parse(r"[A-Z_]\w*"))
+    others = [t for t in grammar.lark.terminals if t.name not in newline_types]
+    assert len(others) > 100
+    for terminal in others:
+        regexp = terminal.pattern.to_regexp()
+        assert not _may_match_a_line_end(_parser.parse(regexp)), terminal.name
+        assert not re.search("\n", terminal.pattern.value), terminal.name

@@ -89,6 +89,20 @@ def _shape(cls: type) -> tuple:
     return shape
 
 
+class _Leaves(dict):
+    """node class -> whether a node of it is a plain leaf of an expression (a name, a
+    literal): no child, no statement, construct or build rule node, so all the walk
+    does with it is its depth's check, which cannot fail below the deepest level."""
+
+    def __missing__(self, cls: type) -> bool:
+        statement, _, _, transparent, construct, build_node, names = _SHAPES.get(cls) or _shape(cls)
+        leaf = self[cls] = not (statement or transparent or construct or build_node or names)
+        return leaf
+
+
+_LEAVES = _Leaves()
+
+
 class Walked:
     """What the walk found in one item for the passes after it: `constructs`, the
     (construct, position) of each node a dialect may refuse (`dialects.construct_of`),
@@ -133,7 +147,7 @@ def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
     statements = 0
     # (node, statement depth, loop depth, expression depth)
     stack = [(pou, 0, 0, 0)]
-    push, Node = stack.append, ast.Node
+    push, Node, leaves = stack.append, ast.Node, _LEAVES
     while stack:
         node, blocks, loops, depth = stack.pop()
         is_statement, is_block, is_loop, transparent, construct, build_node, names = \
@@ -170,13 +184,15 @@ def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
                 report("E-LIMIT-002", f"{what} nested more than {MAX_EXPRESSION_DEPTH} levels deep"
                        " (split it with intermediate variables or types)", node)
                 continue
+        quiet = depth < MAX_EXPRESSION_DEPTH    # (a leaf below here cannot be too deep: not pushed)
         for field in names:         # the child nodes in field order, tuples flattened
             value = getattr(node, field, None)
             if isinstance(value, Node):
-                push((value, blocks, loops, depth))
+                if not (quiet and leaves[type(value)]):
+                    push((value, blocks, loops, depth))
             elif isinstance(value, tuple):
                 for item in value:
-                    if isinstance(item, Node):
+                    if isinstance(item, Node) and not (quiet and leaves[type(item)]):
                         push((item, blocks, loops, depth))
     if statements > MAX_STATEMENTS:
         report("E-LIMIT-007", f"{statements} statements (at most {MAX_STATEMENTS}; split the POU)", pou)
