@@ -154,7 +154,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                    # seed 27's last and the seed-28 run (issue 16, session 11)
                    "tests/test_reference_mutation_s11.py",
                    # seed 30 (issue 16, session 12)
-                   "tests/test_reference_mutation_s12.py"]),
+                   "tests/test_reference_mutation_s12.py",
+                   # make_table_105 and seed 32 (issue 16, session 13)
+                   "tests/test_reference_mutation_s13.py"]),
 }
 
 # Extra [tool.mutmut] settings of one module. The compiler's mutants include
