@@ -215,3 +215,15 @@ def test_a_wave_whose_acceleration_alone_reaches_the_limit_is_refused(limit, ref
         assert str(error.value) == "the wave alone reaches the limits in pose coordinate 1"
     else:
         assert fade_in_duration(wave, limits) == pytest.approx(32.0, rel=1e-12)
+
+
+def test_an_angular_acceleration_takes_float32_angles_at_their_value():
+    from stgen.reference.actuator_rates import angular_acceleration
+
+    # ω = E(a)·ȧ with E's columns the turned axes; with β = γ = 0, no rates and only γ̈ = 1 rad/s²,
+    # ω̇ = γ̈ times the x axis turned by Rz(α): (cos α, sin α, 0), α the float32 number's exact value
+    # (the registry had judged the dtype mutant equivalent for integer angles; float32 ones tell).
+    angles = np.array([0.7, 0.0, 0.0], dtype=np.float32)
+    alpha = float(angles[0])
+    result = angular_acceleration(angles, np.zeros(3), np.array([0.0, 0.0, 1.0]))
+    assert result == pytest.approx([math.cos(alpha), math.sin(alpha), 0.0], rel=0, abs=1e-16)
