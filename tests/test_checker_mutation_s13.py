@@ -103,3 +103,24 @@ def test_a_standard_fb_call_is_charged_as_its_instruction():
     plc.run(1)
     units = w["standard_fb"] + 2 * (w["argument"] + w["load"])
     assert plc.controller.task_times["Primary"][0] == int(round(units * PICOSECONDS_PER_UNIT))
+
+
+# ------------------------------------------------------------------ the shared prelude
+
+def test_only_a_check_that_starts_with_the_prelude_shares_it():
+    """checker.check: "When the first file is the native prelude ("<builtin>"), its declarations come
+    from the process's shared checked prelude"; a check of the user's files alone has none (the
+    compiler then compiles every POU itself: compiler._shared_prelude "None for a program checked
+    without one"), even when the first file would check alone cleanly."""
+    from st_runtime.checker import check
+    from st_runtime.parser import parse
+    from st_runtime.prelude import prelude_file
+
+    text = "TYPE Pair : STRUCT a : INT; b : INT; END_STRUCT; END_TYPE\nFUNCTION F : INT\nF := 1;\nEND_FUNCTION\n"
+    user, errors = parse(text, "u.st")
+    assert errors == []
+    alone, diagnostics_alone = check([user])
+    assert diagnostics_alone == [] and alone.prelude is None
+    _, builtin, _ = prelude_file()
+    shared, diagnostics_shared = check([builtin, user])
+    assert diagnostics_shared == [] and shared.prelude is not None and shared.prelude.file is builtin
