@@ -200,6 +200,9 @@ DECLARATIONS = rows(
                            "configuration), found a full address")]),
     ("a_star_address_in_a_function_block", "iec",
      "FUNCTION_BLOCK Fb\nVAR x AT %I* : INT; END_VAR\nEND_FUNCTION_BLOCK\n", []),
+    # Unnamed, the star's place is a place only: no type recorded for an address it does not have yet.
+    ("an_unnamed_star_address_in_a_function_block", "iec",
+     "FUNCTION_BLOCK Fb\nVAR AT %I* : INT; END_VAR\nEND_FUNCTION_BLOCK\n", []),
     ("a_word_address_of_a_dint", "iec", P("    x AT %IW1 : DINT;\n    y AT %IW2 : INT;", ""),
      [("E-DECL-015", 3, 5, "'x' AT %IW1: an address of size W holds 16 bit(s); expected a type of that "
                            "width, found DINT")]),
@@ -610,6 +613,8 @@ CONFIGURATIONS = rows(
 # docs/limits.md: 64 MiB = 67,108,864 bytes by default; an LREAL is 8 bytes, a BYTE 1.
 
 HALF = "ARRAY[0..4194303] OF LREAL"     # 4,194,304 LREALs: 33,554,432 bytes, half the limit
+# An FB whose one variable is a VAR_IN_OUT of 80,000,000 bytes, above the limit.
+REF_FB = "FUNCTION_BLOCK Ref\nVAR_IN_OUT\n    big : ARRAY[0..9999999] OF LREAL;\nEND_VAR\nEND_FUNCTION_BLOCK\n"
 
 MEMORY = rows(
     ("a_variable_at_the_limit", "iec", P("    a : ARRAY[0..8388607] OF LREAL;", ""), []),
@@ -639,6 +644,13 @@ MEMORY = rows(
      "FUNCTION_BLOCK Big\nVAR\n    b : BYTE;\n    u : Nope;\n    a : ARRAY[0..67108862] OF BYTE;\nEND_VAR\n"
      "END_FUNCTION_BLOCK\n" + P("    f : Big;", ""),
      [("E-DECL-004", 4, 9, "unknown type 'Nope'")]),
+    # An FB's VAR_IN_OUT is a reference, 8 bytes (as a program's own in-out), whatever it refers to:
+    # an instance of Ref is 8 bytes, with 67,108,856 BYTEs beside it the limit exactly (session 13).
+    ("an_fb_instance_holds_its_in_out_as_a_reference", "iec",
+     REF_FB + P("    f : Ref;\n    pad : ARRAY[0..67108855] OF BYTE;", ""), []),
+    ("an_fb_instance_with_its_in_out_a_byte_over", "iec",
+     REF_FB + P("    f : Ref;\n    pad : ARRAY[0..67108856] OF BYTE;", ""),
+     [("E-LIMIT-009", 6, 1, "an instance of Main needs 67,108,865 bytes, above the memory limit of 67,108,864 bytes")]),
     # OMRON W501: STRING[n] reserves n bytes, the NULL included; 1986 the largest.
     ("the_nj_largest_string", "nj", P("    s : STRING[1986];", ""), []),
     ("an_nj_string_a_byte_over", "nj", P("    s : STRING[1987];\n    t : ARRAY[0..1] OF STRING[1987];", ""),

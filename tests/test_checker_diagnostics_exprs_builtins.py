@@ -34,19 +34,64 @@ def test_the_inputs_after_the_declared_ones_are_numbered_on():
     assert B.extra_param(B.STANDARD_FUNCTIONS["CONCAT"], 4) == B.Param("IN5", "STRING", False)
 
 
-def test_each_category_is_described_in_words():
-    assert B.CATEGORY_TEXT == {
-        "ANY_NUM": "a number (ANY_NUM)",
-        "ANY_REAL": "REAL or LREAL (ANY_REAL)",
-        "ANY_INT": "an integer (ANY_INT)",
-        "ANY_BITS": "a bit string BYTE, WORD, DWORD or LWORD",
-        "ANY_BIT": "BOOL or a bit string (ANY_BIT)",
-        "ANY_ELEMENTARY": "an elementary value (ANY_ELEMENTARY)",
-        "ANY": "a value",
-        "STRING": "a STRING",
-        "BOOL": "BOOL",
-    }
-    assert B.describe("WORD") == "WORD"          # a parameter of one named type
+# The members of each generic category by name, from IEC 61131-3 (3rd ed. 2013) figure 5 and table 10
+# (the elementary types): not from builtins.py.  ANY_BITS is the checker's name for figure 5's ANY_BIT
+# without BOOL, the bit strings of 8, 16, 32 and 64 bits (typesys.is_bits).
+_INTEGERS = {"SINT", "INT", "DINT", "LINT", "USINT", "UINT", "UDINT", "ULINT"}
+_BIT_STRINGS = {"BYTE", "WORD", "DWORD", "LWORD"}
+_ELEMENTARY = (_INTEGERS | _BIT_STRINGS | {"BOOL", "REAL", "LREAL", "STRING", "TIME", "DATE",
+                                            "TIME_OF_DAY", "TOD", "DATE_AND_TIME", "DT"})
+IEC_MEMBERS = {
+    "ANY_NUM": _INTEGERS | {"REAL", "LREAL"},
+    "ANY_REAL": {"REAL", "LREAL"},
+    "ANY_INT": _INTEGERS,
+    "ANY_BITS": _BIT_STRINGS,
+    "ANY_BIT": _BIT_STRINGS | {"BOOL"},
+    "ANY_ELEMENTARY": _ELEMENTARY,
+    "ANY": _ELEMENTARY,
+    "STRING": {"STRING"},
+    "BOOL": {"BOOL"},
+}
+
+
+def _words(text: str) -> list[str]:
+    return text.replace(",", " ").split()
+
+
+def test_every_generic_parameter_of_a_standard_function_is_described_in_words():
+    """A parameter of a generic category gets words in E-TYPE-004; one of a single named type
+    (BCD's BYTE .. LWORD, UINT ..) is named as it is."""
+    used = {p.category for fn in B.STANDARD_FUNCTIONS.values() for p in fn.params}
+    used |= {c for fn in OPERATOR_FUNCTIONS.values() for c in fn.operands}
+    generic = {c for c in used if c.startswith("ANY")}
+    assert generic <= set(B.CATEGORY_TEXT)
+    assert set(B.CATEGORY_TEXT) <= set(IEC_MEMBERS)
+    for named in used - set(B.CATEGORY_TEXT):
+        assert B.describe(named) == named
+    assert B.describe("WORD") == "WORD"
+
+
+@pytest.mark.parametrize("category", sorted(IEC_MEMBERS))
+def test_each_category_is_described_by_its_members(category):
+    """What each category's words may say, from figure 5: every type they name belongs to it; they
+    name the category itself in parentheses at the end, or else name exactly its members (ANY, which
+    holds every type, names none: "a value"); the other words are lower-case English, after the
+    article that agrees with the next word (context.a_or_an's rule, or none before a type name)."""
+    text = B.describe(category)
+    words = _words(text)
+    named_types = {w for w in words if w in _ELEMENTARY}
+    assert named_types <= IEC_MEMBERS[category]
+    if words[-1] == f"({category})":
+        words = words[:-1]
+    elif category == "ANY":
+        assert named_types == set()
+    else:
+        assert named_types == IEC_MEMBERS[category]
+    assert all(w in _ELEMENTARY or w in {"a", "an", "or"} or (w.isalpha() and w.islower()) for w in words)
+    if words[0] in {"a", "an"}:
+        assert words[0] == ("an" if words[1][0] in "AEIOaeio" else "a")
+    else:
+        assert words[0] in _ELEMENTARY
 
 
 # (category, types in it, types not in it) - 3rd ed. figure 5, the generic data types

@@ -138,7 +138,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                  # session 12: every diagnostic of declarations, statements, oo, configuration, ... in full
                  "tests/test_checker_diagnostics_decls.py",
                  # every diagnostic of expressions, calls and standard functions (session 12)
-                 "tests/test_checker_diagnostics_exprs.py", "tests/test_checker_diagnostics_exprs_builtins.py"]),
+                 "tests/test_checker_diagnostics_exprs.py", "tests/test_checker_diagnostics_exprs_builtins.py",
+                 # the whole-module seed-28 run (issue 16, session 13)
+                 "tests/test_checker_mutation_s13.py"]),
     "reference": (["stgen/reference/*"],
                   ["tests/test_reference_brake.py", "tests/test_reference_cycloidal.py",
                    "tests/test_reference_error_codes.py", "tests/test_reference_forward.py",
@@ -154,7 +156,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                    # seed 27's last and the seed-28 run (issue 16, session 11)
                    "tests/test_reference_mutation_s11.py",
                    # seed 30 (issue 16, session 12)
-                   "tests/test_reference_mutation_s12.py"]),
+                   "tests/test_reference_mutation_s12.py",
+                   # make_table_105 and seed 32 (issue 16, session 13)
+                   "tests/test_reference_mutation_s13.py"]),
 }
 
 # Extra [tool.mutmut] settings of one module. The compiler's mutants include
