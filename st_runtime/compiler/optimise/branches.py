@@ -106,10 +106,10 @@ def _read_nodes(compiler, node) -> tuple:
     """The Deref, Name and Member nodes under `node` in walk order, found once a node (an
     unrolled loop's copies compile the same expressions again)."""
     known = compiler.__dict__.setdefault("_read_nodes", {})
-    found = known.get(id(node))
-    if found is None:
-        found = known[id(node)] = tuple(n for n in walk(node) if isinstance(n, _READ_NODES))
-    return found
+    hit = known.get(id(node))
+    if hit is None or hit[0] is not node:       # (the entry holds the node: its id stays its own)
+        hit = known[id(node)] = (node, tuple(n for n in walk(node) if isinstance(n, _READ_NODES)))
+    return hit[1]
 
 
 _READ_NODES = (ast.Deref, ast.Name, ast.Member)

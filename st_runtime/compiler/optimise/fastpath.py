@@ -75,10 +75,7 @@ def worst_case(compiler, body) -> int | None:
     if body is not compiler.body or compiler.unrolled:
         return _bound(compiler, body)
     # A POU's whole body is bounded once a load: for a caller (`_pou_bound`) and for itself.
-    known = compiler.unit.__dict__.setdefault("body_bounds", {})
-    if id(body) not in known:
-        known[id(body)] = _bound(compiler, body)
-    return known[id(body)]
+    return _once(compiler.unit.__dict__, "body_bounds", body, lambda: _bound(compiler, body))
 
 
 def _bound(compiler, body) -> int | None:
@@ -179,11 +176,17 @@ def may_leave(compiler, stmt) -> bool:
     """Whether control may leave `stmt` other than by its end: a jump, or a call of ST code
     (a fault in it with stop_on_fault ends the scan).  The charges that follow must wait.
     Asked once a statement (an unrolled loop's copies are its statements again)."""
-    known = compiler.__dict__.setdefault("_may_leave", {})
-    found = known.get(id(stmt))
-    if found is None:
-        found = known[id(stmt)] = _may_leave(compiler, stmt)
-    return found
+    return _once(compiler.__dict__, "_may_leave", stmt, lambda: _may_leave(compiler, stmt))
+
+
+def _once(owner: dict, table: str, node, work):
+    """`work()` for `node`, worked out once: kept in `owner[table]` by id with the node
+    itself (so no other node can take that id while the entry lives)."""
+    known = owner.setdefault(table, {})
+    hit = known.get(id(node))
+    if hit is None or hit[0] is not node:
+        hit = known[id(node)] = (node, work())
+    return hit[1]
 
 
 def _may_leave(compiler, stmt) -> bool:
@@ -243,10 +246,7 @@ def _assigned(compiler, body) -> set[str]:
     inner bounds depend on its variable bounds its body once a value."""
     from ..scope import Usage
 
-    known = compiler.unit.__dict__.setdefault("assigned_in", {})
-    if id(body) not in known:
-        known[id(body)] = Usage(compiler.program, body, None).assigned
-    return known[id(body)]
+    return _once(compiler.unit.__dict__, "assigned_in", body, lambda: Usage(compiler.program, body, None).assigned)
 
 
 def worth_it(exact_lines: list[str]) -> bool:
