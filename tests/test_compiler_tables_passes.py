@@ -1,0 +1,364 @@
+"""The optimiser passes' table (issue 16, session 13; docs/mutation.md, compiler, "Session 13,
+optimise"): every pass x (on alone, off, every pass on) x a family of programs that reaches
+each of its decisions, the observable result checked in full.
+
+Each row is a PROGRAM Main (with the POUs it calls), the values of Main's variables after
+its scans worked out by hand (IEC 61131-3's meaning of the statements; REAL arithmetic in
+binary64 / float32 as Python's own float and NumPy's float32 give it, stated where it
+matters), and its faults (code, line, scan).  A pass may change only speed, so the row
+holds with the pass alone (with the passes it works inside of: `NEEDS`), with none and with
+every pass; and the NJ time charged each scan is the same in the three.  Where the decision
+is only a shortcut taken or not, the row also names the shape the pass's contract gives the
+generated Python (`shape`: a pattern found in the POU's code with the pass on and not with
+every pass off; `never`: one found in neither, where the pass must not take the shortcut).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+import pytest
+
+from st_runtime import api
+from st_runtime.compiler import Optimisations, compile_program
+from st_runtime.controller import Controller
+
+EVERY, NONE = Optimisations(), Optimisations.none()
+
+# the passes a pass works inside of (optimise/__init__.py): switched on with it when "alone"
+NEEDS = {"finite": ("reuse",), "stores_read": ("reuse",), "spread": ("aliases", "stores"),
+         "deferred": ("unused",), "chains": ("fastpath",), "cse": ("unroll",),
+         "fuse": ("unroll", "cse"), "vector": ("unroll", "cse"), "shortcut": ("branches",)}
+
+
+@dataclass
+class Row:
+    pass_: str
+    name: str
+    src: str
+    expect: dict                     # Main's variable -> value after the scans
+    faults: list = field(default_factory=list)      # (code, line, scan)
+    scans: int = 1
+    shape: tuple | None = None       # (POU, pattern) in the code with the pass, not without
+    never: tuple | None = None       # (POU, pattern) in no build
+    dialects: tuple = ("iec",)
+    budget_ns: int | None = None
+
+    @property
+    def id(self) -> str:
+        return f"{self.pass_}: {self.name}"
+
+
+def modes(pass_: str) -> dict[str, Optimisations]:
+    return {"alone": Optimisations.only(pass_, *NEEDS.get(pass_, ())), "none": NONE, "every": EVERY}
+
+
+def outcome(row: Row, optimise: Optimisations, dialect: str):
+    """(Main's values named in the row, faults, the budget left after each scan, the code)."""
+    compiled = compile_program(api.load_text(row.src, "m.st", dialect).program, optimise=optimise)
+    controller = Controller(compiled, time_limit_ns=row.budget_ns)
+    main = controller.add_program("Main")
+    left = []
+    for _ in range(row.scans):
+        controller.run(1)
+        left.append(controller.ctx.budget)
+    values = {}
+    for name in row.expect:
+        value = main
+        for part in name.split("."):
+            value = getattr(value, "v_" + part.upper())
+        values[name] = list(value) if isinstance(value, list) else value
+    return values, [(f.code, f.line, f.scan) for f in controller.faults], left, compiled.python_sources
+
+
+def check(row: Row) -> None:
+    for dialect in row.dialects:
+        charged = {}
+        for mode, optimise in modes(row.pass_).items():
+            values, faults, left, sources = outcome(row, optimise, dialect)
+            assert (values, faults) == (row.expect, row.faults), (dialect, mode)
+            charged[mode] = left
+            if row.shape is not None:
+                pou, pattern = row.shape
+                assert bool(re.search(pattern, sources[pou])) == (mode != "none"), (dialect, mode, sources[pou])
+            if row.never is not None:
+                pou, pattern = row.never
+                assert not re.search(pattern, sources[pou]), (dialect, mode, sources[pou])
+        assert charged["alone"] == charged["none"] == charged["every"], dialect
+
+
+ROWS: list[Row] = []
+
+
+def row(*args, **kwargs) -> None:
+    ROWS.append(Row(*args, **kwargs))
+
+
+def main(decls: str, body: str, before: str = "") -> str:
+    return f"{before}\nPROGRAM Main\nVAR {decls} END_VAR\n{body}\nEND_PROGRAM\n"
+
+
+# ------------------------------------------------------------------------------------ sets
+# `X = a OR X = b ...` -> `X in (a, b)`; `X <> a AND X <> b` -> `X not in (...)`: a run of
+# at least two comparisons of one plain integer (or enumeration) variable with constants.
+
+for t, x, hit in (("SINT", -128, 1), ("INT", 7, 1), ("DINT", 9, 0), ("LINT", -5, 1), ("USINT", 255, 1),
+                  ("UINT", 3, 0), ("UDINT", 4294967295, 1), ("ULINT", 0, 1), ("BYTE", 16, 1),
+                  ("WORD", 65535, 1), ("DWORD", 1, 0), ("LWORD", 2, 1)):
+    values = {"SINT": (-128, 1), "INT": (7, 12), "DINT": (8, 10), "LINT": (3, -5), "USINT": (255, 4),
+              "UINT": (4, 5), "UDINT": (4294967295, 0), "ULINT": (0, 1), "BYTE": (16, 32),
+              "WORD": (65535, 1), "DWORD": (2, 3), "LWORD": (1, 2)}[t]
+    row("sets", f"OR of two {t} tests", main(f"x : {t} := {x}; r, s : BOOL;",
+        f"r := x = {values[0]} OR x = {values[1]};\ns := x <> {values[0]} AND x <> {values[1]};"),
+        {"r": bool(hit), "s": not hit}, shape=("MAIN", r" in \("))
+
+row("sets", "the constant first", main("x : INT := 5; r : BOOL;", "r := 4 = x OR 5 = x OR 6 = x;"),
+    {"r": True}, shape=("MAIN", r"v_X in \(4, 5, 6\)"))
+row("sets", "a run inside a longer chain keeps the other operands in order",
+    main("x : INT := 3; y : INT := 1; r, s, u : BOOL;",
+         "r := y = 2 OR x = 1 OR x = 3 OR y = 7;\ns := y = 1 OR x = 1 OR x = 2;\n"
+         "u := y <> 1 AND x <> 1 AND x <> 2;"),
+    {"r": True, "s": True, "u": False}, shape=("MAIN", r"\(v_X in \(1, 3\)\)"))
+row("sets", "two runs of two variables", main("x : INT := 3; y : INT := 8; r, s : BOOL;",
+    "r := x = 1 OR x = 2 OR y = 8 OR y = 9;\ns := x <> 3 AND x <> 4 AND y <> 5 AND y <> 6;"),
+    {"r": True, "s": False}, shape=("MAIN", r"v_Y not in \(5, 6\)"))
+row("sets", "one comparison is no run", main("x : INT := 2; y : INT := 2; r : BOOL;",
+    "r := x = 1 OR y = 2 OR x = 3;"), {"r": True}, never=("MAIN", r" in \("))
+row("sets", "a REAL is not tested by membership", main("x : REAL := 2.0; r : BOOL;",
+    "r := x = 1.0 OR x = 2.0;"), {"r": True}, never=("MAIN", r" in \("))
+row("sets", "a named constant is no variable", main("r : BOOL; END_VAR VAR CONSTANT c : INT := 2;",
+    "r := c = 1 OR c = 2;"), {"r": True}, never=("MAIN", r" in \("))
+row("sets", "an enumeration", main("s : State := Run; r, q : BOOL;",
+    "r := s = Idle OR s = Run;\nq := s <> Idle AND s <> Run;", before="TYPE State : (Idle, Run, Stop); END_TYPE"),
+    {"r": True, "q": False}, shape=("MAIN", r"v_S in \("))
+row("sets", "an FB's own slot", main("f : Fb; r : BOOL;", "f(); r := f.r;", before="""
+FUNCTION_BLOCK Fb
+VAR x : DINT := 40; END_VAR VAR_OUTPUT r : BOOL; END_VAR
+r := x = 10 OR x = 20 OR x = 40;
+END_FUNCTION_BLOCK"""), {"r": True}, shape=("FB", r"self\.v_X in \(10, 20, 40\)"))
+row("sets", "a global", main("r : BOOL;", "r := g = 5 OR g = 6;",
+    before="VAR_GLOBAL g : INT := 6; END_VAR"), {"r": True}, shape=("MAIN", r"_G\.v_G in \(5, 6\)"))
+row("sets", "an in-out is read through its reference", main("x : INT := 3; r : BOOL;", "r := F(x);", before="""
+FUNCTION F : BOOL
+VAR_IN_OUT v : INT; END_VAR
+F := v = 2 OR v = 3;
+END_FUNCTION"""), {"r": True}, never=("F", r" in \("))
+row("sets", "a FUNCTION's local", main("r : BOOL;", "r := F(12);", before="""
+FUNCTION F : BOOL
+VAR_INPUT v : INT; END_VAR
+F := v = 2 OR v = 12 OR v = 3;
+END_FUNCTION"""), {"r": True}, shape=("F", r"v_V in \(2, 12, 3\)"))
+row("sets", "in an IF condition", main("x : UINT := 9; y : INT;",
+    "IF x = 8 OR x = 9 THEN y := 1; ELSE y := 2; END_IF;"), {"y": 1}, shape=("MAIN", r"v_X in \(8, 9\)"))
+row("sets", "a comparison of one variable with another is no test",
+    main("x : INT := 3; y : INT := 3; r : BOOL;", "r := x = y OR x = 1;"), {"r": True}, never=("MAIN", r" in \("))
+row("sets", "a mixed AND inside an OR", main("x : INT := 3; r : BOOL; b : BOOL := TRUE;",
+    "r := (x = 1 OR x = 3) AND b;"), {"r": True}, shape=("MAIN", r"v_X in \(1, 3\)"))
+
+
+# ----------------------------------------------------------------------------------- wraps
+# A store of MIN/MAX of integers is not wrapped when the inputs' range lies in the target's
+# type. IEC: `+ -` exact, the store wraps; nj (W501 6-5-3): each input wraps into its type
+# first.  s = t = 32767, u = e = -32768, w : USINT = 255, d : DINT = 7.
+
+WRAPS = main("s : INT := 32767; t : INT := 32767; u : INT := -32768; w : USINT := 255; "
+             "e : INT := -32768; d : DINT := 7; i : INT := -20000; j : INT := 20000; m, n : INT; "
+             "wide : DINT;",
+             "s := MIN(s + 1, 2);\nt := MAX(t + 1, 2);\nu := MAX(u - 1, -3);\nw := MIN(w + 1, 10);\n"
+             "e := MIN(e - 1, 0);\nd := MAX(d, 1);\nm := MIN(i * 2, 5);\nn := MAX(j * 2, 5);\n"
+             "wide := MIN(j, 5) + MAX(i, -7);")
+row("wraps", "iec: exact inputs, the store wraps", WRAPS,
+    # MIN(32768, 2) = 2; MAX(32768, 2) = 32768 -> -32768; MAX(-32769, -3) = -3;
+    # MIN(256, 10) = 10; MIN(-32769, 0) -> 32767; MAX(7, 1) = 7; MIN(-40000, 5) -> 25536;
+    # MAX(40000, 5) -> -25536; 5 + -7 = -2
+    {"s": 2, "t": -32768, "u": -3, "w": 10, "e": 32767, "d": 7, "m": 25536, "n": -25536, "wide": -2},
+    shape=("MAIN", r"self\.v_S = (?:_sf_MIN|min)\(\(self\.v_S \+ 1\), 2\)"),
+    never=("MAIN", r"self\.v_T = (?:_sf_MAX|max)|self\.v_E = (?:_sf_MIN|min)|self\.v_M = (?:_sf_MIN|min)|self\.v_N = (?:_sf_MAX|max)"))
+row("wraps", "iec: an input's declared range fits", WRAPS, {"u": -3, "w": 10, "d": 7},
+    shape=("MAIN", r"self\.v_U = (?:_sf_MAX|max)\(\(self\.v_U - 1\), -3\)"))
+row("wraps", "iec: a USINT sum", WRAPS, {"w": 10}, shape=("MAIN", r"self\.v_W = (?:_sf_MIN|min)\(\(self\.v_W \+ 1\), 10\)"))
+row("wraps", "iec: a DINT variable", WRAPS, {"d": 7}, shape=("MAIN", r"self\.v_D = (?:_sf_MAX|max)\(self\.v_D, 1\)"))
+row("wraps", "nj: each input wraps first", WRAPS,
+    # s + 1 -> -32768: MIN = -32768; t + 1 -> -32768: MAX = 2; u - 1 -> 32767; w + 1 -> 0;
+    # e - 1 -> 32767: MIN = 0; i * 2 -> 25536: MIN = 5; j * 2 -> -25536: MAX = 5
+    {"s": -32768, "t": 2, "u": 32767, "w": 0, "e": 0, "d": 7, "m": 5, "n": 5, "wide": -2}, dialects=("nj",),
+    shape=("MAIN", r"self\.v_T = (?:_sf_MAX|max)\("))
+
+# ---------------------------------------------------------------------------------- halves
+# A CASE of at least six clauses with integer labels and no ELSE tests `sel < P` first.
+# One selector value a scan (n = 0, 1, ...), y kept where no clause matches.
+
+HALVES = """CASE n OF
+1: y := 10;
+2, 3: y := 20;
+4..6: y := 30;
+8: y := 40;
+9, 11: y := 50;
+12..13: y := 60;
+15: y := 70;
+END_CASE;
+out[n] := y; n := n + 1;"""
+row("halves", "seven clauses, values 0..16", main("n, y : INT; out : ARRAY[0..16] OF INT;", HALVES),
+    {"out": [0, 10, 20, 20, 30, 30, 30, 30, 40, 50, 50, 50, 60, 60, 60, 70, 70], "n": 17}, scans=17,
+    shape=("MAIN", r"if _t\d+ < \d+:"))
+row("halves", "negative labels", main("n, y : INT := -6; out : ARRAY[-6..6] OF INT;", """CASE n OF
+-5: y := 1;
+-4, -3: y := 2;
+-2..-1: y := 3;
+0: y := 4;
+2: y := 5;
+4..5: y := 6;
+END_CASE;
+out[n] := y; n := n + 1;"""), {"out": [-6, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 6], "n": 7}, scans=13,
+    shape=("MAIN", r"if _t\d+ < -?\d+:"))
+row("halves", "an ELSE keeps the clauses in a row", main("n, y : INT; out : ARRAY[0..16] OF INT;",
+    HALVES.replace("END_CASE", "ELSE y := -1;\nEND_CASE")),
+    {"out": [-1, 10, 20, 20, 30, 30, 30, -1, 40, 50, -1, 50, 60, 60, -1, 70, -1]}, scans=17,
+    never=("MAIN", r"if _t\d+ < \d+:"))
+row("halves", "five clauses are tested in a row", main("n, y : INT; out : ARRAY[0..6] OF INT;", """CASE n OF
+1: y := 1; 2: y := 2; 3: y := 3; 4: y := 4; 5: y := 5;
+END_CASE;
+out[n] := y; n := n + 1;"""), {"out": [0, 1, 2, 3, 4, 5, 5]}, scans=7, never=("MAIN", r"if _t\d+ < \d+:"))
+row("halves", "six clauses", main("n, y : INT; out : ARRAY[0..7] OF INT;", """CASE n OF
+1: y := 1; 2: y := 2; 3: y := 3; 4: y := 4; 5: y := 5; 6: y := 6;
+END_CASE;
+out[n] := y; n := n + 1;"""), {"out": [0, 1, 2, 3, 4, 5, 6, 6]}, scans=8, shape=("MAIN", r"if _t\d+ < \d+:"))
+row("halves", "labels written out of order", main("n, y : INT; out : ARRAY[0..9] OF INT;", """CASE n OF
+8: y := 8; 1: y := 1; 6: y := 6; 3: y := 3; 5: y := 5; 2: y := 2; 7: y := 7;
+END_CASE;
+out[n] := y; n := n + 1;"""), {"out": [0, 1, 2, 3, 3, 5, 6, 7, 8, 8]}, scans=10)
+row("halves", "a DWORD selector", main("n : INT; w : DWORD; y : INT; out : ARRAY[0..8] OF INT;", """w := INT_TO_DWORD(n);
+CASE w OF
+1: y := 1; 2: y := 2; 3: y := 3; 4: y := 4; 5: y := 5; 16#7: y := 7;
+END_CASE;
+out[n] := y; n := n + 1;"""), {"out": [0, 1, 2, 3, 4, 5, 5, 7, 7]}, scans=9, shape=("MAIN", r"if _t\d+ < \d+:"))
+
+# -------------------------------------------------------------------------------- shortcut
+# An IF condition tested in place: AND/OR of BOOLs as `and`/`or`; an AND/OR of comparisons
+# whose right one cannot fault: `and`/`or` wherever it stands.
+
+row("shortcut", "AND and OR in an IF", main("a, c : BOOL; b : BOOL := TRUE; y : INT;",
+    "IF a AND b OR c THEN y := 1; ELSIF b OR a AND c THEN y := 2; END_IF;"), {"y": 2},
+    shape=("MAIN", r"if \(?\(?self\.v_A and self\.v_B\)? or self\.v_C\)?:"))
+row("shortcut", "comparisons in a store", main("x : LREAL := 2.0; s : LREAL := 3.0; r, q : BOOL;",
+    "r := x >= 0.0 AND x <= s;\nq := x < 0.0 OR x > s;"), {"r": True, "q": False},
+    shape=("MAIN", r"self\.v_R = \(\((?:self\.)?v_X >= 0\.0\) and \((?:self\.)?v_X <= self\.v_S\)\)"))
+row("shortcut", "a right operand that may fault is evaluated", main("k : INT; x : REAL := -1.0; r : BOOL;",
+    "r := (x > 0.0) AND (10 / k > 1);"), {"r": False}, faults=[("F-DIV-ZERO", 4, 1)],
+    never=("MAIN", r" and "))
+row("shortcut", "a call in the condition runs", main("a : BOOL; y, c : INT;",
+    "IF a AND Count() THEN y := 1; END_IF;\nc := Calls;", before="""VAR_GLOBAL Calls : INT; END_VAR
+FUNCTION Count : BOOL
+Calls := Calls + 1; Count := TRUE;
+END_FUNCTION"""), {"y": 0, "c": 1}, never=("MAIN", r" and "))
+row("shortcut", "NOT and XOR", main("a : BOOL := TRUE; b, c : BOOL; y : INT;",
+    "IF NOT a OR (b XOR a) AND NOT c THEN y := 3; END_IF;"), {"y": 3})
+row("shortcut", "a bit string's AND is a bit operation", main("a : WORD := 6; b : WORD := 3; y : INT; w : WORD := 16#F0;",
+    "IF (a AND b) = 2 THEN y := 1; END_IF;\nIF (w OR 16#0F) = 16#FF THEN y := y + 10; END_IF;"), {"y": 11},
+    never=("MAIN", r" and | or "))
+
+# -------------------------------------------------------------------------------- branches
+# An IF whose conditions cannot fault is a plain if/elif; a CASE selector that cannot fault
+# is read without a guard.  Conditions that may fault keep the guarded branch index.
+
+row("branches", "conditions that cannot fault", main("x : INT := 5; y : INT; r : LREAL := 2.0;",
+    "IF x < 3 THEN y := 1; ELSIF x * 2 = 10 AND r > 1.0 THEN y := 2; ELSE y := 3; END_IF;"), {"y": 2},
+    shape=("MAIN", r"\n        elif \("))
+row("branches", "a condition that faults runs no branch", main("x : INT := 5; k : INT; y : INT := 9;",
+    "IF x < 3 THEN y := 1; ELSIF x / k = 1 THEN y := 2; ELSE y := 3; END_IF;"), {"y": 9},
+    faults=[("F-DIV-ZERO", 4, 1)], never=("MAIN", r"elif \(self\.v_X // "))
+row("branches", "an index that faults in a condition", main("i : INT := 4; a : ARRAY[1..3] OF INT; y : INT := 9;",
+    "IF a[i] = 0 THEN y := 1; ELSE y := 2; END_IF;"), {"y": 9}, faults=[("F-INDEX", 4, 1)])
+row("branches", "a CASE selector that cannot fault", main("x : INT := 2; y : INT;",
+    "CASE x + 1 OF 1: y := 1; 3: y := 3; ELSE y := 4; END_CASE;"), {"y": 3}, shape=("MAIN", r"if True:"))
+row("branches", "a CASE selector that faults runs no clause", main("i : INT := 4; a : ARRAY[1..3] OF INT; y : INT := 9;",
+    "CASE a[i] OF 0: y := 1; ELSE y := 2; END_CASE;"), {"y": 9}, faults=[("F-INDEX", 4, 1)],
+    never=("MAIN", r"if True:"))
+row("branches", "an in-out read in a condition", main("x : INT := 4; y : INT;", "y := F(x);", before="""
+FUNCTION F : INT
+VAR_IN_OUT v : INT; END_VAR
+IF v > 3 THEN F := 1; ELSE F := 2; END_IF;
+END_FUNCTION"""), {"y": 1})
+row("branches", "IF without ELSE, no branch taken", main("x : INT := 1; y : INT := 7;",
+    "IF x > 1 THEN y := 1; ELSIF x > 2 THEN y := 2; END_IF;"), {"y": 7})
+
+# --------------------------------------------------------------------------------- unguard
+# No `try` around an assignment that cannot raise; kept where Python can raise.
+
+row("unguard", "a local set from locals with + - *", main("a : LREAL := 1.5; b : LREAL := 2.0; c : LREAL;",
+    "c := a * b - a + 0.25;"), {"c": 1.75}, shape=("MAIN", r"\n        self\.v_C = "))
+row("unguard", "a division keeps its handler", main("a : INT := 1; k : INT; c : INT := 5;",
+    "c := a / k;\nc := c + 1;"), {"c": 6}, faults=[("F-DIV-ZERO", 4, 1)], never=("MAIN", r"\n        self\.v_C = \(self"))
+row("unguard", "a store at a literal index of an own array", main("a : ARRAY[1..3] OF INT; x : INT := 4;",
+    "a[2] := x + 1;"), {"a": [0, 5, 0]}, shape=("MAIN", r"\n        v_A\[1\] = "))
+row("unguard", "a store at a variable index keeps its handler", main("a : ARRAY[1..3] OF INT; i : INT := 4; y : INT;",
+    "a[i] := 1;\ny := 2;"), {"a": [0, 0, 0], "y": 2}, faults=[("F-INDEX", 4, 1)])
+row("unguard", "an INT sum wraps in the store", main("x : INT := 32767; y : INT;", "y := x + 1;"), {"y": -32768})
+row("unguard", "a store through a reference keeps its handler", main("x : INT; p : REF_TO INT; y : INT;",
+    "p^ := 5;\ny := 1;"), {"x": 0, "y": 1}, faults=[("F-NULL-REF", 4, 1)])
+row("unguard", "an FB's own REAL slot, rounded to float32", main("f : Fb; r : REAL;", "f(); r := f.o;", before="""
+FUNCTION_BLOCK Fb
+VAR_OUTPUT o : REAL; END_VAR VAR a : REAL := 0.1; END_VAR
+o := a * 3.0;
+END_FUNCTION_BLOCK"""), {"r": float(__import__("numpy").float32(__import__("numpy").float32(0.1) * __import__("numpy").float32(3.0)))})
+
+
+@pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
+def test_row(r: Row):
+    check(r)
+
+
+# ---------------------------------------------------------------- the switches (__init__.py)
+
+SWITCHES = ["fold", "unroll", "cse", "unguard", "fuse", "gather", "inline", "vector", "ranges", "branches",
+            "aliases", "fastpath", "chains", "sets", "stores", "unused", "offsets", "reuse", "charges",
+            "spread", "halves", "shortcut", "finite", "deferred", "wraps", "stores_read", "temps", "seal"]
+
+
+def _switches(o: Optimisations) -> dict[str, bool]:
+    return {name: getattr(o, name) for name in SWITCHES}
+
+
+@pytest.mark.parametrize("value, on", [
+    (None, set(SWITCHES) - {"gather"}),           # unset: every pass but gather
+    ("", set(SWITCHES) - {"gather"}),
+    ("all", set(SWITCHES) - {"gather"}),
+    (" ALL ", set(SWITCHES) - {"gather"}),
+    ("none", set()),
+    ("None", set()),
+    ("fold", {"fold"}),
+    ("Fold, UNROLL", {"fold", "unroll"}),
+    (" cse ,, vector ,", {"cse", "vector"}),
+    ("gather", {"gather"}),
+])
+def test_the_environment_picks_the_passes(monkeypatch, value, on):
+    if value is None:
+        monkeypatch.delenv("ST_RUNTIME_OPTIMISE", raising=False)
+    else:
+        monkeypatch.setenv("ST_RUNTIME_OPTIMISE", value)
+    assert _switches(Optimisations.from_environment()) == {name: name in on for name in SWITCHES}
+
+
+def test_the_switches_and_their_defaults():
+    assert sorted(_switches(Optimisations())) == sorted(SWITCHES)
+    assert _switches(Optimisations()) == {name: name != "gather" for name in SWITCHES}
+    assert _switches(Optimisations.none()) == {name: False for name in SWITCHES}
+    assert _switches(Optimisations.only("reuse", "finite")) == {name: name in ("reuse", "finite") for name in SWITCHES}
+    assert _switches(Optimisations.only()) == _switches(Optimisations.none())
+
+
+@pytest.mark.parametrize("names", [("folding",), ("fold", "Unroll"), ("x", "all")])
+def test_an_unknown_pass_is_named_with_the_known_ones(names):
+    known = sorted(SWITCHES)
+    unknown = sorted(set(names) - set(SWITCHES))
+    with pytest.raises(ValueError) as raised:
+        Optimisations.only(*names)
+    assert str(raised.value) == f"unknown optimisation(s) {unknown}; known: {known}"
+
+
+def test_an_unknown_pass_in_the_environment(monkeypatch):
+    monkeypatch.setenv("ST_RUNTIME_OPTIMISE", "fold,bogus")
+    with pytest.raises(ValueError) as raised:
+        Optimisations.from_environment()
+    assert str(raised.value).startswith("unknown optimisation(s) ['bogus']; known: ['aliases', 'branches',")
