@@ -44,14 +44,15 @@ class Row:
     never: tuple | None = None       # (POU, pattern) in no build
     dialects: tuple = ("iec",)
     budget_ns: int | None = None
+    with_: tuple = ()                # more passes the row's decision needs ("alone")
 
     @property
     def id(self) -> str:
         return f"{self.pass_}: {self.name}"
 
 
-def modes(pass_: str) -> dict[str, Optimisations]:
-    return {"alone": Optimisations.only(pass_, *NEEDS.get(pass_, ())), "none": NONE, "every": EVERY}
+def modes(pass_: str, with_: tuple = ()) -> dict[str, Optimisations]:
+    return {"alone": Optimisations.only(pass_, *NEEDS.get(pass_, ()), *with_), "none": NONE, "every": EVERY}
 
 
 def outcome(row: Row, optimise: Optimisations, dialect: str):
@@ -75,7 +76,7 @@ def outcome(row: Row, optimise: Optimisations, dialect: str):
 def check(row: Row) -> None:
     for dialect in row.dialects:
         charged = {}
-        for mode, optimise in modes(row.pass_).items():
+        for mode, optimise in modes(row.pass_, row.with_).items():
             values, faults, left, sources = outcome(row, optimise, dialect)
             assert (values, faults) == (row.expect, row.faults), (dialect, mode)
             charged[mode] = left
@@ -302,6 +303,101 @@ FUNCTION_BLOCK Fb
 VAR_OUTPUT o : REAL; END_VAR VAR a : REAL := 0.1; END_VAR
 o := a * 3.0;
 END_FUNCTION_BLOCK"""), {"r": float(__import__("numpy").float32(__import__("numpy").float32(0.1) * __import__("numpy").float32(3.0)))})
+
+
+# ----------------------------------------------------------------------------------- reuse
+# A float value computed again over unchanged operands is set once (`_cN = ...`) and read
+# by name; anything that may change an operand between the two uses ends the value.
+# a = 1.5, b = 2.0: a * b = 3.0 exactly.
+
+AB = "a : LREAL := 1.5; b : LREAL := 2.0; x, y, z : LREAL; c : BOOL := TRUE; i, k, n : INT := 3; "
+row("reuse", "a value computed twice", main(AB, "x := a * b + 1.0;\ny := a * b - 1.0;"), {"x": 4.0, "y": 2.0},
+    shape=("MAIN", r"_c\d+ = \((?:self\.)?v_A \* (?:self\.)?v_B\)"))
+row("reuse", "a value used once keeps its text", main(AB, "x := a * b + 1.0;\ny := a - b;"), {"x": 4.0, "y": -0.5},
+    never=("MAIN", r"_c\d+ = "))
+row("reuse", "a store between the uses", main(AB, "x := a * b;\na := 3.0;\ny := a * b;"), {"x": 3.0, "y": 6.0})
+row("reuse", "a store of the other operand", main(AB, "x := a * b;\nb := 4.0;\ny := a * b;\nz := a * b;"),
+    {"x": 3.0, "y": 6.0, "z": 6.0}, shape=("MAIN", r"_c\d+ = "))
+row("reuse", "a store in an IF branch", main(AB, "x := a * b;\nIF c THEN a := 3.0; END_IF;\ny := a * b;"),
+    {"x": 3.0, "y": 6.0})
+row("reuse", "a store in a CASE clause", main(AB, "x := a * b;\nCASE k OF 1: y := 0.0; 3: a := 3.0; END_CASE;\ny := a * b;"),
+    {"x": 3.0, "y": 6.0})
+row("reuse", "a store in an ELSE", main(AB, "x := a * b;\nIF NOT c THEN y := 0.0; ELSE a := 3.0; END_IF;\ny := a * b;"),
+    {"x": 3.0, "y": 6.0})
+row("reuse", "a loop body that stores an operand after a use",
+    # a * b = 3, 5, 7 in the three passes: y = 15; a ends at 4.5
+    main(AB, "x := a * b;\nFOR i := 1 TO n DO y := y + a * b; a := a + 1.0; END_FOR;"),
+    {"x": 3.0, "y": 15.0, "a": 4.5})
+row("reuse", "a WHILE condition is computed each time",
+    # a = 1.5, 2.5, 3.5, 4.5, 5.5: a * b = 3, 5, 7, 9, 11: four passes
+    main(AB + "m : INT;", "x := a * b;\nWHILE a * b < 10.0 DO a := a + 1.0; m := m + 1; END_WHILE;"),
+    {"x": 3.0, "m": 4, "a": 5.5})
+row("reuse", "a REPEAT condition is computed each time",
+    main(AB + "m : INT;", "x := a * b;\nREPEAT a := a + 1.0; m := m + 1; UNTIL a * b > 6.0 END_REPEAT;\ny := a * b;"),
+    {"x": 3.0, "m": 2, "a": 3.5, "y": 7.0})
+row("reuse", "an FB call that changes a global", main(AB + "f : Bump;", "x := g * a;\nf();\ny := g * a;",
+    before="VAR_GLOBAL g : LREAL := 2.0; END_VAR\nFUNCTION_BLOCK Bump\ng := g + 1.0;\nEND_FUNCTION_BLOCK"),
+    {"x": 3.0, "y": 4.5})
+row("reuse", "a FUNCTION call in the expression that changes a global",
+    main(AB, "x := g * a;\ny := Inc() + g * a;",
+         before="VAR_GLOBAL g : LREAL := 2.0; END_VAR\nFUNCTION Inc : LREAL\ng := g + 1.0; Inc := 0.0;\nEND_FUNCTION"),
+    {"x": 3.0, "y": 4.5})
+row("reuse", "a store into a global", main(AB, "x := g * a;\ng := 5.0;\ny := g * a;",
+    before="VAR_GLOBAL g : LREAL := 2.0; END_VAR"), {"x": 3.0, "y": 7.5})
+row("reuse", "a store through a reference", main(AB + "r : REF_TO LREAL;", "r := REF(a);\nx := a * b;\nr^ := 3.0;\ny := a * b;"),
+    {"x": 3.0, "y": 6.0})
+row("reuse", "a store into an in-out", main(AB, "x := F(a);", before="""FUNCTION F : LREAL
+VAR_IN_OUT v : LREAL; END_VAR VAR t : LREAL; END_VAR
+t := v * 2.0;
+v := 5.0;
+F := t + v * 2.0;
+END_FUNCTION"""), {"x": 13.0, "a": 5.0})
+row("reuse", "an own array's element at a literal index",
+    main(AB + "arr : ARRAY[1..3] OF LREAL := [1.0, 2.0, 3.0];",
+         "x := arr[2] * 2.0 + arr[2];\narr[2] := 4.0;\ny := arr[2] * 2.0;\nz := arr[3] + arr[3];"),
+    {"x": 6.0, "y": 8.0, "z": 6.0}, shape=("MAIN", r"_c\d+ = v_ARR\[2\]"))
+row("reuse", "an element store at a variable index ends the array's values",
+    main(AB + "arr : ARRAY[1..3] OF LREAL := [1.0, 2.0, 3.0];",
+         "x := arr[2] * 2.0;\narr[k - 1] := 4.0;\ny := arr[2] * 2.0;"), {"x": 4.0, "y": 8.0})
+row("reuse", "SIN of a value computed once", main(AB, "x := SIN(a) + 1.0;\ny := SIN(a) * 2.0;"),
+    {"x": __import__("math").sin(1.5) + 1.0, "y": __import__("math").sin(1.5) * 2.0}, shape=("MAIN", r"_c\d+ = "),
+    with_=("inline",))
+row("reuse", "SQRT and COS of a sum", main(AB, "x := SQRT(a + b) + COS(a + b);\ny := SQRT(a + b);"),
+    {"x": 3.5 ** 0.5 + __import__("math").cos(3.5), "y": 3.5 ** 0.5}, with_=("inline",))
+row("reuse", "a value computed in a branch is not read after it",
+    main(AB, "IF NOT c THEN x := a * b; y := a * b; END_IF;\nz := a * b;\nx := a * b + z;"),
+    {"x": 6.0, "y": 0.0, "z": 3.0})
+row("reuse", "a value of one CASE clause in another", main(AB, """CASE k OF
+1: x := a * b; y := a * b;
+3: z := a * b; y := a * b + z;
+END_CASE;"""), {"x": 0.0, "y": 6.0, "z": 3.0})
+row("reuse", "in the copies of an unrolled loop", main(AB, "FOR i := 1 TO 3 DO y := y + a * b; END_FOR;"),
+    {"y": 9.0})
+row("reuse", "a FUNCTION's input", main(AB, "x := F(a);", before="""FUNCTION F : LREAL
+VAR_INPUT v : LREAL; END_VAR
+F := v * v + v * v;
+END_FUNCTION"""), {"x": 4.5}, shape=("F", r"_c\d+ = \(v_V \* v_V\)"))
+row("reuse", "an FB's slots", main(AB + "f : Fb;", "f(); x := f.o;", before="""FUNCTION_BLOCK Fb
+VAR_OUTPUT o : LREAL; END_VAR VAR p : LREAL := 0.5; q : LREAL := 6.0; END_VAR
+o := p * q + p * q;
+END_FUNCTION_BLOCK"""), {"x": 6.0}, shape=("FB", r"_c\d+ = \(self\.v_P \* self\.v_Q\)"))
+_f32 = __import__("numpy").float32
+row("reuse", "a REAL value, rounded to float32 once", main("r : REAL := 0.1; x, y : REAL;",
+    "x := r * 3.0 + r * 3.0;\ny := r * 3.0;"),
+    {"x": float(_f32(_f32(0.1) * _f32(3.0)) * _f32(2.0)), "y": float(_f32(_f32(0.1) * _f32(3.0)))})
+row("reuse", "an integer sum is no value of the pass", main("p : INT := 30000; q : INT; r : DINT;",
+    "q := p + p;\nr := INT_TO_DINT(p + p);"), {"q": -5536, "r": 60000}, never=("MAIN", r"_c\d+ = "))
+row("reuse", "a named CONSTANT operand", main(AB + "END_VAR VAR CONSTANT two : LREAL := 2.0;",
+    "x := a * two;\ny := a * two + 1.0;"), {"x": 3.0, "y": 4.0})
+row("stores_read", "an element stored and read back", main(AB + "arr : ARRAY[1..3] OF LREAL;",
+    "arr[2] := a * b;\ny := arr[2] + 1.0;\nz := arr[2] * 2.0;"), {"arr": [0.0, 3.0, 0.0], "y": 4.0, "z": 6.0})
+row("stores_read", "the stored value read the array", main(AB + "arr : ARRAY[1..3] OF LREAL := [1.0, 2.0, 3.0];",
+    "arr[2] := arr[2] * b;\ny := arr[2] + 1.0;\narr[2] := arr[2] * b;\nz := arr[2];"), {"arr": [1.0, 8.0, 3.0], "y": 5.0, "z": 8.0})
+row("stores_read", "an operand of the stored value changes", main(AB + "arr : ARRAY[1..3] OF LREAL;",
+    "arr[1] := a * b;\na := 0.5;\ny := arr[1] + a * b;"), {"arr": [3.0, 0.0, 0.0], "y": 4.0})
+row("finite", "SIN and COS of one variable", main(AB, "x := SIN(a) + COS(a);\ny := SIN(a);"),
+    {"x": __import__("math").sin(1.5) + __import__("math").cos(1.5), "y": __import__("math").sin(1.5)},
+    shape=("MAIN", r"_c\d+ = \((?:self\.)?v_A - (?:self\.)?v_A == 0\.0\)"), with_=("inline",))
 
 
 @pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
