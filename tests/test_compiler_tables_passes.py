@@ -45,6 +45,7 @@ class Row:
     dialects: tuple = ("iec",)
     budget_ns: int | None = None
     with_: tuple = ()                # more passes the row's decision needs ("alone")
+    gone: tuple | None = None        # (POU, pattern) in the code without the pass, not with it
 
     @property
     def id(self) -> str:
@@ -83,6 +84,9 @@ def check(row: Row) -> None:
             if row.shape is not None:
                 pou, pattern = row.shape
                 assert bool(re.search(pattern, sources[pou])) == (mode != "none"), (dialect, mode, sources[pou])
+            if row.gone is not None:
+                pou, pattern = row.gone
+                assert bool(re.search(pattern, sources[pou])) == (mode == "none"), (dialect, mode, sources[pou])
             if row.never is not None:
                 pou, pattern = row.never
                 assert not re.search(pattern, sources[pou]), (dialect, mode, sources[pou])
@@ -398,6 +402,88 @@ row("stores_read", "an operand of the stored value changes", main(AB + "arr : AR
 row("finite", "SIN and COS of one variable", main(AB, "x := SIN(a) + COS(a);\ny := SIN(a);"),
     {"x": __import__("math").sin(1.5) + __import__("math").cos(1.5), "y": __import__("math").sin(1.5)},
     shape=("MAIN", r"_c\d+ = \((?:self\.)?v_A - (?:self\.)?v_A == 0\.0\)"), with_=("inline",))
+
+
+# --------------------------------------------------------- aliases, spread, stores, unused
+# Where an FB body loads its aggregates and cached variables.  Main calls the FB with
+# Mode = 0, 1, 2, 3 in four scans and keeps each Out.
+
+
+def modes_fb(body: str, extra: str = "", before: str = "") -> str:
+    return f"""{before}
+FUNCTION_BLOCK Fb
+VAR_INPUT Mode : INT; END_VAR
+VAR_OUTPUT Out : LREAL; END_VAR
+VAR Arr : ARRAY[1..3] OF LREAL := [1.0, 2.0, 3.0]; K : LREAL := 2.0; Q : LREAL := 5.0; Cnt : INT;
+    Z : LREAL; i : INT; {extra} END_VAR
+{body}
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR f : Fb; n : INT; outs : ARRAY[0..3] OF LREAL; END_VAR
+f(Mode := n); outs[n] := f.Out; n := n + 1;
+END_PROGRAM
+"""
+
+
+IN_BRANCH = r"\n {12,}v_ARR = self\.v_ARR"
+for name, body, outs in (
+        ("one IF branch", "IF Mode = 1 THEN Out := Arr[2] * K; ELSE Out := Q; END_IF;", [5.0, 4.0, 5.0, 5.0]),
+        ("an ELSIF branch", "IF Mode = 1 THEN Out := Q; ELSIF Mode = 2 THEN Out := Arr[3]; ELSE Out := -1.0; END_IF;",
+         [-1.0, 5.0, 3.0, -1.0]),
+        ("the ELSE", "IF Mode < 2 THEN Out := Q; ELSE Out := Arr[1] + Arr[3]; END_IF;", [5.0, 5.0, 4.0, 4.0]),
+        ("a CASE clause", "CASE Mode OF 1: Out := Q; 2: Out := Arr[2]; END_CASE;", [0.0, 5.0, 2.0, 2.0]),
+        ("the CASE's ELSE", "CASE Mode OF 0, 1: Out := Q; ELSE Out := Arr[1]; END_CASE;", [5.0, 5.0, 1.0, 1.0]),
+        ("two branches of an inner IF",
+         "IF Mode > 0 THEN IF Mode = 2 THEN Out := Arr[2]; ELSE Out := Arr[1]; END_IF; END_IF;", [0.0, 1.0, 2.0, 1.0]),
+        ("a loop in a branch", "IF Mode = 3 THEN FOR i := 1 TO 3 DO Out := Out + Arr[i]; END_FOR; END_IF;",
+         [0.0, 0.0, 0.0, 6.0])):
+    row("aliases", name, modes_fb(body), {"outs": outs}, scans=4, shape=("FB", IN_BRANCH))
+for name, body, outs in (
+        ("a use in a condition", "IF Arr[1] > 0.5 THEN Out := Q; END_IF;", [5.0] * 4),
+        ("a use in the branch and after it", "IF Mode = 1 THEN Out := Arr[2]; END_IF; Out := Out + Arr[1];",
+         [1.0, 3.0, 4.0, 5.0]),
+        ("uses in two IFs", "IF Mode = 1 THEN Out := Arr[1]; END_IF; IF Mode = 2 THEN Out := Arr[2]; END_IF;",
+         [0.0, 1.0, 2.0, 2.0]),
+        ("a use in a CASE selector", "CASE REAL_TO_INT(LREAL_TO_REAL(Arr[1])) + Mode OF 2: Out := Q; END_CASE;",
+         [0.0, 5.0, 5.0, 5.0])):
+    row("aliases", name, modes_fb(body), {"outs": outs}, scans=4, never=("FB", IN_BRANCH))
+row("aliases", "a global aggregate", modes_fb("IF Mode = 2 THEN Out := G[2]; END_IF;",
+    before="VAR_GLOBAL G : ARRAY[1..2] OF LREAL := [7.0, 8.0]; END_VAR"), {"outs": [0.0, 0.0, 8.0, 8.0]}, scans=4,
+    shape=("FB", r"\n {12,}v_G = _G\.v_G"))
+row("spread", "two branches of one IF", modes_fb(
+    "IF Mode = 1 THEN Out := Arr[1]; ELSIF Mode = 2 THEN Out := Q; ELSE Out := Arr[3]; END_IF;"),
+    {"outs": [3.0, 1.0, 5.0, 3.0]}, scans=4, shape=("FB", r"(?s)\n {12,}v_ARR = self\.v_ARR.*\n {12,}v_ARR = self\.v_ARR"))
+row("spread", "clauses of one CASE", modes_fb(
+    "CASE Mode OF 1: Out := Arr[1]; 2: Out := Q; 3: Out := Arr[2] + Arr[3]; END_CASE;"),
+    {"outs": [0.0, 1.0, 5.0, 5.0]}, scans=4, shape=("FB", r"(?s)\n {12,}v_ARR = self\.v_ARR.*\n {12,}v_ARR = self\.v_ARR"))
+row("spread", "branches of two IFs are not spread", modes_fb(
+    "IF Mode = 1 THEN Out := Arr[1]; END_IF; IF Mode = 3 THEN Out := Arr[3]; ELSE Out := Out + 1.0; END_IF;"),
+    {"outs": [1.0, 2.0, 3.0, 3.0]}, scans=4, never=("FB", IN_BRANCH))
+row("spread", "an inner IF's branches in an outer branch", modes_fb(
+    "IF Mode > 1 THEN IF Mode = 2 THEN Out := Arr[2]; ELSE Out := Arr[3]; END_IF; ELSE Out := Q; END_IF;"),
+    {"outs": [5.0, 5.0, 2.0, 3.0]}, scans=4, shape=("FB", IN_BRANCH))
+CNT = "Cnt := Cnt + 1; Cnt := Cnt * 2; Out := INT_TO_LREAL(Cnt);"
+row("stores", "a cached variable stored in one clause", modes_fb(
+    f"CASE Mode OF 1: Out := Q; 2: {CNT} END_CASE;"), {"outs": [0.0, 5.0, 2.0, 2.0], "f.Cnt": 2}, scans=4,
+    shape=("FB", r"\n {12,}finally:\n {16,}self\.v_CNT = v_CNT"))
+row("stores", "stored in one branch, read after it", modes_fb(
+    f"IF Mode >= 2 THEN {CNT} END_IF; Out := Out + INT_TO_LREAL(Cnt);"),
+    # Mode 2: Cnt = 2, Out = 2 + 2 = 4; Mode 3: Cnt = 6, Out = 6 + 6 = 12
+    {"outs": [0.0, 0.0, 4.0, 12.0], "f.Cnt": 6}, scans=4)
+row("stores", "stored in two IFs", modes_fb(
+    f"IF Mode = 2 THEN {CNT} END_IF; IF Mode = 3 THEN Cnt := Cnt + 5; END_IF;"),
+    {"outs": [0.0, 0.0, 2.0, 2.0], "f.Cnt": 7}, scans=4, never=("FB", r"\n {12,}finally:"))
+row("spread", "a cached variable stored in two clauses", modes_fb(
+    f"CASE Mode OF 1: {CNT} 2: Out := Q; 3: Cnt := Cnt - 7; Cnt := Cnt * Cnt; END_CASE;"),
+    # Mode 1: Cnt = 2, Out = 2; Mode 2: Out = 5; Mode 3: Cnt = (2 - 7)^2 = 25
+    {"outs": [0.0, 2.0, 5.0, 5.0], "f.Cnt": 25}, scans=4,
+    shape=("FB", r"(?s)\n {12,}finally:\n {16,}self\.v_CNT = v_CNT.*\n {12,}finally:\n {16,}self\.v_CNT = v_CNT"))
+row("unused", "a constant table every read of which is folded", modes_fb(
+    "Out := T[2] * 2.0 + T[3];", extra="END_VAR VAR CONSTANT T : ARRAY[1..3] OF LREAL := [0.5, 1.5, 2.5];"),
+    {"outs": [5.5] * 4}, scans=4, with_=("fold",), gone=("FB", r"v_T = self\.v_T"))
+row("unused", "a constant table read at a variable index stays", modes_fb(
+    "Out := T[Mode MOD 3 + 1];", extra="END_VAR VAR CONSTANT T : ARRAY[1..3] OF LREAL := [0.5, 1.5, 2.5];"),
+    {"outs": [0.5, 1.5, 2.5, 0.5]}, scans=4, with_=("fold",), never=("FB", r"self\.v_T\b(?!\[)(?!.*v_T\[)"))
 
 
 @pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
