@@ -578,6 +578,73 @@ F := F + k;
 END_FUNCTION"""), {"y": 258 + 11}, gone=("F", r"for v_K in"), every_too=False)
 
 
+# ------------------------------------------------------------------------------- cse, fuse
+# In an unrolled loop whose body stores only locals and calls nothing (and in a whole body
+# with at least eight element reads at literal indices), each element is read once before
+# the region and a `+ - *` of such values is computed once; fuse tidies the region's lines.
+
+
+def dot(body: str, decls: str = "") -> str:
+    return main("x : ARRAY[1..3] OF LREAL := [1.0, 2.0, 3.0]; y : ARRAY[1..3] OF LREAL := [0.5, 0.25, 2.0]; "
+                "r : LREAL;", "r := Dot(x, y);", before=f"""FUNCTION Dot : LREAL
+VAR_INPUT a, b : ARRAY[1..3] OF LREAL; END_VAR
+VAR k : INT; s, t, u : LREAL; {decls} END_VAR
+{body}
+END_FUNCTION""")
+
+
+REGION = ("DOT", r"_t\d+ = v_A\[0\]\n(?s:.*)_t\d+ = True\n\s*except _FAULTS:")
+# products a[k] * b[k] = 0.5, 0.5, 6.0
+row("cse", "a product used twice in a copy, an IF after it", dot("""FOR k := 1 TO 3 DO
+  s := s + a[k] * b[k] + a[k] * b[k];
+  IF a[k] > 1.5 THEN t := t + a[k] * b[k]; END_IF;
+  t := t + a[k] * 2.0;
+END_FOR;
+Dot := s + t;"""), {"r": 32.5}, shape=REGION)
+row("cse", "a product first met inside an IF", dot("""FOR k := 1 TO 3 DO
+  IF a[k] > 1.5 THEN t := t + a[k] * b[k]; END_IF;
+  s := s + a[k] * b[k];
+END_FOR;
+Dot := s * 10.0 + t;"""), {"r": 76.5}, shape=REGION)
+row("cse", "a product first met inside a CASE", dot("""FOR k := 1 TO 3 DO
+  CASE k OF 2: t := a[k] * b[k] + 1.0; ELSE u := u + a[k]; END_CASE;
+  s := s + a[k] * b[k];
+END_FOR;
+Dot := s * 100.0 + t * 10.0 + u;"""), {"r": 700.0 + 15.0 + 4.0}, shape=REGION)
+row("cse", "a call keeps the loop", dot("""FOR k := 1 TO 3 DO s := s + ABS(a[k] * b[k]) + a[k] * b[k]; END_FOR;
+Dot := s;"""), {"r": 14.0}, never=REGION)
+row("cse", "a store into an array keeps the loop", dot("""FOR k := 1 TO 3 DO c[k] := a[k] * b[k]; s := s + c[k] * 2.0; END_FOR;
+Dot := s;""", "c : ARRAY[1..3] OF LREAL;"), {"r": 14.0}, never=REGION)
+row("cse", "a store into a global keeps the loop", dot("""FOR k := 1 TO 3 DO G := G + a[k] * b[k]; END_FOR;
+Dot := G;""").replace("FUNCTION Dot", "VAR_GLOBAL G : LREAL; END_VAR\nFUNCTION Dot"), {"r": 7.0}, never=REGION)
+row("cse", "a nested FOR", dot("""FOR k := 1 TO 3 DO FOR i := 1 TO 3 DO s := s + a[k] * b[i]; END_FOR; END_FOR;
+Dot := s;""", "i : INT;"), {"r": 6.0 * 2.75}, shape=REGION)
+row("fuse", "a local stored in each copy keeps its last value", dot("""FOR k := 1 TO 3 DO u := a[k] * 2.0; s := s + u; END_FOR;
+Dot := s * 10.0 + u;"""), {"r": 126.0})
+row("fuse", "a run of sums into one variable", dot("""FOR k := 1 TO 3 DO s := s + a[k]; s := s - b[k]; s := s * 2.0; END_FOR;
+Dot := s;"""), {"r": 13.0})     # s = (1 - 0.5) * 2 = 1; (1 + 2 - 0.25) * 2 = 5.5; (5.5 + 3 - 2) * 2 = 13
+row("fuse", "a variable read before it is set again", dot("""FOR k := 1 TO 3 DO t := a[k] * b[k]; u := t + u; t := u * 2.0; s := s + t; END_FOR;
+Dot := s * 100.0 + t;"""), {"r": (1.0 + 2.0 + 14.0) * 100.0 + 14.0})
+DET = main("m : ARRAY[1..9] OF LREAL := [2.0, 0.0, 1.0, 1.0, 3.0, 2.0, 1.0, 1.0, 4.0]; d, s7, s8 : LREAL;",
+           "d := Det3(m);\ns7 := Sum7(m);\ns8 := Sum8(m);", before="""FUNCTION Det3 : LREAL
+VAR_INPUT a : ARRAY[1..9] OF LREAL; END_VAR
+Det3 := a[1] * (a[5] * a[9] - a[6] * a[8]) - a[2] * (a[4] * a[9] - a[6] * a[7]) + a[3] * (a[4] * a[8] - a[5] * a[7]);
+END_FUNCTION
+FUNCTION Sum7 : LREAL
+VAR_INPUT a : ARRAY[1..9] OF LREAL; END_VAR
+Sum7 := a[1] + a[2] + a[3] + a[4] + a[5] + a[6] + a[7];
+END_FUNCTION
+FUNCTION Sum8 : LREAL
+VAR_INPUT a : ARRAY[1..9] OF LREAL; END_VAR
+Sum8 := a[1] + a[2] + a[3] + a[4] + a[5] + a[6] + a[7] + a[8];
+END_FUNCTION""")
+# det [[2, 0, 1], [1, 3, 2], [1, 1, 4]] = 2 (12 - 2) - 0 + 1 (1 - 3) = 18
+row("cse", "a whole body of element reads", DET, {"d": 18.0, "s7": 10.0, "s8": 11.0},
+    shape=("DET3", r"_t\d+ = True\n\s*except _FAULTS:"))
+row("cse", "eight reads make a region", DET, {"s8": 11.0}, shape=("SUM8", r"_t\d+ = True\n\s*except _FAULTS:"))
+row("cse", "seven reads do not", DET, {"s7": 10.0}, never=("SUM7", r"_t\d+ = True\n\s*except _FAULTS:"))
+
+
 @pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
 def test_row(r: Row):
     check(r)
