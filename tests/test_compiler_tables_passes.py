@@ -703,3 +703,129 @@ def test_an_unknown_pass_in_the_environment(monkeypatch):
     with pytest.raises(ValueError) as raised:
         Optimisations.from_environment()
     assert str(raised.value).startswith("unknown optimisation(s) ['bogus']; known: ['aliases', 'branches',")
+
+
+# ----------------------------------------------- F-PERIOD at every budget (speed-only passes)
+# fastpath, chains, charges, unroll, cse, fuse and reuse change only how the time is
+# charged and checked: the scan must stop on the same statement (F-PERIOD's code, line and
+# scan), leave the same state and charge the same time at every budget, in steps finer
+# than a statement's charge, from far below the program's time to past the fast path's
+# worst case.  The reference is the program with every pass off.
+
+WORK = """FUNCTION Work : LREAL
+VAR_IN_OUT x : ARRAY[1..6] OF LREAL; END_VAR
+VAR k, j : INT; s : LREAL; END_VAR
+FOR k := 1 TO 6 DO
+  FOR j := k TO 6 DO
+    x[j] := x[j] + x[k] * 0.5;
+    x[j] := x[j] * 0.75;
+  END_FOR;
+  IF x[k] > 3.0 THEN s := s + 1.0; ELSIF x[k] < -1.0 THEN s := s - 1.0; END_IF;
+  CASE k OF 1: s := s + 2.0; 2, 3: s := s * 2.0; END_CASE;
+END_FOR;
+FOR k := 6 TO 1 BY -1 DO
+  FOR j := 1 TO k DO s := s + x[j] * x[k]; END_FOR;
+END_FOR;
+FOR k := 1 TO 3 DO
+  FOR j := 1 TO 2 DO x[k * 2 - 2 + j] := x[k * 2 - 2 + j] - s * 0.01; END_FOR;
+END_FOR;
+FOR k := 2 TO 6 BY 2 DO
+  FOR j := k - 1 TO k DO s := s - x[j]; END_FOR;
+END_FOR;
+Work := s;
+END_FUNCTION
+FUNCTION Search : INT
+VAR_INPUT limit : LREAL; n : INT; END_VAR
+VAR k, j : INT; s : LREAL; END_VAR
+FOR k := 1 TO n DO
+  FOR j := 1 TO 4 DO s := s + INT_TO_LREAL(j * k); END_FOR;
+  Search := k;
+  IF s > limit THEN EXIT; END_IF;
+END_FOR;
+END_FUNCTION
+PROGRAM Main
+VAR a : ARRAY[1..6] OF LREAL := [1.0, 2.0, 3.0, 4.0, 5.0, -6.0]; r : LREAL; n, found : INT; END_VAR
+r := Work(a);
+found := Search(35.0 + INT_TO_LREAL(n), 9);
+n := n + 1;
+END_PROGRAM
+"""
+
+SWEEP = {"fastpath": Optimisations.only("fastpath"), "chains": Optimisations.only("fastpath", "chains"),
+         "charges": Optimisations.only("charges"), "unroll": Optimisations.only("unroll"),
+         "cse, fuse": Optimisations.only("unroll", "cse", "fuse"), "reuse": Optimisations.only("reuse"),
+         "every": EVERY}
+
+
+def _landings(src: str, optimise: Optimisations, budgets, scans: int = 2) -> list:
+    from test_optimiser_equivalence import snapshot
+
+    compiled = compile_program(api.load_text(src, "m.st").program, optimise=optimise)
+    found = []
+    for budget in budgets:
+        controller = Controller(compiled, time_limit_ns=budget)
+        main = controller.add_program("Main")
+        left = []
+        for _ in range(scans):
+            controller.run(1)
+            left.append(controller.ctx.budget)
+        found.append((budget, [(f.code, f.line, f.scan) for f in controller.faults], snapshot(main), left))
+    return found
+
+
+@pytest.fixture(scope="module")
+def work_reference():
+    program = api.load_text(WORK, "m.st").program
+    controller = Controller(compile_program(program, optimise=NONE), time_limit_ns=10_000_000)
+    controller.add_program("Main")
+    controller.run(1)
+    spent_ns = 10_000_000 - controller.ctx.budget // 1000
+    budgets = sorted({max(1, spent_ns * p // 200) for p in range(10, 241, 3)} | set(range(890, 1000, 2)))
+    return budgets, _landings(WORK, NONE, budgets)
+
+
+@pytest.mark.parametrize("name", SWEEP, ids=SWEEP.keys())
+def test_f_period_lands_the_same_at_every_budget(name: str, work_reference):
+    budgets, reference = work_reference
+    assert any(faults for _, faults, _, _ in reference) and not all(faults for _, faults, _, _ in reference)
+    assert _landings(WORK, SWEEP[name], budgets) == reference
+
+
+def _work_by_hand(x: list[float]) -> float:
+    """Work's statements in Python's floats, in the ST's order (x 1-based in the ST)."""
+    s = 0.0
+    for k in range(1, 7):
+        for j in range(k, 7):
+            x[j - 1] = x[j - 1] + x[k - 1] * 0.5
+            x[j - 1] = x[j - 1] * 0.75
+        if x[k - 1] > 3.0:
+            s = s + 1.0
+        elif x[k - 1] < -1.0:
+            s = s - 1.0
+        if k == 1:
+            s = s + 2.0
+        elif k in (2, 3):
+            s = s * 2.0
+    for k in range(6, 0, -1):
+        for j in range(1, k + 1):
+            s = s + x[j - 1] * x[k - 1]
+    for k in range(1, 4):
+        for j in range(1, 3):
+            x[k * 2 - 2 + j - 1] = x[k * 2 - 2 + j - 1] - s * 0.01
+    for k in range(2, 7, 2):
+        for j in range(k - 1, k + 1):
+            s = s - x[j - 1]
+    return s
+
+
+@pytest.mark.parametrize("optimise", [EVERY, NONE], ids=["every pass", "no pass"])
+def test_the_work_program_s_values_by_hand(optimise):
+    # Search: s after k passes = 10 * (1 + ... + k) = 10, 30, 60: passes 35 (scan 1) and 36
+    # (scan 2) at k = 3
+    x = [1.0, 2.0, 3.0, 4.0, 5.0, -6.0]
+    _work_by_hand(x)
+    r = _work_by_hand(x)
+    _, faults, state, _ = _landings(WORK, optimise, [10_000_000])[0]
+    values = dict(state[1:])
+    assert faults == [] and values["v_FOUND"] == 3 and values["v_N"] == 2
+    assert values["v_R"] == ("f", r.hex()) and values["v_A"] == tuple(("f", v.hex()) for v in x)
