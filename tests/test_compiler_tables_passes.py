@@ -397,6 +397,15 @@ row("reuse", "an integer sum is no value of the pass", main("p : INT := 30000; q
     "q := p + p;\nr := INT_TO_DINT(p + p);"), {"q": -5536, "r": 60000}, never=("MAIN", r"_c\d+ = "))
 row("reuse", "a named CONSTANT operand", main(AB + "END_VAR VAR CONSTANT two : LREAL := 2.0;",
     "x := a * two;\ny := a * two + 1.0;"), {"x": 3.0, "y": 4.0})
+row("reuse", "a located variable another one at its address stores", main(
+    "a AT %MD10 : REAL; b AT %MD10 : REAL; x, y, z : REAL;",
+    # a and b are the same four bytes of %M: storing b stores a
+    "a := 1.5;\nx := a * 2.0 + 1.0;\nb := 3.0;\ny := a * 2.0;\nz := a * 2.0 + x;"),
+    {"x": 4.0, "y": 6.0, "z": 10.0, "a": 3.0}, never=("MAIN", r"_c\d+ = "))
+row("reuse", "located LREAL and INT variables", main(
+    "p AT %ML2 : LREAL; q AT %MW16 : INT := 7; w AT %MW16 : INT; x, y : LREAL; k : INT;",
+    "p := 0.25;\nx := p * 4.0 - p * 4.0 + p * 4.0;\nw := 9;\nk := q + q;\nw := 1;\nk := k + q + q;\np := 2.0;\ny := p * 4.0;"),
+    {"x": 1.0, "y": 8.0, "k": 20}, never=("MAIN", r"_c\d+ = "))
 row("stores_read", "an element stored and read back", main(AB + "arr : ARRAY[1..3] OF LREAL;",
     "arr[2] := a * b;\ny := arr[2] + 1.0;\nz := arr[2] * 2.0;"), {"arr": [0.0, 3.0, 0.0], "y": 4.0, "z": 6.0})
 row("stores_read", "the stored value read the array", main(AB + "arr : ARRAY[1..3] OF LREAL := [1.0, 2.0, 3.0];",
@@ -477,6 +486,15 @@ row("stores", "stored in one branch, read after it", modes_fb(
 row("stores", "stored in two IFs", modes_fb(
     f"IF Mode = 2 THEN {CNT} END_IF; IF Mode = 3 THEN Cnt := Cnt + 5; END_IF;"),
     {"outs": [0.0, 0.0, 2.0, 2.0], "f.Cnt": 7}, scans=4, never=("FB", r"\n {12,}finally:"))
+row("stores", "a cached variable stored in the CASE's ELSE", modes_fb(
+    f"CASE Mode OF 1: Out := Q; 3: Out := K; ELSE {CNT} END_CASE;"),
+    # Mode 0: Cnt = 2, Out = 2; Mode 1: Out = 5; Mode 2: Cnt = 6, Out = 6; Mode 3: Out = 2
+    {"outs": [2.0, 5.0, 6.0, 2.0], "f.Cnt": 6}, scans=4,
+    shape=("FB", r"\n {12,}finally:\n {16,}self\.v_CNT = v_CNT"))
+row("stores", "a cached variable stored in the IF's ELSE", modes_fb(
+    f"IF Mode = 1 THEN Out := Q; ELSE {CNT} END_IF;"),
+    {"outs": [2.0, 5.0, 6.0, 14.0], "f.Cnt": 14}, scans=4,
+    shape=("FB", r"\n {12,}finally:\n {16,}self\.v_CNT = v_CNT"))
 row("spread", "a cached variable stored in two clauses", modes_fb(
     f"CASE Mode OF 1: {CNT} 2: Out := Q; 3: Cnt := Cnt - 7; Cnt := Cnt * Cnt; END_CASE;"),
     # Mode 1: Cnt = 2, Out = 2; Mode 2: Out = 5; Mode 3: Cnt = (2 - 7)^2 = 25
@@ -625,6 +643,12 @@ row("fuse", "a run of sums into one variable", dot("""FOR k := 1 TO 3 DO s := s 
 Dot := s;"""), {"r": 13.0})     # s = (1 - 0.5) * 2 = 1; (1 + 2 - 0.25) * 2 = 5.5; (5.5 + 3 - 2) * 2 = 13
 row("fuse", "a variable read before it is set again", dot("""FOR k := 1 TO 3 DO t := a[k] * b[k]; u := t + u; t := u * 2.0; s := s + t; END_FOR;
 Dot := s * 100.0 + t;"""), {"r": (1.0 + 2.0 + 14.0) * 100.0 + 14.0})
+row("cse", "a product used once is put back into its use", dot("""FOR k := 1 TO 3 DO s := s + a[k] * b[k]; END_FOR;
+Dot := s;"""), {"r": 7.0}, shape=REGION, never=("DOT", r"_t\d+ = \(_t\d+ \* _t\d+\)"))
+row("fuse", "temporaries of the copies share names", dot("""FOR k := 1 TO 3 DO
+  s := s + a[k] * b[k] - a[k] * b[k] * 2.0;
+END_FOR;
+Dot := s;"""), {"r": -7.0}, shape=("DOT", r"(_t\d+) = \(_t\d+ \* _t\d+\)\n(?s:.*)\n\s*\1 = \(_t\d+ \* _t\d+\)\n"))
 DET = main("m : ARRAY[1..9] OF LREAL := [2.0, 0.0, 1.0, 1.0, 3.0, 2.0, 1.0, 1.0, 4.0]; d, s7, s8 : LREAL;",
            "d := Det3(m);\ns7 := Sum7(m);\ns8 := Sum8(m);", before="""FUNCTION Det3 : LREAL
 VAR_INPUT a : ARRAY[1..9] OF LREAL; END_VAR

@@ -265,3 +265,35 @@ def test_a_run_whose_values_may_overflow_stays_or_checks_its_inputs():
         env = _inputs(random.Random(1), ("_t1", big))
         want, got = _run(lines, env, {}), _run(after, env, bound)
         assert _same(got["v_D"], want["v_D"]), big
+
+
+PARSE = [
+    ("a", ("name", "a")),
+    ("1.5", ("const", 1.5)),
+    ("2", ("const", 2)),
+    ("1e3", ("const", 1000.0)),
+    ("2.5E-2", ("const", 0.025)),
+    ("True", ("const", True)),
+    ("False", ("const", False)),
+    ("(a + b)", ("bin", "+", ("name", "a"), ("name", "b"))),
+    ("(a - 0.5)", ("bin", "-", ("name", "a"), ("const", 0.5))),
+    ("(a * -0.5)", ("bin", "*", ("name", "a"), ("const", -0.5))),
+    ("-0.5", ("const", -0.5)),
+    ("(-0.5)", ("const", -0.5)),
+    ("(x)", ("name", "x")),
+    ("((a * b) - (c * d))", ("bin", "-", ("bin", "*", ("name", "a"), ("name", "b")),
+                             ("bin", "*", ("name", "c"), ("name", "d")))),
+    ("(((a + b) + c) + d)", ("bin", "+", ("bin", "+", ("bin", "+", ("name", "a"), ("name", "b")),
+                                             ("name", "c")), ("name", "d"))),
+    ("  (a + b)  ", ("bin", "+", ("name", "a"), ("name", "b"))),    # spaces around tokens are skipped
+    ("(a + b)  ", ("bin", "+", ("name", "a"), ("name", "b"))),
+    ("a + b", None), ("(a + b", None), ("(a + b c", None), ("(a + b c)", None), ("(a + b))", None),
+    ("(a / b)", None), ("(a ** b)", None), ("f(a)", None), ("(a + f(b))", None), ("v[1]", None),
+    ("self.v_X", None), ("(a < b)", None), ("()", None), ("(", None), ("-a", None), ("(a +)", None),
+    ("(a + * b)", None), ("((a) + (b))", ("bin", "+", ("name", "a"), ("name", "b"))),
+]
+
+
+@pytest.mark.parametrize("text, tree", PARSE, ids=[p[0] for p in PARSE])
+def test_the_parse_of_a_line_s_value(text, tree):
+    assert vector._parse(text) == tree
