@@ -669,6 +669,85 @@ row("cse", "eight reads make a region", DET, {"s8": 11.0}, shape=("SUM8", r"_t\d
 row("cse", "seven reads do not", DET, {"s7": 10.0}, never=("SUM7", r"_t\d+ = True\n\s*except _FAULTS:"))
 
 
+# ---------------------------------------------------------------------------- absolute
+# `ABS(x) <= B` and `ABS(x) < B` (either side) as chained comparisons; `>` and `>=` keep
+# the call; `ABS(x) <= ` the largest LREAL is x's finiteness.  One x a scan: 0, -0, 1.5,
+# -1.5, 2, -2, 3, +inf; b = 2 and nb = -1 locals.  Python's abs and comparisons are the
+# reference (IEC 61131-3 ABS: the magnitude; a comparison of LREALs: IEEE 754's).
+
+XS = [0.0, -0.0, 1.5, -1.5, 2.0, -2.0, 3.0, float("inf")]
+
+
+def _abs_table():
+    big = 1.7976931348623157e308
+    rows = []
+    for x in XS:
+        b, nb = 2.0, -1.0
+        rows.append([abs(x) <= b, abs(x) < b, b >= abs(x), b > abs(x), abs(x) <= 2.0, abs(x) < 2.0,
+                     abs(x) >= b, abs(x) <= big, abs(x) <= nb, abs(x) < -0.0, abs(x) <= -0.0, abs(x) > 1.5,
+                     abs(x) <= b + 0.0])
+    return [v for r in rows for v in r]
+
+
+row("inline", "ABS against a bound, each form", main(
+    "xs : ARRAY[0..7] OF LREAL := [0.0, -0.0, 1.5, -1.5, 2.0, -2.0, 3.0, 1.0E308]; n : INT; x : LREAL; "
+    "b : LREAL := 2.0; nb : LREAL := -1.0; r : ARRAY[0..7, 0..12] OF BOOL;",
+    """x := xs[n];
+IF n = 7 THEN x := x * 10.0; END_IF;
+r[n, 0] := ABS(x) <= b; r[n, 1] := ABS(x) < b; r[n, 2] := b >= ABS(x); r[n, 3] := b > ABS(x);
+r[n, 4] := ABS(x) <= 2.0; r[n, 5] := ABS(x) < 2.0; r[n, 6] := ABS(x) >= b;
+r[n, 7] := ABS(x) <= 1.7976931348623157E308; r[n, 8] := ABS(x) <= nb; r[n, 9] := ABS(x) < -0.0;
+r[n, 10] := ABS(x) <= -0.0; r[n, 11] := ABS(x) > 1.5; r[n, 12] := ABS(x) <= b + 0.0;
+n := n + 1;"""), {"r": _abs_table()}, scans=8, shape=("MAIN", r"\(-v_B <= v_X <= v_B\)"))
+row("inline", "ABS of a local against the largest LREAL is its finiteness", main("r : BOOL; s : BOOL;",
+    "r := F(1.0E308 * 10.0);\ns := F(-3.5);", before="""FUNCTION F : BOOL
+VAR_INPUT x : LREAL; END_VAR
+F := ABS(x) <= 1.7976931348623157E308;
+END_FUNCTION"""), {"r": False, "s": True}, shape=("F", r"\(v_X - v_X == 0\.0\)"))
+row("inline", "ABS of an INT", main("i : INT := -7; r, q : BOOL;", "r := ABS(i) <= 7;\nq := ABS(i) < 7;"),
+    {"r": True, "q": False}, shape=("MAIN", r"\(-7 <= (?:self\.)?v_I <= 7\)"))
+
+# ---------------------------------------------------------------------------------- ranges
+# A bounds check is left out only where the index can never be out of range; where it can,
+# F-INDEX comes on the same line, and the statement is abandoned.
+
+ARR = "arr : ARRAY[1..5] OF INT; i, c : INT; y : INT; x : INT := 1; count : INT := 7; "
+row("ranges", "a FOR whose end is data, past the array", main(ARR, "FOR c := 1 TO count DO arr[c] := c; END_FOR;"),
+    {"arr": [1, 2, 3, 4, 5], "c": 8}, faults=[("F-INDEX", 4, 1), ("F-INDEX", 4, 1)])
+row("ranges", "a FOR whose end is data, inside the array", main(ARR.replace("count : INT := 7", "count : INT := 4"),
+    "FOR c := 1 TO count DO arr[c] := c * 2; END_FOR;"), {"arr": [2, 4, 6, 8, 0], "c": 5})
+row("ranges", "a FOR from 0", main(ARR.replace("count : INT := 7", "count : INT := 2"),
+    "FOR c := 0 TO count DO arr[c + 1] := c; arr[c] := 9; END_FOR;"),
+    {"arr": [9, 9, 2, 0, 0]}, faults=[("F-INDEX", 4, 1)])
+row("ranges", "the union of an IF's branches", main(ARR,
+    "IF x > 0 THEN i := 7; ELSE i := 2; END_IF;\ny := arr[i];\ni := 3;\ny := arr[i] + 1;"),
+    {"y": 1}, faults=[("F-INDEX", 5, 1)])
+row("ranges", "an IF that takes no branch", main(ARR + "j : INT := 9;",
+    "i := j;\nIF x > 5 THEN i := 2; END_IF;\ny := arr[i];"), {"y": 0}, faults=[("F-INDEX", 6, 1)])
+row("ranges", "a CASE's clauses and its ELSE", main(ARR,
+    "CASE x OF 1: i := 3; 2: i := 4; ELSE i := 6; END_CASE;\narr[i] := 5;\nx := 3;\n"
+    "CASE x OF 1: i := 3; 2: i := 4; ELSE i := 6; END_CASE;\narr[i] := 7;"),
+    {"arr": [0, 0, 5, 0, 0]}, faults=[("F-INDEX", 8, 1)])
+row("ranges", "a store that may fault keeps the old range too", main(ARR + "k : INT;",
+    "i := 2;\ni := 10 / k;\narr[i] := 4;"), {"arr": [0, 4, 0, 0, 0], "i": 2}, faults=[("F-DIV-ZERO", 5, 1)])
+row("ranges", "a sum that wraps leaves the range", main(ARR + "s : SINT := 120;",
+    # 120 + 10 wraps to -126 in the SINT store: i = -126 + 130 = 4
+    "s := s + 10;\ni := SINT_TO_INT(s) + 130;\narr[i] := 1;"), {"arr": [0, 0, 0, 1, 0]})
+row("ranges", "a WHILE body's stores are unknown after it", main(ARR,
+    "i := 1;\nWHILE i < 6 DO i := i + 1; END_WHILE;\narr[i] := 1;"), {"i": 6}, faults=[("F-INDEX", 6, 1)])
+row("ranges", "a REPEAT body's stores", main(ARR,
+    "i := 1;\nREPEAT i := i * 3; UNTIL i > 5 END_REPEAT;\narr[i] := 1;"), {"i": 9}, faults=[("F-INDEX", 6, 1)])
+row("ranges", "a FUNCTION's local through an unrolled loop", main("y : INT;", "y := F(4);", before="""FUNCTION F : INT
+VAR_INPUT n : INT; END_VAR
+VAR t : ARRAY[1..3] OF INT := [10, 20, 30]; k, p : INT; END_VAR
+p := 1;
+FOR k := 1 TO 3 DO IF k = n THEN p := k; END_IF; END_FOR;
+F := t[p];
+p := n;
+F := F + t[p];
+END_FUNCTION"""), {"y": 10}, faults=[("F-INDEX", 8, 1)])
+
+
 @pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
 def test_row(r: Row):
     check(r)
