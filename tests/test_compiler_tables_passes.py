@@ -312,6 +312,27 @@ VAR_OUTPUT o : REAL; END_VAR VAR a : REAL := 0.1; END_VAR
 o := a * 3.0;
 END_FUNCTION_BLOCK"""), {"r": float(__import__("numpy").float32(__import__("numpy").float32(0.1) * __import__("numpy").float32(3.0)))})
 
+row("unguard", "a global's store keeps its handler", main("y : INT;", "g := g + 1;\ny := g;",
+    before="VAR_GLOBAL g : INT := 4; END_VAR"), {"y": 5}, never=("MAIN", r"\n        _G\.v_G = "))
+row("unguard", "a located variable's store keeps its handler", main("m AT %MW2 : INT; y : INT;",
+    "m := 5;\ny := m + 1;"), {"m": 5, "y": 6}, never=("MAIN", r"\n        self\.v_M = 5"),
+    shape=("MAIN", r"\n        (?:self\.)?v_Y = "))
+row("unguard", "an array copy", main("a, b : ARRAY[1..3] OF INT; y : INT;",
+    "b[2] := 7;\na := b;\ny := a[2];"), {"a": [0, 7, 0], "y": 7}, shape=("MAIN", r"\n        v_A\[:\] = v_B"))
+row("unguard", "a copy of a global array", main("a : ARRAY[1..3] OF INT;", "a := G;",
+    before="VAR_GLOBAL G : ARRAY[1..3] OF INT := [4, 5, 6]; END_VAR"), {"a": [4, 5, 6]},
+    shape=("MAIN", r"\n        v_A\[:\] = v_G"))
+row("unguard", "an element store of a division keeps its handler", main("a : ARRAY[1..3] OF INT; k : INT;",
+    "a[1] := 6 / k;\na[2] := 6 - k;"), {"a": [0, 6, 0]}, faults=[("F-DIV-ZERO", 4, 1)],
+    never=("MAIN", r"\n        v_A\[0\] = "), shape=("MAIN", r"\n        v_A\[1\] = "))
+row("unguard", "a store with a conversion keeps its handler", main("i : INT := 3; x : LREAL; y : INT;",
+    "x := INT_TO_LREAL(i);\ny := i * 2 - 1;"), {"x": 3.0, "y": 5},
+    never=("MAIN", r"\n        self\.v_X = "), shape=("MAIN", r"\n        self\.v_Y = "))
+row("unguard", "a FUNCTION's locals", main("y : LREAL;", "y := F(1.5);", before="""FUNCTION F : LREAL
+VAR_INPUT a : LREAL; END_VAR VAR t : LREAL; END_VAR
+t := a * a - 0.25;
+F := t * 2.0 + a;
+END_FUNCTION"""), {"y": 5.5}, shape=("F", r"\n        v_T = \("))
 
 # ----------------------------------------------------------------------------------- reuse
 # A float value computed again over unchanged operands is set once (`_cN = ...`) and read
