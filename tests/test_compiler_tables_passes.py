@@ -953,3 +953,36 @@ def test_the_work_program_s_values_by_hand(optimise):
     values = dict(state[1:])
     assert faults == [] and values["v_FOUND"] == 3 and values["v_N"] == 2
     assert values["v_R"] == ("f", r.hex()) and values["v_A"] == tuple(("f", v.hex()) for v in x)
+
+
+# ------------------------------------------------------------------- unroll: the POU's cap
+# A FOR is unrolled while the statements its copies make (count x the body's size, the size
+# counted with every constant inner FOR unrolled) fit the POU's cap.  With the cap set to
+# exactly that number the loop is unrolled, one less and it is not: each compound
+# statement's size by hand (a statement 1; IF/CASE 1 + its bodies; WHILE/REPEAT 1 + body;
+# FOR 1 + count x body, or 1 + body when its bounds are data).
+
+CAPPED = {
+    "one statement": ("s := s + 1;", 1),
+    "IF, ELSIF, ELSE": ("IF c THEN s := s + 1; s := s + 2; ELSIF d THEN s := 0; ELSE s := 1; s := 2; s := 3; END_IF;", 7),
+    "CASE and ELSE": ("CASE k OF 1: s := 1; 2: s := 2; s := 3; ELSE s := 4; END_CASE;", 5),
+    "WHILE": ("WHILE s < 0 DO s := s + 1; s := s + 1; END_WHILE;", 3),
+    "REPEAT": ("REPEAT s := s + 1; UNTIL s > 0 END_REPEAT;", 2),
+    "an inner FOR by 3": ("FOR j := 1 TO 10 BY 3 DO s := s + j; END_FOR;", 5),
+    "an inner FOR by -4": ("FOR j := 10 TO 1 BY -4 DO s := s + j; s := s - 1; END_FOR;", 7),
+    "an inner FOR over data": ("FOR j := 1 TO n DO s := s + 1; s := s + 2; END_FOR;", 3),
+    "an inner FOR of no pass": ("FOR j := 1 TO 0 DO s := 1; END_FOR;", 1),
+    "an IF in an inner FOR": ("FOR j := 1 TO 2 DO IF c THEN s := 1; END_IF; END_FOR; s := 0;", 6),
+}
+
+
+@pytest.mark.parametrize("body, size", CAPPED.values(), ids=CAPPED.keys())
+def test_the_cap_counts_each_statement_of_the_copies(monkeypatch, body: str, size: int):
+    from st_runtime.compiler.optimise import unroll
+
+    src = main("s, k, j : INT; n : INT := 2; c, d : BOOL;", f"FOR k := 1 TO 3 DO {body} END_FOR;")
+    program = api.load_text(src, "m.st").program
+    for cap, unrolled in ((3 * size, True), (3 * size - 1, False)):
+        monkeypatch.setattr(unroll, "UNROLL_CAP", cap)
+        code = compile_program(program, optimise=Optimisations.only("unroll")).python_sources["MAIN"]
+        assert ("for v_K in" not in code) == unrolled, (cap, code)
