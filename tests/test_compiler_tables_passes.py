@@ -986,3 +986,68 @@ def test_the_cap_counts_each_statement_of_the_copies(monkeypatch, body: str, siz
         monkeypatch.setattr(unroll, "UNROLL_CAP", cap)
         code = compile_program(program, optimise=Optimisations.only("unroll")).python_sources["MAIN"]
         assert ("for v_K in" not in code) == unrolled, (cap, code)
+
+
+# ---------------------------------------------------------------- fastpath: which bodies
+# A body gets its fast copy when its worst case is bounded (FOR loops with constant bounds
+# that leave their variable alone, callees in ST bounded too, no METHOD) and its exact code
+# has at least `WORTH` budget checks.  Eight constant loops give eight checks.
+
+LOOPS8 = "\n".join(f"FOR k := 1 TO {n} DO s := s + k; END_FOR;" for n in range(2, 10))
+FAST = r"if _ctx\.budget >= \d+"
+
+
+def fast_src(extra: str, loops: str = LOOPS8, before: str = "") -> str:
+    return main("r : INT;", "r := F(2);", before=f"""{before}
+FUNCTION F : INT
+VAR_INPUT n : INT; END_VAR VAR s, k, j : INT; t : LREAL; END_VAR
+{loops}
+{extra}
+F := s;
+END_FUNCTION""")
+
+
+# s = (1 + 2) + (1 + 2 + 3) + ... + (1 + ... + 9) = 3 + 6 + 10 + 15 + 21 + 28 + 36 + 45 = 164
+for name, extra, more, fast in (
+        ("eight constant loops", "", 0, True),
+        ("seven are too few", None, 0, False),
+        ("a WHILE", "WHILE j < n DO j := j + 1; END_WHILE;", 0, False),
+        ("a REPEAT", "REPEAT j := j + 1; UNTIL j >= n END_REPEAT;", 0, False),
+        ("a FOR over data", "FOR j := 1 TO n DO s := s + 1; END_FOR;", 2, False),
+        ("a FOR with a variable step", "FOR j := 1 TO 4 BY n DO s := s + 1; END_FOR;", 2, False),
+        ("an IF and a CASE", "IF n > 1 THEN s := s + 1; ELSE s := 0; END_IF; CASE n OF 2: s := s + 1; END_CASE;", 2, True),
+        ("a bounded FUNCTION call", "s := s + G(3);", 3, True),
+        ("a FUNCTION with a WHILE", "s := s + W(3);", 3, False),
+        ("a standard function", "t := SQRT(INT_TO_LREAL(s)); s := s + LREAL_TO_INT(t);", 13, True),
+        ("an EXIT", "FOR j := 1 TO 3 DO s := s + 1; IF s > 160 THEN EXIT; END_IF; END_FOR;", 1, True)):
+    loops = LOOPS8 if extra is not None else "\n".join(LOOPS8.split("\n")[1:])
+    total = 164 + more if extra is not None else 164 - 3
+    row("fastpath", name, fast_src(extra or "", loops, before="""FUNCTION G : INT
+VAR_INPUT m : INT; END_VAR VAR i : INT; END_VAR
+FOR i := 1 TO 2 DO G := G + m; END_FOR;
+G := G - m;
+END_FUNCTION
+FUNCTION W : INT
+VAR_INPUT m : INT; END_VAR
+WHILE W < m DO W := W + 1; END_WHILE;
+END_FUNCTION"""), {"r": total}, **({"shape": ("F", FAST)} if fast else {"never": ("F", FAST)}))
+row("fastpath", "an FB's body with a bounded FB call", main("f : Outer; r : INT;", "f(); r := f.s;", before="""
+FUNCTION_BLOCK Inner
+VAR_OUTPUT o : INT; END_VAR VAR i : INT; END_VAR
+FOR i := 1 TO 3 DO o := o + i; END_FOR;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Outer
+VAR_OUTPUT s : INT; END_VAR VAR k : INT; g : Inner; END_VAR
+""" + LOOPS8 + """
+g();
+s := s + g.o;
+END_FUNCTION_BLOCK"""), {"r": 170}, shape=("OUTER", FAST))
+row("fastpath", "a METHOD call", main("f : Outer; r : INT;", "f(); r := f.s;", before="""
+FUNCTION_BLOCK Outer
+VAR_OUTPUT s : INT; END_VAR VAR k : INT; END_VAR
+METHOD Two : INT
+Two := 2;
+END_METHOD
+""" + LOOPS8 + """
+s := s + THIS.Two();
+END_FUNCTION_BLOCK"""), {"r": 166}, never=("OUTER", FAST))
