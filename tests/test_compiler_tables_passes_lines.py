@@ -160,3 +160,44 @@ def test_gather_leaves_short_runs_and_splits_at_another_owner_or_line():
     renamed = ["x = self.v_A", "y = self.v_B", "z = self.q", "w = self.v_D"]
     assert gather.prologue(renamed, register) == ["x, y, z, w = _k1(self)"]
     assert bound["_k1"].__reduce__()[1] == ("v_A", "v_B", "q", "v_D")
+
+
+# --------------------------------------------------------------- branches: code that cannot fault
+# branches.code_cannot_fault: names, literals, attributes, subscripts, comparisons,
+# `& | ^ ~ not and or`, `+ - *` (at most 14), calls of abs/min/max only; no `/ // % ** << >>`,
+# no `:=`, no `=` store, no other call, no keyword but not/and/or/if/else/in/is.
+
+from st_runtime.compiler.optimise import branches  # noqa: E402
+
+SUM = " + ".join(f"v_{chr(65 + i)}" for i in range(15))          # 14 `+`
+CODES = [
+    ("v_X", True), ("self.v_X", True), ("_G.v_X", True), ("v_A[3]", True), ("v_A[v_I - 1]", True),
+    ("(v_X + 1)", True), ("(v_X - 1)", True), ("(v_X * 2)", True), ("(v_X - -1)", True),
+    ("(v_X / 2)", False), ("(v_X // 2)", False), ("(v_X % 2)", False), ("(v_X ** 2)", False),
+    ("(v_X << 1)", False), ("(v_X >> 1)", False), ("(v_X == 1)", True), ("(v_X != 1)", True),
+    ("(v_X <= 1)", True), ("(v_X >= 1)", True), ("(v_X < 1)", True), ("(v_X > 1)", True),
+    ("(_t1 := v_X)", False), ("v_X = 1", False), ("abs(v_X)", True), ("abs (v_X)", True),
+    ("min(v_X, 2)", True), ("max(v_A, v_B, 3)", True), ("_f32(v_X)", False), ("len(v_X)", False),
+    ("v_X.append(1)", False), ("not v_A", True), ("(v_A and v_B)", True), ("(v_A or v_B)", True),
+    ("(v_A if v_B else v_C)", True), ("(v_X in (1, 2))", True), ("(v_X is None)", True),
+    ("True", True), ("False", True), ("(v_A & v_B)", True), ("(v_A | v_B)", True), ("(v_A ^ v_B)", True),
+    ("~v_A", True), ("'a'", False), ('"a"', False), ("(v_X @ v_Y)", False), ("lambda: 1", False),
+    ("(v_A for v_A in v_B)", False), ("await v_X", False), ("", False), ("   ", False),
+    (SUM, True), (SUM + " + v_Z", False), ("(1e+308 + 2.5e-300) - 1E+5", True),
+    ("(" + " * ".join(["2.0e+10"] * 15) + ")", True), ("(" + " * ".join(["v_X"] * 15) + ")", True),
+    ("(" + " * ".join(["v_X"] * 16) + ")", False),
+    (" + ".join(f"v_{chr(65 + i)}" for i in range(14)) + " + \x00_t3\x00", False),   # i * 1: one more
+    (" + ".join(f"v_{chr(65 + i)}" for i in range(14)) + " + \x031\x03", True),      # a reuse value: _c1
+    ("(v_X + \x00_t3\x00)", True),
+]
+
+
+@pytest.mark.parametrize("code, ok", CODES, ids=[repr(c)[:40] for c, _ in CODES])
+def test_code_that_cannot_fault(code: str, ok: bool):
+    assert branches.code_cannot_fault(code) is ok
+
+
+def test_per_iteration_values_and_reuse_tokens():
+    assert branches.per_iteration_values("v_A[\x00_t2\x00]") == "v_A[(_t2 * 1)]"
+    assert branches.per_iteration_values("(\x037\x03 + \x00_t1\x00)") == "(_c7 + (_t1 * 1))"
+    assert branches.per_iteration_values("(v_X + 1)") == "(v_X + 1)"
