@@ -516,6 +516,22 @@ row("stores", "a cached variable stored in the IF's ELSE", modes_fb(
     f"IF Mode = 1 THEN Out := Q; ELSE {CNT} END_IF;"),
     {"outs": [2.0, 5.0, 6.0, 14.0], "f.Cnt": 14}, scans=4,
     shape=("FB", r"\n {12,}finally:\n {16,}self\.v_CNT = v_CNT"))
+
+
+def _nested_loops(depth: int) -> str:
+    names = ["i", "j1", "j2", "j3", "j4"][:depth]
+    return "".join(f"FOR {v} := 1 TO n1 DO " for v in names) + "Out := Out + 1.0; " + "END_FOR; " * depth
+
+
+for depth, where in ((4, "CASE"), (5, "CASE"), (4, "IF"), (5, "IF")):
+    inner = (f"CASE Mode OF 1: Out := 1.0; ELSE {_nested_loops(depth)} END_CASE;" if where == "CASE"
+             else f"IF Mode = 1 THEN Out := 1.0; ELSE {_nested_loops(depth)} END_IF;")
+    check_ = {"shape" if depth <= 4 else "never":
+              ("FB", r"\n {12,}finally:\n(?: {16,}self\.v_\w+ = v_\w+\n)* {16,}self\.v_CNT = v_CNT")}
+    row("stores", f"loops {depth} deep in the {where}'s ELSE of the branch", modes_fb(
+        f"IF Mode = 2 THEN Cnt := Cnt + 1; Cnt := Cnt * 2; {inner} Out := Out + INT_TO_LREAL(Cnt); END_IF;",
+        extra="j1, j2, j3, j4 : INT; n1 : INT := 1;"),
+        {"outs": [0.0, 0.0, 3.0, 3.0], "f.Cnt": 2}, scans=4, **check_)
 row("spread", "a cached variable stored in two clauses", modes_fb(
     f"CASE Mode OF 1: {CNT} 2: Out := Q; 3: Cnt := Cnt - 7; Cnt := Cnt * Cnt; END_CASE;"),
     # Mode 1: Cnt = 2, Out = 2; Mode 2: Out = 5; Mode 3: Cnt = (2 - 7)^2 = 25
