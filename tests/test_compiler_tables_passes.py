@@ -897,13 +897,13 @@ SWEEP = {"fastpath": Optimisations.only("fastpath"), "chains": Optimisations.onl
          "every": EVERY}
 
 
-def _landings(src: str, optimise: Optimisations, budgets, scans: int = 2) -> list:
+def _landings(src: str, optimise: Optimisations, budgets, scans: int = 2, stop: bool = False) -> list:
     from test_optimiser_equivalence import snapshot
 
     compiled = compile_program(api.load_text(src, "m.st").program, optimise=optimise)
     found = []
     for budget in budgets:
-        controller = Controller(compiled, time_limit_ns=budget)
+        controller = Controller(compiled, time_limit_ns=budget, stop_on_fault=stop)
         main = controller.add_program("Main")
         left = []
         for _ in range(scans):
@@ -1067,3 +1067,37 @@ END_METHOD
 """ + LOOPS8 + """
 s := s + THIS.Two();
 END_FUNCTION_BLOCK"""), {"r": 166}, never=("OUTER", FAST))
+
+
+# A fault inside a fast copy, with stop_on_fault: the scan ends there, and the time charged
+# (what a fault handler takes back of the charges made ahead) is the exact path's.
+
+FAULTY = """FUNCTION Divide : LREAL
+VAR_IN_OUT x : ARRAY[1..6] OF LREAL; END_VAR
+VAR_INPUT d : ARRAY[1..6] OF INT; END_VAR
+VAR k, j : INT; s : LREAL; q : INT; END_VAR
+FOR k := 1 TO 6 DO
+  FOR j := 1 TO 2 DO s := s + x[k] * INT_TO_LREAL(j); END_FOR;
+  q := 12 / d[k];
+  x[k] := x[k] + INT_TO_LREAL(q);
+  FOR j := 1 TO 2 DO s := s - 0.5; END_FOR;
+END_FOR;
+FOR k := 1 TO 2 DO FOR j := 1 TO 2 DO s := s * 1.5; END_FOR; END_FOR;
+FOR k := 1 TO 2 DO s := s + 0.25; END_FOR;
+Divide := s;
+END_FUNCTION
+PROGRAM Main
+VAR a : ARRAY[1..6] OF LREAL := [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]; d : ARRAY[1..6] OF INT := [1, 2, 3, 0, 4, 6];
+    r : LREAL; n : INT; END_VAR
+r := Divide(a, d);
+n := n + 1;
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("name", ["fastpath", "chains", "charges", "every"])
+def test_a_fault_that_stops_the_scan_in_a_fast_copy(name: str):
+    budgets = [10_000_000] + list(range(100, 1400, 37))
+    reference = _landings(FAULTY, NONE, budgets, stop=True)
+    assert reference[0][1] == [("F-DIV-ZERO", 7, 1)]
+    assert _landings(FAULTY, SWEEP[name], budgets, stop=True) == reference
