@@ -427,6 +427,25 @@ row("reuse", "located LREAL and INT variables", main(
     "p AT %ML2 : LREAL; q AT %MW16 : INT := 7; w AT %MW16 : INT; x, y : LREAL; k : INT;",
     "p := 0.25;\nx := p * 4.0 - p * 4.0 + p * 4.0;\nw := 9;\nk := q + q;\nw := 1;\nk := k + q + q;\np := 2.0;\ny := p * 4.0;"),
     {"x": 1.0, "y": 8.0, "k": 20}, never=("MAIN", r"_c\d+ = "))
+row("reuse", "a value inside another value", main(AB + "d : LREAL := 0.25;",
+    "x := a * b + d;\ny := a * b + d;\nz := a * b;"), {"x": 3.25, "y": 3.25, "z": 3.0},
+    shape=("MAIN", r"_c\d+ = \(_c\d+ \+ (?:self\.)?v_D\)"))
+row("reuse", "a value first computed in an IF condition", main(AB,
+    "IF a * b > 2.0 THEN x := a * b; END_IF;\nIF a * b > 5.0 THEN y := 1.0; ELSE y := a * b + 1.0; END_IF;"),
+    {"x": 3.0, "y": 4.0}, shape=("MAIN", r"_c\d+ = "))
+row("reuse", "values in the body of a loop over data", main(AB,
+    "FOR i := 1 TO n DO x := x + a * b; y := a * b; END_FOR;\nz := a * b;"),
+    {"x": 9.0, "y": 3.0, "z": 3.0})
+row("reuse", "values in a WHILE body", main(AB + "m : INT;",
+    "WHILE m < 2 DO x := x + a * b; y := y + a * b; m := m + 1; END_WHILE;"), {"x": 6.0, "y": 6.0})
+row("reuse", "a value in a nested IF", main(AB,
+    "IF c THEN IF a > 1.0 THEN x := a * b; y := a * b + 1.0; END_IF; z := a * b; END_IF;"),
+    {"x": 3.0, "y": 4.0, "z": 3.0})
+row("reuse", "an FB call between two uses of the FB's own output", main(AB + "f : Fb;",
+    "f(); x := f.o * 2.0; f(); y := f.o * 2.0;", before="""FUNCTION_BLOCK Fb
+VAR_OUTPUT o : LREAL; END_VAR
+o := o + 1.0;
+END_FUNCTION_BLOCK"""), {"x": 2.0, "y": 4.0})
 row("stores_read", "an element stored and read back", main(AB + "arr : ARRAY[1..3] OF LREAL;",
     "arr[2] := a * b;\ny := arr[2] + 1.0;\nz := arr[2] * 2.0;"), {"arr": [0.0, 3.0, 0.0], "y": 4.0, "z": 6.0})
 row("stores_read", "the stored value read the array", main(AB + "arr : ARRAY[1..3] OF LREAL := [1.0, 2.0, 3.0];",
