@@ -446,6 +446,17 @@ row("reuse", "an FB call between two uses of the FB's own output", main(AB + "f 
 VAR_OUTPUT o : LREAL; END_VAR
 o := o + 1.0;
 END_FUNCTION_BLOCK"""), {"x": 2.0, "y": 4.0})
+row("reuse", "a METHOD storing its FB's variable between two uses", main("f : Fb; r : LREAL;", "r := f.Go();",
+    before="""FUNCTION_BLOCK Fb
+VAR_OUTPUT o : LREAL; END_VAR VAR a : LREAL := 1.5; b : LREAL := 2.0; END_VAR
+METHOD Go : LREAL
+VAR t : LREAL; END_VAR
+t := a * b;
+a := 3.0;
+o := a * b + t;
+Go := o;
+END_METHOD
+END_FUNCTION_BLOCK"""), {"r": 9.0, "f.o": 9.0, "f.a": 3.0})
 row("stores_read", "an element stored and read back", main(AB + "arr : ARRAY[1..3] OF LREAL;",
     "arr[2] := a * b;\ny := arr[2] + 1.0;\nz := arr[2] * 2.0;"), {"arr": [0.0, 3.0, 0.0], "y": 4.0, "z": 6.0})
 row("stores_read", "the stored value read the array", main(AB + "arr : ARRAY[1..3] OF LREAL := [1.0, 2.0, 3.0];",
