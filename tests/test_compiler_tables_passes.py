@@ -716,6 +716,15 @@ row("fuse", "temporaries of the copies share names", dot("""FOR k := 1 TO 3 DO
   s := s + a[k] * b[k] - a[k] * b[k] * 2.0;
 END_FOR;
 Dot := s;"""), {"r": -7.0}, shape=("DOT", r"(_t\d+) = \(_t\d+ \* _t\d+\)\n(?s:.*)\n\s*\1 = \(_t\d+ \* _t\d+\)\n"))
+_BIG_TERMS = [(i, j) for i in range(1, 17) for j in range(i, 17)][:130]
+row("vector", "a whole body of float products and sums is one NumPy call", main(
+    "m : ARRAY[1..16] OF LREAL := [" + ", ".join(f"{0.5 + k / 8}" for k in range(16)) + "]; r : LREAL;",
+    "r := Big(m);", before="FUNCTION Big : LREAL\nVAR_INPUT a : ARRAY[1..16] OF LREAL; END_VAR VAR s : LREAL; END_VAR\n"
+    + "\n".join(f"s := s + a[{i}] * a[{j}];" for i, j in _BIG_TERMS) + "\nBig := s;\nEND_FUNCTION"),
+    # the same sum in Python's floats, term by term in the ST's order
+    {"r": __import__("functools").reduce(lambda s, t: s + (0.5 + (t[0] - 1) / 8) * (0.5 + (t[1] - 1) / 8),
+                                          _BIG_TERMS, 0.0)},
+    shape=("BIG", r"v_S, (?:v_BIG, )?= _k\d+\("), with_=("unguard", "charges", "fuse"))
 DET = main("m : ARRAY[1..9] OF LREAL := [2.0, 0.0, 1.0, 1.0, 3.0, 2.0, 1.0, 1.0, 4.0]; d, s7, s8 : LREAL;",
            "d := Det3(m);\ns7 := Sum7(m);\ns8 := Sum8(m);", before="""FUNCTION Det3 : LREAL
 VAR_INPUT a : ARRAY[1..9] OF LREAL; END_VAR
@@ -771,6 +780,12 @@ row("inline", "ABS of a local against the largest LREAL is its finiteness", main
 VAR_INPUT x : LREAL; END_VAR
 F := ABS(x) <= 1.7976931348623157E308;
 END_FUNCTION"""), {"r": False, "s": True}, shape=("F", r"\(v_X - v_X == 0\.0\)"))
+row("inline", "ABS of an element and of a sum against the largest LREAL", main(
+    "arr : ARRAY[1..3] OF LREAL := [1.0, 1.0E308, -2.0]; a : LREAL := 1.0E308; r, q, u, w : BOOL;",
+    "arr[2] := arr[2] * 10.0;\nr := ABS(arr[2]) <= 1.7976931348623157E308;\nq := ABS(arr[3]) <= 1.7976931348623157E308;\n"
+    "u := ABS(a + a) <= 1.7976931348623157E308;\nw := ABS(a - a) <= 1.7976931348623157E308;"),
+    # 1e308 * 10 and 1e308 + 1e308 overflow to inf (IEEE 754): not finite
+    {"r": False, "q": True, "u": False, "w": True})
 row("inline", "ABS of an INT", main("i : INT := -7; r, q : BOOL;", "r := ABS(i) <= 7;\nq := ABS(i) < 7;"),
     {"r": True, "q": False}, shape=("MAIN", r"\(-7 <= (?:self\.)?v_I <= 7\)"))
 

@@ -297,3 +297,11 @@ PARSE = [
 @pytest.mark.parametrize("text, tree", PARSE, ids=[p[0] for p in PARSE])
 def test_the_parse_of_a_line_s_value(text, tree):
     assert vector._parse(text) == tree
+
+
+def test_a_literal_of_1e300_makes_the_run_refused():
+    # c = max(|1e300|, 1) reaches 1e300: some value might overflow, the run stays as written
+    rng = random.Random(11)
+    lines = [line.replace("-0.5", "1e300") for line in leibniz(rng)]
+    after, bound = _vectorised(lines)
+    assert after == lines and bound == {}
