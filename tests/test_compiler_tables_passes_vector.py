@@ -305,3 +305,14 @@ def test_a_literal_of_1e300_makes_the_run_refused():
     lines = [line.replace("-0.5", "1e300") for line in leibniz(rng)]
     after, bound = _vectorised(lines)
     assert after == lines and bound == {}
+
+
+def test_a_value_that_reaches_1e300_exactly_makes_the_run_refused():
+    # each output x * 1e300 has c = 1e300 (a literal's magnitude times an input's 1): the
+    # bound "no value reaches 1e300" fails at equality already
+    lines = [f"v_P{k} = ({FLOATS[k % 8]} * 1e300)" for k in range(260)]
+    after, bound = _vectorised(lines)
+    assert after == lines and bound == {}
+    lines = [f"v_P{k} = ({FLOATS[k % 8]} * 1e299)" for k in range(260)]
+    after, bound = _vectorised(lines)
+    assert len(after) == 1 and len(bound) == 1
