@@ -316,3 +316,31 @@ def test_a_value_that_reaches_1e300_exactly_makes_the_run_refused():
     lines = [f"v_P{k} = ({FLOATS[k % 8]} * 1e299)" for k in range(260)]
     after, bound = _vectorised(lines)
     assert len(after) == 1 and len(bound) == 1
+
+
+@pytest.mark.parametrize("family", FAMILIES.values(), ids=FAMILIES.keys())
+def test_finite_inputs_take_numpy_and_the_others_python(family):
+    """vector.py's contract: only inputs that are not finite or could overflow take the run
+    in Python (`exact`); ordinary ones are computed by NumPy (else the pass is no pass)."""
+    rng = random.Random(3)
+    lines, _ = family(rng)
+    elements = ELEMENTS if "_e0" in "\n".join(lines) else None
+    after, bound = _vectorised(lines, elements=elements)
+    helper = bound["_k0"].__self__
+    calls = []
+    original = helper.exact
+
+    def exact(whole, inputs):
+        calls.append(1)
+        return original(whole, inputs)
+    helper.exact = exact
+    helper._compile_run()                  # (the run binds exact when it is written)
+    for special, python in ((None, 0), (("_t1", math.inf), 1), (("_e2", math.nan), 1), (("_t1", 1e200), 1)):
+        if special is not None and special[0].startswith("_e") and elements is None:
+            continue
+        calls.clear()
+        env = _inputs(random.Random(4), special)
+        got = _run(after, env, {**bound, "_k0": helper.run})
+        assert len(calls) == python, special
+        want = _run(lines, env, {})
+        assert all(_same(got[k], v) for k, v in want.items() if k in got)
