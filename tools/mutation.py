@@ -92,7 +92,13 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   # that came with session 11's merges (halves, shortcut, finite, spread: 2 s)
                   "tests/test_compiler_mutation_s12.py", "tests/test_optimiser_halves.py",
                   "tests/test_optimiser_shortcut.py", "tests/test_optimiser_finite.py",
-                  "tests/test_optimiser_spread.py"]),
+                  "tests/test_optimiser_spread.py",
+                  # session 13: the passes' table (every pass alone, off and with all), and the passes'
+                  # own tests the selection had missed (wraps, deferred, stores_read, temps: 2 s)
+                  "tests/test_compiler_tables_passes.py", "tests/test_compiler_tables_passes_vector.py",
+                  "tests/test_compiler_tables_passes_lines.py", "tests/test_optimiser_wraps.py",
+                  "tests/test_optimiser_deferred.py", "tests/test_optimiser_stores_read.py",
+                  "tests/test_optimiser_temps.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",
