@@ -325,3 +325,279 @@ END_PROGRAM"""
     for optimise in (EVERY, NONE):
         main, faults, _ = run(src, optimise, "nj", inputs={"ud": 10, "dd": -1})
         assert (main.v_UQ, main.v_UM, faults) == (0, 10, [])
+
+
+# ================================== statements.py: every statement kind x every way it ends
+
+def program(decls: str, body: str) -> str:
+    return f"PROGRAM Main\nVAR {decls} END_VAR\n{body}\nEND_PROGRAM\n"
+
+
+V = "x, y, z, w, k, s, i, j, n, lo, hi, st : INT;"
+
+# id: (declarations, body, inputs, expected variables, faults as (code, text of the line))
+STATEMENTS = {
+    # ---- IF
+    "IF then": (V, "IF x > 0 THEN y := 1; ELSE y := 2; END_IF;\nz := 3;", {"x": 5}, {"y": 1, "z": 3}, []),
+    "IF else": (V, "IF x > 0 THEN y := 1; ELSE y := 2; END_IF;\nz := 3;", {"x": -5}, {"y": 2, "z": 3}, []),
+    "IF false, no else": (V, "IF x > 0 THEN y := 1; END_IF;\nz := 3;", {"x": 0, "y": 9}, {"y": 9, "z": 3}, []),
+    "IF condition faults: no branch": (V, "IF 10 / x > 0 THEN y := 1; ELSE y := 2; END_IF;\nz := 3;",
+                                       {"x": 0, "y": 9}, {"y": 9, "z": 3}, [("F-DIV-ZERO", "IF 10")]),
+    "IF condition faults, no else": (V, "IF 10 / x > 0 THEN y := 1; END_IF;\nz := 3;",
+                                     {"x": 0, "y": 9}, {"y": 9, "z": 3}, [("F-DIV-ZERO", "IF 10")]),
+    "IF branch statement faults": (V, "IF x > 0 THEN\n y := 10 / z;\n w := 1;\nEND_IF;",
+                                   {"x": 1, "y": 9}, {"y": 9, "w": 1}, [("F-DIV-ZERO", "y := 10")]),
+    "ELSIF first": (V, "IF x > 10 THEN y := 1; ELSIF x > 0 THEN y := 2; ELSIF x > -10 THEN y := 3; "
+                       "ELSE y := 4; END_IF;", {"x": 50}, {"y": 1}, []),
+    "ELSIF second": (V, "IF x > 10 THEN y := 1; ELSIF x > 0 THEN y := 2; ELSIF x > -10 THEN y := 3; "
+                        "ELSE y := 4; END_IF;", {"x": 5}, {"y": 2}, []),
+    "ELSIF third": (V, "IF x > 10 THEN y := 1; ELSIF x > 0 THEN y := 2; ELSIF x > -10 THEN y := 3; "
+                       "ELSE y := 4; END_IF;", {"x": -5}, {"y": 3}, []),
+    "ELSIF else": (V, "IF x > 10 THEN y := 1; ELSIF x > 0 THEN y := 2; ELSIF x > -10 THEN y := 3; "
+                      "ELSE y := 4; END_IF;", {"x": -50}, {"y": 4}, []),
+    "ELSIF none, no else": (V, "IF x > 10 THEN y := 1; ELSIF x > 0 THEN y := 2; END_IF;", {"x": -5, "y": 9},
+                            {"y": 9}, []),
+    "ELSIF condition faults: no branch": (V, "IF x > 10 THEN y := 1; ELSIF 10 / x > 0 THEN y := 2; "
+                                             "ELSE y := 4; END_IF;\nz := 3;", {"x": 0, "y": 9},
+                                          {"y": 9, "z": 3}, [("F-DIV-ZERO", "ELSIF 10")]),
+    "ELSIF later condition not evaluated": (V, "IF x > 10 THEN y := 1; ELSIF 10 / (x - 50) > 0 THEN y := 2; "
+                                               "END_IF;", {"x": 50}, {"y": 1}, []),
+    # ---- CASE
+    **{f"CASE {k}": (V, "CASE k OF 1: y := 10; 2, 3: y := 20; 5..7: y := 30; ELSE y := 40; END_CASE;\nz := 3;",
+                     {"k": k}, {"y": y, "z": 3}, [])
+       for k, y in [(1, 10), (2, 20), (3, 20), (4, 40), (5, 30), (6, 30), (7, 30), (8, 40), (-1, 40), (0, 40)]},
+    **{f"CASE no else {k}": (V, "CASE k OF 1: y := 10; 2, 3: y := 20; 5..7: y := 30; END_CASE;",
+                             {"k": k, "y": 9}, {"y": y}, [])
+       for k, y in [(1, 10), (3, 20), (4, 9), (7, 30), (8, 9), (0, 9)]},
+    **{f"CASE negative {k}": (V, "CASE k OF -5..-1: y := 1; 0: y := 2; -9, 9: y := 3; END_CASE;",
+                              {"k": k, "y": 7}, {"y": y}, [])
+       for k, y in [(-5, 1), (-1, 1), (0, 2), (-9, 3), (9, 3), (-6, 7), (1, 7)]},
+    "CASE empty clause": (V, "CASE k OF 1: ; 2: y := 2; END_CASE;", {"k": 1, "y": 9}, {"y": 9}, []),
+    "CASE only else": (V, "CASE k OF ELSE y := 2; END_CASE;", {"k": 1}, {"y": 2}, []),
+    "CASE selector faults: no clause": (V, "CASE 10 / k OF 1: y := 1; ELSE y := 2; END_CASE;\nz := 3;",
+                                        {"k": 0, "y": 9}, {"y": 9, "z": 3}, [("F-DIV-ZERO", "CASE")]),
+    # ---- FOR
+    "FOR constant": (V, "FOR i := 1 TO 5 DO s := s + i; END_FOR;", {}, {"s": 15, "i": 6}, []),
+    "FOR BY 2": (V, "FOR i := 1 TO 10 BY 2 DO s := s + i; END_FOR;", {}, {"s": 25, "i": 11}, []),
+    "FOR BY -1": (V, "FOR i := 5 TO 1 BY -1 DO s := s + i; END_FOR;", {}, {"s": 15, "i": 0}, []),
+    "FOR BY -2": (V, "FOR i := 10 TO 1 BY -2 DO s := s + i; END_FOR;", {}, {"s": 30, "i": 0}, []),
+    "FOR not run": (V, "FOR i := 5 TO 1 DO s := s + i; END_FOR;", {}, {"s": 0, "i": 5}, []),
+    "FOR not run, BY -1": (V, "FOR i := 1 TO 5 BY -1 DO s := s + i; END_FOR;", {}, {"s": 0, "i": 1}, []),
+    "FOR two blocks": (V, "FOR i := 1 TO 4 DO s := s + i; IF i > 2 THEN w := w + i; END_IF; z := z + 1; END_FOR;",
+                       {}, {"s": 10, "w": 7, "z": 4, "i": 5}, []),
+    "FOR variable bounds": (V, "FOR i := lo TO hi DO s := s + i; END_FOR;", {"lo": 3, "hi": 6},
+                            {"s": 18, "i": 7}, []),
+    "FOR variable bounds, not run": (V, "FOR i := lo TO hi DO s := s + i; END_FOR;", {"lo": 7, "hi": 3},
+                                     {"s": 0, "i": 7}, []),
+    "FOR variable bounds BY -1": (V, "FOR i := hi TO lo BY -1 DO s := s + i; END_FOR;", {"lo": 3, "hi": 6},
+                                  {"s": 18, "i": 2}, []),
+    "FOR variable bounds BY -1, not run": (V, "FOR i := hi TO lo BY -1 DO s := s + i; END_FOR;",
+                                           {"lo": 6, "hi": 3}, {"s": 0, "i": 3}, []),
+    "FOR variable bounds BY 3": (V, "FOR i := lo TO hi BY 3 DO s := s + i; END_FOR;", {"lo": 1, "hi": 10},
+                                 {"s": 22, "i": 13}, []),
+    "FOR variable step": (V, "FOR i := lo TO hi BY st DO s := s + i; END_FOR;", {"lo": 1, "hi": 10, "st": 3},
+                          {"s": 22, "i": 13}, []),
+    "FOR variable negative step": (V, "FOR i := lo TO hi BY st DO s := s + i; END_FOR;",
+                                   {"lo": 10, "hi": 1, "st": -3}, {"s": 22, "i": -2}, []),
+    "FOR variable step, not run": (V, "FOR i := lo TO hi BY st DO s := s + i; END_FOR;",
+                                   {"lo": 10, "hi": 1, "st": 3}, {"s": 0, "i": 10}, []),
+    "FOR variable step 0": (V, "FOR i := lo TO hi BY st DO s := s + i; END_FOR;",
+                            {"lo": 1, "hi": 10, "st": 0}, {"s": 0}, [("F-PERIOD", "FOR")]),
+    "FOR EXIT": (V, "FOR i := 1 TO 10 DO IF i = 4 THEN EXIT; END_IF; s := s + i; END_FOR;", {},
+                 {"s": 6, "i": 4}, []),
+    "FOR EXIT, variable end": (V, "FOR i := 1 TO hi DO IF i = 4 THEN EXIT; END_IF; s := s + i; END_FOR;",
+                               {"hi": 10}, {"s": 6, "i": 4}, []),
+    "FOR CONTINUE": (V, "FOR i := 1 TO 5 DO IF i = 3 THEN CONTINUE; END_IF; s := s + i; END_FOR;", {},
+                     {"s": 12, "i": 6}, []),
+    "FOR nested EXIT leaves the inner loop": (V, "FOR i := 1 TO 3 DO FOR j := 1 TO 3 DO IF j = 2 THEN EXIT; "
+                                                 "END_IF; s := s + 10 * i + j; END_FOR; END_FOR;", {},
+                                              {"s": 11 + 21 + 31, "i": 4, "j": 2}, []),
+    "FOR bounds fault: no iteration": (V, "FOR i := 1 TO 10 / z DO s := s + 1; END_FOR;\nw := 1;", {"i": 7},
+                                       {"s": 0, "i": 7, "w": 1}, [("F-DIV-ZERO", "FOR")]),
+    "FOR start faults: no iteration": (V, "FOR i := 10 / z TO 5 DO s := s + 1; END_FOR;\nw := 1;", {"i": 7},
+                                       {"s": 0, "i": 7, "w": 1}, [("F-DIV-ZERO", "FOR")]),
+    "FOR body faults: the loop goes on": (V, "FOR i := 1 TO 3 DO\n s := s + 10 / (i - 2);\n w := w + 1;\nEND_FOR;",
+                                          {}, {"s": 0, "w": 3, "i": 4}, [("F-DIV-ZERO", "s := s + 10")]),
+    "FOR up to the type's maximum": ("k : SINT; s : DINT;", "FOR k := 125 TO 127 DO s := s + k; END_FOR;", {},
+                                     {"s": 378, "k": -128}, []),
+    # ---- WHILE
+    "WHILE": (V, "WHILE i < 5 DO i := i + 1; s := s + i; END_WHILE;", {}, {"i": 5, "s": 15}, []),
+    "WHILE not run": (V, "WHILE i < 5 DO i := i + 1; s := s + i; END_WHILE;", {"i": 7}, {"i": 7, "s": 0}, []),
+    "WHILE EXIT": (V, "WHILE i < 50 DO i := i + 1; IF i = 3 THEN EXIT; END_IF; s := s + i; END_WHILE;", {},
+                   {"i": 3, "s": 3}, []),
+    "WHILE CONTINUE": (V, "WHILE i < 5 DO i := i + 1; IF i = 3 THEN CONTINUE; END_IF; s := s + i; END_WHILE;", {},
+                       {"i": 5, "s": 12}, []),
+    "WHILE condition faults: the loop ends": (V, "WHILE 10 / (3 - i) > 0 DO i := i + 1; END_WHILE;\nw := 1;", {},
+                                              {"i": 3, "w": 1}, [("F-DIV-ZERO", "WHILE")]),
+    "WHILE body faults: the loop goes on": (V, "WHILE i < 3 DO\n i := i + 1;\n s := s + 10 / (i - 2);\nEND_WHILE;",
+                                            {}, {"i": 3, "s": -10 + 10}, [("F-DIV-ZERO", "s := s + 10")]),
+    # ---- REPEAT
+    "REPEAT": (V, "REPEAT i := i + 1; s := s + i; UNTIL i >= 3 END_REPEAT;", {}, {"i": 3, "s": 6}, []),
+    "REPEAT runs once": (V, "REPEAT i := i + 1; UNTIL i > 0 END_REPEAT;", {"i": 7}, {"i": 8}, []),
+    "REPEAT CONTINUE goes to the test": (V, "REPEAT i := i + 1; IF i < 3 THEN CONTINUE; END_IF; s := s + 1; "
+                                            "UNTIL i >= 5 END_REPEAT;", {}, {"i": 5, "s": 3}, []),
+    "REPEAT CONTINUE to a true test": (V, "REPEAT i := i + 1; IF i >= 2 THEN CONTINUE; END_IF; s := s + 1; "
+                                          "UNTIL i >= 2 END_REPEAT;", {}, {"i": 2, "s": 1}, []),
+    "REPEAT EXIT": (V, "REPEAT i := i + 1; IF i = 2 THEN EXIT; END_IF; s := s + 1; UNTIL i >= 5 END_REPEAT;", {},
+                    {"i": 2, "s": 1}, []),
+    "REPEAT condition faults: the loop ends": (V, "REPEAT i := i + 1; UNTIL 10 / (2 - i) < 0 END_REPEAT;\nw := 1;",
+                                               {}, {"i": 2, "w": 1}, [("F-DIV-ZERO", "REPEAT")]),
+    # ---- RETURN and EXIT around other statements
+    "RETURN": (V, "s := 1;\nIF x > 0 THEN RETURN; END_IF;\ns := 2;", {"x": 1}, {"s": 1}, []),
+    "RETURN not taken": (V, "s := 1;\nIF x > 0 THEN RETURN; END_IF;\ns := 2;", {"x": 0}, {"s": 2}, []),
+    "RETURN in a WHILE": (V, "WHILE TRUE DO i := i + 1; IF i = 4 THEN RETURN; END_IF; END_WHILE;\nw := 1;", {},
+                          {"i": 4, "w": 0}, []),
+    "EXIT in a CASE in a loop": (V, "FOR i := 1 TO 5 DO CASE i OF 3: EXIT; END_CASE; s := s + i; END_FOR;", {},
+                                 {"s": 3, "i": 3}, []),
+    "index fault abandons the store": ("a : ARRAY[1..3] OF INT; i, w : INT;", "a[i] := 5;\nw := a[2] + 1;",
+                                       {"i": 4}, {"w": 1}, [("F-INDEX", "a[i] := 5")]),
+}
+
+
+@PASSES
+@pytest.mark.parametrize("row", STATEMENTS.values(), ids=STATEMENTS.keys())
+def test_every_statement_kind_and_every_way_it_ends(row, optimise):
+    decls, body, inputs, expected, faults = row
+    src = program(decls, body)
+    main, got, _ = run(src, optimise, inputs=inputs)
+    assert {name: getattr(main, "v_" + name.upper()) for name in expected} == expected
+    assert got == [(code, line_of(src, text), 1) for code, text in faults]
+
+
+RETURN_IN_FOR = program(V, "FOR i := 1 TO 5 DO s := s + i; IF i = 2 THEN RETURN; END_IF; END_FOR;\nw := 1;")
+
+
+def test_return_in_a_for_leaves_the_variable_at_its_iteration():
+    # IEC 61131-3: RETURN leaves the POU at once; the FOR variable of a PROGRAM keeps the
+    # value of the iteration that returned (2), s the sum so far (1 + 2).
+    main, faults, _ = run(RETURN_IN_FOR, NONE)
+    assert (main.v_S, main.v_I, main.v_W, faults) == (3, 2, 0, [])
+
+
+@pytest.mark.xfail(strict=True, reason="optimise/unroll.py emit: a FOR unrolled because it leaves only by "
+                   "RETURN stores its variable only after the last copy; a RETURN from a copy leaves the "
+                   "variable of a PROGRAM or FB at its value before the loop (0 here, 2 by IEC). Not this "
+                   "helper's file (session 13): reported to the lead.")
+@pytest.mark.parametrize("optimise", [EVERY, Optimisations.only("unroll")], ids=["every pass", "unroll"])
+def test_return_in_an_unrolled_for_leaves_the_variable_at_its_iteration(optimise):
+    main, faults, _ = run(RETURN_IN_FOR, optimise)
+    assert (main.v_S, main.v_I, main.v_W, faults) == (3, 2, 0, [])
+
+
+GLOBAL_FOR = """VAR_GLOBAL g : INT; END_VAR
+FUNCTION Skip : INT
+g := g + 1;
+Skip := g;
+END_FUNCTION
+PROGRAM Main
+VAR s, z, w, lo, hi, st : INT; END_VAR
+{body}
+END_PROGRAM
+"""
+
+# A FOR whose variable is a global runs as a loop that tests the variable each time (any call
+# may change it, as on a PLC): the body's changes count, and CONTINUE still increments.
+GLOBAL_FORS = {
+    "constant": ("FOR g := 1 TO 5 DO s := s + g; END_FOR;", {}, {"s": 15, "g": 6}, []),
+    "not run": ("FOR g := 5 TO 1 DO s := s + g; END_FOR;", {}, {"s": 0, "g": 5}, []),
+    "BY -2": ("FOR g := 9 TO 1 BY -2 DO s := s + g; END_FOR;", {}, {"s": 25, "g": -1}, []),
+    "a call changes it": ("FOR g := 1 TO 10 DO s := s + g; Skip(); END_FOR;", {}, {"s": 25, "g": 11}, []),
+    "a call changes it, BY -2": ("FOR g := 9 TO 1 BY -2 DO s := s + g; Skip(); END_FOR;", {},
+                                 {"s": 9 + 8 + 7 + 6 + 5 + 4 + 3 + 2 + 1, "g": 0}, []),
+    "CONTINUE increments": ("FOR g := 1 TO 6 DO IF g = 3 THEN Skip(); CONTINUE; END_IF; s := s + g; END_FOR;", {},
+                            {"s": 14, "g": 7}, []),
+    "EXIT": ("FOR g := 1 TO 9 DO IF g = 4 THEN EXIT; END_IF; s := s + g; END_FOR;", {}, {"s": 6, "g": 4}, []),
+    "variable bounds": ("FOR g := lo TO hi DO s := s + g; END_FOR;", {"lo": 3, "hi": 6}, {"s": 18, "g": 7}, []),
+    "variable step": ("FOR g := lo TO hi BY st DO s := s + g; END_FOR;", {"lo": 1, "hi": 10, "st": 3},
+                      {"s": 22, "g": 13}, []),
+    "variable negative step": ("FOR g := lo TO hi BY st DO s := s + g; END_FOR;", {"lo": 10, "hi": 1, "st": -3},
+                               {"s": 22, "g": -2}, []),
+    "variable step, a call changes it": ("FOR g := lo TO hi BY st DO s := s + g; Skip(); END_FOR;",
+                                         {"lo": 1, "hi": 10, "st": 2}, {"s": 1 + 4 + 7 + 10, "g": 13}, []),
+    "end faults": ("g := 7;\nFOR g := 1 TO 10 / z DO s := s + 1; END_FOR;\nw := 1;", {}, {"s": 0, "g": 7, "w": 1},
+                   [("F-DIV-ZERO", "FOR")]),
+    "start faults": ("g := 7;\nFOR g := 10 / z TO 5 DO s := s + 1; END_FOR;\nw := 1;", {},
+                     {"s": 0, "g": 7, "w": 1}, [("F-DIV-ZERO", "FOR")]),
+    "up to the type's maximum": ("FOR g := 32766 TO 32767 DO s := s + 1; IF g = 32767 THEN EXIT; END_IF; END_FOR;",
+                                 {}, {"s": 2, "g": 32767}, []),
+}
+
+
+@PASSES
+@pytest.mark.parametrize("row", GLOBAL_FORS.values(), ids=GLOBAL_FORS.keys())
+def test_a_for_over_a_global_tests_its_variable_each_time(row, optimise):
+    body, inputs, expected, faults = row
+    src = GLOBAL_FOR.format(body=body)
+    compiled = compile_program(checked(src), optimise=optimise)
+    controller = Controller(compiled)
+    main = controller.add_program("Main")
+    for name, value in inputs.items():
+        setattr(main, "v_" + name.upper(), value)
+    controller.run(1)
+    got = {name: getattr(compiled.globals if name == "g" else main, "v_" + name.upper()) for name in expected}
+    assert got == expected
+    assert [(f.code, f.line, f.scan) for f in controller.faults] == \
+        [(code, line_of(src, text), 1) for code, text in faults]
+
+
+@PASSES
+@pytest.mark.parametrize("dialect", ["iec", "nj"])
+def test_a_case_selector_and_an_index_see_the_dialects_sum(optimise, dialect: str):
+    # i + j = 60000 exact (iec); an INT overflow to -5536 under nj (W501 6-5-3: a CASE selector
+    # and an array index see the value of the expression in its type).
+    src = program("i, j, y, z : INT; a : ARRAY[-6000..-5000] OF INT;",
+                  "CASE i + j OF -5536: y := 1; ELSE y := 2; END_CASE;\nz := a[i + j];")
+    main, faults, _ = run(src, optimise, dialect, inputs={"i": 30000, "j": 30000})
+    if dialect == "nj":
+        assert (main.v_Y, main.v_Z, faults) == (1, 0, [])
+    else:
+        assert (main.v_Y, main.v_Z, faults) == (2, 0, [("F-INDEX", 4, 1)])
+
+
+FUNCTION_RETURNS = """FUNCTION F : INT
+VAR_INPUT n : INT; END_VAR
+VAR i : INT; END_VAR
+F := -1;
+FOR i := 1 TO 10 DO
+  IF i = n THEN F := i * 10; RETURN; END_IF;
+END_FOR;
+F := -2;
+END_FUNCTION
+FUNCTION G : INT
+VAR_INPUT n : INT; END_VAR
+G := 5;
+WHILE TRUE DO
+  G := G + 1;
+  IF G >= n THEN RETURN; END_IF;
+END_WHILE;
+END_FUNCTION
+FUNCTION H : INT
+VAR_INPUT n : INT; END_VAR
+H := 100 / n;
+H := H + 1;
+END_FUNCTION
+PROGRAM Main
+VAR a, b, c, d, e : INT; END_VAR
+a := F(4);
+b := F(11);
+c := G(9);
+d := H(0);
+e := H(50);
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_return_leaves_a_function_with_its_result_so_far(optimise):
+    main, faults, _ = run(FUNCTION_RETURNS, optimise)
+    # H(0): the division faults inside H (line 20); H := H + 1 still runs: 0 + 1.
+    assert (main.v_A, main.v_B, main.v_C, main.v_D, main.v_E) == (40, -2, 9, 1, 3)
+    assert faults == [("F-DIV-ZERO", 20, 1)]
+
+
+@PASSES
+def test_set_and_reset_assignments(optimise):
+    src = program("a, b, c, d, x, y : BOOL;", "a S= x;\nb S= y;\nc R= x;\nd R= y;")
+    main, _, _ = run(src, optimise, "codesys", inputs={"x": True, "y": False, "c": True, "d": True, "b": True})
+    # S=: TRUE when the value is TRUE, else unchanged; R=: FALSE when TRUE, else unchanged.
+    assert (main.v_A, main.v_B, main.v_C, main.v_D) == (True, True, False, True)
