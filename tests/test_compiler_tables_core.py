@@ -601,3 +601,348 @@ def test_set_and_reset_assignments(optimise):
     main, _, _ = run(src, optimise, "codesys", inputs={"x": True, "y": False, "c": True, "d": True, "b": True})
     # S=: TRUE when the value is TRUE, else unchanged; R=: FALSE when TRUE, else unchanged.
     assert (main.v_A, main.v_B, main.v_C, main.v_D) == (True, True, False, True)
+
+
+# ========================================== cost.py: every weight of the NJ time estimate
+
+# docs/nj501.md "What a scan costs", by hand: load 1, store 1, integer op 1, integer / and
+# MOD 4, REAL + - 2, REAL * 2, REAL / 8, compare 1, subscript 2, SQRT 8, transcendental 30,
+# other standard function or conversion 4, user call 10, argument 1 (an aggregate: per
+# element), element moved 2, branch 1, loop iteration 2, standard FB 20.  A block is charged
+# round(units * 598) ps.
+COST_TYPES = """TYPE Pair : STRUCT x : LREAL; y : ARRAY[1..3] OF INT; END_STRUCT; END_TYPE
+FUNCTION F : INT
+VAR_INPUT a : INT; b : INT := 2; END_VAR
+F := a + b;
+END_FUNCTION
+FUNCTION G : INT
+VAR_IN_OUT v : INT; END_VAR
+G := 1;
+END_FUNCTION
+FUNCTION H : INT
+VAR_INPUT arr : ARRAY[1..5] OF INT; END_VAR
+H := 1;
+END_FUNCTION
+FUNCTION KA : INT
+VAR_IN_OUT arr : ARRAY[1..5] OF INT; END_VAR
+KA := 1;
+END_FUNCTION
+FUNCTION_BLOCK Acc
+VAR_INPUT In : INT; END_VAR
+VAR_OUTPUT Out : INT; END_VAR
+Out := Out + In;
+END_FUNCTION_BLOCK
+"""
+COST_VARS = ("i, j, k : INT; x, y, z : LREAL; r1, r2 : REAL; b, c : BOOL; w1, w2 : WORD; t : TIME; "
+             "a, a2 : ARRAY[1..5] OF INT; m : ARRAY[1..3, 1..4] OF LREAL; p, q : Pair; "
+             "s16, u16 : STRING[16]; s7, u7 : STRING[7]; acc : Acc; t1 : TON;")
+
+COSTS = {  # body: units by hand (per path: every block that ran)
+    "copy": ("i := j;", 2), "literal": ("i := 5;", 2),
+    "INT +": ("i := j + k;", 4), "INT -": ("i := j - k;", 4), "INT *": ("i := j * k;", 4),
+    "INT /": ("i := j / k;", 7), "INT MOD": ("i := j MOD k;", 7),
+    "LREAL +": ("x := y + z;", 5), "LREAL -": ("x := y - z;", 5), "LREAL *": ("x := y * z;", 5),
+    "LREAL /": ("x := y / z;", 11), "REAL +": ("r1 := r1 + r2;", 5), "REAL /": ("r1 := r1 / r2;", 11),
+    "LREAL **": ("x := y ** z;", 33),
+    **{f"compare {op}": (f"b := j {op} k;", 4) for op in ("=", "<>", "<", "<=", ">", ">=")},
+    "REAL compare": ("b := x < y;", 4),
+    "AND": ("b := b AND c;", 4), "OR": ("b := b OR c;", 4), "XOR": ("b := b XOR c;", 4), "&": ("b := b & c;", 4),
+    "WORD AND": ("w1 := w1 AND w2;", 4),
+    "INT negation": ("i := -j;", 3), "LREAL negation": ("x := -y;", 4), "NOT": ("b := NOT c;", 3),
+    "WORD NOT": ("w1 := NOT w2;", 3),
+    "subscript read": ("i := a[j];", 5), "constant subscript": ("i := a[2];", 5),
+    "two subscripts": ("x := m[k, j];", 8), "subscript store": ("a[j] := i;", 5),
+    "subscript in a subscript": ("i := a[a[j] + 1];", 10),
+    "member read": ("x := p.x;", 2), "member store": ("p.x := y;", 2), "member's element": ("i := p.y[j];", 5),
+    "array assignment": ("a := a2;", 10), "structure assignment": ("p := q;", 8),
+    "STRING[16] assignment": ("s16 := u16;", 6), "STRING[7] assignment": ("s7 := u7;", 2),
+    "SQRT": ("x := SQRT(y);", 11),
+    **{name: (f"x := {name}(y);", 33) for name in ("SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN", "EXP", "LN", "LOG")},
+    "EXPT": ("x := EXPT(y, z);", 35),
+    "ABS": ("i := ABS(j);", 7), "MIN": ("i := MIN(j, k);", 9), "LIMIT": ("i := LIMIT(j, k, i);", 11),
+    "conversion": ("x := INT_TO_LREAL(j);", 7),
+    "ADD as +": ("i := ADD(j, k);", 4), "GT as >": ("b := GT(j, k);", 4), "MUL as LREAL *": ("x := MUL(y, z);", 5),
+    # a user FUNCTION: call 10 and its arguments by value (1 + the load), the callee's own block
+    "FUNCTION": ("i := F(j, k);", 10 + 2 * 2 + 1 + 4),
+    "FUNCTION with a default": ("i := F(a := j);", 10 + 2 + 1 + 4),
+    "FUNCTION, in-out by reference": ("i := G(v := j);", 10 + 1 + 1 + 2),
+    "FUNCTION, array by value": ("i := H(arr := a);", 10 + 5 + 1 + 2),
+    "FUNCTION, array in-out": ("i := KA(arr := a);", 10 + 1 + 1 + 2),
+    "FB in ST": ("acc(In := j);", 10 + 2 + 4), "standard FB": ("t1(IN := b, PT := t);", 20 + 2 * 2),
+    "two statements": ("i := j;\nx := y + z;", 2 + 5),
+}
+
+
+@PASSES
+@pytest.mark.parametrize("row", COSTS.values(), ids=COSTS.keys())
+def test_every_weight_of_the_estimate(row, optimise):
+    body, units = row
+    src = COST_TYPES + program(COST_VARS, body)
+    _, faults, times = run(src, optimise, inputs={"j": 1, "k": 3, "y": 0.5, "z": 2.0})
+    assert faults == []
+    assert times == [units * PS_PER_UNIT]
+
+
+BRANCHES = {  # body, inputs, units on that path
+    "IF taken": ("IF b THEN i := 1; END_IF;", {"b": True}, 2 + 2),
+    "IF not taken": ("IF b THEN i := 1; END_IF;", {"b": False}, 2),
+    "IF ELSE, then": ("IF b THEN i := 1; ELSE i := 2; j := 3; END_IF;", {"b": True}, 2 + 2),
+    "IF ELSE, else": ("IF b THEN i := 1; ELSE i := 2; j := 3; END_IF;", {"b": False}, 2 + 4),
+    "ELSIF first": ("IF b THEN i := 1; ELSIF c THEN i := 2; ELSE i := 3; END_IF;", {"b": True}, 2 + 2),
+    "ELSIF second": ("IF b THEN i := 1; ELSIF c THEN i := 2; ELSE i := 3; END_IF;", {"c": True}, 2 + 2 + 2),
+    "ELSIF else": ("IF b THEN i := 1; ELSIF c THEN i := 2; ELSE i := 3; END_IF;", {}, 2 + 2 + 2),
+    "IF comparison": ("IF j > k THEN i := 1; END_IF;", {"j": 4}, 4 + 2),
+    # CASE: the selector, then one branch per label compared to reach the clause
+    **{f"CASE {j}": ("CASE j OF 1: i := 1; 2, 3: i := 2; 4..6: i := 3; ELSE i := 4; END_CASE;", {"j": j}, units)
+       for j, units in [(1, 1 + 1 + 2), (3, 1 + 3 + 2), (5, 1 + 4 + 2), (9, 1 + 4 + 2)]},
+    "CASE selector sum": ("CASE j + k OF 1: i := 1; END_CASE;", {"j": 1, "k": 0}, 3 + 1 + 2),
+    # FOR: bounds (and step) and the store of the variable, then per iteration the loop's 2
+    # and the body's first block; a FOR that may EXIT charges each iteration as it runs
+    "FOR constant": ("FOR k := 1 TO 3 DO i := i + k; END_FOR;", {}, 3 + 3 * (2 + 4)),
+    "FOR BY 2": ("FOR k := 1 TO 6 BY 2 DO i := i + k; END_FOR;", {}, 4 + 3 * (2 + 4)),
+    "FOR variable count": ("FOR k := 1 TO j DO i := i + k; END_FOR;", {"j": 4}, 3 + 4 * (2 + 4)),
+    "FOR variable count 0": ("FOR k := 1 TO j DO i := i + k; END_FOR;", {"j": 0}, 3),
+    "FOR variable step": ("FOR k := 1 TO 6 BY j DO i := i + k; END_FOR;", {"j": 2}, 4 + 3 * (2 + 4)),
+    "FOR two blocks, IF taken": ("FOR k := 1 TO 2 DO i := i + k; IF b THEN j := j + 1; END_IF; END_FOR;",
+                                 {"b": True}, 3 + 2 * (2 + 4 + 2) + 2 * 4),
+    "FOR two blocks, IF not taken": ("FOR k := 1 TO 2 DO i := i + k; IF b THEN j := j + 1; END_IF; END_FOR;",
+                                     {"b": False}, 3 + 2 * (2 + 4 + 2)),
+    "FOR EXIT": ("FOR k := 1 TO 5 DO IF k = 3 THEN EXIT; END_IF; i := i + 1; END_FOR;", {},
+                 3 + 2 * (2 + 4 + 4) + (2 + 4 + 1)),
+    "FOR CONTINUE": ("FOR k := 1 TO 3 DO IF k = 2 THEN CONTINUE; END_IF; i := i + 1; END_FOR;", {},
+                     3 + 2 * (2 + 4 + 4) + (2 + 4 + 1)),
+    "nested FOR": ("FOR k := 1 TO 2 DO FOR j := 1 TO 3 DO i := i + 1; END_FOR; END_FOR;", {},
+                   3 + 2 * (2 + 3 + 3 * (2 + 4))),
+    # WHILE and REPEAT: per iteration the loop's 2, the test and its branch, the first block
+    "WHILE": ("WHILE j < 3 DO j := j + 1; END_WHILE;", {"j": 0}, 3 * (2 + 4 + 4)),
+    "WHILE not run": ("WHILE j < 3 DO j := j + 1; END_WHILE;", {"j": 5}, 0),
+    "REPEAT": ("REPEAT j := j + 1; UNTIL j >= 3 END_REPEAT;", {"j": 0}, 3 * (2 + 4 + 4)),
+    "REPEAT once": ("REPEAT j := j + 1; UNTIL j >= 3 END_REPEAT;", {"j": 5}, 2 + 4 + 4),
+    "RETURN": ("i := 1;\nIF b THEN RETURN; END_IF;\ni := 2;", {"b": True}, 2 + 2 + 1),
+    "RETURN not taken": ("i := 1;\nIF b THEN RETURN; END_IF;\ni := 2;", {"b": False}, 2 + 2 + 2),
+}
+
+
+@PASSES
+@pytest.mark.parametrize("row", BRANCHES.values(), ids=BRANCHES.keys())
+def test_every_path_charges_what_ran(row, optimise):
+    body, inputs, units = row
+    src = COST_TYPES + program(COST_VARS, body)
+    _, faults, times = run(src, optimise, inputs=inputs)
+    assert (faults, times) == ([], [units * PS_PER_UNIT])
+
+
+RUNAWAY = program("n : DINT;", "WHILE TRUE DO n := n + 1; END_WHILE;")
+
+
+@PASSES
+@pytest.mark.parametrize("limit_ns", [1, 4, 5, 597, 598, 599, 1000, 5000])
+def test_f_period_lands_after_the_iterations_the_budget_covers(limit_ns: int, optimise):
+    # One iteration: loop 2 + TRUE loaded 1 + branch 1 + `n := n + 1` 4 = 8 units = 4784 ps,
+    # charged before the body runs; the scan ends when the charges pass the limit, so
+    # floor(limit / 4784) iterations run (598 ns: exactly 125).  The time reported is what
+    # was charged, the failing iteration's included.
+    main, faults, times = run(RUNAWAY, optimise, limit_ns=limit_ns)
+    ran = limit_ns * 1000 // 4784
+    assert (main.v_N, faults, times) == (ran, [("F-PERIOD", 3, 1)], [(ran + 1) * 4784])
+
+
+@PASSES
+@pytest.mark.parametrize("limit_ns, n, faults", [(360, 0, [("F-PERIOD", 3, 1)]), (361, 100, [])])
+def test_a_whole_for_is_charged_and_tested_before_its_first_iteration(limit_ns, n, faults, optimise):
+    # setup 3 units + 100 iterations x (loop 2 + `n := n + 1` 4) = 603 units = 360,594 ps.
+    main, got, times = run(program("k, j : INT; n : DINT;", "FOR k := 1 TO j DO n := n + 1; END_FOR;"),
+                           optimise, inputs={"j": 100}, limit_ns=limit_ns)
+    assert (main.v_N, got, times) == (n, faults, [603 * PS_PER_UNIT])
+
+
+@pytest.mark.xfail(strict=True, reason="statements.py charges the tests of an IF's ELSIFs and a CASE's labels "
+                   "to the branch that took them (_if_entries, _case_entries): when no branch runs and there "
+                   "is no ELSE, the tests evaluated after the first are charged to no one (here 2 + 3 units "
+                   "for 2 + 2 + 3 by 'what ran'); reported to the lead (a change of the estimate).")
+@pytest.mark.parametrize("body, inputs, units", [
+    ("IF b THEN i := 1; ELSIF c THEN i := 2; END_IF;", {}, 2 + 2),
+    ("CASE j OF 1: i := 1; 2, 3: i := 2; END_CASE;", {"j": 9}, 1 + 3)], ids=["ELSIF none", "CASE no match"])
+def test_a_path_through_no_branch_pays_every_test_it_made(body, inputs, units):
+    _, faults, times = run(COST_TYPES + program(COST_VARS, body), NONE, inputs=inputs)
+    assert (faults, times) == ([], [units * PS_PER_UNIT])
+
+
+# ============================= exprs.py / support.py: subscripts out of range, by dimension
+
+INDEXED = """TYPE Pair : STRUCT x : LREAL; y : ARRAY[1..3] OF INT; END_STRUCT; END_TYPE
+FUNCTION Pick : LREAL
+VAR_INPUT i, j : INT; END_VAR
+VAR m : ARRAY[1..3, 1..4] OF LREAL; END_VAR
+Pick := m[i, j] + 1.0;
+END_FUNCTION
+PROGRAM Main
+VAR m : ARRAY[1..3, 1..4] OF LREAL; a : ARRAY[1..3] OF INT; p : Pair; i, j : INT; x : LREAL; w : INT;
+    ps : ARRAY[0..1] OF Pair; END_VAR
+{body}
+w := 1;
+END_PROGRAM
+"""
+
+INDEX_FAULTS = {  # body, i, j: the fault's message (F-INDEX names the first index out of range)
+    "first of two": ("x := m[i, j];", 0, 1, "index 0 (dimension 1) of 'm' out of bounds 1..3"),
+    "second of two": ("x := m[i, j];", 2, 5, "index 5 (dimension 2) of 'm' out of bounds 1..4"),
+    "both of two": ("x := m[i, j];", 4, 9, "index 4 (dimension 1) of 'm' out of bounds 1..3"),
+    "first of two, sums": ("x := m[i + 1, j - 1];", -1, 2, "index 0 (dimension 1) of 'm' out of bounds 1..3"),
+    "store, first of two": ("m[i, j] := 2.0;", 0, 0, "index 0 (dimension 1) of 'm' out of bounds 1..3"),
+    "store, second of two": ("m[i, j] := 2.0;", 1, 0, "index 0 (dimension 2) of 'm' out of bounds 1..4"),
+    "in a FUNCTION": ("x := Pick(i, j);", 3, 7, "index 7 (dimension 2) of 'm' out of bounds 1..4"),
+    "in a FUNCTION, first": ("x := Pick(i, j);", 9, 7, "index 9 (dimension 1) of 'm' out of bounds 1..3"),
+    "one dimension": ("w := a[i];", 4, 0, "index 4 of 'a' out of bounds 1..3"),
+    "one dimension, below": ("a[i] := 3;", -2, 0, "index -2 of 'a' out of bounds 1..3"),
+    "a member's": ("w := p.y[j];", 0, 0, "index 0 of 'p.y' out of bounds 1..3"),
+    "an element's member's": ("w := ps[i].y[j];", 1, 4, "index 4 of 'ps[...].y' out of bounds 1..3"),
+}
+
+
+@PASSES
+@pytest.mark.parametrize("row", INDEX_FAULTS.values(), ids=INDEX_FAULTS.keys())
+def test_a_subscript_out_of_range_faults_naming_its_dimension(row, optimise):
+    # The statement is abandoned with F-INDEX (the next one runs); indices of PROGRAM
+    # variables read once are evaluated into temps: all of them before the message is made
+    # (a first index out of range crashed the scan with UnboundLocalError until session 13).
+    body, i, j, message = row
+    src = INDEXED.format(body=body)
+    controller = Controller(compile_program(checked(src), optimise=optimise))
+    main = controller.add_program("Main")
+    main.v_I, main.v_J = i, j
+    controller.run(1)
+    line = 5 if "FUNCTION" in message or body.startswith("x := Pick") else line_of(src, body)
+    assert [(f.code, f.message, f.line) for f in controller.faults] == [("F-INDEX", message, line)]
+    assert main.v_W == 1
+
+
+# ===================== calls.py: every POU kind x every parameter kind (and EN/ENO, defaults)
+
+CALLS = """TYPE Pt : STRUCT c : INT; d : INT; END_STRUCT; END_TYPE
+FUNCTION F : INT
+VAR_INPUT a : INT; b : INT := 2; END_VAR
+F := 10 * a + b;
+END_FUNCTION
+FUNCTION FO : INT
+VAR_INPUT a : INT; END_VAR
+VAR_OUTPUT o : INT; q : BOOL; END_VAR
+o := a * 3;
+q := a > 0;
+FO := a + 1;
+END_FUNCTION
+FUNCTION Inc : INT
+VAR_IN_OUT v : INT; END_VAR
+v := v + 1;
+Inc := v;
+END_FUNCTION
+FUNCTION Fill : INT
+VAR_IN_OUT arr : ARRAY[1..3] OF INT; END_VAR
+arr[2] := 77;
+Fill := arr[1];
+END_FUNCTION
+FUNCTION ByValue : INT
+VAR_INPUT arr : ARRAY[1..3] OF INT; pt : Pt; END_VAR
+arr[1] := arr[1] + 100;
+pt.c := 9;
+ByValue := arr[1] + pt.c;
+END_FUNCTION
+FUNCTION Fresh : INT
+VAR c : INT := 5; END_VAR
+c := c + 1;
+Fresh := c;
+END_FUNCTION
+FUNCTION Half : REAL
+VAR_INPUT r : REAL; END_VAR
+Half := r;
+END_FUNCTION
+FUNCTION SumOpen : DINT
+VAR_IN_OUT vals : ARRAY[*] OF INT; END_VAR
+VAR i : DINT; END_VAR
+FOR i := LOWER_BOUND(vals, 1) TO UPPER_BOUND(vals, 1) DO SumOpen := SumOpen + vals[i]; END_FOR;
+END_FUNCTION
+FUNCTION_BLOCK Acc
+VAR_INPUT In : INT; Tab : ARRAY[1..2] OF INT; END_VAR
+VAR_OUTPUT Out : INT; Pos : BOOL; END_VAR
+VAR_IN_OUT Ref : INT; END_VAR
+Out := Out + In + Tab[1];
+Pos := Out > 0;
+Ref := Ref * 2;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Box
+VAR k : INT := 4; END_VAR
+METHOD Times : INT
+VAR_INPUT m : INT; END_VAR
+Times := k * m;
+k := k + 1;
+END_METHOD
+METHOD Twice : INT
+Twice := THIS.Times(2);
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR j, k, n, r1, r2, r3, r4, r5, r6, r7, r8, r9, r10, r11, r12, r13, r14, r15, r16, r17 : INT;
+    o1, o2, n2, n3, n4, n5 : INT; q1, ok1, ok2, ok3, ok4, en, neg : BOOL; arr, arr2 : ARRAY[1..3] OF INT;
+    open1 : ARRAY[-2..1] OF INT; pt : Pt; acc, acc2 : Acc; box : Box; tab : ARRAY[1..2] OF INT;
+    big : DINT; h : REAL; s1, low, high : DINT; END_VAR
+r1 := F(j, k);
+r2 := F(b := k, a := j);
+r3 := F(a := j);
+r4 := FO(j, o => o1, q => q1);
+r5 := FO(a := k);
+FO(a := j, o => o2);
+r6 := Inc(v := n);
+r7 := Inc(v := arr[3]) + Inc(v := pt.d);
+arr[1] := 5;
+r8 := Fill(arr := arr);
+arr2[1] := 1;
+pt.c := 1;
+r9 := ByValue(arr := arr2, pt := pt);
+r10 := Fresh() + Fresh();
+r11 := F(EN := en, a := j, ENO => ok1);
+r12 := F(EN := NOT en, a := j, ENO => ok2);
+Inc(EN := en, v := n2, ENO => ok3);
+Inc(EN := NOT en, v := n3, ENO => ok4);
+h := Half(big);
+open1[-2] := 3;
+open1[1] := 4;
+s1 := SumOpen(vals := open1);
+low := LOWER_BOUND(open1, 1);
+tab[1] := 10;
+n4 := 3;
+acc(In := 2, Tab := tab, Ref := n4, Out => r13, NOT Pos => neg);
+tab[1] := 1000;
+acc(Ref := n4);
+r14 := acc.Out;
+n5 := 5;
+acc2(EN := en, In := 1, Ref := n5);
+r15 := box.Times(3);
+r16 := box.Twice();
+r17 := box.Times(m := 1);
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_calls_of_every_pou_kind_with_every_parameter_kind(optimise):
+    main, faults, _ = run(CALLS, optimise, inputs={"j": 3, "k": 4, "n": 6, "en": False, "big": 16777217})
+    got = {name: getattr(main, "v_" + name.upper()) for name in (
+        "r1", "r2", "r3", "r4", "o1", "q1", "r5", "o2", "r6", "n", "r7", "r8", "r9", "r10", "r11", "ok1", "r12",
+        "ok2", "n2", "ok3", "n3", "ok4", "h", "s1", "low", "r13", "neg", "r14", "n4", "n5", "r15", "r16", "r17")}
+    assert got == {
+        "r1": 34, "r2": 34, "r3": 32,                       # positional, named in any order, default b = 2
+        "r4": 4, "o1": 9, "q1": True, "r5": 5, "o2": 9,     # VAR_OUTPUT by `=>`, unconnected, in a statement
+        "r6": 7, "n": 7, "r7": 2,                           # VAR_IN_OUT: the caller's variable, element, member
+        "r8": 5,                                            # an in-out array is the caller's (below: arr[2])
+        "r9": 101 + 9,                                      # inputs by value: the callee's own copies
+        "r10": 12,                                          # a FUNCTION's locals start again every call
+        "r11": 0, "ok1": False, "r12": 32, "ok2": True,     # EN FALSE: not called, the type's initial value
+        "n2": 0, "ok3": False, "n3": 1, "ok4": True,
+        "h": 16777216.0,                                    # DINT 16777217 into a REAL input: float32
+        "s1": 7, "low": -2,                                 # ARRAY[*]: the caller's bounds travel along
+        "r13": 12, "neg": False, "r14": 24, "n4": 12,       # FB: inputs kept, arrays copied, in-out the caller's
+        "n5": 5,                                            # FB with EN FALSE: not called
+        "r15": 12, "r16": 10, "r17": 6,                     # METHODs on the instance's variables, THIS
+    }
+    assert (list(main.v_ARR), list(main.v_ARR2), main.v_PT.v_C, main.v_PT.v_D) == ([5, 77, 1], [1, 0, 0], 1, 1)
+    assert faults == []
