@@ -620,7 +620,9 @@ class ExprCompiler:
             else:
                 fault = (f"_index_fault_n(({', '.join(values)},), {pyliteral(tuple(arr_t.dims))}, "
                          f"{name!r}, {self.where(e)})")
-            key = f"({key}) if {' and '.join(checks)} else {fault}"
+            # `&`, not `and`: every index's temp is set before the fault names the first bad one
+            test = checks[0] if len(checks) == 1 else " & ".join(f"({check})" for check in checks)
+            key = f"({key}) if {test} else {fault}"
         return LValue("item", arr_t.element, obj=base, key=key)
 
     def is_loop_invariant(self, index) -> bool:
