@@ -942,3 +942,174 @@ def test_calls_of_every_pou_kind_with_every_parameter_kind(optimise):
     }
     assert (list(main.v_ARR), list(main.v_ARR2), main.v_PT.v_C, main.v_PT.v_D) == ([5, 77, 1], [1, 0, 0], 1, 1)
     assert faults == []
+
+
+# ================================================= initial.py: initial values of every kind
+
+INITIALS = """TYPE Seven : INT := 7; END_TYPE
+TYPE Color : (Red, Green, Blue); END_TYPE
+TYPE Level : (Low := 10, High := 20); END_TYPE
+TYPE Percent : INT (5..100); END_TYPE
+TYPE Pt : STRUCT c : INT := 11; d : INT; e : Seven; END_STRUCT; END_TYPE
+FUNCTION_BLOCK Acc
+VAR_INPUT In : INT; END_VAR
+VAR_OUTPUT Out : INT; END_VAR
+Out := Out + In;
+END_FUNCTION_BLOCK
+VAR_GLOBAL g1 : DINT := -40000; g2 : ARRAY[0..2] OF REAL := [0.1, 2(0.5)]; END_VAR
+PROGRAM Main
+VAR CONSTANT K : INT := 5; END_VAR
+VAR
+  s8 : SINT; u8 : USINT; i16 : INT; u64 : ULINT; r : REAL; l : LREAL; b : BOOL; s : STRING[5]; t : TIME; w : WORD;
+  i1 : INT := -7; r1 : REAL := 0.1; l1 : LREAL := 0.1; b1 : BOOL := TRUE; t1 : TIME := T#1.5s;
+  d1 : DATE := D#1970-01-02; tod1 : TOD := TOD#01:00:00; s1 : STRING[5] := 'abc'; w1 : WORD := 16#FFFF;
+  c1 : INT := 3 * 4 + 1; c2 : INT := K * 2; c3 : LINT := -(1 + 2);
+  a1 : ARRAY[1..6] OF INT := [1, 2(7), 3]; a2 : ARRAY[1..2, 1..3] OF INT := [[1, 2, 3], [4, 5, 6]];
+  a3 : ARRAY[1..2] OF REAL := [0.1, 0.2]; a4 : ARRAY[1..3] OF Seven; a5 : ARRAY[1..2] OF Pt := [(c := 1), (d := 2)];
+  p1 : Pt; p2 : Pt := (c := 3, e := 4); x7 : Seven; x8 : Seven := 8;
+  e1 : Color; e2 : Color := Blue; e3 : Level; e4 : Level := High; pc : Percent;
+  fb : Acc := (In := 5);
+END_VAR
+;
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_every_kind_of_initial_value(optimise):
+    # IEC 61131-3: a variable without an initial value takes its type's default (0, 0.0,
+    # FALSE, '', T#0s; an enumeration's first value; a subrange's lower limit; a derived
+    # type's own initial value, also as a member or an element); REAL initial values are
+    # float32 values; an array initializer repeats with n(...) and leaves the rest 0.
+    main, faults, _ = run(INITIALS, optimise)
+    got = {name: getattr(main, "v_" + name.upper()) for name in (
+        "s8", "u8", "i16", "u64", "r", "l", "b", "s", "t", "w", "i1", "r1", "l1", "b1", "t1", "d1", "tod1", "s1",
+        "w1", "c1", "c2", "c3", "x7", "x8", "e1", "e2", "e3", "e4", "pc")}
+    assert got == {"s8": 0, "u8": 0, "i16": 0, "u64": 0, "r": 0.0, "l": 0.0, "b": False, "s": "", "t": 0, "w": 0,
+                   "i1": -7, "r1": f32(0.1), "l1": 0.1, "b1": True, "t1": 1_500_000_000,
+                   "d1": 86_400 * 10**9, "tod1": 3_600 * 10**9, "s1": "abc", "w1": 0xFFFF,
+                   "c1": 13, "c2": 10, "c3": -3, "x7": 7, "x8": 8, "e1": 0, "e2": 2, "e3": 10, "e4": 20, "pc": 5}
+    assert all(type(got[k]) is float for k in ("r", "l", "r1", "l1")) and type(got["b"]) is bool
+    assert list(main.v_A1) == [1, 7, 7, 3, 0, 0]
+    assert list(main.v_A2) == [1, 2, 3, 4, 5, 6]
+    assert list(main.v_A3) == [f32(0.1), f32(0.2)]
+    assert list(main.v_A4) == [7, 7, 7]
+    assert [(p.v_C, p.v_D, p.v_E) for p in main.v_A5] == [(1, 0, 7), (11, 2, 7)]
+    assert (main.v_P1.v_C, main.v_P1.v_D, main.v_P1.v_E) == (11, 0, 7)
+    assert (main.v_P2.v_C, main.v_P2.v_D, main.v_P2.v_E) == (3, 0, 4)
+    assert (main.v_FB.v_IN, main.v_FB.v_OUT) == (5, 0)
+    # every instance its own objects (a maker per aggregate, not a shared one)
+    assert main.v_A5[0] is not main.v_A5[1] and main.v_P1 is not main.v_P2
+
+
+def test_initial_values_of_globals_and_a_fresh_instance_each():
+    compiled = compile_program(checked(INITIALS))
+    assert (compiled.globals.v_G1, list(compiled.globals.v_G2)) == (-40000, [f32(0.1), 0.5, 0.5])
+    one, two = compiled.new("Main"), compiled.new("Main")
+    one.v_A1[0] = 99
+    one.v_P1.v_C = 99
+    assert (two.v_A1[0], two.v_P1.v_C) == (1, 11)
+
+
+TEMPS = """FUNCTION_BLOCK Counter
+VAR_INPUT step : INT; END_VAR
+VAR_OUTPUT total : INT; tmp_seen : INT; END_VAR
+VAR_TEMP t : INT := 100; END_VAR
+t := t + step;
+tmp_seen := t;
+total := total + step;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR c : Counter; a, b : INT; END_VAR
+c(step := 2);
+a := c.tmp_seen;
+c(step := 3);
+b := c.tmp_seen;
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_var_temp_starts_again_at_every_call_and_instance_variables_keep_their_values(optimise):
+    main, faults, _ = run(TEMPS, optimise, scans=2)
+    # scan 1: t = 100 + 2, then 100 + 3; total 2 + 3; scan 2: the same t, total 10
+    assert (main.v_A, main.v_B, main.v_C.v_TOTAL, faults) == (102, 103, 10, [])
+
+
+# ======================== scope.py: where variables live, seen from the values they end with
+
+SCOPES = """VAR_GLOBAL gt : ARRAY[1..3] OF INT; gn : INT; END_VAR
+FUNCTION Inc : INT
+VAR_IN_OUT v : INT; END_VAR
+v := v + 1;
+Inc := v;
+END_FUNCTION
+FUNCTION PutGlobal : INT
+VAR_INPUT i : INT; END_VAR
+gt[i] := gt[i] + 10 * i;
+gn := gn + 1;
+PutGlobal := gn;
+END_FUNCTION
+FUNCTION_BLOCK Edges
+VAR_INPUT up : BOOL R_EDGE; down : BOOL F_EDGE; END_VAR
+VAR_OUTPUT ups, downs : INT; END_VAR
+IF up THEN ups := ups + 1; END_IF;
+IF down THEN downs := downs + 1; END_IF;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Shared
+VAR k : INT; seen : INT; END_VAR
+METHOD Bump : INT
+k := k + 10;
+Bump := k;
+END_METHOD
+k := 1;
+k := k + 1;
+k := k + THIS.Bump();
+seen := k + k;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Early
+VAR_INPUT x : INT; z : INT; END_VAR
+VAR_OUTPUT s : INT; END_VAR
+s := 1;
+s := s + 1;
+s := s + 100 / z;
+IF x > 0 THEN RETURN; END_IF;
+s := s * 10;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR e : Edges; sh : Shared; e1, e0 : Early; x, y, r : INT; clk : ARRAY[1..5] OF BOOL; i : INT; END_VAR
+x := 5;
+r := Inc(v := x) + x;
+y := x;
+FOR i := 1 TO 5 DO
+  e(up := clk[i], down := clk[i]);
+END_FOR;
+sh();
+e1(x := 1, z := 0);
+e0(x := 0, z := 50);
+PutGlobal(2);
+PutGlobal(2);
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_variables_live_where_every_reader_sees_every_store(optimise):
+    main, faults, _ = run(SCOPES, optimise, inputs={"clk": [True, False, True, True, False]})
+    assert (main.v_R, main.v_Y) == (12, 6)        # the in-out stored into x before `+ x` read it
+    # R_EDGE counts FALSE -> TRUE (the memory starts FALSE): TRUE at 1 and 3; F_EDGE TRUE -> FALSE: at 2 and 5
+    assert (main.v_E.v_UPS, main.v_E.v_DOWNS) == (2, 2)
+    # a METHOD changes k while the body runs: the body reads it again (1 + 1, + (2 + 10))
+    assert (main.v_SH.v_K, main.v_SH.v_SEEN) == (14, 28)
+    # a fault and a RETURN keep what the body stored before them (s is used often: a local)
+    assert (main.v_E1.v_S, main.v_E0.v_S) == (2, 40)
+    assert faults == [("F-DIV-ZERO", line_of(SCOPES, "s := s + 100 / z"), 1)]
+
+
+@PASSES
+def test_a_global_array_changed_in_a_function_is_the_programs(optimise):
+    compiled = compile_program(checked(SCOPES), optimise=optimise)
+    controller = Controller(compiled)
+    controller.add_program("Main")
+    controller.run(2)
+    assert (list(compiled.globals.v_GT), compiled.globals.v_GN) == ([0, 80, 0], 4)

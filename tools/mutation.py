@@ -92,7 +92,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   # that came with session 11's merges (halves, shortcut, finite, spread: 2 s)
                   "tests/test_compiler_mutation_s12.py", "tests/test_optimiser_halves.py",
                   "tests/test_optimiser_shortcut.py", "tests/test_optimiser_finite.py",
-                  "tests/test_optimiser_spread.py"]),
+                  "tests/test_optimiser_spread.py",
+                  # session 13: tables of the core files' behaviours (exprs, statements, calls, cost, ...)
+                  "tests/test_compiler_tables_core.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",
