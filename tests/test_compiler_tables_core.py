@@ -280,13 +280,13 @@ END_PROGRAM"""
 
 
 MIXED = """PROGRAM Main
-VAR i, j : INT; d, e : DINT; q : DINT; big : BOOL; r1, r2, r3 : REAL; l1, l2 : LREAL; k, m : INT; n : DINT;
+VAR i, j : INT; d, e : DINT; q : DINT; big : BOOL; r1, r2, r3, r4, r5 : REAL; l1, l2 : LREAL; k, m : INT; n : DINT;
     ud : UDINT; dd : DINT; uq : UDINT; END_VAR
 d := i + j;
 big := i + j > 0;
 q := (i + j) / 2;
 e := d + i * j;
-l1 := r1 / r2;
+l1 := r4 / r5;
 l2 := (r1 + r2) * r3;
 n := k / m;
 END_PROGRAM"""
@@ -302,15 +302,17 @@ def test_mixed_widths_and_reals_differ_by_dialect_as_w501_says(optimise, dialect
     # REAL / REAL into an LREAL: the double quotient (iec), the float32 one (nj).
     # INT#-32768 / -1 into a DINT: 32768 exact; nj overflows the INT quotient to -32768.
     main, faults, _ = run(MIXED, optimise, dialect, inputs={
-        "i": 30000, "j": 30000, "r1": f32(0.1), "r2": f32(0.2), "r3": 3.0, "k": -32768, "m": -1})
+        "i": 30000, "j": 30000, "r1": f32(0.1), "r2": f32(0.2), "r3": 3.0, "r4": 2.0, "r5": 3.0,
+        "k": -32768, "m": -1})
     a, b, c = np.float32(0.1), np.float32(0.2), np.float32(3.0)
-    if dialect == "nj":
+    two, three = np.float32(2.0), np.float32(3.0)
+    if dialect == "nj":       # 2 / 3 in float32: 0.6666666865348816 (docs/nj501.md)
         s = wrap(60000, 16, True)
         expected = (s, False, trunc_div(s, 2), s + wrap(900_000_000, 16, True),
-                    float(a / b), float((a + b) * c), -32768)
+                    float(two / three), float((a + b) * c), -32768)
     else:
         expected = (60000, True, 30000, 60000 + 900_000_000,
-                    float(a) / float(b), (float(a) + float(b)) * float(c), 32768)
+                    2.0 / 3.0, (float(a) + float(b)) * float(c), 32768)
     assert (main.v_D, main.v_BIG, main.v_Q, main.v_E, main.v_L1, main.v_L2, main.v_N) == expected
     assert faults == []
 
@@ -1113,3 +1115,221 @@ def test_a_global_array_changed_in_a_function_is_the_programs(optimise):
     controller.add_program("Main")
     controller.run(2)
     assert (list(compiled.globals.v_GT), compiled.globals.v_GN) == ([0, 80, 0], 4)
+
+
+# ============== classes the seed-28 survivors named (docs/mutation.md, session 13), each as a family
+
+ENABLED = """TYPE Pt : STRUCT c : INT := 11; d : INT; END_STRUCT; END_TYPE
+FUNCTION FS : Pt
+VAR_INPUT a : INT; END_VAR
+FS.c := a;
+END_FUNCTION
+FUNCTION FA : ARRAY[1..2] OF INT
+VAR_INPUT a : INT; END_VAR
+FA[2] := a;
+END_FUNCTION
+FUNCTION FI : INT
+VAR_INPUT a : INT; END_VAR
+FI := a;
+END_FUNCTION
+PROGRAM Main
+VAR p, p2 : Pt; q, q2 : ARRAY[1..2] OF INT; i, i2 : INT; en : BOOL; ok1, ok2, ok3 : BOOL; END_VAR
+p.c := -1;
+q[1] := -1;
+i := -1;
+p := FS(EN := en, a := 3, ENO => ok1);
+q := FA(EN := en, a := 4, ENO => ok2);
+i := FI(EN := en, a := 5, ENO => ok3);
+p2 := FS(EN := NOT en, a := 3);
+q2 := FA(EN := NOT en, a := 4);
+i2 := FI(EN := NOT en, a := 5);
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_en_false_gives_the_initial_value_of_every_result_type(optimise):
+    # IEC 61131-3 6.6.1.2: with EN FALSE the function does not run, ENO is FALSE and the result
+    # is its type's initial value: a structure's members' initial values, an array of zeros.
+    main, faults, _ = run(ENABLED, optimise, inputs={"en": False})
+    assert ((main.v_P.v_C, main.v_P.v_D), list(main.v_Q), main.v_I) == ((11, 0), [0, 0], 0)
+    assert (main.v_OK1, main.v_OK2, main.v_OK3) == (False, False, False)
+    assert ((main.v_P2.v_C, main.v_P2.v_D), list(main.v_Q2), main.v_I2) == ((3, 0), [0, 4], 5)
+    assert faults == []
+
+
+DESCRIBED = """TYPE Pt : STRUCT y : ARRAY[1..3] OF INT; END_STRUCT; END_TYPE
+PROGRAM Main
+VAR arr3 : ARRAY[1..3] OF INT; ra : REF_TO ARRAY[1..3] OF INT; rp : REF_TO Pt; p : Pt; i, x, w : INT; END_VAR
+ra := REF(arr3);
+rp := REF(p);
+x := ra^[i];
+x := rp^.y[i];
+ra^[i] := 1;
+w := 1;
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_a_subscript_of_a_dereferenced_array_names_it_in_its_fault(optimise):
+    controller = Controller(compile_program(checked(DESCRIBED), optimise=optimise))
+    main = controller.add_program("Main")
+    main.v_I = 0
+    controller.run(1)
+    assert [f.message for f in controller.faults] == [
+        "index 0 of 'array' out of bounds 1..3", "index 0 of 'array.y' out of bounds 1..3",
+        "index 0 of 'array' out of bounds 1..3"]
+    assert main.v_W == 1
+
+
+SHADOWED = """VAR_GLOBAL CONSTANT T : ARRAY[1..2] OF INT := [1, 2]; END_VAR
+PROGRAM Main
+VAR CONSTANT T : ARRAY[1..2] OF INT := [5, 9]; END_VAR
+VAR arr : ARRAY[1..9] OF INT; small : ARRAY[1..3] OF INT; i, x, y : INT; END_VAR
+arr[9] := 90;
+x := arr[T[i]];
+y := small[T[i]];
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_a_constant_table_is_the_one_in_scope(optimise):
+    # The local CONSTANT T (5, 9) hides the global one (1, 2): its elements index `arr` (9)
+    # and are out of `small`'s range (F-INDEX); the global's range would skip that check.
+    main, faults, _ = run(SHADOWED, optimise, inputs={"i": 2})
+    assert (main.v_X, main.v_Y, faults) == (90, 0, [("F-INDEX", 7, 1)])
+
+
+CONSTANTS = """VAR_GLOBAL CONSTANT GR : REAL := 0.1; END_VAR
+PROGRAM Main
+VAR CONSTANT C : REAL := 0.1; L : LREAL := 0.1; D : TIME := T#1s; END_VAR
+VAR x : REAL; y : LREAL; b1, b2, b3, b4, b5 : BOOL; t0, t1 : TIME; k : REAL; END_VAR
+x := C;
+y := L;
+b1 := x = C;
+b2 := x = GR;
+b3 := y = L;
+b4 := x = L;
+b5 := k < C;
+t1 := t0 + D * 1.5;
+END_PROGRAM
+"""
+
+
+@PASSES
+@pytest.mark.parametrize("dialect", ["iec", "nj"])
+def test_a_named_real_constant_has_its_types_value_where_it_is_read(optimise, dialect: str):
+    # A REAL constant is the float32 value 0.1f (0.100000001490116...); compared with a REAL
+    # variable holding it: equal; an LREAL 0.1 is the double 0.1, which the REAL 0.1f is not.
+    # k = 0.1f too: k < C is FALSE.  D * 1.5 is 1.5 s in whole ns.
+    main, faults, _ = run(CONSTANTS, optimise, dialect, inputs={"k": f32(0.1), "t0": 7})
+    assert (main.v_X, main.v_Y) == (f32(0.1), 0.1)
+    assert (main.v_B1, main.v_B2, main.v_B3, main.v_B4, main.v_B5) == (True, True, True, False, False)
+    assert (main.v_T1, type(main.v_T1), faults) == (1_500_000_007, int, [])
+
+
+ROWS_IN_LOOPS = """PROGRAM Main
+VAR m : ARRAY[1..3, 1..4] OF INT; s, i, j, n, k : INT; pt_c : INT; END_VAR
+FOR j := 1 TO n DO
+  m[i + 1, j] := 10 * (i + 1) + j;
+  s := s + m[i + 1, j] + m[k, j];
+END_FOR;
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_a_row_chosen_by_an_expression_inside_a_for(optimise):
+    # m[2, 1..4] := 21..24; s = (21 + 22 + 23 + 24) + m[3, j] (all 0)
+    main, faults, _ = run(ROWS_IN_LOOPS, optimise, inputs={"i": 1, "n": 4, "k": 3})
+    assert (list(main.v_M)[4:8], main.v_S, faults) == ([21, 22, 23, 24], 90, [])
+
+
+FLOW = """VAR_GLOBAL g : INT; END_VAR
+FUNCTION ThroughFor : INT
+VAR_INPUT n : INT; END_VAR
+VAR a : ARRAY[1..3] OF INT; x : INT; s : INT; END_VAR
+x := 1;
+FOR g := 1 TO n DO
+  s := s + a[x];
+  x := x + 5;
+END_FOR;
+ThroughFor := s + x;
+END_FUNCTION
+FUNCTION ThroughCase : INT
+VAR_INPUT k : INT; END_VAR
+VAR a : ARRAY[1..3] OF INT; x : INT; END_VAR
+x := 1;
+CASE k OF 1: x := 10; 2: x := 2; END_CASE;
+ThroughCase := a[x];
+ThroughCase := ThroughCase + x;
+END_FUNCTION
+FUNCTION ThroughIf : INT
+VAR_INPUT k : INT; END_VAR
+VAR a : ARRAY[1..3] OF INT; x : INT; END_VAR
+x := 1;
+IF k = 1 THEN x := 10; ELSIF k = 2 THEN x := 2; END_IF;
+ThroughIf := a[x];
+ThroughIf := ThroughIf + x;
+END_FUNCTION
+PROGRAM Main
+VAR r1, r2, r3, r4, r5 : INT; END_VAR
+r1 := ThroughFor(2);
+r2 := ThroughCase(1);
+r3 := ThroughCase(2);
+r4 := ThroughIf(1);
+r5 := ThroughIf(3);
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_a_local_stored_in_a_loop_or_a_branch_is_checked_where_it_is_read_after(optimise):
+    # ThroughFor: x = 1, then 6 in the second iteration: a[6] is F-INDEX, that store is
+    # abandoned, x becomes 11: 0 + 11.  ThroughCase(1): x = 10, a[10] F-INDEX, result
+    # 0 + 10; (2): a[2] = 0, 2.  ThroughIf likewise.
+    main, faults, _ = run(FLOW, optimise)
+    assert (main.v_R1, main.v_R2, main.v_R3, main.v_R4, main.v_R5) == (11, 10, 2, 10, 1)
+    assert faults == [("F-INDEX", line_of(FLOW, text), 1)
+                      for text in ("s := s + a[x]", "ThroughCase := a[x]", "ThroughIf := a[x]")]
+
+
+UNCONNECTED = """FUNCTION_BLOCK Holder
+VAR_IN_OUT arr : ARRAY[1..2] OF INT; END_VAR
+METHOD M : INT
+VAR r : INT; END_VAR
+CASE arr[1] OF 1: r := 1; END_CASE;
+M := 5;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR h : Holder; x : INT; END_VAR
+x := h.M();
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_a_case_on_an_unconnected_in_out_faults_in_its_own_statement(optimise):
+    # The METHOD reads its FB's in-out before any call connected it: F-NULL-REF abandons the
+    # CASE (line 5) and the METHOD goes on: M = 5.
+    main, faults, _ = run(UNCONNECTED, optimise)
+    assert (main.v_X, faults) == (5, [("F-NULL-REF", 5, 1)])
+
+
+ENUMS = """TYPE Color : (Red, Green, Blue); END_TYPE
+PROGRAM Main
+VAR e : Color := Color#Green; f : Color; x, y : INT; END_VAR
+CASE e OF Color#Red: x := 1; Color#Green: x := 2; END_CASE;
+f := Color#Blue;
+IF f = Color#Blue THEN y := 3; END_IF;
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_typed_enumeration_literals(optimise):
+    main, faults, _ = run(ENUMS, optimise)
+    assert (main.v_E, main.v_F, main.v_X, main.v_Y, faults) == (1, 2, 2, 3, [])
