@@ -612,29 +612,22 @@ def test_set_and_reset_assignments(optimise):
 # other standard function or conversion 4, user call 10, argument 1 (an aggregate: per
 # element), element moved 2, branch 1, loop iteration 2, standard FB 20.  A block is charged
 # round(units * 598) ps.
-COST_TYPES = """TYPE Pair : STRUCT x : LREAL; y : ARRAY[1..3] OF INT; END_STRUCT; END_TYPE
-FUNCTION F : INT
-VAR_INPUT a : INT; b : INT := 2; END_VAR
-F := a + b;
-END_FUNCTION
-FUNCTION G : INT
-VAR_IN_OUT v : INT; END_VAR
-G := 1;
-END_FUNCTION
-FUNCTION H : INT
-VAR_INPUT arr : ARRAY[1..5] OF INT; END_VAR
-H := 1;
-END_FUNCTION
-FUNCTION KA : INT
-VAR_IN_OUT arr : ARRAY[1..5] OF INT; END_VAR
-KA := 1;
-END_FUNCTION
-FUNCTION_BLOCK Acc
-VAR_INPUT In : INT; END_VAR
-VAR_OUTPUT Out : INT; END_VAR
-Out := Out + In;
-END_FUNCTION_BLOCK
-"""
+COST_POUS = {  # declared only where a row calls them (each row is a program of its own)
+    "Pair": "TYPE Pair : STRUCT x : LREAL; y : ARRAY[1..3] OF INT; END_STRUCT; END_TYPE\n",
+    "Acc": "FUNCTION_BLOCK Acc\nVAR_INPUT In : INT; END_VAR\nVAR_OUTPUT Out : INT; END_VAR\nOut := Out + In;\n"
+           "END_FUNCTION_BLOCK\n",
+    "F(": "FUNCTION F : INT\nVAR_INPUT a : INT; b : INT := 2; END_VAR\nF := a + b;\nEND_FUNCTION\n",
+    "G(": "FUNCTION G : INT\nVAR_IN_OUT v : INT; END_VAR\nG := 1;\nEND_FUNCTION\n",
+    "H(": "FUNCTION H : INT\nVAR_INPUT arr : ARRAY[1..5] OF INT; END_VAR\nH := 1;\nEND_FUNCTION\n",
+    "KA(": "FUNCTION KA : INT\nVAR_IN_OUT arr : ARRAY[1..5] OF INT; END_VAR\nKA := 1;\nEND_FUNCTION\n",
+}
+
+
+def cost_program(body: str) -> str:
+    pous = "".join(text for key, text in COST_POUS.items() if key in ("Pair", "Acc") or key in body)
+    return pous + program(COST_VARS, body)
+
+
 COST_VARS = ("i, j, k : INT; x, y, z : LREAL; r1, r2 : REAL; b, c : BOOL; w1, w2 : WORD; t : TIME; "
              "a, a2 : ARRAY[1..5] OF INT; m : ARRAY[1..3, 1..4] OF LREAL; p, q : Pair; "
              "s16, u16 : STRING[16]; s7, u7 : STRING[7]; acc : Acc; t1 : TON;")
@@ -675,14 +668,27 @@ COSTS = {  # body: units by hand (per path: every block that ran)
 }
 
 
-@PASSES
+def scan_times(src: str, inputs: dict) -> dict:
+    """{pass switch: (faults, ps per scan)} of one scan of `src`, checked once, compiled with
+    every pass and with none (the charges come from the ST text: the same either way)."""
+    program_ = checked(src)
+    out = {}
+    for name, optimise in (("every pass", EVERY), ("no pass", NONE)):
+        controller = Controller(compile_program(program_, optimise=optimise))
+        main = controller.add_program("Main")
+        for key, value in inputs.items():
+            setattr(main, "v_" + key.upper(), value)
+        controller.run(1)
+        out[name] = ([(f.code, f.line) for f in controller.faults], list(controller.task_times["Primary"]))
+    return out
+
+
 @pytest.mark.parametrize("row", COSTS.values(), ids=COSTS.keys())
-def test_every_weight_of_the_estimate(row, optimise):
+def test_every_weight_of_the_estimate(row):
     body, units = row
-    src = COST_TYPES + program(COST_VARS, body)
-    _, faults, times = run(src, optimise, inputs={"j": 1, "k": 3, "y": 0.5, "z": 2.0})
-    assert faults == []
-    assert times == [units * PS_PER_UNIT]
+    expected = ([], [units * PS_PER_UNIT])
+    assert scan_times(cost_program(body), {"j": 1, "k": 3, "y": 0.5, "z": 2.0}) == \
+        {"every pass": expected, "no pass": expected}
 
 
 BRANCHES = {  # body, inputs, units on that path
@@ -725,13 +731,11 @@ BRANCHES = {  # body, inputs, units on that path
 }
 
 
-@PASSES
 @pytest.mark.parametrize("row", BRANCHES.values(), ids=BRANCHES.keys())
-def test_every_path_charges_what_ran(row, optimise):
+def test_every_path_charges_what_ran(row):
     body, inputs, units = row
-    src = COST_TYPES + program(COST_VARS, body)
-    _, faults, times = run(src, optimise, inputs=inputs)
-    assert (faults, times) == ([], [units * PS_PER_UNIT])
+    expected = ([], [units * PS_PER_UNIT])
+    assert scan_times(cost_program(body), inputs) == {"every pass": expected, "no pass": expected}
 
 
 RUNAWAY = program("n : DINT;", "WHILE TRUE DO n := n + 1; END_WHILE;")
@@ -766,7 +770,7 @@ def test_a_whole_for_is_charged_and_tested_before_its_first_iteration(limit_ns, 
     ("IF b THEN i := 1; ELSIF c THEN i := 2; END_IF;", {}, 2 + 2),
     ("CASE j OF 1: i := 1; 2, 3: i := 2; END_CASE;", {"j": 9}, 1 + 3)], ids=["ELSIF none", "CASE no match"])
 def test_a_path_through_no_branch_pays_every_test_it_made(body, inputs, units):
-    _, faults, times = run(COST_TYPES + program(COST_VARS, body), NONE, inputs=inputs)
+    _, faults, times = run(cost_program(body), NONE, inputs=inputs)
     assert (faults, times) == ([], [units * PS_PER_UNIT])
 
 
