@@ -1425,3 +1425,30 @@ def test_python_literals_of_every_constant():
     for bad in ("1x", "a-b", "a b", "", "x;y"):
         with pytest.raises(ValueError):
             safe_name(bad)
+
+
+FOLDED_REAL = """PROGRAM Main
+VAR CONSTANT C : REAL := 0.1; END_VAR
+VAR x : REAL; y, l1, l2, l3, l4 : LREAL; END_VAR
+l1 := C * 3.0 + y;
+l2 := x * 3.0 + y;
+l3 := (C + C) / 3.0 + y;
+l4 := (x + x) / 3.0 + y;
+END_PROGRAM
+"""
+
+
+@PASSES
+@pytest.mark.parametrize("dialect", ["iec", "nj"])
+def test_a_folded_real_operation_has_the_value_of_the_same_operation_on_variables(optimise, dialect: str):
+    # docs/nj501.md: a folded REAL constant has the value the expression has at run time under
+    # each dialect.  iec: the product of the REAL 0.1f and 3.0 stays a double inside the LREAL
+    # sum; nj: each REAL operation is rounded to float32 (until session 13 the folded product
+    # was rounded to float32 under iec too).
+    main, faults, _ = run(FOLDED_REAL, optimise, dialect, inputs={"x": f32(0.1), "y": 0.0})
+    c = np.float32(0.1)
+    if dialect == "nj":
+        product, quotient = float(c * np.float32(3.0)), float((c + c) / np.float32(3.0))
+    else:
+        product, quotient = float(c) * 3.0, (float(c) + float(c)) / 3.0
+    assert (main.v_L1, main.v_L2, main.v_L3, main.v_L4, faults) == (product, product, quotient, quotient, [])

@@ -342,7 +342,10 @@ class ExprCompiler:
     def expr(self, e) -> str:
         value = self.folded(e)
         if value is not None and not isinstance(e, ast.Call):
-            return self.literal(value, self.ty(e))
+            t = self.ty(e)
+            if isinstance(e, ast.Binary) and is_real(t) and not self.rounds_real(t):
+                return pyliteral(float(value))     # a REAL operation's result stays a double (iec)
+            return self.literal(value, t)
         method = getattr(self, "x_" + type(e).__name__, None)
         if method is None:
             self.fail(f"expression {type(e).__name__} is not supported by the runtime", e)
