@@ -138,6 +138,12 @@ def test_integer_division_and_mod_by_zero_fault_and_abandon_only_their_statement
     # F-DIV-ZERO on the `/` and MOD lines; those stores are abandoned (old values kept);
     # every other statement ran.
     assert faults == [("F-DIV-ZERO", line_of(src, "a / b"), 1), ("F-DIV-ZERO", line_of(src, "a MOD b"), 1)]
+    # the fault names the operator's column: `/` and MOD at column 12 of `r_div := a / b;`
+    controller = Controller(compile_program(checked(src), optimise=optimise))
+    again = controller.add_program("Main")
+    again.v_A, again.v_B = 9, 0
+    controller.run(1)
+    assert [(f.line, f.col) for f in controller.faults] == [(line_of(src, "a / b"), 12), (line_of(src, "a MOD b"), 12)]
     bits, signed = INTEGERS[name]
     assert (main.v_R_ADD, main.v_R_SUB, main.v_R_DIV, main.v_R_MOD, main.v_R_NEG, main.v_C_GT) == \
         (9, 9, 4, 5, wrap(-9, bits, signed), True)
@@ -395,6 +401,12 @@ STATEMENTS = {
                                   {"s": 18, "i": 2}, []),
     "FOR variable bounds BY -1, not run": (V, "FOR i := hi TO lo BY -1 DO s := s + i; END_FOR;",
                                            {"lo": 6, "hi": 3}, {"s": 0, "i": 3}, []),
+    "FOR variable start, constant end, BY -1": (V, "FOR i := hi TO 1 BY -1 DO s := s + i; END_FOR;", {"hi": 6},
+                                                {"s": 21, "i": 0}, []),
+    "FOR variable start, constant end, BY -1, not run": (V, "FOR i := hi TO 1 BY -1 DO s := s + i; END_FOR;",
+                                                         {"hi": 0}, {"s": 0, "i": 0}, []),
+    "FOR variable start, constant end, BY -2": (V, "FOR i := hi TO 1 BY -2 DO s := s + i; END_FOR;", {"hi": 6},
+                                                {"s": 12, "i": 0}, []),
     "FOR variable bounds BY 3": (V, "FOR i := lo TO hi BY 3 DO s := s + i; END_FOR;", {"lo": 1, "hi": 10},
                                  {"s": 22, "i": 13}, []),
     "FOR variable step": (V, "FOR i := lo TO hi BY st DO s := s + i; END_FOR;", {"lo": 1, "hi": 10, "st": 3},
@@ -1452,3 +1464,40 @@ def test_a_folded_real_operation_has_the_value_of_the_same_operation_on_variable
     else:
         product, quotient = float(c) * 3.0, (float(c) + float(c)) / 3.0
     assert (main.v_L1, main.v_L2, main.v_L3, main.v_L4, faults) == (product, product, quotient, quotient, [])
+
+
+STANDARD = """FUNCTION Roots : LREAL
+VAR_INPUT v : LREAL; END_VAR
+VAR x, r : LREAL; END_VAR
+x := v;
+r := SQRT(x);
+Roots := r + SIN(x) * 0.0;
+END_FUNCTION
+PROGRAM Main
+VAR b : BYTE; w : WORD; d : DWORD; rb1, rb2, rb3, rb4, rb5 : BYTE; rw1, rw2, rw3, rw4 : WORD; rd : DWORD;
+    x, r1, r2 : LREAL; END_VAR
+rb1 := ROL(b, 1);
+rb2 := ROR(b, 1);
+rb3 := SHL(b, 1);
+rb4 := SHR(b, 1);
+rb5 := ROL(IN := b, N := 9);
+rw1 := ROL(w, 1);
+rw2 := ROR(w, 1);
+rw3 := SHL(w, 1);
+rw4 := SHR(w, 1);
+rd := ROR(d, 4);
+r1 := SQRT(x);
+r2 := Roots(x);
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_bit_shifts_and_rotations_take_the_width_of_their_input(optimise):
+    # IEC 61131-3 table 29: ROL/ROR rotate within the bits of IN's type, SHL/SHR shift in zeros.
+    # SQRT of a negative REAL is NaN, not a fault (library rule), also in a FUNCTION's locals.
+    main, faults, _ = run(STANDARD, optimise, inputs={"b": 0x81, "w": 0x8001, "d": 0x0000_00F1, "x": -4.0})
+    assert (main.v_RB1, main.v_RB2, main.v_RB3, main.v_RB4, main.v_RB5) == (0x03, 0xC0, 0x02, 0x40, 0x03)
+    assert (main.v_RW1, main.v_RW2, main.v_RW3, main.v_RW4, main.v_RD) == (0x0003, 0xC000, 0x0002, 0x4000,
+                                                                           0x1000_000F)
+    assert math.isnan(main.v_R1) and math.isnan(main.v_R2) and faults == []
