@@ -98,7 +98,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   "tests/test_compiler_tables_passes.py", "tests/test_compiler_tables_passes_vector.py",
                   "tests/test_compiler_tables_passes_lines.py", "tests/test_optimiser_wraps.py",
                   "tests/test_optimiser_deferred.py", "tests/test_optimiser_stores_read.py",
-                  "tests/test_optimiser_temps.py"]),
+                  "tests/test_optimiser_temps.py",
+                  # session 13: tables of the core files' behaviours (exprs, statements, calls, cost, ...)
+                  "tests/test_compiler_tables_core.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",

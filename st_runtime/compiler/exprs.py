@@ -363,7 +363,10 @@ class ExprCompiler:
         value = self.program.constants.get(id(e))          # (`folded`, inline)
         if value is not None and not isinstance(e, ast.Call) and not (
                 isinstance(value, float) and not value.is_integer() and is_int_like(self.ty(e))):
-            return self.literal(value, self.ty(e))
+            t = self.ty(e)
+            if isinstance(e, ast.Binary) and is_real(t) and not self.rounds_real(t):
+                return pyliteral(float(value))     # a REAL operation's result stays a double (iec)
+            return self.literal(value, t)
         method = self._x_methods.get(type(e))
         if method is None:
             method = getattr(self, "x_" + type(e).__name__, None)
@@ -661,7 +664,9 @@ class ExprCompiler:
             else:
                 fault = (f"_index_fault_n(({', '.join(values)},), {pyliteral(tuple(arr_t.dims))}, "
                          f"{name!r}, {self.where(e)})")
-            key = f"({key}) if {' and '.join(checks)} else {fault}"
+            # `&`, not `and`: every index's temp is set before the fault names the first bad one
+            test = checks[0] if len(checks) == 1 else " & ".join(f"({check})" for check in checks)
+            key = f"({key}) if {test} else {fault}"
         return LValue("item", arr_t.element, obj=base, key=key)
 
     def is_loop_invariant(self, index) -> bool:
