@@ -488,14 +488,31 @@ def test_return_in_a_for_leaves_the_variable_at_its_iteration():
     assert (main.v_S, main.v_I, main.v_W, faults) == (3, 2, 0, [])
 
 
-@pytest.mark.xfail(strict=True, reason="optimise/unroll.py emit: a FOR unrolled because it leaves only by "
-                   "RETURN stores its variable only after the last copy; a RETURN from a copy leaves the "
-                   "variable of a PROGRAM or FB at its value before the loop (0 here, 2 by IEC). Not this "
-                   "helper's file (session 13): reported to the lead.")
 @pytest.mark.parametrize("optimise", [EVERY, Optimisations.only("unroll")], ids=["every pass", "unroll"])
 def test_return_in_an_unrolled_for_leaves_the_variable_at_its_iteration(optimise):
     main, faults, _ = run(RETURN_IN_FOR, optimise)
     assert (main.v_S, main.v_I, main.v_W, faults) == (3, 2, 0, [])
+
+
+# The same in an FB instance and in nested loops (both unrolled, both variables kept), by hand:
+# the inner loop returns at i = 2, j = 3 after s = 1*1 + 1*2 + 1*3 + 2*1 + 2*2 + 2*3 = 18.
+RETURN_IN_FB_FORS = """FUNCTION_BLOCK Walk
+VAR_OUTPUT s, i, j, w : INT; END_VAR
+FOR i := 1 TO 3 DO FOR j := 1 TO 3 DO s := s + i * j; IF i * j = 6 THEN RETURN; END_IF; END_FOR; END_FOR;
+w := 1;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR f : Walk; s, i, j, w : INT; END_VAR
+f();
+s := f.s; i := f.i; j := f.j; w := f.w;
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("optimise", [NONE, EVERY, Optimisations.only("unroll")], ids=["none", "every pass", "unroll"])
+def test_return_in_nested_fors_of_an_fb_leaves_both_variables_at_their_iteration(optimise):
+    main, faults, _ = run(RETURN_IN_FB_FORS, optimise)
+    assert (main.v_S, main.v_I, main.v_J, main.v_W, faults) == (18, 2, 3, 0, [])
 
 
 GLOBAL_FOR = """VAR_GLOBAL g : INT; END_VAR

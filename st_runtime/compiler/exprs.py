@@ -164,6 +164,7 @@ class ExprCompiler:
         self.loops: list = []      # FOR loops being compiled, innermost last (hoisting)
         self.opt = getattr(unit, "optimise", None) or Optimisations.none()
         self.unrolled: dict[str, int] = {}   # FOR variable -> its value in this unrolled copy
+        self.unrolled_stores: dict[str, tuple] = {}  # FOR variable -> (LValue, type): RETURN stores it
         self.region = None                   # optimise.cse.Region while one is compiled
         self.reuse = None                    # optimise.reuse.Reuse of a body (statements.py)
         self.logic_parts: dict[int, tuple[str, str]] = {}   # optimise/shortcut.py

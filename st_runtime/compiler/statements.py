@@ -717,11 +717,14 @@ class BodyCompiler(ExprCompiler):
         returns = early and not _has_own_exit(s.body)       # leaves only by RETURN
         if (const_range and (returns or not early) and self.opt.unroll
                 and unroll.can_unroll(self, s.body, place, count, assigned, key)):
+            if early:       # a RETURN from a copy leaves the variable at that copy's value (s_Return)
+                self.unrolled_stores[key] = (target, var_t)
             fallback = unroll.emit(self, s, key, range(self.constant_of(s.start), self.constant_of(s.end)
                                                         + (1 if step_value > 0 else -1), step_value),
                                    lambda: self._after_for(target, var_t, final, lo_r, hi_r, step_value,
                                                            not early and not straight, where),
                                    returns=early, where=where)
+            self.unrolled_stores.pop(key, None)
             if not fallback:
                 if saved is None:
                     self.known_ranges.pop(key, None)
@@ -994,6 +997,11 @@ class BodyCompiler(ExprCompiler):
         self.out.line("continue")
 
     def s_Return(self, s):
+        # In an unrolled copy the FOR variable is a constant, stored only after the last copy;
+        # RETURN leaves the loop at this iteration, so the variable takes its value here.
+        for key, (target, var_t) in self.unrolled_stores.items():
+            if key in self.unrolled:
+                self.out.line(target.store(self.literal(self.unrolled[key], var_t)))
         if self.method:
             self.out.line("return")
         else:

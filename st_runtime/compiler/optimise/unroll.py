@@ -15,6 +15,8 @@ unrolled copy does too) charges and tests per iteration as its loop does:
 each copy charges the loop overhead with its first block and tests there
 (LU elimination: `FOR K := 1 TO SIZE` with a RETURN for a singular pivot,
 whose inner loops `FOR Row := K + 1 TO SIZE` get constant bounds in each copy).
+A RETURN from a copy first stores that copy's value of the variable (statements.s_Return),
+which the loop would hold when it returned.
 """
 
 from __future__ import annotations
