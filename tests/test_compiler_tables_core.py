@@ -515,6 +515,24 @@ def test_return_in_nested_fors_of_an_fb_leaves_both_variables_at_their_iteration
     assert (main.v_S, main.v_I, main.v_J, main.v_W, faults) == (18, 2, 3, 0, [])
 
 
+# A FUNCTION's output as the FOR variable is seen by its caller: 1 + 2 + 3 = 6 when k = 3 returns.
+RETURN_FROM_FUNCTION_FOR = """FUNCTION Upto : INT
+VAR_OUTPUT k : INT; END_VAR
+FOR k := 1 TO 5 DO Upto := Upto + k; IF k = 3 THEN RETURN; END_IF; END_FOR;
+END_FUNCTION
+PROGRAM Main
+VAR s, i : INT; END_VAR
+s := Upto(k => i);
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("optimise", [NONE, EVERY, Optimisations.only("unroll")], ids=["none", "every pass", "unroll"])
+def test_return_in_a_function_for_gives_its_output_variable_at_its_iteration(optimise):
+    main, faults, _ = run(RETURN_FROM_FUNCTION_FOR, optimise)
+    assert (main.v_S, main.v_I, faults) == (6, 3, [])
+
+
 GLOBAL_FOR = """VAR_GLOBAL g : INT; END_VAR
 FUNCTION Skip : INT
 g := g + 1;

@@ -717,7 +717,7 @@ class BodyCompiler(ExprCompiler):
         returns = early and not _has_own_exit(s.body)       # leaves only by RETURN
         if (const_range and (returns or not early) and self.opt.unroll
                 and unroll.can_unroll(self, s.body, place, count, assigned, key)):
-            if early:       # a RETURN from a copy leaves the variable at that copy's value (s_Return)
+            if early and _outlives_call(self.pou, place.symbol):    # RETURN stores it (s_Return)
                 self.unrolled_stores[key] = (target, var_t)
             fallback = unroll.emit(self, s, key, range(self.constant_of(s.start), self.constant_of(s.end)
                                                         + (1 if step_value > 0 else -1), step_value),
@@ -1021,6 +1021,14 @@ class _Loop:
 
 
 _COMPOUND = (ast.If, ast.Case, ast.For, ast.While, ast.Repeat)
+
+
+def _outlives_call(pou, symbol) -> bool:
+    """Whether a variable's value is seen after its POU returns: an output, or a variable
+    of a PROGRAM's or FB's instance (not a FUNCTION's or METHOD's locals, nor VAR_TEMP)."""
+    if symbol.kind == "VAR_OUTPUT":
+        return True
+    return pou.kind in ("PROGRAM", "FUNCTION_BLOCK") and symbol.kind != "VAR_TEMP"
 
 
 def _blocks(body) -> list[tuple[list, object]]:
