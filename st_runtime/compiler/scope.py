@@ -67,6 +67,22 @@ def walk(node):
 _WALKED: dict[int, tuple] = {}
 _WALKED_ENTRIES = 4096      # (a compile of generated/iec walks about 900 distinct nodes)
 
+
+def once(table: dict, node, work):
+    """`work()` for `node`, worked out once: kept in `table` by id with the node itself (so
+    no other node can take that id while the entry lives).  For what one compile or load asks
+    of the same node again: an unrolled loop compiles its body once per copy."""
+    hit = table.get(id(node))
+    if hit is None or hit[0] is not node:
+        hit = table[id(node)] = (node, work())
+    return hit[1]
+
+
+def assigned_in(compiler, body) -> set[str]:
+    """The variables `body` stores into (`Usage.assigned`), found once a load."""
+    return once(compiler.unit.__dict__.setdefault("assigned_in", {}), body,
+                lambda: Usage(compiler.program, body, None).assigned)
+
 #: Node classes with no child node (a walk of one of them is the node alone).
 _LEAVES = frozenset({ast.Name, ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral, ast.StringLiteral,
                      ast.TimeLiteral, ast.DateTimeLiteral, ast.EnumLiteral, ast.Exit, ast.Continue,

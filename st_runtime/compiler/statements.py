@@ -42,7 +42,7 @@ from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
 from .optimise import aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, ranges, reuse, seal, shortcut, stores, unguard, unroll
 from .pysrc import Emitter, pyliteral, pyident
-from .scope import Scope, Usage, walk
+from .scope import Scope, Usage, assigned_in, once, walk
 
 
 class BodyCompiler(ExprCompiler):
@@ -56,7 +56,6 @@ class BodyCompiler(ExprCompiler):
         self.out = Emitter()
         self.cost = CostModel(program)
         self._head_costs: dict[int, float] = {}
-        self._assigned_memo: dict[int, tuple] = {}     # id(loop body) -> (body, what it assigns)
         self._blocks_memo: dict[int, tuple] = {}       # id(body) -> (body, `_costed_blocks`)
         self._entries_memo: dict[int, tuple] = {}      # id(IF) -> (IF, `_if_entries`)
         self.flow = ranges.Flow(self, body) if self.opt.ranges else None    # integer locals' ranges
@@ -290,12 +289,9 @@ class BodyCompiler(ExprCompiler):
     def _costed_blocks(self, body) -> list[tuple[list, object, float]]:
         """`_blocks(body)`, each with the units it charges, once per body (an unrolled
         loop compiles its body once per copy)."""
-        known = self._blocks_memo.get(id(body))
-        if known is None or known[0] is not body:
-            blocks = [(simple, compound, sum(self._simple_cost(st) for st in simple)
-                       + (self._head_cost(compound) if compound else 0)) for simple, compound in _blocks(body)]
-            known = self._blocks_memo[id(body)] = (body, blocks)
-        return known[1]
+        return once(self._blocks_memo, body, lambda: [
+            (simple, compound, sum(self._simple_cost(st) for st in simple)
+             + (self._head_cost(compound) if compound else 0)) for simple, compound in _blocks(body)])
 
     def _statement_with_values(self, stmt) -> None:
         """The statement, the values it computes first set before it (optimise/reuse.py);
@@ -356,10 +352,7 @@ class BodyCompiler(ExprCompiler):
     def _if_entries(self, s) -> tuple[list, float]:
         """Leads of the IF's branches (then ELSE) and the shared first charge (read only;
         once per IF: an unrolled loop compiles its body once per copy)."""
-        known = self._entries_memo.get(id(s))
-        if known is None or known[0] is not s:
-            known = self._entries_memo[id(s)] = (s, self._if_entries_of(s))
-        return known[1]
+        return once(self._entries_memo, s, lambda: self._if_entries_of(s))
 
     def _if_entries_of(self, s) -> tuple[list, float]:
         tests = [0.0]
@@ -676,7 +669,7 @@ class BodyCompiler(ExprCompiler):
             o.line(f"_overrun({where})")     # BY 0 never ends: the period is exceeded
             return
         key = s.variable.upper()
-        assigned = self._assigned_in(s.body)
+        assigned = assigned_in(self, s.body)
         if key in assigned or place.how == "global":
             # The body may change the variable (a global can change in any call).
             self._for_as_while(s, target, var_t, step_value if const_step else None, assigned)
@@ -753,14 +746,6 @@ class BodyCompiler(ExprCompiler):
             self.flow.forget(s.body)
             if unrolled is not None:
                 self.flow.join([unrolled, self.flow.state()])
-
-    def _assigned_in(self, body) -> set[str]:
-        """The variables `body` assigns (scope.Usage), once per body: an unrolled loop
-        compiles the loops in its body once per copy.  (Read only.)"""
-        known = self._assigned_memo.get(id(body))
-        if known is None or known[0] is not body:
-            known = self._assigned_memo[id(body)] = (body, Usage(self.program, body, None).assigned)
-        return known[1]
 
     def _versioned(self, key: str, rng: str, low: int, emit_loop) -> None:
         """A FOR with step 1 whose end is known only at run time, emitted: when the body

@@ -35,7 +35,7 @@ import re
 
 from ... import ast
 from ...types import FBType, InterfaceType, RefType, StructType, resolve_alias
-from ..scope import walk
+from ..scope import once, walk
 from . import reuse
 
 # Characters an expression that cannot fault is made of: no quote, `/`, `%`, `:`, `@`.
@@ -105,11 +105,8 @@ def expr_cannot_fault(compiler, node, code: str) -> bool:
 def _read_nodes(compiler, node) -> tuple:
     """The Deref, Name and Member nodes under `node` in walk order, found once a node (an
     unrolled loop's copies compile the same expressions again)."""
-    known = compiler.__dict__.setdefault("_read_nodes", {})
-    hit = known.get(id(node))
-    if hit is None or hit[0] is not node:       # (the entry holds the node: its id stays its own)
-        hit = known[id(node)] = (node, tuple(n for n in walk(node) if isinstance(n, _READ_NODES)))
-    return hit[1]
+    return once(compiler.__dict__.setdefault("_read_nodes", {}), node,
+                lambda: tuple(n for n in walk(node) if isinstance(n, _READ_NODES)))
 
 
 _READ_NODES = (ast.Deref, ast.Name, ast.Member)

@@ -40,7 +40,7 @@ from dataclasses import replace
 from ... import ast
 from ...native import NATIVE_FBS
 from ...types import ArrayType, resolve_alias
-from ..scope import walk
+from ..scope import assigned_in, once, walk
 
 _JUMPS = (ast.Exit, ast.Continue, ast.Return)
 WORTH = 8               # budget checks the exact code must have (the LU: 64, the FK: 23)
@@ -75,7 +75,7 @@ def worst_case(compiler, body) -> int | None:
     if body is not compiler.body or compiler.unrolled:
         return _bound(compiler, body)
     # A POU's whole body is bounded once a load: for a caller (`_pou_bound`) and for itself.
-    return _once(compiler.unit.__dict__, "body_bounds", body, lambda: _bound(compiler, body))
+    return once(compiler.unit.__dict__.setdefault("body_bounds", {}), body, lambda: _bound(compiler, body))
 
 
 def _bound(compiler, body) -> int | None:
@@ -176,17 +176,7 @@ def may_leave(compiler, stmt) -> bool:
     """Whether control may leave `stmt` other than by its end: a jump, or a call of ST code
     (a fault in it with stop_on_fault ends the scan).  The charges that follow must wait.
     Asked once a statement (an unrolled loop's copies are its statements again)."""
-    return _once(compiler.__dict__, "_may_leave", stmt, lambda: _may_leave(compiler, stmt))
-
-
-def _once(owner: dict, table: str, node, work):
-    """`work()` for `node`, worked out once: kept in `owner[table]` by id with the node
-    itself (so no other node can take that id while the entry lives)."""
-    known = owner.setdefault(table, {})
-    hit = known.get(id(node))
-    if hit is None or hit[0] is not node:
-        hit = known[id(node)] = (node, work())
-    return hit[1]
+    return once(compiler.__dict__.setdefault("_may_leave", {}), stmt, lambda: _may_leave(compiler, stmt))
 
 
 def _may_leave(compiler, stmt) -> bool:
@@ -236,17 +226,9 @@ def _values(compiler, s) -> range | None:
     if not all(type(v) is int for v in (start, end, step)) or step == 0:
         return None
     place = compiler.scope.place_of(ast.Name(s.variable, pos=s.pos))
-    if place.how == "global" or s.variable.upper() in _assigned(compiler, s.body):
+    if place.how == "global" or s.variable.upper() in assigned_in(compiler, s.body):
         return None         # a loop that tests its variable: its count is data
     return range(start, end + (1 if step > 0 else -1), step)
-
-
-def _assigned(compiler, body) -> set[str]:
-    """The variables `body` stores into (scope.Usage), found once a load: a loop whose
-    inner bounds depend on its variable bounds its body once a value."""
-    from ..scope import Usage
-
-    return _once(compiler.unit.__dict__, "assigned_in", body, lambda: Usage(compiler.program, body, None).assigned)
 
 
 def worth_it(exact_lines: list[str]) -> bool:
