@@ -157,7 +157,11 @@ pass names; unset means all.
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass, fields
+
+#: A temporary `_tN` named in a line of generated code (a whole word).
+TEMP_NAME = re.compile(r"\b_t\d+\b")
 
 UNROLL_CAP = 8000   # statements unrolled loops may produce in one POU (iterations x body statements)
 

@@ -31,7 +31,7 @@ from dataclasses import replace
 
 from ... import ast
 from ..scope import walk
-from . import fuse, vector
+from . import TEMP_NAME, fuse, vector
 
 _READ = re.compile(r"[A-Za-z_]\w*\[\d+\]")
 _NUMBER = re.compile(r"-?\(?-?\d[\d.e+-]*\)?")
@@ -97,7 +97,6 @@ def _is_local(compiler, name) -> bool:
 
 
 BODY_READS = 8
-_TEMP = re.compile(r"\b_t\d+\b")
 
 
 def inline_single_uses(region, lines: list[str], start: int) -> None:
@@ -107,7 +106,7 @@ def inline_single_uses(region, lines: list[str], start: int) -> None:
     shared = {name: text for text, name in region.shared.items()}
     uses: dict[str, list[int]] = {}
     for i in range(start, len(lines)):
-        for match in _TEMP.finditer(lines[i]):
+        for match in TEMP_NAME.finditer(lines[i]):
             if match.group() in shared:
                 uses.setdefault(match.group(), []).append(i)
     removed = set()
@@ -127,8 +126,8 @@ def inline_single_uses(region, lines: list[str], start: int) -> None:
 
 def _put_in(line: str, name: str, text: str) -> str:
     """`line` with `text` in place of the first occurrence of the temporary `name` (a whole
-    word: the first `_TEMP` token that is `name`)."""
-    for match in _TEMP.finditer(line):
+    word: the first `TEMP_NAME` token that is `name`)."""
+    for match in TEMP_NAME.finditer(line):
         if match.group() == name:
             return line[:match.start()] + text + line[match.end():]
     return line
@@ -188,7 +187,7 @@ def _needed_reads(region, block: list[str]) -> list[tuple[str, str]]:
     read faults exactly when one of the others would (a list has every lower index; an
     unconnected VAR_IN_OUT faults on any), so the region runs exactly when it ran before
     even where vector.py passes the list whole instead of its elements."""
-    used = set(_TEMP.findall("\n".join(block)))
+    used = set(TEMP_NAME.findall("\n".join(block)))
     highest: dict[str, tuple[int, str]] = {}
     for code, name in region.reads.items():
         base, index = code[:-1].split("[", 1)

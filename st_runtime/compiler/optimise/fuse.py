@@ -31,12 +31,13 @@ from __future__ import annotations
 import re
 from itertools import islice
 
+from . import TEMP_NAME
+
 MERGE_CAP = 24
 
 _PURE = re.compile(r"^(\s*)([A-Za-z_]\w*) = ([\w\s.()+*-]+)$")
 _TOKEN = re.compile(r"[A-Za-z_]\w*")
 _ACCUMULATE = re.compile(r"^(\s*)([A-Za-z_]\w*) = \(\2 ([+*-]) (.+)\)$")
-_TEMP = re.compile(r"\b_t\d+\b")
 _LOOP = re.compile(r"^\s*(for|while) ")
 _CALL_OR_ATTRIBUTE = re.compile(r"\w\s*\(|\.[A-Za-z_]")
 _PARENTHESIS = re.compile(r"[()]")
@@ -128,11 +129,11 @@ def rename(lines: list[str], start: int, fresh) -> None:
         return
     span: dict[str, list[int]] = {}
     for i, line in enumerate(body):
-        for match in _TEMP.finditer(line):
+        for match in TEMP_NAME.finditer(line):
             span.setdefault(match.group(), [i, i])[1] = i
     outside = set()
     for line in lines[:start]:
-        outside.update(_TEMP.findall(line))
+        outside.update(TEMP_NAME.findall(line))
     names = {}
     free: list[str] = []
     ends: dict[int, list[str]] = {}
@@ -146,4 +147,4 @@ def rename(lines: list[str], start: int, fresh) -> None:
         names[temp] = free.pop() if free else fresh()
         ends.setdefault(last, []).append(names[temp])
     if names:
-        lines[start:] = [_TEMP.sub(lambda m: names.get(m.group(), m.group()), line) for line in body]
+        lines[start:] = [TEMP_NAME.sub(lambda m: names.get(m.group(), m.group()), line) for line in body]

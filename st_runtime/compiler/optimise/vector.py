@@ -36,10 +36,10 @@ import textwrap
 import types
 
 from ...types import ArrayType, resolve_alias
+from . import TEMP_NAME
 
 MIN_OPERATIONS = 256         # a NumPy call costs ~20 float operations: below this, no gain
 _TEMP = re.compile(r"_t\d+\Z")
-_TEMP_WORD = re.compile(r"\b_t\d+\b")      # a temporary named in a line
 _ASSIGN = re.compile(r"([A-Za-z_]\w*) = (.*)\Z")
 np = _abs = _multiply = _accumulate = None     # NumPy, imported by the first run
 
@@ -412,7 +412,7 @@ def _replace_run(lines, i, j, indent, graph, register, element_of=None):
     None when the run does not qualify."""
     if len(graph.ops) < MIN_OPERATIONS:
         return None
-    read_later = set(_TEMP_WORD.findall("\n".join(lines[j:])))
+    read_later = set(TEMP_NAME.findall("\n".join(lines[j:])))
     stores, literals = [], []
     for name, bound in graph.env.items():
         if _TEMP.match(name) and name not in read_later:
