@@ -809,16 +809,27 @@ def test_a_whole_for_is_charged_and_tested_before_its_first_iteration(limit_ns, 
     assert (main.v_N, got, times) == (n, faults, [603 * PS_PER_UNIT])
 
 
-@pytest.mark.xfail(strict=True, reason="statements.py charges the tests of an IF's ELSIFs and a CASE's labels "
-                   "to the branch that took them (_if_entries, _case_entries): when no branch runs and there "
-                   "is no ELSE, the tests evaluated after the first are charged to no one (here 2 + 3 units "
-                   "for 2 + 2 + 3 by 'what ran'); reported to the lead (a change of the estimate).")
-@pytest.mark.parametrize("body, inputs, units", [
-    ("IF b THEN i := 1; ELSIF c THEN i := 2; END_IF;", {}, 2 + 2),
-    ("CASE j OF 1: i := 1; 2, 3: i := 2; END_CASE;", {"j": 9}, 1 + 3)], ids=["ELSIF none", "CASE no match"])
-def test_a_path_through_no_branch_pays_every_test_it_made(body, inputs, units):
-    _, faults, times = run(cost_program(body), NONE, inputs=inputs)
-    assert (faults, times) == ([], [units * PS_PER_UNIT])
+SIX_CLAUSES = "CASE j OF 1: i := 1; 2: i := 2; 3: i := 3; 4: i := 4; 5: i := 5; 6: i := 6; END_CASE;"
+
+NO_BRANCH = {  # body, inputs, units: with no ELSE, a path that takes no branch pays every test it made
+    "ELSIF none": ("IF b THEN i := 1; ELSIF c THEN i := 2; END_IF;", {}, 2 + 2),
+    "two ELSIFs none": ("IF b THEN i := 1; ELSIF c THEN i := 2; ELSIF j > k THEN i := 3; END_IF;", {}, 2 + 2 + 4),
+    # a condition that may fault (INT division): the IF is not tested in place
+    "ELSIF none, a division": ("IF b THEN i := 1; ELSIF j / k > k THEN i := 2; END_IF;", {"j": 1, "k": 3}, 2 + 9),
+    "ELSIF none, constants": ("IF FALSE THEN i := 1; ELSIF FALSE THEN i := 2; END_IF;", {}, 2 + 2),
+    "CASE no match": ("CASE j OF 1: i := 1; 2, 3: i := 2; END_CASE;", {"j": 9}, 1 + 3),
+    # six clauses: with every pass the labels are tested by halves (optimise/halves.py)
+    "CASE no match above, six clauses": (SIX_CLAUSES, {"j": 9}, 1 + 6),
+    "CASE no match below, six clauses": (SIX_CLAUSES, {"j": 0}, 1 + 6),
+    "CASE last of six": (SIX_CLAUSES, {"j": 6}, 1 + 6 + 2),
+}
+
+
+@pytest.mark.parametrize("row", NO_BRANCH.values(), ids=NO_BRANCH.keys())
+def test_a_path_through_no_branch_pays_every_test_it_made(row):
+    body, inputs, units = row
+    expected = ([], [units * PS_PER_UNIT])
+    assert scan_times(cost_program(body), inputs) == {"every pass": expected, "no pass": expected}
 
 
 # ============================= exprs.py / support.py: subscripts out of range, by dimension

@@ -431,7 +431,21 @@ class BodyCompiler(ExprCompiler):
         if taken is not None:
             body = s.branches[taken].body if taken < len(s.branches) else s.else_body
             self.statements(body or (), leads[taken])
+        elif self._charges_no_branch(leads):
+            self.statements((), leads[-1])
         return True
+
+    def _charges_no_branch(self, leads: list) -> bool:
+        """Whether the path through no branch (no ELSE, no test TRUE) has tests of its own to
+        charge: every test after the first, which the last branch's lead holds (`_shared`
+        moves nothing without an ELSE). docs/nj501.md: a path pays for what ran."""
+        return bool(leads) and self.unit.charge_costs and picoseconds(leads[-1]) > 0
+
+    def _no_branch(self, ends: list | None, leads: list, opener: str) -> None:
+        """The no-ELSE path's charge, as a branch of its own (`opener` its Python test)."""
+        if self._charges_no_branch(leads):
+            self.out.line(opener)
+            self._branch(ends, (), leads[-1])
 
     def guard(self, node, emit, on_fault=lambda: ()) -> None:
         """Emit `emit()` inside `try`; a fault is recorded, then `on_fault()` lines run."""
@@ -535,6 +549,8 @@ class BodyCompiler(ExprCompiler):
             if s.else_body:
                 o.line("else:")
                 self._branch(ends, s.else_body, leads[n])
+            else:
+                self._no_branch(ends, leads, "else:")
             self._branches_end(ends)
             return
         which = self.temp()
@@ -558,6 +574,8 @@ class BodyCompiler(ExprCompiler):
         if s.else_body:
             o.line(f"elif {which} == {n}:")
             self._branch(ends, s.else_body, leads[n])
+        else:
+            self._no_branch(ends, leads, f"elif {which} == {n}:")
         self._branches_end(ends)
 
     def _tested_in_place(self, node, code: str) -> bool:
@@ -602,7 +620,7 @@ class BodyCompiler(ExprCompiler):
             extent = halves.spans([halves.label_spans(self, clause) for clause in s.clauses])
             if extent is not None:
                 dispatch = halves.tree(extent)
-        self._dispatch(dispatch, selector, tests, s.clauses, ends, leads)
+        self._dispatch(dispatch, selector, tests, s.clauses, ends, leads, not s.else_body)
         if s.else_body:
             if not s.clauses:
                 self.out.line("if True:")
@@ -629,20 +647,24 @@ class BodyCompiler(ExprCompiler):
             tests.insert(0, f"{selector} in ({', '.join(singles)},)")
         return ' or '.join(tests) or 'False'
 
-    def _dispatch(self, node, selector: str, tests: list[str], clauses, ends, leads) -> None:
-        """The clauses of `node` (optimise/halves.py): in a row, or `selector < pivot` first."""
+    def _dispatch(self, node, selector: str, tests: list[str], clauses, ends, leads,
+                  no_else: bool) -> None:
+        """The clauses of `node` (optimise/halves.py): in a row, or `selector < pivot` first.
+        Without an ELSE, a selector no clause matches has compared every label (each leaf)."""
         if isinstance(node, halves.Split):
             self.out.line(f"if {selector} < {node.pivot}:")
             for index, side in enumerate((node.below, node.above)):
                 if index:
                     self.out.line("else:")
                 self.out.indent()
-                self._dispatch(side, selector, tests, clauses, ends, leads)
+                self._dispatch(side, selector, tests, clauses, ends, leads, no_else)
                 self.out.dedent()
             return
         for position, index in enumerate(node):
             self.out.line(f"{'elif' if position else 'if'} {tests[index]}:")
             self._branch(ends, clauses[index].body, leads[index])
+        if no_else and node:
+            self._no_branch(ends, leads, "else:")
 
     def _label(self, label):
         value = self.constant_of(label)
