@@ -168,7 +168,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                    # seed 30 (issue 16, session 12)
                    "tests/test_reference_mutation_s12.py",
                    # make_table_105 and seed 32 (issue 16, session 13)
-                   "tests/test_reference_mutation_s13.py"]),
+                   "tests/test_reference_mutation_s13.py",
+                   # seed 33 (issue 16, session 14)
+                   "tests/test_reference_mutation_s14.py"]),
 }
 
 # Extra [tool.mutmut] settings of one module. The compiler's mutants include
