@@ -121,3 +121,36 @@ def test_a_store_inside_a_written_propertys_path_leaves_it_written():
     text = pick + _main("ts[Pick(i := 1, o => k)].WriteOnly := 5;").replace(
         "VAR t : Tank;", "VAR t : Tank; ts : ARRAY[0..2] OF Tank; k : INT;")
     assert diagnostics(text, "codesys") == [("E-TYPE-018", 28, 9, NO_GET)]       # PEEK, 6 lines down
+
+
+# ------------------------------------------------------------------ the seed-29 sample
+
+CHART = """PROGRAM Main
+VAR Go : BOOL := TRUE; Lamp : BOOL; {mine} : BOOL; END_VAR
+INITIAL_STEP Wait:
+END_STEP
+TRANSITION FROM Wait TO A := Go;
+END_TRANSITION
+STEP A:
+    Lamp({qualifier}, T#1s);
+END_STEP
+TRANSITION FROM A TO Wait := FALSE;
+END_TRANSITION
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("qualifier", ["SD", "DS", "SL"])
+def test_a_variable_named_like_a_charts_flip_flop_is_declared_twice_at_the_association(qualifier):
+    """A timed stored action (the IEC 61131-3 action qualifiers SD, DS, SL) keeps a flip-flop, a BOOL the chart
+    declares as __<qualifier>F<n>_<action> (n: the association's index in its step, from 0).  A variable
+    of that name is a duplicate, reported where the association makes the flip-flop (line 8, column 5),
+    after the warnings of the name itself (2:37); a name of another index is no clash."""
+    mine = f"__{qualifier}F0_Lamp"
+    twice = diagnostics(CHART.format(mine=mine, qualifier=qualifier))
+    assert twice == [
+        ("W-NJ-002", 2, 37, f"identifier '{mine}' starts or ends with '_': not allowed on an OMRON NJ"),
+        ("W-NJ-003", 2, 37, f"identifier '{mine}' contains '__': not allowed on an OMRON NJ"),
+        ("E-DECL-002", 8, 5, f"duplicate declaration of '{mine}' in POU Main (first declared at t.st:2:37)")]
+    other = f"__{qualifier}F1_Lamp"
+    assert [code for code, *_ in diagnostics(CHART.format(mine=other, qualifier=qualifier))] == ["W-NJ-002", "W-NJ-003"]
