@@ -19,15 +19,15 @@ from stgen.cli import main
 
 TANK = """FUNCTION_BLOCK Tank
 VAR lvl : INT; END_VAR
-PROPERTY WriteOnly : INT
-SET
-lvl := WriteOnly;
-END_SET
-END_PROPERTY
 PROPERTY ReadOnly : INT
 GET
 ReadOnly := lvl;
 END_GET
+END_PROPERTY
+PROPERTY WriteOnly : INT
+SET
+lvl := WriteOnly;
+END_SET
 END_PROPERTY
 PROPERTY Both : INT
 GET
