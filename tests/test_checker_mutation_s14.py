@@ -13,9 +13,10 @@ from __future__ import annotations
 
 import pytest
 
-from checker_helpers import diagnostics
+from checker_helpers import diagnostics, program
 from st_runtime import api
 from stgen.cli import main
+from test_checker_mutants_third import after_one_scan
 
 TANK = """FUNCTION_BLOCK Tank
 VAR lvl : INT; END_VAR
@@ -154,3 +155,15 @@ def test_a_variable_named_like_a_charts_flip_flop_is_declared_twice_at_the_assoc
         ("E-DECL-002", 8, 5, f"duplicate declaration of '{mine}' in POU Main (first declared at t.st:2:37)")]
     other = f"__{qualifier}F1_Lamp"
     assert [code for code, *_ in diagnostics(CHART.format(mine=other, qualifier=qualifier))] == ["W-NJ-002", "W-NJ-003"]
+
+
+def test_a_constant_mod_of_udint_by_dint_takes_the_njs_ranking_as_division_does():
+    """W501's ranking makes UDINT op DINT a UDINT operation (test_folding_follows_the_dialect: UDINT#10
+    / DINT#-1 is 0): a constant DINT#-3 is 4294967293 there, so UDINT#10 MOD DINT#-3 is 10 and
+    UDINT#7 MOD DINT#-2 is 7.  Between signed values MOD truncates (IEC 61131-3): DINT#10 MOD DINT#-3
+    is 10 - (-3)·(-3) = 1, DINT#7 MOD DINT#-2 is 7 - (-2)·(-3) = 1."""
+    decls, body = "    u, v : UDINT; w, z : DINT;", "u := UDINT#10 MOD DINT#-3; v := UDINT#7 MOD DINT#-2;"
+    nj = after_one_scan(program(decls, body), "nj")
+    assert (nj["u"], nj["v"]) == (10, 7)
+    iec = after_one_scan(program(decls, "w := DINT#10 MOD DINT#-3; z := DINT#7 MOD DINT#-2;"))
+    assert (iec["w"], iec["z"]) == (1, 1)
