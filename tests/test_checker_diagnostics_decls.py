@@ -203,6 +203,13 @@ DECLARATIONS = rows(
     # Unnamed, the star's place is a place only: no type recorded for an address it does not have yet.
     ("an_unnamed_star_address_in_a_function_block", "iec",
      "FUNCTION_BLOCK Fb\nVAR AT %I* : INT; END_VAR\nEND_FUNCTION_BLOCK\n", []),
+    # Unnamed places follow the same rules as named ones (session 14, seed 29: `declare_14`).
+    ("an_unnamed_located_place_in_a_function", "iec", "FUNCTION F : INT\nVAR AT %IW1 : INT; END_VAR\nF := 1;\nEND_FUNCTION\n",
+     [("E-DECL-015", 2, 8, "%IW1: a FUNCTION keeps no variables between calls and cannot have located ones")]),
+    ("an_unnamed_full_address_in_a_function_block", "iec",
+     "FUNCTION_BLOCK Fb\nVAR AT %IW1 : INT; END_VAR\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-015", 2, 8, "%IW1: in a FUNCTION_BLOCK only %I*, %Q* or %M* (a place chosen by the "
+                           "configuration), found a full address")]),
     ("a_word_address_of_a_dint", "iec", P("    x AT %IW1 : DINT;\n    y AT %IW2 : INT;", ""),
      [("E-DECL-015", 3, 5, "'x' AT %IW1: an address of size W holds 16 bit(s); expected a type of that "
                            "width, found DINT")]),
