@@ -785,6 +785,12 @@ CHARTS = rows(
     ("a_construct_of_another_dialect_once", "iec", P("    w : WORD;\n    b : BOOL;", "b := w.1;"),
      [("E-DIALECT-001", 6, 6, "bit access x.3 is not accepted by --dialect iec; --dialect codesys or --dialect nj "
                               "accepts it")]),
+    # In two POUs of a file: reported at the first in the file (session 14, seed 29: `check_dialect_24`).
+    ("a_construct_of_another_dialect_in_two_pous", "iec",
+     "FUNCTION_BLOCK A\nVAR w : WORD; b : BOOL; END_VAR\nb := w.1;\nEND_FUNCTION_BLOCK\n"
+     + P("    w : WORD;\n    b : BOOL;", "b := w.2;"),
+     [("E-DIALECT-001", 3, 6, "bit access x.3 is not accepted by --dialect iec; --dialect codesys or --dialect nj "
+                              "accepts it (1 more use(s) in this file)")]),
 )
 
 
