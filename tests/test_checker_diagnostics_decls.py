@@ -758,6 +758,16 @@ CHARTS = rows(
      [("E-REC-001", 3, 6, "recursion: F calls F; IEC 61131-3 and OMRON NJ forbid recursion")]),
     ("two_functions_calling_each_other", "iec", "FUNCTION F : INT\nF := G();\nEND_FUNCTION\nFUNCTION G : INT\nG := F();\nEND_FUNCTION\n",
      [("E-REC-001", 2, 6, "recursion: F calls G, G calls F; IEC 61131-3 and OMRON NJ forbid recursion")]),
+    # Two paths to one function (a diamond, each caller calling on) are no cycle; a caller of two callers
+    # is searched edge by edge (session 14, seed 29: `_components_27` looped forever on the second edge).
+    ("a_diamond_of_calls", "iec",
+     "FUNCTION Leaf : INT\nLeaf := 1;\nEND_FUNCTION\nFUNCTION B : INT\nB := Leaf();\nEND_FUNCTION\n"
+     "FUNCTION C : INT\nC := Leaf();\nEND_FUNCTION\n" + P("    x : INT;", "x := B() + C();"), []),
+    ("a_cycle_behind_a_diamond", "iec",
+     "FUNCTION F : INT\nF := G();\nEND_FUNCTION\nFUNCTION G : INT\nG := F();\nEND_FUNCTION\n"
+     "FUNCTION B : INT\nB := F();\nEND_FUNCTION\nFUNCTION C : INT\nC := F();\nEND_FUNCTION\n"
+     + P("    x : INT;", "x := B() + C();"),
+     [("E-REC-001", 2, 6, "recursion: F calls G, G calls F; IEC 61131-3 and OMRON NJ forbid recursion")]),
     ("two_function_blocks_holding_each_other", "iec",
      "FUNCTION_BLOCK A\nVAR b : B; END_VAR\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK B\nVAR a : A; END_VAR\nEND_FUNCTION_BLOCK\n",
      [("E-REC-001", 2, 5, "recursion: A declares an instance of B, B declares an instance of A; IEC 61131-3 "
