@@ -203,6 +203,13 @@ DECLARATIONS = rows(
     # Unnamed, the star's place is a place only: no type recorded for an address it does not have yet.
     ("an_unnamed_star_address_in_a_function_block", "iec",
      "FUNCTION_BLOCK Fb\nVAR AT %I* : INT; END_VAR\nEND_FUNCTION_BLOCK\n", []),
+    # Unnamed places follow the same rules as named ones (session 14, seed 29: `declare_14`).
+    ("an_unnamed_located_place_in_a_function", "iec", "FUNCTION F : INT\nVAR AT %IW1 : INT; END_VAR\nF := 1;\nEND_FUNCTION\n",
+     [("E-DECL-015", 2, 8, "%IW1: a FUNCTION keeps no variables between calls and cannot have located ones")]),
+    ("an_unnamed_full_address_in_a_function_block", "iec",
+     "FUNCTION_BLOCK Fb\nVAR AT %IW1 : INT; END_VAR\nEND_FUNCTION_BLOCK\n",
+     [("E-DECL-015", 2, 8, "%IW1: in a FUNCTION_BLOCK only %I*, %Q* or %M* (a place chosen by the "
+                           "configuration), found a full address")]),
     ("a_word_address_of_a_dint", "iec", P("    x AT %IW1 : DINT;\n    y AT %IW2 : INT;", ""),
      [("E-DECL-015", 3, 5, "'x' AT %IW1: an address of size W holds 16 bit(s); expected a type of that "
                            "width, found DINT")]),
@@ -751,6 +758,16 @@ CHARTS = rows(
      [("E-REC-001", 3, 6, "recursion: F calls F; IEC 61131-3 and OMRON NJ forbid recursion")]),
     ("two_functions_calling_each_other", "iec", "FUNCTION F : INT\nF := G();\nEND_FUNCTION\nFUNCTION G : INT\nG := F();\nEND_FUNCTION\n",
      [("E-REC-001", 2, 6, "recursion: F calls G, G calls F; IEC 61131-3 and OMRON NJ forbid recursion")]),
+    # Two paths to one function (a diamond, each caller calling on) are no cycle; a caller of two callers
+    # is searched edge by edge (session 14, seed 29: `_components_27` looped forever on the second edge).
+    ("a_diamond_of_calls", "iec",
+     "FUNCTION Leaf : INT\nLeaf := 1;\nEND_FUNCTION\nFUNCTION B : INT\nB := Leaf();\nEND_FUNCTION\n"
+     "FUNCTION C : INT\nC := Leaf();\nEND_FUNCTION\n" + P("    x : INT;", "x := B() + C();"), []),
+    ("a_cycle_behind_a_diamond", "iec",
+     "FUNCTION F : INT\nF := G();\nEND_FUNCTION\nFUNCTION G : INT\nG := F();\nEND_FUNCTION\n"
+     "FUNCTION B : INT\nB := F();\nEND_FUNCTION\nFUNCTION C : INT\nC := F();\nEND_FUNCTION\n"
+     + P("    x : INT;", "x := B() + C();"),
+     [("E-REC-001", 2, 6, "recursion: F calls G, G calls F; IEC 61131-3 and OMRON NJ forbid recursion")]),
     ("two_function_blocks_holding_each_other", "iec",
      "FUNCTION_BLOCK A\nVAR b : B; END_VAR\nEND_FUNCTION_BLOCK\nFUNCTION_BLOCK B\nVAR a : A; END_VAR\nEND_FUNCTION_BLOCK\n",
      [("E-REC-001", 2, 5, "recursion: A declares an instance of B, B declares an instance of A; IEC 61131-3 "
@@ -778,6 +795,12 @@ CHARTS = rows(
     ("a_construct_of_another_dialect_once", "iec", P("    w : WORD;\n    b : BOOL;", "b := w.1;"),
      [("E-DIALECT-001", 6, 6, "bit access x.3 is not accepted by --dialect iec; --dialect codesys or --dialect nj "
                               "accepts it")]),
+    # In two POUs of a file: reported at the first in the file (session 14, seed 29: `check_dialect_24`).
+    ("a_construct_of_another_dialect_in_two_pous", "iec",
+     "FUNCTION_BLOCK A\nVAR w : WORD; b : BOOL; END_VAR\nb := w.1;\nEND_FUNCTION_BLOCK\n"
+     + P("    w : WORD;\n    b : BOOL;", "b := w.2;"),
+     [("E-DIALECT-001", 3, 6, "bit access x.3 is not accepted by --dialect iec; --dialect codesys or --dialect nj "
+                              "accepts it (1 more use(s) in this file)")]),
 )
 
 

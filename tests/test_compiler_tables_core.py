@@ -1413,13 +1413,14 @@ END_PROGRAM
 
 
 def test_reading_a_property_without_get_is_refused_at_load():
-    # A PROPERTY without GET has no value to read: the program is refused when it is loaded,
-    # not run with a getter that does not exist.  (Today the checker lets it through and the
-    # compiler refuses it, E-COMPILE-001; reported to the lead as a checker gap.)
+    # A PROPERTY without GET has no value to read: the checker refuses the program where it is
+    # read (CODESYS C0143), before the compiler would generate a getter that does not exist.
     from st_runtime import api
 
-    with pytest.raises(api.LoadError):
+    with pytest.raises(api.LoadError) as raised:
         api.load_text(WRITE_ONLY, "m.st", "codesys")
+    assert [(d.code, d.pos.line, d.pos.col, d.message) for d in raised.value.diagnostics] == [
+        ("E-TYPE-018", 11, 6, "property Tank.WriteOnly has no GET and cannot be read")]
 
 
 # ============================================ support.py and pysrc.py: run-time helpers, literals

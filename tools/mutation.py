@@ -148,7 +148,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                  # every diagnostic of expressions, calls and standard functions (session 12)
                  "tests/test_checker_diagnostics_exprs.py", "tests/test_checker_diagnostics_exprs_builtins.py",
                  # the whole-module seed-28 run (issue 16, session 13)
-                 "tests/test_checker_mutation_s13.py"]),
+                 "tests/test_checker_mutation_s13.py",
+                 # the fresh seed-29 run and the PROPERTY accessors (issue 16, session 14)
+                 "tests/test_checker_mutation_s14.py"]),
     "reference": (["stgen/reference/*"],
                   ["tests/test_reference_brake.py", "tests/test_reference_cycloidal.py",
                    "tests/test_reference_error_codes.py", "tests/test_reference_forward.py",
@@ -166,7 +168,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                    # seed 30 (issue 16, session 12)
                    "tests/test_reference_mutation_s12.py",
                    # make_table_105 and seed 32 (issue 16, session 13)
-                   "tests/test_reference_mutation_s13.py"]),
+                   "tests/test_reference_mutation_s13.py",
+                   # seed 33 (issue 16, session 14)
+                   "tests/test_reference_mutation_s14.py"]),
 }
 
 # Extra [tool.mutmut] settings of one module. The compiler's mutants include

@@ -43,6 +43,7 @@ CHECKER_CODES = register({
     "E-TYPE-015": "an enumeration value does not belong to the named enumeration type",
     "E-TYPE-016": "a name that is not a value (a POU, a type, an FB instance) is used as a value",
     "E-TYPE-017": "division by zero in a constant expression",
+    "E-TYPE-018": "a PROPERTY without GET is read (CODESYS C0143; one without SET written is E-ASSIGN-004)",
     "W-DECL-001": "a project's FUNCTION_BLOCK replaces the built-in standard FB of the same name (TON, CTU, MC_Power)",
     "E-SFC-002": "an SFC chart that is not well formed: an unknown or duplicate step, no INITIAL_STEP",
     "W-TYPE-001": "a string literal is longer than the STRING it is stored in and will be truncated",
@@ -50,7 +51,7 @@ CHECKER_CODES = register({
     "E-ASSIGN-001": "assignment to a CONSTANT variable",
     "E-ASSIGN-002": "assignment to a VAR_INPUT inside its own POU (inputs are read-only)",
     "E-ASSIGN-003": "assignment to a FOR control variable inside its loop",
-    "E-ASSIGN-004": "assignment to an output or internal variable of a function block instance from outside",
+    "E-ASSIGN-004": "assignment to an output or internal variable of a function block instance from outside, or to a PROPERTY without SET",
     # calls
     "E-CALL-001": "a call of something that is not a function or function block instance",
     "E-CALL-002": "a call names a parameter (pin) the callee does not have",

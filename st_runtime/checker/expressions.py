@@ -141,6 +141,7 @@ class ExprChecker:
         self.scope = scope
         self.program = ctx.program
         self.loop_vars: list = []  # Symbols of the enclosing FOR loops
+        self.storing = None        # the target check_store is typing (written, not read)
         self._untyped_memo: dict[int, bool] = {}
         self.calls = (_CALL_CHECKER or _call_checker())(self)
 
@@ -458,6 +459,9 @@ class ExprChecker:
                     if not may_call(accessor, self.scope.fb):
                         self.ctx.error("E-CALL-012", f"property {base.name}.{e.name} is "
                                        f"{accessor.access}", e.pos)
+                    if getter is None and e is not self.storing:    # read, not written
+                        self.ctx.error("E-TYPE-018", f"property {base.name}.{e.name} has no GET "
+                                       "and cannot be read", e.pos)
                     self.program.properties[id(e)] = (getter, setter)
                     t = getter.return_type if getter is not None else \
                         next(iter(setter.variables.values())).type

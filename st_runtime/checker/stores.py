@@ -43,7 +43,9 @@ def check_store(ex, target, what: str = "assignment"):
         ex.ctx.error("E-TYPE-014", f"{what}: expected a variable, found "
                      f"{_describe(target)}", target.pos)
         return ts.ERROR
+    outer, ex.storing = ex.storing, target      # (a call in `target` may store its outputs)
     t = ex.infer(target)
+    ex.storing = outer
     accessors = ex.program.properties.get(id(target))
     if accessors is not None and t is not ts.ERROR:
         if accessors[1] is None:
