@@ -427,7 +427,7 @@ class ExprCompiler:
             value = fold.constant_element(self, e)
             if value is not None:
                 return self.literal(value, self.ty(e))
-        code = self.lvalue(e).read()
+        code = self.index_lvalue(e).read()         # (`lvalue` of an Index)
         if self.region is not None:
             return self.region.read(code)
         return self.reuse.element(e, code) if self.reuse is not None else code

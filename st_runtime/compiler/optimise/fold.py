@@ -24,20 +24,22 @@ _INT_OPS = {"+": operator.add, "-": operator.sub, "*": operator.mul}
 
 def constant_element(compiler, e: ast.Index):
     """The value of `e` when it reads a CONSTANT array at constant, in-range indices; else None."""
-    if not isinstance(e.base, ast.Name):
-        return None
     cache = compiler.__dict__.get("_constant_arrays")
     if cache is None:
         cache = compiler._constant_arrays = {}
     found = cache.get(id(e), cache)         # (the cache itself: not looked at yet)
     if found is cache:
-        found = cache[id(e)] = _constant_array(compiler, e)
+        found = cache[id(e)] = _element_plan(compiler, e) if isinstance(e.base, ast.Name) else None
     if found is None:
         return None
-    dims, values = found
+    steps, values = found
     offset = 0
-    for index, (lo, hi, stride) in zip(reversed(e.indices), dims):     # (the last first, as ever)
-        value = compiler.constant_of(index)
+    unrolled = compiler.unrolled
+    for index, name, lo, hi, stride in steps:      # (the last index first, as ever)
+        if name is not None:        # a FOR variable: constant only in an unrolled copy
+            value = unrolled.get(name)
+        else:
+            value = compiler.constant_of(index)
         if not isinstance(value, int) or isinstance(value, bool) or not lo <= value <= hi:
             return None                         # out of range: left to the runtime's fault
         offset += (value - lo) * stride
@@ -45,6 +47,22 @@ def constant_element(compiler, e: ast.Index):
         return None
     value = values[offset]
     return value if isinstance(value, (int, float)) else None
+
+
+def _element_plan(compiler, e):
+    """(steps, flat values) of a read of a whole CONSTANT array: a step per index from the
+    last, (index, its upper name when `constant_of` can only find it among the unrolled
+    FOR variables, lo, hi, stride); None for another read."""
+    found = _constant_array(compiler, e)
+    if found is None:
+        return None
+    dims, values = found
+    steps = []
+    for index, (lo, hi, stride) in zip(reversed(e.indices), dims):
+        name = index.name.upper() if type(index) is ast.Name \
+            and compiler.program.constants.get(id(index)) is None else None
+        steps.append((index, name, lo, hi, stride))
+    return tuple(steps), values
 
 
 def _constant_array(compiler, e):
