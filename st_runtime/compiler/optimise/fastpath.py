@@ -100,7 +100,7 @@ def _bound(compiler, body) -> int | None:
                 return None
             parts = [cost.for_setup(s), _iterations(compiler, s, values)]
         else:
-            parts = [cost.simple(s), _calls(compiler, s)]
+            parts = [compiler._simple_cost(s), _calls(compiler, s)]
         if any(p is None for p in parts):
             return None
         total += sum(parts)

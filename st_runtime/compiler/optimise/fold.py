@@ -24,12 +24,7 @@ _INT_OPS = {"+": operator.add, "-": operator.sub, "*": operator.mul}
 
 def constant_element(compiler, e: ast.Index):
     """The value of `e` when it reads a CONSTANT array at constant, in-range indices; else None."""
-    cache = compiler.__dict__.get("_constant_arrays")
-    if cache is None:
-        cache = compiler._constant_arrays = {}
-    found = cache.get(id(e), cache)         # (the cache itself: not looked at yet)
-    if found is cache:
-        found = cache[id(e)] = _element_plan(compiler, e) if isinstance(e.base, ast.Name) else None
+    found = _plan(compiler, e)
     if found is None:
         return None
     steps, values = found
@@ -47,6 +42,17 @@ def constant_element(compiler, e: ast.Index):
         return None
     value = values[offset]
     return value if isinstance(value, (int, float)) else None
+
+
+def _plan(compiler, e):
+    """`_element_plan` of `e`, found once (kept by id: the AST outlives the compile)."""
+    cache = compiler.__dict__.get("_constant_arrays")
+    if cache is None:
+        cache = compiler._constant_arrays = {}
+    found = cache.get(id(e), cache)         # (the cache itself: not looked at yet)
+    if found is cache:
+        found = cache[id(e)] = _element_plan(compiler, e) if isinstance(e.base, ast.Name) else None
+    return found
 
 
 def _element_plan(compiler, e):
@@ -109,8 +115,30 @@ def constant_condition(compiler, e):
 
 def constant_integer(compiler, e):
     """An integer + - * of constants (exact, as intermediate integers are here), else None."""
+    if _never(compiler, e):
+        return None
     value = _evaluate(compiler, e)
     return value if _is_int(value) else None
+
+
+def _never(compiler, e) -> bool:
+    """Whether `_evaluate(e)` is None in every unrolled copy: an operation the checker did
+    not fold whose left operand is so (evaluated first), or a read of an array that is not
+    CONSTANT (the Leibniz products: `Matrix[1, ...] * Matrix[2, ...] * ...`).  Once a node."""
+    cache = compiler.__dict__.get("_never_constant")
+    if cache is None:
+        cache = compiler._never_constant = {}
+    hit = cache.get(id(e))
+    if hit is None or hit[0] is not e:
+        cls = type(e)
+        if cls is ast.Binary:
+            never = compiler.folded(e) is None and _never(compiler, e.left)
+        elif cls is ast.Index:
+            never = compiler.program.constants.get(id(e)) is None and _plan(compiler, e) is None
+        else:
+            never = False
+        hit = cache[id(e)] = (e, never)
+    return hit[1]
 
 
 def _evaluate(compiler, e):

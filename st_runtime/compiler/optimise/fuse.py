@@ -129,8 +129,8 @@ def rename(lines: list[str], start: int, fresh) -> None:
         return
     span: dict[str, list[int]] = {}
     for i, line in enumerate(body):
-        for match in TEMP_NAME.finditer(line):
-            span.setdefault(match.group(), [i, i])[1] = i
+        for temp in TEMP_NAME.findall(line):
+            span.setdefault(temp, [i, i])[1] = i
     outside = set()
     for line in lines[:start]:
         outside.update(TEMP_NAME.findall(line))
