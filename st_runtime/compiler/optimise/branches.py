@@ -81,9 +81,25 @@ def _owned(t) -> bool:
     return not isinstance(resolve_alias(t), (RefType, InterfaceType))
 
 
+def remembered(judge):
+    """`judge`, a pure test of a line or an expression's code, with its answers kept by text
+    (for one body's compile: the same code comes again in an unrolled loop's copies)."""
+    answers: dict[str, bool] = {}
+
+    def judged(code: str) -> bool:
+        answer = answers.get(code)
+        if answer is None:
+            answer = answers[code] = judge(code)
+        return answer
+    return judged
+
+
 def expr_cannot_fault(compiler, node, code: str) -> bool:
     """`node` (compiled to `code`) reads only owned storage and its code cannot raise."""
-    if not code_cannot_fault(code):
+    judge = compiler.__dict__.get("_code_judge")
+    if judge is None:
+        judge = compiler._code_judge = remembered(code_cannot_fault)
+    if not judge(code):
         return False
     for n in _read_nodes(compiler, node):
         if isinstance(n, ast.Deref):

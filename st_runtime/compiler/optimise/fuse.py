@@ -75,13 +75,14 @@ _UNREAD = object()
 
 def substitute(lines: list[str], start: int) -> None:
     i, head = start, _UNREAD
+    pure = _remembered_pure()       # (`_set_again` reads the lines ahead again)
     while i < len(lines) - 1:
         if head is _UNREAD:
-            head = _pure(lines[i])
-        use = _pure(lines[i + 1])
+            head = pure(lines[i])
+        use = pure(lines[i + 1])
         if head and use and head[0] == use[0] and head[1] != use[1] and not head[1].startswith("_t") \
                 and _mentions(head[2], head[1]) == 0 and _mentions(use[2], head[1]) == 1 \
-                and _set_again(lines, i + 2, head[0], head[1]):
+                and _set_again(lines, i + 2, head[0], head[1], pure):
             value = head[2] if _enclosed(head[2]) else f"({head[2]})"
             expression = re.sub(rf"\b{head[1]}\b", lambda _: value, use[2], count=1)
             lines[i:i + 2] = [f"{use[0]}{use[1]} = {expression}"]
@@ -90,11 +91,23 @@ def substitute(lines: list[str], start: int) -> None:
         i, head = i + 1, use          # (the next line's head: read once)
 
 
-def _set_again(lines: list[str], j: int, indent: str, name: str) -> bool:
+def _remembered_pure():
+    """`_pure`, its answers kept by line (for one pass over a region's lines)."""
+    known: dict = {}
+
+    def pure(line: str):
+        found = known.get(line, _UNREAD)
+        if found is _UNREAD:
+            found = known[line] = _pure(line)
+        return found
+    return pure
+
+
+def _set_again(lines: list[str], j: int, indent: str, name: str, pure_of=_pure) -> bool:
     """Whether the next line mentioning `name` sets it from what does not read it, with
     only pure lines at `indent` before it."""
     for line in islice(lines, j, None):      # (not a copy of the rest)
-        pure = _pure(line)
+        pure = pure_of(line)
         if pure is None or pure[0] != indent:
             return False
         if pure[1] == name:

@@ -55,9 +55,18 @@ _COPY = re.compile(r"\s*v_\w+\[:\] = v_\w+")
 
 def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:
     """The assignment's code `lines` raises nothing `_FAULTS` catches (module docstring)."""
-    if lines and all(_local_arithmetic(line) for line in lines):
+    if lines and all(map(_local_arithmetic if compiler is None else _judge(compiler), lines)):
         return True
     return compiler is not None and _owned_store(compiler, node, lines)
+
+
+def _judge(compiler):
+    """`_local_arithmetic` of a line, kept by its text while `compiler` compiles one body
+    (an unrolled loop writes its copies' lines again, the fast path the exact one's)."""
+    judge = compiler.__dict__.get("_arithmetic_judge")
+    if judge is None:
+        judge = compiler._arithmetic_judge = branches.remembered(_local_arithmetic)
+    return judge
 
 
 def _local_arithmetic(line: str) -> bool:
