@@ -174,6 +174,7 @@ class ExprCompiler:
         self._types: dict[int, Type | None] = {}    # id(expr) -> `ty` (the checker's types do not change)
         self._wheres: dict[tuple, str] = {}         # (file, line, col) -> `where`
         self._x_methods: dict[type, object] = {}    # node class -> its x_ method (`expr`)
+        self._arrays: dict[int, tuple] = {}         # id(Index of a name) -> (Index, its type, its code)
         dialect = DIALECTS[getattr(program, "dialect", "iec")]
         self._wraps = dialect.wraps_in_expressions       # (`settled`)
         self._rounds = dialect.rounds_real_operations    # (`rounds_real`)
@@ -605,16 +606,22 @@ class ExprCompiler:
 
     def _index_place(self, e) -> tuple:
         """(element type, list, index) of the element `e` reads: `list[index]` in Python."""
-        arr_t = self.ty(e.base)
-        if not isinstance(arr_t, ArrayType):
-            self.fail("indexing needs an array", e)
-        if len(e.indices) != len(arr_t.dims):
-            self.fail(f"{len(arr_t.dims)} indices expected, found {len(e.indices)}", e)
-        base = self.aggregate(e.base)
-        if arr_t.is_open:        # ARRAY[*]: an _ArrayView, its bounds known at run time
-            indices = ", ".join(self.expr(i) for i in e.indices)
-            key = f"{base}.offset(({indices},), {_describe(e.base)!r}, {self.where(e)})"
-            return arr_t.element, f"{base}.seq", key
+        known = self._arrays.get(id(e))
+        if known is not None and known[0] is e:     # (a named array's type and code, as found before)
+            _, arr_t, base = known
+        else:
+            arr_t = self.ty(e.base)
+            if not isinstance(arr_t, ArrayType):
+                self.fail("indexing needs an array", e)
+            if len(e.indices) != len(arr_t.dims):
+                self.fail(f"{len(arr_t.dims)} indices expected, found {len(e.indices)}", e)
+            base = self.aggregate(e.base)
+            if arr_t.is_open:        # ARRAY[*]: an _ArrayView, its bounds known at run time
+                indices = ", ".join(self.expr(i) for i in e.indices)
+                key = f"{base}.offset(({indices},), {_describe(e.base)!r}, {self.where(e)})"
+                return arr_t.element, f"{base}.seq", key
+            if type(e.base) is ast.Name:
+                self._arrays[id(e)] = (e, arr_t, base)
         consts = [self.constant_of(index) for index in e.indices]     # (pure: any order)
         offset = 0
         for const, (lo, hi) in zip(consts, arr_t.dims):     # all constant (an unrolled copy's reads)

@@ -55,7 +55,7 @@ def _pure(line: str):
 
 
 def _mentions(text: str, name: str) -> int:
-    return _TOKEN.findall(text).count(name)
+    return _TOKEN.findall(text).count(name) if name in text else 0
 
 
 def _enclosed(text: str) -> bool:
@@ -120,10 +120,11 @@ def _set_again(lines: list[str], j: int, indent: str, name: str, pure_of=_pure) 
 def merge(lines: list[str], start: int) -> None:
     out = lines[:start]
     length = 0
+    appended = None         # the match of out[-1] when it is a step appended as it was
     for line in lines[start:]:
         step = _ACCUMULATE.match(line) if _pure(line) else None
         if step and out and length and length < MERGE_CAP:
-            previous = _ACCUMULATE.match(out[-1])
+            previous = appended if length == 1 else _ACCUMULATE.match(out[-1])
             indent, name, op, operand = step.groups()
             if previous and previous.group(1) == indent and previous.group(2) == name \
                     and _mentions(operand, name) == 0:
@@ -133,6 +134,7 @@ def merge(lines: list[str], start: int) -> None:
                 continue
         out.append(line)
         length = 1 if step else 0
+        appended = step
     lines[:] = out
 
 
