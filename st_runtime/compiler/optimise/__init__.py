@@ -165,6 +165,23 @@ from dataclasses import dataclass, fields
 #: engine then skips to each `_` instead of testing the boundary at every character (4x).
 TEMP_NAME = re.compile(r"_(?<!\w_)t\d+\b")
 
+_UNASKED = object()
+
+
+def remembered(answer):
+    """`answer`, a pure function of one text (a line, an expression's code, a name), with its
+    answers kept by that text: for one body's compile or one pass over a region's lines, where
+    the same text comes again (an unrolled loop's copies, the fast path's and the exact)."""
+    answers: dict = {}
+
+    def remembered_answer(text: str):
+        found = answers.get(text, _UNASKED)
+        if found is _UNASKED:
+            found = answers[text] = answer(text)
+        return found
+    return remembered_answer
+
+
 UNROLL_CAP = 8000   # statements unrolled loops may produce in one POU (iterations x body statements)
 
 

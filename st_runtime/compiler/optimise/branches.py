@@ -36,7 +36,7 @@ import re
 from ... import ast
 from ...types import FBType, InterfaceType, RefType, StructType, resolve_alias
 from ..scope import once, walk
-from . import reuse
+from . import remembered, reuse
 
 # Characters an expression that cannot fault is made of: no quote, `/`, `%`, `:`, `@`.
 _ALLOWED = re.compile(r"[\w\s.()\[\],+\-*<>=!&|^~]*")
@@ -79,19 +79,6 @@ def code_cannot_fault(code: str) -> bool:
 
 def _owned(t) -> bool:
     return not isinstance(resolve_alias(t), (RefType, InterfaceType))
-
-
-def remembered(judge):
-    """`judge`, a pure test of a line or an expression's code, with its answers kept by text
-    (for one body's compile: the same code comes again in an unrolled loop's copies)."""
-    answers: dict[str, bool] = {}
-
-    def judged(code: str) -> bool:
-        answer = answers.get(code)
-        if answer is None:
-            answer = answers[code] = judge(code)
-        return answer
-    return judged
 
 
 def expr_cannot_fault(compiler, node, code: str) -> bool:

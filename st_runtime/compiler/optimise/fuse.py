@@ -31,7 +31,7 @@ from __future__ import annotations
 import re
 from itertools import islice
 
-from . import TEMP_NAME
+from . import TEMP_NAME, remembered
 
 MERGE_CAP = 24
 
@@ -75,7 +75,7 @@ _UNREAD = object()
 
 def substitute(lines: list[str], start: int) -> None:
     i, head = start, _UNREAD
-    pure = _remembered_pure()       # (`_set_again` reads the lines ahead again)
+    pure = remembered(_pure)        # (`_set_again` reads the lines ahead again)
     while i < len(lines) - 1:
         if head is _UNREAD:
             head = pure(lines[i])
@@ -89,18 +89,6 @@ def substitute(lines: list[str], start: int) -> None:
             head = _UNREAD
             continue
         i, head = i + 1, use          # (the next line's head: read once)
-
-
-def _remembered_pure():
-    """`_pure`, its answers kept by line (for one pass over a region's lines)."""
-    known: dict = {}
-
-    def pure(line: str):
-        found = known.get(line, _UNREAD)
-        if found is _UNREAD:
-            found = known[line] = _pure(line)
-        return found
-    return pure
 
 
 def _set_again(lines: list[str], j: int, indent: str, name: str, pure_of=_pure) -> bool:

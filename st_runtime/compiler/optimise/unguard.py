@@ -43,7 +43,7 @@ import re
 
 from ... import ast
 from ...types import ArrayType, ElementaryType, resolve_alias
-from . import branches
+from . import branches, remembered
 
 _ASSIGNMENT = re.compile(r"\s*[A-Za-z_]\w* = ([\w\s()+\-*.]+)")
 _ATTRIBUTE_OR_CALL = re.compile(r"[A-Za-z_]\w*\s*[.(]")
@@ -65,7 +65,7 @@ def _judge(compiler):
     (an unrolled loop writes its copies' lines again, the fast path the exact one's)."""
     judge = compiler.__dict__.get("_arithmetic_judge")
     if judge is None:
-        judge = compiler._arithmetic_judge = branches.remembered(_local_arithmetic)
+        judge = compiler._arithmetic_judge = remembered(_local_arithmetic)
     return judge
 
 
