@@ -17,12 +17,15 @@ from __future__ import annotations
 import re
 
 _CHARGE = re.compile(r"( *)_spent \+= (\d+)")
-_BARRIER = re.compile(r"\btry:|\bexcept\b|\bfinally:|_ctx|_overrun|\breturn\b|\bbreak\b|\bcontinue\b|\.execute\("
-                      r"|_fn_|^ *(?:for|while|with)\b|^(?! *(?:if |elif |else:)).*:$")
-# What a line needs to hold for _BARRIER to match it (a substring test first: most lines hold none)
+# A line that can raise, check the budget or leave the level: a word of these (the first
+# test: a substring, then the word as a whole), a loop's head, or a line opening a block
+# other than a branch of an IF (`try:`, `for ...:`; not `if`, `elif`, `else:`).
 _BARRIER_WORDS = ("try:", "except", "finally:", "_ctx", "_overrun", "return", "break", "continue",
                   ".execute(", "_fn_")
-_LOOP = re.compile(" *(?:for|while|with)")
+_BARRIER_WORD = re.compile(r"\btry:|\bexcept\b|\bfinally:|_ctx|_overrun|\breturn\b|\bbreak\b|\bcontinue\b"
+                           r"|\.execute\(|_fn_")
+_LOOP = re.compile(r" *(?:for|while|with)\b")
+_BRANCH = re.compile(" *(?:if |elif |else:)")
 
 
 def merge(lines: list[str], start: int) -> None:
@@ -87,6 +90,5 @@ class _Stops:
 
 
 def _is_barrier(line: str) -> bool:
-    if line.endswith(":") or _LOOP.match(line) or any(word in line for word in _BARRIER_WORDS):
-        return _BARRIER.search(line) is not None
-    return False
+    return (line.endswith(":") and not _BRANCH.match(line)) or _LOOP.match(line) is not None \
+        or any(word in line for word in _BARRIER_WORDS) and _BARRIER_WORD.search(line) is not None
