@@ -174,6 +174,10 @@ class ExprCompiler:
         self._types: dict[int, Type | None] = {}    # id(expr) -> `ty` (the checker's types do not change)
         self._wheres: dict[tuple, str] = {}         # (file, line, col) -> `where`
         self._x_methods: dict[type, object] = {}    # node class -> its x_ method (`expr`)
+        self._arrays: dict[int, tuple] = {}         # id(Index of a name) -> (Index, its type, its code)
+        dialect = DIALECTS[getattr(program, "dialect", "iec")]
+        self._wraps = dialect.wraps_in_expressions       # (`settled`)
+        self._rounds = dialect.rounds_real_operations    # (`rounds_real`)
 
     # ------------------------------------------------------------ helpers
 
@@ -300,7 +304,7 @@ class ExprCompiler:
         ranking, `Dialect.omron_integer_ranking`).
         Only under a dialect that says so (`Dialect.wraps_in_expressions`).
         """
-        if not DIALECTS[self.program.dialect].wraps_in_expressions:
+        if not self._wraps:
             return code
         if not ((isinstance(expr, ast.Binary) and expr.op in ("+", "-", "*", "/"))
                 or (isinstance(expr, ast.Unary) and expr.op == "-")):
@@ -427,7 +431,8 @@ class ExprCompiler:
             value = fold.constant_element(self, e)
             if value is not None:
                 return self.literal(value, self.ty(e))
-        code = self.lvalue(e).read()
+        _, obj, key = self._index_place(e)         # (`lvalue(e).read()`, no LValue made)
+        code = f"{obj}[{key}]"
         if self.region is not None:
             return self.region.read(code)
         return self.reuse.element(e, code) if self.reuse is not None else code
@@ -445,7 +450,7 @@ class ExprCompiler:
 
     def x_Binary(self, e):
         code = self._binary(e)
-        if e.op in ("+", "-", "*", "/", "**") and self.rounds_real(self.ty(e)):
+        if self._rounds and e.op in ("+", "-", "*", "/", "**") and self.rounds_real(self.ty(e)):
             return f"_f32({code})"
         return code
 
@@ -454,7 +459,7 @@ class ExprCompiler:
         (`Dialect.rounds_real_operations`, the NJ: W501 6-5-3)."""
         e = elementary(t)
         return (e is not None and e.kind == "real" and e.bits == 32
-                and DIALECTS[self.program.dialect].rounds_real_operations)
+                and self._rounds)
 
     def _binary(self, e):
         op = e.op
@@ -462,11 +467,12 @@ class ExprCompiler:
             tests = sets.chain(self, e)         # `X = a OR X = b`: `X in (a, b)`
             if tests is not None:
                 return tests
-        lt, rt, t = self.ty(e.left), self.ty(e.right), self.ty(e)
+        t = self.ty(e)
         left, right = self.expr(e.left), self.expr(e.right)
         if op not in _BIT_OPS and not (op in ("+", "-", "*") and is_int_like(t)):
             # The exact value of an integer operand is seen here (settled).
-            left, right = self.settled(e.left, left), self.settled(e.right, right)
+            if self._wraps:
+                left, right = self.settled(e.left, left), self.settled(e.right, right)
             if op in ("/", "MOD"):
                 left, right = self.cast_operand(e.left, left, t), self.cast_operand(e.right, right, t)
         elif op not in _BIT_OPS:
@@ -480,9 +486,9 @@ class ExprCompiler:
                     return short
             return f"({left} {_BIT_OPS[op]} {right})"
         if op == "*" and elementary(t) is not None and elementary(t).kind == "time" \
-                and (is_real(lt) or is_real(rt)):
+                and (is_real(self.ty(e.left)) or is_real(self.ty(e.right))):
             # TIME * REAL rounds to the nearest ns, as the NJ's MULTIME (values.time_mul).
-            return f"_time_mul({left}, float({right}))" if elementary(lt).kind == "time" \
+            return f"_time_mul({left}, float({right}))" if elementary(self.ty(e.left)).kind == "time" \
                 else f"_time_mul({right}, float({left}))"
         if self.opt.inline and op in ("<", "<=", ">", ">="):
             chained = absolute.bounded(self, e, left, right)     # ABS(x) <= C: no call
@@ -498,7 +504,7 @@ class ExprCompiler:
             return shared or f"({left} {_PLAIN_OPS[op]} {right})"
         if op == "/":
             if is_int_like(t):
-                if is_real(rt):   # TIME / REAL: nearest ns, zero is F-DIV-ZERO (values.time_div)
+                if is_real(self.ty(e.right)):   # TIME / REAL: nearest ns, zero is F-DIV-ZERO (values.time_div)
                     return f"_time_div({left}, float({right}))"
                 return f"_idiv({left}, {right}, {self.where(e)})"
             divisor = self.constant_of(e.right)
@@ -595,16 +601,27 @@ class ExprCompiler:
         self.fail(f"unknown member '{name}'", node)
 
     def index_lvalue(self, e) -> LValue:
-        arr_t = self.ty(e.base)
-        if not isinstance(arr_t, ArrayType):
-            self.fail("indexing needs an array", e)
-        if len(e.indices) != len(arr_t.dims):
-            self.fail(f"{len(arr_t.dims)} indices expected, found {len(e.indices)}", e)
-        base = self.aggregate(e.base)
-        if arr_t.is_open:        # ARRAY[*]: an _ArrayView, its bounds known at run time
-            indices = ", ".join(self.expr(i) for i in e.indices)
-            key = f"{base}.offset(({indices},), {_describe(e.base)!r}, {self.where(e)})"
-            return LValue("item", arr_t.element, obj=f"{base}.seq", key=key)
+        element, obj, key = self._index_place(e)
+        return LValue("item", element, obj=obj, key=key)
+
+    def _index_place(self, e) -> tuple:
+        """(element type, list, index) of the element `e` reads: `list[index]` in Python."""
+        known = self._arrays.get(id(e))
+        if known is not None and known[0] is e:     # (a named array's type and code, as found before)
+            _, arr_t, base = known
+        else:
+            arr_t = self.ty(e.base)
+            if not isinstance(arr_t, ArrayType):
+                self.fail("indexing needs an array", e)
+            if len(e.indices) != len(arr_t.dims):
+                self.fail(f"{len(arr_t.dims)} indices expected, found {len(e.indices)}", e)
+            base = self.aggregate(e.base)
+            if arr_t.is_open:        # ARRAY[*]: an _ArrayView, its bounds known at run time
+                indices = ", ".join(self.expr(i) for i in e.indices)
+                key = f"{base}.offset(({indices},), {_describe(e.base)!r}, {self.where(e)})"
+                return arr_t.element, f"{base}.seq", key
+            if type(e.base) is ast.Name:
+                self._arrays[id(e)] = (e, arr_t, base)
         consts = [self.constant_of(index) for index in e.indices]     # (pure: any order)
         offset = 0
         for const, (lo, hi) in zip(consts, arr_t.dims):     # all constant (an unrolled copy's reads)
@@ -613,7 +630,7 @@ class ExprCompiler:
             offset = offset * (hi - lo + 1) + const - lo
         else:
             self._invariant_terms = []      # (as below: an enclosing index's hoisting sees it reset)
-            return LValue("item", arr_t.element, obj=base, key=str(offset))
+            return arr_t.element, base, str(offset)
         name = _describe(e.base)
         checks: list[str] = []
         terms: list[str] = []
@@ -668,7 +685,7 @@ class ExprCompiler:
             # `&`, not `and`: every index's temp is set before the fault names the first bad one
             test = checks[0] if len(checks) == 1 else " & ".join(f"({check})" for check in checks)
             key = f"({key}) if {test} else {fault}"
-        return LValue("item", arr_t.element, obj=base, key=key)
+        return arr_t.element, base, key
 
     def is_loop_invariant(self, index) -> bool:
         """A Python local the innermost FOR body never assigns."""

@@ -55,7 +55,9 @@ class BodyCompiler(ExprCompiler):
         self.body = body
         self.out = Emitter()
         self.cost = CostModel(program)
-        self._head_costs: dict[int, float] = {}
+        # id(statement) -> `_simple_cost` or `_head_cost`: from the ST text only, so one table a
+        # load (fastpath.worst_case bounds a callee with the costs its own compile charges)
+        self._head_costs: dict[int, float] = unit.__dict__.setdefault("head_costs", {})
         self._blocks_memo: dict[int, tuple] = {}       # id(body) -> (body, `_costed_blocks`)
         self._entries_memo: dict[int, tuple] = {}      # id(IF) -> (IF, `_if_entries`)
         self.flow = ranges.Flow(self, body) if self.opt.ranges else None    # integer locals' ranges

@@ -36,12 +36,14 @@ import re
 from ... import ast
 from ...types import FBType, InterfaceType, RefType, StructType, resolve_alias
 from ..scope import once, walk
-from . import reuse
+from . import remembered, reuse
 
 # Characters an expression that cannot fault is made of: no quote, `/`, `%`, `:`, `@`.
 _ALLOWED = re.compile(r"[\w\s.()\[\],+\-*<>=!&|^~]*")
 _ASSIGNMENT = re.compile(r"(?<![=<>!])=(?!=)")          # `=` outside `== <= >= !=`
 _WORD = re.compile(r"\b([A-Za-z_]\w*)(\s*\()?")
+_NAME = re.compile(r"[A-Za-z_]\w*")
+_CALLED = re.compile(r"\w\s*\(")
 _CALLABLE = {"abs", "min", "max"}
 _WORDS = {"not", "and", "or", "if", "else", "in", "is", "True", "False", "None"}
 _KEYWORDS = frozenset(keyword.kwlist) - _WORDS     # Python keywords code that cannot fault has not
@@ -63,13 +65,16 @@ def code_cannot_fault(code: str) -> bool:
     """The Python expression `code` raises nothing `_FAULTS` catches (module docstring)."""
     code = per_iteration_values(code)
     if not code.strip() or not _ALLOWED.fullmatch(code) or "**" in code or "<<" in code \
-            or ">>" in code or _ASSIGNMENT.search(code):
+            or ">>" in code or "=" in code and _ASSIGNMENT.search(code):
         return False
-    for word, called in set(_WORD.findall(code)):
-        if word in _KEYWORDS or called and word not in _CALLS:
-            return False
-    bare = _EXPONENT.sub("0", code)        # the sign of 1e+308 is no operator
-    return bare.count("+") + bare.count("-") + bare.count("*") <= MAX_ARITHMETIC
+    # (each word `_WORD` finds is a name `_NAME` finds, and a called one ends a `_CALLED`)
+    if not _KEYWORDS.isdisjoint(_NAME.findall(code)) or "(" in code and _CALLED.search(code):
+        for word, called in set(_WORD.findall(code)):
+            if word in _KEYWORDS or called and word not in _CALLS:
+                return False
+    if "e+" in code or "e-" in code or "E+" in code or "E-" in code:
+        code = _EXPONENT.sub("0", code)        # the sign of 1e+308 is no operator
+    return code.count("+") + code.count("-") + code.count("*") <= MAX_ARITHMETIC
 
 
 def _owned(t) -> bool:
@@ -78,7 +83,10 @@ def _owned(t) -> bool:
 
 def expr_cannot_fault(compiler, node, code: str) -> bool:
     """`node` (compiled to `code`) reads only owned storage and its code cannot raise."""
-    if not code_cannot_fault(code):
+    judge = compiler.__dict__.get("_code_judge")
+    if judge is None:
+        judge = compiler._code_judge = remembered(code_cannot_fault)
+    if not judge(code):
         return False
     for n in _read_nodes(compiler, node):
         if isinstance(n, ast.Deref):

@@ -16,55 +16,79 @@ from __future__ import annotations
 
 import re
 
-_CHARGE = re.compile(r"^( *)_spent \+= (\d+)$", re.M)
-_BARRIER = re.compile(r"\btry:|\bexcept\b|\bfinally:|_ctx|_overrun|\breturn\b|\bbreak\b|\bcontinue\b|\.execute\("
-                      r"|_fn_|^ *(?:for|while|with)\b|^(?! *(?:if |elif |else:))[^\n]*:$", re.M)
+_CHARGE = re.compile(r"( *)_spent \+= (\d+)")
+# A line that can raise, check the budget or leave the level: a word of these (the first
+# test: a substring, then the word as a whole), a loop's head, or a line opening a block
+# other than a branch of an IF (`try:`, `for ...:`; not `if`, `elif`, `else:`).
+_BARRIER_WORDS = ("try:", "except", "finally:", "_ctx", "_overrun", "return", "break", "continue",
+                  ".execute(", "_fn_")
+_BARRIER_WORD = re.compile(r"\btry:|\bexcept\b|\bfinally:|_ctx|_overrun|\breturn\b|\bbreak\b|\bcontinue\b"
+                           r"|\.execute\(|_fn_")
+_LOOP = re.compile(r" *(?:for|while|with)\b")
+_BRANCH = re.compile(" *(?:if |elif |else:)")
 
 
 def merge(lines: list[str], start: int) -> None:
     """Add each charge that may join the one before it in its level to that one."""
-    text = "\n".join(lines[start:])
-    found = list(_CHARGE.finditer(text))
+    text = "\n".join(lines[start:]).split("\n")
+    found = [(n, match) for n, line in enumerate(text)
+             if "_spent += " in line and (match := _CHARGE.fullmatch(line))]
     if len(found) < 2:
         return
-    line_of, line, at = [], 0, 0
-    for match in found:
-        line += text.count("\n", at, match.start())
-        at = match.start()
-        line_of.append(line)
-    totals = [int(match.group(2)) for match in found]
+    totals = [int(match.group(2)) for _, match in found]
     taker: dict[int, int] = {}          # indentation -> the charge that takes later ones
-    # indentation -> where the code between the taker and the next charge is still to be
-    # read: the text up to a joined charge's line was read and is joinable, and no match
-    # of _joinable's patterns crosses that line's start (they stay within a line, and
-    # the line is indented as the taker), so only the text after it is read again
+    # indentation -> the first line after the taker still to be read: the lines up to a
+    # joined charge were read and are joinable, so only the lines after it are read again
     checked: dict[int, int] = {}
+    stops = _Stops(text)
     dropped = set()
-    for k, match in enumerate(found):
+    for k, (n, match) in enumerate(found):
         indent = len(match.group(1))
         first = taker.get(indent)
-        if first is not None and _joinable(text, checked[indent], match.start(), indent):
+        if first is not None and stops.joinable(checked[indent], n, indent):
             totals[first] += totals[k]
             dropped.add(k)
-            checked[indent] = match.start()
         else:
             taker[indent] = k
-            checked[indent] = match.end()
+        checked[indent] = n + 1
     if not dropped:
         return
-    new = text.split("\n")
-    for k, match in enumerate(found):
+    new = list(text)
+    for k, (n, match) in enumerate(found):
         if k in dropped:
-            new[line_of[k]] = None
+            new[n] = None
         elif totals[k] != int(match.group(2)):
-            new[line_of[k]] = f"{match.group(1)}_spent += {totals[k]}"
+            new[n] = f"{match.group(1)}_spent += {totals[k]}"
     lines[start:] = [line for line in new if line is not None]
 
 
-def _joinable(text: str, start: int, end: int, indent: int) -> bool:
-    """Whether the code between two charges of one indentation is of their block (no line
-    less indented) and cannot raise, check the budget or leave it (no barrier)."""
-    between = text[start:end]
-    if indent and re.search(rf"\n {{0,{indent - 1}}}\S", between):
-        return False
-    return not _BARRIER.search(between)
+class _Stops:
+    """Per line of the code, read once: whether it is a barrier (it can raise, check the
+    budget or leave its block) and its indentation (a line less indented than two charges
+    leaves their block)."""
+
+    def __init__(self, text: list[str]):
+        self.text = text
+        self.barrier: dict[int, bool] = {}
+
+    def joinable(self, first: int, end: int, indent: int) -> bool:
+        """Whether the lines `first` to `end - 1`, between two charges of one indentation,
+        are of their block (no line less indented) and none is a barrier."""
+        text, barrier = self.text, self.barrier
+        for n in range(first, end):
+            line = text[n]
+            if indent:
+                head = line[:indent].lstrip(" ")      # (what the indentation holds but spaces)
+                if head and not head[0].isspace():
+                    return False
+            stop = barrier.get(n)
+            if stop is None:
+                stop = barrier[n] = _is_barrier(line)
+            if stop:
+                return False
+        return True
+
+
+def _is_barrier(line: str) -> bool:
+    return (line.endswith(":") and not _BRANCH.match(line)) or _LOOP.match(line) is not None \
+        or any(word in line for word in _BARRIER_WORDS) and _BARRIER_WORD.search(line) is not None

@@ -106,9 +106,9 @@ def inline_single_uses(region, lines: list[str], start: int) -> None:
     shared = {name: text for text, name in region.shared.items()}
     uses: dict[str, list[int]] = {}
     for i in range(start, len(lines)):
-        for match in TEMP_NAME.finditer(lines[i]):
-            if match.group() in shared:
-                uses.setdefault(match.group(), []).append(i)
+        for name in TEMP_NAME.findall(lines[i]):
+            if name in shared:
+                uses.setdefault(name, []).append(i)
     removed = set()
     for name, where in uses.items():            # in order of first occurrence: the definition
         if len(where) != 2:

@@ -86,25 +86,43 @@ def _bound(compiler, body) -> int | None:
             continue
         if isinstance(s, (ast.While, ast.Repeat)):
             return None
-        if isinstance(s, ast.If):
-            parts = [cost.condition(b.condition) for b in s.branches]
-            parts += [_calls(compiler, b.condition) for b in s.branches]
-            parts += [_bound(compiler, b.body) for b in s.branches] + [_bound(compiler, s.else_body)]
-        elif isinstance(s, ast.Case):
-            parts = [cost.expr(s.selector), _calls(compiler, s.selector),
-                     sum(cost.case_labels(c) for c in s.clauses) * cost.w["branch"]]
-            parts += [_bound(compiler, c.body) for c in s.clauses] + [_bound(compiler, s.else_body)]
-        elif isinstance(s, ast.For):
-            values = _values(compiler, s)
-            if values is None:
-                return None
-            parts = [cost.for_setup(s), _iterations(compiler, s, values)]
-        else:
-            parts = [cost.simple(s), _calls(compiler, s)]
-        if any(p is None for p in parts):
-            return None
+        parts = []
+        for part in _parts(compiler, s, cost):
+            if part is None:
+                return None         # (the parts after it are not looked at)
+            parts.append(part)
         total += sum(parts)
     return total
+
+
+def _parts(compiler, s, cost):
+    """The units of the parts of the statement `s`, in order; None for a part that is not
+    bounded (then the statement is not)."""
+    if isinstance(s, ast.If):
+        for b in s.branches:
+            yield cost.condition(b.condition)
+        for b in s.branches:
+            yield _calls(compiler, b.condition)
+        for b in s.branches:
+            yield _bound(compiler, b.body)
+        yield _bound(compiler, s.else_body)
+    elif isinstance(s, ast.Case):
+        yield cost.expr(s.selector)
+        yield _calls(compiler, s.selector)
+        yield sum(cost.case_labels(c) for c in s.clauses) * cost.w["branch"]
+        for c in s.clauses:
+            yield _bound(compiler, c.body)
+        yield _bound(compiler, s.else_body)
+    elif isinstance(s, ast.For):
+        values = _values(compiler, s)
+        if values is None:
+            yield None
+            return
+        yield cost.for_setup(s)
+        yield _iterations(compiler, s, values)
+    else:
+        yield compiler._simple_cost(s)
+        yield _calls(compiler, s)
 
 
 def _calls(compiler, node) -> int | None:

@@ -24,20 +24,17 @@ _INT_OPS = {"+": operator.add, "-": operator.sub, "*": operator.mul}
 
 def constant_element(compiler, e: ast.Index):
     """The value of `e` when it reads a CONSTANT array at constant, in-range indices; else None."""
-    if not isinstance(e.base, ast.Name):
-        return None
-    cache = compiler.__dict__.get("_constant_arrays")
-    if cache is None:
-        cache = compiler._constant_arrays = {}
-    found = cache.get(id(e), cache)         # (the cache itself: not looked at yet)
-    if found is cache:
-        found = cache[id(e)] = _constant_array(compiler, e)
+    found = _plan(compiler, e)
     if found is None:
         return None
-    dims, values = found
+    steps, values = found
     offset = 0
-    for index, (lo, hi, stride) in zip(reversed(e.indices), dims):     # (the last first, as ever)
-        value = compiler.constant_of(index)
+    unrolled = compiler.unrolled
+    for index, name, lo, hi, stride in steps:      # (the last index first, as ever)
+        if name is not None:        # a FOR variable: constant only in an unrolled copy
+            value = unrolled.get(name)
+        else:
+            value = compiler.constant_of(index)
         if not isinstance(value, int) or isinstance(value, bool) or not lo <= value <= hi:
             return None                         # out of range: left to the runtime's fault
         offset += (value - lo) * stride
@@ -45,6 +42,33 @@ def constant_element(compiler, e: ast.Index):
         return None
     value = values[offset]
     return value if isinstance(value, (int, float)) else None
+
+
+def _plan(compiler, e):
+    """`_element_plan` of `e`, found once (kept by id: the AST outlives the compile)."""
+    cache = compiler.__dict__.get("_constant_arrays")
+    if cache is None:
+        cache = compiler._constant_arrays = {}
+    found = cache.get(id(e), cache)         # (the cache itself: not looked at yet)
+    if found is cache:
+        found = cache[id(e)] = _element_plan(compiler, e) if isinstance(e.base, ast.Name) else None
+    return found
+
+
+def _element_plan(compiler, e):
+    """(steps, flat values) of a read of a whole CONSTANT array: a step per index from the
+    last, (index, its upper name when `constant_of` can only find it among the unrolled
+    FOR variables, lo, hi, stride); None for another read."""
+    found = _constant_array(compiler, e)
+    if found is None:
+        return None
+    dims, values = found
+    steps = []
+    for index, (lo, hi, stride) in zip(reversed(e.indices), dims):
+        name = index.name.upper() if type(index) is ast.Name \
+            and compiler.program.constants.get(id(index)) is None else None
+        steps.append((index, name, lo, hi, stride))
+    return tuple(steps), values
 
 
 def _constant_array(compiler, e):
@@ -91,8 +115,30 @@ def constant_condition(compiler, e):
 
 def constant_integer(compiler, e):
     """An integer + - * of constants (exact, as intermediate integers are here), else None."""
+    if _never(compiler, e):
+        return None
     value = _evaluate(compiler, e)
     return value if _is_int(value) else None
+
+
+def _never(compiler, e) -> bool:
+    """Whether `_evaluate(e)` is None in every unrolled copy: an operation the checker did
+    not fold whose left operand is so (evaluated first), or a read of an array that is not
+    CONSTANT (the Leibniz products: `Matrix[1, ...] * Matrix[2, ...] * ...`).  Once a node."""
+    cache = compiler.__dict__.get("_never_constant")
+    if cache is None:
+        cache = compiler._never_constant = {}
+    hit = cache.get(id(e))
+    if hit is None or hit[0] is not e:
+        cls = type(e)
+        if cls is ast.Binary:
+            never = compiler.folded(e) is None and _never(compiler, e.left)
+        elif cls is ast.Index:
+            never = compiler.program.constants.get(id(e)) is None and _plan(compiler, e) is None
+        else:
+            never = False
+        hit = cache[id(e)] = (e, never)
+    return hit[1]
 
 
 def _evaluate(compiler, e):

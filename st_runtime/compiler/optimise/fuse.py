@@ -31,7 +31,7 @@ from __future__ import annotations
 import re
 from itertools import islice
 
-from . import TEMP_NAME
+from . import TEMP_NAME, remembered
 
 MERGE_CAP = 24
 
@@ -55,7 +55,7 @@ def _pure(line: str):
 
 
 def _mentions(text: str, name: str) -> int:
-    return _TOKEN.findall(text).count(name)
+    return _TOKEN.findall(text).count(name) if name in text else 0
 
 
 def _enclosed(text: str) -> bool:
@@ -75,13 +75,14 @@ _UNREAD = object()
 
 def substitute(lines: list[str], start: int) -> None:
     i, head = start, _UNREAD
+    pure = remembered(_pure)        # (`_set_again` reads the lines ahead again)
     while i < len(lines) - 1:
         if head is _UNREAD:
-            head = _pure(lines[i])
-        use = _pure(lines[i + 1])
+            head = pure(lines[i])
+        use = pure(lines[i + 1])
         if head and use and head[0] == use[0] and head[1] != use[1] and not head[1].startswith("_t") \
                 and _mentions(head[2], head[1]) == 0 and _mentions(use[2], head[1]) == 1 \
-                and _set_again(lines, i + 2, head[0], head[1]):
+                and _set_again(lines, i + 2, head[0], head[1], pure):
             value = head[2] if _enclosed(head[2]) else f"({head[2]})"
             expression = re.sub(rf"\b{head[1]}\b", lambda _: value, use[2], count=1)
             lines[i:i + 2] = [f"{use[0]}{use[1]} = {expression}"]
@@ -90,11 +91,11 @@ def substitute(lines: list[str], start: int) -> None:
         i, head = i + 1, use          # (the next line's head: read once)
 
 
-def _set_again(lines: list[str], j: int, indent: str, name: str) -> bool:
+def _set_again(lines: list[str], j: int, indent: str, name: str, pure_of=_pure) -> bool:
     """Whether the next line mentioning `name` sets it from what does not read it, with
     only pure lines at `indent` before it."""
     for line in islice(lines, j, None):      # (not a copy of the rest)
-        pure = _pure(line)
+        pure = pure_of(line)
         if pure is None or pure[0] != indent:
             return False
         if pure[1] == name:
@@ -107,10 +108,11 @@ def _set_again(lines: list[str], j: int, indent: str, name: str) -> bool:
 def merge(lines: list[str], start: int) -> None:
     out = lines[:start]
     length = 0
+    appended = None         # the match of out[-1] when it is a step appended as it was
     for line in lines[start:]:
         step = _ACCUMULATE.match(line) if _pure(line) else None
         if step and out and length and length < MERGE_CAP:
-            previous = _ACCUMULATE.match(out[-1])
+            previous = appended if length == 1 else _ACCUMULATE.match(out[-1])
             indent, name, op, operand = step.groups()
             if previous and previous.group(1) == indent and previous.group(2) == name \
                     and _mentions(operand, name) == 0:
@@ -120,6 +122,7 @@ def merge(lines: list[str], start: int) -> None:
                 continue
         out.append(line)
         length = 1 if step else 0
+        appended = step
     lines[:] = out
 
 
@@ -129,8 +132,8 @@ def rename(lines: list[str], start: int, fresh) -> None:
         return
     span: dict[str, list[int]] = {}
     for i, line in enumerate(body):
-        for match in TEMP_NAME.finditer(line):
-            span.setdefault(match.group(), [i, i])[1] = i
+        for temp in TEMP_NAME.findall(line):
+            span.setdefault(temp, [i, i])[1] = i
     outside = set()
     for line in lines[:start]:
         outside.update(TEMP_NAME.findall(line))

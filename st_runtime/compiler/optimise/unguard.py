@@ -43,7 +43,7 @@ import re
 
 from ... import ast
 from ...types import ArrayType, ElementaryType, resolve_alias
-from . import branches
+from . import branches, remembered
 
 _ASSIGNMENT = re.compile(r"\s*[A-Za-z_]\w* = ([\w\s()+\-*.]+)")
 _ATTRIBUTE_OR_CALL = re.compile(r"[A-Za-z_]\w*\s*[.(]")
@@ -55,9 +55,18 @@ _COPY = re.compile(r"\s*v_\w+\[:\] = v_\w+")
 
 def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:
     """The assignment's code `lines` raises nothing `_FAULTS` catches (module docstring)."""
-    if lines and all(_local_arithmetic(line) for line in lines):
+    if lines and all(map(_local_arithmetic if compiler is None else _judge(compiler), lines)):
         return True
     return compiler is not None and _owned_store(compiler, node, lines)
+
+
+def _judge(compiler):
+    """`_local_arithmetic` of a line, kept by its text while `compiler` compiles one body
+    (an unrolled loop writes its copies' lines again, the fast path the exact one's)."""
+    judge = compiler.__dict__.get("_arithmetic_judge")
+    if judge is None:
+        judge = compiler._arithmetic_judge = remembered(_local_arithmetic)
+    return judge
 
 
 def _local_arithmetic(line: str) -> bool:

@@ -36,7 +36,7 @@ import textwrap
 import types
 
 from ...types import ArrayType, resolve_alias
-from . import TEMP_NAME
+from . import TEMP_NAME, remembered
 
 MIN_OPERATIONS = 256         # a NumPy call costs ~20 float operations: below this, no gain
 _TEMP = re.compile(r"_t\d+\Z")
@@ -462,14 +462,6 @@ def float_names(compiler, region):
     symbols = {place.name: place for place in compiler.scope.places.values()}
     reads = {name: code for code, name in region.reads.items()}
 
-    known: dict[str, bool] = {}
-
-    def is_float(name: str) -> bool:
-        found = known.get(name)
-        if found is None:
-            found = known[name] = _is_float(name)
-        return found
-
     def _is_float(name: str) -> bool:
         if name in reads:
             place = symbols.get(reads[name].split("[", 1)[0])
@@ -477,7 +469,7 @@ def float_names(compiler, region):
             return isinstance(t, ArrayType) and is_real(t.element)
         place = symbols.get(name)
         return place is not None and place.how == "local" and is_real(place.symbol.type)
-    return is_float
+    return remembered(_is_float)
 
 
 def region_elements(compiler, region):
