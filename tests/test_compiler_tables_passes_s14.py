@@ -1,0 +1,61 @@
+"""The optimiser passes' table, session 14 (issue 16; docs/mutation.md, compiler, "Session 14,
+optimise"): rows for the lines and branches of optimise/ that the compiler's mutation test
+selection never ran (coverage.py, branch mode), and for session 13's leftovers.  The rows
+are `Row`s of test_compiler_tables_passes (the values after the scans worked out by hand,
+held with the pass alone, with none and with every pass, the NJ time charged the same);
+the helpers that only rewrite text are held to their contract written out by hand.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from test_compiler_tables_passes import FAST, LOOPS8, Row, check, fast_src, main
+
+ROWS: list[Row] = []
+
+
+def row(*args, **kwargs) -> None:
+    ROWS.append(Row(*args, **kwargs))
+
+
+# ------------------------------------------------------------------------------- absolute
+# A one-argument call that is not the standard ABS keeps its call.  `NS.F(x)`: the checker
+# lowers the namespaced call to `F(x)` (its target recorded under the inner call, none under
+# the outer): F(1.0) = 11.0 by hand, 11.0 < 2.0 FALSE, 11.0 <= 11.0 TRUE.
+
+row("inline", "a namespaced one-argument call beside a bound", main(
+    "r, s : BOOL; x : LREAL := 1.0;", "r := NS.F(x) < 2.0;\ns := NS.F(x) <= 11.0;", before="""
+NAMESPACE NS
+FUNCTION F : LREAL
+VAR_INPUT x : LREAL; END_VAR
+F := x + 10.0;
+END_FUNCTION
+END_NAMESPACE"""), {"r": False, "s": True}, never=("MAIN", r"< v_X <|<= v_X <="))
+
+# ----------------------------------------------------------------------------------- fold
+# A CONSTANT array with fewer initial values than elements: the rest hold their type's
+# initial value (IEC 61131-3 2.4.2: 0 for INT).  t[2] = 4, t[4] = 0, t[5] = 0.
+
+row("fold", "a CONSTANT array's elements past its initial values", main(
+    "r, q : INT; END_VAR VAR CONSTANT t : ARRAY[1..5] OF INT := [3, 4];", "r := t[2] + t[4];\nq := t[5];"),
+    {"r": 4, "q": 0})
+
+# ------------------------------------------------------------------------------- fastpath
+# (fast_src: the eight constant loops give s = 164 and the eight budget checks of WORTH.)
+
+for name, extra, more, fast in (
+        ("an empty statement in a loop", "FOR j := 1 TO 2 DO ; s := s + 1; END_FOR;", 2, True),
+        ("two calls of one FUNCTION", "s := s + G(3) + G(1);", 4, True),
+        ("a loop over 64 values of an outer variable", "FOR j := 1 TO 64 DO FOR k := j TO j DO s := s + 1; END_FOR; END_FOR;", 64, True),
+        ("a loop over 65 values of an outer variable", "FOR j := 1 TO 65 DO FOR k := j TO j DO s := s + 1; END_FOR; END_FOR;", 65, False)):
+    row("fastpath", name, fast_src(extra, before="""FUNCTION G : INT
+VAR_INPUT m : INT; END_VAR VAR i : INT; END_VAR
+FOR i := 1 TO 2 DO G := G + m; END_FOR;
+G := G - m;
+END_FUNCTION"""), {"r": 164 + more}, **({"shape": ("F", FAST)} if fast else {"never": ("F", FAST)}))
+
+
+@pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
+def test_row(r: Row):
+    check(r)
