@@ -55,6 +55,62 @@ FOR i := 1 TO 2 DO G := G + m; END_FOR;
 G := G - m;
 END_FUNCTION"""), {"r": 164 + more}, **({"shape": ("F", FAST)} if fast else {"never": ("F", FAST)}))
 
+# A PROPERTY's GET accessor runs ST code a body's bound does not see: no fast copy (CODESYS
+# dialect, where PROPERTY is).  Box.Value GETs Raw = 5: s = 164 + 5, and 164 + 2 * 5.
+BOX = """FUNCTION_BLOCK Box
+VAR Raw : INT := 5; END_VAR
+PROPERTY Value : INT
+GET
+    Value := Raw;
+END_GET
+END_PROPERTY
+END_FUNCTION_BLOCK"""
+
+for name, extra, more in (("a PROPERTY read", "s := s + b.Value;", 5),
+                          ("a PROPERTY read in a loop", "FOR j := 1 TO 2 DO s := s + b.Value; END_FOR;", 10)):
+    row("fastpath", name, main("f : Outer; r : INT;", "f();\nr := f.s;", before=BOX + f"""
+FUNCTION_BLOCK Outer
+VAR_OUTPUT s : INT; END_VAR VAR k, j : INT; b : Box; END_VAR
+{LOOPS8}
+{extra}
+END_FUNCTION_BLOCK"""), {"r": 164 + more}, never=("OUTER", FAST), dialects=("codesys",))
+
+# --------------------------------------------------------------------------------- vector
+# A run's inputs that are elements of one list, at least MIN_ELEMENTS (8) of them, pass that
+# list whole (`_kN(v_A, ...)`); seven elements, or elements of two lists, pass `None` and
+# each input by name.  Runs of 147 and 128 sums `s := s + x[i] * y[j] * c` (3 operations
+# each, above MIN_OPERATIONS); the value is the same sum in Python's floats, term by term in
+# the ST's order (LREAL: binary64), with M and N different so a list taken for the other
+# would show.
+M = [0.5 + k / 8 for k in range(16)]
+N = [2.0 - k / 16 for k in range(16)]
+
+
+def products(terms) -> str:
+    body = "\n".join(f"s := s + {x}[{i}] * {y}[{j}] * {c};" for x, i, y, j, c in terms)
+    return main("m : ARRAY[1..16] OF LREAL := [" + ", ".join(map(str, M)) + "]; n : ARRAY[1..16] OF LREAL := ["
+                + ", ".join(map(str, N)) + "]; r : LREAL;", "r := Big(m, n);",
+                before="FUNCTION Big : LREAL\nVAR_INPUT a, b : ARRAY[1..16] OF LREAL; END_VAR VAR s : LREAL; END_VAR\n"
+                + body + "\nBig := s;\nEND_FUNCTION")
+
+
+def by_hand(terms) -> float:
+    s = 0.0
+    for x, i, y, j, c in terms:
+        s = s + {"a": M, "b": N}[x][i - 1] * {"a": M, "b": N}[y][j - 1] * float(c)
+    return s
+
+
+for name, terms, whole in (
+        ("seven elements of one list: each by name",
+         [("a", i, "a", j, c) for c in ("1.5", "0.25", "3.0") for i in range(1, 8) for j in range(1, 8)], "None"),
+        ("eight elements of one list: the list whole",
+         [("a", i, "a", j, c) for c in ("1.5", "0.25") for i in range(1, 9) for j in range(1, 9)], "v_A"),
+        ("elements of two lists: each by name",
+         [("a", i, "b", j, c) for c in ("1.5", "0.25") for i in range(1, 9) for j in range(1, 9)], "None")):
+    row("vector", name, products(terms), {"r": by_hand(terms)},
+        shape=("BIG", rf"v_S, (?:v_BIG, )?= _k\d+\({whole}, "), with_=("unguard", "charges", "fuse"))
+
 
 @pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
 def test_row(r: Row):
