@@ -8,7 +8,11 @@ the helpers that only rewrite text are held to their contract written out by han
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import pytest
+
+from st_runtime.compiler.optimise import chains, cse, fuse
 
 from test_compiler_tables_passes import FAST, LOOPS8, Row, check, fast_src, main
 
@@ -115,3 +119,47 @@ for name, terms, whole in (
 @pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
 def test_row(r: Row):
     check(r)
+
+
+# ------------------------------------------------------------------ text helpers, by hand
+# chains._atom: an operand as it is when one pair of parentheses encloses it all, else
+# parenthesised; fuse._enclosed: whether a text is one parenthesised group; cse._put_in:
+# the first whole-word occurrence of a temporary replaced; cse.inline_single_uses: a shared
+# temporary set once and read once is put back into its read, any other left as it is.
+
+@pytest.mark.parametrize("code, atom", [
+    ("a", "(a)"), ("(a + b)", "(a + b)"), ("(a) + (b)", "((a) + (b))"), ("((a) * b)", "((a) * b)"),
+    ("(a) * b", "((a) * b)"), ("a * (b)", "(a * (b))"), ("(a)", "(a)")])
+def test_chains_atom(code, atom):
+    assert chains._atom(code) == atom
+
+
+@pytest.mark.parametrize("text, enclosed", [
+    ("(a + b)", True), ("((a) + b)", True), ("(a)", True), ("a", False), ("(a) + (b)", False),
+    ("(a) * b", False), ("a * (b)", False), ("(a + (b - c))", True), ("((a)) - ((b))", False)])
+def test_fuse_enclosed(text, enclosed):
+    assert fuse._enclosed(text) is enclosed
+
+
+@pytest.mark.parametrize("line, name, text, out", [
+    ("    x = _t1 + _t12", "_t1", "(a * b)", "    x = (a * b) + _t12"),
+    ("    x = _t12 + _t1", "_t1", "y", "    x = _t12 + y"),
+    ("    x = _t1 * _t1", "_t1", "y", "    x = y * _t1"),
+    ("    x = _t12 + v_t1", "_t1", "y", "    x = _t12 + v_t1"),
+    ("    x = _t12", "_t1", "y", "    x = _t12")])
+def test_cse_put_in(line, name, text, out):
+    assert cse._put_in(line, name, text) == out
+
+
+@pytest.mark.parametrize("lines, out", [
+    (["    _t1 = (a * b)", "    x = _t1 + 1.0"], ["    x = (a * b) + 1.0"]),
+    (["    _t1 = (a * b)", "    x = _t1 + 1.0", "    y = _t1"], None),        # read twice
+    (["    x = _t1 + 1.0", "    y = _t1"], None),                              # no line sets it
+    (["    z = 2.0", "    _t2 = (c * d)", "    _t1 = (a * b)", "    x = _t1 + _t2"],
+     ["    z = 2.0", "    x = (a * b) + (c * d)"]),
+    (["    _t3 = (e * f)", "    x = _t3"], None)])                              # not shared
+def test_cse_inline_single_uses(lines, out):
+    region = SimpleNamespace(shared={"(a * b)": "_t1", "(c * d)": "_t2"})
+    got = list(lines)
+    cse.inline_single_uses(region, got, 0)
+    assert got == (lines if out is None else out)
