@@ -115,6 +115,29 @@ for name, terms, whole in (
     row("vector", name, products(terms), {"r": by_hand(terms)},
         shape=("BIG", rf"v_S, (?:v_BIG, )?= _k\d+\({whole}, "), with_=("unguard", "charges", "fuse"))
 
+# ------------------------------------------------------------------------------- unguard
+# `A := B` of two arrays loses its handler only when B is the POU's own array or a global's:
+# an in-out's array keeps it (the contract names own and global storage only).  m = [1, 2, 3]
+# copied: F = a[2] = 2; b[2] := 7 copied: a[2] = 7.
+
+row("unguard", "a copy of an in-out's array keeps its handler", main(
+    "m : ARRAY[1..3] OF INT := [1, 2, 3]; y : INT;", "y := F(m);", before="""FUNCTION F : INT
+VAR_IN_OUT x : ARRAY[1..3] OF INT; END_VAR VAR a : ARRAY[1..3] OF INT; END_VAR
+a := x;
+F := a[2];
+END_FUNCTION"""), {"m": [1, 2, 3], "y": 2}, never=("F", r"\n        v_A\[:\] = v_X"))
+row("unguard", "a copy between a FUNCTION's own arrays", main("y : INT;", "y := F(1);", before="""FUNCTION F : INT
+VAR_INPUT n : INT; END_VAR VAR a, b : ARRAY[1..3] OF INT; END_VAR
+b[2] := 7;
+a := b;
+F := a[2] + n;
+END_FUNCTION"""), {"y": 8}, shape=("F", r"\n        v_A\[:\] = v_B"))
+
+# ----------------------------------------------------------------------------------- sets
+# A TIME compared with TIME literals is no integer variable: no membership test (T#2s = 2 s).
+row("sets", "a TIME is not tested by membership", main("t : TIME := T#2s; r, s : BOOL;",
+    "r := t = T#1s OR t = T#2s;\ns := t <> T#1s AND t <> T#2s;"), {"r": True, "s": False}, never=("MAIN", r" in \("))
+
 
 @pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
 def test_row(r: Row):

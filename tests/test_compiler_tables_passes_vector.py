@@ -291,6 +291,7 @@ PARSE = [
     ("(a / b)", None), ("(a ** b)", None), ("f(a)", None), ("(a + f(b))", None), ("v[1]", None),
     ("self.v_X", None), ("(a < b)", None), ("()", None), ("(", None), ("-a", None), ("(a +)", None),
     ("(a + * b)", None), ("((a) + (b))", ("bin", "+", ("name", "a"), ("name", "b"))),
+    ("(a (b)", None), ("(a b c)", None), ("(a b)", None),    # a token that is no operator where one belongs
 ]
 
 
