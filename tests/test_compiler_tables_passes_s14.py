@@ -51,6 +51,8 @@ row("fold", "a CONSTANT array's elements past its initial values", main(
 for name, extra, more, fast in (
         ("an empty statement in a loop", "FOR j := 1 TO 2 DO ; s := s + 1; END_FOR;", 2, True),
         ("two calls of one FUNCTION", "s := s + G(3) + G(1);", 4, True),
+        ("a FOR with a constant step", "FOR j := 1 TO 6 BY 2 DO s := s + 1; END_FOR;", 3, True),
+        ("a FOR with a constant step down", "FOR j := 6 TO 1 BY -2 DO s := s + j; END_FOR;", 12, True),
         ("a loop over 64 values of an outer variable", "FOR j := 1 TO 64 DO FOR k := j TO j DO s := s + 1; END_FOR; END_FOR;", 64, True),
         ("a loop over 65 values of an outer variable", "FOR j := 1 TO 65 DO FOR k := j TO j DO s := s + 1; END_FOR; END_FOR;", 65, False)):
     row("fastpath", name, fast_src(extra, before="""FUNCTION G : INT
@@ -137,6 +139,15 @@ END_FUNCTION"""), {"y": 8}, shape=("F", r"\n        v_A\[:\] = v_B"))
 # A TIME compared with TIME literals is no integer variable: no membership test (T#2s = 2 s).
 row("sets", "a TIME is not tested by membership", main("t : TIME := T#2s; r, s : BOOL;",
     "r := t = T#1s OR t = T#2s;\ns := t <> T#1s AND t <> T#2s;"), {"r": True, "s": False}, never=("MAIN", r" in \("))
+
+# ----------------------------------------------------------------------------------- fuse
+# A region's lines are merged from its first: of the unrolled copies of `y := y + a * b` in
+# the region (a * b = 3.0 exactly, y = 9.0 after three), the first two are one line,
+# `((y + p) + p)`, and the next follows it.
+row("fuse", "a region's first line merged with its second", main(
+    "a : LREAL := 1.5; b : LREAL := 2.0; y : LREAL; i : INT;", "FOR i := 1 TO 3 DO y := y + a * b; END_FOR;"),
+    {"y": 9.0}, with_=("unguard",),
+    shape=("MAIN", r"\n {12}v_Y = \(\(v_Y \+ \(v_A \* v_B\)\) \+ \(v_A \* v_B\)\)\n {12}v_Y = \(v_Y \+ "))
 
 
 @pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
