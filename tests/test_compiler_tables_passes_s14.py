@@ -8,11 +8,15 @@ the helpers that only rewrite text are held to their contract written out by han
 
 from __future__ import annotations
 
+import re
 from types import SimpleNamespace
 
 import pytest
 
+from st_runtime import api
+from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.compiler.optimise import chains, cse, fuse
+from st_runtime.controller import Controller
 
 from test_compiler_tables_passes import FAST, LOOPS8, Row, check, fast_src, main
 
@@ -197,3 +201,21 @@ def test_cse_inline_single_uses(lines, out):
     got = list(lines)
     cse.inline_single_uses(region, got, 0)
     assert got == (lines if out is None else out)
+
+
+def test_a_whole_list_s_run_takes_numpy_for_finite_inputs():
+    """vector.py's contract at program level: a run passed its list whole (M's 16 finite
+    elements) is computed by NumPy, not by its exact Python run (`exact`, for inputs that are
+    not finite or may overflow); the value as the row gives it."""
+    r = next(r for r in ROWS if r.name.startswith("eight elements"))
+    compiled = compile_program(api.load_text(r.src, "m.st", "iec").program, optimise=Optimisations())
+    name = re.search(r"= (_k\d+)\(v_A, ", compiled.python_sources["BIG"]).group(1)
+    helper = compiled.namespace[name].__self__
+    calls, exact = [], helper.exact
+    helper.exact = lambda whole, inputs: calls.append(1) or exact(whole, inputs)
+    helper._compile_run()                  # (the run binds exact when it is written)
+    compiled.namespace[name] = helper.run
+    controller = Controller(compiled)
+    main_ = controller.add_program("Main")
+    controller.run(1)
+    assert (main_.v_R, controller.faults, calls) == (r.expect["r"], [], [])
