@@ -345,3 +345,14 @@ def test_finite_inputs_take_numpy_and_the_others_python(family):
         assert len(calls) == python, special
         want = _run(lines, env, {})
         assert all(_same(got[k], v) for k, v in want.items() if k in got)
+
+
+def test_a_run_that_stores_nothing_read_after_it_stays():
+    """A run whose every store is a temporary that no later line reads (nothing to return)
+    is left as it is; and an empty block, or a block of one line, has no run."""
+    lines = [f"_t{9 + k} = ({FLOATS[k % 8]} * {FLOATS[(k + 3) % 8]})" for k in range(300)]
+    assert _vectorised(lines) == (lines, {})
+    after, bound = _vectorised(lines + ["v_X = _t9"])       # (one read after: the run returns v_X)
+    assert len(bound) == 1 and len(after) == 1 and after[0].startswith("v_X, = _k0(")
+    for block in ([], ["v_X = (_t1 * _t2)"]):
+        assert _vectorised(block) == (block, {})
