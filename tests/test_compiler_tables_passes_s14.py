@@ -153,6 +153,14 @@ row("fuse", "a region's first line merged with its second", main(
     {"y": 9.0}, with_=("unguard",),
     shape=("MAIN", r"\n {12}v_Y = \(\(v_Y \+ \(v_A \* v_B\)\) \+ \(v_A \* v_B\)\)\n {12}v_Y = \(v_Y \+ "))
 
+# ------------------------------------------------------------------------------- branches
+# A condition reading a structure's REF_TO member reads storage the POU does not own: the
+# condition keeps its handler.  s.r := REF(x), s.q NULL: s.r <> s.q TRUE; both REF(x): FALSE.
+for name, q, y in (("a REF member against NULL", "", 1), ("two REF members to one variable", "s.q := REF(x);\n", 2)):
+    row("branches", f"a condition on {name}", main("s : S; x : INT; y : INT;",
+        f"s.r := REF(x);\n{q}IF s.r <> s.q THEN y := 1; ELSE y := 2; END_IF;",
+        before="TYPE S : STRUCT r, q : REF_TO INT; END_STRUCT; END_TYPE"), {"y": y})
+
 
 @pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
 def test_row(r: Row):
