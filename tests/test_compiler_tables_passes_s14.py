@@ -18,7 +18,7 @@ from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.compiler.optimise import chains, cse, fuse
 from st_runtime.controller import Controller
 
-from test_compiler_tables_passes import FAST, LOOPS8, Row, check, fast_src, main
+from test_compiler_tables_passes import EVERY, FAST, LOOPS8, NONE, Row, _landings, check, fast_src, main
 
 ROWS: list[Row] = []
 
@@ -227,3 +227,41 @@ def test_a_whole_list_s_run_takes_numpy_for_finite_inputs():
     main_ = controller.add_program("Main")
     controller.run(1)
     assert (main_.v_R, controller.faults, calls) == (r.expect["r"], [], [])
+
+
+# A project's own FUNCTION_BLOCK named like a native one (TON: W-DECL-001, it replaces the
+# built-in) runs its ST body, here a WHILE of 200 iterations, inside a body with a fast copy.
+# Every pass or fastpath alone: the scan lands the same as with none at every budget from
+# 1 ns to past the scan's whole time, 5 ns apart (F-PERIOD's line and scan, the values, the
+# budget left), and the value by hand: TON's Q = IN = TRUE, s = 164 + 1.
+OWN_TON = """FUNCTION_BLOCK TON
+VAR_INPUT IN : BOOL; PT : TIME; END_VAR VAR_OUTPUT Q : BOOL; ET : TIME; END_VAR VAR n : INT; END_VAR
+n := 0;
+WHILE n < 200 DO n := n + 1; END_WHILE;
+Q := IN;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Outer
+VAR_OUTPUT s : INT; END_VAR VAR k : INT; t : TON; END_VAR
+""" + LOOPS8 + """
+t(IN := TRUE, PT := T#1s);
+IF t.Q THEN s := s + 1; END_IF;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR f : Outer; r : INT; END_VAR
+f();
+r := f.s;
+END_PROGRAM
+"""
+
+
+def test_a_project_s_own_ton_in_a_fast_body_lands_the_same_at_every_budget():
+    controller = Controller(compile_program(api.load_text(OWN_TON, "m.st").program, optimise=NONE),
+                            time_limit_ns=10_000_000)
+    main_ = controller.add_program("Main")
+    controller.run(1)
+    assert (main_.v_R, controller.faults) == (165, [])
+    spent_ns = 10_000_000 - controller.ctx.budget // 1000
+    budgets = list(range(1, spent_ns + 20, 5))
+    expected = _landings(OWN_TON, NONE, budgets, scans=1, stop=True)
+    for optimise in (Optimisations.only("fastpath"), EVERY):
+        assert _landings(OWN_TON, optimise, budgets, scans=1, stop=True) == expected
