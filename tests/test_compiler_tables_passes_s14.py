@@ -18,7 +18,7 @@ from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.compiler.optimise import chains, cse, fuse
 from st_runtime.controller import Controller
 
-from test_compiler_tables_passes import EVERY, FAST, LOOPS8, NONE, Row, _landings, check, fast_src, main
+from test_compiler_tables_passes import EVERY, FAST, LOOPS8, NONE, Row, _landings, check, fast_src, main, modes_fb
 
 ROWS: list[Row] = []
 
@@ -143,6 +143,20 @@ END_FUNCTION"""), {"y": 8}, shape=("F", r"\n        v_A\[:\] = v_B"))
 # A TIME compared with TIME literals is no integer variable: no membership test (T#2s = 2 s).
 row("sets", "a TIME is not tested by membership", main("t : TIME := T#2s; r, s : BOOL;",
     "r := t = T#1s OR t = T#2s;\ns := t <> T#1s AND t <> T#2s;"), {"r": True, "s": False}, never=("MAIN", r" in \("))
+
+# ----------------------------------------------------------------------------- spread, stores
+# A clause that stores the cached Cnt only through an output (`q => Cnt`) stores it back as a
+# clause with `:=` does.  Mode 0..3 a scan: Mode 1: Cnt = (0 + 1) * 2 = 2, Out = 2; Mode 2:
+# Out = Q = 5; Mode 3: Inc gives q = x + 10 = 12 into Cnt, Out = 12.
+INC = """FUNCTION_BLOCK Inc
+VAR_INPUT x : INT; END_VAR VAR_OUTPUT q : INT; END_VAR
+q := x + 10;
+END_FUNCTION_BLOCK"""
+for pass_ in ("spread", "stores"):
+    row(pass_, "a cached variable stored through an output in one clause", modes_fb(
+        "CASE Mode OF 1: Cnt := Cnt + 1; Cnt := Cnt * 2; Out := INT_TO_LREAL(Cnt); 2: Out := Q; "
+        "3: g(x := Cnt, q => Cnt); Out := INT_TO_LREAL(Cnt); END_CASE;", extra="g : Inc;", before=INC),
+        {"outs": [0.0, 2.0, 5.0, 12.0], "f.Cnt": 12}, scans=4)
 
 # ----------------------------------------------------------------------------------- fuse
 # A region's lines are merged from its first: of the unrolled copies of `y := y + a * b` in
