@@ -168,12 +168,19 @@ row("fuse", "a region's first line merged with its second", main(
     shape=("MAIN", r"\n {12}v_Y = \(\(v_Y \+ \(v_A \* v_B\)\) \+ \(v_A \* v_B\)\)\n {12}v_Y = \(v_Y \+ "))
 
 # ------------------------------------------------------------------------------- branches
-# A condition reading a structure's REF_TO member reads storage the POU does not own: the
-# condition keeps its handler.  s.r := REF(x), s.q NULL: s.r <> s.q TRUE; both REF(x): FALSE.
-for name, q, y in (("a REF member against NULL", "", 1), ("two REF members to one variable", "s.q := REF(x);\n", 2)):
-    row("branches", f"a condition on {name}", main("s : S; x : INT; y : INT;",
-        f"s.r := REF(x);\n{q}IF s.r <> s.q THEN y := 1; ELSE y := 2; END_IF;",
-        before="TYPE S : STRUCT r, q : REF_TO INT; END_STRUCT; END_TYPE"), {"y": y})
+# A condition reading a REF_TO variable, or a structure's REF_TO member, keeps its handler
+# (`_t1 = ...` in a try: comparing two reference objects runs Python code); the same
+# comparison of INTs is tested in place (`if (...)`).  p := REF(x), q NULL: p <> q TRUE;
+# both REF(x): FALSE.
+for name, q, y in (("against NULL", "", 1), ("to one variable", "q := REF(x);\n", 2)):
+    row("branches", f"a condition on two REF variables {name}", main("x : INT; p, q : REF_TO INT; y : INT;",
+        f"p := REF(x);\n{q}IF p <> q THEN y := 1; ELSE y := 2; END_IF;"), {"y": y},
+        never=("MAIN", r"if \(self\.v_P"))
+    row("branches", f"a condition on two REF members {name}", main("s : S; x : INT; y : INT;",
+        f"s.r := REF(x);\n{q.replace('q :=', 's.q :=')}IF s.r <> s.q THEN y := 1; ELSE y := 2; END_IF;",
+        before="TYPE S : STRUCT r, q : REF_TO INT; END_STRUCT; END_TYPE"), {"y": y}, never=("MAIN", r"if \(v_S"))
+row("branches", "a condition on two INTs is tested in place", main("p, q : INT; y : INT;",
+    "p := 3;\nIF p <> q THEN y := 1; ELSE y := 2; END_IF;"), {"y": 1}, shape=("MAIN", r"if \(self\.v_P != self\.v_Q\):"))
 
 
 @pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
