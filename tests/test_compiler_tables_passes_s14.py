@@ -57,12 +57,18 @@ for name, extra, more, fast in (
         ("two calls of one FUNCTION", "s := s + G(3) + G(1);", 4, True),
         ("a FOR with a constant step", "FOR j := 1 TO 6 BY 2 DO s := s + 1; END_FOR;", 3, True),
         ("a FOR with a constant step down", "FOR j := 6 TO 1 BY -2 DO s := s + j; END_FOR;", 12, True),
+        ("a FUNCTION with a WHILE in an IF condition", "IF W(3) > 2 THEN s := s + 1; END_IF;", 1, False),
+        ("a FUNCTION with a WHILE in a CASE selector", "CASE W(3) OF 3: s := s + 1; END_CASE;", 1, False),
         ("a loop over 64 values of an outer variable", "FOR j := 1 TO 64 DO FOR k := j TO j DO s := s + 1; END_FOR; END_FOR;", 64, True),
         ("a loop over 65 values of an outer variable", "FOR j := 1 TO 65 DO FOR k := j TO j DO s := s + 1; END_FOR; END_FOR;", 65, False)):
     row("fastpath", name, fast_src(extra, before="""FUNCTION G : INT
 VAR_INPUT m : INT; END_VAR VAR i : INT; END_VAR
 FOR i := 1 TO 2 DO G := G + m; END_FOR;
 G := G - m;
+END_FUNCTION
+FUNCTION W : INT
+VAR_INPUT m : INT; END_VAR
+WHILE W < m DO W := W + 1; END_WHILE;
 END_FUNCTION"""), {"r": 164 + more}, **({"shape": ("F", FAST)} if fast else {"never": ("F", FAST)}))
 
 # A PROPERTY's GET accessor runs ST code a body's bound does not see: no fast copy (CODESYS
@@ -286,3 +292,23 @@ def test_a_project_s_own_ton_in_a_fast_body_lands_the_same_at_every_budget():
     expected = _landings(OWN_TON, NONE, budgets, scans=1, stop=True)
     for optimise in (Optimisations.only("fastpath"), EVERY):
         assert _landings(OWN_TON, optimise, budgets, scans=1, stop=True) == expected
+
+
+# ------------------------------------------------------------------------- unroll: one cap
+# The POU's loops share one cap (`unroll_left`): two FORs of 3 copies of one statement each
+# (3 statements each) both unroll under a cap of 6, the first alone under 5, neither under 2.
+# s = 3 * 1 + 3 * 2 = 9 whichever unrolls.
+
+@pytest.mark.parametrize("cap, first, second", [(6, True, True), (5, True, False), (2, False, False)])
+def test_the_pou_s_loops_share_one_unroll_cap(monkeypatch, cap, first, second):
+    from st_runtime.compiler.optimise import unroll
+
+    src = main("s, k, j : INT;", "FOR k := 1 TO 3 DO s := s + 1; END_FOR;\nFOR j := 1 TO 3 DO s := s + 2; END_FOR;")
+    monkeypatch.setattr(unroll, "UNROLL_CAP", cap)
+    compiled = compile_program(api.load_text(src, "m.st").program, optimise=Optimisations.only("unroll"))
+    code = compiled.python_sources["MAIN"]
+    assert ("for v_K in" not in code, "for v_J in" not in code) == (first, second), code
+    controller = Controller(compiled)
+    main_ = controller.add_program("Main")
+    controller.run(1)
+    assert (main_.v_S, controller.faults) == (9, [])
