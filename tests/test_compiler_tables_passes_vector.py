@@ -356,3 +356,15 @@ def test_a_run_that_stores_nothing_read_after_it_stays():
     assert len(bound) == 1 and len(after) == 1 and after[0].startswith("v_X, = _k0(")
     for block in ([], ["v_X = (_t1 * _t2)"]):
         assert _vectorised(block) == (block, {})
+
+
+def test_a_product_whose_right_operand_is_a_product():
+    """`x * (y * z)`: the inner product is computed before the outer (its depth counts from
+    both operands), bit for bit as Python computes the lines, ordinary inputs and specials."""
+    lines = [f"v_P{k} = ({FLOATS[k % 8]} * ({FLOATS[(k + 1) % 8]} * {FLOATS[(k + 5) % 8]}))" for k in range(130)]
+    after, bound = _vectorised(lines)
+    assert len(after) == 1 and len(bound) == 1
+    for special in SPECIALS:
+        env = _inputs(random.Random(7), special)
+        want, got = _run(lines, env, {}), _run(after, env, bound)
+        assert all(_same(got[f"v_P{k}"], want[f"v_P{k}"]) for k in range(130)), special
