@@ -59,6 +59,9 @@ for name, extra, more, fast in (
         ("a FOR with a constant step down", "FOR j := 6 TO 1 BY -2 DO s := s + j; END_FOR;", 12, True),
         ("a FUNCTION with a WHILE in an IF condition", "IF W(3) > 2 THEN s := s + 1; END_IF;", 1, False),
         ("a FUNCTION with a WHILE in a CASE selector", "CASE W(3) OF 3: s := s + 1; END_CASE;", 1, False),
+        ("a WHILE in an IF's ELSE", "IF n > 5 THEN s := s + 1; ELSE WHILE j < n DO j := j + 1; END_WHILE; END_IF;", 0, False),
+        ("a WHILE in a CASE's ELSE", "CASE n OF 5: s := s + 1; ELSE WHILE j < n DO j := j + 1; END_WHILE; END_CASE;", 0, False),
+        ("a WHILE in an ELSIF", "IF n > 5 THEN s := s + 1; ELSIF n > 1 THEN WHILE j < n DO j := j + 1; END_WHILE; END_IF;", 0, False),
         ("a loop over 64 values of an outer variable", "FOR j := 1 TO 64 DO FOR k := j TO j DO s := s + 1; END_FOR; END_FOR;", 64, True),
         ("a loop over 65 values of an outer variable", "FOR j := 1 TO 65 DO FOR k := j TO j DO s := s + 1; END_FOR; END_FOR;", 65, False)):
     row("fastpath", name, fast_src(extra, before="""FUNCTION G : INT
