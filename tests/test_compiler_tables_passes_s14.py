@@ -18,7 +18,7 @@ from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.compiler.optimise import chains, cse, fuse
 from st_runtime.controller import Controller
 
-from test_compiler_tables_passes import EVERY, FAST, LOOPS8, NONE, Row, _landings, check, fast_src, main, modes_fb
+from test_compiler_tables_passes import CALLEES, EVERY, FAST, LOOPS8, NONE, Row, _landings, check, fast_src, main, modes_fb
 
 ROWS: list[Row] = []
 
@@ -64,15 +64,7 @@ for name, extra, more, fast in (
         ("a WHILE in an ELSIF", "IF n > 5 THEN s := s + 1; ELSIF n > 1 THEN WHILE j < n DO j := j + 1; END_WHILE; END_IF;", 0, False),
         ("a loop over 64 values of an outer variable", "FOR j := 1 TO 64 DO FOR k := j TO j DO s := s + 1; END_FOR; END_FOR;", 64, True),
         ("a loop over 65 values of an outer variable", "FOR j := 1 TO 65 DO FOR k := j TO j DO s := s + 1; END_FOR; END_FOR;", 65, False)):
-    row("fastpath", name, fast_src(extra, before="""FUNCTION G : INT
-VAR_INPUT m : INT; END_VAR VAR i : INT; END_VAR
-FOR i := 1 TO 2 DO G := G + m; END_FOR;
-G := G - m;
-END_FUNCTION
-FUNCTION W : INT
-VAR_INPUT m : INT; END_VAR
-WHILE W < m DO W := W + 1; END_WHILE;
-END_FUNCTION"""), {"r": 164 + more}, **({"shape": ("F", FAST)} if fast else {"never": ("F", FAST)}))
+    row("fastpath", name, fast_src(extra, before=CALLEES), {"r": 164 + more}, **({"shape": ("F", FAST)} if fast else {"never": ("F", FAST)}))
 
 # A PROPERTY's GET accessor runs ST code a body's bound does not see: no fast copy (CODESYS
 # dialect, where PROPERTY is).  Box.Value GETs Raw = 5: s = 164 + 5, and 164 + 2 * 5.
