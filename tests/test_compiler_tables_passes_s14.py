@@ -159,6 +159,26 @@ for pass_ in ("spread", "stores"):
         "3: g(x := Cnt, q => Cnt); Out := INT_TO_LREAL(Cnt); END_CASE;", extra="g : Inc;", before=INC),
         {"outs": [0.0, 2.0, 5.0, 12.0], "f.Cnt": 12}, scans=4)
 
+# ---------------------------------------------------------------------------------- ranges
+# A variable passed to an output (`q => i`) or an in-out is not followed past the call: the
+# call may store any value of its type.  i := 1, then the call gives i = -1: arr[i] is out of
+# ARRAY[1..3] (F-INDEX at the read's line, 14, scan 1; y keeps 0).
+NEG = """FUNCTION_BLOCK Neg
+VAR_OUTPUT q : INT; END_VAR
+q := -1;
+END_FUNCTION_BLOCK
+FUNCTION SetNeg : INT
+VAR_IN_OUT v : INT; END_VAR
+v := -1;
+SetNeg := 0;
+END_FUNCTION"""
+row("ranges", "an index stored through an output is not followed past the call", main(
+    "arr : ARRAY[1..3] OF INT := [10, 20, 30]; i, y : INT; g : Neg;", "i := 1;\ng(q => i);\ny := arr[i];",
+    before=NEG), {"i": -1, "y": 0}, faults=[("F-INDEX", 14, 1)])
+row("ranges", "an index passed to an in-out is not followed past the call", main(
+    "arr : ARRAY[1..3] OF INT := [10, 20, 30]; i, y, z : INT;", "i := 1;\nz := SetNeg(i);\ny := arr[i];",
+    before=NEG), {"i": -1, "y": 0, "z": 0}, faults=[("F-INDEX", 14, 1)])
+
 # ----------------------------------------------------------------------------------- fuse
 # A region's lines are merged from its first: of the unrolled copies of `y := y + a * b` in
 # the region (a * b = 3.0 exactly, y = 9.0 after three), the first two are one line,
