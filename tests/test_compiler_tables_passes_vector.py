@@ -291,6 +291,7 @@ PARSE = [
     ("(a / b)", None), ("(a ** b)", None), ("f(a)", None), ("(a + f(b))", None), ("v[1]", None),
     ("self.v_X", None), ("(a < b)", None), ("()", None), ("(", None), ("-a", None), ("(a +)", None),
     ("(a + * b)", None), ("((a) + (b))", ("bin", "+", ("name", "a"), ("name", "b"))),
+    ("(a (b)", None), ("(a b c)", None), ("(a b)", None),    # a token that is no operator where one belongs
 ]
 
 
@@ -344,3 +345,26 @@ def test_finite_inputs_take_numpy_and_the_others_python(family):
         assert len(calls) == python, special
         want = _run(lines, env, {})
         assert all(_same(got[k], v) for k, v in want.items() if k in got)
+
+
+def test_a_run_that_stores_nothing_read_after_it_stays():
+    """A run whose every store is a temporary that no later line reads (nothing to return)
+    is left as it is; and an empty block, or a block of one line, has no run."""
+    lines = [f"_t{9 + k} = ({FLOATS[k % 8]} * {FLOATS[(k + 3) % 8]})" for k in range(300)]
+    assert _vectorised(lines) == (lines, {})
+    after, bound = _vectorised(lines + ["v_X = _t9"])       # (one read after: the run returns v_X)
+    assert len(bound) == 1 and len(after) == 1 and after[0].startswith("v_X, = _k0(")
+    for block in ([], ["v_X = (_t1 * _t2)"]):
+        assert _vectorised(block) == (block, {})
+
+
+def test_a_product_whose_right_operand_is_a_product():
+    """`x * (y * z)`: the inner product is computed before the outer (its depth counts from
+    both operands), bit for bit as Python computes the lines, ordinary inputs and specials."""
+    lines = [f"v_P{k} = ({FLOATS[k % 8]} * ({FLOATS[(k + 1) % 8]} * {FLOATS[(k + 5) % 8]}))" for k in range(130)]
+    after, bound = _vectorised(lines)
+    assert len(after) == 1 and len(bound) == 1
+    for special in SPECIALS:
+        env = _inputs(random.Random(7), special)
+        want, got = _run(lines, env, {}), _run(after, env, bound)
+        assert all(_same(got[f"v_P{k}"], want[f"v_P{k}"]) for k in range(130)), special
