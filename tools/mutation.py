@@ -100,7 +100,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   "tests/test_optimiser_deferred.py", "tests/test_optimiser_stores_read.py",
                   "tests/test_optimiser_temps.py",
                   # session 13: tables of the core files' behaviours (exprs, statements, calls, cost, ...)
-                  "tests/test_compiler_tables_core.py"]),
+                  "tests/test_compiler_tables_core.py",
+                  # session 14: the core files' leftovers and the lines the selection never ran
+                  "tests/test_compiler_tables_core_s14.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",

@@ -1,0 +1,249 @@
+"""More rows of the core files' tables (issue 16, session 14): the behaviours session 13's
+leftovers and the coverage of the compiler's mutation test selection showed unchecked in
+st_runtime/compiler/ outside optimise/ (docs/mutation.md, "Session 14, the core files").
+
+As in tests/test_compiler_tables_core.py: one row per behaviour, checked in full with `==`;
+expected values from IEC 61131-3, OMRON's manuals as docs/nj501.md cites them, IEEE 754 bit
+patterns and Python's exact integers by hand, never from running the code under test; every
+row with every optimisation pass and with none.
+"""
+
+from __future__ import annotations
+
+import struct
+
+import pytest
+
+from st_runtime import loader
+from st_runtime.compiler import Optimisations, compile_program
+from st_runtime.controller import Controller
+from st_runtime.process_image import ImageView
+
+EVERY, NONE = Optimisations(), Optimisations.none()
+PASSES = pytest.mark.parametrize("optimise", [EVERY, NONE], ids=["every pass", "no pass"])
+
+
+def checked(src: str, dialect: str = "iec"):
+    result = loader.load_texts({"m.st": src}, dialect, None)
+    errors = [d.header() for d in result.diagnostics if d.is_error]
+    assert result.program is not None and not errors, errors
+    return result.program
+
+
+def run(src: str, optimise: Optimisations = EVERY, scans: int = 1, inputs: dict | None = None,
+        dialect: str = "iec"):
+    """Main of `src` after `scans` scans: (controller, instance, [(code, line, scan)])."""
+    controller = Controller(compile_program(checked(src, dialect), optimise=optimise))
+    main = controller.add_program("Main")
+    for name, value in (inputs or {}).items():
+        setattr(main, "v_" + name.upper(), value)
+    controller.run(scans)
+    return controller, main, [(f.code, f.line, f.scan) for f in controller.faults]
+
+
+# ============================================ calls.py: every kind of call whose value is dropped
+
+DROPPED = """FUNCTION Twice : INT
+VAR_INPUT a : INT; END_VAR
+Twice := a * 2;
+END_FUNCTION
+PROGRAM Main
+VAR x : REAL := 2.0; a : ARRAY[1..3] OF INT; i : INT := 4; y : INT; END_VAR
+{call}
+y := i + 1;
+END_PROGRAM
+"""
+
+
+@PASSES
+@pytest.mark.parametrize("call", ["SIN(x);", "MAX(i, 7);", "SHL(WORD#1, i);", "REAL_TO_INT(x);",
+                                  "LOWER_BOUND(a, 1);", "REF(x);", "Twice(i);", "Twice(a := i);"])
+def test_a_call_whose_value_is_dropped_is_a_statement(call: str, optimise):
+    # IEC 61131-3 7.3.3.1: a function called as a statement; its value goes nowhere, the
+    # statements around it run.
+    _, main, faults = run(DROPPED.format(call=call), optimise)
+    assert (main.v_Y, main.v_I, faults) == (5, 4, [])
+
+
+# ========================================= __init__.py: what an instance and the image hold
+
+LOCATED = """PROGRAM Main
+VAR AT %MD4 : REAL := 1.5; END_VAR
+VAR AT %ML8 : LREAL := -2.0; END_VAR
+VAR AT %MW20 : INT := -2; END_VAR
+VAR AT %MB22 : USINT := 200; END_VAR
+VAR AT %MX30.3 : BOOL := TRUE; END_VAR
+VAR y : INT; END_VAR
+y := 1;
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_an_unnamed_located_variable_puts_its_initial_value_in_the_image(optimise):
+    # `AT %MD4 : REAL := 1.5;` names no variable: the image holds the value's bits (a REAL as
+    # its IEEE 754 single, an LREAL as its double, integers in two's complement, little-endian).
+    controller, main, faults = run(LOCATED, optimise)
+    image = ImageView(controller.compiled.image)
+    assert image["%MD4"] == 0x3FC0_0000                      # 1.5 = 1.1b x 2^0
+    assert image["%ML8"] == 0xC000_0000_0000_0000            # -2.0 = -1.0b x 2^1
+    assert image["%MD4"] == struct.unpack("<I", struct.pack("<f", 1.5))[0]
+    assert (image["%MW20"], image["%MB22"], image["%MX30.3"], image["%MX30.2"]) == (0xFFFE, 200, True, False)
+    assert (main.v_Y, faults) == (1, [])
+
+
+GLOBAL_IN_PROGRAM = """PROGRAM Main
+VAR_GLOBAL g : INT := 3; END_VAR
+VAR y : INT; END_VAR
+g := g + 1;
+y := g;
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_a_var_global_of_a_program_is_a_global_not_an_instance_variable(optimise):
+    # The global lives once, in the configuration's globals; the instance keeps no copy of it.
+    controller, main, faults = run(GLOBAL_IN_PROGRAM, optimise, scans=2)
+    assert (main.v_Y, controller.globals.v_G, faults) == (5, 5, [])
+    assert not hasattr(main, "v_G")
+
+
+# ================================= calls.py / exprs.py: ENO stored from inside an expression
+
+ENO_PLACES = """FUNCTION FI : INT
+VAR_INPUT a : INT; END_VAR
+FI := a;
+END_FUNCTION
+FUNCTION G : INT
+VAR_INPUT en : BOOL; END_VAR
+VAR ok : BOOL; END_VAR
+G := FI(EN := en, a := 10, ENO => ok) + BOOL_TO_INT(ok);
+END_FUNCTION
+FUNCTION H : INT
+VAR_INPUT en : BOOL; END_VAR
+VAR_IN_OUT flag : BOOL; END_VAR
+H := FI(EN := en, a := 20, ENO => flag);
+END_FUNCTION
+PROGRAM Main
+VAR w : WORD; arr : ARRAY[1..3] OF BOOL; i : INT := 2; en : BOOL; y1, y2, y3, y4, y5 : INT;
+    r : REF_TO BOOL; b, f : BOOL; END_VAR
+r := REF(b);
+y1 := FI(EN := en, a := 3, ENO => w.3);
+y2 := FI(EN := en, a := 4, ENO => arr[i]);
+y3 := FI(EN := en, a := 5, ENO => r^);
+y4 := G(en := en);
+y5 := H(en := en, flag := f);
+END_PROGRAM
+"""
+
+
+@PASSES
+@pytest.mark.parametrize("en", [True, False])
+def test_eno_is_stored_from_an_expression_into_every_kind_of_place(en: bool, optimise):
+    # IEC 61131-3 6.6.1.2: ENO follows EN; with EN FALSE the function's value is 0 (INT's
+    # initial value).  ENO goes into a bit of a WORD (bit 3: 8), an element, a dereferenced
+    # reference, a FUNCTION's local (read in the same expression: 10 + 1) and an in-out.
+    _, main, faults = run(ENO_PLACES, optimise, dialect="codesys",
+                          inputs={"en": en, "w": 0x0100 if en else 0x0108, "arr": [True, not en, True],
+                                  "b": not en, "f": not en})
+    assert (main.v_W, list(main.v_ARR), main.v_B, main.v_F) == \
+        ((0x0108 if en else 0x0100), [True, en, True], en, en)
+    assert (main.v_Y1, main.v_Y2, main.v_Y3, main.v_Y4, main.v_Y5) == ((3, 4, 5, 11, 20) if en else (0, 0, 0, 0, 0))
+    assert faults == []
+
+
+# ===================================================== statements.py: empty statements and bodies
+
+EMPTY = """PROGRAM Main
+VAR i, k, n, y : INT; b : BOOL; END_VAR
+;
+IF b THEN ; ELSE y := y + 1; END_IF;
+IF NOT b THEN ; END_IF;
+CASE k OF 1: ; ELSE ; END_CASE;
+FOR i := 1 TO 3 DO ; END_FOR;
+WHILE n < 2 DO n := n + 1; ; END_WHILE;
+REPEAT ; UNTIL TRUE END_REPEAT;
+y := y + 10;
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_empty_statements_and_bodies_do_nothing(optimise):
+    _, main, faults = run(EMPTY, optimise, scans=2)
+    assert (main.v_I, main.v_K, main.v_N, main.v_Y, faults) == (4, 0, 2, 22, [])
+
+
+# ======================== calls.py: defaults made per call, outputs in expressions, generics
+
+CALL_KINDS = """TYPE Pt : STRUCT c : INT := 11; d : INT; END_STRUCT; END_TYPE
+FUNCTION FArr : INT
+VAR_INPUT a : ARRAY[1..2] OF INT := [5, 6]; p : Pt; k : INT; END_VAR
+FArr := a[1] + a[2] + p.c + k;
+a[1] := 100;
+p.c := 100;
+END_FUNCTION
+FUNCTION FOut : INT
+VAR_INPUT a : INT; END_VAR
+VAR_OUTPUT q : BOOL; END_VAR
+q := a > 0;
+FOut := a * 2;
+END_FUNCTION
+FUNCTION NoResult : INT
+VAR_INPUT a : INT; END_VAR
+END_FUNCTION
+FUNCTION RefIn : INT
+VAR_INPUT a : INT; END_VAR
+VAR r : REF_TO INT; END_VAR
+r := REF(a);
+r^ := r^ + 1;
+RefIn := a;
+END_FUNCTION
+FUNCTION_BLOCK Keep
+VAR_INPUT pts : ARRAY[1..2] OF Pt; END_VAR
+VAR_OUTPUT s : INT; END_VAR
+s := pts[1].c + pts[2].d;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR y1, y2, y3, y4, y5, y6, i, s1, s2 : INT; b, b2 : BOOL; m1, m2, m3, x : REAL; d : DINT;
+    pts : ARRAY[1..2] OF Pt; k : Keep; END_VAR
+y1 := FArr(k := 1);
+y2 := FArr(k := 2) + FOut(a := i, NOT q => b);
+y3 := FOut(a := -i, q => b2);
+y4 := NoResult(a := 7);
+y5 := RefIn(a := i);
+m1 := MAX(x, i);
+m2 := MOVE(x);
+m3 := LIMIT(0.0, i, x);
+y6 := DINT_TO_INT(d + 1);
+pts[1].c := 7;
+pts[2].d := 9;
+k(pts := pts);
+s1 := k.s;
+pts[1].c := 70;
+k();
+s2 := k.s;
+END_PROGRAM
+"""
+
+
+@PASSES
+@pytest.mark.parametrize("i, x, d", [(3, 2.5, 40000), (-4, -0.5, -40002)])
+def test_defaults_outputs_in_expressions_and_generic_arguments(i: int, x: float, d: int, optimise):
+    # An input left out has its declared initial value at every call (the array [5, 6] and
+    # the structure's c = 11 again at the second call, though the first wrote 100 to both);
+    # `NOT q => b` inside an expression stores the negated output; a FUNCTION that never
+    # assigns its name returns INT's initial value 0; REF of a FUNCTION's input reaches it;
+    # MAX / LIMIT of a REAL and an INT compare in REAL (IEC 61131-3 generic ANY_NUM); MOVE
+    # copies; DINT_TO_INT keeps the low 16 bits (two's complement); an FB's array of
+    # structures input is a copy made at the call (the later store to pts is not seen).
+    _, main, faults = run(CALL_KINDS, optimise, dialect="codesys", inputs={"i": i, "x": x, "d": d})
+    assert (main.v_Y1, main.v_Y2, main.v_Y3, main.v_Y4, main.v_Y5) == \
+        (23, 24 + 2 * i, -2 * i, 0, i + 1)
+    assert (main.v_B, main.v_B2) == (not i > 0, -i > 0)
+    assert (main.v_M1, main.v_M2, main.v_M3) == (max(x, float(i)), x, min(max(0.0, float(i)), x))
+    assert all(isinstance(v, float) for v in (main.v_M1, main.v_M2, main.v_M3))
+    low = (d + 1) & 0xFFFF
+    assert main.v_Y6 == (low - 0x10000 if low >= 0x8000 else low)
+    assert (main.v_S1, main.v_S2, faults) == (16, 16, [])
