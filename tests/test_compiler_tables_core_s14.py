@@ -107,6 +107,8 @@ def test_a_var_global_of_a_program_is_a_global_not_an_instance_variable(optimise
     controller, main, faults = run(GLOBAL_IN_PROGRAM, optimise, scans=2)
     assert (main.v_Y, controller.globals.v_G, faults) == (5, 5, [])
     assert not hasattr(main, "v_G")
+    pou = controller.compiled.pou("main")           # a POU by its name in any case
+    assert (pou.name, pou.kind, list(pou.variables)) == ("Main", "PROGRAM", ["Y"])
 
 
 # ================================= calls.py / exprs.py: ENO stored from inside an expression
@@ -247,3 +249,45 @@ def test_defaults_outputs_in_expressions_and_generic_arguments(i: int, x: float,
     low = (d + 1) & 0xFFFF
     assert main.v_Y6 == (low - 0x10000 if low >= 0x8000 else low)
     assert (main.v_S1, main.v_S2, faults) == (16, 16, [])
+
+
+# ================================================ exprs.py: strings stored, cut to their length
+
+STRINGS = """PROGRAM Main
+VAR s4 : STRING[4]; s8 : STRING[8]; t4, t8 : STRING[4]; u : STRING[8] := 'abcdefgh'; n : INT; END_VAR
+s4 := 'abcd';
+s8 := 'abc';
+t4 := u;
+t8 := CONCAT(s8, 'xy');
+n := LEN(s4);
+END_PROGRAM
+"""
+
+
+@PASSES
+@pytest.mark.parametrize("dialect", ["iec", "nj"])
+def test_strings_are_stored_whole_or_cut_to_the_targets_length(dialect: str, optimise):
+    # A constant that fits is stored as it is; a longer STRING[8] or a CONCAT result keeps its
+    # first 4 characters in a STRING[4] (IEC 61131-3 6.4.2: the declared length is the most).
+    _, main, faults = run(STRINGS, optimise, dialect=dialect)
+    assert (main.v_S4, main.v_S8, main.v_T4, main.v_T8, main.v_N, faults) == ("abcd", "abc", "abcd", "abcx", 4, [])
+
+
+UNSET_OUTPUTS = """FUNCTION F : INT
+VAR_INPUT a : INT; END_VAR
+VAR_OUTPUT q : INT := 7; r : BOOL; END_VAR
+F := a + 1;
+END_FUNCTION
+PROGRAM Main
+VAR y, z, y2, z2 : INT := -1; b : BOOL := TRUE; END_VAR
+y := F(a := 4, q => z, r => b);
+F(a := 5, q => z2);
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_outputs_a_function_never_sets_give_their_initial_values(optimise):
+    # IEC 61131-3 6.6.1.2: a FUNCTION's outputs start at their initial values at every call.
+    _, main, faults = run(UNSET_OUTPUTS, optimise)
+    assert (main.v_Y, main.v_Z, main.v_B, main.v_Z2, main.v_Y2, faults) == (5, 7, False, 7, -1, [])
