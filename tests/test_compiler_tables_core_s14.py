@@ -291,3 +291,41 @@ def test_outputs_a_function_never_sets_give_their_initial_values(optimise):
     # IEC 61131-3 6.6.1.2: a FUNCTION's outputs start at their initial values at every call.
     _, main, faults = run(UNSET_OUTPUTS, optimise)
     assert (main.v_Y, main.v_Z, main.v_B, main.v_Z2, main.v_Y2, faults) == (5, 7, False, 7, -1, [])
+
+
+# ========================================= exprs.py: a PROPERTY written runs its SET accessor
+
+PROPERTY_SET = """FUNCTION_BLOCK Tank
+VAR lvl : INT; writes : INT; END_VAR
+PROPERTY Level : INT
+GET
+Level := lvl;
+END_GET
+SET
+lvl := LIMIT(0, Level, 100);
+writes := writes + 1;
+END_SET
+END_PROPERTY
+METHOD Fill
+VAR_INPUT n : INT; END_VAR
+THIS.Level := THIS.Level + n;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR t : Tank; a, b, c : INT; END_VAR
+t.Level := 150;
+a := t.Level;
+t.Level := -3;
+b := t.Level;
+t.Fill(n := 40);
+c := t.Level;
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_a_property_written_from_outside_and_from_a_method_runs_its_set(optimise):
+    # Each write calls SET (IEC 61131-3 3rd ed. 6.6.5.11), which clamps to 0..100 and counts:
+    # 150 -> 100, -3 -> 0, 0 + 40 -> 40, three writes.
+    _, main, faults = run(PROPERTY_SET, optimise, dialect="codesys")
+    assert (main.v_A, main.v_B, main.v_C, main.v_T.v_WRITES, main.v_T.v_LVL, faults) == (100, 0, 40, 3, 40, [])
