@@ -329,3 +329,26 @@ def test_a_property_written_from_outside_and_from_a_method_runs_its_set(optimise
     # 150 -> 100, -3 -> 0, 0 + 40 -> 40, three writes.
     _, main, faults = run(PROPERTY_SET, optimise, dialect="codesys")
     assert (main.v_A, main.v_B, main.v_C, main.v_T.v_WRITES, main.v_T.v_LVL, faults) == (100, 0, 40, 3, 40, [])
+
+
+# =================================== __init__.py: standard FBs before their first call
+
+STANDARD_FBS = {  # IEC 61131-3 6.6.3.5: each standard FB and its variables (every initial value FALSE / 0 / T#0s)
+    "TON": ("IN", "PT", "Q", "ET"), "TOF": ("IN", "PT", "Q", "ET"), "TP": ("IN", "PT", "Q", "ET"),
+    "R_TRIG": ("CLK", "Q"), "F_TRIG": ("CLK", "Q"), "CTU": ("CU", "R", "PV", "Q", "CV"),
+    "CTD": ("CD", "LD", "PV", "Q", "CV"), "CTUD": ("CU", "CD", "R", "LD", "PV", "QU", "QD", "CV"),
+    "SR": ("S1", "R", "Q1"), "RS": ("S", "R1", "Q1")}
+
+
+@PASSES
+def test_a_standard_fb_holds_its_initial_values_before_its_first_call(optimise):
+    names = list(STANDARD_FBS)
+    src = ("PROGRAM Main\nVAR " + "".join(f"f{i} : {name}; " for i, name in enumerate(names))
+           + "y : INT; END_VAR\ny := 1;\nEND_PROGRAM\n")
+    _, main, faults = run(src, optimise)
+    for i, name in enumerate(names):
+        fb = getattr(main, f"v_F{i}")
+        got = [getattr(fb, "v_" + v) for v in STANDARD_FBS[name]]
+        expected = [0 if v in ("PT", "ET", "PV", "CV") else False for v in STANDARD_FBS[name]]   # TIME, INT, BOOL
+        assert (got, [type(v) for v in got]) == (expected, [type(v) for v in expected]), name
+    assert (main.v_Y, faults) == (1, [])
