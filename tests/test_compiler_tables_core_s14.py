@@ -376,3 +376,24 @@ def test_a_for_variable_of_a_subrange_type_faults_in_its_statement(optimise):
     _, main, faults = run(SUBRANGE_FOR, optimise)
     assert [(code, line) for code, line, _ in faults] == [("F-SUBRANGE", 3)]
     assert main.v_Y == 7 and 1 <= main.v_I <= 5
+
+
+WRITE_ONLY = """FUNCTION_BLOCK Tank
+VAR lvl : INT; END_VAR
+PROPERTY Target : INT
+SET
+lvl := Target * 2;
+END_SET
+END_PROPERTY
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR t : Tank; END_VAR
+t.Target := 21;
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_a_property_with_only_set_can_be_written(optimise):
+    _, main, faults = run(WRITE_ONLY, optimise, dialect="codesys")
+    assert (main.v_T.v_LVL, faults) == (42, [])
