@@ -397,3 +397,42 @@ END_PROGRAM
 def test_a_property_with_only_set_can_be_written(optimise):
     _, main, faults = run(WRITE_ONLY, optimise, dialect="codesys")
     assert (main.v_T.v_LVL, faults) == (42, [])
+
+
+# =========================== exprs.py: arrays and structures stored and read through references
+
+DEREFERENCED = """TYPE Pt : STRUCT x : INT; y : ARRAY[1..2] OF INT; END_STRUCT; END_TYPE
+FUNCTION Fill : INT
+VAR_IN_OUT a : ARRAY[1..3] OF INT; END_VAR
+a[3] := 30;
+Fill := 1;
+END_FUNCTION
+PROGRAM Main
+VAR arr, arr2 : ARRAY[1..3] OF INT; p, p2 : Pt; ra : REF_TO ARRAY[1..3] OF INT; rp : REF_TO Pt; k, m : INT;
+    copy : ARRAY[1..3] OF INT; q : Pt; END_VAR
+arr2[1] := 7;
+arr2[2] := 8;
+p2.x := 5;
+p2.y[2] := 6;
+ra := REF(arr);
+rp := REF(p);
+ra^ := arr2;
+rp^ := p2;
+k := Fill(a := ra^);
+copy := ra^;
+q := rp^;
+m := ra^[2] + rp^.y[2];
+arr2[1] := -1;
+p2.y[2] := -1;
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_aggregates_are_copied_into_and_out_of_a_dereference(optimise):
+    # `ra^ := arr2` copies the array into arr (later stores to arr2 not seen); an in-out bound
+    # to ra^ is arr itself (a[3] := 30 lands in arr); copies out of ra^ and rp^ are values.
+    _, main, faults = run(DEREFERENCED, optimise)
+    assert (list(main.v_ARR), main.v_P.v_X, list(main.v_P.v_Y)) == ([7, 8, 30], 5, [0, 6])
+    assert (list(main.v_COPY), main.v_Q.v_X, list(main.v_Q.v_Y), main.v_M, main.v_K, faults) == \
+        ([7, 8, 30], 5, [0, 6], 14, 1, [])
