@@ -436,3 +436,41 @@ def test_aggregates_are_copied_into_and_out_of_a_dereference(optimise):
     assert (list(main.v_ARR), main.v_P.v_X, list(main.v_P.v_Y)) == ([7, 8, 30], 5, [0, 6])
     assert (list(main.v_COPY), main.v_Q.v_X, list(main.v_Q.v_Y), main.v_M, main.v_K, faults) == \
         ([7, 8, 30], 5, [0, 6], 14, 1, [])
+
+
+# ================ __init__.py: what an instance's class tells the API (kinds, constants)
+
+SEEN = """FUNCTION_BLOCK Box
+VAR_INPUT a : INT; END_VAR
+VAR_IN_OUT io : INT; END_VAR
+VAR_OUTPUT b : INT; END_VAR
+VAR CONSTANT K : INT := 4; END_VAR
+VAR n : INT; END_VAR
+b := a + io + K;
+n := n + 1;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR CONSTANT C : INT := 3; END_VAR
+VAR x : INT := 1; box : Box; v : INT := 10; END_VAR
+box(a := x, io := v);
+x := x + C;
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_an_instance_shows_its_own_variables_and_refuses_writes_to_constants(optimise):
+    # The JSON view of an FB instance leaves out its in-out (a reference, not its own value);
+    # writing a CONSTANT through the API is refused, a plain variable is written.
+    from st_runtime import api
+    from st_runtime.values import object_to_json
+
+    _, main, faults = run(SEEN, optimise)
+    assert object_to_json(main.v_BOX) == {"a": 1, "b": 15, "K": 4, "n": 1}      # 1 + 10 + 4
+    assert object_to_json(main) == {"C": 3, "x": 4, "box": {"a": 1, "b": 15, "K": 4, "n": 1}, "v": 10}
+    with pytest.raises(KeyError):
+        api.Instance(main)["C"] = 5
+    with pytest.raises(KeyError):
+        api.Instance(main.v_BOX)["K"] = 5
+    api.Instance(main)["x"] = 7
+    assert (main.v_X, main.v_C, main.v_BOX.v_K, faults) == (7, 3, 4, [])
