@@ -474,3 +474,29 @@ def test_an_instance_shows_its_own_variables_and_refuses_writes_to_constants(opt
         api.Instance(main.v_BOX)["K"] = 5
     api.Instance(main)["x"] = 7
     assert (main.v_X, main.v_C, main.v_BOX.v_K, faults) == (7, 3, 4, [])
+
+
+SIGNED_SUMS = """PROGRAM Main
+VAR i : INT; s : SINT; d : DINT; u : UINT; us : USINT; ud : UDINT; ul : ULINT; END_VAR
+u := i + 1;
+us := s * 2;
+ud := d - 1;
+ul := s + 1;
+END_PROGRAM
+"""
+
+
+@PASSES
+@pytest.mark.parametrize("i, s, d", [(-5, -2, -3), (7, 60, 9), (-32768, -128, -2147483647)])
+def test_nj_stores_a_signed_sum_into_an_unsigned_type_with_its_bits(i: int, s: int, d: int, optimise):
+    # W501 6-5-3 as docs/nj501.md cites it: a signed integer goes into an unsigned one of the
+    # same or a larger size with its bits kept (two's complement), here the value of a sum,
+    # product or difference in its own type (the expression overflows in INT, SINT, DINT).
+    def bits(value: int, width: int, signed_width: int) -> int:
+        low = value & ((1 << signed_width) - 1)         # the expression's own type ...
+        if low >= 1 << (signed_width - 1):
+            low -= 1 << signed_width
+        return low & ((1 << width) - 1)                 # ... its bits in the wider unsigned one
+    _, main, faults = run(SIGNED_SUMS, optimise, dialect="nj", inputs={"i": i, "s": s, "d": d})
+    assert (main.v_U, main.v_US, main.v_UD, main.v_UL, faults) == \
+        (bits(i + 1, 16, 16), bits(s * 2, 8, 8), bits(d - 1, 32, 32), bits(s + 1, 64, 8), [])
