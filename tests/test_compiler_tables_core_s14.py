@@ -500,3 +500,25 @@ def test_nj_stores_a_signed_sum_into_an_unsigned_type_with_its_bits(i: int, s: i
     _, main, faults = run(SIGNED_SUMS, optimise, dialect="nj", inputs={"i": i, "s": s, "d": d})
     assert (main.v_U, main.v_US, main.v_UD, main.v_UL, faults) == \
         (bits(i + 1, 16, 16), bits(s * 2, 8, 8), bits(d - 1, 32, 32), bits(s + 1, 64, 8), [])
+
+
+DERIVED_RESULT = """TYPE Speed : INT := 5; END_TYPE
+FUNCTION F : Speed
+VAR_INPUT a : INT; END_VAR
+IF a > 0 THEN F := a; END_IF;
+END_FUNCTION
+PROGRAM Main
+VAR y1, y2 : INT; v : Speed; END_VAR
+y1 := F(a := 0);
+y2 := F(a := 3);
+END_PROGRAM
+"""
+
+
+@pytest.mark.xfail(strict=True, reason="the result of a FUNCTION of a derived type with an initial value starts at "
+                                       "its base type's 0, not the derived type's 5 (statements.py prologue: the "
+                                       "RETURN symbol's type is resolved; reported to the lead)")
+@PASSES
+def test_a_function_result_of_a_derived_type_starts_at_the_types_initial_value(optimise):
+    _, main, faults = run(DERIVED_RESULT, optimise)
+    assert (main.v_Y1, main.v_Y2, main.v_V, faults) == (5, 3, 5, [])
