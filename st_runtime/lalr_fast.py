@@ -126,6 +126,7 @@ LIST_ALL = 13    # SPLICE keeping every child in order: the popped values are th
 LIST_ONE = 14    # SPLICE keeping one spliced child only: that child's list itself
 CALL_SPREAD = 15  # INLINE keeping one spliced child only: the method on its items
 GENERAL = 16     # anything else: the plan, read child by child
+# The steps done in place on the stacks, numbered last (the loop tests `how >= CALL_TOP`):
 CALL_TOP = 17    # CALL_ALL of one child: the method on the top value, in place
 LIST_TOP = 18    # LIST_ALL of one child: the list of the top value, in place
 LIST_GROW = 19   # SPLICE of a list and one more child (a left-recursive list): the list, grown
@@ -438,7 +439,20 @@ class FastLalr:
                     push(token)
                     break
                 size, origin, how, function, pick, gotos = step
-                if how == UNIT:         # the value stays; the state is the goto's
+                if how >= CALL_TOP:     # in place: the top value replaced, or the list below grown
+                    if how == CALL_TOP:
+                        value_stack[-1] = function(value_stack[-1])
+                    elif how == LIST_TOP:
+                        value_stack[-1] = [value_stack[-1]]
+                    else:               # LIST_GROW, LIST_JOIN: two children, the first a list
+                        last = value_stack.pop()
+                        del state_stack[-1]
+                        if how == LIST_GROW:
+                            value_stack[-1].append(last)
+                        else:
+                            value_stack[-1] += last
+                    state = state_stack[-1] = gotos[state_stack[-2]]
+                elif how == UNIT:       # the value stays; the state is the goto's
                     below = state_stack[-2]
                     chain = (below, state, kind)
                     state = units.get(chain)
@@ -446,82 +460,55 @@ class FastLalr:
                         state = units[chain] = self._unit_chain(below, gotos[below], kind)
                     state_stack[-1] = state
                     continue
-                if how == CALL_TOP:     # one child in, one value out: the stacks keep their size
-                    value_stack[-1] = function(value_stack[-1])
-                    state = state_stack[-1] = gotos[state_stack[-2]]
-                    if token is _END and state == end_state:
-                        return value_stack[-1]
-                    continue
-                if how == LIST_TOP:
-                    value_stack[-1] = [value_stack[-1]]
-                    state = state_stack[-1] = gotos[state_stack[-2]]
-                    if token is _END and state == end_state:
-                        return value_stack[-1]
-                    continue
-                if how == LIST_GROW:
-                    last = value_stack.pop()
-                    value_stack[-1].append(last)
-                    del state_stack[-1]
-                    state = state_stack[-1] = gotos[state_stack[-2]]
-                    if token is _END and state == end_state:
-                        return value_stack[-1]
-                    continue
-                if how == LIST_JOIN:
-                    last = value_stack.pop()
-                    value_stack[-1] += last
-                    del state_stack[-1]
-                    state = state_stack[-1] = gotos[state_stack[-2]]
-                    if token is _END and state == end_state:
-                        return value_stack[-1]
-                    continue
-                if size:
-                    values = value_stack[-size:]
-                    del state_stack[-size:]
-                    del value_stack[-size:]
                 else:
-                    values = []
-                if how == CALL_ALL:
-                    push(function(*values))
-                elif how == LIST_ALL:
-                    push(values)
-                elif how == CALL_PICK:
-                    push(function(*pick(values)))
-                elif how == CALL_ONE:
-                    push(function(values[pick]))
-                elif how == LIST_ONE:
-                    push(values[pick])
-                elif how == CALL_SPREAD:
-                    push(function(*values[pick]))
-                else:       # GENERAL: Lark's ChildFilterLALR and the wrapper, inline
-                    _, _, how, function, keep, nones, _ = pick
-                    if how == LARK:
-                        push(function(values))
+                    if size:
+                        values = value_stack[-size:]
+                        del state_stack[-size:]
+                        del value_stack[-size:]
                     else:
-                        if keep is not None:
-                            children = []
-                            for i, splice, before in keep:
-                                if before:
-                                    children += [None] * before
-                                if splice:
-                                    if children:
-                                        children += values[i]
-                                    else:       # left recursion: extend the list in place
-                                        children = values[i]
-                                else:
-                                    children.append(values[i])
-                            if nones:
-                                children += [None] * nones
+                        values = []
+                    if how == GENERAL:      # Lark's ChildFilterLALR and the wrapper, inline
+                        _, _, how, function, keep, nones, _ = pick
+                        if how == LARK:
+                            push(function(values))
                         else:
-                            children = values
-                        if how == INLINE:
-                            push(function(*children))
-                        elif how == SPLICE:
-                            push(children)
-                        elif how != TREE and len(children) == 1:        # SINGLE, SINGLE_TREE
-                            push(children[0])
-                        else:
-                            push(function(*children) if how == SINGLE else function(children))
-                state = gotos[state_stack[-1]]
-                state_stack.append(state)
+                            if keep is not None:
+                                children = []
+                                for i, splice, before in keep:
+                                    if before:
+                                        children += [None] * before
+                                    if splice:
+                                        if children:
+                                            children += values[i]
+                                        else:       # left recursion: extend the list in place
+                                            children = values[i]
+                                    else:
+                                        children.append(values[i])
+                                if nones:
+                                    children += [None] * nones
+                            else:
+                                children = values
+                            if how == INLINE:
+                                push(function(*children))
+                            elif how == SPLICE:
+                                push(children)
+                            elif how != TREE and len(children) == 1:        # SINGLE, SINGLE_TREE
+                                push(children[0])
+                            else:
+                                push(function(*children) if how == SINGLE else function(children))
+                    elif how == CALL_PICK:
+                        push(function(*pick(values)))
+                    elif how == LIST_ONE:
+                        push(values[pick])
+                    elif how == CALL_SPREAD:
+                        push(function(*values[pick]))
+                    elif how == CALL_ALL:
+                        push(function(*values))
+                    elif how == LIST_ALL:
+                        push(values)
+                    else:                   # CALL_ONE
+                        push(function(values[pick]))
+                    state = gotos[state_stack[-1]]
+                    state_stack.append(state)
                 if token is _END and state == end_state:
                     return value_stack[-1]
