@@ -63,6 +63,12 @@ _WALKED: dict[int, tuple] = {}
 _WALKED_ENTRIES = 16384     # (a compile of generated/iec lists about 3,000 distinct nodes)
 
 
+def forget_walks() -> None:
+    """Drop the nodes `walk` and `_nodes` keep (compile_program, before and after a compile:
+    they serve one compile, and would keep an earlier load's AST alive)."""
+    _WALKED.clear()
+
+
 def once(table: dict, node, work):
     """`work()` for `node`, worked out once: kept in `table` by id with the node itself (so
     no other node can take that id while the entry lives).  For what one compile or load asks
