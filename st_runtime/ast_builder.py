@@ -17,6 +17,7 @@ import dataclasses
 from lark import Transformer, v_args
 
 from . import ast
+from .ast import Pos
 from .diagnostics import Diagnostic
 from .literals import (
     BOOL_TYPES,
@@ -89,7 +90,11 @@ class AstBuilder(Transformer):
         self.errors = []
 
     def _pos(self, token) -> ast.Pos:
-        return ast.Pos(self.path, token.line, token.column)
+        try:        # a token of the fast loop: line and column in one look-up (lalr_fast._Token)
+            line, column = token.lines.at(token.start_pos)
+        except AttributeError:      # a token of Lark's own loop: counted as it lexed
+            line, column = token.line, token.column
+        return Pos(self.path, line, column)
 
     def _error(self, code: str, message: str, pos: ast.Pos) -> None:
         self.errors.append(Diagnostic(code, message, pos))

@@ -126,6 +126,11 @@ LIST_ALL = 13    # SPLICE keeping every child in order: the popped values are th
 LIST_ONE = 14    # SPLICE keeping one spliced child only: that child's list itself
 CALL_SPREAD = 15  # INLINE keeping one spliced child only: the method on its items
 GENERAL = 16     # anything else: the plan, read child by child
+# The steps done in place on the stacks, numbered last (the loop tests `how >= CALL_TOP`):
+CALL_TOP = 17    # CALL_ALL of one child: the method on the top value, in place
+LIST_TOP = 18    # LIST_ALL of one child: the list of the top value, in place
+LIST_GROW = 19   # SPLICE of a list and one more child (a left-recursive list): the list, grown
+LIST_JOIN = 20   # SPLICE of two lists: the first, extended by the second
 
 
 def _builds_tree(callback) -> bool:
@@ -177,6 +182,18 @@ class _Actions(dict):
         return actions
 
 
+class _Scanners(dict):
+    """Parser state -> the `match` of its lexer's one-call scanner (FastLalr._scanner),
+    made on first use."""
+
+    def __init__(self, fast: "FastLalr") -> None:
+        super().__init__()
+        self.fast = fast
+
+    def __missing__(self, state: int):
+        return self.fast._scanner(state)
+
+
 class _Gotos(dict):
     """State -> the state after a reduction to one rule `origin` on top of it (Lark's
     goto), looked up in Lark's table on first use."""
@@ -203,7 +220,7 @@ class FastLalr:
         self.actions = _Actions(self)                     # state -> its actions, with steps
         self.gotos: dict[str, _Gotos] = {}                # rule name -> _Gotos
         self.units: dict[tuple, int] = {}                 # (state below, state, token) -> _unit_chain
-        self.scanners: dict[int, object] = {}             # parser state -> _scanner
+        self.scanners = _Scanners(self)                   # parser state -> _scanner
         self.scanners_by_lexer: dict = {}                 # lexer -> _scanner (states share lexers)
         self.blanks = None                                # WS's fullmatch
         try:
@@ -227,7 +244,24 @@ class FastLalr:
         self.usable = new_token is not None and PLAIN_TOKENS and _create_unless is not None and not any(isinstance(k, str) for k in self.callbacks) \
             and all(self._plan(rule)[2] == SPLICE for rule in self.callbacks
                     if rule.origin.name.startswith("_"))
+        self.unkept = self._unkept()
         self.rules.clear()
+        self.unread, self.unread_beside = self.unkept - self.retyped, self.retyped
+
+    def _unkept(self) -> frozenset:
+        """The terminals no rule keeps as a child (punctuation, `END_IF`, ...: Lark's child
+        filters leave them out of every callback), so no token of them is ever read."""
+        seen, kept = set(), set()
+        for rule in self.callbacks:
+            _, _, kind, _, keep, _, _ = self._plan(rule)
+            every = keep is None or kind == LARK
+            kept_at = {i for i, _, _ in keep} if not every else ()
+            for i, symbol in enumerate(rule.expansion):
+                if symbol.is_term:
+                    seen.add(symbol.name)
+                    if every or i in kept_at:
+                        kept.add(symbol.name)
+        return frozenset(seen - kept)
 
     def _plan(self, rule) -> tuple:
         """(size, origin, kind, function, children to keep, Nones to append, rule).
@@ -280,13 +314,16 @@ class FastLalr:
         picked = tuple(range(size)) if keep is None else tuple(i for i, _, _ in keep)
         if simple and kind == INLINE:
             if picked == tuple(range(size)):
-                return size, origin, CALL_ALL, function, None
+                return size, origin, CALL_TOP if size == 1 else CALL_ALL, function, None
             if len(picked) == 1:
                 return size, origin, CALL_ONE, function, picked[0]
             if picked:
                 return size, origin, CALL_PICK, function, itemgetter(*picked)
         if simple and kind == SPLICE and picked == tuple(range(size)):
-            return size, origin, LIST_ALL, function, None
+            return size, origin, LIST_TOP if size == 1 else LIST_ALL, function, None
+        if kind == SPLICE and nones == 0 and keep in (((0, True, 0), (1, False, 0)), ((0, True, 0), (1, True, 0))) \
+                and size == 2:          # (as the general way does: the first list itself, extended)
+            return size, origin, LIST_JOIN if keep[1][1] else LIST_GROW, function, None
         if nones == 0 and keep is not None and len(keep) == 1 and keep[0][1] and not keep[0][2] \
                 and kind in (SPLICE, INLINE):       # (the list itself, as the general way gives)
             return size, origin, LIST_ONE if kind == SPLICE else CALL_SPREAD, function, keep[0][0]
@@ -360,11 +397,14 @@ class FastLalr:
         end_state = self.end_states[start]
         scanners, ignored = self.scanners, self.ignored
         lines = _Lines(text)                    # (a token's line and column, when asked)
+        if retyped is not self.unread_beside:   # (a test retypes every token: then it reads each)
+            self.unread, self.unread_beside = self.unkept - retyped, retyped
+        unread = self.unread
         pos = 0
         while True:
             # Lark's contextual lexer: the next token the parser's state accepts
             # (BasicLexer.next_token, then the postlexer), inline
-            scan = scanners.get(state) or self._scanner(state)
+            scan = scanners[state]
             while True:
                 found = scan(text, pos)
                 if found is None:
@@ -381,11 +421,14 @@ class FastLalr:
                 value = text[start:pos]
                 if kind in reserving:           # the keyword callback (parser.reserve_keywords), inline
                     kind = keywords.get(value.upper(), kind)
-                token = str_new(lazy, value)    # Token._future_new, inline, the positions when asked
-                token.type, token.start_pos, token.value, token.lines = kind, start, value, lines
-                if kind in retyped:
-                    token = retype(token)
-                    kind = token.type
+                if kind in unread:              # a token no callback is given: its place only
+                    token = kind
+                else:
+                    token = str_new(lazy, value)    # Token._future_new, inline, the positions when asked
+                    token.type, token.start_pos, token.value, token.lines = kind, start, value, lines
+                    if kind in retyped:
+                        token = retype(token)
+                        kind = token.type
             while True:
                 action, step = table[state][kind]
                 if action is Shift:
@@ -396,7 +439,20 @@ class FastLalr:
                     push(token)
                     break
                 size, origin, how, function, pick, gotos = step
-                if how == UNIT:         # the value stays; the state is the goto's
+                if how >= CALL_TOP:     # in place: the top value replaced, or the list below grown
+                    if how == CALL_TOP:
+                        value_stack[-1] = function(value_stack[-1])
+                    elif how == LIST_TOP:
+                        value_stack[-1] = [value_stack[-1]]
+                    else:               # LIST_GROW, LIST_JOIN: two children, the first a list
+                        last = value_stack.pop()
+                        del state_stack[-1]
+                        if how == LIST_GROW:
+                            value_stack[-1].append(last)
+                        else:
+                            value_stack[-1] += last
+                    state = state_stack[-1] = gotos[state_stack[-2]]
+                elif how == UNIT:       # the value stays; the state is the goto's
                     below = state_stack[-2]
                     chain = (below, state, kind)
                     state = units.get(chain)
@@ -404,54 +460,55 @@ class FastLalr:
                         state = units[chain] = self._unit_chain(below, gotos[below], kind)
                     state_stack[-1] = state
                     continue
-                if size:
-                    values = value_stack[-size:]
-                    del state_stack[-size:]
-                    del value_stack[-size:]
                 else:
-                    values = []
-                if how == CALL_ALL:
-                    push(function(*values))
-                elif how == LIST_ALL:
-                    push(values)
-                elif how == CALL_PICK:
-                    push(function(*pick(values)))
-                elif how == CALL_ONE:
-                    push(function(values[pick]))
-                elif how == LIST_ONE:
-                    push(values[pick])
-                elif how == CALL_SPREAD:
-                    push(function(*values[pick]))
-                else:       # GENERAL: Lark's ChildFilterLALR and the wrapper, inline
-                    _, _, how, function, keep, nones, _ = pick
-                    if how == LARK:
-                        push(function(values))
+                    if size:
+                        values = value_stack[-size:]
+                        del state_stack[-size:]
+                        del value_stack[-size:]
                     else:
-                        if keep is not None:
-                            children = []
-                            for i, splice, before in keep:
-                                if before:
-                                    children += [None] * before
-                                if splice:
-                                    if children:
-                                        children += values[i]
-                                    else:       # left recursion: extend the list in place
-                                        children = values[i]
-                                else:
-                                    children.append(values[i])
-                            if nones:
-                                children += [None] * nones
+                        values = []
+                    if how == GENERAL:      # Lark's ChildFilterLALR and the wrapper, inline
+                        _, _, how, function, keep, nones, _ = pick
+                        if how == LARK:
+                            push(function(values))
                         else:
-                            children = values
-                        if how == INLINE:
-                            push(function(*children))
-                        elif how == SPLICE:
-                            push(children)
-                        elif how != TREE and len(children) == 1:        # SINGLE, SINGLE_TREE
-                            push(children[0])
-                        else:
-                            push(function(*children) if how == SINGLE else function(children))
-                state = gotos[state_stack[-1]]
-                state_stack.append(state)
+                            if keep is not None:
+                                children = []
+                                for i, splice, before in keep:
+                                    if before:
+                                        children += [None] * before
+                                    if splice:
+                                        if children:
+                                            children += values[i]
+                                        else:       # left recursion: extend the list in place
+                                            children = values[i]
+                                    else:
+                                        children.append(values[i])
+                                if nones:
+                                    children += [None] * nones
+                            else:
+                                children = values
+                            if how == INLINE:
+                                push(function(*children))
+                            elif how == SPLICE:
+                                push(children)
+                            elif how != TREE and len(children) == 1:        # SINGLE, SINGLE_TREE
+                                push(children[0])
+                            else:
+                                push(function(*children) if how == SINGLE else function(children))
+                    elif how == CALL_PICK:
+                        push(function(*pick(values)))
+                    elif how == LIST_ONE:
+                        push(values[pick])
+                    elif how == CALL_SPREAD:
+                        push(function(*values[pick]))
+                    elif how == CALL_ALL:
+                        push(function(*values))
+                    elif how == LIST_ALL:
+                        push(values)
+                    else:                   # CALL_ONE
+                        push(function(values[pick]))
+                    state = gotos[state_stack[-1]]
+                    state_stack.append(state)
                 if token is _END and state == end_state:
                     return value_stack[-1]

@@ -253,3 +253,23 @@ def test_only_larks_newline_terminals_can_hold_a_line_end():
         regexp = terminal.pattern.to_regexp()
         assert not _may_match_a_line_end(_parser.parse(regexp)), terminal.name
         assert not re.search("\n", terminal.pattern.value), terminal.name
+
+
+def test_a_token_no_rule_keeps_is_never_read():
+    """The loop makes no Token of a terminal that every rule's child filter leaves out
+    (lalr_fast.FastLalr._unkept: `:=`, `:`, `END_VAR`, ...): with a Token made for
+    every terminal, as Lark's lexer does, the ASTs and their positions are the same."""
+    fast = st_parser.grammar().fast
+    assert {"_ASSIGN", "_COLON", "_END_VAR", "_END_PROGRAM", "_LPAR"} <= fast.unkept
+    assert not {"IDENT", "PROGRAM", "INT"} & fast.unkept    # (kept: names, positions, values)
+    for path in FILES[::5]:
+        text = path.read_text(encoding="utf-8", errors="replace")
+        lean = st_parser.parse(text, path.name)
+        unkept = fast.unkept
+        fast.unkept = frozenset()
+        fast.unread_beside = None        # (worked out again from `unkept` on the next parse)
+        try:
+            full = st_parser.parse(text, path.name)
+        finally:
+            fast.unkept, fast.unread_beside = unkept, None
+        assert lean == full and _positions(lean) == _positions(full), path

@@ -38,6 +38,7 @@ What the CheckedProgram holds (the compiler's contract):
 from __future__ import annotations
 
 import sys
+from itertools import islice
 
 from .. import ast
 from ..diagnostics import Diagnostic, register
@@ -106,7 +107,11 @@ def _check(files, dialect, memory_limit=None, open_instances=False, share_prelud
             Declarations(ctx, base).run(program.files[1:])
         else:
             Declarations(ctx).run(program.files)
-        for info in program.pous.values():
+        pous = iter(program.pous.values())
+        if program.prelude is not None and program.prelude.memo("bodiless", lambda: all(
+                info.node is None or info.native is not None for info in base.pous.values())):
+            pous = islice(pous, len(base.pous), None)     # (its POUs lead the table: none to check)
+        for info in pous:
             if info.node is None or info.native is not None:
                 continue
             ex = ExprChecker(ctx, Scope(ctx, info))

@@ -224,8 +224,13 @@ class Declarations:
             return
         self._adopted = True
         self.program.types.update(base.types)
+        enum_values = self.ctx.enum_values
+        if not enum_values:         # (as the loop below makes them, at once)
+            names, enums = base.enum_lists
+            enum_values.update(zip(names, map(list, enums)))
+            return
         for name, enums in base.enum_values.items():
-            self.ctx.enum_values.setdefault(name, []).extend(enums)
+            enum_values.setdefault(name, []).extend(enums)
 
     def _adopt(self, k: str):
         """A prelude TYPE enters this load's tables as resolving it did in the full check:

@@ -96,6 +96,15 @@ def _is_plain_literal(e) -> bool:
     return isinstance(e, ast.IntLiteral)
 
 
+#: node class -> the ExprChecker method that types it (`_` + the class name), or None.
+_TYPERS: dict = {}
+
+
+def _typer(cls: type):
+    method = _TYPERS[cls] = getattr(ExprChecker, "_" + cls.__name__, None)
+    return method
+
+
 def _range(t) -> str:
     return f"{t.min}..{t.max}" if isinstance(t, T.ElementaryType) else "?"
 
@@ -195,10 +204,10 @@ class ExprChecker:
             settled = self.settle(e, expected, strict)
             if settled is not None:
                 return settled
-        method = getattr(self, "_" + type(e).__name__, None)
+        method = _TYPERS.get(type(e)) or _typer(type(e))
         if method is None:
             return self.record(e, ts.ERROR)
-        return method(e, expected)
+        return method(self, e, expected)
 
     def check_value(self, e, dst, what: str):
         """Type `e` for storing into type `dst`; report when it cannot be."""

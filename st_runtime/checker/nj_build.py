@@ -39,7 +39,8 @@ def check_build_rules(ctx: Context, files) -> None:
             if isinstance(item, ast.Pou):
                 if ctx.walked[id(item)].build_nodes:    # (the structural walk saw one: limits.py)
                     for node in _walk(item.body):
-                        _body_node(ctx, node)
+                        if isinstance(node, _RULE_NODES):
+                            _body_node(ctx, node)
                 for block in item.var_blocks:
                     _initial_values(ctx, block.decls)
             elif isinstance(item, ast.VarBlock):
@@ -54,16 +55,37 @@ def check_build_rules(ctx: Context, files) -> None:
                     _initial_values(ctx, item.spec.members)
 
 
-def _walk(node):
+#: The nodes rules 006 and 007 look at (`_body_node`).
+_RULE_NODES = (ast.Index, ast.Member, ast.Case)
+
+
+class _LastFieldFirst(dict):
+    """node class -> its child fields from the last to the first (pushed so, the walk
+    pops them in field order)."""
+
+    def __missing__(self, cls: type) -> tuple:
+        names = self[cls] = tuple(reversed(ast.CHILD_FIELDS[cls]))
+        return names
+
+
+_LAST_FIELD_FIRST = _LastFieldFirst()
+
+
+def _walk(node) -> list:
     """Every AST node below `node` (statements, expressions, labels), depth first."""
+    out = []
     stack = [node]           # (iterative: the same preorder as recursing, in linear time)
+    pop, push, extend, add, Node, last_first = stack.pop, stack.append, stack.extend, out.append, \
+        ast.Node, _LAST_FIELD_FIRST
     while stack:
-        item = stack.pop()
+        item = pop()
         if isinstance(item, (tuple, list)):
-            stack.extend(reversed(item))
-        elif isinstance(item, ast.Node):
-            yield item
-            stack.extend(reversed([getattr(item, name) for name in ast.CHILD_FIELDS[type(item)]]))
+            extend(reversed(item))
+        elif isinstance(item, Node):
+            add(item)
+            for name in last_first[type(item)]:
+                push(getattr(item, name))
+    return out
 
 
 def _body_node(ctx: Context, node) -> None:

@@ -27,6 +27,7 @@ Why the result is exactly today's (the full check of prelude + user files):
 from __future__ import annotations
 
 from dataclasses import dataclass, field, fields
+from functools import cached_property
 
 from .. import ast
 from ..symbols import CheckedProgram
@@ -75,14 +76,30 @@ class PreludeBase:
 
     def seed(self, ctx: Context) -> None:
         """Fill a new load's Context and CheckedProgram with copies of the prelude's tables
-        (types and enumeration values excepted: they enter lazily, in the full check's order)."""
+        (types and enumeration values excepted: they enter lazily, in the full check's order).
+        A table the prelude left empty is not copied: a new Context or CheckedProgram holds
+        an empty one of the same kind already (most of them: `filled`)."""
         program = ctx.program
-        for name, table in self.program_tables.items():
+        program_tables, context_tables = self.filled
+        for name, table in program_tables:
             setattr(program, name, table.copy())
-        for name, table in self.context_tables.items():
+        for name, table in context_tables:
             setattr(ctx, name, table.copy())
         program.types = dict(self.pou_types)    # (its TYPEs enter later, see Declarations)
-        ctx.calls = {caller: list(edges) for caller, edges in self.context_tables["calls"].items()}
+        if self.context_tables["calls"]:
+            ctx.calls = {caller: list(edges) for caller, edges in self.context_tables["calls"].items()}
+
+    @cached_property
+    def filled(self) -> tuple[tuple, tuple]:
+        """The (name, table) of the program and context tables the prelude filled."""
+        return (tuple((name, table) for name, table in self.program_tables.items() if table),
+                tuple((name, table) for name, table in self.context_tables.items()
+                      if table and name != "calls"))
+
+    @cached_property
+    def enum_lists(self) -> tuple[tuple, tuple]:
+        """`enum_values` as (its keys, their tuples): a load's lists are made from them at once."""
+        return tuple(self.enum_values), tuple(self.enum_values.values())
 
     def clashes(self, files: list[ast.SourceFile]) -> bool:
         """Whether a user file declares a TYPE or POU named like one of the prelude's."""

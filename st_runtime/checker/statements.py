@@ -13,6 +13,11 @@ from .expressions import ExprChecker, start_pos
 from .stores import check_store
 
 
+#: statement class -> the StatementChecker method that checks it (`_` + the class name), or None.
+_CHECKS: dict = {}
+_UNKNOWN = object()
+
+
 class StatementChecker:
     def __init__(self, ex: ExprChecker):
         self.ex = ex
@@ -25,9 +30,11 @@ class StatementChecker:
             self.statement(stmt)
 
     def statement(self, s) -> None:
-        method = getattr(self, "_" + type(s).__name__, None)
+        method = _CHECKS.get(type(s), _UNKNOWN)
+        if method is _UNKNOWN:
+            method = _CHECKS[type(s)] = getattr(StatementChecker, "_" + type(s).__name__, None)
         if method is not None:
-            method(s)
+            method(self, s)
 
     # ------------------------------------------------------------ simple
     def _Assign(self, s: ast.Assign) -> None:

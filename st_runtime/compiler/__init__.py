@@ -52,7 +52,7 @@ from .calls import Calls
 from .initial import CompileError, Initial, InitialValues
 from .optimise import Optimisations
 from .pysrc import Emitter, pyliteral, safe_name, pyident
-from .scope import edge_inputs, edge_slot
+from .scope import edge_inputs, edge_slot, forget_walks
 from .statements import BodyCompiler
 
 __all__ = ["compile_program", "CompiledProgram", "CompileError", "Optimisations"]
@@ -212,6 +212,14 @@ def compile_program(program, guard_statements: bool = True, charge_costs: bool =
     `optimise` switches the exact optimisation passes (optimise/); None takes
     `Optimisations.from_environment()` (all, unless ST_RUNTIME_OPTIMISE says).
     """
+    forget_walks()      # (what a compile lists of its nodes is its own: none kept from another)
+    try:
+        return _compile(program, guard_statements, charge_costs, optimise)
+    finally:
+        forget_walks()
+
+
+def _compile(program, guard_statements, charge_costs, optimise) -> CompiledProgram:
     unit = CompileUnit(program)
     unit.optimise = optimise if optimise is not None else _optimisations_of_environment()
     unit.guard_statements = guard_statements

@@ -56,16 +56,17 @@ def walk(node):
             return iter(node)            # (one leaf, as `walk((expr,))` often asks: nothing to keep)
     elif type(node) in _LEAVES:
         return iter((node,))
-    hit = _WALKED.get(id(node))
-    if hit is None or hit[0] is not node:
-        if len(_WALKED) >= _WALKED_ENTRIES:
-            _WALKED.clear()
-        hit = _WALKED[id(node)] = (node, _nodes(node))
-    return iter(hit[1])
+    return iter(_nodes(node))
 
 
 _WALKED: dict[int, tuple] = {}
-_WALKED_ENTRIES = 4096      # (a compile of generated/iec walks about 900 distinct nodes)
+_WALKED_ENTRIES = 16384     # (a compile of generated/iec lists about 3,000 distinct nodes)
+
+
+def forget_walks() -> None:
+    """Drop the nodes `walk` and `_nodes` keep (compile_program, before and after a compile:
+    they serve one compile, and would keep an earlier load's AST alive)."""
+    _WALKED.clear()
 
 
 def once(table: dict, node, work):
@@ -94,7 +95,21 @@ _LOOPS = (ast.For, ast.While, ast.Repeat)
 
 def _nodes(node) -> list:
     """The nodes under `node` in the walk's order: a node, then the nodes of its fields
-    from the last to the first, the items of a tuple in order."""
+    from the last to the first, the items of a tuple in order.  Listed once and kept,
+    as `walk` keeps them (the optimiser's passes ask again for a statement or an
+    expression a pass before them listed): the list is shared, read it only."""
+    if type(node) in _LEAVES:
+        return [node]
+    hit = _WALKED.get(id(node))
+    if hit is None or hit[0] is not node:
+        if len(_WALKED) >= _WALKED_ENTRIES:
+            _WALKED.clear()
+        hit = _WALKED[id(node)] = (node, _listed(node))
+    return hit[1]
+
+
+def _listed(node) -> list:
+    """`_nodes(node)`, listed."""
     out = []
     stack = [node]
     pop, push, extend, add = stack.pop, stack.append, stack.extend, out.append
