@@ -358,24 +358,34 @@ def test_a_standard_fb_holds_its_initial_values_before_its_first_call(optimise):
 
 SUBRANGE_FOR = """PROGRAM Main
 VAR i : INT(1..5); s : INT; n : INT := 10; y : INT; END_VAR
-FOR i := 1 TO n DO s := s + i; END_FOR;
+{loop}
 y := 7;
 END_PROGRAM
 """
 
+# IEC 61131-3 (FOR): the variable takes the start, and after each iteration variable + step,
+# tested against the end; this runtime's rule for a subrange: a store outside the limits is
+# F-SUBRANGE in the statement that makes it, which is abandoned (README, "subranges").  So a
+# FOR past 5 runs i = 1..5 (s = 15 by hand) and faults at the store of 6 - also a FOR to 5,
+# whose last increment stores 6 - and the scan goes on (y := 7), i never outside 1..5.
+SUBRANGE_LOOPS = {  # loop: (s, i, faults)
+    "to a variable past the limit": ("FOR i := 1 TO n DO s := s + i; END_FOR;", 15, 5, [("F-SUBRANGE", 3)]),
+    "to the limit": ("FOR i := 1 TO 5 DO s := s + i; END_FOR;", 15, 5, [("F-SUBRANGE", 3)]),
+    "to below the limit": ("FOR i := 1 TO 4 DO s := s + i; END_FOR;", 10, 5, []),
+    "by 2 past the limit": ("FOR i := 1 TO n - 1 BY 2 DO s := s + i; END_FOR;", 9, 5, [("F-SUBRANGE", 3)]),
+    "CONTINUE past the limit": ("FOR i := 1 TO n DO IF i = 2 THEN CONTINUE; END_IF; s := s + i; END_FOR;",
+                                13, 5, [("F-SUBRANGE", 3)]),
+    "a start outside (1 the initial value)": ("FOR i := n - 10 TO 3 DO s := s + 1; END_FOR;", 0, 1,
+                                              [("F-SUBRANGE", 3)]),
+}
 
-@pytest.mark.xfail(strict=True, raises=Exception,
-                   reason="statements.py s_For / _after_for: the FOR variable of a subrange type takes the values "
-                          "past its limits in the loop unchecked, and the final value's _subrange store stands "
-                          "outside the statement's fault handling: F-SUBRANGE escapes the scan (reported to the lead)")
+
 @PASSES
-def test_a_for_variable_of_a_subrange_type_faults_in_its_statement(optimise):
-    # IEC 61131-3 6.4.4.3.2 / this runtime's rule for a subrange store: a value outside the
-    # limits is F-SUBRANGE in the statement that stores it, which is abandoned; the scan goes
-    # on (y := 7) and the variable never holds a value outside 1..5.
-    _, main, faults = run(SUBRANGE_FOR, optimise)
-    assert [(code, line) for code, line, _ in faults] == [("F-SUBRANGE", 3)]
-    assert main.v_Y == 7 and 1 <= main.v_I <= 5
+@pytest.mark.parametrize("row", SUBRANGE_LOOPS.values(), ids=SUBRANGE_LOOPS.keys())
+def test_a_for_variable_of_a_subrange_type_faults_in_its_statement(row, optimise):
+    loop, s, i, faults = row
+    _, main, got = run(SUBRANGE_FOR.format(loop=loop), optimise)
+    assert ([(code, line) for code, line, _ in got], main.v_S, main.v_I, main.v_Y) == (faults, s, i, 7)
 
 
 WRITE_ONLY = """FUNCTION_BLOCK Tank
@@ -515,10 +525,30 @@ END_PROGRAM
 """
 
 
-@pytest.mark.xfail(strict=True, reason="the result of a FUNCTION of a derived type with an initial value starts at "
-                                       "its base type's 0, not the derived type's 5 (statements.py prologue: the "
-                                       "RETURN symbol's type is resolved; reported to the lead)")
 @PASSES
 def test_a_function_result_of_a_derived_type_starts_at_the_types_initial_value(optimise):
     _, main, faults = run(DERIVED_RESULT, optimise)
     assert (main.v_Y1, main.v_Y2, main.v_V, faults) == (5, 3, 5, [])
+
+
+DERIVED_METHOD_RESULT = """TYPE Speed : INT := 5; END_TYPE
+FUNCTION_BLOCK Drive
+METHOD Pick : Speed
+VAR_INPUT a : INT; END_VAR
+IF a > 0 THEN Pick := a; END_IF;
+END_METHOD
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR d : Drive; y1, y2 : INT; END_VAR
+y1 := d.Pick(a := 0);
+y2 := d.Pick(a := 4);
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_a_method_result_of_a_derived_type_starts_at_the_types_initial_value(optimise):
+    # IEC 61131-3:2013 table 11: a derived type's initial value is every variable's of that
+    # type; a METHOD's result is one (5 when the METHOD does not set it, by hand).
+    _, main, faults = run(DERIVED_METHOD_RESULT, optimise, dialect="codesys")
+    assert (main.v_Y1, main.v_Y2, faults) == (5, 4, [])

@@ -593,7 +593,8 @@ class Declarations:
         ex = ExprChecker(self.ctx, Scope(self.ctx, info))
         if node.return_type is not None:
             info.return_type = self.resolve(node.return_type, ex)
-            info.variables[key(node.name)] = Symbol(node.name, info.return_type, "RETURN", None)
+            info.variables[key(node.name)] = Symbol(node.name, info.return_type, "RETURN", None,
+                                                    init=self._default_init(node.return_type))
         for block in node.var_blocks:
             for decl in block.decls:
                 self.declare(decl, block, info.variables, ex, info)
@@ -609,7 +610,10 @@ class Declarations:
             if fb_type_of(rt):
                 self.ctx.error("E-DECL-009", f"FUNCTION {node.name} returns function block type "
                                f"{fb_type_of(rt).name}: expected a data type", node.return_type.pos)
-            info.variables[key(node.name)] = Symbol(node.name, rt, "RETURN", None)
+            # a result of a derived type starts at that type's initial value (IEC 61131-3:2013
+            # table 11), as a variable of the type does (`declare`)
+            info.variables[key(node.name)] = Symbol(node.name, rt, "RETURN", None,
+                                                    init=self._default_init(node.return_type))
         for block in node.var_blocks:
             if block.kind == "VAR_GLOBAL":
                 for decl in block.decls:

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 from .. import ast
 from ..objects import is_aggregate
-from ..types import resolve_alias
+from ..types import SubrangeType, resolve_alias
 from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
@@ -80,7 +80,7 @@ class BodyCompiler(ExprCompiler):
             from ..symbols import Symbol
             from .scope import VarPlace
 
-            symbol = Symbol(self.pou.name, self.pou.return_type, "RETURN")
+            symbol = self.pou.variables.get(key) or Symbol(self.pou.name, self.pou.return_type, "RETURN")
             how = "cell" if key in self.scope.usage.referenced else ("alias" if is_aggregate(symbol.type) else "local")
             self.scope.places[key] = VarPlace(symbol, how, pyident(self.pou.name))
             self.scope.prologue.append(("init", symbol, pyident(self.pou.name), how))
@@ -220,7 +220,7 @@ class BodyCompiler(ExprCompiler):
             return f"{held} = {name}; {name} = {maker}(); {copy_statement(name, held, symbol.type)}"
         _, symbol, name, how = item
         initial = self.unit.initial.of_symbol(symbol) if symbol.kind != "RETURN" \
-            else self.unit.initial.of(symbol.type, None, ast.NOWHERE)
+            else self.unit.initial.of(symbol.type, symbol.init, ast.NOWHERE)
         value = self.literal(initial.const, symbol.type) if initial.is_const \
             else self.unit.register_maker(initial.maker) + "()"
         if how == "shared":
@@ -694,8 +694,7 @@ class BodyCompiler(ExprCompiler):
             return
         key = s.variable.upper()
         assigned = assigned_in(self, s.body)
-        if key in assigned or place.how == "global":
-            # The body may change the variable (a global can change in any call).
+        if fastpath.tests_its_variable(self, s, place):
             self._for_as_while(s, target, var_t, step_value if const_step else None, assigned)
             return
         before = self.flow.state() if self.flow is not None else None
@@ -940,16 +939,22 @@ class BodyCompiler(ExprCompiler):
             test = f"({target.read()} <= {end_tmp} if {step_code} > 0 else {target.read()} >= {end_tmp})"
         else:
             test = f"{target.read()} {'<=' if step > 0 else '>='} {end_tmp}"
-        increment = target.store(self.convert(f"{target.read()} + {step_code}", None, var_t))
+        increment = [target.store(self.convert(f"{target.read()} + {step_code}", None, var_t))]
+        if isinstance(resolve_alias(var_t), SubrangeType):
+            # a store past the subrange is F-SUBRANGE in the FOR, which it ends (the variable
+            # keeps its last value in range); CONTINUE runs the same lines (_Loop)
+            increment = ["try:", "    " + increment[0], "except _FAULTS as _e:",
+                         f"    _ctx.fault(_e, {self.where(s)})", "    break"]
         o.line(f"if {end_tmp} is not None:")
         o.indent()
         o.line(f"while {test}:")
         o.indent()
-        self.loops.append(_Loop(key, assigned, "WHILE", [increment]))
+        self.loops.append(_Loop(key, assigned, "WHILE", increment))
         self.statements(s.body, self.cost.loop() + self.cost.w["compare"], self.where(s))
         self._forget(s.body)
         self.loops.pop()
-        o.line(increment)
+        for line in increment:
+            o.line(line)
         o.dedent()
         o.dedent()
 

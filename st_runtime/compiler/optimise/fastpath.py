@@ -39,7 +39,7 @@ from dataclasses import replace
 
 from ... import ast
 from ...native import NATIVE_FBS
-from ...types import ArrayType, resolve_alias
+from ...types import ArrayType, SubrangeType, resolve_alias
 from ..scope import assigned_in, once, walk
 
 _JUMPS = (ast.Exit, ast.Continue, ast.Return)
@@ -243,10 +243,18 @@ def _values(compiler, s) -> range | None:
     step = 1 if s.step is None else compiler.constant_of(s.step)
     if not all(type(v) is int for v in (start, end, step)) or step == 0:
         return None
-    place = compiler.scope.place_of(ast.Name(s.variable, pos=s.pos))
-    if place.how == "global" or s.variable.upper() in assigned_in(compiler, s.body):
+    if tests_its_variable(compiler, s, compiler.scope.place_of(ast.Name(s.variable, pos=s.pos))):
         return None         # a loop that tests its variable: its count is data
     return range(start, end + (1 if step > 0 else -1), step)
+
+
+def tests_its_variable(compiler, s, place) -> bool:
+    """Whether a FOR runs as a loop that stores and tests its variable each iteration
+    (statements._for_as_while) rather than over a range computed once: when the body may
+    change the variable (a global can change in any call), or when the variable is of a
+    subrange type, whose every store is checked (F-SUBRANGE, also the last increment)."""
+    return (place.how == "global" or s.variable.upper() in assigned_in(compiler, s.body)
+            or isinstance(resolve_alias(place.symbol.type), SubrangeType))
 
 
 def worth_it(exact_lines: list[str]) -> bool:
