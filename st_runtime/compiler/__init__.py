@@ -118,6 +118,9 @@ class CompileUnit:
         self.calls = Calls(self)
         self.sources: dict[str, str] = {}
         self.constant_ranges: dict[int, tuple | None] = {}   # id(Symbol) -> element range
+        # id(statement) -> its charged units (BodyCompiler._simple_cost / _head_cost): from the
+        # ST text only, so one table a load (fastpath bounds a callee with its own compile's)
+        self.head_costs: dict[int, float] = {}
         self.image = ProcessImage()
         #: "types", "pous" -> how many first entries of the table are the shared prelude's
         self.prelude_lead: dict[str, int] = {}

@@ -55,9 +55,7 @@ class BodyCompiler(ExprCompiler):
         self.body = body
         self.out = Emitter()
         self.cost = CostModel(program)
-        # id(statement) -> `_simple_cost` or `_head_cost`: from the ST text only, so one table a
-        # load (fastpath.worst_case bounds a callee with the costs its own compile charges)
-        self._head_costs: dict[int, float] = unit.__dict__.setdefault("head_costs", {})
+        self._head_costs = unit.head_costs
         self._blocks_memo: dict[int, tuple] = {}       # id(body) -> (body, `_costed_blocks`)
         self._entries_memo: dict[int, tuple] = {}      # id(IF) -> (IF, `_if_entries`)
         self.flow = ranges.Flow(self, body) if self.opt.ranges else None    # integer locals' ranges
@@ -939,12 +937,15 @@ class BodyCompiler(ExprCompiler):
             test = f"({target.read()} <= {end_tmp} if {step_code} > 0 else {target.read()} >= {end_tmp})"
         else:
             test = f"{target.read()} {'<=' if step > 0 else '>='} {end_tmp}"
-        increment = [target.store(self.convert(f"{target.read()} + {step_code}", None, var_t))]
-        if isinstance(resolve_alias(var_t), SubrangeType):
-            # a store past the subrange is F-SUBRANGE in the FOR, which it ends (the variable
-            # keeps its last value in range); CONTINUE runs the same lines (_Loop)
-            increment = ["try:", "    " + increment[0], "except _FAULTS as _e:",
-                         f"    _ctx.fault(_e, {self.where(s)})", "    break"]
+        store = target.store(self.convert(f"{target.read()} + {step_code}", None, var_t))
+
+        def increment():        # also what CONTINUE runs first (_Loop)
+            if isinstance(resolve_alias(var_t), SubrangeType):
+                # a store past the subrange is F-SUBRANGE in the FOR, which it ends (the
+                # variable keeps its last value in range)
+                self.guard(s, lambda: o.line(store), lambda: ["break"])
+            else:
+                o.line(store)
         o.line(f"if {end_tmp} is not None:")
         o.indent()
         o.line(f"while {test}:")
@@ -953,8 +954,7 @@ class BodyCompiler(ExprCompiler):
         self.statements(s.body, self.cost.loop() + self.cost.w["compare"], self.where(s))
         self._forget(s.body)
         self.loops.pop()
-        for line in increment:
-            o.line(line)
+        increment()
         o.dedent()
         o.dedent()
 
@@ -1006,8 +1006,7 @@ class BodyCompiler(ExprCompiler):
 
     def s_Continue(self, s):
         if self.loops:
-            for line in self.loops[-1].on_continue:
-                self.out.line(line)
+            self.loops[-1].on_continue()
         self.out.line("continue")
 
     def s_Return(self, s):
@@ -1025,11 +1024,11 @@ class BodyCompiler(ExprCompiler):
 class _Loop:
     """A loop being compiled: what its body leaves unchanged, what was hoisted."""
 
-    def __init__(self, variable: str, assigned: set[str], kind: str, on_continue: list[str] = ()):
+    def __init__(self, variable: str, assigned: set[str], kind: str, on_continue=lambda: None):
         self.variable = variable
         self.assigned = assigned
         self.hoistable = kind == "FOR"           # a range-based FOR: code may move before it
-        self.on_continue = list(on_continue)     # statements CONTINUE runs first (an increment)
+        self.on_continue = on_continue          # emits what CONTINUE runs first (an increment)
         self.hoisted: dict[str, str] = {}     # Python expression -> temp computed before the loop
         self.scaled: dict[str, list] = {}     # `i * k` -> [placeholder, uses]: once per iteration
 
