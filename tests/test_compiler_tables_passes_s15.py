@@ -6,9 +6,12 @@ with the pass alone, with none and with every pass, the NJ time charged the same
 
 from __future__ import annotations
 
+import math
+
+import numpy as np
 import pytest
 
-from test_compiler_tables_passes import Row, check, main
+from test_compiler_tables_passes import Row, check, main, modes_fb
 
 ROWS: list[Row] = []
 
@@ -49,6 +52,39 @@ row("ranges", "a cached variable stored through an FB's output is not followed p
     main("arr : ARRAY[1..3] OF INT := [10, 20, 30]; i, y, k : INT; g : NegFb;",
          "i := 1;\ng(q => i);\ny := arr[i];\nFOR k := 1 TO 2 DO y := y + i; END_FOR;", before=NEG_FB),
     {"i": -1, "y": -2}, faults=[("F-INDEX", 9, 1)])
+
+# An argument with no variable at its root (a bit of a directly represented variable) leaves
+# nothing to exclude.  %MW1 = 8 = 2#1000: bit 3 TRUE, bit 2 FALSE; Inv gives their negation.
+INV = """FUNCTION Inv : BOOL
+VAR_INPUT b : BOOL; END_VAR
+Inv := NOT b;
+END_FUNCTION"""
+row("ranges", "an argument that is a bit of a directly represented variable", main(
+    "y, z : BOOL;", "%MW1 := 8;\ny := Inv(%MW1.%X3);\nz := Inv(b := %MW1.%X2);", before=INV),
+    {"y": False, "z": True})
+
+# ---------------------------------------------------------------------------------- spread
+# A cached variable stored in one branch and only read in the other branch of the same IF is
+# loaded in each and stored back in the branch that stores it, and only there (stores.py:
+# "stored back around each that stores it").  Mode 0, 1, 2, 3 by scan: ELSE gives
+# Cnt + 0.5 = 0.5; THEN Cnt = (0 + 1) * 2 = 2, Out = 2.0; ELSE 2.5 twice.
+row("spread", "a branch that only reads a cached variable does not store it back", modes_fb(
+    "IF Mode = 1 THEN Cnt := Cnt + 1; Cnt := Cnt * 2; Out := INT_TO_LREAL(Cnt); "
+    "ELSE Out := INT_TO_LREAL(Cnt) + 0.5; END_IF;"),
+    {"outs": [0.5, 2.0, 2.5, 2.5], "f.Cnt": 2}, scans=4,
+    shape=("FB", r"\n {12,}finally:\n {16,}self\.v_CNT = v_CNT"),
+    never=("FB", r"(?s)self\.v_CNT = v_CNT.*self\.v_CNT = v_CNT"))
+
+# ---------------------------------------------------------------------------------- finite
+# A located REAL may change through another variable at its address (b here): SIN and COS of
+# it test its finiteness each time, no value is shared.  REAL SIN / COS: the float32 nearest
+# the exact result for the float32 input (0.5, then 1.0 stored through b).
+F32 = np.float32
+row("finite", "SIN and COS of a located REAL are no values of the pass", main(
+    "a AT %MD10 : REAL; b AT %MD10 : REAL; x, y, z : REAL;",
+    "a := 0.5;\nx := SIN(a);\nz := COS(a);\nb := 1.0;\ny := SIN(a);"),
+    {"x": float(F32(math.sin(0.5))), "z": float(F32(math.cos(0.5))), "y": float(F32(math.sin(1.0)))},
+    never=("MAIN", r"_c\d+ = "))
 
 
 @pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
