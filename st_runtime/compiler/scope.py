@@ -51,12 +51,23 @@ def walk(node):
     its nodes are listed once and kept for the next walk of the same node (the
     AST is immutable; `_WALKED` holds the node itself, so its id cannot be
     another's while the entry lives)."""
+    return iter(listed(node))
+
+
+def listed(node):
+    """`walk(node)` as a sequence (shared: read it only)."""
     if type(node) is tuple:
         if len(node) == 1 and type(node[0]) in _LEAVES:
-            return iter(node)            # (one leaf, as `walk((expr,))` often asks: nothing to keep)
+            return node            # (one leaf, as `walk((expr,))` often asks: nothing to keep)
     elif type(node) in _LEAVES:
-        return iter((node,))
-    return iter(_nodes(node))
+        return (node,)
+    return _nodes(node)
+
+
+def kinds(node) -> set:
+    """The node classes under `node` (its walk's, counted in C): what a pass looks for
+    is absent from a body when its class is not there."""
+    return set(map(type, listed(node)))
 
 
 _WALKED: dict[int, tuple] = {}
@@ -143,8 +154,10 @@ class Usage:
         self.assigned: set[str] = set()      # direct stores to the variable (root)
         self.referenced: set[str] = set()    # passed whole to a VAR_IN_OUT
         self.count: dict[str, int] = {}      # occurrences; inside a loop they count 10
+        self.nodes = nodes = listed(body)    # the body's nodes, in the walk's order (read only)
+        self.kinds = set(map(type, nodes))   # their classes (`kinds`): the passes' gates
         in_loops: set[int] = set()      # every node of a loop (a walk meets the loop first)
-        for node in walk(body):
+        for node in nodes:
             if isinstance(node, _LOOPS) and id(node) not in in_loops:    # (an inner loop's are in)
                 in_loops.update(map(id, _nodes(node)))
             if isinstance(node, ast.Name):
