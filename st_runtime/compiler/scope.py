@@ -102,6 +102,7 @@ _LEAVES = frozenset({ast.Name, ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral,
 
 
 _LOOPS = (ast.For, ast.While, ast.Repeat)
+_USAGE_NODES = frozenset((ast.Assign, ast.Call) + _LOOPS)     # what `Usage` reads besides names
 
 
 def _nodes(node) -> list:
@@ -157,22 +158,27 @@ class Usage:
         self.nodes = nodes = listed(body)    # the body's nodes, in the walk's order (read only)
         self.kinds = set(map(type, nodes))   # their classes (`kinds`): the passes' gates
         in_loops: set[int] = set()      # every node of a loop (a walk meets the loop first)
+        used, count, Name = self.used, self.count, ast.Name
         for node in nodes:
-            if isinstance(node, _LOOPS) and id(node) not in in_loops:    # (an inner loop's are in)
-                in_loops.update(map(id, _nodes(node)))
-            if isinstance(node, ast.Name):
+            cls = type(node)        # (the node classes have no subclasses)
+            if cls is Name:
                 key = node.name.upper()
-                self.used.add(key)
-                self.count[key] = self.count.get(key, 0) + (10 if id(node) in in_loops else 1)
-            elif isinstance(node, ast.Assign):
-                self._store(node.target)
-            elif isinstance(node, ast.For):
-                key = node.variable.upper()
-                self.used.add(key)
-                self.assigned.add(key)
-                self.count[key] = self.count.get(key, 0) + 10   # stored every iteration
-            elif isinstance(node, ast.Call):
-                self._call(program, node, calls)
+                used.add(key)
+                count[key] = count.get(key, 0) + (10 if in_loops and id(node) in in_loops else 1)
+            elif cls in _USAGE_NODES:
+                if cls is ast.Assign:
+                    self._store(node.target)
+                    continue
+                if cls is ast.Call:
+                    self._call(program, node, calls)
+                    continue
+                if id(node) not in in_loops:    # (an inner loop's are in)
+                    in_loops.update(map(id, _nodes(node)))
+                if cls is ast.For:
+                    key = node.variable.upper()
+                    used.add(key)
+                    self.assigned.add(key)
+                    count[key] = count.get(key, 0) + 10   # stored every iteration
 
     def _store(self, target) -> None:
         name = root_name(target)
