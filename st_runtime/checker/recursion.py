@@ -48,10 +48,17 @@ def _declared_edges(info) -> list[tuple[str, object, str]]:
         fb = fb_type_of(sym.type)
         if fb is not None:
             edges.append((key(fb.name), sym.decl.pos, "declares an instance of"))
-        for struct, inner in _fbs_inside_structs(sym.type):
+        for struct, inner in _fbs_inside_structs(sym.type) if _holds_struct(sym.type) else ():
             how = f"declares {a_or_an(struct)} holding an instance of"
             edges.append((key(inner.name), sym.decl.pos, how))
     return edges
+
+
+def _holds_struct(t) -> bool:
+    """Whether `t` is a STRUCT or an array of them: else `_fbs_inside_structs` finds none."""
+    while isinstance(t, T.ArrayType):
+        t = t.element
+    return isinstance(t, T.StructType)
 
 
 def _fbs_inside_structs(t) -> list[tuple[str, object]]:
