@@ -202,22 +202,30 @@ def branched(body) -> bool:
 
 def may_reuse(compiler) -> bool:
     """Whether `reuse` may find a value in the body: its values are array elements
-    (`ast.Index`), SIN/COS/TAN/SQRT and finite tests (`ast.Call`) and float `+ - *`."""
+    (`ast.Index`), float `+ - *`, and SIN, COS, TAN and SQRT (their finite tests too)."""
     usage = compiler.scope.usage
     kinds = usage.kinds
-    if ast.Index in kinds or ast.Call in kinds:
+    if ast.Index in kinds:
         return True
-    if ast.Binary not in kinds:
+    if ast.Binary not in kinds and ast.Call not in kinds:
         return False
+    targets = compiler.program.call_targets
     for node in usage.nodes:
-        if type(node) is ast.Binary and node.op in _REUSED_OPERATORS:
-            t = compiler.ty(node)
-            if isinstance(t, ElementaryType) and t.kind == "real":
+        cls = type(node)
+        if cls is ast.Binary:
+            if node.op in _REUSED_OPERATORS:
+                t = compiler.ty(node)
+                if isinstance(t, ElementaryType) and t.kind == "real":
+                    return True
+        elif cls is ast.Call:
+            target = targets.get(id(node))
+            if target is None or (target.name or "").upper() in _REUSED_FUNCTIONS:
                 return True
     return False
 
 
 _REUSED_OPERATORS = frozenset(("+", "-", "*"))
+_REUSED_FUNCTIONS = frozenset(("SIN", "COS", "TAN", "SQRT"))
 
 
 UNROLL_CAP = 8000   # statements unrolled loops may produce in one POU (iterations x body statements)
