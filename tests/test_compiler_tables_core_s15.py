@@ -1,0 +1,85 @@
+"""More rows of the core files' tables (issue 16, session 15): the leftovers of session 14 and
+the survivors of the fresh seed-360 sample in st_runtime/compiler/ outside optimise/
+(docs/mutation.md, "Session 15, the core files").
+
+As in tests/test_compiler_tables_core.py: one row per behaviour, checked in full with `==`;
+expected values from IEC 61131-3, OMRON's manuals as docs/nj501.md cites them and hand
+calculation, never from running the code under test; every row with every optimisation pass
+and with none.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from st_runtime import loader
+from st_runtime.compiler import Optimisations, compile_program
+from st_runtime.controller import Controller
+
+EVERY, NONE = Optimisations(), Optimisations.none()
+PASSES = pytest.mark.parametrize("optimise", [EVERY, NONE], ids=["every pass", "no pass"])
+
+
+def checked(src: str, dialect: str = "iec"):
+    result = loader.load_texts({"m.st": src}, dialect, None)
+    errors = [d.header() for d in result.diagnostics if d.is_error]
+    assert result.program is not None and not errors, errors
+    return result.program
+
+
+def run(src: str, optimise: Optimisations = EVERY, scans: int = 1, inputs: dict | None = None,
+        dialect: str = "iec"):
+    """Main of `src` after `scans` scans: (controller, instance, [(code, line, scan)])."""
+    controller = Controller(compile_program(checked(src, dialect), optimise=optimise))
+    main = controller.add_program("Main")
+    for name, value in (inputs or {}).items():
+        setattr(main, "v_" + name.upper(), value)
+    controller.run(scans)
+    return controller, main, [(f.code, f.line, f.scan) for f in controller.faults]
+
+
+# ============================ calls.py, initial.py: a FUNCTION not called (EN FALSE) of a derived type
+
+NOT_CALLED = """TYPE Speed : INT := 5; END_TYPE
+TYPE Color : (Red, Green, Blue) := Green; END_TYPE
+TYPE Triple : ARRAY[1..3] OF INT := [1, 2, 3]; END_TYPE
+TYPE Pt : STRUCT a : INT := 4; b : INT; END_STRUCT; END_TYPE
+FUNCTION FSpeed : Speed
+VAR_INPUT x : INT; END_VAR
+FSpeed := x;
+END_FUNCTION
+FUNCTION FColor : Color
+VAR_INPUT x : INT; END_VAR
+FColor := Blue;
+END_FUNCTION
+FUNCTION FTriple : Triple
+VAR_INPUT x : INT; END_VAR
+FTriple[1] := x;
+END_FUNCTION
+FUNCTION FPt : Pt
+VAR_INPUT x : INT; END_VAR
+FPt.b := x;
+END_FUNCTION
+PROGRAM Main
+VAR en : BOOL; s : INT := -1; c : Color := Blue; t : Triple; p : Pt;
+    ok1, ok2, ok3, ok4 : BOOL := TRUE; END_VAR
+s := FSpeed(EN := en, x := 9, ENO => ok1);
+c := FColor(EN := en, x := 9, ENO => ok2);
+t := FTriple(EN := en, x := 9, ENO => ok3);
+p := FPt(EN := en, x := 9, ENO => ok4);
+END_PROGRAM
+"""
+
+
+@PASSES
+@pytest.mark.parametrize("en", [False, True], ids=["EN FALSE", "EN TRUE"])
+def test_a_function_not_called_gives_its_derived_result_types_initial_value(en: bool, optimise):
+    # IEC 61131-3 6.6.1.2 as calls.enabled_call_expr reads it: with EN FALSE the FUNCTION is not
+    # called, its value is its result type's initial value and ENO is FALSE; a derived type's
+    # initial value is that of every variable of the type (IEC 61131-3:2013 table 11): Speed 5,
+    # Color Green (1), Triple [1, 2, 3], Pt (a 4, b 0). EN TRUE: the values the bodies set.
+    _, main, faults = run(NOT_CALLED, optimise, inputs={"en": en})
+    got = (main.v_S, main.v_C, list(main.v_T), (main.v_P.v_A, main.v_P.v_B),
+           (main.v_OK1, main.v_OK2, main.v_OK3, main.v_OK4), faults)
+    assert got == ((9, 2, [9, 2, 3], (4, 9), (True,) * 4, []) if en else
+                   (5, 1, [1, 2, 3], (4, 0), (False,) * 4, []))
