@@ -136,3 +136,53 @@ def test_a_type_derived_from_a_derived_elementary_type_keeps_its_initial_value(o
     # as the enumeration above: Pace is Speed under another name, so it starts at 5
     _, main, faults = run(SPEED_TWICE, optimise)
     assert (main.v_V, list(main.v_A), faults) == (5, [5, 5], [])
+
+
+# ================================================ calls.py: a negated ENO (NOT ENO => x)
+
+NEGATED_ENO = """FUNCTION Twice : INT
+VAR_INPUT a : INT; END_VAR
+Twice := a * 2;
+END_FUNCTION
+PROGRAM Main
+VAR en : BOOL; y1, y2 : INT := -1; bad1, bad2, bad3 : BOOL; END_VAR
+y1 := Twice(EN := en, a := 3, NOT ENO => bad1);
+Twice(EN := en, a := 4, NOT ENO => bad2);
+y2 := Twice(a := 5, NOT ENO => bad3);
+END_PROGRAM
+"""
+
+
+@PASSES
+@pytest.mark.parametrize("en", [False, True], ids=["EN FALSE", "EN TRUE"])
+def test_a_negated_eno_stores_the_negation(en: bool, optimise):
+    # IEC 61131-3 6.6.1.2: ENO is FALSE when EN is FALSE (the FUNCTION not called, its value its
+    # type's initial value 0), TRUE when it runs; `NOT ENO => x` stores the negation (a negated
+    # output), in an expression, in a call statement and without EN.
+    _, main, faults = run(NEGATED_ENO, optimise, inputs={"en": en})
+    assert (main.v_Y1, main.v_Y2, main.v_BAD1, main.v_BAD2, main.v_BAD3, faults) == \
+        ((6, 10, False, False, False, []) if en else (0, 10, True, True, False, []))
+
+
+# =============================== statements.py: a FOR whose end is an element of a CONSTANT array
+
+CONSTANT_END = """PROGRAM Main
+VAR CONSTANT lims : ARRAY[1..3] OF INT := [2, 4, 12]; END_VAR
+VAR a : ARRAY[1..10] OF INT; k : INT; s : INT; i : INT; after : INT; END_VAR
+FOR i := 1 TO lims[k] DO a[i] := i; s := s + a[i]; END_FOR;
+after := 1;
+END_PROGRAM
+"""
+
+
+@PASSES
+@pytest.mark.parametrize("k, filled, s, faults", [(1, 2, 3, []), (2, 4, 10, []),
+                                                  (3, 10, 55, [("F-INDEX", 4, 1)] * 4)])
+def test_a_for_up_to_an_element_of_a_constant_array(k: int, filled: int, s: int, faults: list, optimise):
+    # The end lims[k] lies in 2..12, known before the run (the loop in two versions, checked
+    # and not, optimise/ranges.py); a[1..10]. With lims[3] = 12 the sum of 1..10 is 55, and
+    # i = 11 and 12 each fault in both statements of the body (README: a runtime fault abandons
+    # the faulting statement): four F-INDEX on line 4, the statement after the FOR runs.
+    _, main, got = run(CONSTANT_END, optimise, inputs={"k": k})
+    assert (main.v_S, list(main.v_A), main.v_AFTER, got) == \
+        (s, [n if n <= filled else 0 for n in range(1, 11)], 1, faults)
