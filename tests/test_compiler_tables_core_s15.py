@@ -186,3 +186,29 @@ def test_a_for_up_to_an_element_of_a_constant_array(k: int, filled: int, s: int,
     _, main, got = run(CONSTANT_END, optimise, inputs={"k": k})
     assert (main.v_S, list(main.v_A), main.v_AFTER, got) == \
         (s, [n if n <= filled else 0 for n in range(1, 11)], 1, faults)
+
+
+# ================ statements.py: what a FOR body assigns is not known after the FOR (it may not run)
+
+MAYBE_NEVER = """PROGRAM Main
+VAR a : ARRAY[1..5] OF INT := [1, 2, 3, 4, 5]; j, k, n, i : INT; y1, y2 : INT := -1; END_VAR
+j := 0;
+FOR i := 1 TO n DO j := 2; END_FOR;
+y1 := a[j];
+k := 0;
+FOR i := 1 TO n DO k := 3; IF i > 100 THEN EXIT; END_IF; END_FOR;
+y2 := a[k];
+END_PROGRAM
+"""
+
+
+@PASSES
+@pytest.mark.parametrize("n, y1, y2, faults", [(0, -1, -1, [("F-INDEX", 5, 1), ("F-INDEX", 8, 1)]),
+                                               (2, 2, 3, [])])
+def test_a_variable_a_for_body_assigns_may_keep_its_value_from_before(n: int, y1: int, y2: int,
+                                                                      faults: list, optimise):
+    # With n = 0 neither FOR runs its body: j and k stay 0, and a[0] lies outside 1..5 (F-INDEX,
+    # the store abandoned); with n = 2 they are 2 and 3. (A pass that took the body's j := 2 as
+    # j's value after the loop read a[0] as Python's a[-1], 5.)
+    _, main, got = run(MAYBE_NEVER, optimise, inputs={"n": n})
+    assert (main.v_Y1, main.v_Y2, got) == (y1, y2, faults)
