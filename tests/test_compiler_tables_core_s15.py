@@ -12,30 +12,7 @@ from __future__ import annotations
 
 import pytest
 
-from st_runtime import loader
-from st_runtime.compiler import Optimisations, compile_program
-from st_runtime.controller import Controller
-
-EVERY, NONE = Optimisations(), Optimisations.none()
-PASSES = pytest.mark.parametrize("optimise", [EVERY, NONE], ids=["every pass", "no pass"])
-
-
-def checked(src: str, dialect: str = "iec"):
-    result = loader.load_texts({"m.st": src}, dialect, None)
-    errors = [d.header() for d in result.diagnostics if d.is_error]
-    assert result.program is not None and not errors, errors
-    return result.program
-
-
-def run(src: str, optimise: Optimisations = EVERY, scans: int = 1, inputs: dict | None = None,
-        dialect: str = "iec"):
-    """Main of `src` after `scans` scans: (controller, instance, [(code, line, scan)])."""
-    controller = Controller(compile_program(checked(src, dialect), optimise=optimise))
-    main = controller.add_program("Main")
-    for name, value in (inputs or {}).items():
-        setattr(main, "v_" + name.upper(), value)
-    controller.run(scans)
-    return controller, main, [(f.code, f.line, f.scan) for f in controller.faults]
+from test_compiler_tables_core_s14 import PASSES, run      # (Main after its scans, and its faults)
 
 
 # ============================ calls.py, initial.py: a FUNCTION not called (EN FALSE) of a derived type
