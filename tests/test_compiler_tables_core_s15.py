@@ -189,3 +189,27 @@ def test_a_variable_a_for_body_assigns_may_keep_its_value_from_before(n: int, y1
     # j's value after the loop read a[0] as Python's a[-1], 5.)
     _, main, got = run(MAYBE_NEVER, optimise, inputs={"n": n})
     assert (main.v_Y1, main.v_Y2, got) == (y1, y2, faults)
+
+
+# ============================ exprs.py: a folded constant stored into a subrange is checked
+
+FOLDED_INTO_SUBRANGE = """PROGRAM Main
+VAR CONSTANT C : INT := 4; END_VAR
+VAR s : INT(1..5) := 2; y : INT := 1; END_VAR
+s := {value};
+y := 2;
+END_PROGRAM
+"""
+
+
+@PASSES
+@pytest.mark.parametrize("dialect", ["iec", "nj"])
+@pytest.mark.parametrize("value, s, faults", [("C - 1", 3, []), ("C + 1", 5, []), ("C + 3", 2, [("F-SUBRANGE", 4, 1)]),
+                                              ("C - 4", 2, [("F-SUBRANGE", 4, 1)])])
+def test_a_folded_constant_outside_a_subrange_faults_when_stored(value: str, s: int, faults: list, dialect: str,
+                                                                 optimise):
+    # The checker folds C + 3 to 7 (a literal 7 it refuses, E-TYPE-005); stored into INT(1..5)
+    # it lies outside 1..5: F-SUBRANGE, the store abandoned (s keeps 2), the next statement runs.
+    # 3 and 5 lie inside and are stored.
+    _, main, got = run(FOLDED_INTO_SUBRANGE.format(value=value), optimise, dialect=dialect)
+    assert (main.v_S, main.v_Y, got) == (s, 2, faults)
