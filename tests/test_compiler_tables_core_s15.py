@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import pytest
 
+from test_compiler_tables_core import PS_PER_UNIT, program, scan_times
 from test_compiler_tables_core_s14 import PASSES, run      # (Main after its scans, and its faults)
 
 
@@ -213,3 +214,20 @@ def test_a_folded_constant_outside_a_subrange_faults_when_stored(value: str, s: 
     # 3 and 5 lie inside and are stored.
     _, main, got = run(FOLDED_INTO_SUBRANGE.format(value=value), optimise, dialect=dialect)
     assert (main.v_S, main.v_Y, got) == (s, 2, faults)
+
+
+# ======================== cost.py: an assignment of an array of aggregates moves every element
+
+NESTED_COPIES = {  # body: units by hand (docs/nj501.md "What a scan costs": element moved 2)
+    "array of structures": ("ps := qs;", 2 * 2 * (1 + 3)),        # 2 Pairs of an LREAL and 3 INTs
+    "array of arrays": ("n1 := n2;", 2 * 2 * 3),                   # 2 arrays of 3 INTs
+}
+
+
+@pytest.mark.parametrize("row", NESTED_COPIES.values(), ids=NESTED_COPIES.keys())
+def test_an_array_of_aggregates_is_charged_per_elementary_value(row):
+    body, units = row
+    src = ("TYPE Pair : STRUCT x : LREAL; y : ARRAY[1..3] OF INT; END_STRUCT; END_TYPE\n"
+           + program("ps, qs : ARRAY[1..2] OF Pair; n1, n2 : ARRAY[1..2] OF ARRAY[1..3] OF INT;", body))
+    expected = ([], [units * PS_PER_UNIT])
+    assert scan_times(src, {}) == {"every pass": expected, "no pass": expected}
