@@ -247,7 +247,7 @@ class Calls:
         if en is None:
             code = self.call_expr(ec, inner)
             return code if eno is None else f"({code}, {self._store_eno(ec, eno, 'True', False)})[0]"
-        initial = self.unit.initial.of(ec.ty(inner), None, inner.pos)
+        initial = self.unit.initial.of(ec.ty(inner), self._result_init(ec, inner), inner.pos)
         default = ec.literal(initial.const, ec.ty(inner)) if initial.is_const \
             else self.unit.register_maker(initial.maker) + "()"
         flag, result = ec.temp(), ec.temp()
@@ -255,6 +255,13 @@ class Calls:
         if eno is None:
             return chosen
         return f"({result} := {chosen}, {self._store_eno(ec, eno, flag, False)}, {result})[-1]"
+
+    def _result_init(self, ec, call):
+        """The initial value of a user FUNCTION's or METHOD's result: its derived type's, which
+        the checker's RETURN symbol carries (the resolved result type has lost it), or None."""
+        pou = getattr(ec.program.call_targets.get(id(call)), "pou", None)
+        result = next((s for s in pou.variables.values() if s.kind == "RETURN"), None) if pou else None
+        return result.init if result is not None else None
 
     def call_expr(self, ec, call) -> str:
         enable = ec.program.enables.get(id(call))
