@@ -106,9 +106,6 @@ END_PROGRAM
 """
 
 
-@pytest.mark.xfail(strict=True, reason="found in session 15, reported: the checker's _default_init "
-                   "looks one TYPE deep, so a type derived from Speed without its own initial "
-                   "value starts at INT's 0, while one derived from an enumeration keeps its (above)")
 @PASSES
 def test_a_type_derived_from_a_derived_elementary_type_keeps_its_initial_value(optimise):
     # as the enumeration above: Pace is Speed under another name, so it starts at 5
@@ -231,3 +228,27 @@ def test_an_array_of_aggregates_is_charged_per_elementary_value(row):
            + program("ps, qs : ARRAY[1..2] OF Pair; n1, n2 : ARRAY[1..2] OF ARRAY[1..3] OF INT;", body))
     expected = ([], [units * PS_PER_UNIT])
     assert scan_times(src, {}) == {"every pass": expected, "no pass": expected}
+
+
+CHAIN_OF_DERIVED = """TYPE A : INT := 7; END_TYPE
+TYPE B : A; END_TYPE
+TYPE C : B; END_TYPE
+TYPE D : C := 2; END_TYPE
+TYPE E : D; END_TYPE
+FUNCTION Unset : C
+VAR_INPUT x : INT; END_VAR
+END_FUNCTION
+PROGRAM Main
+VAR c : C; e : E; r : INT; arr : ARRAY[0..1] OF E; END_VAR
+r := Unset(x := 1);
+END_PROGRAM
+"""
+
+
+@PASSES
+def test_a_chain_of_derived_types_starts_at_the_nearest_initial_value(optimise):
+    # C is B is A (:= 7), none giving its own: C starts at 7; E is D, which gives 2: E starts
+    # at 2, not A's 7 (the nearest declared value down the chain, IEC 61131-3:2013 table 11);
+    # a FUNCTION's unset result of type C gives 7.
+    _, main, faults = run(CHAIN_OF_DERIVED, optimise)
+    assert (main.v_C, main.v_E, main.v_R, list(main.v_ARR), faults) == (7, 2, 7, [2, 2], [])

@@ -507,10 +507,20 @@ class Declarations:
             self.ctx.direct_types.setdefault(address.text, t)    # `%IW1` in code reads as t
 
     def _default_init(self, ref):
-        if isinstance(ref, ast.NamedType):
+        """The initial value a variable of type `ref` starts at when it declares none: its
+        TYPE's, or, for a TYPE declared as another named type without one of its own, that
+        type's, down the chain (IEC 61131-3:2013 table 11: a derived type's
+        default is its parent's unless it gives its own). `seen` stops at a cycle, which
+        the type checks refuse on their own."""
+        seen: set[str] = set()
+        while isinstance(ref, ast.NamedType) and key(ref.name) not in seen:
+            seen.add(key(ref.name))
             decl = self.ctx.type_decls.get(key(ref.name))
-            if decl is not None:
+            if decl is None:
+                return None
+            if decl.init is not None:
                 return decl.init
+            ref = decl.spec
         return None
 
     def initializer(self, init, t, ex: ExprChecker, what: str) -> None:
