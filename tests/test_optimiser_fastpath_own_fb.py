@@ -15,7 +15,8 @@ Expected values are sums of the weights table by hand.
 
 from __future__ import annotations
 
-from test_compiler_tables_passes import EVERY, LOOPS8, NONE, _landings
+from test_compiler_tables_passes import EVERY, NONE, _landings
+from test_compiler_tables_passes_s14 import OWN_TON as WHILE_TON
 
 from st_runtime.api import load_text
 from st_runtime.compiler import CompileUnit, Optimisations, compile_program
@@ -76,42 +77,33 @@ def test_a_call_of_an_own_ton_is_charged_as_a_user_fb_call():
         assert _scan_time(MAIN, optimise) == [STANDARD_CALL * PICOSECONDS_PER_UNIT] == [14352]
 
 
-# An own TON whose bounded body (200 iterations) is long against its caller's own blocks,
-# and a FOR in the caller after the call: where the budget covers the caller's blocks but not
-# also the TON's body, the exact path lands F-PERIOD at that FOR (line 18).  With the body
-# left out of the bound the fast copy ran there: no check at line 18, the fault landed later
-# (line 20) with s = 209, and, below, the charges after the call were made ahead of it.
-LONG_TON = """FUNCTION_BLOCK TON
-VAR_INPUT IN : BOOL; PT : TIME; END_VAR VAR_OUTPUT Q : BOOL; ET : TIME; END_VAR VAR n, i : INT; END_VAR
-n := 0;
-FOR i := 1 TO 200 DO n := n + 1; END_FOR;
-Q := IN;
-END_FUNCTION_BLOCK
-FUNCTION_BLOCK Outer
-VAR_OUTPUT s : INT; END_VAR VAR k : INT; t : TON; END_VAR
-""" + LOOPS8 + """
-t(IN := TRUE, PT := T#1s);
-FOR k := 1 TO 9 DO s := s + k; END_FOR;
-END_FUNCTION_BLOCK
-PROGRAM Main
-VAR f : Outer; r : INT; END_VAR
-f();
-r := f.s;
-END_PROGRAM
-"""
+# Session 14's own TON (test_compiler_tables_passes_s14) with a bounded body (a FOR of 200 for
+# its WHILE of 200) and a FOR in the caller after the call (for its IF): where the budget covers
+# the caller's blocks but not also the TON's body, the exact path lands F-PERIOD at that FOR
+# (line 18).  With the body left out of the bound the fast copy ran there: no check at line 18,
+# the fault landed later (line 20) with s = 209, and, below, the charges after the call were
+# made ahead of it.
+
+
+def _replaced(text: str, *pairs) -> str:
+    for old, new in pairs:
+        assert text.count(old) == 1, old
+        text = text.replace(old, new)
+    return text
+
+
+LONG_TON = _replaced(WHILE_TON, ("VAR n : INT; END_VAR", "VAR n, i : INT; END_VAR"),
+                     ("WHILE n < 200 DO n := n + 1; END_WHILE;", "FOR i := 1 TO 200 DO n := n + 1; END_FOR;"),
+                     ("IF t.Q THEN s := s + 1; END_IF;", "FOR k := 1 TO 9 DO s := s + k; END_FOR;"))
 
 
 def test_f_period_lands_the_same_with_a_long_own_ton_at_every_budget():
     """Budgets 5 ns apart from 1 ns to past the scan's whole time, stop_on_fault: F-PERIOD's
     line and scan, the values and the budget left are those of no pass with fastpath alone
     and with every pass.  Without a fault s = 2 + ... + 9 (LOOPS8: 164) + 45 = 209 = r."""
-    controller = Controller(compile_program(load_text(LONG_TON, "m.st").program, optimise=NONE),
-                            time_limit_ns=10_000_000)
-    main = controller.add_program("Main")
-    controller.run(1)
-    assert (main.v_R, controller.faults) == (209, [])
-    spent_ns = 10_000_000 - controller.ctx.budget // 1000
-    budgets = list(range(1, spent_ns + 20, 5))
+    ((_, faults, state, (left,)),) = _landings(LONG_TON, NONE, [10_000_000], scans=1, stop=True)
+    assert (faults, state[-1]) == ([], ("v_R", 209))
+    budgets = list(range(1, 10_000_000 - left // 1000 + 20, 5))
     expected = _landings(LONG_TON, NONE, budgets, scans=1, stop=True)
     assert any(faults == [("F-PERIOD", 18, 1)] for _, faults, _, _ in expected)    # the caller's FOR
     assert any(faults == [("F-PERIOD", 4, 1)] for _, faults, _, _ in expected)     # the TON's FOR
