@@ -93,6 +93,11 @@ ROWS = [
         NS_ACC + main_program("    Acc : NS.Acc; x : INT;", "NS.Acc();\nx := Acc.n;"),
         diagnostic=("E-CALL-001", 14, 1, "'NS.Acc' is a FUNCTION_BLOCK type: declare an instance "
                                          "(inst : NS.Acc;) and call the instance")),
+    # An INTERFACE of NS called: it has no body (was "'NS.I' is a PROGRAM"): line 11, column 6.
+    Row("interface_called_by_its_qualified_name",
+        "NAMESPACE NS\nINTERFACE I\nMETHOD M : INT\nEND_METHOD\nEND_INTERFACE\nEND_NAMESPACE\n"
+        + main_program("    x : INT;", "x := NS.I();"),
+        diagnostic=("E-CALL-001", 11, 6, "'NS.I' is an INTERFACE: call a method of an instance that implements it")),
     # A local FB instance named through a namespace: a variable is no namespace
     # element (line 14, column 1).
     Row("local_instance_named_through_the_namespace",

@@ -131,15 +131,17 @@ class CallChecker:
 
     def _pou_call(self, call, pou: PouInfo, statement: bool, written: str):
         """A call naming POU `pou` itself (written `written`): a FUNCTION is
-        called; an FB type or a PROGRAM is refused."""
+        called; an FB type, a PROGRAM or an INTERFACE is refused."""
         if pou.kind == "FUNCTION":
             return self._user_function(call, pou, statement)
         if pou.kind == "FUNCTION_BLOCK":
             type_name = written if "." in written else pou.name
             msg = (f"'{written}' is a FUNCTION_BLOCK type: declare an instance "
                    f"(inst : {type_name};) and call the instance")
-        else:
+        elif pou.kind == "PROGRAM":
             msg = f"'{written}' is a PROGRAM: programs are run by tasks, not called"
+        else:
+            msg = f"'{written}' is an INTERFACE: call a method of an instance that implements it"
         self.ctx.error("E-CALL-001", msg, call.callee.pos)
         return self._give_up(call)
 
