@@ -135,7 +135,7 @@ class CallChecker:
         if pou.kind == "FUNCTION":
             return self._user_function(call, pou, statement)
         if pou.kind == "FUNCTION_BLOCK":
-            type_name = written if "." in written else pou.name
+            type_name = written if "." in written else pou.name    # qualified if called so
             msg = (f"'{written}' is a FUNCTION_BLOCK type: declare an instance "
                    f"(inst : {type_name};) and call the instance")
         elif pou.kind == "PROGRAM":
