@@ -345,3 +345,70 @@ def test_charges_join_along_a_level_until_a_barrier():
                     "            _spent += 30", "            z = 3", "        return x",
                     "        _spent += 11", "        w = 1",
                     "    finally:", "        _ctx.budget -= _spent"]
+
+
+class _Holding(dict):
+    """Empty, but true: a `ranges.Flow` whose variables are none is kept as if it had some."""
+
+    def __bool__(self) -> bool:
+        return True
+
+
+class _EveryClass:
+    """`scope.Usage.kinds` holding every node class: no gate of it closes (`real`: the body's)."""
+
+    def __init__(self, real: set) -> None:
+        self.real = real
+
+    def __contains__(self, cls) -> bool:
+        return True
+
+
+def test_the_passes_gates_leave_the_code_as_running_every_pass_makes_it(monkeypatch):
+    """A pass whose subject a body lacks is not run on it (`optimise.branched`,
+    `optimise.may_reuse`, `scope.Usage.kinds`, no `ranges.Flow` without a variable to
+    follow): with every gate open, each pass run on every body, every file of the
+    accept corpus and the generated platform program compiles to the same Python, and the
+    gates did close for most bodies."""
+    from st_runtime.compiler import statements
+    from st_runtime.compiler.optimise import ranges
+    from st_runtime.compiler.scope import Usage
+
+    def compiled(paths):
+        result = compile_program(load_texts({str(p): p.read_text(encoding="utf-8") for p in paths}).program)
+        return list(result.python_sources.items())
+
+    loads = [[p] for p in ACCEPT if load_texts({str(p): p.read_text(encoding="utf-8")}).program is not None]
+    loads.append(sorted((ROOT / "generated" / "iec").rglob("*.st")))
+    gated = [compiled(p) for p in loads]
+    closed = {"branched": 0, "may_reuse": 0, "flow": 0}
+    real = {"branched": statements.branched, "may_reuse": statements.may_reuse}
+
+    def opened(name):
+        def gate(arg):
+            usage = getattr(getattr(arg, "scope", None), "usage", None)     # (may_reuse's compiler)
+            if usage is not None:
+                usage.kinds = usage.kinds.real
+            closed[name] += not real[name](arg)
+            if usage is not None:
+                usage.kinds = _EveryClass(usage.kinds)
+            return True
+        return gate
+
+    usage_init, flow_init = Usage.__init__, ranges.Flow.__init__
+
+    def every_class(self, *args):
+        usage_init(self, *args)
+        self.kinds = _EveryClass(self.kinds)
+
+    def holding(self, *args):
+        flow_init(self, *args)
+        closed["flow"] += not self.bounds
+        self.bounds = _Holding(self.bounds)
+
+    monkeypatch.setattr(statements, "branched", opened("branched"))
+    monkeypatch.setattr(statements, "may_reuse", opened("may_reuse"))
+    monkeypatch.setattr(Usage, "__init__", every_class)
+    monkeypatch.setattr(ranges.Flow, "__init__", holding)
+    assert [compiled(p) for p in loads] == gated
+    assert all(count > len(loads) // 2 for count in closed.values()), closed

@@ -103,6 +103,8 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   "tests/test_compiler_tables_core.py",
                   # session 14: rows for the optimiser lines the selection never ran (coverage.py)
                   "tests/test_compiler_tables_passes_s14.py",
+                  # session 15: optimise/'s leftovers and the fresh seed 350's survivors
+                  "tests/test_compiler_tables_passes_s15.py",
                   # session 14: the core files' leftovers and the lines the selection never ran
                   "tests/test_compiler_tables_core_s14.py",
                   # and the REST test of motion FBs calls.py emits, which the selection never ran (2 s)

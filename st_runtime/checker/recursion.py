@@ -17,24 +17,25 @@ from .context import Context, a_or_an
 from .declarations import _INSTANCE_KINDS, fb_type_of
 
 
-def _edges(ctx: Context) -> dict[str, list | tuple]:
-    """POU key -> its edges out (a list, or the shared prelude's tuple), read only by the search."""
-    graph: dict[str, list[tuple[str, object, str]]] = {}
+def _edges(ctx: Context) -> dict[str, list]:
+    """POU key -> its edges out, read only by the search.
+
+    With the shared prelude, its POUs (which lead the table) are left out, and every
+    edge into them: they were checked alone without a cycle (prelude_base), and no
+    edge leads from them to the user's POUs (their declarations name only the
+    prelude's, and their bodies are native), so a cycle holds none of them and the
+    user's POUs are met in the search in the same order, with the same components."""
     pous = iter(ctx.program.pous.items())
-    base = ctx.program.prelude      # the shared prelude's POUs lead the table: edges found once
+    base = ctx.program.prelude
     if base is not None:
-        prelude = base.memo("edges", lambda: {k: tuple(_declared_edges(i)) for k, i in base.pous.items()})
-        graph = dict(prelude)       # (its tuples, shared: a list is made for a caller's first call)
-        pous = islice(pous, len(prelude), None)
-    for k, info in pous:
-        graph[k] = _declared_edges(info)
+        pous = islice(pous, len(base.pous), None)
+    graph = {k: _declared_edges(info) for k, info in pous}
     for caller, calls in ctx.calls.items():
-        for callee, pos in calls:
-            if caller in graph and callee in graph:
-                edges = graph[caller]
-                if type(edges) is tuple:
-                    edges = graph[caller] = list(edges)
-                edges.append((callee, pos, "calls"))
+        if caller in graph:
+            edges = graph[caller]
+            for callee, pos in calls:
+                if callee in graph:
+                    edges.append((callee, pos, "calls"))
     return graph
 
 
@@ -47,10 +48,17 @@ def _declared_edges(info) -> list[tuple[str, object, str]]:
         fb = fb_type_of(sym.type)
         if fb is not None:
             edges.append((key(fb.name), sym.decl.pos, "declares an instance of"))
-        for struct, inner in _fbs_inside_structs(sym.type):
+        for struct, inner in _fbs_inside_structs(sym.type) if _holds_struct(sym.type) else ():
             how = f"declares {a_or_an(struct)} holding an instance of"
             edges.append((key(inner.name), sym.decl.pos, how))
     return edges
+
+
+def _holds_struct(t) -> bool:
+    """Whether `t` is a STRUCT or an array of them: else `_fbs_inside_structs` finds none."""
+    while isinstance(t, T.ArrayType):
+        t = t.element
+    return isinstance(t, T.StructType)
 
 
 def _fbs_inside_structs(t) -> list[tuple[str, object]]:

@@ -51,12 +51,23 @@ def walk(node):
     its nodes are listed once and kept for the next walk of the same node (the
     AST is immutable; `_WALKED` holds the node itself, so its id cannot be
     another's while the entry lives)."""
+    return iter(listed(node))
+
+
+def listed(node):
+    """`walk(node)` as a sequence (shared: read it only)."""
     if type(node) is tuple:
         if len(node) == 1 and type(node[0]) in _LEAVES:
-            return iter(node)            # (one leaf, as `walk((expr,))` often asks: nothing to keep)
+            return node            # (one leaf, as `walk((expr,))` often asks: nothing to keep)
     elif type(node) in _LEAVES:
-        return iter((node,))
-    return iter(_nodes(node))
+        return (node,)
+    return _nodes(node)
+
+
+def kinds(node) -> set:
+    """The node classes under `node` (its walk's, counted in C): what a pass looks for
+    is absent from a body when its class is not there."""
+    return set(map(type, listed(node)))
 
 
 _WALKED: dict[int, tuple] = {}
@@ -91,6 +102,7 @@ _LEAVES = frozenset({ast.Name, ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral,
 
 
 _LOOPS = (ast.For, ast.While, ast.Repeat)
+_USAGE_NODES = frozenset((ast.Assign, ast.Call) + _LOOPS)     # what `Usage` reads besides names
 
 
 def _nodes(node) -> list:
@@ -143,23 +155,30 @@ class Usage:
         self.assigned: set[str] = set()      # direct stores to the variable (root)
         self.referenced: set[str] = set()    # passed whole to a VAR_IN_OUT
         self.count: dict[str, int] = {}      # occurrences; inside a loop they count 10
+        self.nodes = nodes = listed(body)    # the body's nodes, in the walk's order (read only)
+        self.kinds = set(map(type, nodes))   # their classes (`kinds`): the passes' gates
         in_loops: set[int] = set()      # every node of a loop (a walk meets the loop first)
-        for node in walk(body):
-            if isinstance(node, _LOOPS) and id(node) not in in_loops:    # (an inner loop's are in)
-                in_loops.update(map(id, _nodes(node)))
-            if isinstance(node, ast.Name):
+        used, count, Name = self.used, self.count, ast.Name
+        for node in nodes:
+            cls = type(node)        # (the node classes have no subclasses)
+            if cls is Name:
                 key = node.name.upper()
-                self.used.add(key)
-                self.count[key] = self.count.get(key, 0) + (10 if id(node) in in_loops else 1)
-            elif isinstance(node, ast.Assign):
-                self._store(node.target)
-            elif isinstance(node, ast.For):
-                key = node.variable.upper()
-                self.used.add(key)
-                self.assigned.add(key)
-                self.count[key] = self.count.get(key, 0) + 10   # stored every iteration
-            elif isinstance(node, ast.Call):
-                self._call(program, node, calls)
+                used.add(key)
+                count[key] = count.get(key, 0) + (10 if in_loops and id(node) in in_loops else 1)
+            elif cls in _USAGE_NODES:
+                if cls is ast.Assign:
+                    self._store(node.target)
+                    continue
+                if cls is ast.Call:
+                    self._call(program, node, calls)
+                    continue
+                if id(node) not in in_loops:    # (an inner loop's are in)
+                    in_loops.update(map(id, _nodes(node)))
+                if cls is ast.For:
+                    key = node.variable.upper()
+                    used.add(key)
+                    self.assigned.add(key)
+                    count[key] = count.get(key, 0) + 10   # stored every iteration
 
     def _store(self, target) -> None:
         name = root_name(target)

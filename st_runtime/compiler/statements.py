@@ -41,8 +41,9 @@ from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
 from .optimise import aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, ranges, reuse, seal, shortcut, stores, unguard, unroll
+from .optimise import branched, may_reuse
 from .pysrc import Emitter, pyliteral, pyident
-from .scope import Scope, Usage, assigned_in, once, walk
+from .scope import Scope, Usage, assigned_in, kinds, once, walk
 
 
 class BodyCompiler(ExprCompiler):
@@ -58,18 +59,21 @@ class BodyCompiler(ExprCompiler):
         self._head_costs = unit.head_costs
         self._blocks_memo: dict[int, tuple] = {}       # id(body) -> (body, `_costed_blocks`)
         self._entries_memo: dict[int, tuple] = {}      # id(IF) -> (IF, `_if_entries`)
-        self.flow = ranges.Flow(self, body) if self.opt.ranges else None    # integer locals' ranges
+        flow = ranges.Flow(self, body) if self.opt.ranges else None
+        self.flow = flow if flow is not None and flow.bounds else None     # integer locals' ranges, if any
         if not method:
             self._add_return_variable()
         # the whole body compiled as one CSE region, and once as before (cse.body_region)
-        self._whole_region = self.opt.cse and unit.guard_statements and cse.worth_a_region(self, body)
+        self._whole_region = self.opt.cse and unit.guard_statements and ast.Index in usage.kinds \
+            and cse.worth_a_region(self, body)
+        late = not self._whole_region and branched(body)    # (lines move into branches only)
         # id(branch body) -> alias lines moved there from the prologue (optimise/aliases.py)
-        self._late_loads = aliases.late_loads(self, body) if self.opt.aliases and not self._whole_region else {}
+        self._late_loads = aliases.late_loads(self, body) if self.opt.aliases and late else {}
         # id(branch body) -> store-back lines (and their loads) moved there (optimise/stores.py)
-        self._late_stores = stores.late_stores(self, body) if self.opt.stores and method and not self._whole_region \
+        self._late_stores = stores.late_stores(self, body) if self.opt.stores and method and late \
             else stores.LateStores()
         self._segments: fastpath.Segments | None = None     # while the fast body is compiled
-        self.reuse = reuse.Reuse(self) if self.opt.reuse else None
+        self.reuse = reuse.Reuse(self) if self.opt.reuse and may_reuse(self) else None
         self.listed_in_outs: dict[str, str] = {}    # in-outs the fast body runs with as lists
 
     def _add_return_variable(self) -> None:
@@ -197,7 +201,7 @@ class BodyCompiler(ExprCompiler):
         if not (self.opt.fastpath and self.unit.charge_costs and self.unit.guard_statements
                 and self._segments is None and self.region is None):
             return None
-        if not any(isinstance(node, ast.For) for node in walk(body)):
+        if ast.For not in (self.scope.usage.kinds if body is self.body else kinds(body)):
             return None             # no loop, no budget check to leave out
         return fastpath.worst_case(self, body)
 

@@ -160,6 +160,9 @@ import os
 import re
 from dataclasses import dataclass, fields
 
+from ... import ast
+from ...types import ElementaryType
+
 #: A temporary `_tN` named in a line of generated code (a whole word).  Spelled with the
 #: literal `_` first and the look-behind after it (the matches of `\b_t\d+\b`): the regex
 #: engine then skips to each `_` instead of testing the boundary at every character (4x).
@@ -180,6 +183,49 @@ def remembered(answer):
             found = answers[text] = answer(text)
         return found
     return remembered_answer
+
+
+# ------------------------------------------------------------------ gates
+# A pass whose subject a body does not hold is not run on it: each gate below is true
+# whenever the pass could change the body's code, so the code is the same either way.
+# They read the body's node classes and nodes, listed once by `scope.Usage`.
+
+def branched(body) -> bool:
+    """Whether `body` has an IF or CASE among its own statements.  `aliases.late_loads`
+    and `stores.late_stores` move a line into an IF branch or CASE clause only: a name
+    met in a statement outside every branch (a loop is one statement) stays put."""
+    for stmt in body:
+        if type(stmt) is ast.If or type(stmt) is ast.Case:
+            return True
+    return False
+
+
+def may_reuse(compiler) -> bool:
+    """Whether `reuse` may find a value in the body: its values are array elements
+    (`ast.Index`), float `+ - *`, and SIN, COS, TAN and SQRT (their finite tests too)."""
+    usage = compiler.scope.usage
+    kinds = usage.kinds
+    if ast.Index in kinds:
+        return True
+    if ast.Binary not in kinds and ast.Call not in kinds:
+        return False
+    targets = compiler.program.call_targets
+    for node in usage.nodes:
+        cls = type(node)
+        if cls is ast.Binary:
+            if node.op in _REUSED_OPERATORS:
+                t = compiler.ty(node)
+                if isinstance(t, ElementaryType) and t.kind == "real":
+                    return True
+        elif cls is ast.Call:
+            target = targets.get(id(node))
+            if target is None or (target.name or "").upper() in _REUSED_FUNCTIONS:
+                return True
+    return False
+
+
+_REUSED_OPERATORS = frozenset(("+", "-", "*"))
+_REUSED_FUNCTIONS = frozenset(("SIN", "COS", "TAN", "SQRT"))
 
 
 UNROLL_CAP = 8000   # statements unrolled loops may produce in one POU (iterations x body statements)

@@ -99,6 +99,8 @@ def drop_unread(lines: list[str], start: int, deferred: bool = False) -> None:
         match = _ALIAS_LINE.fullmatch(lines[i].strip())
         if match and match.group(1) == match.group(2) and lines[i].startswith("    v_"):
             loads[match.group(1)] = i
+    if not loads:
+        return                  # (no load to leave out: the lines after need no reading)
     unread, seen = set(), set()
     checks: dict[int, list[str]] = {}          # line of a budget check -> the loads it makes
     for i in range(body + 1, len(lines)):

@@ -30,7 +30,10 @@ _BRANCH = re.compile(" *(?:if |elif |else:)")
 
 def merge(lines: list[str], start: int) -> None:
     """Add each charge that may join the one before it in its level to that one."""
-    text = "\n".join(lines[start:]).split("\n")
+    joined = "\n".join(lines[start:])
+    if joined.count("_spent += ") < 2:
+        return                  # (fewer than two charges: none to join, no line to read)
+    text = joined.split("\n")
     found = [(n, match) for n, line in enumerate(text)
              if "_spent += " in line and (match := _CHARGE.fullmatch(line))]
     if len(found) < 2:

@@ -46,6 +46,13 @@ class Flow:
     """The followed variables of one body and their ranges (kept in `compiler.known_ranges`)."""
 
     def __init__(self, compiler, body):
+        self.compiler = compiler
+        self._assigned: dict[int, set[str]] = {}       # id(loop body) -> followed names it assigns
+        self.bounds: dict[str, tuple[int, int]] = {}
+        candidates = {key: bounds for key, place in compiler.scope.places.items()
+                      if place.how == "local" and (bounds := int_bounds(place.symbol.type)) is not None}
+        if not candidates:
+            return          # (nothing to follow: no walk for what no one else may write)
         excluded: set[str] = set(compiler.scope.usage.referenced)
         for node in walk(body):
             if isinstance(node, ast.For):
@@ -58,13 +65,7 @@ class Flow:
                 name = root_name(node.value)
                 if name:
                     excluded.add(name)
-        self.compiler = compiler
-        self._assigned: dict[int, set[str]] = {}       # id(loop body) -> followed names it assigns
-        self.bounds: dict[str, tuple[int, int]] = {}
-        for key, place in compiler.scope.places.items():
-            bounds = int_bounds(place.symbol.type) if place.how == "local" else None
-            if bounds is not None and key not in excluded:
-                self.bounds[key] = bounds
+        self.bounds = {key: bounds for key, bounds in candidates.items() if key not in excluded}
 
     # ----------------------------------------------------------- states
 

@@ -20,6 +20,8 @@ _READ = "_ctx.seal"
 def hoist(lines: list[str], start: int) -> None:
     """`_seal = _ctx.seal` first in the function whose lines after the `def` begin at
     `lines[start]`, and `_seal` for each read, when it reads the seal twice or more."""
+    if "\n".join(lines[start:]).count(_READ) < 2:
+        return                  # (each read is one of these texts: fewer than two, no line to read)
     reads = {i: _reads(line) for i, line in enumerate(lines[start:], start) if _READ in line}
     if sum(len(columns) for columns in reads.values()) < 2:
         return
