@@ -110,7 +110,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   # and the REST test of motion FBs calls.py emits, which the selection never ran (2 s)
                   "tests/test_motion_rest.py",
                   # session 15: the core files' leftovers and the fresh seed 360's survivors
-                  "tests/test_compiler_tables_core_s15.py"]),
+                  "tests/test_compiler_tables_core_s15.py",
+                  # a project's own FB named like a native one in the bound and the estimate (session 15)
+                  "tests/test_optimiser_fastpath_own_fb.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",
@@ -160,7 +162,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                  # the whole-module seed-28 run (issue 16, session 13)
                  "tests/test_checker_mutation_s13.py",
                  # the fresh seed-29 run and the PROPERTY accessors (issue 16, session 14)
-                 "tests/test_checker_mutation_s14.py"]),
+                 "tests/test_checker_mutation_s14.py",
+                 # qualified calls NS.F(...) (issue 16, session 15)
+                 "tests/test_checker_namespaced_calls.py"]),
     "reference": (["stgen/reference/*"],
                   ["tests/test_reference_brake.py", "tests/test_reference_cycloidal.py",
                    "tests/test_reference_error_codes.py", "tests/test_reference_forward.py",
@@ -180,7 +184,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                    # make_table_105 and seed 32 (issue 16, session 13)
                    "tests/test_reference_mutation_s13.py",
                    # seed 33 (issue 16, session 14)
-                   "tests/test_reference_mutation_s14.py"]),
+                   "tests/test_reference_mutation_s14.py",
+                   # the registry's "integer inputs" entries re-read (issue 16, session 15)
+                   "tests/test_reference_mutation_s15.py"]),
 }
 
 # Extra [tool.mutmut] settings of one module. The compiler's mutants include

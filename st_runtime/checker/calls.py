@@ -60,7 +60,9 @@ class CallChecker:
             return None
         callee = call.callee
         pou = None
-        if isinstance(callee, ast.Name) and self._not_a_variable(callee):
+        if isinstance(callee, ast.Member) and self._namespace_of(callee) is not None:
+            pou = self.program.pous.get(key(callee.name))
+        elif isinstance(callee, ast.Name) and self._not_a_variable(callee):
             pou = self.program.pous.get(key(callee.name))
         else:
             t = self.ex.infer(callee)
@@ -76,10 +78,11 @@ class CallChecker:
         short = self._namespaced(callee)
         if short is _NOT_IN_NAMESPACE:      # one root cause, one diagnostic
             return self._give_up(call)
-        if short is not None:       # NS.F(x): the function F of namespace NS
+        if short is not None:       # NS.F(x): the POU F of namespace NS
             inner = ast.Call(short, call.args, call.trailing_comma, pos=call.pos)
             self.program.lowered[id(call)] = inner
-            t = self._dispatch(inner, expected, statement)
+            written = f"{self._namespace_of(callee)}.{short.name}"
+            t = self._pou_call(inner, self.program.pous[key(short.name)], statement, written)
             return self.ex.record(call, t) if id(inner) in self.program.expr_types else t
         if isinstance(callee, ast.Deref) and isinstance(callee.base, ast.Name) \
                 and key(callee.base.name) == "SUPER" and self.ex.scope.lookup("SUPER") is None:
@@ -93,15 +96,7 @@ class CallChecker:
             k = key(callee.name)
             pou = self.program.pous.get(k)
             if pou is not None:
-                if pou.kind == "FUNCTION":
-                    return self._user_function(call, pou, statement)
-                if pou.kind == "FUNCTION_BLOCK":
-                    msg = (f"'{callee.name}' is a FUNCTION_BLOCK type: declare an instance "
-                           f"(inst : {pou.name};) and call the instance")
-                else:
-                    msg = f"'{callee.name}' is a PROGRAM: programs are run by tasks, not called"
-                self.ctx.error("E-CALL-001", msg, callee.pos)
-                return self._give_up(call)
+                return self._pou_call(call, pou, statement, callee.name)
             if k in ("__NEW", "__DELETE"):
                 self.ctx.error("E-CALL-013", f"{callee.name}: dynamic memory (CODESYS __NEW / "
                                f"__DELETE) is not supported; declare the instance or array as a "
@@ -133,6 +128,22 @@ class CallChecker:
                            f"instance, found a variable of type {t}", callee.pos)
             return self._give_up(call)
         return self._fb_call(call, t, statement)
+
+    def _pou_call(self, call, pou: PouInfo, statement: bool, written: str):
+        """A call naming POU `pou` itself (written `written`): a FUNCTION is
+        called; an FB type, a PROGRAM or an INTERFACE is refused."""
+        if pou.kind == "FUNCTION":
+            return self._user_function(call, pou, statement)
+        if pou.kind == "FUNCTION_BLOCK":
+            type_name = written if "." in written else pou.name    # qualified if called so
+            msg = (f"'{written}' is a FUNCTION_BLOCK type: declare an instance "
+                   f"(inst : {type_name};) and call the instance")
+        elif pou.kind == "PROGRAM":
+            msg = f"'{written}' is a PROGRAM: programs are run by tasks, not called"
+        else:
+            msg = f"'{written}' is an INTERFACE: call a method of an instance that implements it"
+        self.ctx.error("E-CALL-001", msg, call.callee.pos)
+        return self._give_up(call)
 
     # ---------------------------------------------------------- array bounds
     def _bound(self, call, name: str):
@@ -182,7 +193,22 @@ class CallChecker:
 
     def _namespaced(self, callee):
         """Name(F) for a callee `NS.Sub.F` whose prefix is a NAMESPACE, else None
-        (_NOT_IN_NAMESPACE, reported, when that NAMESPACE declares no F)."""
+        (_NOT_IN_NAMESPACE, reported, when that NAMESPACE declares no F).
+
+        A qualified name names an element declared in the namespace (IEC 61131-3
+        3rd ed. 6.9), never a variable or a method of the calling POU named F:
+        the caller dispatches the Name to the POU itself."""
+        space = self._namespace_of(callee)
+        if space is None:
+            return None
+        node = self.ctx.pou_decls.get(key(callee.name))
+        if node is None or key(node.namespace) != key(space):
+            self.ctx.error("E-DECL-001", f"NAMESPACE {space} declares no POU '{callee.name}'", callee.pos)
+            return _NOT_IN_NAMESPACE
+        return ast.Name(callee.name, pos=callee.pos)
+
+    def _namespace_of(self, callee: ast.Member) -> str | None:
+        """`NS.Sub` for a callee `NS.Sub.F` whose prefix is a declared NAMESPACE, else None."""
         parts = []
         e = callee
         while isinstance(e, ast.Member):
@@ -191,13 +217,7 @@ class CallChecker:
         if not parts or not isinstance(e, ast.Name) or self.ex.scope.lookup(e.name) is not None:
             return None
         space = ".".join([e.name, *reversed(parts[1:])])
-        if key(space) not in self.ctx.namespaces:
-            return None
-        node = self.ctx.pou_decls.get(key(parts[0]))
-        if node is None or key(node.namespace) != key(space):
-            self.ctx.error("E-DECL-001", f"NAMESPACE {space} declares no POU '{parts[0]}'", callee.pos)
-            return _NOT_IN_NAMESPACE
-        return ast.Name(parts[0], pos=callee.pos)
+        return space if key(space) in self.ctx.namespaces else None
 
     # ------------------------------------------------------------ methods
     def _method_target(self, callee):

@@ -13,7 +13,8 @@ CHECKER_CODES = register({
     "W-LOAD-005": "an entry of a directory was skipped (a link to a directory, an unreadable directory, "
                   "a .st name that is not a regular file)",
     # declarations
-    "E-DECL-001": "a name is used but not declared",
+    "E-DECL-001": "a name is used but not declared (a qualified call NS.F(...) whose NAMESPACE NS declares "
+                  "no POU F: NS.F names an element of NS, never a variable or method F of the caller)",
     "E-DECL-002": "a variable, member or enumeration value is declared twice in the same scope",
     "E-DECL-003": "a POU or data type name is declared twice or redefines a standard function",
     "E-DECL-004": "a type name does not denote a declared type",
@@ -53,7 +54,8 @@ CHECKER_CODES = register({
     "E-ASSIGN-003": "assignment to a FOR control variable inside its loop",
     "E-ASSIGN-004": "assignment to an output or internal variable of a function block instance from outside, or to a PROPERTY without SET",
     # calls
-    "E-CALL-001": "a call of something that is not a function or function block instance",
+    "E-CALL-001": "a call of something that is not a function or function block instance (NS.F() of "
+                  "an FB type F of NAMESPACE NS, whatever the caller declares named F)",
     "E-CALL-002": "a call names a parameter (pin) the callee does not have",
     "E-CALL-003": "a call gives the same parameter twice",
     "E-CALL-004": "a call omits a VAR_IN_OUT parameter (required at every call)",

@@ -177,7 +177,9 @@ class CostModel:
             return w["function"] + args
         if target.kind == "fb":
             name = str(target.name).upper()
-            if name not in NATIVE_FBS:          # an FB written in ST: its blocks charge themselves
+            # An FB written in ST, a project's own TON (W-DECL-001) too: a user POU call,
+            # its blocks charge themselves (docs/nj501.md, the weights).
+            if name not in NATIVE_FBS or (pou is not None and pou.native is None):
                 return w["call"] + args
             return (w["motion_fb"] if name.startswith("MC_") else w["standard_fb"]) + args
         if target.pou is not None and target.pou.node is not None:

@@ -38,7 +38,6 @@ import re
 from dataclasses import replace
 
 from ... import ast
-from ...native import NATIVE_FBS
 from ...types import ArrayType, SubrangeType, resolve_alias
 from ..scope import assigned_in, once, walk
 
@@ -143,13 +142,13 @@ def _calls(compiler, node) -> int | None:
 
 
 def _callee(compiler, target):
-    """The POU written in ST that a call runs, or None (a standard function, a native FB)."""
+    """The POU written in ST that a call runs, or None (a standard function, a native FB).
+    A project's own FB named like a native one (TON, W-DECL-001) runs its ST body: it is
+    a callee, as the compiler's `_execute` calls it (its POU has no native class)."""
     if target is None or target.kind not in ("function", "fb"):
         return None
     pou = getattr(target, "pou", None)
     if pou is None or pou.node is None or pou.native is not None:
-        return None
-    if target.kind == "fb" and str(target.name).upper() in NATIVE_FBS:
         return None
     return pou
 
