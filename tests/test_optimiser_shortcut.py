@@ -126,13 +126,14 @@ END_PROGRAM
 def test_comparisons_anywhere_use_and_or():
     source = compile_program(api.load_text(STORES).program, optimise=ON).python_sources["MAIN"]
     plain = compile_program(api.load_text(STORES).program, optimise=WITHOUT).python_sources["MAIN"]
-    assert "self.v_INRANGE = ((v_X >= 0.0) and (v_X <= 600.0))" in source
-    assert "self.v_OUTSIDE = ((v_X < 0.0) or (v_X > 600.0))" in source
-    assert "self.v_NESTED = (((v_X >= 0.0) and (v_X <= 600.0)) or (v_X == 700.0))" in source
+    # (a stored comparison of numbers is tested for a jump: `True if ... else False`)
+    assert "self.v_INRANGE = (True if ((v_X >= 0.0) and (v_X <= 600.0)) else False)" in source
+    assert "self.v_OUTSIDE = (True if ((v_X < 0.0) or (v_X > 600.0)) else False)" in source
+    assert "self.v_NESTED = (True if (((v_X >= 0.0) and (v_X <= 600.0)) or (v_X == 700.0)) else False)" in source
     assert "self.v_WITHNOT = ((not self.v_FLAG) and (v_X > 1.0))" in source
     assert "self.v_WITHBOOL = (self.v_FLAG & (v_X > 1.0))" in source
-    assert " and " not in plain and " or " not in plain
-    assert "self.v_MAYFAULT = ((v_X > 1.0) & (_idiv(10, self.v_Z, " in source
+    assert " and " not in plain and " or " not in plain and "True if" not in plain
+    assert "self.v_MAYFAULT = (True if ((v_X > 1.0) & (_idiv(10, self.v_Z, " in source
 
 
 def test_comparisons_anywhere_hold_the_values_worked_by_hand():

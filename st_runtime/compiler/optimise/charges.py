@@ -51,15 +51,92 @@ def merge(lines: list[str], start: int) -> None:
         else:
             taker[indent] = k
         checked[indent] = n + 1
-    if not dropped:
-        return
     new = list(text)
     for k, (n, match) in enumerate(found):
         if k in dropped:
             new[n] = None
         elif totals[k] != int(match.group(2)):
             new[n] = f"{match.group(1)}_spent += {totals[k]}"
-    lines[start:] = [line for line in new if line is not None]
+    lines[start:] = _sunk([line for line in new if line is not None])
+
+
+def _sunk(text: list[str]) -> list[str]:
+    """`text` with each charge that an IF chain with an ELSE follows (nothing between that is
+    a barrier, no condition one) added to each branch's first charge instead (one written at
+    the branch's start when the branch opens with none it may take): every path through the
+    chain charges the same total, and no read of `_spent` lies between the two places.  A
+    branch's charge then goes on into a chain of its own."""
+    stops = _Stops(text)
+    sunk: dict[int, int] = {}           # line -> the amount added to it (or written before it)
+    gone = set()
+    for n, line in enumerate(text):
+        match = _CHARGE.fullmatch(line) if "_spent += " in line else None
+        if match is None:
+            continue
+        indent = match.group(1)
+        heads = _chain(text, n + 1, indent, stops)
+        if heads is None:
+            continue
+        amount = int(match.group(2)) + sunk.get(n, 0)
+        for head in heads:
+            target = _branch_charge(text, head + 1, len(indent) + 4, stops)
+            sunk[target] = sunk.get(target, 0) + amount
+        gone.add(n)
+    if not gone:
+        return text
+    out = []
+    for n, line in enumerate(text):
+        if n in gone:
+            continue
+        amount = sunk.get(n)
+        match = _CHARGE.fullmatch(line) if amount and "_spent += " in line else None
+        if match is not None:
+            out.append(f"{match.group(1)}_spent += {int(match.group(2)) + amount}")
+            continue
+        if amount:
+            out.append(f"{' ' * (len(line) - len(line.lstrip(' ')))}_spent += {amount}")
+        out.append(line)
+    return out
+
+
+def _chain(text: list[str], first: int, indent: str, stops) -> list[int] | None:
+    """The head lines (`if`, `elif`, `else:`) of the IF chain of indentation `indent` that
+    follows line `first - 1` after lines that are no barrier, when it has an `else:` and no
+    head is a barrier; else None."""
+    n, end = first, len(text)
+    while n < end and not (text[n].startswith(indent + "if ") and text[n].endswith(":")):
+        if not text[n].startswith(indent) or text[n][len(indent)] == " " or stops.stop(n):
+            return None         # (a line of another level, or one that can raise or leave)
+        n += 1
+    heads, inner = [], indent + " "
+    while n < end:
+        line = text[n]
+        if line.startswith(inner):
+            n += 1
+            continue
+        if not heads or line.startswith(indent + "elif ") or line == indent + "else:":
+            if stops.stop(n):
+                return None
+            heads.append(n)
+            n += 1
+            continue
+        break
+    return heads if heads and text[heads[-1]] == indent + "else:" else None
+
+
+def _branch_charge(text: list[str], first: int, indent: int, stops) -> int:
+    """The line of the branch starting at `first` (indentation `indent`) that takes a charge
+    sunk into it: its first charge of that indentation after lines that are no barrier, else
+    its first line."""
+    for n in range(first, len(text)):
+        line = text[n]
+        if len(line) - len(line.lstrip(" ")) < indent:
+            break
+        if line.startswith(" " * indent + "_spent += ") and _CHARGE.fullmatch(line):
+            return n
+        if stops.stop(n):
+            break
+    return first
 
 
 class _Stops:
@@ -70,6 +147,13 @@ class _Stops:
     def __init__(self, text: list[str]):
         self.text = text
         self.barrier: dict[int, bool] = {}
+
+    def stop(self, n: int) -> bool:
+        """Whether line `n` is a barrier."""
+        stop = self.barrier.get(n)
+        if stop is None:
+            stop = self.barrier[n] = _is_barrier(self.text[n])
+        return stop
 
     def joinable(self, first: int, end: int, indent: int) -> bool:
         """Whether the lines `first` to `end - 1`, between two charges of one indentation,

@@ -24,8 +24,10 @@ nothing (SP_InverseKinematics' `LegInStroke[Leg] := Position[Leg] >= 0.0 AND Pos
 
 from __future__ import annotations
 
+import re
+
 from ... import ast
-from ...types import ElementaryType
+from ...types import ElementaryType, resolve_alias
 
 _WORDS = {"AND": ("&", "and"), "&": ("&", "and"), "OR": ("|", "or")}
 _COMPARISONS = {"=", "<>", "<", ">", "<=", ">="}
@@ -59,6 +61,33 @@ def of_comparisons(compiler, e, left: str, right: str) -> str | None:
         return None
     compiler.logic_short.add(id(e))
     return f"({left} {_WORDS[e.op][1]} {right})"
+
+
+def stored(compiler, node, code: str) -> str:
+    """The value `code` of `node`, a BOOL about to be stored: a comparison of numbers (or an
+    AND/OR of such) as `True if code else False`.  Its value is a Python bool either way (a
+    comparison of ints, floats and bools is one, and `and`/`or`/`&`/`|` of two bools is one of
+    them); tested for a jump, CPython 3.11 specialises each comparison (`COMPARE_OP_FLOAT_JUMP`),
+    where a comparison whose value is kept takes the generic path (`PyObject_RichCompare` and
+    a new reference to the bool, some 90 machine instructions more)."""
+    if compiler.opt.shortcut and _COMPARED.search(code) and _compares_numbers(compiler, node):
+        return f"(True if {code} else False)"
+    return code         # (`sets`' `x in (...)`: CPython 3.11 specialises no `in`)
+
+
+_COMPARED = re.compile(r"[<>]|[=!]=")
+_NUMBER_KINDS = {"bool", "int", "bits", "real", "time", "date", "tod", "dt"}
+
+
+def _compares_numbers(compiler, e) -> bool:
+    """`e` is a comparison of two elementary numbers (held as Python bools, ints or floats), or
+    an AND/OR of two such."""
+    if not isinstance(e, ast.Binary):
+        return False
+    if e.op in _COMPARISONS:
+        return all(isinstance(t := resolve_alias(compiler.ty(side)), ElementaryType) and t.kind in _NUMBER_KINDS
+                   for side in (e.left, e.right))
+    return e.op in _WORDS and _compares_numbers(compiler, e.left) and _compares_numbers(compiler, e.right)
 
 
 def _is_bool(compiler, e) -> bool:
