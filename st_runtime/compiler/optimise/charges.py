@@ -61,32 +61,52 @@ def merge(lines: list[str], start: int) -> None:
 
 
 def _sunk(text: list[str]) -> list[str]:
-    """`text` with each charge that an IF chain with an ELSE follows (nothing between that is
-    a barrier, no condition one) added to each branch's first charge instead (one written at
-    the branch's start when the branch opens with none it may take): every path through the
-    chain charges the same total, and no read of `_spent` lies between the two places.  A
-    branch's charge then goes on into a chain of its own."""
+    """`text` with each charge that an IF chain follows (nothing between that is a barrier, no
+    condition one) added to each branch's first charge instead (one written at the branch's
+    start when the branch opens with none it may take; a chain without ELSE gets one that
+    charges it): every path through the chain charges the same total, and no read of
+    `_spent` lies between the two places.  A branch's charge then goes on into a chain of its
+    own (the text is read again while a charge moved: a few times, as deep as chains nest)."""
+    for _ in range(_ROUNDS):
+        moved = _sink_once(text)
+        if moved is None:
+            break
+        text = moved
+    return text
+
+
+_ROUNDS = 8
+
+
+def _sink_once(text: list[str]) -> list[str] | None:
+    """`_sunk`'s one reading of `text`; None when no charge moved."""
     stops = _Stops(text)
     sunk: dict[int, int] = {}           # line -> the amount added to it (or written before it)
+    elses: dict[int, list] = {}         # line -> the ELSEs written before it (deepest first)
     gone = set()
     for n, line in enumerate(text):
         match = _CHARGE.fullmatch(line) if "_spent += " in line else None
         if match is None:
             continue
         indent = match.group(1)
-        heads = _chain(text, n + 1, indent, stops)
-        if heads is None:
+        chain = _chain(text, n + 1, indent, stops)
+        if chain is None:
             continue
+        heads, end = chain
         amount = int(match.group(2)) + sunk.get(n, 0)
         for head in heads:
             target = _branch_charge(text, head + 1, len(indent) + 4, stops)
             sunk[target] = sunk.get(target, 0) + amount
+        if text[heads[-1]] != indent + "else:":
+            elses.setdefault(end, []).append((indent + "else:", f"{indent}    _spent += {amount}"))
         gone.add(n)
     if not gone:
-        return text
+        return None
     out = []
-    for n, line in enumerate(text):
-        if n in gone:
+    for n, line in enumerate(text + [""]):
+        for branch in sorted(elses.get(n, ()), key=lambda lines: -len(lines[0])):
+            out.extend(branch)
+        if n in gone or n == len(text):
             continue
         amount = sunk.get(n)
         match = _CHARGE.fullmatch(line) if amount and "_spent += " in line else None
@@ -99,10 +119,10 @@ def _sunk(text: list[str]) -> list[str]:
     return out
 
 
-def _chain(text: list[str], first: int, indent: str, stops) -> list[int] | None:
-    """The head lines (`if`, `elif`, `else:`) of the IF chain of indentation `indent` that
-    follows line `first - 1` after lines that are no barrier, when it has an `else:` and no
-    head is a barrier; else None."""
+def _chain(text: list[str], first: int, indent: str, stops) -> tuple[list[int], int] | None:
+    """(the head lines (`if`, `elif`, `else:`), the line after the last branch) of the IF
+    chain of indentation `indent` that follows line `first - 1` after lines that are no
+    barrier, when no head is a barrier; else None."""
     n, end = first, len(text)
     while n < end and not (text[n].startswith(indent + "if ") and text[n].endswith(":")):
         if not text[n].startswith(indent) or text[n][len(indent)] == " " or stops.stop(n):
@@ -114,14 +134,15 @@ def _chain(text: list[str], first: int, indent: str, stops) -> list[int] | None:
         if line.startswith(inner):
             n += 1
             continue
-        if not heads or line.startswith(indent + "elif ") or line == indent + "else:":
+        if not heads or (line.startswith(indent + "elif ") or line == indent + "else:") \
+                and text[heads[-1]] != indent + "else:":
             if stops.stop(n):
                 return None
             heads.append(n)
             n += 1
             continue
         break
-    return heads if heads and text[heads[-1]] == indent + "else:" else None
+    return (heads, n) if heads else None
 
 
 def _branch_charge(text: list[str], first: int, indent: int, stops) -> int:
