@@ -69,13 +69,30 @@ def stored(compiler, node, code: str) -> str:
     comparison of ints, floats and bools is one, and `and`/`or`/`&`/`|` of two bools is one of
     them); tested for a jump, CPython 3.11 specialises each comparison (`COMPARE_OP_FLOAT_JUMP`),
     where a comparison whose value is kept takes the generic path (`PyObject_RichCompare` and
-    a new reference to the bool, some 90 machine instructions more)."""
-    if compiler.opt.shortcut and _COMPARED.search(code) and _compares_numbers(compiler, node):
+    a new reference to the bool, some 90 machine instructions more).
+
+    `X & R` of a BOOL X read from a variable (a local or a slot: the same value read twice,
+    nothing runs between) and a Python bool R that cannot fault is `X if not X else X & R`:
+    a false X (FALSE or 0) is what `X & R` gives then (`False & b` is False, `0 & b` is 0),
+    and leaving R out reads, stores and raises nothing; `&` of two values goes through the
+    number protocol, the test of X is a jump (SP_Controller's six edges `Start AND NOT
+    Previous`, its MC_Stop's `StopExecute AND NOT ErrorStop`)."""
+    if not compiler.opt.shortcut:
+        return code
+    if _COMPARED.search(code) and _compares_numbers(compiler, node):
         return f"(True if {code} else False)"
+    parts = compiler.logic_parts.get(id(node))
+    if parts is not None and node.op in ("AND", "&") and code == f"({parts[0]} & {parts[1]})" \
+            and _READ.fullmatch(parts[0]) and _is_bool(compiler, node.right):
+        from . import branches      # (see of_comparisons)
+
+        if branches.expr_cannot_fault(compiler, node.right, parts[1]):
+            return f"({parts[0]} if not {parts[0]} else {code})"
     return code         # (`sets`' `x in (...)`: CPython 3.11 specialises no `in`)
 
 
 _COMPARED = re.compile(r"[<>]|[=!]=")
+_READ = re.compile(r"(?:self\.|_G\.)?v_\w+")      # a local, or a slot of the instance or of the globals
 _NUMBER_KINDS = {"bool", "int", "bits", "real", "time", "date", "tod", "dt"}
 
 
