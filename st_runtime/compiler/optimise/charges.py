@@ -67,25 +67,28 @@ def _sunk(text: list[str]) -> list[str]:
     charges it): every path through the chain charges the same total, and no read of
     `_spent` lies between the two places.  A branch's charge then goes on into a chain of its
     own (the text is read again while a charge moved: a few times, as deep as chains nest)."""
+    candidates = [n for n, line in enumerate(text) if "_spent += " in line]
     for _ in range(_ROUNDS):
-        moved = _sink_once(text)
+        moved = _sink_once(text, candidates)
         if moved is None:
             break
-        text = moved
+        text, candidates = moved        # (the charges it changed or wrote: only they may move on)
     return text
 
 
 _ROUNDS = 8
+_LOOK_AHEAD = 16        # statements between a charge and the IF it may sink into (the load's cost)
 
 
-def _sink_once(text: list[str]) -> list[str] | None:
-    """`_sunk`'s one reading of `text`; None when no charge moved."""
+def _sink_once(text: list[str], candidates: list[int]) -> tuple[list[str], list[int]] | None:
+    """`_sunk`'s one reading of `text` for the charges on lines `candidates`: (the text, the
+    lines of the charges it changed or wrote), or None when no charge moved."""
     stops = _Stops(text)
     sunk: dict[int, int] = {}           # line -> the amount added to it (or written before it)
     elses: dict[int, list] = {}         # line -> the ELSEs written before it (deepest first)
     gone = set()
-    for n, line in enumerate(text):
-        match = _CHARGE.fullmatch(line) if "_spent += " in line else None
+    for n in candidates:
+        match = _CHARGE.fullmatch(text[n])
         if match is None:
             continue
         indent = match.group(1)
@@ -102,21 +105,29 @@ def _sink_once(text: list[str]) -> list[str] | None:
         gone.add(n)
     if not gone:
         return None
-    out = []
-    for n, line in enumerate(text + [""]):
+    out, done, changed = [], 0, []
+    for n in sorted(gone | sunk.keys() | elses.keys()):
+        out.extend(text[done:n])
+        done = n + 1
         for branch in sorted(elses.get(n, ()), key=lambda lines: -len(lines[0])):
             out.extend(branch)
-        if n in gone or n == len(text):
+            changed.append(len(out) - 1)
+        if n == len(text):
+            break
+        line, amount = text[n], sunk.get(n)
+        if n in gone:
             continue
-        amount = sunk.get(n)
         match = _CHARGE.fullmatch(line) if amount and "_spent += " in line else None
         if match is not None:
+            changed.append(len(out))
             out.append(f"{match.group(1)}_spent += {int(match.group(2)) + amount}")
             continue
         if amount:
+            changed.append(len(out))
             out.append(f"{' ' * (len(line) - len(line.lstrip(' ')))}_spent += {amount}")
         out.append(line)
-    return out
+    out.extend(text[done:])
+    return out, changed
 
 
 def _chain(text: list[str], first: int, indent: str, stops) -> tuple[list[int], int] | None:
@@ -125,7 +136,8 @@ def _chain(text: list[str], first: int, indent: str, stops) -> tuple[list[int], 
     barrier, when no head is a barrier; else None."""
     n, end = first, len(text)
     while n < end and not (text[n].startswith(indent + "if ") and text[n].endswith(":")):
-        if not text[n].startswith(indent) or text[n][len(indent)] == " " or stops.stop(n):
+        if not text[n].startswith(indent) or text[n][len(indent)] == " " or stops.stop(n) \
+                or n - first >= _LOOK_AHEAD:
             return None         # (a line of another level, or one that can raise or leave)
         n += 1
     heads, inner = [], indent + " "
