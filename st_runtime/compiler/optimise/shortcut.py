@@ -20,6 +20,10 @@ the right one cannot fault (branches.py's rule): each comparison is a Python boo
 `a and b` is the bool `a & b` is, and the right one left out reads, stores and raises
 nothing (SP_InverseKinematics' `LegInStroke[Leg] := Position[Leg] >= 0.0 AND Position[Leg]
 <= Stroke`: no `&` of two bools, which goes through the number protocol).
+
+A BOOL stored from a comparison of numbers (or an AND/OR of such) is tested for a jump,
+`True if ... else False`, and a stored `X AND R` of a BOOL variable X is `X if not X else
+X & R` (`stored`: CPython 3.11 specialises a comparison only where a jump follows it).
 """
 
 from __future__ import annotations
