@@ -142,12 +142,14 @@ def _chain(text: list[str], first: int, indent: str, stops) -> tuple[list[int], 
     """(the head lines (`if`, `elif`, `else:`), the line after the last branch) of the IF
     chain of indentation `indent` that follows line `first - 1` after lines that are no
     barrier, when no head is a barrier; else None."""
-    n, end = first, len(text)
-    while n < end and not (text[n].startswith(indent + "if ") and text[n].endswith(":")):
-        if not text[n].startswith(indent) or text[n][len(indent)] == " " or stops.stop(n) \
-                or n - first >= _LOOK_AHEAD:
-            return None         # (a line of another level, or one that can raise or leave)
+    n, end, head = first, min(len(text), first + _LOOK_AHEAD), indent + "if "
+    while n < end and not (text[n].startswith(head) and text[n].endswith(":")):
+        if not text[n].startswith(indent) or text[n][len(indent)] == " ":
+            return None         # (a line of another level)
         n += 1
+    if n == end or any(stops.stop(k) for k in range(first, n)):
+        return None             # (no IF near, or a line between that can raise or leave)
+    end = len(text)
     heads, inner = [], indent + " "
     while n < end:
         line = text[n]

@@ -83,7 +83,7 @@ def stored(compiler, node, code: str) -> str:
     Previous`, its MC_Stop's `StopExecute AND NOT ErrorStop`)."""
     if not compiler.opt.shortcut:
         return code
-    if _COMPARED.search(code) and _compares_numbers(compiler, node):
+    if _compares_numbers(compiler, node) and (node.op in _COMPARISONS or _COMPARED.search(code)):
         return f"(True if {code} else False)"
     parts = compiler.logic_parts.get(id(node))
     if parts is not None and node.op in ("AND", "&") and code == f"({parts[0]} & {parts[1]})" \
