@@ -81,8 +81,9 @@ def stored(compiler, node, code: str) -> str:
     and leaving R out reads, stores and raises nothing; `&` of two values goes through the
     number protocol, the test of X is a jump (SP_Controller's six edges `Start AND NOT
     Previous`, its MC_Stop's `StopExecute AND NOT ErrorStop`)."""
-    if not compiler.opt.shortcut:
-        return code
+    if type(node) is not ast.Binary or (node.op not in _COMPARISONS and node.op not in _WORDS) \
+            or not compiler.opt.shortcut:
+        return code         # (most stores: asked first, it is cheaper)
     if _compares_numbers(compiler, node) and (node.op in _COMPARISONS or _COMPARED.search(code)):
         return f"(True if {code} else False)"
     parts = compiler.logic_parts.get(id(node))
