@@ -252,7 +252,7 @@ row("shortcut", "AND and OR in an IF", main("a, c : BOOL; b : BOOL := TRUE; y : 
     shape=("MAIN", r"if \(?\(?self\.v_A and self\.v_B\)? or self\.v_C\)?:"))
 row("shortcut", "comparisons in a store", main("x : LREAL := 2.0; s : LREAL := 3.0; r, q : BOOL;",
     "r := x >= 0.0 AND x <= s;\nq := x < 0.0 OR x > s;"), {"r": True, "q": False},
-    shape=("MAIN", r"self\.v_R = \(\((?:self\.)?v_X >= 0\.0\) and \((?:self\.)?v_X <= self\.v_S\)\)"))
+    shape=("MAIN", r"self\.v_R = \(True if \(\((?:self\.)?v_X >= 0\.0\) and \((?:self\.)?v_X <= self\.v_S\)\) else False\)"))
 row("shortcut", "a right operand that may fault is evaluated", main("k : INT; x : REAL := -1.0; r : BOOL;",
     "r := (x > 0.0) AND (10 / k > 1);"), {"r": False}, faults=[("F-DIV-ZERO", 4, 1)],
     never=("MAIN", r" and "))
@@ -465,7 +465,7 @@ row("stores_read", "an operand of the stored value changes", main(AB + "arr : AR
     "arr[1] := a * b;\na := 0.5;\ny := arr[1] + a * b;"), {"arr": [3.0, 0.0, 0.0], "y": 4.0})
 row("finite", "SIN and COS of one variable", main(AB, "x := SIN(a) + COS(a);\ny := SIN(a);"),
     {"x": __import__("math").sin(1.5) + __import__("math").cos(1.5), "y": __import__("math").sin(1.5)},
-    shape=("MAIN", r"_c\d+ = \((?:self\.)?v_A - (?:self\.)?v_A == 0\.0\)"), with_=("inline",))
+    shape=("MAIN", r"_c\d+ = \(True if \((?:self\.)?v_A - (?:self\.)?v_A == 0\.0\) else False\)"), with_=("inline",))
 
 
 # --------------------------------------------------------- aliases, spread, stores, unused

@@ -84,8 +84,9 @@ def test_two_charges_with_assignments_between_are_one():
 def test_a_run_of_charges_and_an_if_with_its_own_charges():
     lines = ["    _spent += 1", "    if v_A:", "        _spent += 10", "        v_X = 2", "    else:",
              "        _spent += 20", "    _spent += 3", "    v_Y = 1", "    _spent += 4"]
-    assert _run_charges(lines) == ["    _spent += 8", "    if v_A:", "        _spent += 10", "        v_X = 2",
-                                   "    else:", "        _spent += 20", "    v_Y = 1"]
+    # the run's 1 + 3 + 4 joined, then sunk into both branches of the IF after it
+    assert _run_charges(lines) == ["    if v_A:", "        _spent += 18", "        v_X = 2",
+                                   "    else:", "        _spent += 28", "    v_Y = 1"]
 
 
 @pytest.mark.parametrize("barrier", BARRIERS)
@@ -109,8 +110,23 @@ def test_a_charge_after_a_less_indented_line_starts_a_new_run():
 def test_a_charge_joins_across_a_deeper_block_and_the_barrier_restarts_the_run():
     lines = ["    _spent += 1", "    if v_A:", "        _spent += 2", "        v_X = 1", "        _spent += 3",
              "    _spent += 4", "    _overrun(x)", "    _spent += 5", "    v_Y = 0", "    _spent += 6"]
-    assert _run_charges(lines) == ["    _spent += 5", "    if v_A:", "        _spent += 5", "        v_X = 1",
-                                   "    _overrun(x)", "    _spent += 11", "    v_Y = 0"]
+    # 1 + 4 joined and sunk into the IF, which gets an ELSE to charge it on the other path
+    assert _run_charges(lines) == ["    if v_A:", "        _spent += 10", "        v_X = 1", "    else:",
+                                   "        _spent += 5", "    _overrun(x)", "    _spent += 11", "    v_Y = 0"]
+
+
+def test_a_charge_sinks_through_nested_chains_and_stops_at_a_barrier():
+    lines = ["    _spent += 1", "    v_Z = 0", "    if v_A:", "        _spent += 2", "        if v_B:",
+             "            v_X = 1", "    elif v_C:", "        v_X = 2", "    v_Y = 0"]
+    # 1 into each branch (the ELIF's has none: written at its start; an ELSE added), the
+    # IF's 3 into its inner IF (an ELSE added there too, before the outer one's)
+    assert _run_charges(lines) == ["    v_Z = 0", "    if v_A:", "        if v_B:", "            _spent += 3",
+                                   "            v_X = 1", "        else:", "            _spent += 3",
+                                   "    elif v_C:", "        _spent += 1", "        v_X = 2", "    else:",
+                                   "        _spent += 1", "    v_Y = 0"]
+    for barrier in ("    if _ctx.budget < _spent:", "    try:"):
+        lines = ["    _spent += 1", barrier, "        v_X = 1", "    _spent += 2"]
+        assert _run_charges(lines)[:2] == lines[:2]
 
 
 def test_one_charge_or_none_is_left_as_it_is():

@@ -80,3 +80,61 @@ def test_a_fault_that_stops_the_run_leaves_the_same_time_charged():
                          controller.ctx.budget))
     assert outcomes[0] == outcomes[1]
     assert outcomes[1][0] == [("F-DIV-ZERO", 13, 3)]
+
+
+# A charge before an IF chain goes into its branches (a chain without ELSE gets one), and on
+# into the chains those open: the same time on every path.
+CHAINS = """
+PROGRAM Main
+VAR N, K, Z, Y : INT; X : LREAL; END_VAR
+N := N + 1;
+K := K + 1;
+IF K > 3 THEN K := 0; END_IF;               (* no ELSE *)
+IF K = 0 THEN
+    Y := 1;
+ELSIF K = 1 THEN
+    Y := 2;
+    IF N > 5 THEN Y := 3; ELSE Y := 4; END_IF;
+ELSE
+    Y := 5;
+END_IF;
+X := X + 1.0;
+IF N > 4 THEN                               (* no ELSE, a guard in the branch *)
+    X := X * 2.0;
+    Z := 10 / (N - 6);
+END_IF;
+Y := Y + 1;
+END_PROGRAM
+"""
+
+
+def test_a_charge_sinks_into_the_branches_of_the_chain_after_it():
+    sunk = compile_program(api.load_text(CHAINS).program, optimise=ON).python_sources["MAIN"]
+    plain = compile_program(api.load_text(CHAINS).program, optimise=replace(ON, charges=False)).python_sources["MAIN"]
+    assert sunk.count("else:") == plain.count("else:") + 1       # the first chain got one
+    lines = [line.strip() for line in sunk.splitlines()]
+    for head in ("if (v_K > 3):",):
+        assert not lines[lines.index(head) - 1].startswith("_spent += ")
+        assert lines[lines.index(head) + 1].startswith("_spent += ")
+
+
+@pytest.mark.parametrize("budget_ns", [200, 400, 600, 800, 1_000, 2_000, 500_000])
+def test_sunk_charges_cut_the_scan_where_they_did(budget_ns):
+    for optimise in (Optimisations.only("charges"), ON):
+        off, on = run_both(api.load_text(CHAINS).program, 12, budget_ns, optimise=optimise)
+        assert on == off
+
+
+def test_sunk_charges_leave_the_same_time_charged():
+    outcomes = []
+    for optimise in (replace(ON, charges=False), Optimisations.only("charges"), ON):
+        controller = Controller(compile_program(api.load_text(CHAINS).program, optimise=optimise),
+                                stop_on_fault=True)
+        main = controller.add_program("Main")
+        budgets = []
+        for _ in range(8):
+            controller.run(1)
+            budgets.append(controller.ctx.budget)
+        outcomes.append(([(f.code, f.line, f.scan) for f in controller.faults], snapshot(main), budgets))
+    assert outcomes[0] == outcomes[1] == outcomes[2]
+    assert outcomes[0][0] == [("F-DIV-ZERO", 18, 6)]          # Z := 10 / (N - 6), N = 6

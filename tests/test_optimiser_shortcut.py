@@ -126,13 +126,14 @@ END_PROGRAM
 def test_comparisons_anywhere_use_and_or():
     source = compile_program(api.load_text(STORES).program, optimise=ON).python_sources["MAIN"]
     plain = compile_program(api.load_text(STORES).program, optimise=WITHOUT).python_sources["MAIN"]
-    assert "self.v_INRANGE = ((v_X >= 0.0) and (v_X <= 600.0))" in source
-    assert "self.v_OUTSIDE = ((v_X < 0.0) or (v_X > 600.0))" in source
-    assert "self.v_NESTED = (((v_X >= 0.0) and (v_X <= 600.0)) or (v_X == 700.0))" in source
+    # (a stored comparison of numbers is tested for a jump: `True if ... else False`)
+    assert "self.v_INRANGE = (True if ((v_X >= 0.0) and (v_X <= 600.0)) else False)" in source
+    assert "self.v_OUTSIDE = (True if ((v_X < 0.0) or (v_X > 600.0)) else False)" in source
+    assert "self.v_NESTED = (True if (((v_X >= 0.0) and (v_X <= 600.0)) or (v_X == 700.0)) else False)" in source
     assert "self.v_WITHNOT = ((not self.v_FLAG) and (v_X > 1.0))" in source
-    assert "self.v_WITHBOOL = (self.v_FLAG & (v_X > 1.0))" in source
-    assert " and " not in plain and " or " not in plain
-    assert "self.v_MAYFAULT = ((v_X > 1.0) & (_idiv(10, self.v_Z, " in source
+    assert "self.v_WITHBOOL = (self.v_FLAG if not self.v_FLAG else (self.v_FLAG & (v_X > 1.0)))" in source
+    assert " and " not in plain and " or " not in plain and "True if" not in plain
+    assert "self.v_MAYFAULT = (True if ((v_X > 1.0) & (_idiv(10, self.v_Z, " in source
 
 
 def test_comparisons_anywhere_hold_the_values_worked_by_hand():
@@ -154,3 +155,30 @@ def test_comparisons_anywhere_run_the_same(budget_ns):
     off, every = run_both(api.load_text(STORES).program, 10, budget_ns, optimise=ON)
     assert every == off
     assert [code for code, *_ in every[0]].count("F-DIV-ZERO") in (10, 0)   # each scan, unless cut before
+
+
+# A stored AND whose left operand is a BOOL read from a variable: tested first (`X if not X
+# else X & R`).  A BOOL set from Python may hold 0 or 1: the value and its type are `&`'s.
+HELD = """
+PROGRAM Main
+VAR Flag : BOOL; Other : BOOL; X : LREAL; WithNot, WithTest, Compared : BOOL; END_VAR
+WithNot := Flag AND NOT Other;
+WithTest := Flag AND X > 1.0;
+Compared := X > 1.0;
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("optimise", [ON, WITHOUT], ids=["on", "off"])
+def test_a_stored_and_keeps_the_value_and_type_of_its_bool(optimise):
+    controller = Controller(compile_program(api.load_text(HELD).program, optimise=optimise))
+    main = controller.add_program("Main")
+    for flag in (0, 1, False, True):
+        for other, x in ((False, 0.5), (True, 2.0), (0, 2.0), (1, float("nan"))):
+            main.v_FLAG, main.v_OTHER, main.v_X = flag, other, x
+            controller.run(1)
+            # by hand: `&` of the held value with a bool (0 & True is 0, False & True is False)
+            with_not, with_test = flag & (not other), flag & (x > 1.0)
+            assert (main.v_WITHNOT, main.v_WITHTEST, main.v_COMPARED) == (with_not, with_test, x > 1.0)
+            assert (type(main.v_WITHNOT), type(main.v_WITHTEST), type(main.v_COMPARED)) == \
+                (type(with_not), type(with_test), bool), (flag, other, x)

@@ -64,8 +64,8 @@ def test_a_stored_value_is_read_back_by_name():
     plain = compiled_lines(_program(), "PROBE", WITHOUT)
     at = lines.index("v_P[0] = _c1")
     assert lines[at - 1] == "_c1 = ((self.v_X * 2.0) - 1.0)"
-    assert lines[at + 1:at + 3] == ["self.v_FINITE = ((_c1 - _c1) == 0.0)",
-                                    "self.v_INRANGE = ((_c1 >= 0.0) and (_c1 <= 600.0))"]
+    assert lines[at + 1:at + 3] == ["self.v_FINITE = (True if ((_c1 - _c1) == 0.0) else False)",
+                                    "self.v_INRANGE = (True if ((_c1 >= 0.0) and (_c1 <= 600.0)) else False)"]
     assert "self.v_COPY = (_c4 + _c4)" in lines             # the second store's value
     for element in ("v_P[2]", "v_R[0]", "v_P[1]", "v_P[0]"):   # ended: read again
         assert f" = {element}" in "\n".join(lines[at + 3:])

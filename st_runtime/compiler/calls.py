@@ -28,6 +28,7 @@ from ..objects import is_aggregate
 from ..types import BOOL, ArrayType, ElementaryType, FBType, StructType, resolve_alias
 from .exprs import elementary, is_real
 from .initial import CompileError
+from .optimise import shortcut
 from .pysrc import pyliteral, safe_name, pyident
 
 # Standard functions that map to a Python builtin or to their argument.
@@ -199,7 +200,7 @@ class Calls:
                 lines.append(copy_statement(attr, ec.aggregate(arg.value), symbol.type))
             else:
                 value = self.argument(ec, symbol, arg)
-                lines.append(f"{attr} = {value}")
+                lines.append(f"{attr} = {shortcut.stored(ec, arg.value, value) if symbol.kind == 'VAR_INPUT' else value}")
                 if value.isidentifier() and value != instance:
                     stored[pyident(symbol.name)] = value
         lines += _read_back(self._execute(ec, target, call, instance), instance, stored)

@@ -303,6 +303,9 @@ class MC_Power(_AxisFB):
     # Every scan of every axis: Status follows the servo, Busy while it switches.  The
     # request is stored only when it is not that bool already: a change ends the axis's
     # stream epoch as `Axis.request_power` does (the store of the same object changes nothing).
+    # Busy is FALSE without the comparison when Powered is the very bool Enable is (a bool
+    # equals itself): CPython 3.11 does not specialise a comparison of bools whose value is
+    # stored, an identity test it runs at once.
     HOT_PATH = HotPath(
         pre="",
         body=("{enable} = True if {fb}.v_ENABLE else False",    # bool(), without the call
@@ -311,7 +314,7 @@ class MC_Power(_AxisFB):
               "    {axis}._stream_epoch = None",
               "{powered} = {axis}.powered",
               "{fb}.v_STATUS = {powered}",
-              "{fb}.v_BUSY = {enable} != {powered}",
+              "{fb}.v_BUSY = False if {enable} is {powered} else {enable} != {powered}",
               "{fb}.v_ERROR = False",
               "{fb}.v_ERRORID = 0"),
         temps=("enable", "powered"),
@@ -470,9 +473,11 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
         return axis.start_sync()
 
     # The call of every scan while synchronized (no edge, command alive); everything else
-    # goes through the general rules.  InPosition as `_poll` computes it (abs() and one
-    # comparison cost less than a chained comparison whose value is stored); an LREAL input
-    # holds a float: float() only if not.  With Execute TRUE, `pre` found the Execute the FB
+    # goes through the general rules.  InPosition as `_poll` computes it, |d| <= range as
+    # -range <= d <= range (the same answer for every float d and range > 0, NaN included),
+    # tested by jumps, which CPython 3.11 specialises (a comparison whose value is stored it
+    # does not), without the call of abs() and its float; an LREAL input holds a float:
+    # float() only if not.  With Execute TRUE, `pre` found the Execute the FB
     # remembers TRUE (the FB only ever stores a bool there): only a FALSE one is stored.
     HOT_PATH = HotPath(
         pre=("{fb}.v_BUSY and ({command} := {fb}._command) is not None and not {command}.aborted"
@@ -480,10 +485,11 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
         body=("if not {fb}.v_EXECUTE:",
               "    {fb}._previous_execute = False",
               "{fb}.v_ACTIVE = True",                         # _poll(axis, command, False), inlined
-              "{fb}.v_INPOSITION = abs({axis}.act_pos - {command}.target) <= {axis}.config.in_position_range",
+              "{fb}.v_INPOSITION = (True if -({range} := {axis}.config.in_position_range)"
+              " <= {axis}.act_pos - {command}.target <= {range} else False)",
               "{position} = {fb}.v_POSITION",
               "{command}.target = {position} if {position}.__class__ is float else float({position})"),
-        temps=("command", "position"),
+        temps=("command", "position", "range"),
         cold="_execute_rules")
 
     def _start(self, axis: Axis | None) -> None:

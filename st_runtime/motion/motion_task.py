@@ -52,6 +52,8 @@ _ERRORSTOP = AxisState.ERRORSTOP
 # The general step comes first: the guard's jumps to it are then short, and CPython 3.11
 # specialises a comparison only when a short jump follows it (a jump past the stream's code
 # takes an EXTENDED_ARG); a comparison that jumps, not one whose value is stored, likewise.
+# So AccDec tests `new_vel == old_vel` (its short branch first), not `!=` with the long one
+# first: the same branch for every pair of floats, NaN included.
 #
 # The epoch (`epoch`, see `_AFTER_PROGRAMS`): while an axis carries the epoch of
 # the run it streams in, nothing but the stream's own step has changed it since it last took
@@ -77,14 +79,14 @@ _LANE_STEP = """\
         {cmd}.v_POS = {act}.v_POS = {axis}.cmd_pos = {axis}.act_pos = target
         old_vel = {axis}.cmd_vel
         {cmd}.v_VEL = {axis}.cmd_vel = new_vel = delta / dt
-        if new_vel != old_vel:
+        if new_vel == old_vel:
+            {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
+        else:
             magnitude = abs(new_vel - old_vel) / dt
             if (new_vel if new_vel >= 0.0 else -new_vel) > (old_vel if old_vel >= 0.0 else -old_vel):
                 {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude
             else:
                 {cmd}.v_ACCDEC = {axis}.cmd_accdec = -magnitude
-        else:
-            {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
 {flags8}
 elif not ({short_test}
           and {soft_min} <= target <= {soft_max}):
@@ -94,7 +96,9 @@ else:
     {cmd}.v_POS = {act}.v_POS = {axis}.cmd_pos = {axis}.act_pos = target
     old_vel = {axis}.cmd_vel
     {act}.v_VEL = {axis}.act_vel = {cmd}.v_VEL = {axis}.cmd_vel = new_vel = delta / dt
-    if new_vel != old_vel:
+    if new_vel == old_vel:
+        {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
+    else:
         magnitude = abs(new_vel - old_vel) / dt
         if new_vel > 0.0 and old_vel > 0.0:
             {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude if new_vel > old_vel else -magnitude
@@ -106,8 +110,6 @@ else:
             else:
                 {cmd}.v_ACCDEC = {axis}.cmd_accdec = -magnitude
 {flags12}
-    else:
-        {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
 """
 
 # The flags of a stream's step, as AxisRefWriter.write decides them; the axis then carries

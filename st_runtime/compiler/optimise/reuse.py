@@ -49,6 +49,7 @@ _NUMBER = re.compile(r"-?\(?-?\d[\d.e+-]*\)?")
 _VARIABLE = re.compile(r"(?:self\.|_G\.)?(v_\w+)")
 _TESTABLE = re.compile(r"(?:self\.)?v_\w+")      # a local, or a slot of the instance itself
 _ELEMENT = re.compile(r"(v_\w+)\[\d+\]")
+_FINITE_TEST = re.compile(r"\(((?:self\.)?v_\w+) - \1 == 0\.0\)")     # what `finite` writes
 _PLAIN_KINDS = {"VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP", "RETURN", "VAR_GLOBAL", "VAR_EXTERNAL"}
 _MATH = {"SIN", "COS", "TAN", "SQRT"}
 _NO_VARIABLES: frozenset = frozenset()
@@ -303,7 +304,7 @@ class Reuse:
             line += text.count("\n", at, marker.start())
             at = marker.start()
             indent = marker.group(1)
-            defs = [f"{indent}_c{index} = {text_of(index)}"
+            defs = [f"{indent}_c{index} = {_kept(text_of(index))}"
                     for index in map(int, marker.group(2).split(",")) if self.values[index].uses >= 2]
             out.extend(new[done:line])
             before = out[-1] if out else ""
@@ -328,6 +329,12 @@ class Reuse:
                     counts[int(inner)] += 1
         for value, count in zip(self.values, counts):
             value.uses = count
+
+
+def _kept(text: str) -> str:
+    """The value `text` as set into its name: `finite`'s test as `True if test else False`,
+    the same bool, its comparison specialised by CPython 3.11 (shortcut.stored)."""
+    return f"(True if {text} else False)" if _FINITE_TEST.fullmatch(text) else text
 
 
 def is_token(code: str) -> bool:

@@ -20,12 +20,18 @@ the right one cannot fault (branches.py's rule): each comparison is a Python boo
 `a and b` is the bool `a & b` is, and the right one left out reads, stores and raises
 nothing (SP_InverseKinematics' `LegInStroke[Leg] := Position[Leg] >= 0.0 AND Position[Leg]
 <= Stroke`: no `&` of two bools, which goes through the number protocol).
+
+A BOOL stored from a comparison of numbers (or an AND/OR of such) is tested for a jump,
+`True if ... else False`, and a stored `X AND R` of a BOOL variable X is `X if not X else
+X & R` (`stored`: CPython 3.11 specialises a comparison only where a jump follows it).
 """
 
 from __future__ import annotations
 
+import re
+
 from ... import ast
-from ...types import ElementaryType
+from ...types import ElementaryType, resolve_alias
 
 _WORDS = {"AND": ("&", "and"), "&": ("&", "and"), "OR": ("|", "or")}
 _COMPARISONS = {"=", "<>", "<", ">", "<=", ">="}
@@ -59,6 +65,51 @@ def of_comparisons(compiler, e, left: str, right: str) -> str | None:
         return None
     compiler.logic_short.add(id(e))
     return f"({left} {_WORDS[e.op][1]} {right})"
+
+
+def stored(compiler, node, code: str) -> str:
+    """The value `code` of `node`, a BOOL about to be stored: a comparison of numbers (or an
+    AND/OR of such) as `True if code else False`.  Its value is a Python bool either way (a
+    comparison of ints, floats and bools is one, and `and`/`or`/`&`/`|` of two bools is one of
+    them); tested for a jump, CPython 3.11 specialises each comparison (`COMPARE_OP_FLOAT_JUMP`),
+    where a comparison whose value is kept takes the generic path (`PyObject_RichCompare` and
+    a new reference to the bool, some 90 machine instructions more).
+
+    `X & R` of a BOOL X read from a variable (a local or a slot: the same value read twice,
+    nothing runs between) and a Python bool R that cannot fault is `X if not X else X & R`:
+    a false X (FALSE or 0) is what `X & R` gives then (`False & b` is False, `0 & b` is 0),
+    and leaving R out reads, stores and raises nothing; `&` of two values goes through the
+    number protocol, the test of X is a jump (SP_Controller's six edges `Start AND NOT
+    Previous`, its MC_Stop's `StopExecute AND NOT ErrorStop`)."""
+    if type(node) is not ast.Binary or (node.op not in _COMPARISONS and node.op not in _WORDS) \
+            or not compiler.opt.shortcut:
+        return code         # (most stores: asked first, it is cheaper)
+    if _compares_numbers(compiler, node) and (node.op in _COMPARISONS or _COMPARED.search(code)):
+        return f"(True if {code} else False)"
+    parts = compiler.logic_parts.get(id(node))
+    if parts is not None and node.op in ("AND", "&") and code == f"({parts[0]} & {parts[1]})" \
+            and _READ.fullmatch(parts[0]) and _is_bool(compiler, node.right):
+        from . import branches      # (see of_comparisons)
+
+        if branches.expr_cannot_fault(compiler, node.right, parts[1]):
+            return f"({parts[0]} if not {parts[0]} else {code})"
+    return code         # (`sets`' `x in (...)`: CPython 3.11 specialises no `in`)
+
+
+_COMPARED = re.compile(r"[<>]|[=!]=")
+_READ = re.compile(r"(?:self\.|_G\.)?v_\w+")      # a local, or a slot of the instance or of the globals
+_NUMBER_KINDS = {"bool", "int", "bits", "real", "time", "date", "tod", "dt"}
+
+
+def _compares_numbers(compiler, e) -> bool:
+    """`e` is a comparison of two elementary numbers (held as Python bools, ints or floats), or
+    an AND/OR of two such."""
+    if not isinstance(e, ast.Binary):
+        return False
+    if e.op in _COMPARISONS:
+        return all(isinstance(t := resolve_alias(compiler.ty(side)), ElementaryType) and t.kind in _NUMBER_KINDS
+                   for side in (e.left, e.right))
+    return e.op in _WORDS and _compares_numbers(compiler, e.left) and _compares_numbers(compiler, e.right)
 
 
 def _is_bool(compiler, e) -> bool:
