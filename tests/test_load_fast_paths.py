@@ -330,7 +330,10 @@ def test_charges_join_along_a_level_until_a_barrier():
     """charges.merge reads the code between a taker and each later charge of its level
     once (not again from the taker): the same joins as reading it whole.  By the rule:
     a charge joins the one before it in its level when no line between is less
-    indented and none can raise, check the budget or leave (`return`)."""
+    indented and none can raise, check the budget or leave (`return`).  Then (session 15)
+    the joined charge 1 + 2 + 3 + 4 = 10, which the IF follows with nothing between that can
+    raise, sinks into the chain: its branch charges 10 + 30 = 40, and an ELSE it did not
+    have charges 10, so each path pays what it paid before (40 or 10)."""
     from st_runtime.compiler.optimise import charges
 
     body = ["def f(self, _ctx):", "    _spent = 0", "    try:",
@@ -341,8 +344,9 @@ def test_charges_join_along_a_level_until_a_barrier():
             "    finally:", "        _ctx.budget -= _spent"]
     charges.merge(body, 0)
     assert body == ["def f(self, _ctx):", "    _spent = 0", "    try:",
-                    "        _spent += 10", "        x = 1", "        y = 2", "        if x:",
-                    "            _spent += 30", "            z = 3", "        return x",
+                    "        x = 1", "        y = 2", "        if x:",
+                    "            _spent += 40", "            z = 3",
+                    "        else:", "            _spent += 10", "        return x",
                     "        _spent += 11", "        w = 1",
                     "    finally:", "        _ctx.budget -= _spent"]
 
