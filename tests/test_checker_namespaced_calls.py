@@ -113,6 +113,25 @@ ROWS = [
         CNT + "TYPE S : STRUCT a : INT; END_STRUCT; END_TYPE\n"
         + main_program("    F : Cnt; NS : S;", "NS.F();"),
         diagnostic=("E-TYPE-009", 10, 1, "struct S has no member 'F' (members: a)")),
+    # Names of a namespace read as values (6.9: NS.X names a POU or a type declared in NS,
+    # never a variable); each was "undeclared name 'NS'".  A METHOD named through the FB
+    # type, not an instance: line 14, column 6.
+    Row("method_named_through_a_qualified_fb_type",
+        NS_ACC + main_program("    x : INT;", "x := NS.Acc.Total();"),
+        diagnostic=("E-TYPE-016", 14, 6, "'NS.Acc' is a FUNCTION_BLOCK, not a variable: declare an "
+                                         "instance (inst : NS.Acc;) and use the instance")),
+    # A FUNCTION of NS read without its call: line 12 (7 lines, then line 5 of Main).
+    Row("function_of_a_namespace_read_without_a_call",
+        NS_F + main_program("    x : INT;", "x := NS.F + 1;"),
+        diagnostic=("E-TYPE-016", 12, 6, "'NS.F' is a FUNCTION, not a variable; call it as NS.F(...)")),
+    # A type of NS read as a value: line 8 (3 lines, then line 5 of Main).
+    Row("type_of_a_namespace_read_as_a_value",
+        "NAMESPACE NS\nTYPE Speed : INT; END_TYPE\nEND_NAMESPACE\n" + main_program("    x : INT;", "x := NS.Speed;"),
+        diagnostic=("E-TYPE-016", 8, 6, "'NS.Speed' is a type, not a variable")),
+    # A name NS does not declare: line 12.
+    Row("name_a_namespace_does_not_declare",
+        NS_F + main_program("    x : INT;", "x := NS.Nope;"),
+        diagnostic=("E-DECL-001", 12, 6, "NAMESPACE NS declares no 'Nope'")),
 ]
 
 

@@ -447,6 +447,9 @@ class ExprChecker:
             if not self.ctx.accepts("ENUM_DOT", e.pos):          # CODESYS's E_Color.Red
                 return self.record(e, ts.ERROR)
             return self._EnumLiteral(ast.EnumLiteral(e.base.name, e.name, pos=e.pos), expected, e)
+        if isinstance(e.base, ast.Name) and key(e.base.name) in self.ctx.namespaces \
+                and self.scope.lookup(e.base.name) is None:
+            return self._namespace_member(e)
         base = self.infer(e.base)
         if base is ts.ERROR:
             return self.record(e, ts.ERROR)
@@ -494,6 +497,23 @@ class ExprChecker:
             return self.record(e, sym.type)
         self.ctx.error("E-TYPE-009", f"'.{e.name}': expected a struct or function block "
                        f"instance, found {base}", e.pos)
+        return self.record(e, ts.ERROR)
+
+    def _namespace_member(self, e: ast.Member):
+        """`NS.X` read as a value, NS a NAMESPACE: X names an element declared in NS (IEC
+        61131-3 3rd ed. 6.9), a POU or a type, never a variable (a call `NS.F()` is the
+        call checker's): say which, rather than "undeclared name 'NS'"."""
+        written, space = f"{e.base.name}.{e.name}", key(e.base.name)
+        node = self.ctx.pou_decls.get(key(e.name))
+        typed = self.ctx.type_decls.get(key(e.name))
+        if node is not None and key(node.namespace) == space:
+            hint = {"FUNCTION_BLOCK": f": declare an instance (inst : {written};) and use the instance",
+                    "FUNCTION": f"; call it as {written}(...)"}.get(node.kind, "")
+            self.ctx.error("E-TYPE-016", f"'{written}' is a {node.kind}, not a variable{hint}", e.pos)
+        elif typed is not None and key(typed.namespace) == space:
+            self.ctx.error("E-TYPE-016", f"'{written}' is a type, not a variable", e.pos)
+        else:
+            self.ctx.error("E-DECL-001", f"NAMESPACE {e.base.name} declares no '{e.name}'", e.pos)
         return self.record(e, ts.ERROR)
 
     def _enum_type_before_dot(self, e: ast.Member) -> bool:
