@@ -185,6 +185,16 @@ def remembered(answer):
     return remembered_answer
 
 
+def kept(compiler, name: str, make):
+    """What `make()` builds, made once per body's compile: kept on `compiler` (one
+    BodyCompiler) under `name` (a pass's memo or its `remembered` judge)."""
+    found = compiler.__dict__.get(name)
+    if found is None:
+        found = make()
+        setattr(compiler, name, found)
+    return found
+
+
 # ------------------------------------------------------------------ gates
 # A pass whose subject a body does not hold is not run on it: each gate below is true
 # whenever the pass could change the body's code, so the code is the same either way.

@@ -36,7 +36,7 @@ import re
 from ... import ast
 from ...types import FBType, InterfaceType, RefType, StructType, resolve_alias
 from ..scope import once, walk
-from . import remembered, reuse
+from . import kept, remembered, reuse
 
 # Characters an expression that cannot fault is made of: no quote, `/`, `%`, `:`, `@`.
 _ALLOWED = re.compile(r"[\w\s.()\[\],+\-*<>=!&|^~]*")
@@ -83,10 +83,7 @@ def _owned(t) -> bool:
 
 def expr_cannot_fault(compiler, node, code: str) -> bool:
     """`node` (compiled to `code`) reads only owned storage and its code cannot raise."""
-    judge = compiler.__dict__.get("_code_judge")
-    if judge is None:
-        judge = compiler._code_judge = remembered(code_cannot_fault)
-    if not judge(code):
+    if not kept(compiler, "_code_judge", lambda: remembered(code_cannot_fault))(code):
         return False
     for n in _read_nodes(compiler, node):
         if isinstance(n, ast.Deref):

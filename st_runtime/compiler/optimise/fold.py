@@ -16,6 +16,7 @@ import operator
 from ... import ast
 from ...types import ArrayType, resolve_alias
 from ..initial import CompileError
+from . import kept
 
 _COMPARE = {"=": operator.eq, "<>": operator.ne, "<": operator.lt, "<=": operator.le,
             ">": operator.gt, ">=": operator.ge}
@@ -46,9 +47,7 @@ def constant_element(compiler, e: ast.Index):
 
 def _plan(compiler, e):
     """`_element_plan` of `e`, found once (kept by id: the AST outlives the compile)."""
-    cache = compiler.__dict__.get("_constant_arrays")
-    if cache is None:
-        cache = compiler._constant_arrays = {}
+    cache = kept(compiler, "_constant_arrays", dict)
     found = cache.get(id(e), cache)         # (the cache itself: not looked at yet)
     if found is cache:
         found = cache[id(e)] = _element_plan(compiler, e) if isinstance(e.base, ast.Name) else None
@@ -125,9 +124,7 @@ def _never(compiler, e) -> bool:
     """Whether `_evaluate(e)` is None in every unrolled copy: an operation the checker did
     not fold whose left operand is so (evaluated first), or a read of an array that is not
     CONSTANT (the Leibniz products: `Matrix[1, ...] * Matrix[2, ...] * ...`).  Once a node."""
-    cache = compiler.__dict__.get("_never_constant")
-    if cache is None:
-        cache = compiler._never_constant = {}
+    cache = kept(compiler, "_never_constant", dict)
     hit = cache.get(id(e))
     if hit is None or hit[0] is not e:
         cls = type(e)

@@ -43,7 +43,7 @@ import re
 
 from ... import ast
 from ...types import ArrayType, ElementaryType, resolve_alias
-from . import branches, remembered
+from . import branches, kept, remembered
 
 _ASSIGNMENT = re.compile(r"\s*[A-Za-z_]\w* = ([\w\s()+\-*.]+)")
 _ATTRIBUTE_OR_CALL = re.compile(r"[A-Za-z_]\w*\s*[.(]")
@@ -63,10 +63,7 @@ def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:
 def _judge(compiler):
     """`_local_arithmetic` of a line, kept by its text while `compiler` compiles one body
     (an unrolled loop writes its copies' lines again, the fast path the exact one's)."""
-    judge = compiler.__dict__.get("_arithmetic_judge")
-    if judge is None:
-        judge = compiler._arithmetic_judge = remembered(_local_arithmetic)
-    return judge
+    return kept(compiler, "_arithmetic_judge", lambda: remembered(_local_arithmetic))
 
 
 def _local_arithmetic(line: str) -> bool:
