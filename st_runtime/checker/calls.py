@@ -201,8 +201,7 @@ class CallChecker:
         space = self._namespace_of(callee)
         if space is None:
             return None
-        node = self.ctx.pou_decls.get(key(callee.name))
-        if node is None or key(node.namespace) != key(space):
+        if not isinstance(self.ctx.in_namespace(space, callee.name), ast.Pou):
             self.ctx.error("E-DECL-001", f"NAMESPACE {space} declares no POU '{callee.name}'", callee.pos)
             return _NOT_IN_NAMESPACE
         return ast.Name(callee.name, pos=callee.pos)

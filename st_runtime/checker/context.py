@@ -88,6 +88,15 @@ class Context:
     def warning(self, code: str, message: str, pos: ast.Pos) -> None:
         self.sink.warning(code, message, pos)
 
+    def in_namespace(self, space: str, name: str) -> ast.Pou | ast.TypeDecl | None:
+        """The POU or TYPE `name` declared in NAMESPACE `space` ("A.B"), else None: a
+        qualified name `A.B.name` names an element of that namespace (IEC 61131-3 3rd
+        ed. 6.9), never one of another namespace or of none.  POUs and TYPEs share one
+        name space (a second declaration of a name is refused), so one table holds it."""
+        k = key(name)
+        item = self.pou_decls.get(k) or self.type_decls.get(k)
+        return item if item is not None and key(item.namespace) == key(space) else None
+
     def add_call_edge(self, caller: str | None, callee: str, pos: ast.Pos) -> None:
         if caller is not None:
             self.calls.setdefault(caller, []).append((callee, pos))

@@ -372,8 +372,7 @@ class Declarations:
     def qualified(self, name: str, pos) -> str | None:
         """`NS.Name` -> "Name" when Name is declared in namespace NS."""
         space, _, short = name.rpartition(".")
-        item = self.ctx.type_decls.get(key(short)) or self.ctx.pou_decls.get(key(short))
-        if key(space) not in self.ctx.namespaces or item is None or key(item.namespace) != key(space):
+        if self.ctx.in_namespace(space, short) is None:
             self.ctx.error("E-DECL-004", f"unknown type '{name}'" + (
                 "" if key(space) in self.ctx.namespaces else f" (no NAMESPACE {space})"), pos)
             return None

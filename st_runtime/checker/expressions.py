@@ -503,14 +503,13 @@ class ExprChecker:
         """`NS.X` read as a value, NS a NAMESPACE: X names an element declared in NS (IEC
         61131-3 3rd ed. 6.9), a POU or a type, never a variable (a call `NS.F()` is the
         call checker's): say which, rather than "undeclared name 'NS'"."""
-        written, space = f"{e.base.name}.{e.name}", key(e.base.name)
-        node = self.ctx.pou_decls.get(key(e.name))
-        typed = self.ctx.type_decls.get(key(e.name))
-        if node is not None and key(node.namespace) == space:
+        written = f"{e.base.name}.{e.name}"
+        item = self.ctx.in_namespace(e.base.name, e.name)
+        if isinstance(item, ast.Pou):
             hint = {"FUNCTION_BLOCK": f": declare an instance (inst : {written};) and use the instance",
-                    "FUNCTION": f"; call it as {written}(...)"}.get(node.kind, "")
-            self.ctx.error("E-TYPE-016", f"'{written}' is a {node.kind}, not a variable{hint}", e.pos)
-        elif typed is not None and key(typed.namespace) == space:
+                    "FUNCTION": f"; call it as {written}(...)"}.get(item.kind, "")
+            self.ctx.error("E-TYPE-016", f"'{written}' is a {item.kind}, not a variable{hint}", e.pos)
+        elif item is not None:
             self.ctx.error("E-TYPE-016", f"'{written}' is a type, not a variable", e.pos)
         else:
             self.ctx.error("E-DECL-001", f"NAMESPACE {e.base.name} declares no '{e.name}'", e.pos)
