@@ -204,17 +204,12 @@ class _Stops:
     def joinable(self, first: int, end: int, indent: int) -> bool:
         """Whether the lines `first` to `end - 1`, between two charges of one indentation,
         are of their block (no line less indented) and none is a barrier."""
-        text, barrier = self.text, self.barrier
         for n in range(first, end):
-            line = text[n]
             if indent:
-                head = line[:indent].lstrip(" ")      # (what the indentation holds but spaces)
+                head = self.text[n][:indent].lstrip(" ")      # (what the indentation holds but spaces)
                 if head and not head[0].isspace():
                     return False
-            stop = barrier.get(n)
-            if stop is None:
-                stop = barrier[n] = _is_barrier(line)
-            if stop:
+            if self.stop(n):
                 return False
         return True
 
