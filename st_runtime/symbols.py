@@ -82,6 +82,12 @@ class PouInfo:
     def in_outs(self) -> list[Symbol]:
         return self.of_kind("VAR_IN_OUT")
 
+    @property
+    def result(self) -> Symbol | None:
+        """A FUNCTION's or METHOD's result, the variable named like it (kind RETURN), else None."""
+        symbol = self.variables.get(ast.key(self.name))
+        return symbol if symbol is not None and symbol.kind == "RETURN" else None
+
 
 @dataclass(frozen=True, slots=True)
 class CallTarget:

@@ -261,7 +261,7 @@ class Calls:
         """The initial value of a user FUNCTION's or METHOD's result: its derived type's, which
         the checker's RETURN symbol carries (the resolved result type has lost it), or None."""
         pou = getattr(ec.program.call_targets.get(id(call)), "pou", None)
-        result = next((s for s in pou.variables.values() if s.kind == "RETURN"), None) if pou else None
+        result = pou.result if pou is not None else None
         return result.init if result is not None else None
 
     def call_expr(self, ec, call) -> str:

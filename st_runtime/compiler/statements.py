@@ -82,7 +82,7 @@ class BodyCompiler(ExprCompiler):
             from ..symbols import Symbol
             from .scope import VarPlace
 
-            symbol = self.pou.variables.get(key) or Symbol(self.pou.name, self.pou.return_type, "RETURN")
+            symbol = self.pou.result or Symbol(self.pou.name, self.pou.return_type, "RETURN")
             how = "cell" if key in self.scope.usage.referenced else ("alias" if is_aggregate(symbol.type) else "local")
             self.scope.places[key] = VarPlace(symbol, how, pyident(self.pou.name))
             self.scope.prologue.append(("init", symbol, pyident(self.pou.name), how))
