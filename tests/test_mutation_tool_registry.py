@@ -170,3 +170,18 @@ def test_an_audit_finds_where_a_stale_entrys_change_went():
     assert holding_already.moved == {}
     shifted = registry.audit("motion", now, entries(entry(), entry(mutant=renumbered, diff="-a\n+b")))
     assert shifted.moved == {NAME: renumbered}     # a renumbering moves every listed change one on
+
+
+# tools/mutation.py's `--files`: one file of a module mutated in full (session 16).
+def test_prepare_mutates_only_the_named_files_of_the_module(tmp_path, monkeypatch):
+    import mutation
+    monkeypatch.setattr(mutation, "SCRATCH", tmp_path)
+    monkeypatch.setattr(mutation, "COPY", [])
+    charges = "st_runtime/compiler/optimise/charges.py"
+    pyproject = (mutation.prepare("compiler", [charges]) / "pyproject.toml").read_text()
+    assert f'only_mutate = ["{charges}"]' in pyproject
+    assert '"tests/test_optimiser_charges.py"' in pyproject          # the module's tests stay
+    whole = (mutation.prepare("compiler") / "pyproject.toml").read_text()
+    assert 'only_mutate = ["st_runtime/compiler/*"]' in whole
+    with pytest.raises(SystemExit, match="not files of module compiler"):
+        mutation.prepare("compiler", ["st_runtime/values.py"])
