@@ -221,6 +221,25 @@ MERGES = [
     else:
         _spent += 9
 """),
+    ("a line holding every barrier word (a STRING literal's text) is still a barrier",
+     """
+    _spent += 3
+    v_S = 'try: except finally: _ctx _overrun return break continue .execute( _fn_'
+    _spent += 4
+""", None),
+    ("a line opening a block of another kind (a def) is a barrier",
+     """
+    _spent += 3
+    def _f():
+        v_A = 1
+    _spent += 4
+""", None),
+    ("a loop written on one line is a barrier",
+     """
+    _spent += 3
+    while v_A > 0: v_A = v_A - 1
+    _spent += 4
+""", None),
     # ---- sinking into IF chains
     ("a charge sinks into both branches of the IF after it",
      """
@@ -400,6 +419,65 @@ MERGES = [
         _spent += 3
     else:
         _spent += 4
+"""),
+    ("a charge with no chain after it, or of another form, leaves the later ones to sink",
+     """
+    _spent += 1
+    _spent += 3 * 40
+    self.v_F.execute(_ctx)
+    _spent += 5
+    if v_A > 1:
+        v_B = 1
+""", """
+    _spent += 1
+    _spent += 3 * 40
+    self.v_F.execute(_ctx)
+    if v_A > 1:
+        _spent += 5
+        v_B = 1
+    else:
+        _spent += 5
+"""),
+    ("a branch's charge that took a sunk one sinks with it into the chain after it, in one reading",
+     """
+    _spent += 5
+    if v_A > 1:
+        _spent += 2
+        if v_B > 1:
+            _spent += 1
+        else:
+            _spent += 3
+    else:
+        _spent += 4
+""", """
+    if v_A > 1:
+        if v_B > 1:
+            _spent += 8
+        else:
+            _spent += 10
+    else:
+        _spent += 9
+"""),
+    ("two chains without ELSE ending at one line: the inner ELSE is written first",
+     """
+    _spent += 5
+    if v_A > 1:
+        v_B = 1
+        _spent += 2
+        if v_C > 1:
+            v_D = 1
+    v_E = 1
+""", """
+    if v_A > 1:
+        v_B = 1
+        if v_C > 1:
+            _spent += 7
+            v_D = 1
+        else:
+            _spent += 7
+    else:
+        _spent += 5
+    v_E = 1
 """),
     ("a sunk charge goes on into the chain its branch opens with",
      """
