@@ -185,3 +185,12 @@ def test_prepare_mutates_only_the_named_files_of_the_module(tmp_path, monkeypatc
     assert 'only_mutate = ["st_runtime/compiler/*"]' in whole
     with pytest.raises(SystemExit, match="not files of module compiler"):
         mutation.prepare("compiler", ["st_runtime/values.py"])
+
+
+def test_a_mutants_name_gives_its_file():
+    import mutation
+    assert mutation.source_file("st_runtime.compiler.calls.xǁCallsǁ_result_init__mutmut_3") == \
+        "st_runtime/compiler/calls.py"
+    assert mutation.source_file("st_runtime.compiler.optimise.charges.x__sink_once__mutmut_52") == \
+        "st_runtime/compiler/optimise/charges.py"
+    assert mutation.source_file("st_runtime.xml_reader.x_parse__mutmut_1") == "st_runtime/xml_reader.py"

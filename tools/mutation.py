@@ -51,6 +51,7 @@ import argparse
 import fnmatch
 import json
 import random
+import re
 import shutil
 import subprocess
 import sys
@@ -380,11 +381,19 @@ def register(name: str, mutant: str, reason: str) -> str:
     return registry.changed_lines(diff)
 
 
-def audit(name: str, prune: bool) -> list[str]:
+def source_file(mutant: str) -> str:
+    """The file a mutant's name comes from: st_runtime.compiler.calls.xǁCallsǁf__mutmut_3 ->
+    st_runtime/compiler/calls.py (a function's name is prefixed `x_`, a method's `xǁClassǁ`)."""
+    return re.split(r"\.x(?:_|ǁ)", mutant, maxsplit=1)[0].replace(".", "/") + ".py"
+
+
+def audit(name: str, prune: bool, files: list[str] | None = None) -> list[str]:
     """The module's registry entries against its mutants now (generated, no test run): lines on the
-    stale and gone ones; with `prune`, the gone ones are removed (a stale one waits for a new judgement)."""
-    work = prepare(name)
-    found = registry.audit(name, mutant_diffs(work, all_mutant_names(work)), registry.load())
+    stale and gone ones; with `prune`, the gone ones are removed (a stale one waits for a new judgement).
+    With `files`, only those files' mutants are generated and only their entries audited."""
+    work = prepare(name, files)
+    entries = {k: e for k, e in registry.load().items() if not files or source_file(k[1]) in files}
+    found = registry.audit(name, mutant_diffs(work, all_mutant_names(work)), entries)
     lines = [f"{name:10s} registry: {len(found.holding)} entries hold, {len(found.stale)} stale, "
              f"{len(found.gone)} name no mutant any more"]
     moved = {n: f" (its change is {found.moved[n]} now)" for n in found.moved}
@@ -410,7 +419,8 @@ def main(argv: list[str] | None = None) -> int:
                         "sample.txt: the same sample again after the source changed)")
     parser.add_argument("--files", nargs="+", metavar="FILE", help="mutate only these files of the "
                         "module (paths as in MODULES, e.g. st_runtime/compiler/optimise/charges.py): "
-                        "every mutant of a file without generating the module's others")
+                        "every mutant of a file without generating the module's others; with --audit, those files' "
+                        "entries only")
     parser.add_argument("--survivors", action="store_true",
                         help="list the mutants not killed, the listed equivalent ones with their reason")
     parser.add_argument("--report-only", action="store_true", help="report an earlier run")
@@ -433,7 +443,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.prune and not args.audit:
         parser.error("--prune goes with --audit")
     if args.audit:
-        print("\n".join(line for name in names for line in audit(name, args.prune)))
+        print("\n".join(line for name in names for line in audit(name, args.prune, args.files)))
         return 0
     entries = registry.load()
     lines = []
