@@ -2,7 +2,8 @@
 with nothing between them that can raise, check the budget or leave are one, and nothing a
 program can see changes: results, faults (code, file, line, column, scan), instance states and
 the time charged are equal with the pass on and off, also when F-PERIOD cuts the scan at many
-budgets or a fault stops the run between two charges.
+budgets or a fault stops the run between two charges.  The `settle` pass (the same module):
+a charge where `_spent`'s value is known is a store of the sum, with the same outcomes.
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.controller import Controller
 from test_optimiser_equivalence import run_both, same_alone_and_with_all, snapshot
 
-ON = Optimisations()
+ON = replace(Optimisations(), settle=False)   # (`settle` makes the first charges stores: its tests below)
 
 LEGS = """
 FUNCTION_BLOCK Legs
@@ -138,3 +139,123 @@ def test_sunk_charges_leave_the_same_time_charged():
         outcomes.append(([(f.code, f.line, f.scan) for f in controller.faults], snapshot(main), budgets))
     assert outcomes[0] == outcomes[1] == outcomes[2]
     assert outcomes[0][0] == [("F-DIV-ZERO", 18, 6)]          # Z := 10 / (N - 6), N = 6
+
+
+# `settle`: the walk by hand.  The value is known from `_spent = 0` on, through a `try` that
+# charges nothing, into every branch of the first chain and on after it (its three paths end
+# at 103), past a budget check (it reads); not on after an ELSE-less chain (its paths end at
+# 118 and 113); a handler is read knowing nothing (its take-back stays an addition).
+_WALKED = """def f(self, _ctx):
+    _spent = 0
+    try:
+        _spent += 100
+        try:
+            a = 1
+        except _FAULTS as _e:
+            _ctx.fault(_e, 1)
+        if a:
+            _spent += 3
+        elif b:
+            _spent += 1
+            _spent += 2
+        else:
+            _spent += 3
+        if _ctx.budget < _spent: _overrun(1)
+        _spent += 10
+        if c:
+            _spent += 5
+        _spent += 1
+        try:
+            _spent += 4
+            d = 1
+        except _FAULTS as _e:
+            _spent -= 4
+            _ctx.fault(_e, 2)
+            _spent += 4
+        _spent += 6
+    finally:
+        _ctx.budget -= _spent"""
+
+_SETTLED = """def f(self, _ctx):
+    _spent = 0
+    try:
+        _spent = 100
+        try:
+            a = 1
+        except _FAULTS as _e:
+            _ctx.fault(_e, 1)
+        if a:
+            _spent = 103
+        elif b:
+            _spent = 101
+            _spent = 103
+        else:
+            _spent = 103
+        if _ctx.budget < _spent: _overrun(1)
+        _spent = 113
+        if c:
+            _spent = 118
+        _spent += 1
+        try:
+            _spent += 4
+            d = 1
+        except _FAULTS as _e:
+            _spent -= 4
+            _ctx.fault(_e, 2)
+            _spent += 4
+        _spent += 6
+    finally:
+        _ctx.budget -= _spent"""
+
+
+def test_settled_stores_the_known_values_by_hand():
+    from st_runtime.compiler.optimise.charges import settled
+
+    assert settled(_WALKED.split("\n")) == _SETTLED.split("\n")
+
+
+def test_settled_follows_no_value_into_a_loop():
+    from st_runtime.compiler.optimise.charges import settled
+
+    looped = ["    _spent = 0", "    _spent += 7", "    for i in r:", "        _spent += 2",
+              "    _spent += 1", "    while x:", "        y = 1", "    _spent += 1"]
+    assert settled(looped) == ["    _spent = 0", "    _spent = 7", "    for i in r:", "        _spent += 2",
+                               "    _spent += 1", "    while x:", "        y = 1", "    _spent += 1"]
+
+
+SETTLE_ON = Optimisations()
+
+
+def test_settle_makes_the_first_charge_a_store_of_its_amount():
+    settled_source = compile_program(_program(), optimise=SETTLE_ON).python_sources["LEGS"]
+    joined = _charges(ON)                           # the same code, its charges as additions
+    first = next(line.strip() for line in settled_source.splitlines() if line.strip().startswith("_spent = ")
+                 and line.strip() != "_spent = 0")
+    assert first == f"_spent = {joined[0]}"
+
+
+def test_the_scans_see_the_same_with_and_without_settle():
+    same_alone_and_with_all(_program, 9, "settle")
+    same_alone_and_with_all(lambda: api.load_text(CHAINS).program, 12, "settle")
+
+
+@pytest.mark.parametrize("budget_ns", [200, 300, 600, 1_000, 1_500, 3_000])
+def test_f_period_lands_on_the_same_statement_with_settle(budget_ns):
+    for program in (_program, lambda: api.load_text(CHAINS).program):
+        for optimise in (Optimisations.only("settle"), Optimisations.only("charges", "settle"), SETTLE_ON):
+            off, on = run_both(program(), 6, budget_ns, optimise=optimise)
+            assert on == off
+
+
+def test_settle_leaves_the_same_time_charged_scan_by_scan():
+    outcomes = []
+    for optimise in (replace(SETTLE_ON, settle=False), SETTLE_ON, Optimisations.none()):
+        controller = Controller(compile_program(api.load_text(CHAINS).program, optimise=optimise),
+                                stop_on_fault=True)
+        main = controller.add_program("Main")
+        budgets = []
+        for _ in range(8):
+            controller.run(1)
+            budgets.append(controller.ctx.budget)
+        outcomes.append(([(f.code, f.line, f.scan) for f in controller.faults], snapshot(main), budgets))
+    assert outcomes[0] == outcomes[1] == outcomes[2]

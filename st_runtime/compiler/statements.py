@@ -137,6 +137,8 @@ class BodyCompiler(ExprCompiler):
                 aliases.drop_unread(o.lines, start, self.opt.deferred)
         if self.opt.charges and charge and self.unit.guard_statements:
             charges.merge(o.lines, start)
+        if self.opt.settle and charge:
+            charges.settle(o.lines, start)
         if self.opt.seal:
             seal.hoist(o.lines, start)
         return o.source()

@@ -105,6 +105,10 @@ states bit for bit:
   charge before it in the same block level when nothing between them can
   raise, check the budget or leave the level (assignments and IF tests that
   cannot raise): the same total at every read of `_spent`.
+* `settle` (charges.py `settled`): a charge where the value of `_spent` is
+  known (from the body's `_spent = 0` on, into IF branches and on after a chain
+  whose paths end with one total, through `try` statements that charge nothing)
+  stores that value plus its amount: the same int, no addition.
 * `spread` (aliases.py `spread_branches`, with `aliases` and `stores`): a
   variable every use of which lies in branches of one IF or CASE, no use at
   their common level, is loaded at the start of each such branch (and stored
@@ -262,6 +266,7 @@ class Optimisations:
     offsets: bool = True
     reuse: bool = True
     charges: bool = True
+    settle: bool = True
     spread: bool = True
     halves: bool = True
     shortcut: bool = True
