@@ -259,3 +259,105 @@ def test_settle_leaves_the_same_time_charged_scan_by_scan():
             budgets.append(controller.ctx.budget)
         outcomes.append(([(f.code, f.line, f.scan) for f in controller.faults], snapshot(main), budgets))
     assert outcomes[0] == outcomes[1] == outcomes[2]
+
+
+# `_lifted` (with `charges`): the ELSE charge of a chain that follows another chain goes into
+# that chain's branches, taken from its own other branches.  By hand:
+_TWO_CHAINS = """    _spent += 5
+    if a:
+        _spent += 1
+    else:
+        _spent += 2
+    x = 1
+    if b:
+        if c:
+            _spent += 7
+        else:
+            _spent += 3
+    else:
+        _spent += 4"""
+
+_TWO_LIFTED = """    _spent += 5
+    if a:
+        _spent += 5
+    else:
+        _spent += 6
+    x = 1
+    if b:
+        if c:
+            _spent += 3
+        else:
+            _spent -= 1"""
+
+
+def test_lifted_moves_an_else_charge_into_the_chain_before_by_hand():
+    from st_runtime.compiler.optimise.charges import _lifted
+
+    assert _lifted(_TWO_CHAINS.split("\n")) == _TWO_LIFTED.split("\n")
+    guarded = _TWO_CHAINS.replace("    x = 1", "    try:\n        x = 1\n    except _FAULTS as _e:\n"
+                                  "        _ctx.fault(_e, 1)").split("\n")
+    assert _lifted(guarded) == guarded                  # a handler between the chains: no move
+    open_a = _TWO_CHAINS.replace("    else:\n        _spent += 2\n", "").split("\n")
+    assert _lifted(open_a) == open_a                    # the first chain has no ELSE: no move
+
+
+# SP_Controller's legs in small: a FOR unrolled into chains whose ELSE charges the tests.
+LEGS_CHAINS = """
+PROGRAM Main
+VAR N, Fault, K, Z : INT; P, S : ARRAY[1..4] OF LREAL; Ok : ARRAY[1..4] OF BOOL; END_VAR
+N := N + 1;
+FOR K := 1 TO 4 DO
+    P[K] := INT_TO_LREAL(N * K) * 0.1;
+    Ok[K] := P[K] < 3.0;
+END_FOR;
+FOR K := 1 TO 4 DO
+    IF NOT Ok[K] THEN
+        IF Fault = 0 THEN Fault := K; ELSE Fault := Fault + 10; END_IF;
+    ELSIF ABS(P[K] - S[K]) > 0.25 THEN
+        IF Fault = 0 THEN Fault := 100 + K; ELSE Fault := Fault + 1; END_IF;
+    END_IF;
+END_FOR;
+S := P;
+Z := 10 / (N - 9);                          (* F-DIV-ZERO in scan 9 *)
+IF N MOD 5 = 0 THEN Fault := 0; END_IF;
+END_PROGRAM
+"""
+
+
+def _legs():
+    return api.load_text(LEGS_CHAINS).program
+
+
+def test_a_run_of_chains_charges_its_else_path_once():
+    lifted = compile_program(_legs(), optimise=ON).python_sources["MAIN"].splitlines()
+    plain = compile_program(_legs(), optimise=replace(ON, charges=False)).python_sources["MAIN"].splitlines()
+    heads = [n for n, line in enumerate(lifted) if line.strip().startswith("if (not v_OK[")]
+    assert len(heads) == 4
+    # the first chain's ELSE charges, the three after it have no ELSE left
+    else_charges = [n for n in range(heads[0], len(lifted)) if lifted[n].strip() == "else:"
+                    and lifted[n + 1].strip().startswith("_spent += ")
+                    and lifted[n].index("e") == lifted[heads[0]].index("i")]      # (the chains' level)
+    assert len(else_charges) == 1 and heads[0] < else_charges[0] < heads[1]
+    assert any(line.strip().startswith("_spent -= ") for line in lifted)
+    assert not any(line.strip().startswith("_spent -= ") for line in plain)
+
+
+@pytest.mark.parametrize("budget_ns", [300, 700, 1_000, 1_200, 1_400, 2_000, 500_000])
+def test_lifted_charges_cut_the_scan_where_they_did(budget_ns):
+    for optimise in (Optimisations.only("charges"), ON, SETTLE_ON):
+        off, on = run_both(_legs(), 14, budget_ns, optimise=optimise)
+        assert on == off
+
+
+def test_lifted_charges_leave_the_same_time_charged_scan_by_scan():
+    outcomes = []
+    for optimise in (Optimisations.none(), Optimisations.only("charges"), SETTLE_ON):
+        controller = Controller(compile_program(_legs(), optimise=optimise), stop_on_fault=True)
+        main = controller.add_program("Main")
+        budgets = []
+        for _ in range(12):
+            controller.run(1)
+            budgets.append(controller.ctx.budget)
+        outcomes.append(([(f.code, f.line, f.scan) for f in controller.faults], snapshot(main), budgets))
+    assert outcomes[0] == outcomes[1] == outcomes[2]
+    assert outcomes[0][0] == [("F-DIV-ZERO", 17, 9)]

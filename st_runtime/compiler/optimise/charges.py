@@ -18,6 +18,11 @@ it.  Every path through the chain charges the same total, and no read of `_spent
 the two places.  (SP_Controller's six axes: `_spent += 1196` and the IF/ELSIF/ELSE of the axis's
 fault tests, each branch with its charge, charge once an axis; in CPython 3.11 a charge is an
 int beyond the cached small ones, made and freed: about 200 machine instructions.)
+
+An IF chain's ELSE charge goes the other way, up into the chain before it, when that one's
+every path opens with a charge (`_lifted`): its six legs' tests charge their ELSE paths once.
+The `settle` pass (`settled`) then writes a charge made where `_spent`'s value is known as a
+store of that value.
 """
 
 from __future__ import annotations
@@ -68,7 +73,7 @@ def merge(lines: list[str], start: int) -> None:
             new[n] = None
         elif totals[k] != int(match.group(2)):
             new[n] = f"{match.group(1)}_spent += {totals[k]}"
-    lines[start:] = _sunk([line for line in new if line is not None])
+    lines[start:] = _lifted(_sunk([line for line in new if line is not None]))
 
 
 def _sunk(text: list[str]) -> list[str]:
@@ -222,6 +227,156 @@ class _Stops:
 def _is_barrier(line: str) -> bool:
     return (line.endswith(":") and not _BRANCH.match(line)) or _LOOP.match(line) is not None \
         or any(word in line for word in _BARRIER_WORDS) and _BARRIER_WORD.search(line) is not None
+
+
+def _lifted(text: list[str]) -> list[str]:
+    """`text` with the ELSE charge of an IF chain B that follows another chain A moved into A.
+
+    When every path through A ends in a branch that opens with a charge (or with a chain
+    whose every branch does, and so on), nothing in A nor between A and B nor in B's tests
+    can raise, check the budget or leave, and B's ELSE opens with a charge `_spent += E`
+    and each of B's other branches with a charge it may take: E is added to each of A's
+    opening charges and taken from each of B's others, and B's ELSE charges nothing.  Every
+    path charges the same total (A's +E, then B's ELSE 0, or B's other branch -E) and no
+    read of `_spent` lies between the places; no path charges more often, B's ELSE path
+    once less.  Chains are taken from the last to the first, so a run of them charges its
+    ELSE paths once, in the first: SP_Controller's six legs' tests (`IF NOT LegInStroke[k]
+    ... ELSIF ABS(...) > 0.25 ... END_IF` in the unrolled FOR, each with the sunk ELSE
+    that charges the tests).  A negative amount is written `_spent -= N`."""
+    stops = _Stops(text)
+    amounts: dict[int, int] = {}            # line of a charge -> its amount now
+    chains = [n for n, line in enumerate(text) if line.endswith("else:") and n + 1 < len(text)
+              and _CHARGE.fullmatch(text[n + 1]) and len(_CHARGE.fullmatch(text[n + 1]).group(1))
+              == _indentation(line) + 4]
+    for else_line in reversed(chains):
+        _lift(text, else_line, stops, amounts)
+    if not amounts:
+        return text
+    out = []
+    for n, line in enumerate(text):
+        amount = amounts.get(n)
+        if amount is None:
+            out.append(line)
+        elif amount:
+            indent = line[:len(line) - len(line.lstrip(" "))]
+            out.append(f"{indent}_spent += {amount}" if amount > 0 else f"{indent}_spent -= {-amount}")
+        elif out[-1].strip() == "else:" and not _opens_block(text, n, _indentation(out[-1])):
+            out.pop()                   # (an ELSE left with nothing)
+        elif _indentation(out[-1]) < _indentation(line) and not _opens_block(text, n, _indentation(line) - 4):
+            out.append(line[:_indentation(line)] + "pass")
+    return out
+
+
+def _opens_block(text: list[str], n: int, indent: int) -> bool:
+    """Whether the branch whose line `n` is (a dropped charge) holds more lines after it."""
+    return n + 1 < len(text) and _indentation(text[n + 1]) > indent
+
+
+def _lift(text: list[str], else_line: int, stops, amounts: dict[int, int]) -> None:
+    """`_lifted` for the chain B whose ELSE is on line `else_line`, if it may."""
+    indent = _indentation(text[else_line])
+    heads = _heads_back(text, else_line, indent)
+    if heads is None or any(stops.stop(h) for h in heads):
+        return
+    b_entries = []
+    for head in heads[:-1]:
+        entries = _entries(text, head + 1, indent + 4, stops)
+        if entries is None:
+            return
+        b_entries += entries
+    n = heads[0] - 1                    # back over lines between A and B: none a barrier
+    while n >= 0 and _indentation(text[n]) == indent and not text[n].rstrip().endswith(":"):
+        if stops.stop(n):
+            return
+        n -= 1
+    if n < 0 or _indentation(text[n]) <= indent:
+        return                          # (the statement before is not a chain's last branch)
+    a_else = n
+    while a_else >= 0 and _indentation(text[a_else]) > indent:
+        a_else -= 1
+    if a_else < 0 or text[a_else].strip() != "else:":
+        return
+    a_heads = _heads_back(text, a_else, indent)
+    if a_heads is None or any(stops.stop(k) for k in range(a_heads[0], heads[0])):
+        return
+    a_entries = []
+    for head in a_heads:
+        entries = _entries(text, head + 1, indent + 4, stops)
+        if entries is None:
+            return
+        a_entries += entries
+    charge = else_line + 1
+    moved = amounts.get(charge, int(_CHARGE.fullmatch(text[charge]).group(2)))
+    for k in a_entries:
+        amounts[k] = amounts.get(k, _amount(text[k])) + moved
+    for k in b_entries:
+        amounts[k] = amounts.get(k, _amount(text[k])) - moved
+    amounts[charge] = 0
+
+
+def _amount(line: str) -> int:
+    return int(_CHARGE.fullmatch(line).group(2))
+
+
+def _heads_back(text: list[str], else_line: int, indent: int) -> list[int] | None:
+    """The head lines (`if`, `elif`s, `else:`) of the chain whose ELSE is on `else_line`."""
+    heads, n = [else_line], else_line - 1
+    while n >= 0:
+        line = text[n]
+        if _indentation(line) > indent:
+            n -= 1
+            continue
+        if _indentation(line) < indent or not line.endswith(":"):
+            return None
+        body = line.lstrip(" ")
+        if body.startswith("elif "):
+            heads.insert(0, n)
+        elif body.startswith("if "):
+            heads.insert(0, n)
+            return heads
+        else:
+            return None
+        n -= 1
+    return None
+
+
+def _entries(text: list[str], first: int, indent: int, stops) -> list[int] | None:
+    """The charges that open every path through the branch starting at line `first`
+    (indentation `indent`): its first charge after lines that are no barrier, or those of
+    a chain with ELSE that comes first, each of whose branches has such; None if a path has
+    none (or a barrier comes first)."""
+    n = first
+    while n < len(text) and _indentation(text[n]) == indent:
+        line = text[n]
+        if _CHARGE.fullmatch(line):
+            return [n]
+        if stops.stop(n):
+            return None
+        if line.lstrip().startswith("if ") and line.endswith(":"):
+            end = n + 1
+            heads = [n]
+            while True:
+                while end < len(text) and _indentation(text[end]) > indent:
+                    end += 1
+                if end < len(text) and _indentation(text[end]) == indent and \
+                        text[end].lstrip().startswith(("elif ", "else:")):
+                    heads.append(end)
+                    end += 1
+                    continue
+                break
+            if text[heads[-1]].strip() != "else:":
+                return None
+            found = []
+            for head in heads:
+                entries = _entries(text, head + 1, indent + 4, stops)
+                if entries is None:
+                    return None
+                found += entries
+            return found
+        if line.endswith(":"):
+            return None
+        n += 1
+    return None
 
 
 def settle(lines: list[str], start: int) -> None:
