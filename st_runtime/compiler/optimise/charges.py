@@ -47,6 +47,7 @@ def merge(lines: list[str], start: int) -> None:
     if joined.count("_spent += ") < 2:
         return                  # (fewer than two charges: none to join, no line to read)
     text = joined.split("\n")
+    _out_of_try(text)
     found = [(n, match) for n, line in enumerate(text)
              if "_spent += " in line and (match := _CHARGE.fullmatch(line))]
     if len(found) < 2:
@@ -74,6 +75,22 @@ def merge(lines: list[str], start: int) -> None:
         elif totals[k] != int(match.group(2)):
             new[n] = f"{match.group(1)}_spent += {totals[k]}"
     lines[start:] = _lifted(_sunk([line for line in new if line is not None]))
+
+
+def _out_of_try(text: list[str]) -> None:
+    """Each charge that opens the body of a `try` (more lines after it) before the `try`
+    instead: nothing runs between the two places, and a charge cannot raise, so every read
+    of `_spent` (the handler's, the `finally`'s) sees the same; before it, the charge may
+    join the one of the level above (`merge`): TRJ_OceanWave's body after its latch.  Not
+    the `try` that holds the whole body (its charges join one another inside it)."""
+    for n in range(len(text) - 2):
+        line = text[n]
+        if line.endswith("try:") and line.strip() == "try:" and "_spent += " in text[n + 1] \
+                and text[n - 1].strip() != "_spent = 0":       # (the body's own `try`: its level joins)
+            match = _CHARGE.fullmatch(text[n + 1])
+            indent = _indentation(line)
+            if match is not None and len(match.group(1)) == indent + 4 and _indentation(text[n + 2]) > indent:
+                text[n], text[n + 1] = f"{line[:indent]}_spent += {match.group(2)}", line
 
 
 def _sunk(text: list[str]) -> list[str]:
