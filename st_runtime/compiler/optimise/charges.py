@@ -27,6 +27,7 @@ store of that value.
 
 from __future__ import annotations
 
+import itertools
 import re
 
 _CHARGE = re.compile(r"( *)_spent \+= (\d+)")
@@ -265,8 +266,9 @@ def _lifted(text: list[str]) -> list[str]:
     chains = [n for n, line in enumerate(text) if line.endswith("else:") and n + 1 < len(text)
               and _CHARGE.fullmatch(text[n + 1]) and len(_CHARGE.fullmatch(text[n + 1]).group(1))
               == _indentation(line) + 4]
+    shape = _Shape(text) if chains else None
     for else_line in reversed(chains):
-        _lift(text, else_line, stops, amounts)
+        _lift(text, else_line, stops, amounts, shape)
     if not amounts:
         return text
     out = []
@@ -289,36 +291,32 @@ def _opens_block(text: list[str], n: int, indent: int) -> bool:
     return n + 1 < len(text) and _indentation(text[n + 1]) > indent
 
 
-def _lift(text: list[str], else_line: int, stops, amounts: dict[int, int]) -> None:
+def _lift(text: list[str], else_line: int, stops, amounts: dict[int, int], shape: "_Shape") -> None:
     """`_lifted` for the chain B whose ELSE is on line `else_line`, if it may."""
-    indent = _indentation(text[else_line])
-    heads = _heads_back(text, else_line, indent)
+    indents, before = shape.indent, shape.before
+    indent = indents[else_line]
+    heads = _heads_back(text, else_line, indent, shape)
     if heads is None or any(stops.stop(h) for h in heads):
         return
     b_entries = []
     for head in heads[:-1]:
-        entries = _entries(text, head + 1, indent + 4, stops)
+        entries = _entries(text, head + 1, indent + 4, stops, shape)
         if entries is None:
             return
         b_entries += entries
-    n = heads[0] - 1                    # back over lines between A and B: none a barrier
-    while n >= 0 and _indentation(text[n]) == indent and not text[n].rstrip().endswith(":"):
+    n = before[heads[0]]                # back over lines between A and B: none a barrier
+    while n >= 0 and indents[n] == indent and not text[n].endswith(":"):
         if stops.stop(n):
             return
-        n -= 1
-    if n < 0 or _indentation(text[n]) <= indent:
-        return                          # (the statement before is not a chain's last branch)
-    a_else = n
-    while a_else >= 0 and _indentation(text[a_else]) > indent:
-        a_else -= 1
-    if a_else < 0 or text[a_else].strip() != "else:":
-        return
-    a_heads = _heads_back(text, a_else, indent)
+        n = before[n]
+    if n < 0 or indents[n] != indent or text[n].strip() != "else:":
+        return                          # (the statement before is not a chain with ELSE)
+    a_heads = _heads_back(text, n, indent, shape)
     if a_heads is None or any(stops.stop(k) for k in range(a_heads[0], heads[0])):
         return
     a_entries = []
     for head in a_heads:
-        entries = _entries(text, head + 1, indent + 4, stops)
+        entries = _entries(text, head + 1, indent + 4, stops, shape)
         if entries is None:
             return
         a_entries += entries
@@ -335,17 +333,11 @@ def _amount(line: str) -> int:
     return int(_CHARGE.fullmatch(line).group(2))
 
 
-def _heads_back(text: list[str], else_line: int, indent: int) -> list[int] | None:
+def _heads_back(text: list[str], else_line: int, indent: int, shape: "_Shape") -> list[int] | None:
     """The head lines (`if`, `elif`s, `else:`) of the chain whose ELSE is on `else_line`."""
-    heads, n = [else_line], else_line - 1
-    while n >= 0:
-        line = text[n]
-        if _indentation(line) > indent:
-            n -= 1
-            continue
-        if _indentation(line) < indent or not line.endswith(":"):
-            return None
-        body = line.lstrip(" ")
+    heads, n = [else_line], shape.before[else_line]
+    while n >= 0 and shape.indent[n] == indent and text[n].endswith(":"):
+        body = text[n].lstrip(" ")
         if body.startswith("elif "):
             heads.insert(0, n)
         elif body.startswith("if "):
@@ -353,45 +345,39 @@ def _heads_back(text: list[str], else_line: int, indent: int) -> list[int] | Non
             return heads
         else:
             return None
-        n -= 1
+        n = shape.before[n]
     return None
 
 
-def _entries(text: list[str], first: int, indent: int, stops) -> list[int] | None:
+def _entries(text: list[str], first: int, indent: int, stops, shape: "_Shape") -> list[int] | None:
     """The charges that open every path through the branch starting at line `first`
     (indentation `indent`): its first charge after lines that are no barrier, or those of
     a chain with ELSE that comes first, each of whose branches has such; None if a path has
     none (or a barrier comes first)."""
-    n = first
-    while n < len(text) and _indentation(text[n]) == indent:
+    n, indents = first, shape.indent
+    while n < len(text) and indents[n] == indent:
         line = text[n]
         if _CHARGE.fullmatch(line):
             return [n]
         if stops.stop(n):
             return None
-        if line.lstrip().startswith("if ") and line.endswith(":"):
-            end = n + 1
+        if line.endswith(":"):
+            if not line.lstrip().startswith("if "):
+                return None
             heads = [n]
-            while True:
-                while end < len(text) and _indentation(text[end]) > indent:
-                    end += 1
-                if end < len(text) and _indentation(text[end]) == indent and \
-                        text[end].lstrip().startswith(("elif ", "else:")):
-                    heads.append(end)
-                    end += 1
-                    continue
-                break
+            end = shape.after[n]
+            while end < len(text) and indents[end] == indent and text[end].lstrip().startswith(("elif ", "else:")):
+                heads.append(end)
+                end = shape.after[end]
             if text[heads[-1]].strip() != "else:":
                 return None
             found = []
             for head in heads:
-                entries = _entries(text, head + 1, indent + 4, stops)
+                entries = _entries(text, head + 1, indent + 4, stops, shape)
                 if entries is None:
                     return None
                 found += entries
             return found
-        if line.endswith(":"):
-            return None
         n += 1
     return None
 
@@ -432,21 +418,27 @@ _COMPOUND = re.compile(r" *(if|elif|else|try|except|finally|for|while|with|def)\
 
 class _Settle:
     """`settled`'s walk: each block's lines in turn, with the value `_spent` holds (None:
-    not known), replacing the charges it can."""
+    not known), replacing the charges it can; once nothing is known a block's rest is
+    passed over (nothing in it could be replaced)."""
 
     def __init__(self, text: list[str]):
         self.text = text
+        self.shape = _Shape(text)
+        self.sets_before = list(itertools.accumulate(
+            (1 if "_spent" in line and _SETS.match(line) else 0 for line in text), initial=0))
 
     def block(self, n: int, value: int | None) -> tuple[int, int | None]:
         """Read the block whose first line is `n` (its indentation: that line's); the line
         after it and the value `_spent` holds at its end."""
-        text = self.text
-        indent = _indentation(text[n]) if n < len(text) else 0
-        while n < len(text) and _indentation(text[n]) >= indent and text[n].strip():
-            line = text[n]
-            if _indentation(line) > indent:
-                raise _Unread(line)
-            head = _COMPOUND.fullmatch(line)
+        text, indents, after = self.text, self.shape.indent, self.shape.after
+        indent = indents[n] if n < len(text) else 0
+        while n < len(text) and indents[n] >= indent:
+            if indents[n] > indent:
+                raise _Unread(text[n])
+            if value is None and text[n] != " " * indent + "_spent = 0":
+                n = after[n]            # (nothing known, nothing to replace: the next statement)
+                continue
+            head = _COMPOUND.fullmatch(text[n])
             if head is None:
                 value = self._simple(n, value)
                 n += 1
@@ -455,15 +447,19 @@ class _Settle:
             elif head.group(1) == "try":
                 n, value = self._try(n, indent, value)
             else:                       # a loop, `with`, `def`: not followed into
-                end = self._end(n, indent)
-                if any(_SETS.match(text[k]) for k in range(n, end)):
+                end = after[n]
+                if self._sets(n, end):
                     value = None
                 n = end
         return n, value
 
+    def _sets(self, first: int, end: int) -> bool:
+        """Whether a line from `first` to `end - 1` sets `_spent`."""
+        return self.sets_before[end] > self.sets_before[first]
+
     def _simple(self, n: int, value: int | None) -> int | None:
         line = self.text[n]
-        if not _SETS.match(line):
+        if "_spent" not in line or not _SETS.match(line):
             return value
         match = _CHARGE.fullmatch(line)
         if line.strip() == "_spent = 0":
@@ -480,7 +476,7 @@ class _Settle:
         while True:
             n, end = self.block(n + 1, value)
             ends.append(end)
-            if n < len(text) and _indentation(text[n]) == indent and text[n].lstrip().startswith(("elif ", "else:")):
+            if n < len(text) and self.shape.indent[n] == indent and text[n].lstrip().startswith(("elif ", "else:")):
                 has_else = text[n].strip() == "else:"
                 continue
             break
@@ -491,23 +487,48 @@ class _Settle:
     def _try(self, n: int, indent: int, value: int | None) -> tuple[int, int | None]:
         """A `try` statement: its body read with `value`, its handlers with none; `value`
         after it when nothing in it sets `_spent`."""
-        end = self._end(n, indent)
-        while end < len(self.text) and _indentation(self.text[end]) == indent \
+        after, end = self.shape.after, self.shape.after[n]
+        while end < len(self.text) and self.shape.indent[end] == indent \
                 and self.text[end].lstrip().startswith(("except", "else:", "finally:")):
-            end = self._end(end, indent)
-        sets = any(_SETS.match(self.text[k]) for k in range(n, end))
-        k, _ = self.block(n + 1, value)
-        while k < end:                  # the handlers, `else` and `finally`: their own reading
-            k, _ = self.block(k + 1, None)
-        return end, None if sets else value
-
-    def _end(self, n: int, indent: int) -> int:
-        """The line after the compound statement's clause opened on line `n`."""
-        n += 1
-        while n < len(self.text) and (not self.text[n].strip() or _indentation(self.text[n]) > indent):
-            n += 1
-        return n
+            end = after[end]
+        self.block(n + 1, value)
+        return end, None if self._sets(n, end) else value
 
 
 def _indentation(line: str) -> int:
     return len(line) - len(line.lstrip(" "))
+
+
+class _Shape:
+    """The block structure of the code's lines, worked out once: each line's indentation,
+    the first later line not more indented (`after`: where a clause or statement ends) and
+    the last earlier one (`before`), so that a walk hops over a nested block at once."""
+
+    def __init__(self, text: list[str]):
+        self.indent = [len(line) - len(line.lstrip(" ")) if line else 1 << 20 for line in text]
+        self._after: list[int] | None = None
+        self._before: list[int] | None = None
+
+    @property
+    def after(self) -> list[int]:
+        if self._after is None:
+            self._after = self._nearest(range(len(self.indent)))
+        return self._after
+
+    @property
+    def before(self) -> list[int]:
+        if self._before is None:
+            self._before = self._nearest(range(len(self.indent) - 1, -1, -1), -1)
+        return self._before
+
+    def _nearest(self, order: range, missing: int | None = None) -> list[int]:
+        """For each line, the first line in `order` after it that is not more indented."""
+        indent = self.indent
+        found = [len(indent) if missing is None else missing] * len(indent)
+        pending: list[int] = []
+        for n in order:
+            depth = indent[n]
+            while pending and indent[pending[-1]] >= depth:
+                found[pending.pop()] = n
+            pending.append(n)
+        return found
