@@ -143,7 +143,7 @@ END_FUNCTION"""), {"y": 8}, shape=("F", r"\n        v_A\[:\] = v_B"))
 # ----------------------------------------------------------------------------------- sets
 # A TIME compared with TIME literals is no integer variable: no membership test (T#2s = 2 s).
 row("sets", "a TIME is not tested by membership", main("t : TIME := T#2s; r, s : BOOL;",
-    "r := t = T#1s OR t = T#2s;\ns := t <> T#1s AND t <> T#2s;"), {"r": True, "s": False}, never=("MAIN", r" in \("))
+    "r := t = T#1s OR t = T#2s;\ns := t <> T#1s AND t <> T#2s;"), {"r": True, "s": False}, never=("MAIN", r" in \{"))
 
 # ----------------------------------------------------------------------------- spread, stores
 # A clause that stores the cached Cnt only through an output (`q => Cnt`) stores it back as a

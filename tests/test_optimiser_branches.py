@@ -126,7 +126,11 @@ def test_the_code_check_refuses_what_can_raise():
     assert not code_cannot_fault("(v_A << v_B) > 1")         # ValueError for a negative shift
     assert not code_cannot_fault("v_T[(v_I - 1) if 1 <= v_I <= 8 else _index_fault(v_I, 1, 8, 'T', w)] > 0")
     assert not code_cannot_fault("_cv_LINT_TO_LREAL(v_A) > 0.0")
-    assert not code_cannot_fault("(_t1 := v_A) > 0")
+    assert code_cannot_fault("(_t1 := v_A) > 0")              # setting a temporary cannot raise
+    assert code_cannot_fault("((_t1 := (v_X - v_Y)) > 0.25 or _t1 < -0.25)")   # absolute.py's ABS(x) > B
+    assert not code_cannot_fault("(v_A := 1) > 0")             # an ST variable: refused
+    assert code_cannot_fault("(v_S not in {0, 8, 9, 10})")     # sets.py: a set of int literals
+    assert not code_cannot_fault("{v_A: 1}")                   # a dict display: refused
     assert not code_cannot_fault("v_R.get() > 0")
     assert not code_cannot_fault(" * ".join(["v_A"] * 16) + " > 0.5")   # an int beyond 2**1024
     assert not code_cannot_fault("")

@@ -2,7 +2,8 @@
 with nothing between them that can raise, check the budget or leave are one, and nothing a
 program can see changes: results, faults (code, file, line, column, scan), instance states and
 the time charged are equal with the pass on and off, also when F-PERIOD cuts the scan at many
-budgets or a fault stops the run between two charges.
+budgets or a fault stops the run between two charges.  The `settle` pass (the same module):
+a charge where `_spent`'s value is known is a store of the sum, with the same outcomes.
 """
 
 from __future__ import annotations
@@ -14,9 +15,9 @@ import pytest
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.controller import Controller
-from test_optimiser_equivalence import run_both, same_alone_and_with_all, snapshot
+from test_optimiser_equivalence import run_both, same_alone_and_with_all, snapshot, stopped_runs
 
-ON = Optimisations()
+ON = replace(Optimisations(), settle=False)   # (`settle` makes the first charges stores: its tests below)
 
 LEGS = """
 FUNCTION_BLOCK Legs
@@ -126,15 +127,184 @@ def test_sunk_charges_cut_the_scan_where_they_did(budget_ns):
 
 
 def test_sunk_charges_leave_the_same_time_charged():
-    outcomes = []
-    for optimise in (replace(ON, charges=False), Optimisations.only("charges"), ON):
-        controller = Controller(compile_program(api.load_text(CHAINS).program, optimise=optimise),
-                                stop_on_fault=True)
-        main = controller.add_program("Main")
-        budgets = []
-        for _ in range(8):
-            controller.run(1)
-            budgets.append(controller.ctx.budget)
-        outcomes.append(([(f.code, f.line, f.scan) for f in controller.faults], snapshot(main), budgets))
+    outcomes = stopped_runs(api.load_text(CHAINS).program, 8, replace(ON, charges=False),
+                            Optimisations.only("charges"), ON)
     assert outcomes[0] == outcomes[1] == outcomes[2]
     assert outcomes[0][0] == [("F-DIV-ZERO", 18, 6)]          # Z := 10 / (N - 6), N = 6
+
+
+# `settle`: the walk by hand.  The value is known from `_spent = 0` on, through a `try` that
+# charges nothing, into every branch of the first chain and on after it (its three paths end
+# at 103), past a budget check (it reads); not on after an ELSE-less chain (its paths end at
+# 118 and 113); a handler is read knowing nothing (its take-back stays an addition).
+_WALKED = """def f(self, _ctx):
+    _spent = 0
+    try:
+        _spent += 100
+        try:
+            a = 1
+        except _FAULTS as _e:
+            _ctx.fault(_e, 1)
+        if a:
+            _spent += 3
+        elif b:
+            _spent += 1
+            _spent += 2
+        else:
+            _spent += 3
+        if _ctx.budget < _spent: _overrun(1)
+        _spent += 10
+        if c:
+            _spent += 5
+        _spent += 1
+        try:
+            _spent += 4
+            d = 1
+        except _FAULTS as _e:
+            _spent -= 4
+            _ctx.fault(_e, 2)
+            _spent += 4
+        _spent += 6
+    finally:
+        _ctx.budget -= _spent"""
+
+# The lines `settled` changes, by hand: line number -> the store it writes there.
+_SETTLED = {3: "_spent = 100", 9: "_spent = 103", 11: "_spent = 101", 12: "_spent = 103", 14: "_spent = 103",
+            16: "_spent = 113", 18: "_spent = 118"}
+
+
+def test_settled_stores_the_known_values_by_hand():
+    from st_runtime.compiler.optimise.charges import settled
+
+    walked = _WALKED.split("\n")
+    expected = [line[:len(line) - len(line.lstrip())] + _SETTLED[n] if n in _SETTLED else line
+                for n, line in enumerate(walked)]
+    assert settled(walked) == expected
+
+
+def test_settled_follows_no_value_into_a_loop():
+    from st_runtime.compiler.optimise.charges import settled
+
+    looped = ["    _spent = 0", "    _spent += 7", "    for i in r:", "        _spent += 2",
+              "    _spent += 1", "    while x:", "        y = 1", "    _spent += 1"]
+    assert settled(looped) == ["    _spent = 0", "    _spent = 7", "    for i in r:", "        _spent += 2",
+                               "    _spent += 1", "    while x:", "        y = 1", "    _spent += 1"]
+
+
+SETTLE_ON = Optimisations()
+
+
+def test_settle_makes_the_first_charge_a_store_of_its_amount():
+    settled_source = compile_program(_program(), optimise=SETTLE_ON).python_sources["LEGS"]
+    joined = _charges(ON)                           # the same code, its charges as additions
+    first = next(line.strip() for line in settled_source.splitlines() if line.strip().startswith("_spent = ")
+                 and line.strip() != "_spent = 0")
+    assert first == f"_spent = {joined[0]}"
+
+
+def test_the_scans_see_the_same_with_and_without_settle():
+    same_alone_and_with_all(_program, 9, "settle")
+    same_alone_and_with_all(lambda: api.load_text(CHAINS).program, 12, "settle")
+
+
+@pytest.mark.parametrize("budget_ns", [200, 300, 600, 1_000, 1_500, 3_000])
+def test_f_period_lands_on_the_same_statement_with_settle(budget_ns):
+    for program in (_program, lambda: api.load_text(CHAINS).program):
+        for optimise in (Optimisations.only("settle"), Optimisations.only("charges", "settle"), SETTLE_ON):
+            off, on = run_both(program(), 6, budget_ns, optimise=optimise)
+            assert on == off
+
+
+def test_settle_leaves_the_same_time_charged_scan_by_scan():
+    outcomes = stopped_runs(api.load_text(CHAINS).program, 8, replace(SETTLE_ON, settle=False), SETTLE_ON,
+                            Optimisations.none())
+    assert outcomes[0] == outcomes[1] == outcomes[2]
+
+
+# `_lifted` (with `charges`): the ELSE charge of a chain that follows another chain goes into
+# that chain's branches, taken from its own other branches.  By hand:
+_TWO_CHAINS = """    _spent += 5
+    if a:
+        _spent += 1
+    else:
+        _spent += 2
+    x = 1
+    if b:
+        if c:
+            _spent += 7
+        else:
+            _spent += 3
+    else:
+        _spent += 4"""
+
+# The lines `_lifted` changes, by hand (line number -> what it writes; None: dropped): the
+# first chain's charges take the 4, the second chain's other branches give it back.
+_TWO_LIFTED = {2: "_spent += 5", 4: "_spent += 6", 8: "_spent += 3", 10: "_spent -= 1", 11: None, 12: None}
+
+
+def test_lifted_moves_an_else_charge_into_the_chain_before_by_hand():
+    from st_runtime.compiler.optimise.charges import _lifted
+
+    chains = _TWO_CHAINS.split("\n")
+    expected = [line[:len(line) - len(line.lstrip())] + _TWO_LIFTED[n] if n in _TWO_LIFTED else line
+                for n, line in enumerate(chains) if _TWO_LIFTED.get(n, "") is not None]
+    assert _lifted(chains) == expected
+    guarded = _TWO_CHAINS.replace("    x = 1", "    try:\n        x = 1\n    except _FAULTS as _e:\n"
+                                  "        _ctx.fault(_e, 1)").split("\n")
+    assert _lifted(guarded) == guarded                  # a handler between the chains: no move
+    open_a = _TWO_CHAINS.replace("    else:\n        _spent += 2\n", "").split("\n")
+    assert _lifted(open_a) == open_a                    # the first chain has no ELSE: no move
+
+
+# SP_Controller's legs in small: a FOR unrolled into chains whose ELSE charges the tests.
+LEGS_CHAINS = """
+PROGRAM Main
+VAR N, Fault, K, Z : INT; P, S : ARRAY[1..4] OF LREAL; Ok : ARRAY[1..4] OF BOOL; END_VAR
+N := N + 1;
+FOR K := 1 TO 4 DO
+    P[K] := INT_TO_LREAL(N * K) * 0.1;
+    Ok[K] := P[K] < 3.0;
+END_FOR;
+FOR K := 1 TO 4 DO
+    IF NOT Ok[K] THEN
+        IF Fault = 0 THEN Fault := K; ELSE Fault := Fault + 10; END_IF;
+    ELSIF ABS(P[K] - S[K]) > 0.25 THEN
+        IF Fault = 0 THEN Fault := 100 + K; ELSE Fault := Fault + 1; END_IF;
+    END_IF;
+END_FOR;
+S := P;
+Z := 10 / (N - 9);                          (* F-DIV-ZERO in scan 9 *)
+IF N MOD 5 = 0 THEN Fault := 0; END_IF;
+END_PROGRAM
+"""
+
+
+def _legs():
+    return api.load_text(LEGS_CHAINS).program
+
+
+def test_a_run_of_chains_charges_its_else_path_once():
+    lifted = compile_program(_legs(), optimise=ON).python_sources["MAIN"].splitlines()
+    plain = compile_program(_legs(), optimise=replace(ON, charges=False)).python_sources["MAIN"].splitlines()
+    heads = [n for n, line in enumerate(lifted) if line.strip().startswith("if (not v_OK[")]
+    assert len(heads) == 4
+    # the first chain's ELSE charges, the three after it have no ELSE left
+    else_charges = [n for n in range(heads[0], len(lifted)) if lifted[n].strip() == "else:"
+                    and lifted[n + 1].strip().startswith("_spent += ")
+                    and lifted[n].index("e") == lifted[heads[0]].index("i")]      # (the chains' level)
+    assert len(else_charges) == 1 and heads[0] < else_charges[0] < heads[1]
+    assert any(line.strip().startswith("_spent -= ") for line in lifted)
+    assert not any(line.strip().startswith("_spent -= ") for line in plain)
+
+
+@pytest.mark.parametrize("budget_ns", [300, 700, 1_000, 1_200, 1_400, 2_000, 500_000])
+def test_lifted_charges_cut_the_scan_where_they_did(budget_ns):
+    for optimise in (Optimisations.only("charges"), ON, SETTLE_ON):
+        off, on = run_both(_legs(), 14, budget_ns, optimise=optimise)
+        assert on == off
+
+
+def test_lifted_charges_leave_the_same_time_charged_scan_by_scan():
+    outcomes = stopped_runs(_legs(), 12, Optimisations.none(), Optimisations.only("charges"), SETTLE_ON)
+    assert outcomes[0] == outcomes[1] == outcomes[2]
+    assert outcomes[0][0] == [("F-DIV-ZERO", 17, 9)]

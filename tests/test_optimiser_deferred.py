@@ -89,3 +89,32 @@ def test_the_time_charged_and_a_stopping_fault_are_the_same():
     outcomes = stopped_runs(_program(), 3, WITHOUT, ON)
     assert outcomes[0] == outcomes[1]
     assert [(code, scan) for code, _, scan in outcomes[1][0]] == [("F-DIV-ZERO", 1)]
+
+
+TRIG = """
+FUNCTION_BLOCK Turn
+VAR_INPUT A : LREAL; END_VAR
+VAR_OUTPUT X : LREAL; END_VAR
+VAR C, S : LREAL; END_VAR
+C := COS(A * 0.5);                              (* inline COS with its finite test *)
+S := SIN(A * 0.5);
+X := C * S + C * C + S * S + C - S + C * 2.0 + S * 3.0;      (* read often: cached in locals *)
+X := X + C * S + C + S;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR T : Turn; N : INT; END_VAR
+N := N + 1;
+T(A := INT_TO_LREAL(N));
+END_PROGRAM
+"""
+
+
+def test_a_body_that_opens_with_inline_trig_leaves_the_loads_out():
+    """`drop_unread` reads an inline SIN/COS with its finite test (pysrc.finite_test) as the
+    argument it tests: S is set before anything reads it, so it is not loaded (when the
+    pattern missed the test's text, SP_Jacobian loaded 24 such variables again)."""
+    lines = compiled_lines(api.load_text(TRIG).program, "TURN", ON)
+    assert "v_S = self.v_S" not in lines
+    assert any("< 1e309 and" in line and "_m_cos(" in line for line in lines)
+    off, on = run_both(api.load_text(TRIG).program, 5)
+    assert on == off

@@ -100,7 +100,7 @@ def test_the_pivots_split_only_between_clauses():
 
 def test_a_case_of_many_clauses_is_dispatched_by_halves():
     source, plain = _source(ON), _source(WITHOUT)
-    pivots = re.findall(r"if _t\d+ < (\d+):", source)
+    pivots = re.findall(r"if (?:\(True if )?_t\d+ < (\d+)(?: else False\))?:", source)     # (jump_far)
     assert re.findall(r"if _t\d+ < (\d+):", plain) == []
     # S's CASE: 9, 3, 15; N MOD 6's and the enumeration's (IDLE..RESET: 0..5): 3 each;
     # W's CASE has an ELSE: tested in a row
@@ -142,3 +142,50 @@ def test_the_time_charged_and_a_stopping_fault_are_the_same():
     outcomes = stopped_runs(_program(), 15, WITHOUT, ON)
     assert outcomes[0] == outcomes[1]
     assert outcomes[1][0] == [("F-DIV-ZERO", DIVISION, 13)]
+
+
+def _long_clauses() -> str:
+    """A CASE of eight clauses, each of 30 statements: every test's branch is long."""
+    clauses = "\n".join(f"{k}: " + " ".join(f"X[{j}] := X[{j}] + {k};" for j in range(1, 31)) + f" Last := {k};"
+                        for k in range(8))
+    return f"""
+PROGRAM Main
+VAR N, S, Last : INT; X : ARRAY[1..30] OF INT; END_VAR
+N := N + 1;
+S := N MOD 9;                                     (* 8: no clause *)
+Last := -1;
+CASE S OF
+{clauses}
+END_CASE;
+END_PROGRAM
+"""
+
+
+def test_a_test_before_a_long_branch_keeps_its_jump_short():
+    """`jump_far`: the tests of the selector whose branches are long are `True if ... else
+    False` (their comparison then specialised by CPython 3.11); the clause each value runs,
+    by hand: S = N mod 9, clause S for S < 8, none for 8."""
+    program = api.load_text(_long_clauses()).program
+    source = compile_program(program, optimise=ON).python_sources["MAIN"]
+    assert re.findall(r"if \(True if _t\d+ < (\d+) else False\):", source)
+    assert re.findall(r"if \(True if _t\d+ == (\d+) else False\):", source)
+    assert not re.findall(r"if \(True if", compile_program(program, optimise=WITHOUT).python_sources["MAIN"])
+    controller = Controller(compile_program(program, optimise=ON))
+    main = controller.add_program("Main")
+    for n in range(1, 20):
+        controller.run(1)
+        assert main.v_LAST == (n % 9 if n % 9 < 8 else -1), n
+    off, on = run_both(program, 20)
+    assert on == off
+
+
+def test_jump_far_rewrites_only_a_single_comparison_before_a_long_branch():
+    lines = ["        if _t1 < 8:"] + ["            x = 1"] * (halves.FAR + 1)
+    halves.jump_far(lines, 0)
+    assert lines[0] == "        if (True if _t1 < 8 else False):"
+    short = ["        elif _t2 == 3:"] + ["            x = 1"] * halves.FAR
+    halves.jump_far(short, 0)
+    assert short[0] == "        elif _t2 == 3:"
+    membership = ["        if _t1 in (1, 2,):"] + ["            x = 1"] * (halves.FAR + 1)
+    halves.jump_far(membership, 0)
+    assert membership[0] == "        if _t1 in (1, 2,):"

@@ -1,5 +1,5 @@
 """The `sets` pass (st_runtime/compiler/optimise/sets.py): a run of `X = c` in an OR chain is
-`X in (...)`, a run of `X <> c` in an AND chain `X not in (...)`, and nothing a program can see
+`X in {...}`, a run of `X <> c` in an AND chain `X not in {...}`, and nothing a program can see
 changes: results, faults (code, file, line, column, scan) and instance states are equal bit for
 bit with the pass on and off, also when F-PERIOD cuts the scan.
 """
@@ -61,15 +61,15 @@ def _program():
 def test_runs_of_one_variable_become_membership_tests():
     source = compile_program(_program(), optimise=ON).python_sources["MAIN"]
     plain = compile_program(_program(), optimise=WITHOUT).python_sources["MAIN"]
-    assert "(v_STATE in (1, 2, 5))" in source
-    assert "(v_STATE not in (0, 3, 6))" in source
-    assert "(v_STATE in (4, 6))" in source
-    assert "(_G.v_SHARED in (3, 12, 21))" in source
-    assert "(v_M in (1, 2))" in source                   # RUN and HOLD: 1 and 2
-    assert "(self.v_W in (4, 5))" in source                 # a slot of the instance
-    assert "(v_STATE in (2, 3))" in source
-    assert "(v_STATE in (2, 2))" in source
-    assert " in (" not in plain.replace("_t", "")      # without the pass: the comparisons
+    assert "(v_STATE in {1, 2, 5})" in source
+    assert "(v_STATE not in {0, 3, 6})" in source
+    assert "(v_STATE in {4, 6})" in source
+    assert "(_G.v_SHARED in {3, 12, 21})" in source
+    assert "(v_M in {1, 2})" in source                   # RUN and HOLD: 1 and 2
+    assert "(self.v_W in {4, 5})" in source                 # a slot of the instance
+    assert "(v_STATE in {2, 3})" in source
+    assert "(v_STATE in {2, 2})" in source
+    assert " in {" not in plain and " in (" not in plain.replace("_t", "")      # without the pass: the comparisons
     # (two comparisons of different variables: `or` by shortcut, not a membership test)
     assert "(self.v_R == 1.0)" in source and "(v_STATE == 1) or (v_N == 3)" in source
 

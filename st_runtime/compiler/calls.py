@@ -29,7 +29,7 @@ from ..types import BOOL, ArrayType, ElementaryType, FBType, StructType, resolve
 from .exprs import elementary, is_real
 from .initial import CompileError
 from .optimise import shortcut
-from .pysrc import pyliteral, safe_name, pyident
+from .pysrc import finite_test, pyliteral, safe_name, pyident
 
 # Standard functions that map to a Python builtin or to their argument.
 _INLINE = {"ABS": "abs"}
@@ -47,9 +47,9 @@ _SELECTION = {"MIN": "min", "MAX": "max"}
 # gives NaN), a float subtraction and one comparison: cheaper than the chained
 # `-inf < t < inf`.
 _GUARDED = {
-    "SIN": ("_m_sin", "{x} - {t} == 0.0"),
-    "COS": ("_m_cos", "{x} - {t} == 0.0"),
-    "TAN": ("_m_tan", "{x} - {t} == 0.0"),
+    "SIN": ("_m_sin", finite_test("{x}", "{t}")),
+    "COS": ("_m_cos", finite_test("{x}", "{t}")),
+    "TAN": ("_m_tan", finite_test("{x}", "{t}")),
     "SQRT": ("_m_sqrt", "{x} >= 0.0"),
 }
 

@@ -43,6 +43,16 @@ def safe_name(name: str) -> str:
     return name
 
 
+def finite_test(first: str, again: str) -> str:
+    """Python for "x is finite" (a bool), x read as `first` and then as `again` (a name, or
+    `first` itself when reading it twice gives the same value): `x < inf and x > -inf`.
+    False for either infinity and NaN, True for every other float and every int, as `x - x
+    == 0.0` is; but two comparisons that CPython 3.11 specialises (each followed by its
+    jump) instead of a subtraction that makes and frees a float.  `1e309` overflows to the
+    float infinity: a literal, so both bounds are constants of the code object."""
+    return f"{first} < 1e309 and {again} > -1e309"
+
+
 @functools.lru_cache(maxsize=8192)   # a pure function, asked again for every variable of every load
 def pyident(st_name: str) -> str:
     """The Python name of an ST identifier: `mangle`, checked to be plain."""

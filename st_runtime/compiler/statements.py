@@ -137,6 +137,8 @@ class BodyCompiler(ExprCompiler):
                 aliases.drop_unread(o.lines, start, self.opt.deferred)
         if self.opt.charges and charge and self.unit.guard_statements:
             charges.merge(o.lines, start)
+        if self.opt.settle and charge:
+            charges.settle(o.lines, start)
         if self.opt.seal:
             seal.hoist(o.lines, start)
         return o.source()
@@ -656,17 +658,21 @@ class BodyCompiler(ExprCompiler):
         """The clauses of `node` (optimise/halves.py): in a row, or `selector < pivot` first.
         Without an ELSE, a selector no clause matches has compared every label (each leaf)."""
         if isinstance(node, halves.Split):
+            head = self.out.mark()
             self.out.line(f"if {selector} < {node.pivot}:")
             for index, side in enumerate((node.below, node.above)):
                 if index:
+                    halves.jump_far(self.out.lines, head, self.opt.halves)
                     self.out.line("else:")
                 self.out.indent()
                 self._dispatch(side, selector, tests, clauses, ends, leads, no_else)
                 self.out.dedent()
             return
         for position, index in enumerate(node):
+            head = self.out.mark()
             self.out.line(f"{'elif' if position else 'if'} {tests[index]}:")
             self._branch(ends, clauses[index].body, leads[index])
+            halves.jump_far(self.out.lines, head, self.opt.halves)
         if no_else and node:
             self._no_branch(ends, leads, "else:")
 

@@ -122,7 +122,7 @@ class HotPath:
         body = "\n".join(" " * 12 + line.format(**names) for line in self.body)
         source = _HOT_EXECUTE.format(pre=(self.pre or "True").format(**names), bound=_BOUND.format(**names),
                                      body=body, cold=self.cold)
-        cls.execute = define(source, f"{cls.__name__} hot path")["execute"]
+        cls.execute = define(source, f"{cls.__name__} hot path", {"_type": type})["execute"]   # (as compiled code names it)
 
 
 class _ExecuteFB(_AxisFB):
@@ -477,7 +477,8 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
     # -range <= d <= range (the same answer for every float d and range > 0, NaN included),
     # tested by jumps, which CPython 3.11 specialises (a comparison whose value is stored it
     # does not), without the call of abs() and its float; an LREAL input holds a float:
-    # float() only if not.  With Execute TRUE, `pre` found the Execute the FB
+    # float() only if not (`_type(x)`, the compiled code's `type`: a call CPython 3.11
+    # specialises, where the load of `x.__class__` is not).  With Execute TRUE, `pre` found the Execute the FB
     # remembers TRUE (the FB only ever stores a bool there): only a FALSE one is stored.
     HOT_PATH = HotPath(
         pre=("{fb}.v_BUSY and ({command} := {fb}._command) is not None and not {command}.aborted"
@@ -488,7 +489,7 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
               "{fb}.v_INPOSITION = (True if -({range} := {axis}.config.in_position_range)"
               " <= {axis}.act_pos - {command}.target <= {range} else False)",
               "{position} = {fb}.v_POSITION",
-              "{command}.target = {position} if {position}.__class__ is float else float({position})"),
+              "{command}.target = {position} if _type({position}) is float else float({position})"),
         temps=("command", "position", "range"),
         cold="_execute_rules")
 

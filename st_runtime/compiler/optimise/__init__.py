@@ -26,12 +26,12 @@ states bit for bit:
   PYTHONHASHSEED (measured in gather.py's docstring).
 * `inline` (calls.py, `_GUARDED`): SIN, COS, TAN and SQRT call Python's
   math function directly where the library's wrapper would only call it
-  (a finite argument, tested as `t - t == 0.0`; SQRT: not below zero, with no
+  (a finite argument, tested as `t < 1e309 and t > -1e309`; SQRT: not below zero, with no
   test for a REAL sum of squares of variables), the wrapper otherwise; MIN and
   MAX of two or more inputs are Python's min/max (the library's MIN is min of
   the tuple: the same comparisons in the same order); `ABS(x) <= B` and
   `ABS(x) < B` are chained comparisons without the call, `ABS(x) <= ` the
-  largest LREAL `x - x == 0.0` for a local x (absolute.py).
+  largest LREAL that finite test of a local x (absolute.py).
 * `vector` (vector.py): in a CSE region, a straight run of at least
   `vector.MIN_OPERATIONS` float `+ - *` (the unrolled Leibniz determinant:
   1,950 products and 720 sums) is one call that computes the products depth
@@ -105,6 +105,10 @@ states bit for bit:
   charge before it in the same block level when nothing between them can
   raise, check the budget or leave the level (assignments and IF tests that
   cannot raise): the same total at every read of `_spent`.
+* `settle` (charges.py `settled`): a charge where the value of `_spent` is
+  known (from the body's `_spent = 0` on, into IF branches and on after a chain
+  whose paths end with one total, through `try` statements that charge nothing)
+  stores that value plus its amount: the same int, no addition.
 * `spread` (aliases.py `spread_branches`, with `aliases` and `stores`): a
   variable every use of which lies in branches of one IF or CASE, no use at
   their common level, is loaded at the start of each such branch (and stored
@@ -119,7 +123,7 @@ states bit for bit:
 * `shortcut` (shortcut.py): an IF condition tested in place (`branches`)
   tests its AND and OR of BOOLs as Python's `and` and `or`: the same truth,
   and the operand left out reads, stores and raises nothing.
-* `finite` (reuse.py `finite`, with `reuse`): the finite test `x - x == 0.0`
+* `finite` (reuse.py `finite`, with `reuse`): the finite test (pysrc.finite_test)
   of inline SIN, COS and TAN of a float local is a value of `reuse`: SIN(Psi)
   and COS(Psi) of one unchanged Psi test it once; of an own slot too (`self.v_X`,
   IK's Alpha, Beta and Gamma).
@@ -262,6 +266,7 @@ class Optimisations:
     offsets: bool = True
     reuse: bool = True
     charges: bool = True
+    settle: bool = True
     spread: bool = True
     halves: bool = True
     shortcut: bool = True

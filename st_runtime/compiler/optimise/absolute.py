@@ -1,4 +1,4 @@
-"""`ABS(x) < B` and `ABS(x) <= B` without the call (part of the `inline` switch).
+"""`ABS(x) < B`, `ABS(x) <= B`, `ABS(x) > B`, `ABS(x) >= B` without the call (the `inline` switch).
 
 For any numbers x and B (Python ints or floats), `abs(x) <= B` is `-B <= x <= B` and
 `abs(x) < B` is `-B < x < B`: a NaN on either side fails both; below zero, B admits no
@@ -8,9 +8,13 @@ evaluates x once, as the call did (`abs` of a number cannot raise), and B is a l
 or a local, read twice with the same value.  Two float comparisons cost less than a
 builtin call: the FK's convergence test and the LU's zero-pivot test take this form.
 With B the largest double and x a local or a value of the `reuse` pass (a name, read
-twice with the same value), `abs(x) <= B` is finiteness, `x - x == 0.0` (an infinity
-or a NaN gives NaN, an int 0; one subtraction, one comparison): the IK's and FK's
-`NOT (ABS(Position[Leg]) <= SP_LREAL_MAX)`.  `>` and `>=` keep the call.
+twice with the same value), `abs(x) <= B` is finiteness, `x < 1e309 and x > -1e309`
+(pysrc.finite_test: false for an infinity or a NaN; two comparisons, no float made): the
+IK's and FK's `NOT (ABS(Position[Leg]) <= SP_LREAL_MAX)`.  `abs(x) > B` is `x > B or
+x < -B` and `abs(x) >= B` is `x >= B or x <= -B`, for the same reasons (a NaN fails both
+tests, as it fails the one; below zero B admits every other x either way), x set into a temp
+by the first test when it is not a name: SP_Controller's six `ABS(IkCylinderPos[k] -
+SpCylinderSetpoint[k]) > 0.25` without a call and its float.
 """
 
 from __future__ import annotations
@@ -19,7 +23,7 @@ import math
 import sys
 
 from ... import ast
-from ..pysrc import pyliteral
+from ..pysrc import finite_test, pyliteral
 
 _MIRROR = {"<": ">", "<=": ">=", ">": "<", ">=": "<="}
 
@@ -35,8 +39,10 @@ def bounded(compiler, e, left: str, right: str) -> str | None:
         bound = e.right
     else:
         return None
-    if op not in ("<", "<=") or not (left.startswith("abs(") and left.endswith(")")):
+    if not (left.startswith("abs(") and left.endswith(")")):
         return None
+    if op in (">", ">="):
+        return _outside(compiler, op, left[4:-1], right)
     if right.isidentifier():            # a local: read twice, the same value, no fault
         return f"(-{right} {op} {left[4:-1]} {op} {right})"
     value = _literal(right)
@@ -46,8 +52,27 @@ def bounded(compiler, e, left: str, right: str) -> str | None:
 
     x = left[4:-1]
     if op == "<=" and value == sys.float_info.max and (x.isidentifier() or is_token(x)):
-        return f"({x} - {x} == 0.0)"
+        return f"({finite_test(x, x)})"
     return f"({pyliteral(-value)} {op} {x} {op} {right})"
+
+
+def _outside(compiler, op: str, x: str, right: str) -> str | None:
+    """`abs(x) > B` as `x > B or x < -B` (`>=`: `x >= B or x <= -B`), x read once (a name, or
+    set into a temp by the first comparison), B a local or a finite literal."""
+    if right.isidentifier():
+        low = f"-{right}"
+    else:
+        value = _literal(right)
+        if value is None or not math.isfinite(value):
+            return None
+        low = pyliteral(-value)
+    from .reuse import is_token
+
+    first = again = x
+    if not (x.isidentifier() or is_token(x)):
+        again = compiler.temp()
+        first = f"({again} := {x})"
+    return f"({first} {op} {right} or {again} {_MIRROR[op]} {low})"
 
 
 def _literal(code: str):

@@ -71,9 +71,9 @@ _LOAD_LINE = re.compile(r"( *)(v_\w+) = (?:self|_G)\.\2")      # a whole line
 _LOCAL_NAME = re.compile(r"(v(?<![.\w]v)_\w+)")
 _SET = re.compile(r"        ((?:self\.)?\w+) = (.+)")
 _COPY = re.compile(r"        v_\w+\[:\] = v_\w+")
-_INLINE_TRIG = re.compile(r"\(_m_(?:sin|cos|tan)\((_t\d+)\) if \(\1 := ((?:self\.)?\w+)\) - \1 == 0\.0"
-                          r" else _sf_(?:SIN|COS|TAN)\(\1\)\)")
-#: The same with the finite test a value of `reuse` (`finite`): `_cN` is `x - x == 0.0` of x.
+_INLINE_TRIG = re.compile(r"\(_m_(?:sin|cos|tan)\((_t\d+)\) if \(\1 := ((?:self\.)?\w+)\) < 1e309 and \1 > -1e309"
+                          r" else _sf_(?:SIN|COS|TAN)\(\1\)\)")          # (pysrc.finite_test)
+#: The same with the finite test a value of `reuse` (`finite`): `_cN` is that test of x.
 _TESTED_TRIG = re.compile(r"\(_m_(?:sin|cos|tan)\(((?:self\.)?v_\w+)\) if _c\d+ else _sf_(?:SIN|COS|TAN)\(\1\)\)")
 
 

@@ -19,9 +19,10 @@ What cannot fault, judged on the ST expression and on its Python code both:
 * Python: names, literals, attribute reads and subscripts (of owned lists
   and objects: an IndexError or AttributeError is not caught by the
   handler either, so it propagates the same with or without it),
-  comparisons, `& | ^ ~ not and or`, and `+ - *`; calls only of `abs`,
+  comparisons, `& | ^ ~ not and or`, and `+ - *`; set displays (`x in {1, 2}`:
+  hashing raises no `_FAULTS` error); calls only of `abs`,
   `min`, `max`; no `/ // % ** << >>` (ZeroDivisionError, ValueError of a
-  negative shift), no `:=`, no other call (index checks call `_index_fault`,
+  negative shift), no `:=` but into a temporary (`_tN`), no other call (index checks call `_index_fault`,
   conversions and functions may raise).  `+ - *` of ints and floats raise
   only when an int beyond 2**1024 meets a float (OverflowError): with at
   most 14 such operators on ST integers (at most 64 bits, literals at most
@@ -39,7 +40,8 @@ from ..scope import once, walk
 from . import kept, remembered, reuse
 
 # Characters an expression that cannot fault is made of: no quote, `/`, `%`, `:`, `@`.
-_ALLOWED = re.compile(r"[\w\s.()\[\],+\-*<>=!&|^~]*")
+_ALLOWED = re.compile(r"[\w\s.()\[\]{},+\-*<>=!&|^~]*")
+_TEMP_SET = re.compile(r"\b_t\d+ := ")                  # a temporary set inside (`(_t1 := x) > B or ...`)
 _ASSIGNMENT = re.compile(r"(?<![=<>!])=(?!=)")          # `=` outside `== <= >= !=`
 _WORD = re.compile(r"\b([A-Za-z_]\w*)(\s*\()?")
 _NAME = re.compile(r"[A-Za-z_]\w*")
@@ -64,6 +66,8 @@ def per_iteration_values(code: str) -> str:
 def code_cannot_fault(code: str) -> bool:
     """The Python expression `code` raises nothing `_FAULTS` catches (module docstring)."""
     code = per_iteration_values(code)
+    if ":=" in code:
+        code = _TEMP_SET.sub("", code)      # (setting a local cannot raise; any other `:` stays)
     if not code.strip() or not _ALLOWED.fullmatch(code) or "**" in code or "<<" in code \
             or ">>" in code or "=" in code and _ASSIGNMENT.search(code):
         return False

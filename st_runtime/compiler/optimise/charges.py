@@ -18,10 +18,16 @@ it.  Every path through the chain charges the same total, and no read of `_spent
 the two places.  (SP_Controller's six axes: `_spent += 1196` and the IF/ELSIF/ELSE of the axis's
 fault tests, each branch with its charge, charge once an axis; in CPython 3.11 a charge is an
 int beyond the cached small ones, made and freed: about 200 machine instructions.)
+
+An IF chain's ELSE charge goes the other way, up into the chain before it, when that one's
+every path opens with a charge (`_lifted`): its six legs' tests charge their ELSE paths once.
+The `settle` pass (`settled`) then writes a charge made where `_spent`'s value is known as a
+store of that value.
 """
 
 from __future__ import annotations
 
+import itertools
 import re
 
 _CHARGE = re.compile(r"( *)_spent \+= (\d+)")
@@ -42,6 +48,7 @@ def merge(lines: list[str], start: int) -> None:
     if joined.count("_spent += ") < 2:
         return                  # (fewer than two charges: none to join, no line to read)
     text = joined.split("\n")
+    _out_of_try(text)
     found = [(n, match) for n, line in enumerate(text)
              if "_spent += " in line and (match := _CHARGE.fullmatch(line))]
     if len(found) < 2:
@@ -68,7 +75,23 @@ def merge(lines: list[str], start: int) -> None:
             new[n] = None
         elif totals[k] != int(match.group(2)):
             new[n] = f"{match.group(1)}_spent += {totals[k]}"
-    lines[start:] = _sunk([line for line in new if line is not None])
+    lines[start:] = _lifted(_sunk([line for line in new if line is not None]))
+
+
+def _out_of_try(text: list[str]) -> None:
+    """Each charge that opens the body of a `try` (more lines after it) before the `try`
+    instead: nothing runs between the two places, and a charge cannot raise, so every read
+    of `_spent` (the handler's, the `finally`'s) sees the same; before it, the charge may
+    join the one of the level above (`merge`): TRJ_OceanWave's body after its latch.  Not
+    the `try` that holds the whole body (its charges join one another inside it)."""
+    for n in range(len(text) - 2):
+        line = text[n]
+        if line.endswith("try:") and line.strip() == "try:" and "_spent += " in text[n + 1] \
+                and text[n - 1].strip() != "_spent = 0":       # (the body's own `try`: its level joins)
+            match = _CHARGE.fullmatch(text[n + 1])
+            indent = _indentation(line)
+            if match is not None and len(match.group(1)) == indent + 4 and _indentation(text[n + 2]) > indent:
+                text[n], text[n + 1] = f"{line[:indent]}_spent += {match.group(2)}", line
 
 
 def _sunk(text: list[str]) -> list[str]:
@@ -217,3 +240,290 @@ class _Stops:
 def _is_barrier(line: str) -> bool:
     return (line.endswith(":") and not _BRANCH.match(line)) or _LOOP.match(line) is not None \
         or any(word in line for word in _BARRIER_WORDS) and _BARRIER_WORD.search(line) is not None
+
+
+def _lifted(text: list[str]) -> list[str]:
+    """`text` with the ELSE charge of an IF chain B that follows another chain A moved into A.
+
+    When every path through A ends in a branch that opens with a charge (or with a chain
+    whose every branch does, and so on), nothing in A nor between A and B nor in B's tests
+    can raise, check the budget or leave, and B's ELSE opens with a charge `_spent += E`
+    and each of B's other branches with a charge it may take: E is added to each of A's
+    opening charges and taken from each of B's others, and B's ELSE charges nothing.  Every
+    path charges the same total (A's +E, then B's ELSE 0, or B's other branch -E) and no
+    read of `_spent` lies between the places; no path charges more often, B's ELSE path
+    once less.  Chains are taken from the last to the first, so a run of them charges its
+    ELSE paths once, in the first: SP_Controller's six legs' tests (`IF NOT LegInStroke[k]
+    ... ELSIF ABS(...) > 0.25 ... END_IF` in the unrolled FOR, each with the sunk ELSE
+    that charges the tests).  A negative amount is written `_spent -= N`."""
+    stops = _Stops(text)
+    amounts: dict[int, int] = {}            # line of a charge -> its amount now
+    chains = [n for n, line in enumerate(text) if line.endswith("else:") and n + 1 < len(text)
+              and _CHARGE.fullmatch(text[n + 1]) and len(_CHARGE.fullmatch(text[n + 1]).group(1))
+              == _indentation(line) + 4]
+    shape = _Shape(text) if chains else None
+    for else_line in reversed(chains):
+        _lift(text, else_line, stops, amounts, shape)
+    if not amounts:
+        return text
+    out = []
+    for n, line in enumerate(text):
+        amount = amounts.get(n)
+        if amount is None:
+            out.append(line)
+        elif amount:
+            indent = line[:len(line) - len(line.lstrip(" "))]
+            out.append(f"{indent}_spent += {amount}" if amount > 0 else f"{indent}_spent -= {-amount}")
+        elif out[-1].strip() == "else:" and not _opens_block(text, n, _indentation(out[-1])):
+            out.pop()                   # (an ELSE left with nothing)
+        elif _indentation(out[-1]) < _indentation(line) and not _opens_block(text, n, _indentation(line) - 4):
+            out.append(line[:_indentation(line)] + "pass")
+    return out
+
+
+def _opens_block(text: list[str], n: int, indent: int) -> bool:
+    """Whether the branch whose line `n` is (a dropped charge) holds more lines after it."""
+    return n + 1 < len(text) and _indentation(text[n + 1]) > indent
+
+
+def _lift(text: list[str], else_line: int, stops, amounts: dict[int, int], shape: "_Shape") -> None:
+    """`_lifted` for the chain B whose ELSE is on line `else_line`, if it may."""
+    indents, before = shape.indent, shape.before
+    indent = indents[else_line]
+    heads = _heads_back(text, else_line, indent, shape)
+    if heads is None or any(stops.stop(h) for h in heads):
+        return
+    b_entries = []
+    for head in heads[:-1]:
+        entries = _entries(text, head + 1, indent + 4, stops, shape)
+        if entries is None:
+            return
+        b_entries += entries
+    n = before[heads[0]]                # back over lines between A and B: none a barrier
+    while n >= 0 and indents[n] == indent and not text[n].endswith(":"):
+        if stops.stop(n):
+            return
+        n = before[n]
+    if n < 0 or indents[n] != indent or text[n].strip() != "else:":
+        return                          # (the statement before is not a chain with ELSE)
+    a_heads = _heads_back(text, n, indent, shape)
+    if a_heads is None or any(stops.stop(k) for k in range(a_heads[0], heads[0])):
+        return
+    a_entries = []
+    for head in a_heads:
+        entries = _entries(text, head + 1, indent + 4, stops, shape)
+        if entries is None:
+            return
+        a_entries += entries
+    charge = else_line + 1
+    moved = amounts.get(charge, int(_CHARGE.fullmatch(text[charge]).group(2)))
+    for k in a_entries:
+        amounts[k] = amounts.get(k, _amount(text[k])) + moved
+    for k in b_entries:
+        amounts[k] = amounts.get(k, _amount(text[k])) - moved
+    amounts[charge] = 0
+
+
+def _amount(line: str) -> int:
+    return int(_CHARGE.fullmatch(line).group(2))
+
+
+def _heads_back(text: list[str], else_line: int, indent: int, shape: "_Shape") -> list[int] | None:
+    """The head lines (`if`, `elif`s, `else:`) of the chain whose ELSE is on `else_line`."""
+    heads, n = [else_line], shape.before[else_line]
+    while n >= 0 and shape.indent[n] == indent and text[n].endswith(":"):
+        body = text[n].lstrip(" ")
+        if body.startswith("elif "):
+            heads.insert(0, n)
+        elif body.startswith("if "):
+            heads.insert(0, n)
+            return heads
+        else:
+            return None
+        n = shape.before[n]
+    return None
+
+
+def _entries(text: list[str], first: int, indent: int, stops, shape: "_Shape") -> list[int] | None:
+    """The charges that open every path through the branch starting at line `first`
+    (indentation `indent`): its first charge after lines that are no barrier, or those of
+    a chain with ELSE that comes first, each of whose branches has such; None if a path has
+    none (or a barrier comes first)."""
+    n, indents = first, shape.indent
+    while n < len(text) and indents[n] == indent:
+        line = text[n]
+        if _CHARGE.fullmatch(line):
+            return [n]
+        if stops.stop(n):
+            return None
+        if line.endswith(":"):
+            if not line.lstrip().startswith("if "):
+                return None
+            heads = [n]
+            end = shape.after[n]
+            while end < len(text) and indents[end] == indent and text[end].lstrip().startswith(("elif ", "else:")):
+                heads.append(end)
+                end = shape.after[end]
+            if text[heads[-1]].strip() != "else:":
+                return None
+            found = []
+            for head in heads:
+                entries = _entries(text, head + 1, indent + 4, stops, shape)
+                if entries is None:
+                    return None
+                found += entries
+            return found
+        n += 1
+    return None
+
+
+def settle(lines: list[str], start: int) -> None:
+    """The `settle` pass: `settled` of the body from line `start`."""
+    lines[start:] = settled(lines[start:])
+
+
+def settled(text: list[str]) -> list[str]:
+    """`text` with each charge made where `_spent`'s value is known as a store of the sum.
+
+    The body sets `_spent = 0`; until the lines' paths join with different totals, the value
+    at each charge is a constant, so `_spent += N` there is `_spent = <value + N>`: the same
+    int, read by nothing in between, without the addition that makes a new int and frees the
+    old one (in CPython 3.11 an int beyond the cached small ones: about 200 machine
+    instructions a charge).  The value is followed into every branch of an IF chain and on
+    after it when all its paths (an ELSE-less chain's untaken one too) end with one total;
+    through a `try` statement that sets `_spent` nowhere; not into a loop or a handler, nor
+    past any other line that sets `_spent` (a fast body's take-backs, a loop's charge of all
+    its iterations).  (SP_Controller's first charge and its first axis's fault tests, IK's
+    first charge, TRJ_OceanWave's ELSE of its enable edge.)"""
+    out = list(text)
+    try:
+        _Settle(out).block(1 if out and out[0].startswith("def ") else 0, None)
+    except _Unread:
+        return text             # (a line of a shape the walk does not know: nothing changed)
+    return out
+
+
+class _Unread(Exception):
+    """A line more indented than its block's statements (no such line is generated)."""
+
+
+_SETS = re.compile(r"\s*_spent\s*(?:[-+*]?=)")        # a line that sets `_spent`
+_COMPOUND = re.compile(r" *(if|elif|else|try|except|finally|for|while|with|def)\b.*:$")
+
+
+class _Settle:
+    """`settled`'s walk: each block's lines in turn, with the value `_spent` holds (None:
+    not known), replacing the charges it can; once nothing is known a block's rest is
+    passed over (nothing in it could be replaced)."""
+
+    def __init__(self, text: list[str]):
+        self.text = text
+        self.shape = _Shape(text)
+        self.sets_before = list(itertools.accumulate(
+            (1 if "_spent" in line and _SETS.match(line) else 0 for line in text), initial=0))
+
+    def block(self, n: int, value: int | None) -> tuple[int, int | None]:
+        """Read the block whose first line is `n` (its indentation: that line's); the line
+        after it and the value `_spent` holds at its end."""
+        text, indents, after = self.text, self.shape.indent, self.shape.after
+        indent = indents[n] if n < len(text) else 0
+        while n < len(text) and indents[n] >= indent:
+            if indents[n] > indent:
+                raise _Unread(text[n])
+            if value is None and text[n] != " " * indent + "_spent = 0":
+                n = after[n]            # (nothing known, nothing to replace: the next statement)
+                continue
+            head = _COMPOUND.fullmatch(text[n])
+            if head is None:
+                value = self._simple(n, value)
+                n += 1
+            elif head.group(1) == "if":
+                n, value = self._chain(n, indent, value)
+            elif head.group(1) == "try":
+                n, value = self._try(n, indent, value)
+            else:                       # a loop, `with`, `def`: not followed into
+                end = after[n]
+                if self._sets(n, end):
+                    value = None
+                n = end
+        return n, value
+
+    def _sets(self, first: int, end: int) -> bool:
+        """Whether a line from `first` to `end - 1` sets `_spent`."""
+        return self.sets_before[end] > self.sets_before[first]
+
+    def _simple(self, n: int, value: int | None) -> int | None:
+        line = self.text[n]
+        if "_spent" not in line or not _SETS.match(line):
+            return value
+        match = _CHARGE.fullmatch(line)
+        if line.strip() == "_spent = 0":
+            return 0
+        if match is None or value is None:
+            return None
+        value += int(match.group(2))
+        self.text[n] = f"{match.group(1)}_spent = {value}"
+        return value
+
+    def _chain(self, n: int, indent: int, value: int | None) -> tuple[int, int | None]:
+        """An IF chain from its `if` line: each branch read with `value`."""
+        ends, text, has_else = [], self.text, False
+        while True:
+            n, end = self.block(n + 1, value)
+            ends.append(end)
+            if n < len(text) and self.shape.indent[n] == indent and text[n].lstrip().startswith(("elif ", "else:")):
+                has_else = text[n].strip() == "else:"
+                continue
+            break
+        if not has_else:
+            ends.append(value)
+        return n, ends[0] if value is not None and all(end == ends[0] for end in ends) else None
+
+    def _try(self, n: int, indent: int, value: int | None) -> tuple[int, int | None]:
+        """A `try` statement: its body read with `value`, its handlers with none; `value`
+        after it when nothing in it sets `_spent`."""
+        after, end = self.shape.after, self.shape.after[n]
+        while end < len(self.text) and self.shape.indent[end] == indent \
+                and self.text[end].lstrip().startswith(("except", "else:", "finally:")):
+            end = after[end]
+        self.block(n + 1, value)
+        return end, None if self._sets(n, end) else value
+
+
+def _indentation(line: str) -> int:
+    return len(line) - len(line.lstrip(" "))
+
+
+class _Shape:
+    """The block structure of the code's lines, worked out once: each line's indentation,
+    the first later line not more indented (`after`: where a clause or statement ends) and
+    the last earlier one (`before`), so that a walk hops over a nested block at once."""
+
+    def __init__(self, text: list[str]):
+        self.indent = [len(line) - len(line.lstrip(" ")) if line else 1 << 20 for line in text]
+        self._after: list[int] | None = None
+        self._before: list[int] | None = None
+
+    @property
+    def after(self) -> list[int]:
+        if self._after is None:
+            self._after = self._nearest(range(len(self.indent)))
+        return self._after
+
+    @property
+    def before(self) -> list[int]:
+        if self._before is None:
+            self._before = self._nearest(range(len(self.indent) - 1, -1, -1), -1)
+        return self._before
+
+    def _nearest(self, order: range, missing: int | None = None) -> list[int]:
+        """For each line, the first line in `order` after it that is not more indented."""
+        indent = self.indent
+        found = [len(indent) if missing is None else missing] * len(indent)
+        pending: list[int] = []
+        for n in order:
+            depth = indent[n]
+            while pending and indent[pending[-1]] >= depth:
+                found[pending.pop()] = n
+            pending.append(n)
+        return found

@@ -11,10 +11,17 @@ first of all clauses that matches (so also where the labels of two clauses overl
 changes: the clause charges what its labels' comparisons cost on the NJ (the leads of
 cost.py, written in each clause), and the selector is read once, before the tests.
 (SP_Controller's CASE of 14 states: its wave state, the ninth clause, 9 tests -> 4.)
+
+A test of the selector whose branch is long (`jump_far`) is `True if <test> else False`:
+CPython 3.11 specialises a comparison only when its jump follows it at once, and a jump past
+more than 255 code units takes an EXTENDED_ARG first, so the comparison of two ints ran the
+generic rich comparison; the conditional expression's own jump is short, and the same bool
+decides the same branch.  (The wave state's four tests, each some 90 machine instructions.)
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 from ... import ast
@@ -22,6 +29,8 @@ from ...types import ElementaryType, EnumType
 
 MIN_CLAUSES = 6     # fewer clauses are tested in a row
 LEAF = 3            # a group of this many clauses or fewer is tested in a row
+FAR = 24            # lines of a branch past which its test's jump takes an EXTENDED_ARG (about)
+_SINGLE_TEST = re.compile(r"( *(?:el)?if )(_t\d+ (?:==|<) -?\d+):")
 
 
 @dataclass(frozen=True)
@@ -85,3 +94,12 @@ def label_spans(compiler, clause) -> list[tuple[object, object]]:
             value = compiler._label(label)
             out.append((value, value))
     return out
+
+
+def jump_far(lines: list[str], head: int, switched_on: bool = True) -> None:
+    """Line `head`, `if`/`elif <selector> == or < <int>:`, as `True if <test> else False`
+    when its branch (the lines after it) is long (module docstring; with the `halves` switch)."""
+    if switched_on and len(lines) - head - 1 > FAR:
+        match = _SINGLE_TEST.fullmatch(lines[head])
+        if match is not None:
+            lines[head] = f"{match.group(1)}(True if {match.group(2)} else False):"

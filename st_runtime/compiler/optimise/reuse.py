@@ -39,7 +39,7 @@ import re
 
 from ... import ast
 from ...types import ArrayType, ElementaryType, resolve_alias
-from ..pysrc import pyident
+from ..pysrc import finite_test, pyident
 from ..scope import _LOOPS, _nodes, root_name
 from . import branches      # (branches imports this module: its names are read at call time)
 
@@ -49,7 +49,7 @@ _NUMBER = re.compile(r"-?\(?-?\d[\d.e+-]*\)?")
 _VARIABLE = re.compile(r"(?:self\.|_G\.)?(v_\w+)")
 _TESTABLE = re.compile(r"(?:self\.)?v_\w+")      # a local, or a slot of the instance itself
 _ELEMENT = re.compile(r"(v_\w+)\[\d+\]")
-_FINITE_TEST = re.compile(r"\(((?:self\.)?v_\w+) - \1 == 0\.0\)")     # what `finite` writes
+_FINITE_TEST = re.compile(r"\(((?:self\.)?v_\w+) < 1e309 and \1 > -1e309\)")     # what `finite` writes
 _PLAIN_KINDS = {"VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP", "RETURN", "VAR_GLOBAL", "VAR_EXTERNAL"}
 _MATH = {"SIN", "COS", "TAN", "SQRT"}
 _NO_VARIABLES: frozenset = frozenset()
@@ -240,8 +240,8 @@ class Reuse:
         return text if deps is None else self.value(f"{name}({code})", text, deps)
 
     def finite(self, arg, code: str) -> str | None:
-        """`code - code == 0.0` of a float local or own slot (`self.v_X`: finite, an infinity
-        or NaN gives NaN), as a value: inline SIN, COS and TAN of one unchanged variable test
+        """The finite test of a float local or own slot (`self.v_X`; pysrc.finite_test:
+        `code < 1e309 and code > -1e309`), as a value: inline SIN, COS and TAN of one unchanged variable test
         it once (`finite`).  A slot is read twice, with nothing run between the reads."""
         if not (self.compiler.opt.finite and self.active() and _TESTABLE.fullmatch(code)
                 and _is_float(self.compiler.ty(arg))):
@@ -249,7 +249,7 @@ class Reuse:
         deps = self.operand(arg, code)
         if deps is None:
             return None
-        text = f"({code} - {code} == 0.0)"
+        text = f"({finite_test(code, code)})"
         return self.value(text, text, deps)
 
     def stored(self, target, code: str, value: str) -> None:

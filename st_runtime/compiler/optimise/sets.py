@@ -1,18 +1,21 @@
-"""`sets`: `X = a OR X = b OR ...` is one test `X in (a, b, ...)`.
+"""`sets`: `X = a OR X = b OR ...` is one test `X in {a, b, ...}`.
 
 An OR (or AND) chain of comparisons is compiled as `|` (`&`) of bools, every
 operand evaluated.  Where consecutive operands of the chain compare one plain
 variable X with integer constants, `(X == a) | (X == b) | ...` is
-`X in (a, b, ...)` and `(X != a) & (X != b) & ...` is `X not in (a, b, ...)`:
-for an integer X both give the same bool (a tuple's `in` compares with `==`
-after an identity test, which for ints agrees with `==`), and reading X once
+`X in {a, b, ...}` and `(X != a) & (X != b) & ...` is `X not in {a, b, ...}`:
+for an integer X both give the same bool (a set's `in` finds an element of equal
+hash that is X or `==` X, which for ints is `==`), and reading X once
 instead of several times changes nothing: X is a Python local, or an attribute
 of the instance or of the globals that is a plain slot (not located, not a
 VAR_IN_OUT or REF_TO: `unguard`'s owned storage), and nothing runs between the
 reads.  The other operands keep their order; `|` and `&` of bools are
 associative, so grouping a run of them gives the same bool.
 (`SP_Controller`'s `SyncExecute := State = 3 OR State = 4 OR ... OR State = 18`:
-12 comparisons and 11 `|`, 48 bytecode instructions, become 4.)
+12 comparisons and 11 `|`, 48 bytecode instructions, become 4.)  The set display of
+constants after `in` is a frozenset constant of the code object (CPython's compiler): one
+hash and one probe, where a tuple compares X with each value until one is equal (the
+wave state, 6, took four comparisons, each a generic rich comparison).
 """
 
 from __future__ import annotations
@@ -44,7 +47,7 @@ def chain(compiler, e) -> str | None:
             j += 1
         if j - i + 1 >= MIN_RUN:
             values = ", ".join(str(tested[k][1]) for k in range(i, j + 1))
-            parts.append(f"({tested[i][0]} {_TESTS[e.op][1]} ({values}))")
+            parts.append(f"({tested[i][0]} {_TESTS[e.op][1]} {{{values}}})")
         else:
             parts.extend(compiler.expr(operands[k]) for k in range(i, j + 1))
         i = j + 1
