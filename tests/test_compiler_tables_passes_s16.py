@@ -6,9 +6,15 @@ pass alone, with none and with every pass, the NJ time charged the same).
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
-from test_compiler_tables_passes import Row, check, main
+from st_runtime import api
+from st_runtime.compiler import Optimisations, compile_program
+from st_runtime.controller import Controller
+
+from test_compiler_tables_passes import EVERY, NONE, Row, check, main
 
 ROWS: list[Row] = []
 
@@ -32,6 +38,46 @@ row("ranges", "a local whose bit is stored is not followed", main("y : INT;", "y
     {"y": 0}, faults=[("F-INDEX", 5, 1)])
 
 
+# ------------------------------------------------------------------------------------ fold
+# An IF condition of an unrolled copy is evaluated at compile time as the code computes it.
+# Under nj an integer `+ - *` wraps where its result is compared (W501 6-5-3, docs/nj501.md;
+# exprs.py `settled`): i + 32767 of INTs is 32768 -> -32768 for i = 1 and -32767 for i = 2,
+# never > 0: y stays 0, c FALSE.  (iec: exact, 32768 > 0: y = 2, c TRUE.)  The store `c :=`
+# is not folded: it held before the fix too; the IF gave y = 2 under nj with fold on.
+# A CONSTANT array of three dimensions read at constant indices: its initial values fill it
+# with the last index varying fastest (IEC 61131-3 array initialisation), so T[i, j, k] is
+# value (i - 1) * 6 + (j - 1) * 3 + k of 1..12: T[2, 1, 3] = 9, T[1, 2, 1] = 4, T[2, 2, 2] = 11.
+# The strides multiply (3, then 2 * 3 = 6); two dimensions would not tell.
+row("fold", "a CONSTANT array of three dimensions", main(
+    "r, q, s : INT; END_VAR VAR CONSTANT T : ARRAY[1..2, 1..2, 1..3] OF INT := [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12];",
+    "r := T[2, 1, 3];\nq := T[1, 2, 1];\ns := T[2, 2, 2];"), {"r": 9, "q": 4, "s": 11}, gone=("MAIN", r"v_T\["))
+
+OVER = main("i, y : INT; c : BOOL;",
+            "FOR i := 1 TO 2 DO IF i + 32767 > 0 THEN y := y + 1; END_IF; c := i + 32767 > 0; END_FOR;")
+row("fold", "an unrolled condition whose sum leaves INT wraps under nj", OVER, {"y": 0, "c": False},
+    with_=("unroll",), dialects=("nj",))
+row("fold", "an unrolled condition whose sum leaves INT is exact under iec", OVER, {"y": 2, "c": True},
+    with_=("unroll",))
+
+
 @pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
 def test_row(r: Row):
     check(r)
+
+
+# ---------------------------------------------------------------------------------- unroll
+# An unrolled loop's copies are one level of the body: a value of `reuse` computed in the
+# first copy serves the next ones (statements.py: "an unrolled copy's values serve the next
+# copy").  SIN(a) of an unchanged a is computed once for the three copies; x is
+# ((0 + sin 0.5) + sin 0.5) + sin 0.5 in binary64, as with no pass.
+def test_an_unrolled_loops_copies_share_a_value_of_reuse():
+    src = main("a : LREAL := 0.5; x : LREAL; i : INT;", "FOR i := 1 TO 3 DO x := x + SIN(a); END_FOR;")
+    s = math.sin(0.5)
+    for optimise in (EVERY, Optimisations.only("unroll", "reuse", "inline"), NONE):
+        compiled = compile_program(api.load_text(src, "m.st").program, optimise=optimise)
+        controller = Controller(compiled)
+        program = controller.add_program("Main")
+        controller.run(1)
+        assert program.v_X == ((0.0 + s) + s) + s
+        if optimise is not NONE:
+            assert compiled.python_sources["MAIN"].count("_m_sin(") == 1
