@@ -60,6 +60,15 @@ row("fold", "an unrolled condition whose sum leaves INT is exact under iec", OVE
     with_=("unroll",))
 
 
+# ----------------------------------------------------------------------------------- reuse
+# `a * b` of two variables, computed again over unchanged operands, is one value set before
+# its first statement (its right operand a variable, not a literal or a value): x = 1.5 * 2.0
+# + 0.25 = 3.25, y = 3.0 - 0.25 = 2.75 (exact in binary64).
+row("reuse", "a product of two variables computed twice", main(
+    "a : LREAL := 1.5; b : LREAL := 2.0; c : LREAL := 0.25; x, y : LREAL;", "x := a * b + c;\ny := a * b - c;"),
+    {"x": 3.25, "y": 2.75}, shape=("MAIN", r"_c\d+ = \(self\.v_A \* self\.v_B\)"))
+
+
 @pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
 def test_row(r: Row):
     check(r)
