@@ -69,6 +69,14 @@ row("reuse", "a product of two variables computed twice", main(
     {"x": 3.25, "y": 2.75}, shape=("MAIN", r"_c\d+ = \(self\.v_A \* self\.v_B\)"))
 
 
+# After `X[1] := a * b` a read of X[1] is that value until X is stored again: X[1] := 0.0
+# ends it.  a = 1.5, b = 2.0: X[1] = 3.0, y = 3.0 + 1.0 = 4.0; then z = 0.0 + 2.0 = 2.0.
+row("stores_read", "a store of the array ends the value read back from it", main(
+    "X : ARRAY[1..2] OF LREAL; a : LREAL := 1.5; b : LREAL := 2.0; y, z : LREAL;",
+    "X[1] := a * b;\ny := X[1] + 1.0;\nX[1] := 0.0;\nz := X[1] + 2.0;"),
+    {"y": 4.0, "z": 2.0, "X": [0.0, 0.0]})
+
+
 @pytest.mark.parametrize("r", ROWS, ids=lambda r: r.id)
 def test_row(r: Row):
     check(r)
