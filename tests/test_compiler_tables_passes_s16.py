@@ -54,6 +54,12 @@ row("fold", "a CONSTANT array of three dimensions", main(
     "r, q, s : INT; END_VAR VAR CONSTANT T : ARRAY[1..2, 1..2, 1..3] OF INT := [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12];",
     "r := T[2, 1, 3];\nq := T[1, 2, 1];\ns := T[2, 2, 2];"), {"r": 9, "q": 4, "s": 11}, gone=("MAIN", r"v_T\["))
 
+# A condition the checker folded (a REAL constant compared: C = 2.5 > 1.0 is TRUE) is taken
+# at compile time, its value the checker's: only the THEN branch is compiled, y = 1.
+row("fold", "a condition of REAL constants the checker folded", main(
+    "y : INT; END_VAR VAR CONSTANT C : LREAL := 2.5;", "IF C > 1.0 THEN y := 1; ELSE y := 2; END_IF;"),
+    {"y": 1}, gone=("MAIN", r"self\.v_Y = 2"))
+
 OVER = main("i, y : INT; c : BOOL;",
             "FOR i := 1 TO 2 DO IF i + 32767 > 0 THEN y := y + 1; END_IF; c := i + 32767 > 0; END_FOR;")
 row("fold", "an unrolled condition whose sum leaves INT wraps under nj", OVER, {"y": 0, "c": False},
