@@ -146,3 +146,20 @@ def test_fuse_merge_chains_up_to_its_cap():
     lines = list(STEPS)
     fuse.merge(lines, 0)
     assert lines == [_chain(1, cap), _chain(cap + 1, 30)]
+
+
+# ---------------------------------------------------------------------------------- unroll
+# UNROLL_CAP bounds the statements the unrolled loops of one POU produce together: with a
+# cap of 10, a first loop of 3 copies leaves 7, and a second of 8 stays a loop.  s = 3 + 16.
+def test_the_unroll_cap_is_shared_by_the_loops_of_a_pou(monkeypatch):
+    from st_runtime.compiler.optimise import unroll
+
+    src = main("s, k, j : INT;", "FOR k := 1 TO 3 DO s := s + 1; END_FOR;\nFOR j := 1 TO 8 DO s := s + 2; END_FOR;")
+    monkeypatch.setattr(unroll, "UNROLL_CAP", 10)
+    compiled = compile_program(api.load_text(src, "m.st").program, optimise=Optimisations.only("unroll"))
+    code = compiled.python_sources["MAIN"]
+    assert "for v_K in" not in code and "for v_J in" in code
+    controller = Controller(compiled)
+    program = controller.add_program("Main")
+    controller.run(1)
+    assert program.v_S == 19
