@@ -14,6 +14,7 @@ from __future__ import annotations
 import operator
 
 from ... import ast
+from ...dialects import DIALECTS
 from ...types import ArrayType, resolve_alias
 from ..initial import CompileError
 from . import kept
@@ -160,9 +161,21 @@ def _evaluate(compiler, e):
     if isinstance(left, bool):
         return {"AND": left and right, "&": left and right, "OR": left or right,
                 "XOR": left != right}.get(op)
-    if op in _INT_OPS:          # exact: intermediate integers are exact in this runtime
-        return _INT_OPS[op](left, right)
+    if op in _INT_OPS:          # exact under iec; under nj while inside the type (_unwrapped)
+        return _unwrapped(compiler, e, _INT_OPS[op](left, right))
     return None
+
+
+def _unwrapped(compiler, e, value: int) -> int | None:
+    """`value` of the integer operation `e`, or None where the dialect wraps inside expressions
+    (the NJ) and `value` leaves `e`'s type: the code wraps it where it is compared (exprs.py
+    `settled`), so the condition is left to the code (under `iec` the code is exact too)."""
+    from ..exprs import int_bounds      # (exprs imports the passes: read at call time)
+
+    if not DIALECTS[compiler.program.dialect].wraps_in_expressions:
+        return value
+    bounds = int_bounds(compiler.ty(e))
+    return value if bounds is None or bounds[0] <= value <= bounds[1] else None
 
 
 def _is_int(value) -> bool:
