@@ -10,7 +10,10 @@ and with none.
 
 from __future__ import annotations
 
-from test_compiler_tables_core import PS_PER_UNIT, program, scan_times
+import pytest
+
+from test_compiler_tables_core import PS_PER_UNIT, line_of, program, scan_times
+from test_compiler_tables_core_s14 import PASSES, run      # (Main after its scans, and its faults)
 
 
 # ============================ cost.py: a structure of no members is assigned as one value
@@ -24,3 +27,39 @@ def test_an_assignment_of_a_structure_without_members_costs_one_load_and_one_sto
     src = "TYPE Empty : STRUCT END_STRUCT; END_TYPE\n" + program("e1, e2 : Empty;", "e1 := e2;")
     expected = ([], [2 * PS_PER_UNIT])
     assert scan_times(src, {}) == {"every pass": expected, "no pass": expected}
+
+
+# ============================ statements.py: a CASE reached by halves keeps what its clauses assign
+
+CASE_OF_SIX = """FUNCTION Pick : INT
+VAR_INPUT sel : INT; END_VAR
+VAR x : INT; a : ARRAY[1..10] OF INT := [11, 12, 13, 14, 15, 16, 17, 18, 19, 20]; END_VAR
+x := 1;
+CASE sel OF
+1: x := 2;
+2: x := 3;
+3: x := 4;
+4: x := 5;
+5: x := 6;
+6: x := 20;
+END_CASE;
+Pick := a[x];
+END_FUNCTION
+PROGRAM Main
+VAR sel : INT; r : INT := -1; END_VAR
+r := Pick(sel);
+END_PROGRAM
+"""
+
+
+@PASSES
+@pytest.mark.parametrize("sel, r, faults", [(3, 14, []), (9, 11, []), (5, 16, []),
+                                            (6, 0, [("F-INDEX", line_of(CASE_OF_SIX, "Pick := a[x]"), 1)])])
+def test_a_case_of_many_clauses_leaves_each_clauses_assignment_after_it(sel: int, r: int, faults: list, optimise):
+    # Six clauses and no ELSE: the halves pass reaches the clause by `sel < pivot` tests; the
+    # clause taken assigns x and the read after the CASE sees it (IEC 61131-3 7.3.3.3.3): sel 3
+    # gives x 4 and a[4] = 14, sel 9 no clause (x stays 1, a[1] = 11), sel 5 a[6] = 16; sel 6
+    # gives x 20, outside a's 1..10: F-INDEX, the statement abandoned (README, "a runtime fault
+    # abandons the faulting statement"), so Pick keeps INT's initial 0, which Main stores.
+    _, main, got = run(CASE_OF_SIX, optimise, inputs={"sel": sel})
+    assert (main.v_R, got) == (r, faults)
