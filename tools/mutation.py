@@ -112,7 +112,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   # session 15: the core files' leftovers and the fresh seed 360's survivors
                   "tests/test_compiler_tables_core_s15.py",
                   # a project's own FB named like a native one in the bound and the estimate (session 15)
-                  "tests/test_optimiser_fastpath_own_fb.py"]),
+                  "tests/test_optimiser_fastpath_own_fb.py",
+                  # session 16: the fresh seed 460's survivors in the core files
+                  "tests/test_compiler_tables_core_s16.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",
