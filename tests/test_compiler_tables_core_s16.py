@@ -63,3 +63,38 @@ def test_a_case_of_many_clauses_leaves_each_clauses_assignment_after_it(sel: int
     # abandons the faulting statement"), so Pick keeps INT's initial 0, which Main stores.
     _, main, got = run(CASE_OF_SIX, optimise, inputs={"sel": sel})
     assert (main.v_R, got) == (r, faults)
+
+
+# ============================ __init__.py: a VAR_TEMP is no variable of its instance
+
+TEMPS = """FUNCTION_BLOCK Acc
+VAR_INPUT x : INT; END_VAR
+VAR_OUTPUT total : INT; END_VAR
+VAR_TEMP twice : INT; END_VAR
+twice := x * 2;
+total := total + twice;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR acc : Acc; n : INT; END_VAR
+VAR_TEMP t : INT; END_VAR
+t := 3;
+acc(x := t);
+n := acc.total;
+END_PROGRAM
+"""
+
+
+def test_a_var_temp_is_not_a_variable_of_its_program_or_fb_instance():
+    # IEC 61131-3 VAR_TEMP: storage for one execution of the POU's body, not part of its
+    # instance: the instance's layout (`Instance.layout`, what paths are read through) holds
+    # the other variables only, and a path to the temp names no variable. Two scans: acc.total
+    # 6, then 12; n as acc.total.
+    from st_runtime import api
+
+    plc = api.load_text(TEMPS).controller()
+    main = plc.add_program("Main")
+    plc.run(2)
+    assert (sorted(main.layout), sorted(type(main.raw("acc"))._st_vars), main["n"]) == \
+        (["ACC", "N"], ["TOTAL", "X"], 12)
+    with pytest.raises(KeyError, match="no variable 't'"):
+        main["t"]
