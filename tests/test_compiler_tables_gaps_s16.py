@@ -399,7 +399,8 @@ MERGES = [
         _spent += 5
     v_B = 1
 """),
-    ("two chains in a row: the charge goes into the first only",
+    # the four paths pay 5+1+3, 5+1+4, 5+2+3, 5+2+4 before and 10-1, 10, 11-1, 11 after
+    ("two chains in a row: the charge sinks into the first, the second's ELSE charge is lifted into it",
      """
     _spent += 5
     if v_A > 1:
@@ -412,13 +413,11 @@ MERGES = [
         _spent += 4
 """, """
     if v_A > 1:
-        _spent += 6
+        _spent += 10
     else:
-        _spent += 7
+        _spent += 11
     if v_B > 1:
-        _spent += 3
-    else:
-        _spent += 4
+        _spent -= 1
 """),
     ("a charge with no chain after it, or of another form, leaves the later ones to sink",
      """
