@@ -557,7 +557,12 @@ class AstBuilder(Transformer):
             return fallback
 
     def int_literal(self, token):
-        return ast.IntLiteral(self._decode(decode_int, token, 0), pos=self._pos(token))
+        text = str(token)
+        if len(text) < 20 and text.isdigit() and text.isascii():    # (`0`, `42`: most literals)
+            value = int(text)       # what decode_int gives plain digits: no `_`, far in bounds
+        else:
+            value = self._decode(decode_int, token, 0)
+        return ast.IntLiteral(value, pos=self._pos(token))
 
     def based_literal(self, token):
         return ast.IntLiteral(self._decode(decode_based, token, 0), pos=self._pos(token))

@@ -71,6 +71,7 @@ def scanner_pattern(terminals) -> str:
 #: (`_scanner`): a WS terminal of one character class repeated.
 _CHAR_RUN = re.compile(r"\[(?:[^\]\\]|\\.)*\]\+")
 _NEWLINE = re.compile("\n")
+_END_OF = re.Match.end      # (mapped over the matches in C: where each line starts)
 
 
 class _Lines:
@@ -87,7 +88,7 @@ class _Lines:
     def at(self, pos: int) -> tuple[int, int]:
         starts = self.starts
         if starts is None:
-            starts = self.starts = [0, *(m.end() for m in _NEWLINE.finditer(self.text))]
+            starts = self.starts = [0, *map(_END_OF, _NEWLINE.finditer(self.text))]
         line = bisect_right(starts, pos)
         return line, pos - starts[line - 1] + 1
 

@@ -26,6 +26,7 @@ from .types import (
     SubrangeType,
     InterfaceType,
     RefType,
+    AliasType,
     ArrayType,
     ElementaryType,
     EnumType,
@@ -175,7 +176,7 @@ def default_value(t: Type, classes: dict[str, type]) -> Maker:
     if isinstance(t, ArrayType):
         element = default_value(t.element, classes)
         size = t.size
-        if _is_aggregate(t.element):
+        if is_aggregate(t.element):
             return lambda: [element() for _ in range(size)]
         proto = [element()] * size
         return proto.copy
@@ -192,13 +193,11 @@ _ELEMENTARY_DEFAULTS = {
 }
 
 
-def _is_aggregate(t: Type) -> bool:
-    return isinstance(resolve_alias(t), (ArrayType, StructType, FBType))
-
-
 def is_aggregate(t: Type) -> bool:
     """Arrays, structs and FB instances: stored as mutable objects."""
-    return _is_aggregate(t)
+    while isinstance(t, AliasType):     # (resolve_alias, inline: asked of every variable and store)
+        t = t.target
+    return isinstance(t, (ArrayType, StructType, FBType))
 
 
 def store_value(t: Type, value, dialect: str = "iec"):

@@ -273,3 +273,22 @@ def test_a_token_no_rule_keeps_is_never_read():
         finally:
             fast.unkept, fast.unread_beside = unkept, None
         assert lean == full and _positions(lean) == _positions(full), path
+
+
+@pytest.mark.parametrize("text", ["0", "7", "007", "42", "1234567890123456789", "9" * 19, "9" * 20,
+                                  "18446744073709551616", "1_000", "0_7", "9" * 40, "1" + "0" * 39])
+def test_plain_digits_are_the_integer_decode_int_gives(text):
+    """`AstBuilder.int_literal` reads plain digits itself: the value (or the diagnostic, for a
+    literal too long) is decode_int's, as the general way gives it."""
+    from st_runtime.literals import LiteralError, decode_int
+
+    source = f"PROGRAM P\nVAR x : LREAL; END_VAR\nx := {text};\nEND_PROGRAM\n"
+    parsed, diagnostics = st_parser.parse(source, "t.st")
+    try:
+        expected, refused = decode_int(text), False
+    except LiteralError:
+        expected, refused = 0, True
+    assert [(d.pos.line, d.pos.col) for d in diagnostics] == ([(3, 6)] if refused else [])
+    if not refused:
+        literal = parsed.items[0].body[0].value
+        assert type(literal.value) is int and literal.value == expected

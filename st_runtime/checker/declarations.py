@@ -512,9 +512,12 @@ class Declarations:
         default is its parent's unless it gives its own). `seen` stops at a cycle, which
         the type checks refuse on their own."""
         seen: set[str] = set()
-        while isinstance(ref, ast.NamedType) and key(ref.name) not in seen:
-            seen.add(key(ref.name))
-            decl = self.ctx.type_decls.get(key(ref.name))
+        while isinstance(ref, ast.NamedType):
+            name = key(ref.name)
+            if name in seen:
+                return None
+            seen.add(name)
+            decl = self.ctx.type_decls.get(name)
             if decl is None:
                 return None
             if decl.init is not None:

@@ -73,6 +73,14 @@ def is_untyped_constant(e, memo: dict | None = None) -> bool:
     return result
 
 
+#: The IEC time arithmetic of `+` and `-`: (left type's name, right type's name) -> result.
+_TIME_SUMS = {
+    "+": {("TIME", "TIME"): T.TIME, ("TIME_OF_DAY", "TIME"): T.TOD, ("DATE_AND_TIME", "TIME"): T.DT},
+    "-": {("TIME", "TIME"): T.TIME, ("TIME_OF_DAY", "TIME"): T.TOD, ("DATE_AND_TIME", "TIME"): T.DT,
+          ("DATE", "DATE"): T.TIME, ("TIME_OF_DAY", "TIME_OF_DAY"): T.TIME,
+          ("DATE_AND_TIME", "DATE_AND_TIME"): T.TIME},
+}
+
 #: The only nodes `is_untyped_constant` may find true (others need no look).
 _MAYBE_UNTYPED = (ast.IntLiteral, ast.RealLiteral, ast.Unary, ast.Binary)
 
@@ -155,7 +163,8 @@ class ExprChecker:
         self.calls = (_CALL_CHECKER or _call_checker())(self)
 
     def untyped(self, e) -> bool:
-        return is_untyped_constant(e, self._untyped_memo)
+        known = self._untyped_memo.get(id(e))     # (the memo's look-up, inline: most asks are again)
+        return known if known is not None else is_untyped_constant(e, self._untyped_memo)
 
     # ------------------------------------------------------------ recording
     def record(self, e, t, value=NOT_CONSTANT):
@@ -278,6 +287,15 @@ class ExprChecker:
             # IEC 61131-3 6.3.2: a BOOL literal is 0, 1, TRUE or FALSE (Annex F
             # writes `BOOL := 0`); only the bare digit, not `1 - 0`.
             return self.record(e, T.BOOL, bool(e.value))
+        if type(e) is ast.IntLiteral and isinstance(expected, T.ElementaryType) \
+                and expected.kind in ("int", "bits") and ts.fits(e.value, expected):
+            # A lone literal that fits the integer type it is expected as (`x + 1`, `n := 5`),
+            # the commonest case: that type, what `_settle_folded` gives it.
+            return self.record(e, expected, e.value)
+        return self._settle_folded(e, expected, strict)
+
+    def _settle_folded(self, e, expected, strict: bool):
+        """`settle` the general way: the exact value of every node, then the type."""
         values: dict[int, object] = {}
         try:
             value = self._fold_exact(e, values)
@@ -698,24 +716,15 @@ class ExprChecker:
     @staticmethod
     def _time_arithmetic(op, lt, rt):
         """Result of IEC time arithmetic, or None if this is not one."""
-        if op == "+":
-            table = {("TIME", "TIME"): T.TIME, ("TIME_OF_DAY", "TIME"): T.TOD,
-                     ("DATE_AND_TIME", "TIME"): T.DT}
-        elif op == "-":
-            table = {("TIME", "TIME"): T.TIME, ("TIME_OF_DAY", "TIME"): T.TOD,
-                     ("DATE_AND_TIME", "TIME"): T.DT, ("DATE", "DATE"): T.TIME,
-                     ("TIME_OF_DAY", "TIME_OF_DAY"): T.TIME,
-                     ("DATE_AND_TIME", "DATE_AND_TIME"): T.TIME}
-        elif op in ("*", "/"):
+        table = _TIME_SUMS.get(op)
+        if table is not None:
+            return table.get((getattr(lt, "name", None), getattr(rt, "name", None)))
+        if op in ("*", "/"):
             if lt is T.TIME and ts.is_num(rt):
                 return T.TIME
             if op == "*" and rt is T.TIME and ts.is_num(lt):
                 return T.TIME
-            return None
-        else:
-            return None
-        names = (getattr(lt, "name", None), getattr(rt, "name", None))
-        return table.get(names)
+        return None
 
     def _common(self, e, lt, rt):
         if self.ctx.rules.omron_integer_ranking and e.op in ARITHMETIC \

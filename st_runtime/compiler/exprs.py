@@ -148,6 +148,9 @@ def int_bounds(t) -> tuple[int, int] | None:
     return None
 
 
+_UNTYPED = object()      # (`ExprCompiler.ty`: no type looked up yet)
+
+
 class ExprCompiler:
     """Compiles expressions of one POU body; `scope` says where names live."""
 
@@ -196,12 +199,11 @@ class ExprCompiler:
 
     def ty(self, expr) -> Type | None:
         key = id(expr)
-        try:
-            return self._types[key]
-        except KeyError:
+        t = self._types.get(key, _UNTYPED)
+        if t is _UNTYPED:       # (half the asks are the first for their node: no KeyError raised)
             t = self.program.expr_types.get(key)
             t = self._types[key] = resolve_alias(t) if t is not None else None
-            return t
+        return t
 
     def where(self, node) -> str:
         """A constant tuple naming the position of `node` for fault records."""

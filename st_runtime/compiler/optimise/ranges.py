@@ -54,14 +54,16 @@ class Flow:
         if not candidates:
             return          # (nothing to follow: no walk for what no one else may write)
         excluded: set[str] = set(compiler.scope.usage.referenced)
+        For, Assign, Arg = ast.For, ast.Assign, ast.Arg
         for node in walk(body):
-            if isinstance(node, ast.For):
+            cls = type(node)        # (the node classes have no subclasses)
+            if cls is For:
                 excluded.add(node.variable.upper())
-            elif isinstance(node, ast.Assign) and (not isinstance(node.target, ast.Name) or node.mode != ":="):
+            elif cls is Assign and (not isinstance(node.target, ast.Name) or node.mode != ":="):
                 name = root_name(node.target)
                 if name:
                     excluded.add(name)
-            elif isinstance(node, ast.Arg) and isinstance(node.value, _LVALUES):
+            elif cls is Arg and isinstance(node.value, _LVALUES):
                 name = root_name(node.value)
                 if name:
                     excluded.add(name)

@@ -1,0 +1,114 @@
+"""The checker's short ways give what its general ways give (docs/load.md, tenth round).
+
+`ExprChecker.settle` types a lone integer literal that fits the integer type it is expected
+as at once; the general way (`_settle_folded`) folds the expression and types each node.
+Both are compared by every `record` the checker makes (node, position, type, value, in
+order) and by the diagnostics, on literals at the edges of each integer type and on the
+accept corpus."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from st_runtime import ast
+from st_runtime import types as T
+from st_runtime.checker import typesys as ts
+from st_runtime.checker.constfold import NOT_CONSTANT
+from st_runtime.checker.expressions import ExprChecker
+from st_runtime.loader import load_texts
+
+ROOT = Path(__file__).resolve().parent.parent
+ACCEPT = sorted((ROOT / "tests" / "corpus" / "accept").glob("*.st"))
+
+#: Literals at and beyond the edges of the integer types, in every context that expects a type.
+EDGES = """
+TYPE Small : INT (0..10); END_TYPE
+PROGRAM Main
+VAR
+    s : SINT := 127; us : USINT := 255; i : INT := -32768; ui : UINT := 65535;
+    b : BYTE := 16#FF; w : WORD := 65535; d : DINT := 2147483647; ud : UDINT := 4294967295;
+    l : LINT := 9223372036854775807; ul : ULINT := 18446744073709551615;
+    r : REAL := 3; lr : LREAL := 1; x : BOOL := 1; sm : Small := 10; t : TIME;
+    a : ARRAY[0..3] OF INT := [1, 2, 32767, 0];
+END_VAR
+s := 0; s := 127; us := 0; us := 255; i := 32767; ui := 0; b := 0; w := 1;
+d := 2147483647; ud := 4294967295; l := 1; ul := 18446744073709551615;
+sm := 0; sm := 10; r := 7; lr := 100000; x := 0;
+s := s + 1; s := 1 + s; i := s + 200; us := us - 255; d := d * 65536;
+x := s > 100; x := s > 200; x := i = 32768; x := 5 < i;
+ul := ul + 18446744073709551615; l := l - 9223372036854775807;
+w := w AND 16#FF00; b := b OR 1;
+i := a[3] + 1; i := s MOD 7; i := i / 2;
+t := T#1s * 3;
+CASE i OF 0: s := 1; 1, 2: s := 2; 3..127: s := 3; END_CASE;
+FOR i := 0 TO 3 BY 1 DO a[i] := i + 1; END_FOR;
+END_PROGRAM
+"""
+
+#: Literals that do not fit what they are stored into: E-TYPE-005 from the general way.
+TOO_LARGE = """
+PROGRAM Main
+VAR s : SINT; us : USINT; i : INT; b : BYTE; sm : INT (0..10); x : BOOL; END_VAR
+s := 128; us := 256; i := 32768; b := 256; sm := 11;
+s := 127; us := 255; i := 32767; b := 255; sm := 10; s := -128; i := -32768;
+s := s + 128; i := i + 32768; x := s < 1000; sm := sm + 11; b := b + 256;
+END_PROGRAM
+"""
+
+
+def _general_settle(self, e, expected, strict: bool):
+    """`settle` without its short way: the BOOL literal, then the general way."""
+    if ts.is_bool(expected) and isinstance(e, ast.IntLiteral) and e.value in (0, 1):
+        return self.record(e, T.BOOL, bool(e.value))
+    return self._settle_folded(e, expected, strict)
+
+
+def _checked(monkeypatch, texts: dict, dialect: str, general: bool) -> tuple[list, list, int]:
+    """(every record the checker made, the diagnostics, how many settles did not fold)."""
+    load_texts({"warm.st": "PROGRAM W END_PROGRAM"}, dialect)     # (the prelude checked before)
+    records, folded = [], []
+    record, settle_folded = ExprChecker.record, ExprChecker._settle_folded
+    settles = []
+
+    def logged(self, e, t, value=NOT_CONSTANT):
+        records.append((str(getattr(e, "pos", None)), type(e).__name__, str(t), repr(value)))
+        return record(self, e, t, value)
+
+    def counted_settle(self, e, expected, strict):
+        settles.append(e)
+        return settle(self, e, expected, strict)
+
+    def counted_folded(self, e, expected, strict):
+        folded.append(e)
+        return settle_folded(self, e, expected, strict)
+
+    settle = _general_settle if general else ExprChecker.settle
+    with monkeypatch.context() as patch:
+        patch.setattr(ExprChecker, "record", logged)
+        patch.setattr(ExprChecker, "settle", counted_settle)
+        patch.setattr(ExprChecker, "_settle_folded", counted_folded)
+        result = load_texts(dict(texts), dialect)
+    diagnostics = [(d.code, d.message, str(d.pos), d.severity) for d in result.diagnostics]
+    return records, diagnostics, len(settles) - len(folded)
+
+
+@pytest.mark.parametrize("dialect", ["iec", "nj", "codesys"])
+@pytest.mark.parametrize("text", [EDGES, TOO_LARGE], ids=["edges", "too-large"])
+def test_a_lone_literal_is_typed_as_the_general_way_types_it(monkeypatch, text, dialect):
+    short = _checked(monkeypatch, {"t.st": text}, dialect, general=False)
+    general = _checked(monkeypatch, {"t.st": text}, dialect, general=True)
+    assert short[:2] == general[:2]
+    assert short[2] - general[2] > 5      # (the short way was taken: the comparison says something)
+
+
+def test_the_corpus_is_typed_as_the_general_way_types_it(monkeypatch):
+    taken = 0
+    for path in ACCEPT:
+        texts = {str(path.relative_to(ROOT)): path.read_text(encoding="utf-8")}
+        short = _checked(monkeypatch, texts, "iec", general=False)
+        general = _checked(monkeypatch, texts, "iec", general=True)
+        assert short[:2] == general[:2], path.name
+        taken += short[2] - general[2]
+    assert taken > 300
