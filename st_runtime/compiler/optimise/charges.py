@@ -259,8 +259,7 @@ def _lifted(text: list[str]) -> list[str]:
     stops = _Stops(text)
     amounts: dict[int, int] = {}            # line of a charge -> its amount now
     chains = [n for n, line in enumerate(text) if line.endswith("else:") and n + 1 < len(text)
-              and _CHARGE.fullmatch(text[n + 1]) and len(_CHARGE.fullmatch(text[n + 1]).group(1))
-              == _indentation(line) + 4]
+              and (charge := _CHARGE.fullmatch(text[n + 1])) and len(charge.group(1)) == _indentation(line) + 4]
     shape = _Shape(text) if chains else None
     for else_line in reversed(chains):
         _lift(text, else_line, stops, amounts, shape)
@@ -272,7 +271,7 @@ def _lifted(text: list[str]) -> list[str]:
         if amount is None:
             out.append(line)
         elif amount:
-            indent = line[:len(line) - len(line.lstrip(" "))]
+            indent = line[:_indentation(line)]
             out.append(f"{indent}_spent += {amount}" if amount > 0 else f"{indent}_spent -= {-amount}")
         elif out[-1].strip() == "else:" and not _opens_block(text, n, _indentation(out[-1])):
             out.pop()                   # (an ELSE left with nothing)
