@@ -69,10 +69,11 @@ def instructions(out_file: Path) -> int:
     return int(match.group(1))
 
 
-def run_under_callgrind(scans: int, out_file: Path) -> int:
+def run_under_callgrind(scans: int, out_file: Path, script: str = __file__, *child_args: str) -> int:
+    """Instructions counted inside ``starmap`` when ``script --child scans *child_args`` runs."""
     env = dict(os.environ, PYTHONHASHSEED="0")
     command = ["valgrind", "--tool=callgrind", "--instr-atstart=no", "--toggle-collect=starmap_next",
-               f"--callgrind-out-file={out_file}", sys.executable, __file__, _CHILD, str(scans)]
+               f"--callgrind-out-file={out_file}", sys.executable, script, _CHILD, str(scans), *child_args]
     result = subprocess.run(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     if result.returncode:
         raise SystemExit(f"callgrind run failed ({result.returncode}):\n{result.stderr[-3000:]}")
