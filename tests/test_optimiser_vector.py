@@ -115,6 +115,19 @@ def test_a_leibniz_level_gathers_only_its_right_operands(monkeypatch):
         assert _bits(fb.v_D) == _bits(_leibniz(m)), m
 
 
+def test_the_sum_starts_in_the_slot_of_its_head(builds):
+    """D, the chain's head, is the input placed last (after M's 25 elements): the chain's
+    first slot is D's own, so no call copies it there; the sign 1.0 and the accumulate
+    leave it as it is (the determinants are checked bit for bit in the tests around)."""
+    helper = helpers_in(builds["on"])[0]
+    (head, terms, _, start, stop), = helper.chains
+    assert head == start == N * N and terms is None and stop - start == 1 + len(PERMUTATIONS)
+    m = [float(k % 7) - 3.0 for k in range(N * N)]
+    fb, _ = _run(builds["on"], m)
+    assert _bits(fb.v_D) == _bits(_leibniz(m))
+    assert _bits(helper.buffer[head]) == _bits(0.0)       # D := 0.0, as passed, after the sum
+
+
 def test_levels_narrower_than_the_spread_width_gather_both_operands(builds):
     """A row of a spread level costs a NumPy call: the 5x5's levels (5, 20, 60 left
     operands) are below `SPREAD_WIDTH` and gather both operands, as before."""

@@ -212,7 +212,8 @@ class Vectorised:
     """A run's values computed by NumPy; `__call__(inputs)` returns the outputs' floats.
 
     One buffer holds the inputs (those passed first, then the literals), the products
-    by depth, and each chain (its head, then its steps).  The inputs are checked first:
+    by depth, and each chain (its head, then its steps; a head placed last among the
+    inputs is the chain's first slot itself).  The inputs are checked first:
     when one is not finite or so large that some value could overflow (`limit`, from
     the graph), the run is computed in Python instead (`exact`), so NumPy never sees
     an inf or a NaN (and never warns).  The passed inputs reach the buffer through one
@@ -305,8 +306,11 @@ class Vectorised:
                     in_place[c] = d
         chain_start = {}
         for c, chain in enumerate(chains):
-            chain_start[c] = size
-            size += 1 + len(chain["terms"])
+            # a head that is the input placed last is the chain's first slot itself (the
+            # sign 1.0 and the accumulate leave it as it is): no copy a call
+            head_last = chain["head"] < n_in and position[chain["head"]] == size - 1
+            chain_start[c] = size - 1 if head_last else size
+            size = chain_start[c] + 1 + len(chain["terms"])
         self.levels = []            # (gathered operand positions, count, out start, out stop)
         self.spreads = []           # per level: (left start, left count) when its left operands are read in place
         for d in sorted(products_by_depth):
@@ -395,7 +399,8 @@ class Vectorised:
         lines += [f"early{k} = buffer.item({int(p)})" for k, p in enumerate(self.early_positions)]
         for c, (head, terms, signs, out, steps) in enumerate(self.sums):
             names.update({f"signs{c}": signs, f"chain{c}": out, f"terms{c}": terms, f"steps{c}": steps})
-            lines.append(f"chain{c}[0] = buffer[{head}]")
+            if head != self.chains[c][3]:
+                lines.append(f"chain{c}[0] = buffer[{head}]")
             if terms is not None:
                 lines.append(f"take(terms{c}, None, steps{c}, 'wrap')")
             lines += [f"multiply(chain{c}, signs{c}, chain{c})", f"accumulate(chain{c}, 0, None, chain{c})"]
