@@ -95,24 +95,20 @@ def test_the_pass_fires_on_a_5x5_leibniz_table(builds):
 
 
 
-def test_a_leibniz_level_gathers_only_its_right_operands(monkeypatch):
-    """With every level wide enough, each partial-product level reads its left operands
-    (row 1's five elements, then the level before) in place, a row of the level per use:
-    it gathers one operand a product, not two.  The last level, written in place into the
-    sum's chain in the table's order, gathers both (2 x 120).  The determinants stay the
-    Leibniz formula's bit for bit."""
-    monkeypatch.setattr(vector, "SPREAD_WIDTH", 1)
-    spread = compile_program(api.load_text(LEIBNIZ5).program, optimise=ON)
-    helper = helpers_in(spread)[0]
-    assert [len(gathered) for gathered, _, _, _ in helper.levels] == [20, 60, 120, 240]
-    assert [s and s[1] for s in helper.spreads] == [5, 20, 60, None]
-    assert helper.spreads[0] == (0, 5)          # M[1, 1..5]: the first five of the list passed
-    assert [len(products) for _, _, products in helper.steps] == [4, 3, 2, 1]     # a multiply a row
-    rng = random.Random(17)
-    for _ in range(200):
-        m = [rng.uniform(-10, 10) * 10.0 ** rng.randint(-30, 30) for _ in range(N * N)]
-        fb, _ = _run(spread, m)
-        assert _bits(fb.v_D) == _bits(_leibniz(m)), m
+def test_the_last_level_reads_its_left_operands_in_place(builds):
+    """The last factor's level multiplies each product of four factors (the level before,
+    each used once, in turn) by its one remaining column: it reads them where they are and
+    gathers only the 120 right operands; the levels before gather both operands (2 x 20,
+    2 x 60, 2 x 120).  The determinants are the Leibniz formula's bit for bit (the tests
+    around)."""
+    helper = helpers_in(builds["on"])[0]
+    assert [len(gathered) for gathered, _, _, _ in helper.levels] == [40, 120, 240, 120]
+    *before, last = helper.firsts
+    assert before == [None, None, None]
+    assert last == helper.levels[2][2]         # where the level before starts
+    m = [float((3 * k) % 11) - 5.0 for k in range(N * N)]
+    fb, _ = _run(builds["on"], m)
+    assert _bits(fb.v_D) == _bits(_leibniz(m))
 
 
 def test_the_sum_starts_in_the_slot_of_its_head(builds):
@@ -128,28 +124,15 @@ def test_the_sum_starts_in_the_slot_of_its_head(builds):
     assert _bits(helper.buffer[head]) == _bits(0.0)       # D := 0.0, as passed, after the sum
 
 
-def test_levels_narrower_than_the_spread_width_gather_both_operands(builds):
-    """A row of a spread level costs a NumPy call: the 5x5's levels (5, 20, 60 left
-    operands) are below `SPREAD_WIDTH` and gather both operands, as before."""
-    assert vector.SPREAD_WIDTH > 60
-    helper = helpers_in(builds["on"])[0]
-    assert helper.spreads == [None] * 4
-    assert [len(gathered) for gathered, _, _, _ in helper.levels] == [40, 120, 240, 240]
-
-
 @pytest.mark.parametrize("lefts, expected", [
-    # each of 3, 4, 5 twice: rows of three, a left operand's first use in row 0, its second in row 1
-    ([3, 3, 4, 4, 5, 5], ((3, 3), [0, 3, 1, 4, 2, 5])),
-    ([7, 8, 7, 8], ((7, 2), [0, 1, 2, 3])),       # already in rows
-    ([2, 1, 0], ((0, 3), [2, 1, 0])),            # once each: one row, in the operands' order
-    ([3, 3, 4], None),                           # 3 twice, 4 once
-    ([3, 5, 5, 3], None),                        # 4 is not a left operand: not consecutive
+    ([5, 6, 7], 5),                     # in turn, each once
+    ([7], 7),
+    ([3, 3, 4, 4], None),               # twice each
+    ([2, 1, 0], None),                  # not in turn
+    ([3, 5], None),                     # 4 is not a left operand
 ])
-def test_spread_lays_a_level_out_as_rows_of_its_left_operands(lefts, expected, monkeypatch):
-    monkeypatch.setattr(vector, "SPREAD_WIDTH", 2)
-    assert vector._spread(lefts) == expected
-    monkeypatch.setattr(vector, "SPREAD_WIDTH", 4)          # every width here is below it
-    assert vector._spread(lefts) is None
+def test_in_place_reads_left_operands_that_are_consecutive_values_in_turn(lefts, expected):
+    assert vector._in_place(lefts) == expected
 
 
 SPECIALS = [0.0, -0.0, math.inf, -math.inf, math.nan, 1e308, -1e200, 5e-324, -2.5e-310, 1e60]

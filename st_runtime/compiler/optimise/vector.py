@@ -7,11 +7,10 @@ run as a graph of values and computes it with a few NumPy calls instead:
 
 * a product whose operands are inputs or products: every product of the same depth
   in one `np.multiply` of two gathers (each product keeps its own two operands, so
-  the left-to-right partial products are those of the ST); a wide depth whose left
-  operands are each of a block of consecutive values the same number of times (a
-  Leibniz level: every partial product times each remaining column) is laid out as
-  rows, one a use, and reads the block in place: one multiply a row, only the right
-  operands gathered (`_spread`);
+  the left-to-right partial products are those of the ST); a depth whose left
+  operands are consecutive values in turn, each once (a Leibniz table's last
+  factor: each partial product of five times its one remaining column), reads them
+  in place and gathers only its right operands (`_in_place`);
 * a chain `D := D + a; D := D - b; ...`: the terms, negated where subtracted, and
   `np.add.accumulate`, which adds left to right (`r[i] = r[i-1] + a[i]`, NumPy's
   documented meaning of accumulate; not the pairwise summation of `np.sum`).
@@ -43,8 +42,6 @@ from ...types import ArrayType, resolve_alias
 from . import TEMP_NAME, remembered
 
 MIN_OPERATIONS = 256         # a NumPy call costs ~20 float operations: below this, no gain
-SPREAD_WIDTH = 200           # a row's own multiply call (~2,000 machine instructions) against
-                             # gathering its left operands (~13 each)
 _TEMP = re.compile(r"_t\d+\Z")
 _ASSIGN = re.compile(r"([A-Za-z_]\w*) = (.*)\Z")
 np = _abs = _multiply = _accumulate = None     # NumPy, imported by the first run
@@ -184,23 +181,15 @@ def _expression(tokens, i):
     return ("bin", op, left, right), i + 1
 
 
-def _spread(lefts: list[int]):
-    """((first, width), slots) when the positions `lefts` of a level's left operands are each
-    of `width` consecutive positions from `first`, every one the same number of times (a
-    Leibniz level: each partial product of the level before times each remaining column),
-    else None.  `slots[i]`: where the i-th value goes when the level is laid out as rows of
-    `width`, row r holding each left operand's r-th use in the left operands' order; then
-    the left operands are read in place (one row, broadcast over the rows) and only the
-    right operands are gathered.  Exact: each product keeps its own two operands."""
-    first, width = min(lefts), max(lefts) - min(lefts) + 1
-    uses = [0] * width
-    slots = []
-    for left in lefts:
-        slots.append(uses[left - first] * width + left - first)
-        uses[left - first] += 1
-    if min(uses) != max(uses) or width < SPREAD_WIDTH:
-        return None
-    return (first, width), slots
+def _in_place(lefts: list[int]) -> int | None:
+    """`first` when the positions `lefts` of a level's left operands are `first`, `first + 1`,
+    ... in turn: the level's multiply reads them where they are, and only its right operands
+    are gathered (each product keeps its own two operands: exact).  (A level that uses each
+    left operand k > 1 times in a row could read them in place too, k multiplies writing
+    every k-th product; measured slower than the gather: a strided multiply is not NumPy's
+    vector loop, and each use costs a call.)"""
+    first = lefts[0]
+    return first if lefts == list(range(first, first + len(lefts))) else None
 
 
 def _index(graph: _Graph, ref: int) -> int:
@@ -312,21 +301,19 @@ class Vectorised:
             chain_start[c] = size - 1 if head_last else size
             size = chain_start[c] + 1 + len(chain["terms"])
         self.levels = []            # (gathered operand positions, count, out start, out stop)
-        self.spreads = []           # per level: (left start, left count) when its left operands are read in place
+        self.firsts = []            # per level: its first left operand's position when they are read in place
         for d in sorted(products_by_depth):
             values = products_by_depth[d]
             chain = next((c for c, dd in in_place.items() if dd == d), None)
             base = size if chain is None else chain_start[chain] + 1
-            spread = None if chain is not None else _spread([position[ops[v - n_in][1]] for v in values])
-            if spread is not None:          # the level laid out as its left operands' rows
-                (first, width), slots = spread
-                values = [v for _, v in sorted(zip(slots, values))]
             for offset, v in enumerate(values):
                 position[v] = base + offset
+            lefts = [position[ops[v - n_in][1]] for v in values]
             rights = [position[ops[v - n_in][2]] for v in values]
-            gathered = rights if spread else [position[ops[v - n_in][1]] for v in values] + rights
+            first = _in_place(lefts)
+            gathered = lefts + rights if first is None else rights
             self.levels.append((np.array(gathered, dtype=np.intp), len(values), base, base + len(values)))
-            self.spreads.append(spread and spread[0])
+            self.firsts.append(first)
             if chain is None:
                 size += len(values)
         self.chains = []            # (head position, term positions or None: in place, signs, start, stop)
@@ -355,15 +342,13 @@ class Vectorised:
         self.pack = struct.Struct(f"={self.n_passed}d").pack_into
         self.memory = memoryview(v).cast("B")
         self.scratch = np.empty(self.n_passed)
-        self.steps = []             # (gathered positions, gathered values, [(left, right, out) ...])
-        for (both, n, start, stop), spread in zip(self.levels, self.spreads):
+        self.steps = []             # (gathered positions, gathered values, left, right, out)
+        for (both, n, start, stop), first in zip(self.levels, self.firsts):
             pair = np.empty(len(both))
-            if spread is None:
-                self.steps.append((both, pair, [(pair[:n], pair[n:], v[start:stop])]))
-            else:                   # row r of the level: the left operands times the rights' row r
-                first, width = spread
-                self.steps.append((both, pair, [(v[first:first + width], pair[r:r + width], v[start + r:start + r + width])
-                                                for r in range(0, n, width)]))
+            if first is None:
+                self.steps.append((both, pair, pair[:n], pair[n:], v[start:stop]))
+            else:
+                self.steps.append((both, pair, v[first:first + n], pair, v[start:stop]))
         self.sums = [(head, terms, signs, v[start:stop], v[start + 1:stop])
                      for head, terms, signs, start, stop in self.chains]
 
@@ -389,12 +374,9 @@ class Vectorised:
                   # by `item` (ndarray methods in C: a third of maximum.reduce's time)
                   "if not scratch.item(absolute(passed, scratch).argmax()) < limit: return exact(whole, inputs)",
                   "take = buffer.take"]
-        for k, (both, pair, products) in enumerate(self.steps):
-            names.update({f"both{k}": both, f"pair{k}": pair})
-            lines.append(f"take(both{k}, None, pair{k}, 'wrap')")
-            for r, (left, right, out) in enumerate(products):
-                names.update({f"left{k}_{r}": left, f"right{k}_{r}": right, f"out{k}_{r}": out})
-                lines.append(f"multiply(left{k}_{r}, right{k}_{r}, out{k}_{r})")
+        for k, (both, pair, left, right, out) in enumerate(self.steps):
+            names.update({f"both{k}": both, f"pair{k}": pair, f"left{k}": left, f"right{k}": right, f"out{k}": out})
+            lines += [f"take(both{k}, None, pair{k}, 'wrap')", f"multiply(left{k}, right{k}, out{k})"]
         # values the chains overwrite in place, read before they do
         lines += [f"early{k} = buffer.item({int(p)})" for k, p in enumerate(self.early_positions)]
         for c, (head, terms, signs, out, steps) in enumerate(self.sums):
