@@ -16,16 +16,32 @@ from test_compiler_tables_core import PS_PER_UNIT, line_of, program, scan_times
 from test_compiler_tables_core_s14 import PASSES, run      # (Main after its scans, and its faults)
 
 
-# ============================ cost.py: a structure of no members is assigned as one value
+# ============================ cost.py: a structure of no members (no row since session 17)
+# `elements`' floor for a structure (`sum(...) or 1`) had a row here, an assignment of a STRUCT
+# without members charged as one elementary assignment (2 units). IEC 61131-3's grammar (Annex
+# A, Struct_Decl) asks for one member at least, and the checker refuses one without members
+# under every dialect since session 17 (E-DECL-018, tests/test_checker_gaps_s17.py); every
+# member type counts one element at least, so the floor is never reached and its mutant
+# `cost.elements_8` is registered equivalent (tools/mutation_equivalent.toml, docs/mutation.md).
 
-def test_an_assignment_of_a_structure_without_members_costs_one_load_and_one_store():
-    # docs/nj501.md "What a scan costs": an array or structure moves element by element (2 per
-    # element), anything else is its value's load (1) and a store (1). A STRUCT without
-    # members (IEC 61131-3's grammar, Annex A Struct_Decl, asks for one at least; the checker
-    # accepts none) has no element to move: the assignment is charged as one elementary
-    # assignment, 2 units, not 2 * 2.
-    src = "TYPE Empty : STRUCT END_STRUCT; END_TYPE\n" + program("e1, e2 : Empty;", "e1 := e2;")
-    expected = ([], [2 * PS_PER_UNIT])
+
+# ============================ cost.py: a structure holding a function block instance
+# The checker accepts an FB instance as a STRUCT member (under every dialect), and assigning
+# the structure copies the instance: `elements` counts its variables (docs/nj501.md "What a
+# scan costs": 2 units per element moved), an FB without variables as one value. These rows
+# kill `cost.elements_9` and `_12`, registered equivalent since seeds 16 and 21 on the ground
+# that an FB instance is never copied by value (session 17: that ground does not hold here).
+
+FB_OF_TWO = "FUNCTION_BLOCK Two\nVAR a, b : INT; END_VAR\nEND_FUNCTION_BLOCK\n"
+FB_OF_NONE = "FUNCTION_BLOCK Nothing\nEND_FUNCTION_BLOCK\n"
+
+
+@pytest.mark.parametrize("fb, name, moved", [(FB_OF_TWO, "Two", 2), (FB_OF_NONE, "Nothing", 1)],
+                         ids=["two_variables", "no_variables"])
+def test_an_assignment_of_a_structure_holding_an_fb_instance_moves_its_variables(fb, name, moved):
+    src = (fb + f"TYPE Holder : STRUCT f : {name}; END_STRUCT; END_TYPE\n"
+           + program("h1, h2 : Holder;", "h1 := h2;"))
+    expected = ([], [2 * moved * PS_PER_UNIT])
     assert scan_times(src, {}) == {"every pass": expected, "no pass": expected}
 
 

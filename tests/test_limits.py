@@ -15,7 +15,12 @@ from st_runtime.checker import limits
 from tree_order import walk_order
 
 
-def program(body: str, decls: str = "x : DINT; i : DINT; r : LREAL;") -> str:
+#: One control variable per loop level (IEC 61131-3 7.3.3.4.2: a FOR nested in a FOR over the
+#: same variable would alter it, E-ASSIGN-003), one more than the deepest nesting allowed.
+LOOP_VARIABLES = " ".join(f"i{k} : DINT;" for k in range(1, limits.MAX_LOOP_DEPTH + 2))
+
+
+def program(body: str, decls: str = "x : DINT; i : DINT; r : LREAL; " + LOOP_VARIABLES) -> str:
     return f"PROGRAM P\nVAR {decls} END_VAR\n{body}\nEND_PROGRAM\n"
 
 
@@ -38,7 +43,7 @@ def nested_ifs(n: int) -> str:
 
 
 def nested_loops(n: int) -> str:
-    return "FOR i := 1 TO 1 DO\n" * n + "x := x + 1;\n" + "END_FOR;\n" * n
+    return "".join(f"FOR i{k} := 1 TO 1 DO\n" for k in range(1, n + 1)) + "x := x + 1;\n" + "END_FOR;\n" * n
 
 
 def elsif_chain(n: int) -> str:

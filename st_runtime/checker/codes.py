@@ -51,7 +51,7 @@ CHECKER_CODES = register({
     # assignments
     "E-ASSIGN-001": "assignment to a CONSTANT variable",
     "E-ASSIGN-002": "assignment to a VAR_INPUT inside its own POU (inputs are read-only)",
-    "E-ASSIGN-003": "assignment to a FOR control variable inside its loop",
+    "E-ASSIGN-003": "a FOR control variable written inside its loop: assigned, an output (=>) target, taken by REF or ADR, or the control variable of a nested FOR",
     "E-ASSIGN-004": "assignment to an output or internal variable of a function block instance from outside, or to a PROPERTY without SET",
     # calls
     "E-CALL-001": "a call of something that is not a function or function block instance (NS.F() of "
@@ -95,6 +95,7 @@ CHECKER_CODES = register({
     "E-DECL-015": "a located variable (AT %IX0.0) with an invalid address, in the wrong place, or of a type whose width differs from the address's size",
     "E-DECL-016": "object orientation: an unknown or wrong base / interface, a missing or FINAL-overridden method, an ABSTRACT FB instantiated",
     "E-DECL-017": "a UNION member that is not BOOL, an integer, a bit string or a real",
+    "E-DECL-018": "a STRUCT or UNION declares no member (IEC 61131-3 Annex A, Struct_Decl: one at least)",
     "E-DIALECT-001": "a construct the chosen --dialect does not accept (the message names the dialects that do)",
     "E-CALL-012": "a method is called from where its access specifier (PRIVATE, PROTECTED) does not allow it",
     "E-CALL-013": "dynamic memory (__NEW, __DELETE) is not supported by the runtime",

@@ -250,6 +250,9 @@ class Declarations:
     def _type_spec(self, decl: ast.TypeDecl):
         spec = decl.spec
         if isinstance(spec, ast.StructType):
+            if not spec.members:       # IEC 61131-3 Annex A, Struct_Decl: ( Struct_Elem_Decl ';' )+
+                self.ctx.error("E-DECL-018", f"{'UNION' if spec.union else 'STRUCT'} {decl.name}: "
+                               f"expected at least one member", spec.pos)
             fields: dict[str, tuple[str, object]] = {}
             for member in spec.members:
                 mk = key(member.name)

@@ -10,7 +10,7 @@ from ..ast import key
 from . import typesys as ts
 from .constfold import NOT_CONSTANT
 from .expressions import ExprChecker, start_pos
-from .stores import check_store
+from .stores import check_store, controls_a_loop
 
 
 #: statement class -> the StatementChecker method that checks it (`_` + the class name), or None.
@@ -105,6 +105,9 @@ class StatementChecker:
                 and not self.ctx.rules.accepts("INPUT_WRITE"):
             self.ctx.error("E-ASSIGN-002", f"FOR control variable '{sym.name}' is a VAR_INPUT and "
                            f"read-only", s.pos)
+        elif controls_a_loop(self.ex, sym):       # the inner FOR would alter the outer's variable
+            self.ctx.error("E-ASSIGN-003", f"FOR control variable '{sym.name}' is already the control "
+                           f"variable of an enclosing FOR loop", s.pos)
         else:
             var_t = sym.type
             self.program.for_vars[id(s)] = sym

@@ -30,6 +30,12 @@ def is_variable_path(e) -> bool:
         and root_name(e) is not None
 
 
+def controls_a_loop(ex, sym) -> bool:
+    """`sym` is the control variable of a FOR that encloses the statement being checked
+    (IEC 61131-3 3rd ed. 7.3.3.4.2: the repeated statements shall not alter it)."""
+    return any(sym is loop_var for loop_var in ex.loop_vars)
+
+
 def check_store(ex, target, what: str = "assignment"):
     """Type `target` as something written to; report when it may not be.
 
@@ -69,7 +75,7 @@ def check_store(ex, target, what: str = "assignment"):
                      f"{ex.scope.pou.name} and is read-only inside it "
                      f"({accepting('INPUT_WRITE')} accepts writing it)", target.pos)
         return ts.ERROR
-    if any(sym is loop_var for loop_var in ex.loop_vars):
+    if controls_a_loop(ex, sym):
         ex.ctx.error("E-ASSIGN-003", f"{what}: '{sym.name}' is the control variable of an "
                      f"enclosing FOR loop", target.pos)
         return ts.ERROR
@@ -90,7 +96,7 @@ def in_out_problem(ex, target, sym) -> str | None:
     if sym.kind == "VAR_INPUT" and ex.scope.is_local(sym):
         return (f"VAR_INPUT '{sym.name}' of {ex.scope.pou.name} (inputs are read-only inside "
                 f"their POU)")
-    if any(sym is loop_var for loop_var in ex.loop_vars):
+    if controls_a_loop(ex, sym):
         return f"'{sym.name}', the control variable of an enclosing FOR loop"
     member = None if ex.ctx.open_instances else _fb_member(ex, target)
     if member is not None:
