@@ -389,8 +389,10 @@ def register(name: str, mutant: str, reason: str) -> str:
 
 def source_file(mutant: str) -> str:
     """The file a mutant's name comes from: st_runtime.compiler.calls.xǁCallsǁf__mutmut_3 ->
-    st_runtime/compiler/calls.py (a function's name is prefixed `x_`, a method's `xǁClassǁ`)."""
-    return re.split(r"\.x(?:_|ǁ)", mutant, maxsplit=1)[0].replace(".", "/") + ".py"
+    st_runtime/compiler/calls.py (a function's name is prefixed `x_`, a method's `xǁClassǁ`);
+    a package's own functions live in its __init__.py (st_runtime.compiler.x__compile__mutmut_7)."""
+    module = re.split(r"\.x(?:_|ǁ)", mutant, maxsplit=1)[0].replace(".", "/")
+    return f"{module}/__init__.py" if (ROOT / module).is_dir() else f"{module}.py"
 
 
 def audit(name: str, prune: bool, files: list[str] | None = None) -> list[str]:
