@@ -194,3 +194,6 @@ def test_a_mutants_name_gives_its_file():
     assert mutation.source_file("st_runtime.compiler.optimise.charges.x__sink_once__mutmut_52") == \
         "st_runtime/compiler/optimise/charges.py"
     assert mutation.source_file("st_runtime.xml_reader.x_parse__mutmut_1") == "st_runtime/xml_reader.py"
+    assert mutation.source_file("st_runtime.compiler.x__compile__mutmut_7") == "st_runtime/compiler/__init__.py"
+    assert mutation.source_file("st_runtime.compiler.xǁSharedPreludeǁlead__mutmut_1") == \
+        "st_runtime/compiler/__init__.py"

@@ -126,7 +126,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   # session 16: optimise/'s fresh seed 450's survivors
                   "tests/test_compiler_tables_passes_s16.py",
                   # session 16: the fresh seed 460's survivors in the core files
-                  "tests/test_compiler_tables_core_s16.py"]),
+                  "tests/test_compiler_tables_core_s16.py",
+                  # session 17: the survivors of seeds 450 and 460 run to their end
+                  "tests/test_compiler_tables_s17.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",
@@ -387,8 +389,10 @@ def register(name: str, mutant: str, reason: str) -> str:
 
 def source_file(mutant: str) -> str:
     """The file a mutant's name comes from: st_runtime.compiler.calls.xǁCallsǁf__mutmut_3 ->
-    st_runtime/compiler/calls.py (a function's name is prefixed `x_`, a method's `xǁClassǁ`)."""
-    return re.split(r"\.x(?:_|ǁ)", mutant, maxsplit=1)[0].replace(".", "/") + ".py"
+    st_runtime/compiler/calls.py (a function's name is prefixed `x_`, a method's `xǁClassǁ`);
+    a package's own functions live in its __init__.py (st_runtime.compiler.x__compile__mutmut_7)."""
+    module = re.split(r"\.x(?:_|ǁ)", mutant, maxsplit=1)[0].replace(".", "/")
+    return f"{module}/__init__.py" if (ROOT / module).is_dir() else f"{module}.py"
 
 
 def audit(name: str, prune: bool, files: list[str] | None = None) -> list[str]:
