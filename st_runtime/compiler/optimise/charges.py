@@ -158,7 +158,7 @@ def _sink_once(text: list[str], candidates: list[int]) -> tuple[list[str], list[
             continue
         if amount:
             changed.append(len(out))
-            out.append(f"{' ' * (len(line) - len(line.lstrip(' ')))}_spent += {amount}")
+            out.append(f"{' ' * _indentation(line)}_spent += {amount}")
         out.append(line)
     out.extend(text[done:])
     return out, changed
@@ -199,7 +199,7 @@ def _branch_charge(text: list[str], first: int, indent: int, stops) -> int:
     its first line."""
     for n in range(first, len(text)):
         line = text[n]
-        if len(line) - len(line.lstrip(" ")) < indent:
+        if _indentation(line) < indent:
             break
         if line.startswith(" " * indent + "_spent += ") and _CHARGE.fullmatch(line):
             return n
@@ -499,7 +499,7 @@ class _Shape:
     the last earlier one (`before`), so that a walk hops over a nested block at once."""
 
     def __init__(self, text: list[str]):
-        self.indent = [len(line) - len(line.lstrip(" ")) if line else 1 << 20 for line in text]
+        self.indent = [_indentation(line) if line else 1 << 20 for line in text]
         self._after: list[int] | None = None
         self._before: list[int] | None = None
 
