@@ -180,7 +180,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                  # the fresh seed-29 run and the PROPERTY accessors (issue 16, session 14)
                  "tests/test_checker_mutation_s14.py",
                  # qualified calls NS.F(...) (issue 16, session 15)
-                 "tests/test_checker_namespaced_calls.py"]),
+                 "tests/test_checker_namespaced_calls.py",
+                 # the FOR and STRUCT gaps (session 17), a global FOR variable written by a call (session 18)
+                 "tests/test_checker_gaps_s17.py", "tests/test_checker_loop_writes.py"]),
     "reference": (["stgen/reference/*"],
                   ["tests/test_reference_brake.py", "tests/test_reference_cycloidal.py",
                    "tests/test_reference_error_codes.py", "tests/test_reference_forward.py",

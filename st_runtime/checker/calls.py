@@ -11,6 +11,7 @@ from .. import types as T
 from ..ast import key
 from ..symbols import CallTarget, PouInfo
 from . import builtins as B
+from .loop_writes import note_loop_call
 from .oo import find_method, interface_methods, may_call
 from .operator_calls import OPERATOR_FUNCTIONS, lower, ordered_inputs
 from . import typesys as ts
@@ -299,6 +300,8 @@ class CallChecker:
     def _user_function(self, call, pou: PouInfo, statement: bool):
         self.program.call_targets[id(call)] = CallTarget("function", key(pou.name), pou)
         self.ctx.add_call_edge(self.ex.scope.pou_key, key(pou.name), call.pos)
+        if self.ex.loop_vars:
+            note_loop_call(self.ex, key(pou.name), call.pos)
         return self._bind_and_type(call, pou, f"function {pou.name}", statement)
 
     def _bind_and_type(self, call, pou: PouInfo, what: str, statement: bool):
@@ -316,6 +319,8 @@ class CallChecker:
         pou = self.program.pous.get(key(fb.name))
         self.program.call_targets[id(call)] = CallTarget("fb", key(fb.name), pou)
         self.ctx.add_call_edge(self.ex.scope.pou_key, key(fb.name), call.pos)
+        if self.ex.loop_vars:
+            note_loop_call(self.ex, key(fb.name), call.pos)
         if not statement:
             self.ctx.error("E-CALL-010", f"function block instance of {fb.name} called inside an "
                            f"expression: call it as a statement, then read its outputs", call.pos)

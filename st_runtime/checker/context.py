@@ -49,6 +49,10 @@ class Context:
     symbol_values: dict[int, object] = field(default_factory=dict)
     # call graph for the recursion check: caller -> [(callee, pos)]
     calls: dict[str, list[tuple[str, ast.Pos]]] = field(default_factory=dict)
+    # POU key -> upper-case names of the globals its body writes (loop_writes.py)
+    global_writes: dict[str, set[str]] = field(default_factory=dict)
+    # calls made inside a FOR over a global: (callee key, pos, {global key: loop's name})
+    loop_calls: list[tuple[str, ast.Pos, dict[str, str]]] = field(default_factory=list)
     namespaces: set = field(default_factory=set)     # upper-case "A", "A.B"
     direct_types: dict = field(default_factory=dict)  # "%MW1" -> type declared AT it
     # id(item) -> what the structural walk (limits.check_files) found in it for later passes

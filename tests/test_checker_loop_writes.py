@@ -1,0 +1,97 @@
+"""A global FOR control variable altered by a POU called inside its loop (checker/loop_writes.py).
+
+IEC 61131-3 3rd ed. 7.3.3.4.2 (FOR): the control variable "shall not be altered by any of the
+repeated statements". A call in the loop of a FUNCTION or FB whose body writes the global that
+controls the loop (itself, or through what it calls) alters it: E-ASSIGN-003 at the call. The
+near misses (a read, another global, a local of the same name, a loop over a local, a call after
+the loop) stay accepted. Expected places are counted by hand in each text.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from checker_helpers import diagnostics
+from stgen.cli import main
+
+DIALECTS = ("iec", "codesys", "nj")
+
+GLOBALS = "VAR_GLOBAL\n  g : INT;\n  h : INT;\nEND_VAR\n"            # lines 1-4
+
+
+def function(name: str, body: str, externals: str = "g : INT;", local: str = "") -> str:
+    """FUNCTION `name` : INT, five lines plus the body's."""
+    return (f"FUNCTION {name} : INT\nVAR_EXTERNAL {externals} END_VAR\nVAR {local} END_VAR\n"
+            f"{body}\n{name} := 0;\nEND_FUNCTION\n")
+
+
+def main_program(body: str, externals: str = "g : INT;") -> str:
+    return (f"PROGRAM Main\nVAR_EXTERNAL {externals} END_VAR\nVAR s : INT; t : T; END_VAR\n"
+            f"{body}\nEND_PROGRAM\n")
+
+
+FB_T = "FUNCTION_BLOCK T\nVAR_EXTERNAL g : INT; END_VAR\ng := 0;\nEND_FUNCTION_BLOCK\n"   # 4 lines
+
+# Bump (lines 5-10) writes g; Peek (11-16) reads it; Other (17-22) writes h; Outer (23-28) calls Bump;
+# Own (29-34) writes a local g; Loop (35-40) runs its own FOR over g; T (41-44) writes g; Main from 45.
+POUS = (GLOBALS
+        + function("Bump", "g := g + 1;")
+        + function("Peek", "h := g;", externals="g : INT; h : INT;")
+        + function("Other", "h := 1;", externals="h : INT;")
+        + function("Outer", "Outer := Bump();", externals="")
+        + function("Own", "g := 5;", externals="h : INT;", local="g : INT;")
+        + function("Loop", "FOR g := 1 TO 2 DO END_FOR;")
+        + FB_T)
+MAIN_LINE = 45
+LOOP = "FOR g := 1 TO 3 DO\n  {}\nEND_FOR;"       # the call on Main's line 4, column 3
+
+
+def alters(callee: str, chain: str) -> str:
+    return (f"call of {callee} alters global 'g', the control variable of an enclosing FOR loop "
+            f"({chain})")
+
+
+REFUSED = [
+    pytest.param("Bump();", 3, alters("Bump", "Bump writes it"), id="function_writes_it"),
+    pytest.param("s := Bump();", 8, alters("Bump", "Bump writes it"), id="function_in_an_expression"),
+    pytest.param("Outer();", 3, alters("Outer", "Outer calls Bump, which writes it"), id="through_a_call"),
+    pytest.param("Loop();", 3, alters("Loop", "Loop writes it"), id="callee_runs_its_own_for_over_it"),
+    pytest.param("t();", 3, alters("T", "T writes it"), id="fb_instance_writes_it"),
+]
+
+
+@pytest.mark.parametrize("dialect", DIALECTS)
+@pytest.mark.parametrize("call, column, message", REFUSED)
+def test_a_call_that_writes_the_loops_global_is_refused_at_the_call(call, column, message, dialect):
+    text = POUS + main_program(LOOP.format(call))
+    assert diagnostics(text, dialect) == [("E-ASSIGN-003", MAIN_LINE + 4, column, message)]
+
+
+ACCEPTED = [
+    pytest.param(LOOP.format("s := Peek();"), id="callee_only_reads_it"),
+    pytest.param(LOOP.format("Other();"), id="callee_writes_another_global"),
+    pytest.param(LOOP.format("Own();"), id="callee_writes_its_own_local_of_that_name"),
+    pytest.param("FOR s := 1 TO 3 DO\n  Bump();\nEND_FOR;", id="loop_over_a_local"),
+    pytest.param("FOR g := 1 TO 3 DO\n  s := g;\nEND_FOR;\nBump();", id="call_after_the_loop"),
+]
+
+
+@pytest.mark.parametrize("dialect", DIALECTS)
+@pytest.mark.parametrize("body", ACCEPTED)
+def test_near_misses_stay_accepted(body, dialect):
+    assert diagnostics(POUS + main_program(body), dialect) == []
+
+
+def test_the_nj_dialect_refuses_it_with_the_global_named_directly():
+    """Under nj a global is seen without VAR_EXTERNAL (Sysmac Studio's global variable table)."""
+    text = (GLOBALS + "FUNCTION Bump : INT\ng := g + 1;\nBump := 0;\nEND_FUNCTION\n"
+            "PROGRAM Main\nVAR s : INT; END_VAR\nFOR g := 1 TO 3 DO\n  Bump();\nEND_FOR;\nEND_PROGRAM\n")
+    assert diagnostics(text, "nj") == [("E-ASSIGN-003", 12, 3, alters("Bump", "Bump writes it"))]
+
+
+def test_stgen_check_names_file_line_and_column(tmp_path, capsys):
+    path = tmp_path / "loop.st"
+    path.write_text(POUS + main_program(LOOP.format("Outer();")), encoding="utf-8")
+    assert main(["check", str(path)]) == 1
+    out = capsys.readouterr().err
+    assert f"{path}:{MAIN_LINE + 4}:3: error[E-ASSIGN-003]: " + alters("Outer", "Outer calls Bump, which writes it") in out
