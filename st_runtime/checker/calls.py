@@ -11,7 +11,7 @@ from .. import types as T
 from ..ast import key
 from ..symbols import CallTarget, PouInfo
 from . import builtins as B
-from .loop_writes import note_loop_call
+from .loop_writes import note_loop_call, note_this_call
 from .oo import find_method, interface_methods, may_call
 from .operator_calls import OPERATOR_FUNCTIONS, lower, ordered_inputs
 from . import typesys as ts
@@ -281,6 +281,8 @@ class CallChecker:
             self.ctx.error("E-DECL-016", f"SUPER.{method.name}: the method of {method.owner.name} "
                            f"is ABSTRACT (it has no body to call)", call.callee.pos)
         self.program.call_targets[id(call)] = CallTarget("method", how, method)
+        if self.ex.scope.fb is not None:
+            note_this_call(self.ex, method, call.callee, how, call.pos)
         return self._bind_and_type(call, method, f"method {name}", statement)
 
     def _not_a_variable(self, name: ast.Name) -> bool:

@@ -53,6 +53,12 @@ class Context:
     global_writes: dict[str, set[str]] = field(default_factory=dict)
     # calls made inside a FOR over a global: (callee key, pos, {global key: loop's name})
     loop_calls: list[tuple[str, ast.Pos, dict[str, str]]] = field(default_factory=list)
+    # the same for METHODs on this instance: 'FB.M' -> ids of the FB variables it writes,
+    # 'FB.M' -> [('FB.N', name)] it calls on this instance, and the calls made in a FOR over an
+    # FB variable: ('FB.M', name, pos, {id(variable): its name})
+    member_writes: dict[str, set[int]] = field(default_factory=dict)
+    this_calls: dict[str, list[tuple[str, str]]] = field(default_factory=dict)
+    loop_method_calls: list[tuple[str, str, ast.Pos, dict[int, str]]] = field(default_factory=list)
     namespaces: set = field(default_factory=set)     # upper-case "A", "A.B"
     direct_types: dict = field(default_factory=dict)  # "%MW1" -> type declared AT it
     # id(item) -> what the structural walk (limits.check_files) found in it for later passes

@@ -8,13 +8,20 @@ a FUNCTION or FB instance called in the loop alters it as well if its body write
 that global, itself or through the FUNCTIONs and FBs it calls: this pass follows
 the recursion check's call graph (`Context.calls`) from each such call.
 
-Not followed (they need alias analysis, and stay accepted): METHOD calls (outside
-the call graph), and writes through a reference, a pointer or a VAR_IN_OUT bound
-to the global somewhere else.
+The same holds inside a FUNCTION_BLOCK for a FOR over one of its own variables: a
+METHOD called on this instance (`M()`, `THIS.M()`, `SUPER.M()`) alters it when its
+body writes that variable, itself or through the methods it calls on this instance.
+The method called is the one the name resolves to here; an override in an FB that
+extends this one is not looked at.
+
+Not followed (they need alias analysis, and stay accepted): methods called on
+another instance, and writes through a reference, a pointer or a VAR_IN_OUT bound
+to the variable somewhere else.
 """
 
 from __future__ import annotations
 
+from .. import ast
 from ..ast import key
 from .context import Context
 
@@ -36,42 +43,83 @@ def note_loop_call(ex, callee: str, pos) -> None:
         ex.ctx.loop_calls.append((callee, pos, loops))
 
 
+def method_key(method) -> str:
+    """'FB.M': a METHOD in the tables below (methods are outside the recursion check's graph)."""
+    return f"{key(method.owner.name)}.{key(method.name)}"
+
+
+def note_member_write(ctx: Context, scope, sym) -> None:
+    """Record that the METHOD being checked writes `sym`, when `sym` is a variable of its FB."""
+    if scope.fb.variables.get(key(sym.name)) is sym:
+        ctx.member_writes.setdefault(method_key(scope.pou), set()).add(id(sym))
+
+
+def note_this_call(ex, method, callee, how: str, pos) -> None:
+    """Record a call of `method` on this instance (made in an FB's body or one of its methods)."""
+    if how not in ("self", "super") and not _on_this(callee):
+        return
+    scope, ctx = ex.scope, ex.ctx
+    if scope.pou.kind == "METHOD":
+        ctx.this_calls.setdefault(method_key(scope.pou), []).append((method_key(method), method.name))
+    members = scope.fb.variables
+    loops = {id(sym): sym.name for sym in ex.loop_vars if members.get(key(sym.name)) is sym}
+    if loops:
+        ctx.loop_method_calls.append((method_key(method), method.name, pos, loops))
+
+
+def _on_this(callee) -> bool:
+    """`THIS.M`: a virtual call on this instance."""
+    base = callee.base if isinstance(callee, ast.Member) else None
+    return isinstance(base, ast.Name) and key(base.name) == "THIS"
+
+
 def check_calls_in_loops(ctx: Context) -> None:
-    """E-ASSIGN-003 at each call, made in a FOR over a global, of a POU that writes it."""
+    """E-ASSIGN-003 at each call, made in a FOR over a global or over a variable of the FB,
+    of a POU or METHOD that writes it."""
+    pou_names = {k: info.name for k, info in ctx.program.pous.items()} if ctx.loop_calls else {}
     for callee, pos, loops in ctx.loop_calls:
         for global_key, name in loops.items():
-            path = _path_to_writer(ctx, callee, global_key)
+            path = _path_to_writer(callee, lambda pou: global_key in ctx.global_writes.get(pou, ()),
+                                   lambda pou: (edge[0] for edge in ctx.calls.get(pou, ())))
             if path:
-                ctx.error("E-ASSIGN-003", f"call of {ctx.program.pous[callee].name} alters global "
-                          f"'{name}', the control variable of an enclosing FOR loop "
-                          f"({_described(ctx, path)})", pos)
+                _refuse(ctx, f"{pou_names[callee]} alters global '{name}'",
+                        [pou_names[pou] for pou in path], pos)
+                break
+    method_names = {k: name for calls in ctx.this_calls.values() for k, name in calls}
+    for callee, callee_name, pos, loops in ctx.loop_method_calls:
+        method_names[callee] = callee_name
+        for sym_id, name in loops.items():
+            path = _path_to_writer(callee, lambda m: sym_id in ctx.member_writes.get(m, ()),
+                                   lambda m: (k for k, _ in ctx.this_calls.get(m, ())))
+            if path:
+                _refuse(ctx, f"method {callee_name} alters '{name}'",
+                        [method_names[m] for m in path], pos)
                 break
 
 
-def _path_to_writer(ctx: Context, start: str, global_key: str) -> list[str]:
-    """The shortest chain of calls from `start` to a POU that writes the global, else []."""
+def _refuse(ctx: Context, what: str, names: list[str], pos) -> None:
+    chain = f"{names[0]} writes it" if len(names) == 1 else \
+        f"{names[0]} calls " + ", which calls ".join(names[1:]) + ", which writes it"
+    ctx.error("E-ASSIGN-003", f"call of {what}, the control variable of an enclosing FOR loop "
+              f"({chain})", pos)
+
+
+def _path_to_writer(start: str, writes, callees) -> list[str]:
+    """The shortest chain of calls from `start` to a callee for which `writes` holds, else []."""
     previous = {start: None}
     frontier = [start]
     while frontier:
         following = []
         for pou in frontier:
-            if global_key in ctx.global_writes.get(pou, ()):
+            if writes(pou):
                 path = []
                 while pou is not None:
                     path.append(pou)
                     pou = previous[pou]
                 return path[::-1]
-            for callee, _ in ctx.calls.get(pou, ()):
+            for callee in callees(pou):
                 if callee not in previous:
                     previous[callee] = pou
                     following.append(callee)
         frontier = following
     return []
-
-
-def _described(ctx: Context, path: list[str]) -> str:
-    """'F writes it', or 'F calls G, which calls H, which writes it'."""
-    names = [ctx.program.pous[pou].name for pou in path]
-    if len(names) == 1:
-        return f"{names[0]} writes it"
-    return f"{names[0]} calls " + ", which calls ".join(names[1:]) + ", which writes it"

@@ -10,7 +10,7 @@ from ..ast import key
 from . import typesys as ts
 from .constfold import NOT_CONSTANT
 from .expressions import ExprChecker, start_pos
-from .loop_writes import GLOBAL_KINDS, note_global_write
+from .loop_writes import GLOBAL_KINDS, note_global_write, note_member_write
 from .stores import check_store, controls_a_loop
 
 
@@ -128,6 +128,8 @@ class StatementChecker:
         if pushed:
             if sym.kind in GLOBAL_KINDS:
                 note_global_write(self.ctx, self.ex.scope, sym)
+            elif self.ex.scope.fb is not None and self.ex.scope.pou.kind == "METHOD":
+                note_member_write(self.ctx, self.ex.scope, sym)
             self.ex.loop_vars.append(sym)
         self.loop_depth += 1
         try:
