@@ -18,9 +18,10 @@ from st_runtime.motion.axis import Axis
 from test_motion_stream_epoch import make_plc, state
 
 
-def observed_run(chunks, steady: bool, setup=None, between=None):
+def observed_run(chunks, steady: bool, setup=None, between=None, observed: bool = True):
     """States after every scan of `chunks` runs (a read-only observer), and the scans the
-    steady loop ran; `between(plc, task)` after each run."""
+    steady loop ran; `between(plc, task)` after each run.  Not `observed`: no observer at
+    all (the loop reads no shape again at a scan's end), the state after each run."""
     plc, main, task = make_plc()
     controller = plc.controller
     if setup is not None:
@@ -37,9 +38,12 @@ def observed_run(chunks, steady: bool, setup=None, between=None):
     else:
         controller.steady_scans = None           # every scan through Controller._scans
     states = []
-    controller.add_observer(lambda c: states.append(state(plc, task)), reads_only=True)
+    if observed:
+        controller.add_observer(lambda c: states.append(state(plc, task)), reads_only=True)
     for scans in chunks:
         plc.run(scans)
+        if not observed:
+            states.append(state(plc, task))
         if between is not None:
             between(plc, task)
     return states, sum(fused), controller
@@ -212,26 +216,6 @@ def test_a_writing_observer_ends_the_steady_loop_at_once():
     assert_same_runs([400], setup, steady_at_least=110)
 
 
-def unobserved_runs(chunks, steady: bool, setup=None):
-    """(the state after each run of `chunks`, the scans the steady loop ran, the controller)
-    with no observer at all: the loop reads no shape again at a scan's end."""
-    plc, main, task = make_plc()
-    controller = plc.controller
-    if setup is not None:
-        setup(plc, main, task)
-    fused = []
-    if steady:
-        loop = task._steady_scans
-        task._steady_scans = lambda controller, cycles: fused.append(loop(controller, cycles)) or fused[-1]
-    else:
-        controller.steady_scans = None
-    states = []
-    for scans in chunks:
-        plc.run(scans)
-        states.append(state(plc, task))
-    return states, sum(fused), controller
-
-
 @pytest.mark.parametrize("chunks, setup, fused, last_scan", [
     # the stream program's runs: each run's first scan through the general loop
     ([1, 2, 57, 140, 200], None, 0 + 1 + 56 + 139 + 199, 400),
@@ -247,8 +231,8 @@ def test_a_run_without_observers_ends_as_the_general_loop(chunks, setup, fused, 
         def setup(plc, main, task):
             plc.controller.stop_on_fault = True
             _faulting_program_at(120)(plc, main, task)
-    got, steady_scans, controller = unobserved_runs(chunks, True, setup)
-    expected, none, reference = unobserved_runs(chunks, False, setup)
+    got, steady_scans, controller = observed_run(chunks, True, setup, observed=False)
+    expected, none, reference = observed_run(chunks, False, setup, observed=False)
     assert got == expected and none == 0
     assert steady_scans == fused
     assert controller.scan_count == reference.scan_count == last_scan
