@@ -138,9 +138,6 @@ class Axis:
         self._soft_max = config.soft_limit_max
         self._following_limit = config.following_error_limit
         self._following_warning = config.following_error_warning
-        # MC_SyncMoveAbsolute's InPosition window (its hot path), made once: no negation a call.
-        self._in_position_range = config.in_position_range
-        self._in_position_floor = -config.in_position_range
         self._dt = 0.0
         self._max_step = self._step_slack = 0.0
         self._lag_gain = 1.0
@@ -149,6 +146,9 @@ class Axis:
         # nothing has changed it since but that step's data (MotionTask.process); every
         # method that changes the axis ends it (`_changed`).
         self._stream_epoch = None
+        # MC_SyncMoveAbsolute's InPosition window (its hot path), made once: no negation a call.
+        self._in_position_range = config.in_position_range
+        self._in_position_floor = -config.in_position_range
 
     # ------------------------------------------------------------ queries
     @property
