@@ -168,7 +168,7 @@ row("sets", "a mixed AND inside an OR", main("x : INT := 3; r : BOOL; b : BOOL :
 
 # ----------------------------------------------------------------------------------- wraps
 # A store of MIN/MAX of integers is not wrapped when the inputs' range lies in the target's
-# type. IEC: `+ -` exact, the store wraps; nj (W501 6-5-3): each input wraps into its type
+# type (with every pass, MIN/MAX of two is `(b if a > b else a)`: calls.py `_selected_pair`). IEC: `+ -` exact, the store wraps; nj (W501 6-5-3): each input wraps into its type
 # first.  s = t = 32767, u = e = -32768, w : USINT = 255, d : DINT = 7.
 
 WRAPS = main("s : INT := 32767; t : INT := 32767; u : INT := -32768; w : USINT := 255; "
@@ -182,17 +182,17 @@ row("wraps", "iec: exact inputs, the store wraps", WRAPS,
     # MIN(256, 10) = 10; MIN(-32769, 0) -> 32767; MAX(7, 1) = 7; MIN(-40000, 5) -> 25536;
     # MAX(40000, 5) -> -25536; 5 + -7 = -2
     {"s": 2, "t": -32768, "u": -3, "w": 10, "e": 32767, "d": 7, "m": 25536, "n": -25536, "wide": -2},
-    shape=("MAIN", r"self\.v_S = (?:_sf_MIN|min)\(\(self\.v_S \+ 1\), 2\)"),
-    never=("MAIN", r"self\.v_T = (?:_sf_MAX|max)|self\.v_E = (?:_sf_MIN|min)|self\.v_M = (?:_sf_MIN|min)|self\.v_N = (?:_sf_MAX|max)"))
+    shape=("MAIN", r"self\.v_S = (?:(?:_sf_MIN|min)\(\(self\.v_S \+ 1\), 2\)|\(2 if \(_t\d+ := \(self\.v_S \+ 1\)\) > 2 else _t\d+\))"),
+    never=("MAIN", r"self\.v_T = (?:_sf_MAX|max|\(2 if)|self\.v_E = (?:_sf_MIN|min|\(0 if)|self\.v_M = (?:_sf_MIN|min|\(5 if)|self\.v_N = (?:_sf_MAX|max|\(5 if)"))
 row("wraps", "iec: an input's declared range fits", WRAPS, {"u": -3, "w": 10, "d": 7},
-    shape=("MAIN", r"self\.v_U = (?:_sf_MAX|max)\(\(self\.v_U - 1\), -3\)"))
-row("wraps", "iec: a USINT sum", WRAPS, {"w": 10}, shape=("MAIN", r"self\.v_W = (?:_sf_MIN|min)\(\(self\.v_W \+ 1\), 10\)"))
-row("wraps", "iec: a DINT variable", WRAPS, {"d": 7}, shape=("MAIN", r"self\.v_D = (?:_sf_MAX|max)\(self\.v_D, 1\)"))
+    shape=("MAIN", r"self\.v_U = (?:(?:_sf_MAX|max)\(\(self\.v_U - 1\), -3\)|\(-3 if \(_t\d+ := \(self\.v_U - 1\)\) < -3 else _t\d+\))"))
+row("wraps", "iec: a USINT sum", WRAPS, {"w": 10}, shape=("MAIN", r"self\.v_W = (?:(?:_sf_MIN|min)\(\(self\.v_W \+ 1\), 10\)|\(10 if \(_t\d+ := \(self\.v_W \+ 1\)\) > 10 else _t\d+\))"))
+row("wraps", "iec: a DINT variable", WRAPS, {"d": 7}, shape=("MAIN", r"self\.v_D = (?:(?:_sf_MAX|max)\(self\.v_D, 1\)|\(1 if \(_t\d+ := self\.v_D\) < 1 else _t\d+\))"))
 row("wraps", "nj: each input wraps first", WRAPS,
     # s + 1 -> -32768: MIN = -32768; t + 1 -> -32768: MAX = 2; u - 1 -> 32767; w + 1 -> 0;
     # e - 1 -> 32767: MIN = 0; i * 2 -> 25536: MIN = 5; j * 2 -> -25536: MAX = 5
     {"s": -32768, "t": 2, "u": 32767, "w": 0, "e": 0, "d": 7, "m": 5, "n": 5, "wide": -2}, dialects=("nj",),
-    shape=("MAIN", r"self\.v_T = (?:_sf_MAX|max)\("))
+    shape=("MAIN", r"self\.v_T = (?:(?:_sf_MAX|max)\(|\(2 if )"))
 
 # ---------------------------------------------------------------------------------- halves
 # A CASE of at least six clauses with integer labels and no ELSE tests `sel < P` first.

@@ -289,3 +289,19 @@ def test_the_idle_call_is_spelt_out_per_class_and_only_from_attribute_names():
     assert fbs.MC_SyncMoveAbsolute.execute is not fbs.MC_SyncMoveAbsolute._execute_rules   # its own short path
     with pytest.raises(ValueError, match="attribute names only"):
         type("Odd", (fbs._ExecuteFB,), {"FINAL_OUTPUTS": ("v_DONE; import os",)})
+
+
+@pytest.mark.parametrize("offset, in_position", [
+    (0.0, True), (-0.25, True), (0.25, True), (-0.5, True), (0.5, True),    # the bounds count
+    (-0.5000000001, False), (0.5000000001, False), (-3.0, False), (3.0, False), (float("nan"), False),
+])
+def test_sync_in_position_is_the_range_either_side_of_the_target(offset, in_position):
+    """InPosition while synchronized: the actual position within the in-position range of the
+    target, either side (docs/nj501.md, SPEC 7: the simulator compares with the target), as the
+    hot path of every synchronized call computes it: |act - target| <= range."""
+    rig, power = powered_rig(in_position_range=0.5)
+    sync = make_fb(fbs.MC_SyncMoveAbsolute)
+    rig.scan(lambda: rig.call(sync, Execute=True, Position=0.0))
+    rig.task.axis("Ax").act_pos = offset             # the target stays 0.0
+    rig.call(sync, Execute=True, Position=0.0)
+    assert sync.v_ACTIVE and sync.v_INPOSITION is in_position

@@ -18,9 +18,10 @@ from st_runtime.motion.axis import Axis
 from test_motion_stream_epoch import make_plc, state
 
 
-def observed_run(chunks, steady: bool, setup=None, between=None):
+def observed_run(chunks, steady: bool, setup=None, between=None, observed: bool = True):
     """States after every scan of `chunks` runs (a read-only observer), and the scans the
-    steady loop ran; `between(plc, task)` after each run."""
+    steady loop ran; `between(plc, task)` after each run.  Not `observed`: no observer at
+    all (the loop reads no shape again at a scan's end), the state after each run."""
     plc, main, task = make_plc()
     controller = plc.controller
     if setup is not None:
@@ -37,9 +38,12 @@ def observed_run(chunks, steady: bool, setup=None, between=None):
     else:
         controller.steady_scans = None           # every scan through Controller._scans
     states = []
-    controller.add_observer(lambda c: states.append(state(plc, task)), reads_only=True)
+    if observed:
+        controller.add_observer(lambda c: states.append(state(plc, task)), reads_only=True)
     for scans in chunks:
         plc.run(scans)
+        if not observed:
+            states.append(state(plc, task))
         if between is not None:
             between(plc, task)
     return states, sum(fused), controller
@@ -210,3 +214,28 @@ def test_a_writing_observer_ends_the_steady_loop_at_once():
         plc.controller.add_observer(writing, reads_only=True)
 
     assert_same_runs([400], setup, steady_at_least=110)
+
+
+@pytest.mark.parametrize("chunks, setup, fused, last_scan", [
+    # the stream program's runs: each run's first scan through the general loop
+    ([1, 2, 57, 140, 200], None, 0 + 1 + 56 + 139 + 199, 400),
+    # a fault in the motion processing at scan 95 leaves the loop (scans 2-95 fused)
+    ([100, 300], _raising_at(95, STFault("F-TEST", "raised by the motion processing")), 94 + 299, 400),
+    # a fault of the program that stops the run at scan 120
+    ([400], "stopping", 119, 120),
+], ids=["stream", "motion-fault", "stop"])
+def test_a_run_without_observers_ends_as_the_general_loop(chunks, setup, fused, last_scan):
+    """No observer: the end of a steady scan tests only the stop and the hooks' flag; a
+    fault in the motion processing and a stop still leave the loop at that scan."""
+    if setup == "stopping":
+        def setup(plc, main, task):
+            plc.controller.stop_on_fault = True
+            _faulting_program_at(120)(plc, main, task)
+    got, steady_scans, controller = observed_run(chunks, True, setup, observed=False)
+    expected, none, reference = observed_run(chunks, False, setup, observed=False)
+    assert got == expected and none == 0
+    assert steady_scans == fused
+    assert controller.scan_count == reference.scan_count == last_scan
+    assert [(f.code, f.pou, f.line, f.scan) for f in controller.faults] == \
+        [(f.code, f.pou, f.line, f.scan) for f in reference.faults]
+    assert list(controller.task_times["Primary"]) == list(reference.task_times["Primary"])

@@ -37,8 +37,8 @@ VAR_GLOBAL
     G : DINT;
 END_VAR
 """
-FAULT_FREE = ["self.v_T = 93784005006007", "v_B = ((((-", "self.v_F = (((", "v_R = ((v_R * 2.0) - v_R)",
-              "v_B = 0", "self.v_I = (((("]
+FAULT_FREE = ["self.v_T = 93784005006007", "v_B = (_t1 if -2147483648 <= (_t1 := (-v_A))", "self.v_F = (((",
+              "v_R = ((v_R * 2.0) - v_R)", "v_B = 0", "self.v_I = (_t1 if -2147483648 <= (_t1 := (self.v_I + 1))"]
 MAY_FAULT = ["_idiv(", "_index_fault(", "self.v_Q = 3", "v_G = 1"]
 
 

@@ -39,6 +39,12 @@ _INLINE = {"ABS": "abs"}
 # in the same order, without the call of the wrapper).
 _SELECTION = {"MIN": "min", "MAX": "max"}
 
+# Optimisations.inline: MIN and MAX of two integers or two reals without the call of min or
+# max.  min(a, b) keeps a unless `b < a` (max: `b > a`), and for Python's int and float
+# `a > b` is `b < a` (NaN included: both false), so MIN(a, b) is `(b if a > b else a)`:
+# a, then b, evaluated once each, one comparison, which CPython 3.11 specialises.
+_PAIR_TEST = {"MIN": ">", "MAX": "<"}
+
 # Optimisations.inline: the math function itself where the library's wrapper
 # (stdlib/functions.py) would only call it, with the wrapper kept for the rest:
 # SIN/COS/TAN raise ValueError only for an infinite argument (the wrapper gives
@@ -64,6 +70,19 @@ def _read_back(lines: list[str], instance: str, stored: dict[str, str]) -> list[
         if not re.search(member + r"\s*=(?!=)", text):
             text = re.sub(member, name, text)
     return text.split("\n")
+
+
+def _selected_pair(test: str, first: str, second: str, temp) -> str:
+    """`(second if first <test> second else first)`, each code evaluated once, in order: a
+    temporary (from `temp()`) holds one that is not a Python name or literal."""
+    def held(code: str) -> tuple[str, str]:
+        if code.isidentifier() or code.lstrip("-").isdigit():
+            return code, code
+        name = temp()
+        return f"({name} := {code})", name
+
+    (first_code, first_value), (second_code, second_value) = held(first), held(second)
+    return f"({second_value} if {first_code} {test} {second_code} else {first_value})"
 
 
 def _sum_of_squares(ec, node) -> bool:
@@ -390,6 +409,8 @@ class Calls:
             t = elementary(ec.ty(ordered[0].value)) or generic
             codes.append(pyliteral(t.bits if isinstance(t, ElementaryType) else 64))
         if name in _SELECTION and len(codes) >= 2 and ec.opt.inline:
+            if len(codes) == 2 and isinstance(generic, ElementaryType) and generic.kind in ("int", "real"):
+                return _selected_pair(_PAIR_TEST[name], *codes, ec.temp)
             return f"{_SELECTION[name]}({', '.join(codes)})"
         fn = self.unit.bind_function(name, call.pos)
         if name in _GUARDED and len(codes) == 1 and ec.opt.inline:

@@ -793,6 +793,8 @@ class ExprCompiler:
                         and bounds[1] - bounds[0] <= source[1] - source[0]:
                     return _wrapped(value, e)      # the target is no wider: its wrap settles it
                 value = self.settled(node, value)
+            if self.opt.wraps and (checked := wraps.tested(value, e, self.temp)) is not None:
+                return checked
             return _wrapped(value, e)
         if isinstance(dst_r, StringType):
             if node is not None and isinstance(self.constant_of(node), str) \

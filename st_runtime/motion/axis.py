@@ -146,6 +146,9 @@ class Axis:
         # nothing has changed it since but that step's data (MotionTask.process); every
         # method that changes the axis ends it (`_changed`).
         self._stream_epoch = None
+        # MC_SyncMoveAbsolute's InPosition window (its hot path), made once: no negation a call.
+        self._in_position_range = config.in_position_range
+        self._in_position_floor = -config.in_position_range
 
     # ------------------------------------------------------------ queries
     @property

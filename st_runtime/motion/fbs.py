@@ -474,7 +474,8 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
 
     # The call of every scan while synchronized (no edge, command alive); everything else
     # goes through the general rules.  InPosition as `_poll` computes it, |d| <= range as
-    # -range <= d <= range (the same answer for every float d and range > 0, NaN included),
+    # -range <= d <= range (the same answer for every float d and range > 0, NaN included;
+    # the axis holds both bounds, made from its config once, so no float is made a call),
     # tested by jumps, which CPython 3.11 specialises (a comparison whose value is stored it
     # does not), without the call of abs() and its float; an LREAL input holds a float:
     # float() only if not (`_type(x)`, the compiled code's `type`: a call CPython 3.11
@@ -486,11 +487,11 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
         body=("if not {fb}.v_EXECUTE:",
               "    {fb}._previous_execute = False",
               "{fb}.v_ACTIVE = True",                         # _poll(axis, command, False), inlined
-              "{fb}.v_INPOSITION = (True if -({range} := {axis}.config.in_position_range)"
-              " <= {axis}.act_pos - {command}.target <= {range} else False)",
+              "{fb}.v_INPOSITION = (True if {axis}._in_position_floor"
+              " <= {axis}.act_pos - {command}.target <= {axis}._in_position_range else False)",
               "{position} = {fb}.v_POSITION",
               "{command}.target = {position} if _type({position}) is float else float({position})"),
-        temps=("command", "position", "range"),
+        temps=("command", "position"),
         cold="_execute_rules")
 
     def _start(self, axis: Axis | None) -> None:

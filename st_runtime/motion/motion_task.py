@@ -63,8 +63,11 @@ _ERRORSTOP = AxisState.ERRORSTOP
 # flags members show what they showed then: the short step tests only the data (|delta| <=
 # slack is -slack <= delta <= slack for every float), and the flags only when the direction
 # changes (neither velocity is a NaN then: the target passed the guard).  While the
-# direction holds, |new_vel| > |old_vel| is new_vel > old_vel (both positive) or
-# new_vel < old_vel (both negative).
+# direction holds, Axis.step's `magnitude if |new_vel| > |old_vel| else -magnitude`, with
+# magnitude = |new_vel - old_vel| / dt, is (new_vel - old_vel) / dt when both are positive
+# and (old_vel - new_vel) / dt when both are negative, bit for bit: the two differ (the
+# first test), so their difference is not zero, and IEEE rounding is symmetric in sign
+# (fl(b - a) = -fl(a - b), fl(-x / dt) = -fl(x / dt)): no call of abs(), no negation.
 _LANE_STEP = """\
 {command_before}if {axis}._stream_epoch is not epoch:
 {command_inside}    if not ({command} is not None and {command}.kind == "sync" and (powered := {axis}.powered)
@@ -87,7 +90,7 @@ _LANE_STEP = """\
                 {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude
             else:
                 {cmd}.v_ACCDEC = {axis}.cmd_accdec = -magnitude
-{flags8}
+{flags}
 elif not ({short_test}
           and {soft_min} <= target <= {soft_max}):
     {axis}.step(dt)
@@ -98,18 +101,17 @@ else:
     {act}.v_VEL = {axis}.act_vel = {cmd}.v_VEL = {axis}.cmd_vel = new_vel = delta / dt
     if new_vel == old_vel:
         {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
+    elif new_vel > 0.0 and old_vel > 0.0:
+        {cmd}.v_ACCDEC = {axis}.cmd_accdec = (new_vel - old_vel) / dt
+    elif new_vel < 0.0 and old_vel < 0.0:
+        {cmd}.v_ACCDEC = {axis}.cmd_accdec = (old_vel - new_vel) / dt
     else:
         magnitude = abs(new_vel - old_vel) / dt
-        if new_vel > 0.0 and old_vel > 0.0:
-            {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude if new_vel > old_vel else -magnitude
-        elif new_vel < 0.0 and old_vel < 0.0:
-            {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude if new_vel < old_vel else -magnitude
+        if (new_vel if new_vel >= 0.0 else -new_vel) > (old_vel if old_vel >= 0.0 else -old_vel):
+            {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude
         else:
-            if (new_vel if new_vel >= 0.0 else -new_vel) > (old_vel if old_vel >= 0.0 else -old_vel):
-                {cmd}.v_ACCDEC = {axis}.cmd_accdec = magnitude
-            else:
-                {cmd}.v_ACCDEC = {axis}.cmd_accdec = -magnitude
-{flags12}
+            {cmd}.v_ACCDEC = {axis}.cmd_accdec = -magnitude
+{flags}
 """
 
 # The flags of a stream's step, as AxisRefWriter.write decides them; the axis then carries
@@ -162,8 +164,7 @@ _STEADY_SHORT_TEST = "floor{n} <= (delta := (target := command{n}.target) - {axi
 def _lane_step(parts: dict, **names) -> str:
     """`_LANE_STEP` of one axis (`parts`: its names), with the `_LANE_FLAGS` of `names["command"]`."""
     flags = _LANE_FLAGS.format(command=names["command"], **parts)
-    return _LANE_STEP.format(flags8=textwrap.indent(flags, " " * 8).rstrip("\n"),
-                             flags12=textwrap.indent(flags, " " * 12).rstrip("\n"), **names, **parts)
+    return _LANE_STEP.format(flags=textwrap.indent(flags, " " * 8).rstrip("\n"), **names, **parts)
 
 
 def _straight_line_process(task: "MotionTask", lanes: list[tuple]):

@@ -32,7 +32,9 @@ from ..faults import ScanOverrun, StopRun, STFault
 # `after` hook had stored both FALSE).  A try block costs nothing in CPython 3.11 until it
 # catches.  The shape is checked at the end of each scan, after the observers: besides the
 # programs (compiled ST, which cannot reach the controller, and native FBs, which must not
-# change its hooks or tasks: no FB of the runtime does) only they run in a scan.
+# change its hooks, tasks or observers: no FB of the runtime does) only they run in a scan.
+# So a run that starts with no observer has none at any scan's end, and its shape is the one
+# `offer` found: only the stop and the hooks' own flag are read again (`unobserved`).
 _STEADY_SCANS = """\
 def steady_scans(controller, cycles{arguments}):
     ctx = controller.ctx
@@ -44,6 +46,7 @@ def steady_scans(controller, cycles{arguments}):
     period = controller.period_ns
     dt = period * 1e-9
     epoch = task._epoch
+    unobserved = not controller.observers
 {constants}    for done in range(1, cycles + 1):
         index = controller.scan_count
         ctx.scan = scan = index + 1
@@ -73,6 +76,10 @@ def steady_scans(controller, cycles{arguments}):
         except StopRun as stop:
             controller.stopped = stop.record
         controller.scan_count = scan
+        if unobserved:
+            if controller.stopped is not None or not task._continuing:
+                return done
+            continue
         for observer in controller.observers:
             observer(controller)
         if controller.stopped is not None:

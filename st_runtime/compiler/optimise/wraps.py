@@ -10,6 +10,14 @@ MIN lies in [-32767, 2], inside INT, so the wrap would give the value back: it i
 out.  Under a dialect that wraps inside expressions (exprs.py `settled`) each input is
 wrapped into its type before MIN sees it (or shown to lie there), so its range is the
 type's.  Exact: only a wrap that would return its operand is left out.
+
+`tested`: a store that still wraps into DINT, UDINT, LINT or ULINT tests the value against
+the type's range first and wraps only a value outside it:
+`(_t if lo <= (_t := v) <= hi else <wrap of _t>)`.  The wrap of a value inside the range is
+that value (an int: the store's operand is an integer operation), so the result is the same
+int; TRJ_OceanWave's `ClockCount := ClockCount + 1` (LINT, every scan) then makes no
+three-digit integers (`+ 2**63`, `& (2**64 - 1)`, `- 2**63`, each allocated), only two
+comparisons.  Not below 32 bits, where the wrap's operands are one-digit integers.
 """
 
 from __future__ import annotations
@@ -58,3 +66,15 @@ def _bounds(compiler, expr) -> tuple[int, int] | None:
 
     t = elementary(compiler.ty(expr))
     return int_bounds(t) if t is not None and t.kind == "int" else None
+
+
+def tested(value: str, e, temp) -> str | None:
+    """`value` (an integer expression) as stored into the integer type `e` of 32 bits or
+    more, tested against the type's range before its wrap (exprs.py `_wrapped`); else None."""
+    from ..exprs import _wrapped, int_bounds
+
+    if e.kind != "int" or e.bits < 32:
+        return None
+    low, high = int_bounds(e)
+    name = temp()
+    return f"({name} if {low} <= ({name} := {value}) <= {high} else {_wrapped(name, e)})"
