@@ -125,8 +125,8 @@ def test_the_fast_copy_keeps_the_in_out_in_locals(name, source):
     program = load_text(source, "t.st").program
     key = {"MIX": "MIX", "SWAP": "SWAP"}[name]
     fast = compile_program(program, optimise=ON).python_sources[key].split("\n        else:\n", 1)[0]
-    assert "__0" in fast and "_type(" in fast
-    assert "__0" not in compile_program(program, optimise=OFF).python_sources[key]
+    assert "_e0" in fast and "_type(" in fast
+    assert "_e0" not in compile_program(program, optimise=OFF).python_sources[key]
 
 
 def test_an_in_out_passed_once():
@@ -189,16 +189,16 @@ def test_a_branch_that_stores_at_a_data_index_leaves_the_locals_stale():
              "    v_A[v_P - 1] = v_A[1]",
              "v_A[1] = (v_A[1] * 2.0)"]
     assert _rewrite(lines) == [
-        "v_A__0, v_A__1 = v_A",
-        "v_A__0 = (v_A__0 + 1.0)",
+        "v_A_e0, v_A_e1 = v_A",
+        "v_A_e0 = (v_A_e0 + 1.0)",
         "if (v_P != 1):",
-        "    v_A[0] = v_A__0",          # written back before the store at a data index
-        "    v_A[v_P - 1] = v_A__1",
-        "    v_A__0 = v_A[0]",          # dirty on the other path: loaded again on this one
-        "v_A__1 = v_A[1]",              # stale after the IF: loaded before its next use
-        "v_A__1 = (v_A__1 * 2.0)",
-        "v_A[0] = v_A__0",              # the end: both written back
-        "v_A[1] = v_A__1"]
+        "    v_A[0] = v_A_e0",          # written back before the store at a data index
+        "    v_A[v_P - 1] = v_A_e1",
+        "    v_A_e0 = v_A[0]",          # dirty on the other path: loaded again on this one
+        "v_A_e1 = v_A[1]",              # stale after the IF: loaded before its next use
+        "v_A_e1 = (v_A_e1 * 2.0)",
+        "v_A[0] = v_A_e0",              # the end: both written back
+        "v_A[1] = v_A_e1"]
 
 
 def test_a_fault_handler_writes_back_before_the_fault_is_recorded():
@@ -210,15 +210,15 @@ def test_a_fault_handler_writes_back_before_the_fault_is_recorded():
              "return (v_F, v_A[1])"]
     out = _rewrite(lines)
     handler = out.index("except _FAULTS as _e:")
-    assert out[handler + 1] == "    v_A[0] = v_A__0"
+    assert out[handler + 1] == "    v_A[0] = v_A_e0"
     assert out[handler + 2].strip().startswith("_ctx.fault(")
-    assert out[-3:] == ["v_A[0] = v_A__0", "v_A[1] = v_A__1", "return (v_F, v_A__1)"]
+    assert out[-3:] == ["v_A[0] = v_A_e0", "v_A[1] = v_A_e1", "return (v_F, v_A_e1)"]
 
 
 def test_a_list_that_may_be_the_same_is_read_after_a_write_back():
     lines = ["v_A[0] = 1.0", "v_A[1] = 2.0", "v_X = v_B[0]"]
     assert _rewrite(lines, others=["v_B"]) == [
-        "v_A__0 = 1.0", "v_A__1 = 2.0", "v_A[0] = v_A__0", "v_A[1] = v_A__1", "v_X = v_B[0]"]
+        "v_A_e0 = 1.0", "v_A_e1 = 2.0", "v_A[0] = v_A_e0", "v_A[1] = v_A_e1", "v_X = v_B[0]"]
 
 
 def test_an_else_of_a_loop_leaves_the_lines_as_they_were():

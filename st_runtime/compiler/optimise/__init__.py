@@ -150,7 +150,7 @@ states bit for bit:
   idle Execute FBs' rest tests and notes) reads it once, `_seal = _ctx.seal` at its
   start: the seal is replaced only between the programs' runs.
 * `scalars` (scalars.py): in a FUNCTION's fast copy, the elements of an in-out array read
-  and stored at literal indices live in Python locals (`v_MATRIX__6`), loaded with one
+  and stored at literal indices live in Python locals (`v_MATRIX_e6`), loaded with one
   unpack of the list and written back before anything else may look at the list (a read at
   a data index or of a list that may be the same, a return, a fault handler's start, the
   copy's end): the LU's elimination and substitutions on locals, the same operations in the

@@ -2,7 +2,7 @@
 
 The LU's fast copy, unrolled, reads and stores `v_MATRIX[k]` at literal indices hundreds of
 times a call (a subscript each: the list, the index, the lookup).  In the fast copy those
-elements live in locals `v_MATRIX__k` instead, and the list is brought up to date only where
+elements live in locals `v_MATRIX_ek` instead, and the list is brought up to date only where
 something may look at it:
 
 * before a line that reads the list at an index that is data, or names it whole, or names
@@ -112,12 +112,20 @@ def replace(lines: list[str], start: int, lists: dict[str, tuple[int, tuple[str,
         fast = lines[start:]
         if sum(len(_literal(name).findall(line)) for line in fast) < MIN_ACCESSES:
             continue
-        if any(_local(name, k) in line for line in fast for k in (0, size - 1)):
-            continue            # (a name the code already has)
+        if any(_quoted(name, line) for line in fast):
+            continue            # (an ST string that spells the name: not rewritten)
         try:
             lines[start:] = _Rewrite(name, size, others).whole(fast)
         except _Unknown:
             pass
+
+
+_STRING = re.compile(r"'(?:[^'\\]|\\.)*'|\"(?:[^\"\\]|\\.)*\"|#.*")
+
+
+def _quoted(name: str, line: str) -> bool:
+    """Whether `name` occurs in a string literal or comment of `line`."""
+    return name in line and any(name in m.group(0) for m in _STRING.finditer(line))
 
 
 class _Unknown(Exception):
@@ -129,7 +137,9 @@ def _literal(name: str):
 
 
 def _local(name: str, k: int) -> str:
-    return f"{name}__{k}"
+    """The local of element `k`: a lower-case letter, which no ST name has in Python (`v_`
+    and its upper-case spelling, native.mangle) nor the compiler's own (`_t1`, `_spent`)."""
+    return f"{name}_e{k}"
 
 
 class _Rewrite:
