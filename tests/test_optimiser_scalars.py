@@ -225,3 +225,27 @@ def test_an_else_of_a_loop_leaves_the_lines_as_they_were():
     lines = ["v_A[0] = 1.0", "for v_I in range(2):", "    v_X = v_A[v_I]", "else:", "    v_X = 0.0"]
     with pytest.raises(scalars._Unknown):
         _rewrite(lines)
+
+
+def test_a_body_that_calls_st_code_keeps_its_lists():
+    """A callee could reach the caller's list through a global: no element in a local."""
+    source = MIX.replace("N := N / Den;", "N := Half(N);") + """
+FUNCTION Half : DINT
+VAR_INPUT N : DINT; END_VAR
+Half := N / 2;
+END_FUNCTION
+"""
+    fast = compile_program(load_text(source, "t.st").program, optimise=ON).python_sources["MIX"]
+    assert "_type(v_A) is _list" in fast and "v_A_e0" not in fast
+    x, r, faults, _ = _same(source, {})
+    assert (x, r, faults) == ([-45.0, 43.0, -17.0, 34.0], 6, [])
+
+
+def test_a_list_named_in_a_string_is_left_as_it_is():
+    lines = ["v_A[0] = 1.0"] * 20 + ["v_S = 'v_A[0]'"]
+    kept = list(lines)
+    scalars.replace(lines, 0, {"v_A": (2, ())})
+    assert lines == kept
+    plain = lines[:20]
+    scalars.replace(plain, 0, {"v_A": (2, ())})
+    assert plain == ["v_A_e0 = 1.0"] * 20 + ["v_A[0] = v_A_e0"]
