@@ -194,8 +194,7 @@ def test_a_branch_that_stores_at_a_data_index_leaves_the_locals_stale():
         "if (v_P != 1):",
         "    v_A[0] = v_A_e0",          # written back before the store at a data index
         "    v_A[v_P - 1] = v_A_e1",
-        "    v_A_e0 = v_A[0]",          # dirty on the other path: loaded again on this one
-        "v_A_e1 = v_A[1]",              # stale after the IF: loaded before its next use
+        "    v_A_e0, v_A_e1 = v_A",     # held on the other path: loaded again on this one
         "v_A_e1 = (v_A_e1 * 2.0)",
         "v_A[0] = v_A_e0",              # the end: both written back
         "v_A[1] = v_A_e1"]

@@ -230,7 +230,7 @@ class _Rewrite:
             raised = self.at_fault(seen)
             handler = self.flush(raised, indent + 4)
             paths.append([lines[at], handler, self.block(lines[at + 1:end], indent + 4, raised, depth, handler, points)])
-        return self.join(paths, indent + 4, out)
+        return self.join(paths, indent + 4, out, reload=False)
 
     def at_fault(self, seen: list[dict]) -> dict:
         """The state a handler starts in: an element held at every point of the try body
@@ -242,19 +242,22 @@ class _Rewrite:
             raise _Unknown      # dirty at one point, stale at another: not followed
         return {k: any(s[k] for s in seen) for k in held}
 
-    def join(self, paths, indent, out):
+    def join(self, paths, indent, out, reload=True):
         """Emit a branching statement's clauses ([header, body lines, end state], the state
         None for a path that does not fall through; a header None for the path through no
         clause) and return the state after it.  An element held on every path is held
         after; one dirty on a path is loaded from the list at the end of each clause that
-        does not hold it, else written back at the end of the paths that do."""
+        does not hold it, else written back at the end of the paths that do; with `reload`
+        (an IF's clauses, not a try's handler), one held on a path is loaded also by the
+        clauses that hold none (one unpack: an exchange of rows at a data index, which
+        leaves every local stale, loads them again at its end, not the path without it)."""
         ends = [(header, s) for header, _, s in paths if s is not None]
         joined = None
         if ends:
             held = set(ends[0][1]).intersection(*(s for _, s in ends[1:]))
             for _, s in ends:
                 held.update(k for k, dirty in s.items()
-                            if dirty and all(h is not None or k in t for h, t in ends))
+                            if all(h is not None and (dirty or reload and not t) or k in t for h, t in ends))
             joined = {k: any(s.get(k, False) for _, s in ends) for k in held}
         for header, body, s in paths:
             if s is not None:
@@ -266,11 +269,11 @@ class _Rewrite:
         return joined
 
     def load(self, elements: list[int], none_held: bool, indent: int) -> list[str]:
-        """Lines loading `elements` into their locals: one unpack of the list when it is
-        all of them and none is held yet."""
+        """Lines loading `elements` into their locals: one unpack of the whole list when
+        none is held yet."""
         pad = " " * indent
-        if none_held and len(elements) == self.size:
-            names = ", ".join(_local(self.name, k) for k in elements)
+        if none_held and elements:
+            names = ", ".join(_local(self.name, k) for k in range(self.size))
             return [f"{pad}{names}{',' if self.size == 1 else ''} = {self.name}"]
         return [f"{pad}{_local(self.name, k)} = {self.name}[{k}]" for k in elements]
 
