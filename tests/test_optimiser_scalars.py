@@ -248,3 +248,24 @@ def test_a_list_named_in_a_string_is_left_as_it_is():
     plain = lines[:20]
     scalars.replace(plain, 0, {"v_A": (2, ())})
     assert plain == ["v_A_e0 = 1.0"] * 20 + ["v_A[0] = v_A_e0"]
+
+
+def test_a_line_that_hands_on_the_context_sees_the_list_written_back():
+    """Code given `_ctx` may record a fault that ends the scan: the list is up to date first."""
+    lines = ["v_A[0] = 1.0", "v_X = _std(_ctx, v_Y)", "v_A[1] = v_A[0]"]
+    assert _rewrite(lines) == ["v_A_e0 = 1.0", "v_A[0] = v_A_e0", "v_X = _std(_ctx, v_Y)",
+                               "v_A_e1 = v_A_e0", "v_A[1] = v_A_e1"]
+
+
+def test_a_loop_inside_a_try_is_not_followed():
+    """A fault inside the loop (after it stored v_A[0]) must not see v_A_e0 written back over
+    that store: the handler cannot know which, so the lines stay as they were."""
+    lines = ["v_A[0] = 1.0",
+             "try:",
+             "    for v_I in range(2):",
+             "        v_A[v_I] = 2.0",
+             "except _FAULTS as _e:",
+             "    _ctx.fault(_e, ('F', 'f.st', 3, 1))",
+             "v_X = v_A[0]"]
+    with pytest.raises(scalars._Unknown):
+        _rewrite(lines)

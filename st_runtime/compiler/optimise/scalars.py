@@ -12,10 +12,11 @@ something may look at it:
 * after a line that stores into the list at a data index (or into such another list, or
   names either whole), every local is stale: the list is read again (one unpack of all
   its elements) at the next use outside a branch, and used as it is inside one;
-* before a `return`, `break`, `continue` or `raise`, at the end of the fast copy, and at the
-  start of a fault handler (before `_ctx.fault`, which may end the scan), the dirty
-  elements are written back, so every reader, a fault's too, sees the list as the exact
-  code leaves it.
+* before a `return`, `break`, `continue` or `raise`, a line that names `_ctx` (code that
+  may record a fault, which may end the scan), at the end of the fast copy, and at the
+  start of a fault handler (before `_ctx.fault`), the dirty elements are written back,
+  so every reader, a fault's too, sees the list as the exact code leaves it.  A handler
+  starts with the elements held at every point of its `try` body.
 
 The same operations on the same values in the same order, on locals instead of list slots:
 results, faults (a division or an index fault inside a `try` raises before its store, as
@@ -24,9 +25,12 @@ FUNCTION (its locals are its own, a call's lists live no longer than it) whose b
 ST code (a callee could reach the list through a global), dereferences no pointer, and whose
 other aggregate variables that could be the list are plain arrays of elementary elements;
 lists of another length cannot be it.  Within a branch the state of each element is followed
-per path and joined after the statement (an element dirty on one path and stale after the
-join is written back at the end of that path); a loop keeps its text, with the dirty elements
-written back before it and every local stale after it.  Anything it does not know how to
+per path and joined after the statement: an element dirty on one path is loaded at the end
+of the clauses that do not hold it (or written back at the end of the paths that do, when
+the path through no clause lacks it), and an IF's clause that holds none loads the whole
+list at its end when another path holds elements (the LU's row exchange, which leaves every
+local stale, loads them again; the path without it keeps them).  A loop keeps its text,
+with the dirty elements written back before it and every local stale after it.  Anything it does not know how to
 follow (an `else` of a `try` or loop, a `finally`, an augmented store) leaves the lines as
 they were.
 """
@@ -47,7 +51,9 @@ MIN_ACCESSES = 16
 SLICE_FROM = 4
 
 _LOCALS = ("VAR", "VAR_TEMP", "VAR_OUTPUT", "RETURN")
-_LEAVES = re.compile(r"\b(return|raise|break|continue)\b")
+#: A line that may leave the copy, or hand the context to code that may record a fault
+#: and end the scan: every dirty element is written back before it.
+_LEAVES = re.compile(r"\b(return|raise|break|continue|_ctx)\b")
 _OPENERS = ("if ", "elif ", "else:", "try:", "except", "finally:", "for ", "while ")
 
 
@@ -190,6 +196,8 @@ class _Rewrite:
                 out.extend(self.flush(state, indent))
                 out.extend(lines[i:end])
                 state = {}
+                if points is not None:
+                    points.append({})       # (inside it: the list as the loop leaves it)
             elif head.endswith(":") and head.startswith(_OPENERS) or end != i + 1:
                 raise _Unknown
             else:
