@@ -251,10 +251,11 @@ def test_a_list_named_in_a_string_is_left_as_it_is():
 
 
 def test_a_line_that_hands_on_the_context_sees_the_list_written_back():
-    """Code given `_ctx` may record a fault that ends the scan: the list is up to date first."""
+    """Code given `_ctx` may record a fault that ends the scan: the list is up to date first;
+    and it may reach the list (a global the caller passed): it is loaded again after."""
     lines = ["v_A[0] = 1.0", "v_X = _std(_ctx, v_Y)", "v_A[1] = v_A[0]"]
     assert _rewrite(lines) == ["v_A_e0 = 1.0", "v_A[0] = v_A_e0", "v_X = _std(_ctx, v_Y)",
-                               "v_A_e1 = v_A_e0", "v_A[1] = v_A_e1"]
+                               "v_A_e0, v_A_e1 = v_A", "v_A_e1 = v_A_e0", "v_A[1] = v_A_e1"]
 
 
 def test_a_loop_inside_a_try_is_not_followed():

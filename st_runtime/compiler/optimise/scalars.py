@@ -54,6 +54,9 @@ _LOCALS = ("VAR", "VAR_TEMP", "VAR_OUTPUT", "RETURN")
 #: A line that may leave the copy, or hand the context to code that may record a fault
 #: and end the scan: every dirty element is written back before it.
 _LEAVES = re.compile(r"\b(return|raise|break|continue|_ctx)\b")
+#: Code given the context (not `_ctx.fault`, which records a fault and reaches no list): it
+#: may reach the list through a global the caller passed, so every local is stale after it.
+_HANDS_ON = re.compile(r"\b_ctx\b(?!\.fault\()")
 _OPENERS = ("if ", "elif ", "else:", "try:", "except", "finally:", "for ", "while ")
 
 
@@ -212,6 +215,8 @@ class _Rewrite:
             raise _Unknown      # (a list passed whole in a test: not followed)
         state = dict(state)
         out.extend(self.ready(conditions, state, indent, depth))
+        if _HANDS_ON.search(conditions):
+            raise _Unknown      # (code given the context in a test: not followed)
         if self.seen_whole(conditions):
             out.extend(self.flush(state, indent))
         paths = []
@@ -293,7 +298,7 @@ class _Rewrite:
             if _LEAVES.search(line):
                 out.extend(self.flush(state, indent))
             out.append(line)
-            return None if leaves else state
+            return None if leaves else {} if _HANDS_ON.search(line) else state
         if self.augmented.search(line):
             raise _Unknown
         out.extend(self.ready(line, state, indent, depth))
@@ -309,7 +314,7 @@ class _Rewrite:
         out.append(text)
         if leaves:
             return None
-        return {} if self.changes_whole(line) else state
+        return {} if self.changes_whole(line) or _HANDS_ON.search(line) else state
 
     def ready(self, text: str, state: dict, indent: int, depth: int) -> list[str]:
         """Loads before a line that reads the elements of `text`'s literal reads: outside
