@@ -119,7 +119,7 @@ def replace(lines: list[str], start: int, lists: dict[str, tuple[int, tuple[str,
     """Keep each list of `lists` in locals in `lines[start:]` (a fast copy), in place."""
     for name, (size, others) in lists.items():
         fast = lines[start:]
-        if sum(len(_literal(name).findall(line)) for line in fast) < MIN_ACCESSES:
+        if len(_literal(name).findall("\n".join(fast))) < MIN_ACCESSES:
             continue
         if any(_quoted(name, line) for line in fast):
             continue            # (an ST string that spells the name: not rewritten)
@@ -175,26 +175,26 @@ class _Rewrite:
         """Rewrite the statements of one block (`lines`, all at `indent` or deeper) into
         `out`; the state after it, None when it does not end by falling through.  `depth`
         counts the IF branches around it; `points` gathers the states a fault may see."""
-        i = 0
-        while i < len(lines):
-            end = _statement_end(lines, i, indent)
+        starts = _starts(lines, indent)
+        n = 0
+        while n < len(starts) - 1:
+            i, end = starts[n], starts[n + 1]
+            n += 1
+            head = lines[i].strip()
+            if head.startswith(("if ", "try:")) and head.endswith(":"):
+                n = _clauses_end(lines, starts, n, ("elif ", "else:") if head[0] == "i" else ("except",))
             if state is None:
-                out.extend(lines[i:end])        # (after a return: code no path reaches)
-                i = end
+                out.extend(lines[i:starts[n]])  # (after a return: code no path reaches)
                 continue
             if points is not None:
                 points.append(dict(state))
-            head = lines[i].strip()
             if head.startswith("if ") and head.endswith(":"):
-                end = _chain_end(lines, i, indent, ("elif ", "else:"))
-                state = self.if_chain(lines[i:end], indent, state, depth, out, points)
+                state = self.if_chain(lines[i:starts[n]], indent, state, depth, out, points)
             elif head == "try:":
-                end = _chain_end(lines, i, indent, ("except",))
-                body_end = _statement_end(lines, i, indent)
-                out.extend(self.ready("\n".join(lines[i + 1:body_end]), state, indent, depth))
-                state = self.try_block(lines[i:end], indent, state, depth, out, points)
+                out.extend(self.ready("\n".join(lines[i + 1:end]), state, indent, depth))
+                state = self.try_block(lines[i:starts[n]], indent, state, depth, out, points)
             elif head.startswith(("for ", "while ")) and head.endswith(":"):
-                if _chain_end(lines, end, indent, ("else:",), end) != end:
+                if _clauses_end(lines, starts, n, ("else:",)) != n:
                     raise _Unknown
                 out.extend(self.flush(state, indent))
                 out.extend(lines[i:end])
@@ -205,7 +205,6 @@ class _Rewrite:
                 raise _Unknown
             else:
                 state = self.simple(lines[i], state, depth, out)
-            i = end
         return state
 
     def if_chain(self, lines, indent, state, depth, out, points):
@@ -251,9 +250,10 @@ class _Rewrite:
         if not seen:
             return {}
         held = set(seen[0]).intersection(*seen[1:])
-        if any(k not in held for s in seen for k, dirty in s.items() if dirty):
+        dirty = _dirty(seen)
+        if not dirty <= held:
             raise _Unknown      # dirty at one point, stale at another: not followed
-        return {k: any(s[k] for s in seen) for k in held}
+        return {k: k in dirty for k in held}
 
     def join(self, paths, indent, out, reload=True):
         """Emit a branching statement's clauses ([header, body lines, end state], the state
@@ -267,11 +267,14 @@ class _Rewrite:
         ends = [(header, s) for header, _, s in paths if s is not None]
         joined = None
         if ends:
-            held = set(ends[0][1]).intersection(*(s for _, s in ends[1:]))
-            for _, s in ends:
-                held.update(k for k, dirty in s.items()
-                            if all(h is not None and (dirty or reload and not t) or k in t for h, t in ends))
-            joined = {k: any(s.get(k, False) for _, s in ends) for k in held}
+            states = [s for _, s in ends]
+            held = set(states[0]).intersection(*states[1:])
+            dirty = _dirty(states)
+            for k in set().union(*states) - held:
+                lacking = [(h, t) for h, t in ends if k not in t]
+                if all(h is not None and (k in dirty or reload and not t) for h, t in lacking):
+                    held.add(k)
+            joined = {k: k in dirty for k in held}
         for header, body, s in paths:
             if s is not None:
                 body.extend(self.flush({k: True for k, dirty in s.items() if dirty and k not in held}, indent))
@@ -375,31 +378,30 @@ class _Rewrite:
         target = self.named.match(line.lstrip())
         return target is not None and " = " in line and self.store.match(line) is None
 
+def _dirty(states) -> set[int]:
+    """The elements dirty in any of `states`."""
+    return {k for s in states for k, dirty in s.items() if dirty}
+
+
 def _indent(line: str) -> int:
     return len(line) - len(line.lstrip())
 
 
-def _statement_end(lines, i: int, indent: int) -> int:
-    """The index after the statement at `lines[i]` (its nested lines)."""
-    j = i + 1
-    while j < len(lines) and (not lines[j].strip() or _indent(lines[j]) > indent):
-        j += 1
-    return j
+def _starts(lines, indent: int) -> list[int]:
+    """The index of each statement of a block at `indent` (a line no deeper), and its end."""
+    deeper = " " * (indent + 1)
+    return [j for j, line in enumerate(lines) if not line.startswith(deeper) and line.strip()] + [len(lines)]
 
 
-def _chain_end(lines, i: int, indent: int, continuations, end: int | None = None) -> int:
-    """The index after a compound statement at `i` and its clauses (`elif`, `except`, ...)."""
-    j = _statement_end(lines, i, indent) if end is None else end
-    while j < len(lines) and _indent(lines[j]) == indent and lines[j].strip().startswith(continuations):
-        j = _statement_end(lines, j, indent)
-    return j
+def _clauses_end(lines, starts: list[int], n: int, continuations) -> int:
+    """The index in `starts` after a compound statement's clauses (`elif`, `except`, ...)
+    from `starts[n]` on."""
+    while n < len(starts) - 1 and lines[starts[n]].lstrip().startswith(continuations):
+        n += 1
+    return n
 
 
 def _clauses(lines, indent: int) -> list[tuple[int, int]]:
     """(header index, end) of each clause of one compound statement."""
-    out, i = [], 0
-    while i < len(lines):
-        end = _statement_end(lines, i, indent)
-        out.append((i, end))
-        i = end
-    return out
+    starts = _starts(lines, indent)
+    return list(zip(starts, starts[1:]))
