@@ -119,14 +119,13 @@ def _same(source: str, inputs: dict, stop: bool = False):
     return on
 
 
-@pytest.mark.parametrize("name, source", [("MIX", MIX), ("SWAP", SWAP)])
-def test_the_fast_copy_keeps_the_in_out_in_locals(name, source):
+@pytest.mark.parametrize("name, source, local", [("MIX", MIX, "v_A_e0"), ("SWAP", SWAP, "v_M_e0")])
+def test_the_fast_copy_keeps_the_in_out_in_locals(name, source, local):
     """The pass applies to both (what the other tests run is the rewritten code); off, no local."""
     program = load_text(source, "t.st").program
-    key = {"MIX": "MIX", "SWAP": "SWAP"}[name]
-    fast = compile_program(program, optimise=ON).python_sources[key].split("\n        else:\n", 1)[0]
-    assert "_e0" in fast and "_type(" in fast
-    assert "_e0" not in compile_program(program, optimise=OFF).python_sources[key]
+    fast = compile_program(program, optimise=ON).python_sources[name].split("\n        else:\n", 1)[0]
+    assert local in fast and "_type(" in fast
+    assert local not in compile_program(program, optimise=OFF).python_sources[name]
 
 
 def test_an_in_out_passed_once():
