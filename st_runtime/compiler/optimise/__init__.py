@@ -149,6 +149,12 @@ states bit for bit:
 * `seal` (seal.py): a body that reads the controller's seal twice or more (the
   idle Execute FBs' rest tests and notes) reads it once, `_seal = _ctx.seal` at its
   start: the seal is replaced only between the programs' runs.
+* `scalars` (scalars.py): in a FUNCTION's fast copy, the elements of an in-out array read
+  and stored at literal indices live in Python locals (`v_MATRIX_e6`), loaded with one
+  unpack of the list and written back before anything else may look at the list (a read at
+  a data index or of a list that may be the same, a return, a fault handler's start, the
+  copy's end): the LU's elimination and substitutions on locals, the same operations in the
+  same order.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -276,6 +282,7 @@ class Optimisations:
     stores_read: bool = True
     temps: bool = True
     seal: bool = True
+    scalars: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
