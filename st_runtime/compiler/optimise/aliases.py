@@ -27,9 +27,10 @@ from __future__ import annotations
 
 import re
 from collections import Counter
+from itertools import compress
 
 from ... import ast
-from ..scope import _nodes, root_name, walk
+from ..scope import _nodes, listed, root_name
 from . import branches
 
 _ALIAS_LINE = re.compile(r"(v_\w+) = (?:self|_G)\.(v_\w+)")
@@ -162,6 +163,9 @@ def late_loads(compiler, body) -> dict[int, list[str]]:
     return loads
 
 
+_NAME = frozenset({ast.Name})      # (the node classes have no subclasses)
+
+
 class Occurrences:
     """Where the names of a body occur: `paths[key]` has the path (ids of the IF branch and
     CASE clause bodies around it, outermost first) of each occurrence of the name, and
@@ -175,7 +179,9 @@ class Occurrences:
         self.paths: dict = {}
         self.bodies: dict[int, tuple] = {}
         self.parents: dict[int, int] = {}
-        self.counts = Counter(node.name.upper() for node in walk(body) if isinstance(node, ast.Name))
+        nodes = listed(body)
+        names = compress(nodes, map(_NAME.__contains__, map(type, nodes)))     # (picked in C by class)
+        self.counts = Counter(node.name.upper() for node in names)
         _visit(body, (), self)
 
 
