@@ -164,6 +164,7 @@ def late_loads(compiler, body) -> dict[int, list[str]]:
 
 
 _NAME = frozenset({ast.Name})      # (the node classes have no subclasses)
+_RECORDED = frozenset({ast.Name, ast.Assign, ast.For, ast.Arg})     # what `_record` notes
 
 
 class Occurrences:
@@ -252,15 +253,17 @@ def _enter(stmt, body, path: tuple, seen: Occurrences) -> None:
 
 
 def _record(node, path: tuple, paths: dict) -> None:
-    for n in _nodes(node):
-        if isinstance(n, ast.Name):
+    nodes = _nodes(node)
+    for n in compress(nodes, map(_RECORDED.__contains__, map(type, nodes))):     # (picked in C by class)
+        cls = type(n)
+        if cls is ast.Name:
             name = n.name.upper()
-        elif isinstance(n, ast.Assign):
+        elif cls is ast.Assign:
             name = root_name(n.target)
             name = name and ("=", name)
-        elif isinstance(n, ast.For):
+        elif cls is ast.For:
             name = "=", n.variable.upper()
-        elif isinstance(n, ast.Arg) and n.direction == "out":
+        elif n.direction == "out":      # (an Arg)
             name = root_name(n.value)
             name = name and ("=", name)
         else:
