@@ -542,35 +542,29 @@ def _indents(text: list[str]) -> list[int]:
 
 
 class _Shape:
-    """The block structure of the code's lines, worked out once: each line's indentation,
-    the first later line not more indented (`after`: where a clause or statement ends) and
-    the last earlier one (`before`), so that a walk hops over a nested block at once."""
+    """The block structure of the code's lines: each line's indentation, read once, and,
+    found when asked, the first later line not more indented (`after`: where a clause or
+    statement ends) and the last earlier one (`before`), so that a walk hops over a nested
+    block at once."""
 
     def __init__(self, text: list[str]):
         self.indent = _indents(text)
-        self._after: list[int] | None = None
-        self._before: list[int] | None = None
+        self.after = _Nearest(self.indent, 1)
+        self.before = _Nearest(self.indent, -1)
 
-    @property
-    def after(self) -> list[int]:
-        if self._after is None:
-            self._after = self._nearest(range(len(self.indent)))
-        return self._after
 
-    @property
-    def before(self) -> list[int]:
-        if self._before is None:
-            self._before = self._nearest(range(len(self.indent) - 1, -1, -1), -1)
-        return self._before
+class _Nearest:
+    """`nearest[n]`: the first line from line `n` in one direction (`step` 1: later, -1:
+    earlier) that is not more indented than `n`; past the last line (the count of lines, or
+    -1) when there is none.  A scan over the lines between, which a walk asks of a few
+    lines only (a table of every line cost more than the walks that read it)."""
 
-    def _nearest(self, order: range, missing: int | None = None) -> list[int]:
-        """For each line, the first line in `order` after it that is not more indented."""
-        indent = self.indent
-        found = [len(indent) if missing is None else missing] * len(indent)
-        pending: list[int] = []
-        for n in order:
-            depth = indent[n]
-            while pending and indent[pending[-1]] >= depth:
-                found[pending.pop()] = n
-            pending.append(n)
-        return found
+    def __init__(self, indent: list[int], step: int):
+        self.indent, self.step = indent, step
+
+    def __getitem__(self, n: int) -> int:
+        indent, step = self.indent, self.step
+        depth, m = indent[n], n + step
+        while 0 <= m < len(indent) and indent[m] > depth:
+            m += step
+        return m
