@@ -116,6 +116,8 @@ def main() -> None:
     print(f"  whole load {whole // rounds:,} bytecodes, {sum(t.calls for t in stages.values()) // rounds:,} calls")
     for stage, tally in stages.items():
         print(f"  {stage:8s} {tally.total // rounds:,} bytecodes, {tally.calls // rounds:,} calls")
+    if not arguments.top:
+        return
     inclusive: Counter = Counter()
     own: Counter = Counter()
     for tally in stages.values():
