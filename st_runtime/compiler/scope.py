@@ -23,7 +23,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from itertools import compress
-from operator import attrgetter
 
 from .. import ast
 from ..objects import is_aggregate
@@ -124,48 +123,24 @@ def _nodes(node) -> list:
 
 
 def _listed(node) -> list:
-    """`_nodes(node)`, listed: each object taken from the stack is taken apart as its class
-    says (`_PARTS`), its parts pushed in C."""
+    """`_nodes(node)`, listed."""
     out = []
     stack = [node]
-    pop, push, extend, add, parts = stack.pop, stack.append, stack.extend, out.append, _PARTS
+    pop, push, extend, add = stack.pop, stack.append, stack.extend, out.append
+    Node, fields = ast.Node, ast.CHILD_FIELDS
     while stack:
         n = pop()
-        count, children = parts[type(n)]
-        if count > 1:
+        if isinstance(n, Node):
             add(n)
-            extend(children(n))     # (its fields in order: the last one is taken first)
-        elif count == 1:
-            add(n)
-            push(children(n))
-        elif count == 0:
-            add(n)
-        elif count == _TUPLE:
-            extend(reversed(n))     # (its items now: the same order as later)
+            for name in fields[type(n)]:
+                value = getattr(n, name)
+                if isinstance(value, Node):
+                    push(value)
+                elif isinstance(value, tuple):      # (its items now: the same order as later)
+                    extend(reversed(value))
+        elif isinstance(n, tuple):
+            extend(reversed(n))
     return out
-
-
-_TUPLE, _NO_NODE = -2, -1
-
-
-class _Parts(dict):
-    """class -> how `_listed` takes an object of it apart, worked out on first use:
-    (k, getter) for a node with k child fields (`ast.CHILD_FIELDS`), `getter` reading
-    them (the value itself when k is 1, a tuple of them else); (_TUPLE, None) for a tuple,
-    whose items are taken next; (_NO_NODE, None) for anything else (None, a string),
-    which holds no node."""
-
-    def __missing__(self, cls: type) -> tuple:
-        if issubclass(cls, ast.Node):
-            names = ast.CHILD_FIELDS[cls]
-            found = (len(names), attrgetter(*names) if names else None)
-        else:
-            found = (_TUPLE if issubclass(cls, tuple) else _NO_NODE, None)
-        self[cls] = found
-        return found
-
-
-_PARTS = _Parts()
 
 
 def root_name(e) -> str | None:
