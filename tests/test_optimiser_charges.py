@@ -191,6 +191,37 @@ def test_settled_follows_no_value_into_a_loop():
                                "    _spent += 1", "    while x:", "        y = 1", "    _spent += 1"]
 
 
+
+
+# Where the walk goes once nothing is known (session 18: it jumps, or stops, instead of
+# stepping over each statement): to a `_spent = 0` of the same block, which makes the value
+# known again (0, then 5); not to one in a handler, which the walk never reads (the
+# loop left the body's value unknown, and no line of the block is one); an empty line
+# inside a loop is part of the loop (more indented than any line), so the walk goes on
+# after the loop, which charges nothing, with the value it had (7, then 8).
+def test_settled_knows_the_value_again_after_a_zero_of_the_same_block():
+    from st_runtime.compiler.optimise.charges import settled
+
+    again = ["    _spent = 0", "    for i in r:", "        _spent += 2", "    _spent += 1",
+             "    _spent = 0", "    _spent += 5"]
+    assert settled(again) == again[:5] + ["    _spent = 5"]
+
+
+def test_settled_reads_no_handler_after_nothing_is_known():
+    from st_runtime.compiler.optimise.charges import settled
+
+    handled = ["def f(self, _ctx):", "    _spent = 0", "    try:", "        for i in r:",
+               "            _spent += 2", "        _spent += 1", "    finally:", "        _spent = 0",
+               "        _spent += 9"]
+    assert settled(handled) == handled
+
+
+def test_settled_steps_over_a_loop_with_an_empty_line():
+    from st_runtime.compiler.optimise.charges import settled
+
+    spaced = ["    _spent = 0", "    _spent += 7", "    while x:", "", "        y = 1", "    _spent += 1"]
+    assert settled(spaced) == ["    _spent = 0", "    _spent = 7", "    while x:", "", "        y = 1",
+                               "    _spent = 8"]
 SETTLE_ON = Optimisations()
 
 

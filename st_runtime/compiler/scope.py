@@ -22,6 +22,7 @@ them; aggregate inputs the body modifies are copied at entry (by value).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from itertools import compress
 
 from .. import ast
 from ..objects import is_aggregate
@@ -103,6 +104,7 @@ _LEAVES = frozenset({ast.Name, ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral,
 
 _LOOPS = (ast.For, ast.While, ast.Repeat)
 _USAGE_NODES = frozenset((ast.Assign, ast.Call) + _LOOPS)     # what `Usage` reads besides names
+_READ_BY_USAGE = _USAGE_NODES | {ast.Name}
 
 
 def _nodes(node) -> list:
@@ -159,13 +161,13 @@ class Usage:
         self.kinds = set(map(type, nodes))   # their classes (`kinds`): the passes' gates
         in_loops: set[int] = set()      # every node of a loop (a walk meets the loop first)
         used, count, Name = self.used, self.count, ast.Name
-        for node in nodes:
-            cls = type(node)        # (the node classes have no subclasses)
+        for node in compress(nodes, map(_READ_BY_USAGE.__contains__, map(type, nodes))):
+            cls = type(node)        # (the node classes have no subclasses: picked in C by class)
             if cls is Name:
                 key = node.name.upper()
                 used.add(key)
                 count[key] = count.get(key, 0) + (10 if in_loops and id(node) in in_loops else 1)
-            elif cls in _USAGE_NODES:
+            else:                   # (one of _USAGE_NODES)
                 if cls is ast.Assign:
                     self._store(node.target)
                     continue

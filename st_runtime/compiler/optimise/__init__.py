@@ -169,6 +169,7 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass, fields
+from itertools import compress
 
 from ... import ast
 from ...types import ElementaryType
@@ -229,9 +230,9 @@ def may_reuse(compiler) -> bool:
         return True
     if ast.Binary not in kinds and ast.Call not in kinds:
         return False
-    targets = compiler.program.call_targets
-    for node in usage.nodes:
-        cls = type(node)
+    targets, nodes = compiler.program.call_targets, usage.nodes
+    for node in compress(nodes, map(_MAY_REUSE.__contains__, map(type, nodes))):
+        cls = type(node)        # (a Binary or a Call, picked in C by class)
         if cls is ast.Binary:
             if node.op in _REUSED_OPERATORS:
                 t = compiler.ty(node)
@@ -244,6 +245,7 @@ def may_reuse(compiler) -> bool:
     return False
 
 
+_MAY_REUSE = frozenset({ast.Binary, ast.Call})      # (the node classes have no subclasses)
 _REUSED_OPERATORS = frozenset(("+", "-", "*"))
 _REUSED_FUNCTIONS = frozenset(("SIN", "COS", "TAN", "SQRT"))
 

@@ -27,9 +27,10 @@ from __future__ import annotations
 
 import re
 from collections import Counter
+from itertools import compress
 
 from ... import ast
-from ..scope import _nodes, root_name, walk
+from ..scope import _nodes, listed, root_name
 from . import branches
 
 _ALIAS_LINE = re.compile(r"(v_\w+) = (?:self|_G)\.(v_\w+)")
@@ -162,6 +163,10 @@ def late_loads(compiler, body) -> dict[int, list[str]]:
     return loads
 
 
+_NAME = frozenset({ast.Name})      # (the node classes have no subclasses)
+_RECORDED = frozenset({ast.Name, ast.Assign, ast.For, ast.Arg})     # what `_record` notes
+
+
 class Occurrences:
     """Where the names of a body occur: `paths[key]` has the path (ids of the IF branch and
     CASE clause bodies around it, outermost first) of each occurrence of the name, and
@@ -175,7 +180,9 @@ class Occurrences:
         self.paths: dict = {}
         self.bodies: dict[int, tuple] = {}
         self.parents: dict[int, int] = {}
-        self.counts = Counter(node.name.upper() for node in walk(body) if isinstance(node, ast.Name))
+        nodes = listed(body)
+        names = compress(nodes, map(_NAME.__contains__, map(type, nodes)))     # (picked in C by class)
+        self.counts = Counter(node.name.upper() for node in names)
         _visit(body, (), self)
 
 
@@ -246,15 +253,17 @@ def _enter(stmt, body, path: tuple, seen: Occurrences) -> None:
 
 
 def _record(node, path: tuple, paths: dict) -> None:
-    for n in _nodes(node):
-        if isinstance(n, ast.Name):
+    nodes = _nodes(node)
+    for n in compress(nodes, map(_RECORDED.__contains__, map(type, nodes))):     # (picked in C by class)
+        cls = type(n)
+        if cls is ast.Name:
             name = n.name.upper()
-        elif isinstance(n, ast.Assign):
+        elif cls is ast.Assign:
             name = root_name(n.target)
             name = name and ("=", name)
-        elif isinstance(n, ast.For):
+        elif cls is ast.For:
             name = "=", n.variable.upper()
-        elif isinstance(n, ast.Arg) and n.direction == "out":
+        elif n.direction == "out":      # (an Arg)
             name = root_name(n.value)
             name = name and ("=", name)
         else:

@@ -33,10 +33,11 @@ from __future__ import annotations
 
 import keyword
 import re
+from itertools import compress
 
 from ... import ast
 from ...types import FBType, InterfaceType, RefType, StructType, resolve_alias
-from ..scope import once, walk
+from ..scope import listed as nodes_under, once
 from . import kept, remembered, reuse
 
 # Characters an expression that cannot fault is made of: no quote, `/`, `%`, `:`, `@`.
@@ -114,11 +115,16 @@ def expr_cannot_fault(compiler, node, code: str) -> bool:
 def _read_nodes(compiler, node) -> tuple:
     """The Deref, Name and Member nodes under `node` in walk order, found once a node (an
     unrolled loop's copies compile the same expressions again)."""
-    return once(compiler.__dict__.setdefault("_read_nodes", {}), node,
-                lambda: tuple(n for n in walk(node) if isinstance(n, _READ_NODES)))
+    return once(compiler.__dict__.setdefault("_read_nodes", {}), node, lambda: _read_nodes_of(nodes_under(node)))
 
 
-_READ_NODES = (ast.Deref, ast.Name, ast.Member)
+def _read_nodes_of(nodes) -> tuple:
+    """Those of `nodes` that are a Deref, a Name or a Member, picked in C (a node's class
+    is its kind: the node classes have no subclasses)."""
+    return tuple(compress(nodes, map(_READ_NODES.__contains__, map(type, nodes))))
+
+
+_READ_NODES = frozenset({ast.Deref, ast.Name, ast.Member})
 
 
 def listed(compiler, name) -> bool:

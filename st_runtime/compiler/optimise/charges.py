@@ -396,7 +396,7 @@ def settled(text: list[str]) -> list[str]:
     first charge, TRJ_OceanWave's ELSE of its enable edge.)"""
     out = list(text)
     try:
-        _Settle(out).block(1 if out and out[0].startswith("def ") else 0, None)
+        _Settle(out).block(1 if out and out[0].startswith("def ") else 0, None, ended=False)
     except _Unread:
         return text             # (a line of a shape the walk does not know: nothing changed)
     return out
@@ -412,25 +412,26 @@ _COMPOUND = re.compile(r" *(if|elif|else|try|except|finally|for|while|with|def)\
 
 class _Settle:
     """`settled`'s walk: each block's lines in turn, with the value `_spent` holds (None:
-    not known), replacing the charges it can; once nothing is known a block's rest is
-    passed over (nothing in it could be replaced)."""
+    not known), replacing the charges it can.  Once nothing is known, what comes next that
+    may be replaced is after a `_spent = 0` of the same block: the walk goes there at once,
+    or to the block's end, or (a block whose end no one reads: the outermost, a `try`'s
+    body) stops.  Each line's indentation is read once; a statement's end only when asked."""
 
     def __init__(self, text: list[str]):
         self.text = text
-        self.shape = _Shape(text)
-        self.sets_before = list(itertools.accumulate(
-            (1 if "_spent" in line and _SETS.match(line) else 0 for line in text), initial=0))
+        self.indent = _indents(text)
 
-    def block(self, n: int, value: int | None) -> tuple[int, int | None]:
+    def block(self, n: int, value: int | None, ended: bool = True) -> tuple[int, int | None]:
         """Read the block whose first line is `n` (its indentation: that line's); the line
-        after it and the value `_spent` holds at its end."""
-        text, indents, after = self.text, self.shape.indent, self.shape.after
+        after it and the value `_spent` holds at its end.  `ended=False`: the caller reads
+        neither, and the walk stops where nothing more can be replaced."""
+        text, indents = self.text, self.indent
         indent = indents[n] if n < len(text) else 0
         while n < len(text) and indents[n] >= indent:
             if indents[n] > indent:
                 raise _Unread(text[n])
             if value is None and text[n] != " " * indent + "_spent = 0":
-                n = after[n]            # (nothing known, nothing to replace: the next statement)
+                n = self._known_again(n, indent, ended)
                 continue
             head = _COMPOUND.fullmatch(text[n])
             if head is None:
@@ -441,15 +442,46 @@ class _Settle:
             elif head.group(1) == "try":
                 n, value = self._try(n, indent, value)
             else:                       # a loop, `with`, `def`: not followed into
-                end = after[n]
+                end = self._after(n)
                 if self._sets(n, end):
                     value = None
                 n = end
         return n, value
 
+    def _known_again(self, n: int, indent: int, ended: bool) -> int:
+        """Where the walk of a block goes on from its statement on line `n` when nothing is
+        known: its next `_spent = 0` of the block's indentation (no line between less
+        indented), else the block's end (`ended`) or past the text's end (not `ended`).
+        (Hopping from statement to statement there replaces nothing.)"""
+        text, indents = self.text, self.indent
+        try:
+            zero = text.index(" " * indent + "_spent = 0", n + 1)
+        except ValueError:
+            zero = None
+        if zero is not None and min(indents[n:zero]) >= indent:
+            return zero
+        if not ended and zero is None:
+            return len(text)
+        end = n + 1
+        while end < len(text) and indents[end] >= indent:
+            end += 1
+        return end
+
+    def _after(self, n: int) -> int:
+        """The first line after line `n` that is not more indented: where its statement
+        or clause ends."""
+        indents = self.indent
+        indent, end = indents[n], n + 1
+        while end < len(indents) and indents[end] > indent:
+            end += 1
+        return end
+
     def _sets(self, first: int, end: int) -> bool:
         """Whether a line from `first` to `end - 1` sets `_spent`."""
-        return self.sets_before[end] > self.sets_before[first]
+        for line in itertools.islice(self.text, first, end):
+            if "_spent" in line and _SETS.match(line):
+                return True
+        return False
 
     def _simple(self, n: int, value: int | None) -> int | None:
         line = self.text[n]
@@ -470,7 +502,7 @@ class _Settle:
         while True:
             n, end = self.block(n + 1, value)
             ends.append(end)
-            if n < len(text) and self.shape.indent[n] == indent and text[n].lstrip().startswith(("elif ", "else:")):
+            if n < len(text) and self.indent[n] == indent and text[n].lstrip().startswith(("elif ", "else:")):
                 has_else = text[n].strip() == "else:"
                 continue
             break
@@ -481,11 +513,13 @@ class _Settle:
     def _try(self, n: int, indent: int, value: int | None) -> tuple[int, int | None]:
         """A `try` statement: its body read with `value`, its handlers with none; `value`
         after it when nothing in it sets `_spent`."""
-        after, end = self.shape.after, self.shape.after[n]
-        while end < len(self.text) and self.shape.indent[end] == indent \
+        end, _ = self.block(n + 1, value)       # (where its body ends: its first handler)
+        body = self.indent[n + 1] if n + 1 < len(self.text) else 0
+        if not body > indent >= (self.indent[end] if end < len(self.text) else 0):
+            end = self._after(n)        # (a body not more indented than its `try`: no Python)
+        while end < len(self.text) and self.indent[end] == indent \
                 and self.text[end].lstrip().startswith(("except", "else:", "finally:")):
-            end = after[end]
-        self.block(n + 1, value)
+            end = self._after(end)
         return end, None if self._sets(n, end) else value
 
 
@@ -493,36 +527,36 @@ def _indentation(line: str) -> int:
     return len(line) - len(line.lstrip(" "))
 
 
+def _indents(text: list[str]) -> list[int]:
+    """Each line's indentation, `_indentation` written out (no call a line: the walks read
+    every line's); an empty line's is 1 << 20, more than any line's."""
+    return [len(line) - len(line.lstrip(" ")) if line else 1 << 20 for line in text]
+
+
 class _Shape:
-    """The block structure of the code's lines, worked out once: each line's indentation,
-    the first later line not more indented (`after`: where a clause or statement ends) and
-    the last earlier one (`before`), so that a walk hops over a nested block at once."""
+    """The block structure of the code's lines: each line's indentation, read once, and,
+    found when asked, the first later line not more indented (`after`: where a clause or
+    statement ends) and the last earlier one (`before`), so that a walk hops over a nested
+    block at once."""
 
     def __init__(self, text: list[str]):
-        self.indent = [_indentation(line) if line else 1 << 20 for line in text]
-        self._after: list[int] | None = None
-        self._before: list[int] | None = None
+        self.indent = _indents(text)
+        self.after = _Nearest(self.indent, 1)
+        self.before = _Nearest(self.indent, -1)
 
-    @property
-    def after(self) -> list[int]:
-        if self._after is None:
-            self._after = self._nearest(range(len(self.indent)))
-        return self._after
 
-    @property
-    def before(self) -> list[int]:
-        if self._before is None:
-            self._before = self._nearest(range(len(self.indent) - 1, -1, -1), -1)
-        return self._before
+class _Nearest:
+    """`nearest[n]`: the first line from line `n` in one direction (`step` 1: later, -1:
+    earlier) that is not more indented than `n`; past the last line (the count of lines, or
+    -1) when there is none.  A scan over the lines between, which a walk asks of a few
+    lines only (a table of every line cost more than the walks that read it)."""
 
-    def _nearest(self, order: range, missing: int | None = None) -> list[int]:
-        """For each line, the first line in `order` after it that is not more indented."""
-        indent = self.indent
-        found = [len(indent) if missing is None else missing] * len(indent)
-        pending: list[int] = []
-        for n in order:
-            depth = indent[n]
-            while pending and indent[pending[-1]] >= depth:
-                found[pending.pop()] = n
-            pending.append(n)
-        return found
+    def __init__(self, indent: list[int], step: int):
+        self.indent, self.step = indent, step
+
+    def __getitem__(self, n: int) -> int:
+        indent, step = self.indent, self.step
+        depth, m = indent[n], n + step
+        while 0 <= m < len(indent) and indent[m] > depth:
+            m += step
+        return m
