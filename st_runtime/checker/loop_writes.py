@@ -1,22 +1,27 @@
-"""A global FOR control variable written by a POU called inside its loop.
+"""A FOR control variable written by a POU called inside its loop: W-ASSIGN-001.
 
 IEC 61131-3 3rd ed. 7.3.3.4.2: the control variable "shall not be altered by any
 of the repeated statements".  A statement of the loop that writes it is refused
-where it stands (stores.py, E-ASSIGN-003).  When the control variable is a global
-(a VAR_GLOBAL, named through VAR_EXTERNAL or, where the dialect allows, directly),
-a FUNCTION or FB instance called in the loop alters it as well if its body writes
-that global, itself or through the FUNCTIONs and FBs it calls: this pass follows
-the recursion check's call graph (`Context.calls`) from each such call.
+where it stands (stores.py, E-ASSIGN-003).  A write made by a callee is not in
+the loop's text, and no compiler we found refuses it (CODESYS compiles even the
+direct write; its static analysis, SA0072, looks at the loop's own statements).
+Such a program runs: the loop tests the variable as the callee left it, which the
+compiler keeps and tests/test_compiler_tables_core.py pins.  So the checker warns,
+at the call, naming the chain of calls.
 
-The same holds inside a FUNCTION_BLOCK for a FOR over one of its own variables: a
-METHOD called on this instance (`M()`, `THIS.M()`, `SUPER.M()`) alters it when its
-body writes that variable, itself or through the methods it calls on this instance.
-The method called is the one the name resolves to here; an override in an FB that
-extends this one is not looked at.
+When the control variable is a global (a VAR_GLOBAL, named through VAR_EXTERNAL
+or, where the dialect allows, directly), a FUNCTION or FB instance called in the
+loop alters it if its body writes that global, itself or through the FUNCTIONs
+and FBs it calls: the pass follows the recursion check's call graph
+(`Context.calls`) from each such call.  Inside a FUNCTION_BLOCK, for a FOR over
+one of its own variables, a METHOD called on this instance (`M()`, `THIS.M()`,
+`SUPER.M()`) alters it when its body writes that variable, itself or through the
+methods it calls on this instance; the method is the one the name resolves to
+here (an override in an FB extending this one is not looked at).
 
-Not followed (they need alias analysis, and stay accepted): methods called on
-another instance, and writes through a reference, a pointer or a VAR_IN_OUT bound
-to the variable somewhere else.
+Not followed (they need alias analysis): methods called on another instance, and
+writes through a reference, a pointer or a VAR_IN_OUT bound to the variable
+somewhere else.
 """
 
 from __future__ import annotations
@@ -74,7 +79,7 @@ def _on_this(callee) -> bool:
 
 
 def check_calls_in_loops(ctx: Context) -> None:
-    """E-ASSIGN-003 at each call, made in a FOR over a global or over a variable of the FB,
+    """W-ASSIGN-001 at each call, made in a FOR over a global or over a variable of the FB,
     of a POU or METHOD that writes it."""
     pou_names = {k: info.name for k, info in ctx.program.pous.items()} if ctx.loop_calls else {}
     for callee, pos, loops in ctx.loop_calls:
@@ -100,8 +105,8 @@ def check_calls_in_loops(ctx: Context) -> None:
 def _refuse(ctx: Context, what: str, names: list[str], pos) -> None:
     chain = f"{names[0]} writes it" if len(names) == 1 else \
         f"{names[0]} calls " + ", which calls ".join(names[1:]) + ", which writes it"
-    ctx.error("E-ASSIGN-003", f"call of {what}, the control variable of an enclosing FOR loop "
-              f"({chain})", pos)
+    ctx.warning("W-ASSIGN-001", f"call of {what}, the control variable of an enclosing FOR loop "
+                f"({chain}): IEC 61131-3 forbids it; the loop goes on from the value left", pos)
 
 
 def _path_to_writer(start: str, writes, callees) -> list[str]:
