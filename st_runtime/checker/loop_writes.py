@@ -87,7 +87,7 @@ def check_calls_in_loops(ctx: Context) -> None:
             path = _path_to_writer(callee, lambda pou: global_key in ctx.global_writes.get(pou, ()),
                                    lambda pou: (edge[0] for edge in ctx.calls.get(pou, ())))
             if path:
-                _refuse(ctx, f"{pou_names[callee]} alters global '{name}'",
+                _warn(ctx, f"{pou_names[callee]} alters global '{name}'",
                         [pou_names[pou] for pou in path], pos)
                 break
     method_names = {k: name for calls in ctx.this_calls.values() for k, name in calls}
@@ -97,12 +97,12 @@ def check_calls_in_loops(ctx: Context) -> None:
             path = _path_to_writer(callee, lambda m: sym_id in ctx.member_writes.get(m, ()),
                                    lambda m: (k for k, _ in ctx.this_calls.get(m, ())))
             if path:
-                _refuse(ctx, f"method {callee_name} alters '{name}'",
+                _warn(ctx, f"method {callee_name} alters '{name}'",
                         [method_names[m] for m in path], pos)
                 break
 
 
-def _refuse(ctx: Context, what: str, names: list[str], pos) -> None:
+def _warn(ctx: Context, what: str, names: list[str], pos) -> None:
     chain = f"{names[0]} writes it" if len(names) == 1 else \
         f"{names[0]} calls " + ", which calls ".join(names[1:]) + ", which writes it"
     ctx.warning("W-ASSIGN-001", f"call of {what}, the control variable of an enclosing FOR loop "
