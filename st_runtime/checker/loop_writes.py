@@ -30,15 +30,20 @@ from .. import ast
 from ..ast import key
 from .context import Context
 
-#: Symbol kinds that name a global variable (callers test it before `note_global_write`).
+#: Symbol kinds that name a global variable.
 GLOBAL_KINDS = frozenset({"VAR_GLOBAL", "VAR_EXTERNAL"})
 
 
-def note_global_write(ctx: Context, scope, sym) -> None:
-    """Record that the POU being checked writes the global `sym`."""
-    pou = scope.pou_key
-    if pou is not None:
-        ctx.global_writes.setdefault(pou, set()).add(key(sym.name))
+def note_write(ctx: Context, scope, sym) -> None:
+    """Record that the POU being checked writes `sym` (a store, or a FOR over it), when `sym`
+    is a global, or a variable of the FB whose METHOD is being checked."""
+    if sym.kind in GLOBAL_KINDS:
+        pou = scope.pou_key
+        if pou is not None:
+            ctx.global_writes.setdefault(pou, set()).add(key(sym.name))
+    elif scope.fb is not None and scope.pou.kind == "METHOD" \
+            and scope.fb.variables.get(key(sym.name)) is sym:
+        ctx.member_writes.setdefault(method_key(scope.pou), set()).add(id(sym))
 
 
 def note_loop_call(ex, callee: str, pos) -> None:
@@ -51,12 +56,6 @@ def note_loop_call(ex, callee: str, pos) -> None:
 def method_key(method) -> str:
     """'FB.M': a METHOD in the tables below (methods are outside the recursion check's graph)."""
     return f"{key(method.owner.name)}.{key(method.name)}"
-
-
-def note_member_write(ctx: Context, scope, sym) -> None:
-    """Record that the METHOD being checked writes `sym`, when `sym` is a variable of its FB."""
-    if scope.fb.variables.get(key(sym.name)) is sym:
-        ctx.member_writes.setdefault(method_key(scope.pou), set()).add(id(sym))
 
 
 def note_this_call(ex, method, callee, how: str, pos) -> None:

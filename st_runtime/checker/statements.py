@@ -10,7 +10,7 @@ from ..ast import key
 from . import typesys as ts
 from .constfold import NOT_CONSTANT
 from .expressions import ExprChecker, start_pos
-from .loop_writes import GLOBAL_KINDS, note_global_write, note_member_write
+from .loop_writes import note_write
 from .stores import check_store, controls_a_loop
 
 
@@ -126,10 +126,7 @@ class StatementChecker:
             self.ctx.error("E-TYPE-010", "FOR ... BY 0: the step must not be zero", start_pos(s.step))
         pushed = sym is not None and var_t is not ts.ERROR
         if pushed:
-            if sym.kind in GLOBAL_KINDS:
-                note_global_write(self.ctx, self.ex.scope, sym)
-            elif self.ex.scope.fb is not None and self.ex.scope.pou.kind == "METHOD":
-                note_member_write(self.ctx, self.ex.scope, sym)
+            note_write(self.ctx, self.ex.scope, sym)
             self.ex.loop_vars.append(sym)
         self.loop_depth += 1
         try:

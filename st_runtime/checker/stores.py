@@ -7,7 +7,7 @@ from .. import ast
 from .. import types as T
 from ..dialects import accepting
 from . import typesys as ts
-from .loop_writes import GLOBAL_KINDS, note_global_write, note_member_write
+from .loop_writes import note_write
 
 
 def root_name(e) -> ast.Name | None:
@@ -80,10 +80,7 @@ def check_store(ex, target, what: str = "assignment"):
         ex.ctx.error("E-ASSIGN-003", f"{what}: '{sym.name}' is the control variable of an "
                      f"enclosing FOR loop", target.pos)
         return ts.ERROR
-    if sym.kind in GLOBAL_KINDS:
-        note_global_write(ex.ctx, ex.scope, sym)
-    elif ex.scope.fb is not None and ex.scope.pou.kind == "METHOD":
-        note_member_write(ex.ctx, ex.scope, sym)
+    note_write(ex.ctx, ex.scope, sym)
     member = None if ex.ctx.open_instances else _fb_member(ex, target)
     if member is not None:
         fb, var = member
