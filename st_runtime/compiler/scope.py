@@ -65,6 +65,12 @@ def listed(node):
     return _nodes(node)
 
 
+def of_classes(nodes, classes: frozenset):
+    """Those of `nodes` whose class is one of `classes`, in order, picked in C (a node's
+    class is its kind: the node classes have no subclasses)."""
+    return compress(nodes, map(classes.__contains__, map(type, nodes)))
+
+
 def kinds(node) -> set:
     """The node classes under `node` (its walk's, counted in C): what a pass looks for
     is absent from a body when its class is not there."""
@@ -161,8 +167,8 @@ class Usage:
         self.kinds = set(map(type, nodes))   # their classes (`kinds`): the passes' gates
         in_loops: set[int] = set()      # every node of a loop (a walk meets the loop first)
         used, count, Name = self.used, self.count, ast.Name
-        for node in compress(nodes, map(_READ_BY_USAGE.__contains__, map(type, nodes))):
-            cls = type(node)        # (the node classes have no subclasses: picked in C by class)
+        for node in of_classes(nodes, _READ_BY_USAGE):
+            cls = type(node)
             if cls is Name:
                 key = node.name.upper()
                 used.add(key)

@@ -169,7 +169,6 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass, fields
-from itertools import compress
 
 from ... import ast
 from ...types import ElementaryType
@@ -230,9 +229,11 @@ def may_reuse(compiler) -> bool:
         return True
     if ast.Binary not in kinds and ast.Call not in kinds:
         return False
-    targets, nodes = compiler.program.call_targets, usage.nodes
-    for node in compress(nodes, map(_MAY_REUSE.__contains__, map(type, nodes))):
-        cls = type(node)        # (a Binary or a Call, picked in C by class)
+    from ..scope import of_classes      # (scope imports exprs, which imports this package)
+
+    targets = compiler.program.call_targets
+    for node in of_classes(usage.nodes, _MAY_REUSE):
+        cls = type(node)        # (a Binary or a Call)
         if cls is ast.Binary:
             if node.op in _REUSED_OPERATORS:
                 t = compiler.ty(node)
@@ -245,7 +246,7 @@ def may_reuse(compiler) -> bool:
     return False
 
 
-_MAY_REUSE = frozenset({ast.Binary, ast.Call})      # (the node classes have no subclasses)
+_MAY_REUSE = frozenset({ast.Binary, ast.Call})
 _REUSED_OPERATORS = frozenset(("+", "-", "*"))
 _REUSED_FUNCTIONS = frozenset(("SIN", "COS", "TAN", "SQRT"))
 

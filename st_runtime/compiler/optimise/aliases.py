@@ -27,10 +27,9 @@ from __future__ import annotations
 
 import re
 from collections import Counter
-from itertools import compress
 
 from ... import ast
-from ..scope import _nodes, listed, root_name
+from ..scope import _nodes, listed, of_classes, root_name
 from . import branches
 
 _ALIAS_LINE = re.compile(r"(v_\w+) = (?:self|_G)\.(v_\w+)")
@@ -163,7 +162,7 @@ def late_loads(compiler, body) -> dict[int, list[str]]:
     return loads
 
 
-_NAME = frozenset({ast.Name})      # (the node classes have no subclasses)
+_NAME = frozenset({ast.Name})
 _RECORDED = frozenset({ast.Name, ast.Assign, ast.For, ast.Arg})     # what `_record` notes
 
 
@@ -180,9 +179,7 @@ class Occurrences:
         self.paths: dict = {}
         self.bodies: dict[int, tuple] = {}
         self.parents: dict[int, int] = {}
-        nodes = listed(body)
-        names = compress(nodes, map(_NAME.__contains__, map(type, nodes)))     # (picked in C by class)
-        self.counts = Counter(node.name.upper() for node in names)
+        self.counts = Counter(node.name.upper() for node in of_classes(listed(body), _NAME))
         _visit(body, (), self)
 
 
@@ -253,8 +250,7 @@ def _enter(stmt, body, path: tuple, seen: Occurrences) -> None:
 
 
 def _record(node, path: tuple, paths: dict) -> None:
-    nodes = _nodes(node)
-    for n in compress(nodes, map(_RECORDED.__contains__, map(type, nodes))):     # (picked in C by class)
+    for n in of_classes(_nodes(node), _RECORDED):
         cls = type(n)
         if cls is ast.Name:
             name = n.name.upper()

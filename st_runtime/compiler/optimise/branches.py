@@ -33,11 +33,10 @@ from __future__ import annotations
 
 import keyword
 import re
-from itertools import compress
 
 from ... import ast
 from ...types import FBType, InterfaceType, RefType, StructType, resolve_alias
-from ..scope import listed as nodes_under, once
+from ..scope import listed as nodes_under, of_classes, once
 from . import kept, remembered, reuse
 
 # Characters an expression that cannot fault is made of: no quote, `/`, `%`, `:`, `@`.
@@ -115,13 +114,8 @@ def expr_cannot_fault(compiler, node, code: str) -> bool:
 def _read_nodes(compiler, node) -> tuple:
     """The Deref, Name and Member nodes under `node` in walk order, found once a node (an
     unrolled loop's copies compile the same expressions again)."""
-    return once(compiler.__dict__.setdefault("_read_nodes", {}), node, lambda: _read_nodes_of(nodes_under(node)))
-
-
-def _read_nodes_of(nodes) -> tuple:
-    """Those of `nodes` that are a Deref, a Name or a Member, picked in C (a node's class
-    is its kind: the node classes have no subclasses)."""
-    return tuple(compress(nodes, map(_READ_NODES.__contains__, map(type, nodes))))
+    return once(compiler.__dict__.setdefault("_read_nodes", {}), node,
+                lambda: tuple(of_classes(nodes_under(node), _READ_NODES)))
 
 
 _READ_NODES = frozenset({ast.Deref, ast.Name, ast.Member})

@@ -35,11 +35,9 @@ where it can never fail, which is what the compiler did already for FOR variable
 
 from __future__ import annotations
 
-from itertools import compress
-
 from ... import ast
 from ..exprs import int_bounds
-from ..scope import listed, root_name, walk
+from ..scope import listed, of_classes, root_name, walk
 
 _LVALUES = (ast.Name, ast.Member, ast.Index, ast.Deref, ast.BitAccess)
 _EXCLUDING = frozenset({ast.For, ast.Assign, ast.Arg})      # the nodes that may exclude a variable
@@ -58,9 +56,8 @@ class Flow:
             return          # (nothing to follow: no walk for what no one else may write)
         excluded: set[str] = set(compiler.scope.usage.referenced)
         For, Assign, Arg = ast.For, ast.Assign, ast.Arg
-        nodes = listed(body)
-        for node in compress(nodes, map(_EXCLUDING.__contains__, map(type, nodes))):
-            cls = type(node)        # (the node classes have no subclasses: picked in C by class)
+        for node in of_classes(listed(body), _EXCLUDING):
+            cls = type(node)
             if cls is For:
                 excluded.add(node.variable.upper())
             elif cls is Assign and (not isinstance(node.target, ast.Name) or node.mode != ":="):
