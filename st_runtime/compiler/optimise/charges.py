@@ -420,6 +420,7 @@ class _Settle:
     def __init__(self, text: list[str]):
         self.text = text
         self.indent = _indents(text)
+        self.after = _Nearest(self.indent, 1)     # (where a statement or clause ends)
 
     def block(self, n: int, value: int | None, ended: bool = True) -> tuple[int, int | None]:
         """Read the block whose first line is `n` (its indentation: that line's); the line
@@ -442,7 +443,7 @@ class _Settle:
             elif head.group(1) == "try":
                 n, value = self._try(n, indent, value)
             else:                       # a loop, `with`, `def`: not followed into
-                end = self._after(n)
+                end = self.after[n]
                 if self._sets(n, end):
                     value = None
                 n = end
@@ -464,15 +465,6 @@ class _Settle:
             return len(text)
         end = n + 1
         while end < len(text) and indents[end] >= indent:
-            end += 1
-        return end
-
-    def _after(self, n: int) -> int:
-        """The first line after line `n` that is not more indented: where its statement
-        or clause ends."""
-        indents = self.indent
-        indent, end = indents[n], n + 1
-        while end < len(indents) and indents[end] > indent:
             end += 1
         return end
 
@@ -516,10 +508,10 @@ class _Settle:
         end, _ = self.block(n + 1, value)       # (where its body ends: its first handler)
         body = self.indent[n + 1] if n + 1 < len(self.text) else 0
         if not body > indent >= (self.indent[end] if end < len(self.text) else 0):
-            end = self._after(n)        # (a body not more indented than its `try`: no Python)
+            end = self.after[n]        # (a body not more indented than its `try`: no Python)
         while end < len(self.text) and self.indent[end] == indent \
                 and self.text[end].lstrip().startswith(("except", "else:", "finally:")):
-            end = self._after(end)
+            end = self.after[end]
         return end, None if self._sets(n, end) else value
 
 
