@@ -157,3 +157,43 @@ def test_a_method_called_on_another_instance_is_not_followed():
         "FUNCTION_BLOCK Counter EXTENDS Base\n", "FUNCTION_BLOCK Counter EXTENDS Base\nVAR other : Counter2; END_VAR\n")
     text += "FUNCTION_BLOCK Counter2\nVAR i : INT; END_VAR\nMETHOD Bump\ni := i + 1;\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
     assert diagnostics(text, "iec") == []
+
+
+def test_a_method_called_through_an_in_out_of_this_fbs_type_is_not_followed():
+    """`peer.Bump()` with `peer` a VAR_IN_OUT of this FB's own type writes peer's `i`, not the
+    loop's (unless peer is bound to this instance, which the checker does not analyse)."""
+    text = COUNTER.format(var="i", call="peer.Bump();").replace(
+        "FUNCTION_BLOCK Counter EXTENDS Base\n", "FUNCTION_BLOCK Counter EXTENDS Base\nVAR_IN_OUT peer : Counter; END_VAR\n")
+    assert diagnostics(text, "iec") == []
+
+
+def test_a_method_called_on_an_array_element_is_not_followed():
+    text = COUNTER.format(var="i", call="others[1].Bump();").replace(
+        "FUNCTION_BLOCK Counter EXTENDS Base\n",
+        "FUNCTION_BLOCK Counter EXTENDS Base\nVAR others : ARRAY[1..2] OF Counter2; END_VAR\n")
+    text += "FUNCTION_BLOCK Counter2\nVAR i : INT; END_VAR\nMETHOD Bump\ni := i + 1;\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
+    assert diagnostics(text, "codesys") == []
+
+
+def test_a_chain_of_three_calls_is_named_in_order():
+    # Bump (lines 5-10), Outer (11-16), Outer2 (17-22), T (23-26), Main from 27: the call on 31.
+    text = (GLOBALS + function("Bump", "g := g + 1;") + function("Outer", "Outer := Bump();", externals="")
+            + function("Outer2", "Outer2 := Outer();", externals="") + FB_T
+            + main_program(LOOP.format("Outer2();")))
+    chain = "Outer2 calls Outer, which calls Bump, which writes it"
+    assert diagnostics(text, "iec") == [("W-ASSIGN-001", 31, 3, alters("Outer2", chain))]
+
+
+def test_each_call_in_the_loop_is_warned_of():
+    """Two calls that write the loop's global: a warning at each, in order."""
+    text = POUS + main_program(LOOP.format("Bump();\n  Outer();"))
+    assert diagnostics(text, "iec") == [
+        ("W-ASSIGN-001", MAIN_LINE + 4, 3, alters("Bump", "Bump writes it")),
+        ("W-ASSIGN-001", MAIN_LINE + 5, 3, alters("Outer", "Outer calls Bump, which writes it"))]
+
+
+def test_each_method_call_in_the_loop_is_warned_of():
+    text = COUNTER.format(var="i", call="Bump();\n  SUPER.Reset();")
+    assert diagnostics(text, "iec") == [
+        ("W-ASSIGN-001", CALL_LINE, 3, method_alters("Bump", "Bump writes it")),
+        ("W-ASSIGN-001", CALL_LINE + 1, 3, method_alters("Reset", "Reset writes it"))]

@@ -72,22 +72,23 @@ def note_this_call(ex, method, callee, how: str, pos) -> None:
 
 
 def _on_this(callee) -> bool:
-    """`THIS.M`: a virtual call on this instance."""
-    base = callee.base if isinstance(callee, ast.Member) else None
+    """`THIS.M`: a virtual call on this instance (`callee` is a Member: a "virtual" or
+    "interface" call names its instance)."""
+    base = callee.base
     return isinstance(base, ast.Name) and key(base.name) == "THIS"
 
 
 def check_calls_in_loops(ctx: Context) -> None:
     """W-ASSIGN-001 at each call, made in a FOR over a global or over a variable of the FB,
     of a POU or METHOD that writes it."""
-    pou_names = {k: info.name for k, info in ctx.program.pous.items()} if ctx.loop_calls else {}
+    pous = ctx.program.pous
     for callee, pos, loops in ctx.loop_calls:
         for global_key, name in loops.items():
             path = _path_to_writer(callee, lambda pou: global_key in ctx.global_writes.get(pou, ()),
                                    lambda pou: (edge[0] for edge in ctx.calls.get(pou, ())))
             if path:
-                _warn(ctx, f"{pou_names[callee]} alters global '{name}'",
-                        [pou_names[pou] for pou in path], pos)
+                names = [pous[pou].name for pou in path]
+                _warn(ctx, f"{names[0]} alters global '{name}'", names, pos)
                 break
     method_names = {k: name for calls in ctx.this_calls.values() for k, name in calls}
     for callee, callee_name, pos, loops in ctx.loop_method_calls:
@@ -96,8 +97,7 @@ def check_calls_in_loops(ctx: Context) -> None:
             path = _path_to_writer(callee, lambda m: sym_id in ctx.member_writes.get(m, ()),
                                    lambda m: (k for k, _ in ctx.this_calls.get(m, ())))
             if path:
-                _warn(ctx, f"method {callee_name} alters '{name}'",
-                        [method_names[m] for m in path], pos)
+                _warn(ctx, f"method {callee_name} alters '{name}'", [method_names[m] for m in path], pos)
                 break
 
 
