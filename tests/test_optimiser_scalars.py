@@ -102,8 +102,8 @@ END_PROGRAM
 """
 
 
-def _run(source: str, optimise: Optimisations, inputs: dict, stop: bool = False):
-    compiled = compile_program(load_text(source, "t.st").program, optimise=optimise)
+def _run(source: str, optimise: Optimisations, inputs: dict, stop: bool = False, dialect: str = "iec"):
+    compiled = compile_program(load_text(source, "t.st", dialect=dialect).program, optimise=optimise)
     plc = Plc(Controller(compiled, 1_000_000, None, stop))
     main = plc.add_program("Main")
     for name, value in inputs.items():
@@ -113,8 +113,8 @@ def _run(source: str, optimise: Optimisations, inputs: dict, stop: bool = False)
     return main["X"], main["R"], faults, list(plc.controller.task_times["Primary"])
 
 
-def _same(source: str, inputs: dict, stop: bool = False):
-    on, off = _run(source, ON, inputs, stop), _run(source, OFF, inputs, stop)
+def _same(source: str, inputs: dict, stop: bool = False, dialect: str = "iec"):
+    on, off = _run(source, ON, inputs, stop, dialect), _run(source, OFF, inputs, stop, dialect)
     assert on == off
     return on
 
@@ -269,3 +269,72 @@ def test_a_loop_inside_a_try_is_not_followed():
              "v_X = v_A[0]"]
     with pytest.raises(scalars._Unknown):
         _rewrite(lines)
+
+
+# Session 19: rows for the survivors of a sample of the pass's mutants (docs/mutation.md).
+
+def _executed(lines: list[str], v_A: list, **names) -> dict:
+    """Run `lines` as Python with the list `v_A` (a copy) and `names`: every variable after."""
+    env = dict(names, v_A=list(v_A))
+    exec("\n".join(lines), {}, env)
+    return {k: v for k, v in env.items() if not k.startswith("v_A_e")}
+
+
+def test_a_list_of_one_element_is_unpacked_as_one():
+    """`v_A_e0, = v_A` (a one-element unpack), not `v_A_e0 = v_A` (the list itself)."""
+    lines = ["v_A[0] = (v_A[0] + 1.0)"] * 3 + ["v_X = v_A[0]"]
+    out = scalars._Rewrite("v_A", 1, ()).whole(lines)
+    assert out[0] == "v_A_e0, = v_A"
+    assert _executed(out, [2.0]) == _executed(lines, [2.0]) == {"v_A": [5.0], "v_X": 5.0}
+
+
+def test_a_read_after_a_store_at_a_data_index_in_a_branch_reads_the_list():
+    lines = ["v_A[0] = 1.0", "if (v_P != 1):", "    v_A[v_P - 1] = 3.0", "    v_X = v_A[1]",
+             "v_Y = v_A[0]"]
+    out = _rewrite(lines)
+    assert "    v_X = v_A[1]" in out
+    for p, x in ((2, 3.0), (1, 0.0)):
+        # by hand: P = 2 stores 3.0 into A[1], which X reads; P = 1 leaves X as it was (0.0)
+        assert _executed(out, [0.0, 0.0], v_P=p, v_X=0.0) == _executed(lines, [0.0, 0.0], v_P=p, v_X=0.0)
+        assert _executed(out, [0.0, 0.0], v_P=p, v_X=0.0)["v_X"] == x
+
+
+def test_a_loop_keeps_its_text_with_the_elements_written_back_before_and_loaded_after():
+    lines = ["v_A[0] = 1.0", "for v_I in range(2):", "    v_X = v_A[v_I]", "v_A[1] = v_A[0]"]
+    assert _rewrite(lines) == [
+        "v_A_e0 = 1.0", "v_A[0] = v_A_e0",                   # written back before the loop
+        "for v_I in range(2):", "    v_X = v_A[v_I]",
+        "v_A_e0, v_A_e1 = v_A",                               # stale after it: loaded again
+        "v_A_e1 = v_A_e0", "v_A[1] = v_A_e1"]
+
+
+@pytest.mark.parametrize("p", [1, 2])
+def test_an_if_with_an_else_is_followed_clause_by_clause(p):
+    lines = ["v_A[0] = 1.0", "if (v_P != 1):", "    v_A[1] = 2.0", "else:", "    v_A[1] = 3.0",
+             "v_X = v_A[1]"]
+    out = _rewrite(lines)                   # (a chain cut at its `else:` is not followed)
+    assert out[0] == "v_A_e0 = 1.0" and "else:" in out
+    expected = {"v_A": [1.0, 3.0 if p == 1 else 2.0], "v_X": 3.0 if p == 1 else 2.0, "v_P": p}
+    assert _executed(out, [0.0, 0.0], v_P=p) == _executed(lines, [0.0, 0.0], v_P=p) == expected
+
+
+@pytest.mark.parametrize("accesses, kept_in_locals", [(scalars.MIN_ACCESSES, True),
+                                                      (scalars.MIN_ACCESSES - 1, False)])
+def test_a_list_needs_min_accesses_literal_accesses(accesses, kept_in_locals):
+    lines = ["v_A[0] = 1.0"] * accesses
+    scalars.replace(lines, 0, {"v_A": (2, ())})
+    assert (lines[0] == "v_A_e0 = 1.0") is kept_in_locals
+
+
+def test_a_body_that_dereferences_a_pointer_keeps_its_lists():
+    """A pointer may reach the in-out (`P := ADR(A)`): a store through it must be seen by
+    the next read of A, so no element is kept in a local (CODESYS: POINTER TO)."""
+    source = MIX.replace("VAR K, J : INT;", "VAR P : POINTER TO ARRAY[1..4] OF LREAL; K, J : INT;").replace(
+        "N := N / Den;", "N := N / Den; P := ADR(A); P^[1] := 100.0;")
+    program = load_text(source, "t.st", dialect="codesys").program
+    fast = compile_program(program, optimise=ON).python_sources["MIX"]
+    assert "_type(v_A) is _list" in fast and "v_A_e0" not in fast
+    # by hand: A = [15, 16, 17, 18] after line 13, A[1] := 100; T = A[2] = 16; A[2] := 200,
+    # then 400; A[4] := 34; then A[K] - A[K + 1]: [100 - 400, 400 - 17, 17 - 34, 34]
+    x, r, faults, _ = _same(source, {}, dialect="codesys")
+    assert (x, r, faults) == ([-300.0, 383.0, -17.0, 34.0], 12, [])
