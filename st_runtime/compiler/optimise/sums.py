@@ -133,9 +133,8 @@ class _Run:
         return len(lines) == 1 and self._passable(lines[0].strip())
 
     def _passable(self, line: str) -> bool:
-        match = _STORE.fullmatch(line)
-        if match is None or _ATTRIBUTE_OR_CALL.search(match.group(3)) or _DATA_INDEX.search(match.group(3)) \
-                or "**" in match.group(3):
+        match = quiet_store(line)
+        if match is None:
             return False
         target, index = match.group(1), match.group(2)
         if target == "_spent" or target in self.stored or not self._reads_nothing_stored(match.group(3)):
@@ -182,6 +181,20 @@ class _Run:
         for name in whole:
             total = f"_sum({name}, {total})"
         return total
+
+
+def quiet_store(line: str):
+    """The match (target, literal index or None, value) of `line` (stripped) when it is a store
+    that cannot raise: into a plain name or an element at a literal index, of `+ - *` of names,
+    numbers and elements at literal indices (no call, attribute, data index, division or
+    power); else None."""
+    match = _STORE.fullmatch(line)
+    if match is None:
+        return None
+    value = match.group(3)
+    if _ATTRIBUTE_OR_CALL.search(value) or _DATA_INDEX.search(value) or "**" in value:
+        return None
+    return match
 
 
 def _test(lines: list[str], n: int, end: int, lists) -> tuple[str, int, tuple[str, ...]] | None:
