@@ -56,8 +56,8 @@ _BEST, _CANDIDATE_ABS = "_best", "_cand"
 
 def keep(lines: list[str], start: int) -> None:
     """Keep the best `abs` of each pivot search in `lines[start:]` (a fast copy), in place."""
-    if "abs(" not in "".join(lines[start:]):
-        return
+    if ") > abs(" not in "\n".join(lines[start:]):
+        return                  # (no candidate test: the common case, one search of the text)
     out = lines[:start]
     n = start
     while n < len(lines):
