@@ -54,6 +54,8 @@ from .unguard import _ATTRIBUTE_OR_CALL
 MIN_TESTS = 4
 
 _BOUND = r"1\.7976931348623157e\+308"
+#: The end of a finite test's line: a line without it is no test.
+_MARK = " <= 1.7976931348623157e+308)):"
 #: A finite test of a list's element at a literal index (absolute.py's chained comparison).
 _TEST = re.compile(rf"if \(not \(-{_BOUND} <= ([A-Za-z_]\w*)\[(\d+)\] <= {_BOUND}\)\):")
 #: A line of a test's body: a charge, or a literal stored into a plain name.
@@ -90,26 +92,30 @@ def arrays(compiler) -> dict[str, tuple[int, bool, bool]]:
 
 def fold(lines: list[str], start: int, lists: dict[str, tuple[int, bool, bool]]) -> None:
     """Fold the runs of finite tests in `lines[start:]` (a fast copy), in place."""
-    if not any(info[1] for info in lists.values()) or \
-            " <= 1.7976931348623157e+308)):" not in "\n".join(lines[start:]):
+    if not any(info[1] for info in lists.values()) or _MARK not in "\n".join(lines[start:]):
         return
     out = lines[:start]
     run: _Run | None = None
     n = start
     while n < len(lines):
-        indent = _indent(lines[n])
+        line = lines[n]
+        if run is None and _MARK not in line:
+            out.append(line)                # (no run open and no test: the common line)
+            n += 1
+            continue
+        indent = _indent(line)
         end = _statement_end(lines, n, indent)
-        test = _test(lines, n, end, lists)
+        test = _test(lines, n, end, lists) if _MARK in line else None
         if run is not None and not (indent == run.indent and run.admits(test, lines[n:end])):
             run.close(out)
             run = None
         if test is None:
-            out.append(lines[n])
+            out.append(line)
             n += 1
             continue
         if run is None:
             run = _Run(indent, test[2], lists)
-        run.tests.append((len(out), lines[n:end], test[0], test[1]))     # (held, not in out)
+        run.add(len(out), lines[n:end], test[0], test[1])     # (held, not in out)
         n = end
     if run is not None:
         run.close(out)
@@ -123,8 +129,12 @@ class _Run:
         self.indent, self.body, self.lists = indent, body, lists
         #: (where it stood in the output without the tests, its lines, its list, its index)
         self.tests: list[tuple[int, list[str], str, int]] = []
-        self.stored = {_LITERAL_STORE.fullmatch(line).group(1) for line in body
-                       if _LITERAL_STORE.fullmatch(line)}
+        self.indices: dict[str, set[int]] = {}        # list -> the indices tested
+        self.stored = {match.group(1) for match in map(_LITERAL_STORE.fullmatch, body) if match}
+
+    def add(self, at: int, lines: list[str], name: str, k: int) -> None:
+        self.tests.append((at, lines, name, k))
+        self.indices.setdefault(name, set()).add(k)
 
     def admits(self, test, lines: list[str]) -> bool:
         """Whether the statement `lines` keeps the run open: a test with the run's body,
@@ -140,18 +150,18 @@ class _Run:
         target, index = match.group(1), match.group(2)
         if target == "_spent" or target in self.stored or not self._reads_nothing_stored(match.group(3)):
             return False
-        tested = {name for _, _, name, _ in self.tests}
         if index is None:
-            return target not in tested
-        return all(self._apart(target, int(index), name, k) for _, _, name, k in self.tests)
+            return target not in self.indices
+        return all(self._apart(target, int(index), name) for name in self.indices)
 
     def _reads_nothing_stored(self, value: str) -> bool:
         return all(name != "_spent" and name not in self.stored for name in _NAME.findall(value))
 
-    def _apart(self, target: str, index: int, name: str, k: int) -> bool:
-        """Whether a store into `target[index]` leaves element k of list `name` as it is."""
+    def _apart(self, target: str, index: int, name: str) -> bool:
+        """Whether a store into `target[index]` leaves the tested elements of list `name` as
+        they are."""
         if target == name:
-            return index != k
+            return index not in self.indices[name]
         mine, theirs = self.lists.get(target), self.lists.get(name)
         return mine is not None and theirs is not None and mine[2] and theirs[2]
 
