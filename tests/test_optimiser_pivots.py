@@ -154,7 +154,8 @@ def test_a_test_that_is_no_pivot_move_stays(lines):
     assert _keep(lines) == lines
 
 
-@pytest.mark.parametrize("between", ["v_X[0] = 1.0", "v_Y[0] = 1.0", "v_P = 1", "v_X = v_Y", "v_R = _f(v_Q)"])
+@pytest.mark.parametrize("between", ["v_X[0] = 1.0", "v_Y[0] = 1.0", "v_P = 1", "v_X = v_Y", "v_R = _f(v_Q)",
+                                     "v_X_e6 = 2.0"])
 def test_a_line_that_may_change_the_best_ends_the_chain(between):
     """After it the next test starts a chain of its own: the best element read again."""
     lines = [*_candidate("v_X[3]", 2), between, *_candidate("v_X[6]", 3), "if (-0.0 <= v_X[v_P * 3 - 3] <= 0.0):",

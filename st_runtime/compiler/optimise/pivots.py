@@ -116,11 +116,13 @@ def _chain(lines: list[str], n: int, first) -> tuple[int, list[str]] | None:
 
 def _passable(line: str, first) -> bool:
     """A store between the tests that changes neither the list, nor the pivot row, nor the
-    pass's names: into a plain name (an element store might reach the list through another
-    name), of a value that cannot raise."""
+    pass's names, nor a local `scalars` holds for an element of the list (a candidate read
+    after it would differ from the list): into a plain name (an element store might reach
+    the list through another name), of a value that cannot raise."""
     match = quiet_store(line)
     return match is not None and match.group(2) is None and \
-        match.group(1) not in (first.group(3), first.group(4), _BEST, _CANDIDATE_ABS)
+        match.group(1) not in (first.group(3), first.group(4), _BEST, _CANDIDATE_ABS) and \
+        _index(match.group(1), first.group(3)) is None          # (nor `scalars`' local of X)
 
 
 def _test(lines: list[str], n: int, match) -> tuple[int, list[str] | None]:
