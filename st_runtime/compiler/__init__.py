@@ -97,7 +97,7 @@ _NAMESPACE = {
     "_setattr": setattr, "_assign_list": assign_list, "_FAULTS": _FAULTS,
     "_INF": math.inf, "_NAN": math.nan, "_NINF": -math.inf,
     "_m_sin": math.sin, "_m_cos": math.cos, "_m_tan": math.tan, "_m_sqrt": math.sqrt,
-    "_type": type, "_list": list,
+    "_type": type, "_list": list, "_sum": sum,
 }
 
 

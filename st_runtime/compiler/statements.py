@@ -40,7 +40,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, ranges, reuse, scalars, seal, shortcut, stores, unguard, unroll
+from .optimise import aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, pivots, ranges, reuse, scalars, seal, shortcut, stores, sums, unguard, unroll
 from .optimise import branched, may_reuse
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, assigned_in, kinds, once, walk
@@ -189,6 +189,10 @@ class BodyCompiler(ExprCompiler):
                 chains.merge(o.lines, inner)
             if self.opt.scalars and listed:
                 scalars.replace(o.lines, inner, scalars.candidates(self, body, listed))
+            if self.opt.pivots:
+                pivots.keep(o.lines, inner)
+            if self.opt.sums:
+                sums.fold(o.lines, inner, sums.arrays(self))
         finally:
             self._segments = None
             self.listed_in_outs = {}

@@ -155,6 +155,15 @@ states bit for bit:
   a data index or of a list that may be the same, a return, a fault handler's start, the
   copy's end): the LU's elimination and substitutions on locals, the same operations in the
   same order.
+* `sums` (sums.py): in a fast copy, a run of finite tests of REAL or LREAL elements at
+  literal indices (`IF NOT (ABS(J[r, c]) <= SP_LREAL_MAX) THEN AllFinite := FALSE`), with
+  the same body and only stores of `+ - *` that cannot change what they read between them,
+  runs where its last test stood and only when the sum of the tested elements is not finite:
+  SP_ForwardKinematics' 42 tests of the Jacobian and the residual are one sum when all pass.
+* `pivots` (pivots.py): in a fast copy, a pivot search unrolled (`IF ABS(M[Row, K]) >
+  ABS(M[PivotRow, K]) THEN PivotRow := Row`) keeps the best `abs` in a local, set again where
+  the pivot row moves, and the zero-pivot test after it reads that local: SP_LuSolve's 15
+  candidate tests and 5 zero tests read the pivot's element once a column.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -286,6 +295,8 @@ class Optimisations:
     temps: bool = True
     seal: bool = True
     scalars: bool = True
+    sums: bool = True
+    pivots: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
