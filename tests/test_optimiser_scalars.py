@@ -338,3 +338,20 @@ def test_a_body_that_dereferences_a_pointer_keeps_its_lists():
     # then 400; A[4] := 34; then A[K] - A[K + 1]: [100 - 400, 400 - 17, 17 - 34, 34]
     x, r, faults, _ = _same(source, {}, dialect="codesys")
     assert (x, r, faults) == ([-300.0, 383.0, -17.0, 34.0], 12, [])
+
+
+def test_a_branch_that_does_not_touch_the_list_adds_no_line():
+    """The element stays dirty in its local through both clauses: nothing is written back
+    at their ends, only at the end of the copy."""
+    lines = ["v_A[0] = 1.0", "if (v_P != 1):", "    v_X = 1.0", "else:", "    v_X = 2.0", "v_Y = v_A[0]"]
+    assert _rewrite(lines) == ["v_A_e0 = 1.0", "if (v_P != 1):", "    v_X = 1.0", "else:", "    v_X = 2.0",
+                               "v_Y = v_A_e0", "v_A[0] = v_A_e0"]
+
+
+@pytest.mark.parametrize("lines", [
+    pytest.param(["v_A[0] = 1.0", "v_X = _f(1.0,", "         v_A[1])"], id="a_statement_on_two_lines"),
+    pytest.param(["v_A[0] = 1.0", "finally:"], id="a_clause_without_its_statement"),
+])
+def test_lines_the_pass_does_not_know_are_left_as_they_were(lines):
+    with pytest.raises(scalars._Unknown):
+        _rewrite(lines)
