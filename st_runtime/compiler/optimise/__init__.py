@@ -155,6 +155,11 @@ states bit for bit:
   a data index or of a list that may be the same, a return, a fault handler's start, the
   copy's end): the LU's elimination and substitutions on locals, the same operations in the
   same order.
+* `native` (native.py, with `vector`): a `vector` run is computed by machine code LLVM
+  compiles from its graph (llvmlite, MCJIT; one `fmul`/`fadd`/`fsub` an operation, no
+  fast-math, no FMA), compiled by the run's first call and kept per process by its IR;
+  an output that is not finite takes the run in Python, as NumPy's kernel does.  Off
+  without llvmlite (the `native` extra) or with `ST_RUNTIME_NATIVE=0`: NumPy's kernel.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -286,6 +291,7 @@ class Optimisations:
     temps: bool = True
     seal: bool = True
     scalars: bool = True
+    native: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

@@ -209,9 +209,10 @@ class Vectorised:
     `struct.pack_into` (`=d`: the double's bits unchanged, as NumPy's conversion keeps
     them; cheaper than converting a list and a tuple); what it cannot pack runs `exact`."""
 
-    def __init__(self, graph: _Graph, outputs: list[int], source=None):
+    def __init__(self, graph: _Graph, outputs: list[int], source=None, native=False):
         """`source`: (size, {input: element}) when inputs are elements of one list, which
-        is then passed whole (`__call__(list, others)`) instead of read element by element."""
+        is then passed whole (`__call__(list, others)`) instead of read element by element.
+        `native`: `run` is native.py's machine code for the same graph (NumPy's otherwise)."""
         _import_numpy()
         n_in = len(graph.inputs)
         self.n_list, self.elements = source if source is not None else (0, {})
@@ -229,6 +230,10 @@ class Vectorised:
         self.live = [k for k in range(len(ops)) if n_in + k in needed]
         self.limit = self._limit()
         self._plan(outputs)
+        if native:
+            from .native import native_run
+
+            self.run = native_run(self)
 
     def _limit(self) -> float:
         """A bound on the passed inputs' magnitude under which no value of the run reaches
@@ -410,12 +415,14 @@ class Vectorised:
         return [values[o] for o in self.output_refs]
 
 
-def vectorise(lines: list[str], start: int, end: int, is_float, register, element_of=None) -> None:
+def vectorise(lines: list[str], start: int, end: int, is_float, register, element_of=None,
+              native=False) -> None:
     """Replace qualifying runs in `lines[start:end]` (a region's block, one indentation)
     by one call each.  `is_float(name)`: the name holds a Python float (REAL/LREAL) before
     a run; `register(value)`: the namespace name bound to a Python value;
     `element_of(name)`: (list, index, the list's length) when the name holds an element
-    read before the region (then the list is passed whole), else None."""
+    read before the region (then the list is passed whole), else None; `native`: each
+    run computed by native.py's machine code instead of NumPy's calls."""
     if start >= end:
         return
     indent = lines[start][: len(lines[start]) - len(lines[start].lstrip())]
@@ -425,7 +432,7 @@ def vectorise(lines: list[str], start: int, end: int, is_float, register, elemen
         while j < end and lines[j].startswith(indent) and not lines[j][len(indent):len(indent) + 1].isspace() \
                 and graph.assign(lines[j][len(indent):]):
             j += 1
-        written = _replace_run(lines, i, j, indent, graph, register, element_of) if j > i else None
+        written = _replace_run(lines, i, j, indent, graph, register, element_of, native) if j > i else None
         if written is None:
             i = max(j, i + 1)
         else:
@@ -433,7 +440,7 @@ def vectorise(lines: list[str], start: int, end: int, is_float, register, elemen
             i += written
 
 
-def _replace_run(lines, i, j, indent, graph, register, element_of=None):
+def _replace_run(lines, i, j, indent, graph, register, element_of=None, native=False):
     """The number of lines written in place of `lines[i:j]` (the run `graph` holds), or
     None when the run does not qualify."""
     if len(graph.ops) < MIN_OPERATIONS:
@@ -451,7 +458,7 @@ def _replace_run(lines, i, j, indent, graph, register, element_of=None):
         return None
     whole, source = _whole_list(graph, element_of)
     try:
-        helper = Vectorised(graph, [ref for _, ref in stores], source)
+        helper = Vectorised(graph, [ref for _, ref in stores], source, native)
     except _NotVector:
         return None
     arguments = "".join(f"{graph.inputs[k]}, " for k in helper.variable_inputs)
