@@ -13,6 +13,7 @@ import math
 import random
 import re
 import struct
+import types
 from dataclasses import replace
 
 import pytest
@@ -35,12 +36,20 @@ def _native_vectorised(lines: list[str], elements=None):
     bound: dict = {}
     out = list(lines)
     vector.vectorise(out, 0, len(out), set(FLOATS + list(ELEMENTS)).__contains__, _register(bound),
-                     None if elements is None else elements.get, native=True)
+                     None if elements is None else elements.get, bound.__setitem__)
     return out, bound
 
 
 def _is_native(run) -> bool:
-    return run.__func__.__code__.co_filename == "<native run>"
+    """A native kernel (a builtin function), or what builds it on the first call."""
+    if isinstance(run, types.BuiltinFunctionType):
+        return isinstance(run.__self__, vector.Vectorised)
+    return run.__func__.__name__ == "first"
+
+
+def runs_in(compiled) -> list:
+    """The runs a build's generated code calls (each `__self__` a Vectorised)."""
+    return [v for v in compiled.namespace.values() if isinstance(getattr(v, "__self__", None), vector.Vectorised)]
 
 
 @pytest.mark.parametrize("family", FAMILIES.values(), ids=FAMILIES.keys())
@@ -55,6 +64,7 @@ def test_a_native_run_gives_pythons_floats(family):
     after, bound = _native_vectorised(lines + later, elements)
     assert len(bound) == 1 and _is_native(bound["_k0"])
     _check(lines + later, after, bound, reads_after, seed=3)
+    assert isinstance(bound["_k0"], types.BuiltinFunctionType)       # built by the first call
 
 
 @pytest.fixture(scope="module")
@@ -78,8 +88,8 @@ def _matrices(rng: random.Random):
 
 
 def test_the_determinant_is_the_leibniz_formulas_bit_for_bit(builds):
-    native_helper, = helpers_in(builds["native"])
-    assert _is_native(native_helper.run)
+    run, = runs_in(builds["native"])
+    assert _is_native(run)
     for m in _matrices(random.Random(11)):
         fb, _ = _run(builds["native"], m)
         want = _leibniz(m)
@@ -94,7 +104,7 @@ def test_a_non_finite_output_takes_the_run_in_python():
     calls = []
     exact = helper.exact
     helper.exact = lambda whole, inputs: calls.append(1) or exact(whole, inputs)
-    run = native.native_run(helper)               # binds the counting `exact`
+    run = native.builtin(helper, native.compiled(native.helper_ir(helper)))     # calls the counting `exact`
     m = [float(k % 7) - 3.0 for k in range(N * N)]
     assert run(m, (0.0,))[0] == _leibniz(m) and calls == []
     for value in (math.inf, -math.inf, math.nan, 1e300):
@@ -113,7 +123,7 @@ def test_no_multiply_and_add_is_fused():
     flags, compiled for a CPU with FMA, has them."""
     program = api.load_text(LEIBNIZ5).program
     helper, = helpers_in(compile_program(program, optimise=Optimisations()))
-    ir = native._helper_ir(helper)
+    ir = native.helper_ir(helper)
     code = native.assembly(ir)
     assert "mulsd" in code or "mulpd" in code
     assert "fma" not in code.lower()
@@ -130,21 +140,23 @@ def test_the_kernel_is_compiled_by_the_first_call_and_kept():
     lines.append(f"v_F = (_t1 * {rng.uniform(1.0, 2.0)!r})")      # an IR no other test has
     _, bound = _native_vectorised(lines)
     helper = bound["_k0"].__self__
-    ir = native._helper_ir(helper)
+    ir = native.helper_ir(helper)
     assert ir not in native._KERNELS                # loading compiled nothing
     values = tuple(rng.uniform(-1.0, 1.0) for _ in helper.variable_inputs)
-    first = helper.run(None, values)
-    assert ir in native._KERNELS
+    first = bound["_k0"](None, values)
+    assert ir in native._KERNELS and isinstance(bound["_k0"], types.BuiltinFunctionType)
+    kernels = len(native._KERNELS)
     _, again = _native_vectorised(lines)             # the same graph, loaded again
-    assert again["_k0"](None, values) == first and len(native._KERNELS[ir]) == 2
+    assert again["_k0"](None, values) == first == helper.exact(None, values)
+    assert len(native._KERNELS) == kernels          # not compiled again
 
 
 def test_the_switch_and_the_environment_give_numpys_kernel(builds, monkeypatch):
-    numpy_helper, = helpers_in(builds["numpy"])
-    assert not _is_native(numpy_helper.run)
+    numpy_run, = runs_in(builds["numpy"])
+    assert numpy_run.__func__.__name__ == "run" and not _is_native(numpy_run)
     monkeypatch.setenv("ST_RUNTIME_NATIVE", "0")
     program = api.load_text(LEIBNIZ5).program
-    helper, = helpers_in(compile_program(program, optimise=Optimisations()))
-    assert not _is_native(helper.run)
+    run, = runs_in(compile_program(program, optimise=Optimisations()))
+    assert not _is_native(run)
     m = [float((5 * k) % 13) - 6.0 for k in range(N * N)]
     assert _bits(_run(builds["numpy"], m)[0].v_D) == _bits(_run(builds["native"], m)[0].v_D) == _bits(_leibniz(m))

@@ -209,10 +209,9 @@ class Vectorised:
     `struct.pack_into` (`=d`: the double's bits unchanged, as NumPy's conversion keeps
     them; cheaper than converting a list and a tuple); what it cannot pack runs `exact`."""
 
-    def __init__(self, graph: _Graph, outputs: list[int], source=None, native=False):
+    def __init__(self, graph: _Graph, outputs: list[int], source=None):
         """`source`: (size, {input: element}) when inputs are elements of one list, which
-        is then passed whole (`__call__(list, others)`) instead of read element by element.
-        `native`: `run` is native.py's machine code for the same graph (NumPy's otherwise)."""
+        is then passed whole (`__call__(list, others)`) instead of read element by element."""
         _import_numpy()
         n_in = len(graph.inputs)
         self.n_list, self.elements = source if source is not None else (0, {})
@@ -230,10 +229,6 @@ class Vectorised:
         self.live = [k for k in range(len(ops)) if n_in + k in needed]
         self.limit = self._limit()
         self._plan(outputs)
-        if native:
-            from .native import native_run
-
-            self.run = native_run(self)
 
     def _limit(self) -> float:
         """A bound on the passed inputs' magnitude under which no value of the run reaches
@@ -416,13 +411,14 @@ class Vectorised:
 
 
 def vectorise(lines: list[str], start: int, end: int, is_float, register, element_of=None,
-              native=False) -> None:
+              bind=None) -> None:
     """Replace qualifying runs in `lines[start:end]` (a region's block, one indentation)
     by one call each.  `is_float(name)`: the name holds a Python float (REAL/LREAL) before
     a run; `register(value)`: the namespace name bound to a Python value;
     `element_of(name)`: (list, index, the list's length) when the name holds an element
-    read before the region (then the list is passed whole), else None; `native`: each
-    run computed by native.py's machine code instead of NumPy's calls."""
+    read before the region (then the list is passed whole), else None; `bind(name, value)`:
+    rebinds a registered name, given when each run is to be computed by native.py's
+    machine code (bound in place of NumPy's kernel, compiled by its first call)."""
     if start >= end:
         return
     indent = lines[start][: len(lines[start]) - len(lines[start].lstrip())]
@@ -432,7 +428,7 @@ def vectorise(lines: list[str], start: int, end: int, is_float, register, elemen
         while j < end and lines[j].startswith(indent) and not lines[j][len(indent):len(indent) + 1].isspace() \
                 and graph.assign(lines[j][len(indent):]):
             j += 1
-        written = _replace_run(lines, i, j, indent, graph, register, element_of, native) if j > i else None
+        written = _replace_run(lines, i, j, indent, graph, register, element_of, bind) if j > i else None
         if written is None:
             i = max(j, i + 1)
         else:
@@ -440,7 +436,7 @@ def vectorise(lines: list[str], start: int, end: int, is_float, register, elemen
             i += written
 
 
-def _replace_run(lines, i, j, indent, graph, register, element_of=None, native=False):
+def _replace_run(lines, i, j, indent, graph, register, element_of=None, bind=None):
     """The number of lines written in place of `lines[i:j]` (the run `graph` holds), or
     None when the run does not qualify."""
     if len(graph.ops) < MIN_OPERATIONS:
@@ -458,11 +454,16 @@ def _replace_run(lines, i, j, indent, graph, register, element_of=None, native=F
         return None
     whole, source = _whole_list(graph, element_of)
     try:
-        helper = Vectorised(graph, [ref for _, ref in stores], source, native)
+        helper = Vectorised(graph, [ref for _, ref in stores], source)
     except _NotVector:
         return None
     arguments = "".join(f"{graph.inputs[k]}, " for k in helper.variable_inputs)
-    call = f"{', '.join(name for name, _ in stores)}, = {register(helper.run)}({whole}, ({arguments}))"
+    kernel = register(helper.run)
+    if bind is not None:
+        from .native import first_call
+
+        bind(kernel, first_call(helper, lambda run: bind(kernel, run)))
+    call = f"{', '.join(name for name, _ in stores)}, = {kernel}({whole}, ({arguments}))"
     new = [indent + call] + [indent + line for line in literals]
     lines[i:j] = new
     return len(new)
