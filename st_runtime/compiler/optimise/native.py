@@ -32,7 +32,6 @@ NumPy kernel runs, as before this module.
 
 from __future__ import annotations
 
-import ctypes
 import importlib.util
 import os
 import struct
@@ -66,6 +65,8 @@ def _layout_is_cpythons() -> bool:
 
     if sysconfig.get_config_var("Py_GIL_DISABLED"):
         return False
+    import ctypes
+
     x = 1.5
     items, pair = [x], (x, x)
     word = ctypes.c_void_p.from_address
@@ -201,6 +202,8 @@ def _machine():
     FMA instruction to contract into).  The C API the kernels call, by its addresses here."""
     global _llvm, _target_machine
     if _target_machine is None:
+        import ctypes
+
         import llvmlite.binding as llvm
 
         llvm.initialize_native_target()
@@ -237,18 +240,18 @@ def assembly(ir: str) -> str:
     return machine.emit_assembly(_llvm.parse_assembly(ir))
 
 
-class _MethodDef(ctypes.Structure):
-    _fields_ = [("ml_name", ctypes.c_char_p), ("ml_meth", ctypes.c_void_p),
-                ("ml_flags", ctypes.c_int), ("ml_doc", ctypes.c_char_p)]
-
-
-_new_function = None
+_new_function = _MethodDef = None      # PyCFunction_NewEx and a PyMethodDef, by ctypes (imported then)
 
 
 def builtin(helper, address: int):
     """A CPython builtin function calling the kernel at `address`, its `__self__` `helper`."""
-    global _new_function
+    global _new_function, _MethodDef
+    import ctypes
+
     if _new_function is None:
+        class _MethodDef(ctypes.Structure):
+            _fields_ = [("ml_name", ctypes.c_char_p), ("ml_meth", ctypes.c_void_p),
+                        ("ml_flags", ctypes.c_int), ("ml_doc", ctypes.c_char_p)]
         _new_function = ctypes.pythonapi.PyCFunction_NewEx
         _new_function.restype = ctypes.py_object
         _new_function.argtypes = [ctypes.c_void_p, ctypes.py_object, ctypes.c_void_p]
