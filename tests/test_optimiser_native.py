@@ -68,8 +68,12 @@ def test_a_native_run_gives_pythons_floats(family):
 
 
 @pytest.fixture(scope="module")
-def builds():
-    program = api.load_text(LEIBNIZ5).program
+def program():
+    return api.load_text(LEIBNIZ5).program
+
+
+@pytest.fixture(scope="module")
+def builds(program):
     return {name: compile_program(program, optimise=o)
             for name, o in (("native", Optimisations()), ("numpy", replace(Optimisations(), native=False)))}
 
@@ -96,10 +100,9 @@ def test_the_determinant_is_the_leibniz_formulas_bit_for_bit(builds):
         assert _bits(fb.v_D) == _bits(want) or (math.isnan(want) and math.isnan(fb.v_D)), m
 
 
-def test_a_non_finite_output_takes_the_run_in_python():
+def test_a_non_finite_output_takes_the_run_in_python(program):
     """The kernel says whether every output is finite; when one is not, the run is the
     Python operation by operation (`exact`), called exactly then."""
-    program = api.load_text(LEIBNIZ5).program
     helper, = helpers_in(compile_program(program, optimise=Optimisations()))
     calls = []
     exact = helper.exact
@@ -117,11 +120,10 @@ def test_a_non_finite_output_takes_the_run_in_python():
         calls.clear()
 
 
-def test_no_multiply_and_add_is_fused():
+def test_no_multiply_and_add_is_fused(program):
     """The emitted code has separate multiplies and adds: no `vfmadd` (one rounding fewer
     than Python's `*` then `+`).  The check can fail: the same run with LLVM's `contract`
     flags, compiled for a CPU with FMA, has them."""
-    program = api.load_text(LEIBNIZ5).program
     helper, = helpers_in(compile_program(program, optimise=Optimisations()))
     ir = native.helper_ir(helper)
     code = native.assembly(ir)
@@ -151,11 +153,10 @@ def test_the_kernel_is_compiled_by_the_first_call_and_kept():
     assert len(native._KERNELS) == kernels          # not compiled again
 
 
-def test_the_switch_and_the_environment_give_numpys_kernel(builds, monkeypatch):
+def test_the_switch_and_the_environment_give_numpys_kernel(program, builds, monkeypatch):
     numpy_run, = runs_in(builds["numpy"])
     assert numpy_run.__func__.__name__ == "run" and not _is_native(numpy_run)
     monkeypatch.setenv("ST_RUNTIME_NATIVE", "0")
-    program = api.load_text(LEIBNIZ5).program
     run, = runs_in(compile_program(program, optimise=Optimisations()))
     assert not _is_native(run)
     m = [float((5 * k) % 13) - 6.0 for k in range(N * N)]

@@ -130,7 +130,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   # session 17: the survivors of seeds 450 and 460 run to their end
                   "tests/test_compiler_tables_s17.py",
                   # session 18: the scalars pass's own tests (2 s)
-                  "tests/test_optimiser_scalars.py"]),
+                  "tests/test_optimiser_scalars.py",
+                  # session 19: the native pass's own tests (skipped without llvmlite)
+                  "tests/test_optimiser_native.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",
