@@ -132,7 +132,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   # session 18: the scalars pass's own tests (2 s), and MIN/MAX of two inlined
                   "tests/test_optimiser_scalars.py", "tests/test_optimiser_selection.py",
                   # session 19: the sums and pivots passes' own tests
-                  "tests/test_optimiser_sums.py", "tests/test_optimiser_pivots.py"]),
+                  "tests/test_optimiser_sums.py", "tests/test_optimiser_pivots.py",
+                  # session 19: the native pass's own tests (skipped without llvmlite)
+                  "tests/test_optimiser_native.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",

@@ -164,6 +164,11 @@ states bit for bit:
   ABS(M[PivotRow, K]) THEN PivotRow := Row`) keeps the best `abs` in a local, set again where
   the pivot row moves, and the zero-pivot test after it reads that local: SP_LuSolve's 15
   candidate tests and 5 zero tests read the pivot's element once a column.
+* `native` (native.py, with `vector`): a `vector` run is computed by machine code LLVM
+  compiles from its graph (llvmlite, MCJIT; one `fmul`/`fadd`/`fsub` an operation, no
+  fast-math, no FMA), compiled by the run's first call and kept per process by its IR;
+  an output that is not finite takes the run in Python, as NumPy's kernel does.  Off
+  without llvmlite (the `native` extra) or with `ST_RUNTIME_NATIVE=0`: NumPy's kernel.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -297,6 +302,7 @@ class Optimisations:
     scalars: bool = True
     sums: bool = True
     pivots: bool = True
+    native: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

@@ -31,7 +31,7 @@ from dataclasses import replace
 
 from ... import ast
 from ..scope import walk
-from . import TEMP_NAME, fuse, vector
+from . import TEMP_NAME, fuse, native, vector
 
 _READ = re.compile(r"[A-Za-z_]\w*\[\d+\]")
 _NUMBER = re.compile(r"-?\(?-?\d[\d.e+-]*\)?")
@@ -175,11 +175,14 @@ def emit_region(compiler, compile_body) -> None:
 
 
 def vector_hooks(compiler, region):
-    """(is_float, register, element_of) for vector.py when the `vector` pass is on, else None."""
+    """(is_float, register, element_of, bind) for vector.py when the `vector` pass is on,
+    else None; `bind` (the namespace's setter) when the `native` pass is on and llvmlite is
+    there (native.py)."""
     if not compiler.opt.vector:
         return None
     return (vector.float_names(compiler, region), compiler.unit.register_constant,
-            vector.region_elements(compiler, region))
+            vector.region_elements(compiler, region),
+            compiler.unit.namespace.__setitem__ if compiler.opt.native and native.enabled() else None)
 
 
 def _needed_reads(region, block: list[str]) -> list[tuple[str, str]]:

@@ -410,12 +410,15 @@ class Vectorised:
         return [values[o] for o in self.output_refs]
 
 
-def vectorise(lines: list[str], start: int, end: int, is_float, register, element_of=None) -> None:
+def vectorise(lines: list[str], start: int, end: int, is_float, register, element_of=None,
+              bind=None) -> None:
     """Replace qualifying runs in `lines[start:end]` (a region's block, one indentation)
     by one call each.  `is_float(name)`: the name holds a Python float (REAL/LREAL) before
     a run; `register(value)`: the namespace name bound to a Python value;
     `element_of(name)`: (list, index, the list's length) when the name holds an element
-    read before the region (then the list is passed whole), else None."""
+    read before the region (then the list is passed whole), else None; `bind(name, value)`:
+    rebinds a registered name, given when each run is to be computed by native.py's
+    machine code (bound in place of NumPy's kernel, compiled by its first call)."""
     if start >= end:
         return
     indent = lines[start][: len(lines[start]) - len(lines[start].lstrip())]
@@ -425,7 +428,7 @@ def vectorise(lines: list[str], start: int, end: int, is_float, register, elemen
         while j < end and lines[j].startswith(indent) and not lines[j][len(indent):len(indent) + 1].isspace() \
                 and graph.assign(lines[j][len(indent):]):
             j += 1
-        written = _replace_run(lines, i, j, indent, graph, register, element_of) if j > i else None
+        written = _replace_run(lines, i, j, indent, graph, register, element_of, bind) if j > i else None
         if written is None:
             i = max(j, i + 1)
         else:
@@ -433,7 +436,7 @@ def vectorise(lines: list[str], start: int, end: int, is_float, register, elemen
             i += written
 
 
-def _replace_run(lines, i, j, indent, graph, register, element_of=None):
+def _replace_run(lines, i, j, indent, graph, register, element_of=None, bind=None):
     """The number of lines written in place of `lines[i:j]` (the run `graph` holds), or
     None when the run does not qualify."""
     if len(graph.ops) < MIN_OPERATIONS:
@@ -455,7 +458,12 @@ def _replace_run(lines, i, j, indent, graph, register, element_of=None):
     except _NotVector:
         return None
     arguments = "".join(f"{graph.inputs[k]}, " for k in helper.variable_inputs)
-    call = f"{', '.join(name for name, _ in stores)}, = {register(helper.run)}({whole}, ({arguments}))"
+    kernel = register(helper.run)
+    if bind is not None:
+        from .native import first_call
+
+        bind(kernel, first_call(helper, lambda run: bind(kernel, run)))
+    call = f"{', '.join(name for name, _ in stores)}, = {kernel}({whole}, ({arguments}))"
     new = [indent + call] + [indent + line for line in literals]
     lines[i:j] = new
     return len(new)

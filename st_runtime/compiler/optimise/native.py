@@ -1,0 +1,278 @@
+"""`native`: a run of vector.py computed by machine code LLVM makes (llvmlite), one call a run.
+
+vector.py's graph (inputs, then `+ - *` operations in order, then the outputs) is written
+out as LLVM IR, one `fmul`/`fadd`/`fsub` of doubles per operation on the same two operands
+in the same order, and compiled by MCJIT the first time the run is called (a program that
+never calls it compiles nothing; a graph compiled once is kept for the process, by its IR
+text, so the exact and fast copies of a body and every load of one program share it).
+
+Exactness: LLVM's floating-point instructions without fast-math flags are IEEE-754
+binary64 operations rounded to nearest, Python's float `* + -`, and its optimisations keep
+them so (no reassociation; a fold such as `x * 1.0 -> x` is the same value except for a
+NaN's payload).  No multiply and add are contracted into one FMA (one rounding fewer): the
+instructions carry no `contract` flag, the target machine is a generic x86-64 (no FMA
+instruction at all) and the emitted code is checked for `vfmadd` by the tests.  When every
+output is finite, every value was (a non-finite value never becomes finite through
+`+ - *`), and the outputs are Python's bit for bit.  Otherwise (an inf or a NaN somewhere,
+whose sign or payload could differ), or when an input is not a Python float or the list
+not of its size, the kernel returns what vector.py's `exact` returns: the run in Python,
+operation by operation.
+
+The crossing: the kernel is a CPython builtin function (`METH_FASTCALL`, its `__self__`
+the `Vectorised` helper) that the generated code calls as it called NumPy's kernel,
+`_kN(list, (inputs ...))`: it reads the floats straight from the list and the tuple
+(`ob_item`, `ob_fval`: CPython's object layout, checked on this interpreter before the
+first kernel is built, else NumPy's kernel stays) and returns a new list of new floats.
+No ctypes call, no packing: a call of the 6x6 determinant (2,670 operations) takes
+4,395 machine instructions, NumPy's kernel 95,917 (docs/performance.md, session 19).
+
+Without llvmlite (not installed, or `ST_RUNTIME_NATIVE=0`) the pass is off and vector.py's
+NumPy kernel runs, as before this module.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+import struct
+import sys
+import types
+
+#: Compiled kernels by their IR text: (execution engine, address of `run`).
+_KERNELS: dict[str, tuple] = {}
+_llvm = None            # llvmlite.binding, imported by the first kernel built
+_target_machine = None
+#: The method a kernel calls on its helper where it cannot compute the run itself.
+_EXACT = sys.intern("exact")
+_METH_FASTCALL = 0x0080
+#: CPython's object layout (64-bit, GIL build): the offsets the kernels read at.
+_TYPE, _SIZE, _ITEMS, _FVAL = 8, 16, 24, 16      # ob_type, ob_size, list ob_item / tuple items, ob_fval
+
+
+def enabled() -> bool:
+    """Whether native kernels may be built: llvmlite found (not imported: loads stay as
+    fast) and not switched off by `ST_RUNTIME_NATIVE=0` (to compare with NumPy's kernel)."""
+    if os.environ.get("ST_RUNTIME_NATIVE", "1").strip().lower() in ("0", "off", "no", "false"):
+        return False
+    return importlib.util.find_spec("llvmlite") is not None
+
+
+def _layout_is_cpythons() -> bool:
+    """Whether this interpreter's floats, lists and tuples lie where the kernels read them."""
+    if sys.implementation.name != "cpython" or struct.calcsize("P") != 8:
+        return False
+    import sysconfig
+
+    if sysconfig.get_config_var("Py_GIL_DISABLED"):
+        return False
+    import ctypes
+
+    x = 1.5
+    items, pair = [x], (x, x)
+    word = ctypes.c_void_p.from_address
+    return (ctypes.c_double.from_address(id(x) + _FVAL).value == x and word(id(x) + _TYPE).value == id(float)
+            and word(id(items) + _TYPE).value == id(list) and word(id(items) + _SIZE).value == 1
+            and word(word(id(items) + _ITEMS).value).value == id(x)
+            and word(id(pair) + _TYPE).value == id(tuple) and word(id(pair) + _SIZE).value == 2
+            and word(id(pair) + _ITEMS + 8).value == id(x))
+
+
+def _double(value: float) -> str:
+    """An LLVM IR double constant with `value`'s bits exactly (LLVM's 64-bit hex form)."""
+    return "0x%016X" % struct.unpack("<Q", struct.pack("<d", value))[0]
+
+
+_INSTRUCTION = {"*": "fmul", "+": "fadd", "-": "fsub"}
+
+_DECLARATIONS = """\
+declare double @llvm.fabs.f64(double)
+declare ptr @PyFloat_FromDouble(double)
+declare ptr @PyList_New(i64)
+declare void @Py_DecRef(ptr)
+declare ptr @PyObject_CallMethodObjArgs(ptr, ptr, ...)
+@PyFloat_Type = external global i8
+@PyList_Type = external global i8
+@PyTuple_Type = external global i8
+@stgen_exact = external global i8
+"""
+
+
+class _Writer:
+    """The lines of the kernel's IR: a block per check, each failing one to `exact`."""
+
+    def __init__(self):
+        self.lines: list[str] = []
+        self.checks = 0
+
+    def add(self, *lines: str) -> None:
+        self.lines += [f"  {line}" for line in lines]
+
+    def check(self, condition: str) -> None:
+        """Go on when `condition` (an i1) holds, else to `%exact`."""
+        self.checks += 1
+        self.add(f"br i1 {condition}, label %ok{self.checks}, label %exact")
+        self.lines.append(f"ok{self.checks}:")
+
+    def object_of(self, name: str, pointer: str, offset: int) -> str:
+        """`%name` = the object pointer at `pointer + offset` bytes."""
+        self.add(f"%{name}.at = getelementptr inbounds i8, ptr {pointer}, i64 {offset}",
+                 f"%{name} = load ptr, ptr %{name}.at, align 8")
+        return f"%{name}"
+
+    def has_type(self, obj: str, type_symbol: str) -> None:
+        t = self.object_of(f"{obj[1:]}.type", obj, _TYPE)
+        self.add(f"%{obj[1:]}.is = icmp eq ptr {t}, @{type_symbol}")
+        self.check(f"%{obj[1:]}.is")
+
+    def has_size(self, obj: str, size: int) -> None:
+        self.add(f"%{obj[1:]}.size.at = getelementptr inbounds i8, ptr {obj}, i64 {_SIZE}",
+                 f"%{obj[1:]}.size = load i64, ptr %{obj[1:]}.size.at, align 8",
+                 f"%{obj[1:]}.sized = icmp eq i64 %{obj[1:]}.size, {size}")
+        self.check(f"%{obj[1:]}.sized")
+
+    def float_value(self, name: str, item: str) -> str:
+        """`%name`: the double of the Python float `item` (checked to be one)."""
+        self.has_type(item, "PyFloat_Type")
+        self.add(f"%{name}.at = getelementptr inbounds i8, ptr {item}, i64 {_FVAL}",
+                 f"%{name} = load double, ptr %{name}.at, align 8")
+        return f"%{name}"
+
+
+def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[int, float],
+            ops: list[tuple[str, int, int]], live: list[int], outputs: list[int],
+            n_list: int, n_tuple: int) -> str:
+    """The IR of `PyObject *run(PyObject *self, PyObject *const *args, Py_ssize_t nargs)`,
+    called as `run(list, tuple)`: input i is element k of the list (`sources[i]` ==
+    ("list", k)) or of the tuple (("tuple", k)), or the literal `constants[i]`; operation k
+    (value n_inputs + k) is `ops[k]` of two earlier values, for each k in `live`, in order;
+    the result is a new list of the outputs' floats, or `self.exact(list, tuple)` when an
+    argument is not as compiled for (a list of n_list floats, a tuple of n_tuple) or an
+    output is not finite."""
+    w = _Writer()
+    w.add("%two = icmp eq i64 %nargs, 2")
+    w.lines += ["  br i1 %two, label %start, label %wrong", "start:"]
+    whole = w.object_of("whole", "%args", 0)
+    inputs = w.object_of("inputs", "%args", 8)
+    if n_list:
+        w.has_type(whole, "PyList_Type")
+        w.has_size(whole, n_list)
+        items = w.object_of("items", whole, _ITEMS)
+    w.has_type(inputs, "PyTuple_Type")
+    w.has_size(inputs, n_tuple)
+    name = {i: _double(c) for i, c in constants.items()}
+    for i, (where, k) in sources.items():
+        item = w.object_of(f"x{i}", items if where == "list" else inputs,
+                           8 * k if where == "list" else _ITEMS + 8 * k)
+        name[i] = w.float_value(f"v{i}", item)
+    for k in live:
+        op, a, b = ops[k]
+        v = n_inputs + k
+        w.add(f"%v{v} = {_INSTRUCTION[op]} double {name[a]}, {name[b]}")
+        name[v] = f"%v{v}"
+    for j, o in enumerate(outputs):
+        w.add(f"%abs{j} = call double @llvm.fabs.f64(double {name[o]})",
+              f"%finite{j} = fcmp olt double %abs{j}, 0x7FF0000000000000")      # false for NaN
+        w.check(f"%finite{j}")
+    w.add(f"%list = call ptr @PyList_New(i64 {len(outputs)})",
+          "%made = icmp ne ptr %list, null")
+    w.lines += ["  br i1 %made, label %fill, label %failed", "fill:"]
+    slots = w.object_of("slots", "%list", _ITEMS)
+    for j, o in enumerate(outputs):
+        w.add(f"%out{j} = call ptr @PyFloat_FromDouble(double {name[o]})",
+              f"%out{j}.at = getelementptr inbounds ptr, ptr {slots}, i64 {j}",
+              f"store ptr %out{j}, ptr %out{j}.at, align 8",          # NULL on no memory: the list's
+              f"%out{j}.made = icmp ne ptr %out{j}, null")              # Py_DecRef skips it
+        w.lines += [f"  br i1 %out{j}.made, label %made{j}, label %dropped", f"made{j}:"]
+    w.lines += ["  ret ptr %list",
+                "dropped:", "  call void @Py_DecRef(ptr %list)", "  br label %failed",
+                "failed:", "  ret ptr null",
+                "exact:",
+                "  %slow = call ptr (ptr, ptr, ...) @PyObject_CallMethodObjArgs(ptr %self, ptr @stgen_exact,"
+                " ptr %whole, ptr %inputs, ptr null)",
+                "  ret ptr %slow",
+                "wrong:",                         # not two arguments: exact's own TypeError
+                "  %none = call ptr (ptr, ptr, ...) @PyObject_CallMethodObjArgs(ptr %self, ptr @stgen_exact, ptr null)",
+                "  ret ptr %none"]
+    return (_DECLARATIONS + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
+            + "\n".join(w.lines) + "\n}\n")
+
+
+def _machine():
+    """The target machine: the host's triple; on x86-64 the generic `x86-64` CPU (SSE2, no
+    FMA instruction to contract into).  The C API the kernels call, by its addresses here."""
+    global _llvm, _target_machine
+    if _target_machine is None:
+        import ctypes
+
+        import llvmlite.binding as llvm
+
+        llvm.initialize_native_target()
+        llvm.initialize_native_asmprinter()
+        api = ctypes.pythonapi
+        for function in ("PyFloat_FromDouble", "PyList_New", "Py_DecRef", "PyObject_CallMethodObjArgs"):
+            llvm.add_symbol(function, ctypes.cast(getattr(api, function), ctypes.c_void_p).value)
+        for symbol, obj in (("PyFloat_Type", float), ("PyList_Type", list), ("PyTuple_Type", tuple),
+                            ("stgen_exact", _EXACT)):
+            llvm.add_symbol(symbol, id(obj))
+        triple = llvm.get_process_triple()
+        cpu = "x86-64" if triple.startswith("x86_64") else ""
+        _target_machine = llvm.Target.from_triple(triple).create_target_machine(cpu=cpu, features="", opt=2)
+        _llvm = llvm
+    return _target_machine
+
+
+def compiled(ir: str) -> int:
+    """The address of the C function `ir` defines (`run`), compiled once per process."""
+    found = _KERNELS.get(ir)
+    if found is None:
+        machine = _machine()
+        module = _llvm.parse_assembly(ir)
+        module.verify()
+        engine = _llvm.create_mcjit_compiler(module, machine)
+        engine.finalize_object()
+        found = _KERNELS[ir] = (engine, engine.get_function_address("run"))
+    return found[1]
+
+
+def assembly(ir: str) -> str:
+    """The machine code `ir` compiles to, as assembly text (for the tests' FMA check)."""
+    machine = _machine()
+    return machine.emit_assembly(_llvm.parse_assembly(ir))
+
+
+_new_function = _MethodDef = None      # PyCFunction_NewEx and a PyMethodDef, by ctypes (imported then)
+
+
+def builtin(helper, address: int):
+    """A CPython builtin function calling the kernel at `address`, its `__self__` `helper`."""
+    global _new_function, _MethodDef
+    import ctypes
+
+    if _new_function is None:
+        class _MethodDef(ctypes.Structure):
+            _fields_ = [("ml_name", ctypes.c_char_p), ("ml_meth", ctypes.c_void_p),
+                        ("ml_flags", ctypes.c_int), ("ml_doc", ctypes.c_char_p)]
+        _new_function = ctypes.pythonapi.PyCFunction_NewEx
+        _new_function.restype = ctypes.py_object
+        _new_function.argtypes = [ctypes.c_void_p, ctypes.py_object, ctypes.c_void_p]
+    helper.method_def = _MethodDef(b"native_run", address, _METH_FASTCALL, None)    # lives with the helper
+    return _new_function(ctypes.addressof(helper.method_def), helper, None)
+
+
+def first_call(helper, bind):
+    """What the generated code calls before the kernel is built: the first call builds it
+    (or keeps NumPy's kernel, `helper.run`, where this interpreter's layout is not
+    CPython's), binds it by `bind(run)` in place of itself and returns its result."""
+    def first(self, whole, inputs):
+        run = builtin(self, compiled(helper_ir(self))) if _layout_is_cpythons() else self.run
+        bind(run)
+        return run(whole, inputs)
+    return types.MethodType(first, helper)
+
+
+def helper_ir(helper) -> str:
+    """The IR of a `Vectorised` helper's run."""
+    sources = {i: ("tuple", p) for p, i in enumerate(helper.variable_inputs)}
+    sources.update((i, ("list", k)) for i, k in helper.elements.items())
+    return ir_text(helper.n_inputs, sources, dict(helper.constants), helper.ops, helper.live,
+                   helper.output_refs, helper.n_list, len(helper.variable_inputs))
