@@ -79,20 +79,19 @@ _END_OF = re.Match.end      # (mapped over the matches in C: where each line sta
 
 
 class _Lines:
-    """Where each line of a text starts, found on first use: the line and column of an
-    offset as Lark's line counter gives them (it counts '\n', in the tokens of the
-    terminals that may hold one: every '\n' of the text, `tests/test_parser_fast_path.py`
-    checks no other terminal can match one)."""
+    """Where each line of a text starts (`starts`): the line and column of an offset as
+    Lark's line counter gives them (it counts '\n', in the tokens of the terminals that may
+    hold one: every '\n' of the text, `tests/test_parser_fast_path.py` checks no other
+    terminal can match one).  Found for every parse: the AST builder asks a position of
+    nearly every rule (`AstBuilder._pos`, which reads `starts` as `at` does)."""
 
-    __slots__ = ("text", "starts")
+    __slots__ = ("starts",)
 
     def __init__(self, text: str) -> None:
-        self.text, self.starts = text, None
+        self.starts = [0, *map(_END_OF, _NEWLINE.finditer(text))]
 
     def at(self, pos: int) -> tuple[int, int]:
         starts = self.starts
-        if starts is None:
-            starts = self.starts = [0, *map(_END_OF, _NEWLINE.finditer(self.text))]
         line = bisect_right(starts, pos)
         return line, pos - starts[line - 1] + 1
 
