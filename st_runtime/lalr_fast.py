@@ -21,7 +21,11 @@ filtered out, inserts the `None` of an absent `[optional]`, splices in the
 children of an inlined `_rule`, returns the child of a `?rule` that has one,
 and calls the method with the children inline (`v_args(inline=True)`).  The
 plan of each rule is read from Lark's own wrapper objects (`_plan`); a
-wrapper of another kind keeps Lark's callback.  Two shortcuts, same values:
+wrapper of another kind keeps Lark's callback.  A method's call whose children
+are not simply some of the popped values (an absent `[optional]`'s `None`, a
+spliced list) is written out once per rule as one expression of the popped
+values (`_call_of_plan`), so no reduction reads its plan child by child but
+the few that build a list or a `?rule`'s value.  Two shortcuts, same values:
 
 * a `?rule` of one kept symbol (`?expr: xor_expr`, nine of them between an
   operand and its expression) only changes the parser's state;
@@ -75,20 +79,19 @@ _END_OF = re.Match.end      # (mapped over the matches in C: where each line sta
 
 
 class _Lines:
-    """Where each line of a text starts, found on first use: the line and column of an
-    offset as Lark's line counter gives them (it counts '\n', in the tokens of the
-    terminals that may hold one: every '\n' of the text, `tests/test_parser_fast_path.py`
-    checks no other terminal can match one)."""
+    """Where each line of a text starts (`starts`): the line and column of an offset as
+    Lark's line counter gives them (it counts '\n', in the tokens of the terminals that may
+    hold one: every '\n' of the text, `tests/test_parser_fast_path.py` checks no other
+    terminal can match one).  Found for every parse: the AST builder asks a position of
+    nearly every rule (`AstBuilder._pos`, which reads `starts` as `at` does)."""
 
-    __slots__ = ("text", "starts")
+    __slots__ = ("starts",)
 
     def __init__(self, text: str) -> None:
-        self.text, self.starts = text, None
+        self.starts = [0, *map(_END_OF, _NEWLINE.finditer(text))]
 
     def at(self, pos: int) -> tuple[int, int]:
         starts = self.starts
-        if starts is None:
-            starts = self.starts = [0, *map(_END_OF, _NEWLINE.finditer(self.text))]
         line = bisect_right(starts, pos)
         return line, pos - starts[line - 1] + 1
 
@@ -127,6 +130,7 @@ LIST_ALL = 13    # SPLICE keeping every child in order: the popped values are th
 LIST_ONE = 14    # SPLICE keeping one spliced child only: that child's list itself
 CALL_SPREAD = 15  # INLINE keeping one spliced child only: the method on its items
 GENERAL = 16     # anything else: the plan, read child by child
+CALL_PLAN = 9    # any other INLINE: one expression of the popped values written for its plan
 # The steps done in place on the stacks, numbered last (the loop tests `how >= CALL_TOP`):
 CALL_TOP = 17    # CALL_ALL of one child: the method on the top value, in place
 LIST_TOP = 18    # LIST_ALL of one child: the list of the top value, in place
@@ -146,6 +150,20 @@ def _builds_tree(callback) -> bool:
     handler = cells.get("default_handler")
     return function.__name__ == "default_callback" and handler is not None and \
         getattr(handler.cell_contents, "__func__", None) is Transformer.__default__
+
+
+def _call_of_plan(function, keep: tuple, nones: int):
+    """`values -> function(*children)`, the children the general way builds from the popped
+    `values` for an INLINE plan (`keep`'s (index, splice, Nones before) triples, then
+    `nones` Nones), written out as one call: `f(values[0], None, *values[2], None)`.  The
+    text is made of indices and counts of the grammar's rules only, never of a parsed
+    text."""
+    arguments = []
+    for i, splice, before in keep:
+        arguments += ["None"] * before
+        arguments.append(f"{'*' if splice else ''}values[{int(i)}]")
+    arguments += ["None"] * nones
+    return eval(f"lambda values: function({', '.join(arguments)})", {"function": function})
 
 
 class _EveryType:
@@ -298,7 +316,8 @@ class FastLalr:
     def _step(self, rule) -> tuple:
         """(size, origin, how, function, pick, gotos): the rule's plan (_plan) as the
         loop runs it; `pick` is an itemgetter (CALL_PICK), an index (CALL_ONE, LIST_ONE,
-        CALL_SPREAD) or the plan (GENERAL); `gotos` the rule's _Gotos."""
+        CALL_SPREAD) or the plan (GENERAL); `function` is the written call for CALL_PLAN
+        (`_call_of_plan`); `gotos` the rule's _Gotos."""
         plan = self.rules.get(id(rule)) or self._plan(rule)
         origin = plan[1]
         if origin not in self.gotos:
@@ -328,6 +347,8 @@ class FastLalr:
         if nones == 0 and keep is not None and len(keep) == 1 and keep[0][1] and not keep[0][2] \
                 and kind in (SPLICE, INLINE):       # (the list itself, as the general way gives)
             return size, origin, LIST_ONE if kind == SPLICE else CALL_SPREAD, function, keep[0][0]
+        if kind == INLINE and keep is not None:
+            return size, origin, CALL_PLAN, _call_of_plan(function, keep, nones), None
         return size, origin, GENERAL, function, plan
 
     def _scanner(self, state: int):
@@ -468,7 +489,9 @@ class FastLalr:
                         del value_stack[-size:]
                     else:
                         values = []
-                    if how == GENERAL:      # Lark's ChildFilterLALR and the wrapper, inline
+                    if how == CALL_PLAN:
+                        push(function(values))
+                    elif how == GENERAL:    # Lark's ChildFilterLALR and the wrapper, inline
                         _, _, how, function, keep, nones, _ = pick
                         if how == LARK:
                             push(function(values))

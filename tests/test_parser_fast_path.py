@@ -99,6 +99,37 @@ def test_every_rule_has_a_plan_of_its_own():
             assert plan[2] == lalr_fast.UNIT, rule
 
 
+def test_a_written_plan_gives_the_children_larks_filter_gives():
+    """A reduction to a builder method with a child filter of Nones or spliced lists
+    (CALL_PLAN) calls the method with one expression written for its rule
+    (lalr_fast._call_of_plan): on the same popped values it passes, in order, the
+    children Lark's own child filter of the rule gives (the filter object of the rule,
+    with a list as its node builder), for every such rule of the grammar."""
+    import copy
+
+    from lark import Tree
+
+    from st_runtime import lalr_fast
+
+    fast = st_parser.grammar().fast
+    written = 0
+    for rule in fast.callbacks:
+        size, _, _, _, keep, nones, _ = fast._plan(rule)
+        if fast._step(rule)[2] != lalr_fast.CALL_PLAN:
+            continue
+        written += 1
+        spliced = {i for i, splice, _ in keep if splice}
+
+        def values(spliced_as=list):     # (fresh each time: a filter may extend a first spliced list)
+            return [spliced_as([f"{i}a", f"{i}b"]) if i in spliced else f"{i}" for i in range(size)]
+        lark_filter = copy.copy(fast.callbacks[rule])
+        lark_filter.node_builder = list
+        call = lalr_fast._call_of_plan(lambda *children: list(children), keep, nones)
+        # (Lark's loop gives an inlined rule's children as a Tree, this loop as a list)
+        assert call(values()) == lark_filter(values(lambda items: Tree("_inlined", items))), rule
+    assert written >= 100       # (rules with an [optional] or an inlined list: 151 today)
+
+
 @pytest.mark.parametrize("text", [
     # placeholders of absent [optionals], `?rule`s of several children, left-recursive
     # lists, operators at every precedence level, nested parentheses, unary chains
