@@ -41,10 +41,12 @@ def test_an_element_read_again_in_the_iteration_is_read_once_by_hand():
 
 # Nothing is kept where something between may change the element: an element store, an
 # attribute store, a call of anything but the numeric library, a line that is not an
-# assignment (an IF, a charge check); nor past a store of the index or of the array's name.
+# assignment (an IF, a charge check), a chained assignment (it stores twice), an index set by
+# `:=` inside a line; nor past a store of the index or of the array's name.
 @pytest.mark.parametrize("between", [
     "    v_A[_t4] = 1.0", "    self.v_X = 1.0", "    v_X = _fn_F(_ctx, v_A)", "    v_X = v_FB.execute(_ctx)",
-    "    v_X = _m_0_GET(self)", "    if v_P:", "    if _ctx.budget < _spent: _overrun(1)"])
+    "    v_X = _m_0_GET(self)", "    if v_P:", "    if _ctx.budget < _spent: _overrun(1)",
+    "    v_X = _t4 = 1", "    v_X = ((_t4 := 2) * 1.0)"])
 def test_nothing_is_kept_across_what_may_change_an_array(between):
     body = ["    _t4 = v_K - 1", "    v_P = (v_A[_t4] * 2.0)", between, "    v_S = (v_S + v_A[_t4])"]
     assert shared_reads(body, _temps()) == body

@@ -25,6 +25,8 @@ _CALLED = re.compile(r"([A-Za-z_][\w.]*)\(")
 _NUMERIC = re.compile(r"_m_(?:sin|cos|tan|sqrt)|_sf_(?:SIN|COS|TAN|ASIN|ACOS|ATAN|SQRT|LN|LOG|EXP|EXPT|ABS)")
 _ELEMENT = re.compile(r"(?<![\w.])(v_\w+)\[(_t\d+)\]")
 _SKIPPING = re.compile(r"\b(?:if|else|and|or|lambda|for)\b")
+_CHAINED = re.compile(r"(?<![=!<>:])=(?!=)")
+_WALRUS = re.compile(r"([A-Za-z_]\w*)\s*:=")
 
 
 def share_in_loops(lines: list[str], start: int, temp) -> None:
@@ -51,6 +53,11 @@ def shared_reads(lines: list[str], temp) -> list[str]:
         return lines
     if any(not _NUMERIC.fullmatch(name) for match in parsed for name in _CALLED.findall(match.group(4))):
         return lines
+    if any(_CHAINED.search(match.group(4)) for match in parsed):
+        return lines            # (`a = b = c` stores into b too)
+    # A name set by `:=` inside a line is set where no line's target says so: no element
+    # of an array of that name, or at an index of that name, is kept.
+    walrus = {name for match in parsed for name in _WALRUS.findall(match.group(4))}
     if not any(len(_ELEMENT.findall(match.group(4))) for match in parsed):
         return lines
     kept: dict[tuple[str, str], str] = {}        # (array, index) -> the name holding the element
@@ -64,7 +71,7 @@ def shared_reads(lines: list[str], temp) -> list[str]:
             name = kept.get(key)
             if name is not None:
                 return name
-            if not always or not _read_again(key, parsed, n, element.end()):
+            if not always or walrus.intersection(key) or not _read_again(key, parsed, n, element.end()):
                 return element.group(0)
             name = kept[key] = temp()
             return f"({name} := {element.group(0)})"
