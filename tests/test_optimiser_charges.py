@@ -252,6 +252,160 @@ def test_settle_leaves_the_same_time_charged_scan_by_scan():
     assert outcomes[0] == outcomes[1] == outcomes[2]
 
 
+# `settle` along paths (session 19): where paths join with different totals, each keeps its
+# own with the locals it set to a literal, and a test of such a local takes into a branch only
+# the paths that reach it.  By hand (lines from 0): F is 0 (line 3), so the first test's ELSE
+# (line 14) is reached by no path and stays as it is; after the first chain the paths are
+# (11, F=4), (12, F=5), (13, F=0), and only the last takes the second `F == 0` (lines 17 and
+# 20); then (17, F=6), (18, F=0), (11, F=4), (12, F=5): `F != 0` is three totals (line 22
+# stays), its ELSE one (line 24).
+_CODES = """    _spent = 0
+    try:
+        _spent += 10
+        v_F = 0
+        if (v_F == 0):
+            if a:
+                _spent += 1
+                v_F = 4
+            elif b:
+                _spent += 2
+                v_F = 5
+            else:
+                _spent += 3
+        else:
+            _spent += 7
+        if (v_F == 0):
+            if c:
+                _spent += 4
+                v_F = 6
+            else:
+                _spent += 5
+        if (v_F != 0):
+            _spent += 1
+        else:
+            _spent += 2
+    finally:
+        _ctx.budget -= _spent"""
+_CODES_SETTLED = {2: "_spent = 10", 6: "_spent = 11", 9: "_spent = 12", 12: "_spent = 13",
+                  17: "_spent = 17", 20: "_spent = 18", 24: "_spent = 20"}
+
+# A BOOL's truth: B is TRUE unless `d` (which charges 1 more); `if v_B:` is one total (13),
+# `if (not v_B):` after it too (6 + 9).  What the walk forgets: a local set other than to a
+# literal (`v_C = x`, `v_C += 1`, in a tuple, by `:=` in a test, as a loop's variable, inside a
+# `try`) is not known after, so the totals that its tests would tell apart stay apart.
+_TRUTH = """    _spent = 0
+    _spent += 5
+    v_B = True
+    if d:
+        _spent += 1
+        v_B = False
+    if v_B:
+        _spent += 8
+    if (not v_B):
+        _spent += 9"""
+_TRUTH_SETTLED = {1: "_spent = 5", 4: "_spent = 6", 7: "_spent = 13", 9: "_spent = 15"}
+
+_FORGETTING = ["v_C = x", "v_C += 1", "v_C, v_D = p", "if (v_C := g()):\n        pass",
+               "for v_C in r:\n        pass", "try:\n        v_C = g()\n    except _FAULTS as _e:\n        pass"]
+
+
+def _expected(lines: list[str], stores: dict[int, str]) -> list[str]:
+    return [line[:len(line) - len(line.lstrip())] + stores[n] if n in stores else line
+            for n, line in enumerate(lines)]
+
+
+def test_settled_follows_each_path_with_the_literals_its_locals_hold_by_hand():
+    from st_runtime.compiler.optimise.charges import settled
+
+    codes = _CODES.split("\n")
+    assert settled(codes) == _expected(codes, _CODES_SETTLED)
+    truth = _TRUTH.split("\n")
+    assert settled(truth) == _expected(truth, _TRUTH_SETTLED)
+
+
+@pytest.mark.parametrize("setting", _FORGETTING)
+def test_settled_forgets_a_local_set_other_than_to_a_literal(setting):
+    from st_runtime.compiler.optimise.charges import settled
+
+    # Without the setting the ELSE-less `v_C == 0` is taken by the path of total 1 only (2).
+    lines = ["    _spent = 0", "    v_C = 0", "    if a:", "        _spent += 1", "    else:",
+             "        _spent += 2", "        v_C = 3", "    " + setting, "    if (v_C == 0):",
+             "        _spent += 4"]
+    text = "\n".join(lines).split("\n")
+    assert settled(text)[-1] == "        _spent += 4"
+    plain = lines[:7] + ["    y = v_C"] + lines[8:]
+    assert settled(plain)[-1] == "        _spent = 5"
+
+
+def test_may_set_tells_a_read_from_a_store_of_a_local():
+    from st_runtime.compiler.optimise.charges import _may_set
+
+    for line in ("v_C = 1", "v_C += 2", "v_C //= 2", "v_C, v_D = p", "(v_C := 4)", "for v_C in r:",
+                 "with f() as v_C:", "except _FAULTS as v_C:", "del v_C", "v_D = v_C = 1"):
+        assert _may_set("v_C", line), line
+    for line in ("v_D = v_C", "self.v_C = 1", "v_CX = 1", "if (v_C == 0):", "v_D = (v_C >= 2)",
+                 "v_D = (v_C <= 2)", "v_D = (v_C != 2)", "x.v_C = 1", "v_D = f(v_C)"):
+        assert not _may_set("v_C", line), line
+
+
+# The same in a program: Code is 0, the first axis-like chain sets it in every branch but
+# its ELSE, the second runs `IF Code = 0`; Ok likewise.  Faults at scans 9 (Code <> 0) and 15
+# (NOT Ok) on the paths the settled charges are on.
+CODES = """
+PROGRAM Main
+VAR N, K, M, Code, Detail, Z : INT; Ok : BOOL; X : LREAL; END_VAR
+N := N + 1;
+K := N MOD 4;
+M := N MOD 3;
+Code := 0;
+Ok := TRUE;
+X := X + 1.0;
+IF Code = 0 THEN
+    IF K = 1 THEN Code := 11; Detail := N;
+    ELSIF K = 2 THEN Code := 12; X := X * 2.0;
+    ELSE Detail := 0;
+    END_IF;
+END_IF;
+IF Code = 0 THEN
+    IF M = 0 THEN Code := 21; Ok := FALSE;
+    ELSE Detail := Detail + 1;
+    END_IF;
+END_IF;
+IF Code <> 0 THEN Z := 100 / (N - 9); END_IF;
+IF Ok THEN Detail := Detail + 2; ELSE Detail := Detail - 2; END_IF;
+IF NOT Ok THEN Z := 10 / (N - 15); END_IF;
+X := X - 0.5;
+END_PROGRAM
+"""
+
+
+def _codes():
+    return api.load_text(CODES).program
+
+
+def test_settle_knows_the_total_of_the_paths_a_test_of_a_local_lets_through():
+    lines = [line.strip() for line in compile_program(_codes(), optimise=SETTLE_ON).python_sources["MAIN"].splitlines()]
+    second = lines.index("if (v_CODE == 0):", lines.index("if (v_CODE == 0):") + 1)
+    assert lines[second + 2].startswith("_spent = ") and lines[second + 6].startswith("_spent = ")
+    after = lines.index("if (not v_OK):")
+    assert lines[after + 1].startswith("_spent = ")
+
+
+def test_the_scans_see_the_same_with_and_without_settle_along_paths():
+    alone = same_alone_and_with_all(_codes, 16, "settle")
+    assert [fault[0] for fault in alone[0]] == ["F-DIV-ZERO", "F-DIV-ZERO"]
+    assert [fault[4] for fault in alone[0]] == [9, 15]
+    outcomes = stopped_runs(_codes(), 16, replace(SETTLE_ON, settle=False), SETTLE_ON, Optimisations.none())
+    assert outcomes[0] == outcomes[1] == outcomes[2]
+
+
+@pytest.mark.parametrize("budget_ns", [300, 1_000, 3_000])
+def test_f_period_lands_on_the_same_statement_with_settle_along_paths(budget_ns):
+    for optimise in (Optimisations.only("settle"), SETTLE_ON):
+        off, on = run_both(_codes(), 16, budget_ns, optimise=optimise)
+        assert on == off
+
+
 # `_lifted` (with `charges`): the ELSE charge of a chain that follows another chain goes into
 # that chain's branches, taken from its own other branches.  By hand:
 _TWO_CHAINS = """    _spent += 5

@@ -40,7 +40,8 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, pivots, ranges, reuse, scalars, seal, shortcut, stores, sums, unguard, unroll
+from .optimise import (aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, pivots, ranges, reads,
+                       reuse, scalars, seal, shortcut, stores, sums, unguard, unroll)
 from .optimise import branched, may_reuse
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, assigned_in, kinds, once, walk
@@ -131,6 +132,8 @@ class BodyCompiler(ExprCompiler):
         o.dedent()
         if self.reuse is not None:
             self.reuse.resolve(o.lines, start)
+        if self.opt.cse:
+            reads.share_in_loops(o.lines, start, self.lasting_temp)
         if self.opt.unused:
             aliases.drop_unused(o.lines, start)
             if self.method and self.unit.guard_statements:   # (a line without `try` then cannot raise)

@@ -14,7 +14,11 @@ states bit for bit:
   calls nothing, array elements read at constant indices are read once,
   before the loop, and a `+ - *` of such values, literals or earlier shared
   results is computed once and reused.  Operands keep their order and
-  grouping (no reassociation), so every result is the same float.
+  grouping (no reassociation), so every result is the same float.  In a
+  FOR loop's body of assignments to Python names that calls nothing but
+  the numeric library (reads.py), an element `v_A[_tN]` read again in the
+  same iteration is kept by its first read (`(_tM := v_A[_tN])`) where that
+  read always runs, and read by name after.
 * `fuse` (fuse.py): in a CSE region's straight code, a store that no one
   can see before the variable is set again is put into its one use, runs of
   `D := D + x` become one expression (same operations, same order), and
@@ -108,7 +112,10 @@ states bit for bit:
 * `settle` (charges.py `settled`): a charge where the value of `_spent` is
   known (from the body's `_spent = 0` on, into IF branches and on after a chain
   whose paths end with one total, through `try` statements that charge nothing)
-  stores that value plus its amount: the same int, no addition.
+  stores that value plus its amount: the same int, no addition.  Where paths
+  join with different totals, each keeps its own with the literals its
+  locals hold, and a test of such a local (`IF NewFault = 0`) lets into a
+  branch only the paths that reach it, whose total may then be one.
 * `spread` (aliases.py `spread_branches`, with `aliases` and `stores`): a
   variable every use of which lies in branches of one IF or CASE, no use at
   their common level, is loaded at the start of each such branch (and stored

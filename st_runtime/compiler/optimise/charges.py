@@ -27,6 +27,7 @@ store of that value.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import re
 
@@ -393,7 +394,14 @@ def settled(text: list[str]) -> list[str]:
     through a `try` statement that sets `_spent` nowhere; not into a loop or a handler, nor
     past any other line that sets `_spent` (a fast body's take-backs, a loop's charge of all
     its iterations).  (SP_Controller's first charge and its first axis's fault tests, IK's
-    first charge, TRJ_OceanWave's ELSE of its enable edge.)"""
+    first charge, TRJ_OceanWave's ELSE of its enable edge.)
+
+    Where paths join with different totals, each total is kept with what the path knows of
+    the locals it set to a literal (`_Paths`): a later test of such a local (`if (v_X == 4):`,
+    `if v_X:`, their negations) reads each path's own value and takes into a branch only the
+    paths that reach it.  (SP_Controller's axes: `NewFault := 0`, then each axis's fault
+    tests, whose every branch but the ELSE sets NewFault to a code; the next axis's tests run
+    only `IF NewFault = 0`, which only the ELSE path reaches: its total is known.)"""
     out = list(text)
     try:
         _Settle(out).block(1 if out and out[0].startswith("def ") else 0, None, ended=False)
@@ -408,11 +416,123 @@ class _Unread(Exception):
 
 _SETS = re.compile(r"\s*_spent\s*(?:[-+*]?=)")        # a line that sets `_spent`
 _COMPOUND = re.compile(r" *(if|elif|else|try|except|finally|for|while|with|def)\b.*:$")
+# `v_X = 4`, `v_X = True`: a local set to a literal (a Python name the body assigns is local).
+_LITERAL_STORE = re.compile(r" *(v_\w+) = (-?\d+|True|False)")
+# A clause's test of a local alone: `if v_X:`, `elif (not v_X):`, `if (v_X == 4):`, `!=`.
+_LOCAL_TEST = re.compile(r" *(?:if|elif) \(?(not )?(v_\w+)(?: (==|!=) (-?\d+))?\)?:")
+_LITERALS = {"True": 1, "False": 0}
+#: At most this many paths are told apart; beyond it only a total they all share is kept.
+_PATH_CAP = 64
+
+
+class _Paths(frozenset):
+    """What the walk knows where it stands: a set of paths, each `(total, facts)`: `_spent`'s
+    value on that path (None: not known) and, as sorted `(local, value)` pairs, the locals it
+    last set to a literal (a bool as 0 or 1).  Empty: no path reaches the place."""
+
+    def total(self) -> int | None:
+        """The value every path gives `_spent`, or None (no path, or not one value)."""
+        totals = {total for total, _ in self}
+        return totals.pop() if len(totals) == 1 and None not in totals else None
+
+    def charged(self, amount: int) -> "_Paths":
+        return _Paths((None if total is None else total + amount, facts) for total, facts in self)
+
+    def zeroed(self) -> "_Paths":
+        return _Paths((0, facts) for _, facts in self)
+
+    def told(self, local: str, value: int | None) -> "_Paths":
+        """Each path with `local` set to `value` (None: to what the walk does not know)."""
+        return _Paths((total, _told(facts, local, value)) for total, facts in self)
+
+    @functools.cached_property
+    def locals(self) -> frozenset:
+        """The locals some path knows the value of."""
+        return frozenset(local for _, facts in self for local, _ in facts)
+
+    def forgetting(self, line: str) -> "_Paths":
+        """Each path without what it knew of a local that `line` may set (`_may_set`)."""
+        lost = {local for local in self.locals if local in line and _may_set(local, line)}
+        if not lost:
+            return self
+        return _Paths((total, tuple(fact for fact in facts if fact[0] not in lost)) for total, facts in self)
+
+    def taking(self, local: str, test, held: int | None) -> "_Paths":
+        """The paths on which `test(value of local)` may hold; a path that does not know the
+        value knows it is `held` there (None: not one value)."""
+        kept = []
+        for total, facts in self:
+            value = dict(facts).get(local)
+            if value is None:
+                kept.append((total, facts if held is None else _told(facts, local, held)))
+            elif test(value):
+                kept.append((total, facts))
+        return _Paths(kept)
+
+
+def _may_set(local: str, line: str) -> bool:
+    """Whether `line` may set the Python local `local`: it names it as a target (`=`, `:=`,
+    an augmented assignment, before a comma: a tuple's), or it is a line that binds names
+    otherwise (`for`, `with ... as`, `except ... as`, `del`) and names it at all."""
+    if not re.search(rf"(?<![\w.]){local}(?!\w)", line):
+        return False
+    if _BINDS.match(line) or " as " in line:
+        return True
+    return re.search(rf"(?<![\w.]){local}\s*(?::=|(?:[-+*/%&|^@]|//|\*\*|>>|<<)?=(?!=)|,)", line) is not None
+
+
+_BINDS = re.compile(r" *(?:for|with|del|async|import|from|global|nonlocal|class|def|lambda)\b")
+
+
+def _told(facts: tuple, local: str, value: int | None) -> tuple:
+    others = tuple(fact for fact in facts if fact[0] != local)
+    return others if value is None else tuple(sorted(others + ((local, value),)))
+
+
+def _start(value: "_Paths | None") -> "_Paths":
+    return _Paths({(None, ())}) if value is None else value
+
+
+def _kept(paths: "_Paths") -> "_Paths | None":
+    """`paths` as the walk carries them: None when nothing can be replaced until a
+    `_spent = 0` (no path knows its total; or not one total and no path knows a local,
+    which alone could tell the totals apart: every later line acts on all paths alike), one
+    path of the total they share beyond `_PATH_CAP`."""
+    if paths and (all(total is None for total, _ in paths) or not paths.locals and paths.total() is None):
+        return None
+    if len(paths) > _PATH_CAP:
+        total = paths.total()
+        return None if total is None else _Paths({(total, ())})
+    return paths
+
+
+def _taken(line: str, paths: "_Paths | None") -> tuple["_Paths | None", "_Paths | None"]:
+    """(the paths that may take the clause on `line`, those that go on past its test): a test
+    of a local alone (`_LOCAL_TEST`) is read on each path that knows the local's value, and
+    tells one that does not what `==` (or a false `!=`) found; any other test takes every
+    path both ways, without what they knew of a local it names (it may set one: `:=`)."""
+    if paths is None or line.strip() == "else:":
+        return paths, _Paths()
+    test = _LOCAL_TEST.fullmatch(line)
+    if test is None:
+        paths = paths.forgetting(line)
+        return paths, paths
+    negated, local, operator, literal = test.groups()
+    if operator is None:
+        holds = (lambda value: value == 0) if negated else (lambda value: value != 0)
+        return paths.taking(local, holds, None), paths.taking(local, lambda value: not holds(value), None)
+    equal = (operator == "==") != bool(negated)        # (the clause is taken when the two are equal)
+    constant = int(literal)
+    if equal:
+        return (paths.taking(local, lambda value: value == constant, constant),
+                paths.taking(local, lambda value: value != constant, None))
+    return (paths.taking(local, lambda value: value != constant, None),
+            paths.taking(local, lambda value: value == constant, constant))
 
 
 class _Settle:
-    """`settled`'s walk: each block's lines in turn, with the value `_spent` holds (None:
-    not known), replacing the charges it can.  Once nothing is known, what comes next that
+    """`settled`'s walk: each block's lines in turn, with what is known of `_spent` (`_Paths`;
+    None: nothing), replacing the charges it can.  Once nothing is known, what comes next that
     may be replaced is after a `_spent = 0` of the same block: the walk goes there at once,
     or to the block's end, or (a block whose end no one reads: the outermost, a `try`'s
     body) stops.  Each line's indentation is read once; a statement's end only when asked."""
@@ -421,11 +541,13 @@ class _Settle:
         self.text = text
         self.indent = _indents(text)
         self.after = _Nearest(self.indent, 1)     # (where a statement or clause ends)
+        # The locals a clause tests alone: only what a path knows of these may tell it apart.
+        self.tested = {test.group(2) for line in text if "if " in line and (test := _LOCAL_TEST.fullmatch(line))}
 
-    def block(self, n: int, value: int | None, ended: bool = True) -> tuple[int, int | None]:
+    def block(self, n: int, value: "_Paths | None", ended: bool = True) -> tuple[int, "_Paths | None"]:
         """Read the block whose first line is `n` (its indentation: that line's); the line
-        after it and the value `_spent` holds at its end.  `ended=False`: the caller reads
-        neither, and the walk stops where nothing more can be replaced."""
+        after it and what is known at its end.  `ended=False`: the caller reads neither, and
+        the walk stops where nothing more can be replaced."""
         text, indents = self.text, self.indent
         indent = indents[n] if n < len(text) else 0
         while n < len(text) and indents[n] >= indent:
@@ -433,6 +555,9 @@ class _Settle:
                 raise _Unread(text[n])
             if value is None and text[n] != " " * indent + "_spent = 0":
                 n = self._known_again(n, indent, ended)
+                continue
+            if value is not None and not value:        # (no path reaches the rest of the block)
+                n = self._known_again(n, indent, True)
                 continue
             head = _COMPOUND.fullmatch(text[n])
             if head is None:
@@ -444,8 +569,7 @@ class _Settle:
                 n, value = self._try(n, indent, value)
             else:                       # a loop, `with`, `def`: not followed into
                 end = self.after[n]
-                if self._sets(n, end):
-                    value = None
+                value = None if self._sets(n, end) else self._forgetting(value, n, end)
                 n = end
         return n, value
 
@@ -475,36 +599,55 @@ class _Settle:
                 return True
         return False
 
-    def _simple(self, n: int, value: int | None) -> int | None:
-        line = self.text[n]
-        if "_spent" not in line or not _SETS.match(line):
-            return value
-        match = _CHARGE.fullmatch(line)
-        if line.strip() == "_spent = 0":
-            return 0
-        if match is None or value is None:
-            return None
-        value += int(match.group(2))
-        self.text[n] = f"{match.group(1)}_spent = {value}"
+    def _forgetting(self, value: "_Paths | None", first: int, end: int) -> "_Paths | None":
+        """`value` without what it knew of a local named on a line from `first` to `end - 1`."""
+        if value is not None:
+            for line in itertools.islice(self.text, first, end):
+                value = value.forgetting(line)
         return value
 
-    def _chain(self, n: int, indent: int, value: int | None) -> tuple[int, int | None]:
-        """An IF chain from its `if` line: each branch read with `value`."""
-        ends, text, has_else = [], self.text, False
+    def _simple(self, n: int, value: "_Paths | None") -> "_Paths | None":
+        line = self.text[n]
+        if "_spent" not in line or not _SETS.match(line):
+            store = _LITERAL_STORE.fullmatch(line)
+            if store is not None and store.group(1) in self.tested:
+                literal = store.group(2)
+                return _start(value).told(store.group(1), _LITERALS.get(literal) if literal in _LITERALS
+                                          else int(literal))
+            return value if value is None else value.forgetting(line)
+        match = _CHARGE.fullmatch(line)
+        if line.strip() == "_spent = 0":
+            return _start(value).zeroed()
+        if match is None or value is None:
+            return None
+        total = value.total()
+        if total is not None:
+            self.text[n] = f"{match.group(1)}_spent = {total + int(match.group(2))}"
+        return _kept(value.charged(int(match.group(2))))
+
+    def _chain(self, n: int, indent: int, value: "_Paths | None") -> tuple[int, "_Paths | None"]:
+        """An IF chain from its `if` line: each branch read with the paths that may take it
+        (`_taken`); after the chain, the paths of every branch's end (and, without ELSE, those
+        that took no branch)."""
+        ends, text, rest, has_else = [], self.text, value, False
         while True:
-            n, end = self.block(n + 1, value)
+            taken, rest = _taken(text[n], rest)
+            n, end = self.block(n + 1, taken)
             ends.append(end)
             if n < len(text) and self.indent[n] == indent and text[n].lstrip().startswith(("elif ", "else:")):
                 has_else = text[n].strip() == "else:"
                 continue
             break
         if not has_else:
-            ends.append(value)
-        return n, ends[0] if value is not None and all(end == ends[0] for end in ends) else None
+            ends.append(rest)
+        if value is None or any(end is None for end in ends):
+            return n, None
+        return n, _kept(_Paths(frozenset().union(*ends)))
 
-    def _try(self, n: int, indent: int, value: int | None) -> tuple[int, int | None]:
+    def _try(self, n: int, indent: int, value: "_Paths | None") -> tuple[int, "_Paths | None"]:
         """A `try` statement: its body read with `value`, its handlers with none; `value`
-        after it when nothing in it sets `_spent`."""
+        after it when nothing in it sets `_spent` (without what it knew of a local the
+        statement names)."""
         end, _ = self.block(n + 1, value)       # (where its body ends: its first handler)
         body = self.indent[n + 1] if n + 1 < len(self.text) else 0
         if not body > indent >= (self.indent[end] if end < len(self.text) else 0):
@@ -512,7 +655,7 @@ class _Settle:
         while end < len(self.text) and self.indent[end] == indent \
                 and self.text[end].lstrip().startswith(("except", "else:", "finally:")):
             end = self.after[end]
-        return end, None if self._sets(n, end) else value
+        return end, None if self._sets(n, end) else self._forgetting(value, n, end)
 
 
 def _indentation(line: str) -> int:
