@@ -132,7 +132,7 @@ class BodyCompiler(ExprCompiler):
         o.dedent()
         if self.reuse is not None:
             self.reuse.resolve(o.lines, start)
-        if self.opt.cse:
+        if self.opt.cse and ast.For in self.scope.usage.kinds:     # (no FOR, no loop to look in)
             reads.share_in_loops(o.lines, start, self.lasting_temp)
         if self.opt.unused:
             aliases.drop_unused(o.lines, start)
