@@ -14,10 +14,11 @@ from dataclasses import replace
 
 import pytest
 
-from st_runtime.api import Plc, load_text
+from st_runtime.api import load_text
 from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.compiler.optimise import pivots
-from st_runtime.controller import Controller
+
+from optimiser_helpers import run_main
 
 ON = Optimisations()
 OFF = replace(ON, pivots=False)
@@ -65,13 +66,8 @@ COLUMNS = [[1.0, 2.0, 0.0, 1.0], [-5.0, 0.0, 1.0, 1.0], [3.0, -7.0, 2.0, 1.0], [
 
 
 def _run(optimise: Optimisations, x):
-    compiled = compile_program(load_text(SEARCH, "t.st").program, optimise=optimise)
-    plc = Plc(Controller(compiled, 1_000_000, None, False))
-    main = plc.add_program("Main")
-    main["X"] = x
-    plc.run(1)
-    faults = [(f.code, f.pou, f.line, f.col, f.scan) for f in plc.controller.faults]
-    return main["R"], main["Zeros"], repr(main["X"]), faults, list(plc.controller.task_times["Primary"])
+    (r, zeros, matrix), faults, times = run_main(SEARCH, optimise, {"X": x}, ("R", "Zeros", "X"))
+    return r, zeros, repr(matrix), faults, times
 
 
 def _same(x):

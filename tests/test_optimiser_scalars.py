@@ -14,10 +14,11 @@ from dataclasses import replace
 
 import pytest
 
-from st_runtime.api import Plc, load_text
+from st_runtime.api import load_text
 from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.compiler.optimise import scalars
-from st_runtime.controller import Controller
+
+from optimiser_helpers import run_main
 
 ON = Optimisations()
 OFF = replace(ON, scalars=False)
@@ -103,14 +104,8 @@ END_PROGRAM
 
 
 def _run(source: str, optimise: Optimisations, inputs: dict, stop: bool = False, dialect: str = "iec"):
-    compiled = compile_program(load_text(source, "t.st", dialect=dialect).program, optimise=optimise)
-    plc = Plc(Controller(compiled, 1_000_000, None, stop))
-    main = plc.add_program("Main")
-    for name, value in inputs.items():
-        main[name] = value
-    plc.run(1)
-    faults = [(f.code, f.pou, f.line, f.col, f.scan) for f in plc.controller.faults]
-    return main["X"], main["R"], faults, list(plc.controller.task_times["Primary"])
+    (x, r), faults, times = run_main(source, optimise, inputs, ("X", "R"), stop, dialect)
+    return x, r, faults, times
 
 
 def _same(source: str, inputs: dict, stop: bool = False, dialect: str = "iec"):

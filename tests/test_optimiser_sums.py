@@ -15,10 +15,11 @@ from dataclasses import replace
 
 import pytest
 
-from st_runtime.api import Plc, load_text
+from st_runtime.api import load_text
 from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.compiler.optimise import sums
-from st_runtime.controller import Controller
+
+from optimiser_helpers import run_main
 
 ON = Optimisations()
 OFF = replace(ON, sums=False)
@@ -110,15 +111,7 @@ END_PROGRAM
 
 
 def _run(source: str, optimise: Optimisations, inputs: dict, outputs: tuple[str, ...], stop: bool = False):
-    compiled = compile_program(load_text(source, "t.st").program, optimise=optimise)
-    plc = Plc(Controller(compiled, 1_000_000, None, stop))
-    main = plc.add_program("Main")
-    for name, value in inputs.items():
-        main[name] = value
-    plc.run(1)
-    faults = [(f.code, f.pou, f.line, f.col, f.scan) for f in plc.controller.faults]
-    values = tuple(main[name] for name in outputs)
-    return values, faults, list(plc.controller.task_times["Primary"])
+    return run_main(source, optimise, inputs, outputs, stop)
 
 
 def _same(source: str, inputs: dict, outputs: tuple[str, ...], stop: bool = False):
