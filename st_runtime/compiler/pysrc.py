@@ -14,6 +14,11 @@ import re
 _IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 
 
+def indentation(line: str) -> int:
+    """The spaces a generated line is indented by (the emitter indents with spaces only)."""
+    return len(line) - len(line.lstrip(" "))
+
+
 def pyliteral(value) -> str:
     """Python source for a constant value (bool, int, float, str)."""
     if isinstance(value, bool):

@@ -31,6 +31,8 @@ import functools
 import itertools
 import re
 
+from ..pysrc import indentation
+
 _CHARGE = re.compile(r"( *)_spent \+= (\d+)")
 # A line that can raise, check the budget or leave the level: a word of these (the first
 # test: a substring, then the word as a whole), a loop's head, or a line opening a block
@@ -90,8 +92,8 @@ def _out_of_try(text: list[str]) -> None:
         if line.endswith("try:") and line.strip() == "try:" and "_spent += " in text[n + 1] \
                 and text[n - 1].strip() != "_spent = 0":       # (the body's own `try`: its level joins)
             match = _CHARGE.fullmatch(text[n + 1])
-            indent = _indentation(line)
-            if match is not None and len(match.group(1)) == indent + 4 and _indentation(text[n + 2]) > indent:
+            indent = indentation(line)
+            if match is not None and len(match.group(1)) == indent + 4 and indentation(text[n + 2]) > indent:
                 text[n], text[n + 1] = f"{line[:indent]}_spent += {match.group(2)}", line
 
 
@@ -159,7 +161,7 @@ def _sink_once(text: list[str], candidates: list[int]) -> tuple[list[str], list[
             continue
         if amount:
             changed.append(len(out))
-            out.append(f"{' ' * _indentation(line)}_spent += {amount}")
+            out.append(f"{' ' * indentation(line)}_spent += {amount}")
         out.append(line)
     out.extend(text[done:])
     return out, changed
@@ -200,7 +202,7 @@ def _branch_charge(text: list[str], first: int, indent: int, stops) -> int:
     its first line."""
     for n in range(first, len(text)):
         line = text[n]
-        if _indentation(line) < indent:
+        if indentation(line) < indent:
             break
         if line.startswith(" " * indent + "_spent += ") and _CHARGE.fullmatch(line):
             return n
@@ -260,7 +262,7 @@ def _lifted(text: list[str]) -> list[str]:
     stops = _Stops(text)
     amounts: dict[int, int] = {}            # line of a charge -> its amount now
     chains = [n for n, line in enumerate(text) if line.endswith("else:") and n + 1 < len(text)
-              and (charge := _CHARGE.fullmatch(text[n + 1])) and len(charge.group(1)) == _indentation(line) + 4]
+              and (charge := _CHARGE.fullmatch(text[n + 1])) and len(charge.group(1)) == indentation(line) + 4]
     shape = _Shape(text) if chains else None
     for else_line in reversed(chains):
         _lift(text, else_line, stops, amounts, shape)
@@ -272,18 +274,18 @@ def _lifted(text: list[str]) -> list[str]:
         if amount is None:
             out.append(line)
         elif amount:
-            indent = line[:_indentation(line)]
+            indent = line[:indentation(line)]
             out.append(f"{indent}_spent += {amount}" if amount > 0 else f"{indent}_spent -= {-amount}")
-        elif out[-1].strip() == "else:" and not _opens_block(text, n, _indentation(out[-1])):
+        elif out[-1].strip() == "else:" and not _opens_block(text, n, indentation(out[-1])):
             out.pop()                   # (an ELSE left with nothing)
-        elif _indentation(out[-1]) < _indentation(line) and not _opens_block(text, n, _indentation(line) - 4):
-            out.append(line[:_indentation(line)] + "pass")
+        elif indentation(out[-1]) < indentation(line) and not _opens_block(text, n, indentation(line) - 4):
+            out.append(line[:indentation(line)] + "pass")
     return out
 
 
 def _opens_block(text: list[str], n: int, indent: int) -> bool:
     """Whether the branch whose line `n` is (a dropped charge) holds more lines after it."""
-    return n + 1 < len(text) and _indentation(text[n + 1]) > indent
+    return n + 1 < len(text) and indentation(text[n + 1]) > indent
 
 
 def _lift(text: list[str], else_line: int, stops, amounts: dict[int, int], shape: "_Shape") -> None:
@@ -658,12 +660,8 @@ class _Settle:
         return end, None if self._sets(n, end) else self._forgetting(value, n, end)
 
 
-def _indentation(line: str) -> int:
-    return len(line) - len(line.lstrip(" "))
-
-
 def _indents(text: list[str]) -> list[int]:
-    """Each line's indentation, `_indentation` written out (no call a line: the walks read
+    """Each line's indentation, `indentation` written out (no call a line: the walks read
     every line's); an empty line's is 1 << 20, more than any line's."""
     return [len(line) - len(line.lstrip(" ")) if line else 1 << 20 for line in text]
 

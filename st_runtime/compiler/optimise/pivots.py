@@ -44,6 +44,7 @@ from __future__ import annotations
 
 import re
 
+from ..pysrc import indentation
 from .sums import quiet_store
 
 #: A candidate's test: `if (abs(E) > abs(X[P * a - b])):`, E a list element or a local.
@@ -102,7 +103,7 @@ def _chain(lines: list[str], n: int, first) -> tuple[int, list[str]] | None:
             out.extend(branch)
             tests += 1
             n = end
-        elif _indent(line) == len(pad) and _passable(line.strip(), first):
+        elif indentation(line) == len(pad) and _passable(line.strip(), first):
             out.append(line)
             n += 1
         else:
@@ -132,7 +133,7 @@ def _test(lines: list[str], n: int, match) -> tuple[int, list[str] | None]:
     scale, offset = int(match.group(5) or 1), int(match.group(6))
     end = n + 1
     body = []
-    while end < len(lines) and _indent(lines[end]) > len(pad):
+    while end < len(lines) and indentation(lines[end]) > len(pad):
         body.append(lines[end])
         end += 1
     rows = [_ROW.fullmatch(line.strip()) for line in body]
@@ -143,18 +144,18 @@ def _test(lines: list[str], n: int, match) -> tuple[int, list[str] | None]:
     if any(row is not None and row.group(1) != row_name for row in rows) or \
             _index(candidate, match.group(3)) != int(moves[0].group(2)) * scale - offset:
         return n, None
-    inner = " " * _indent(body[0])
+    inner = " " * indentation(body[0])
     out = [f"{pad}if (({_CANDIDATE_ABS} := abs({candidate})) > {_BEST}):", *body,
            f"{inner}{_BEST} = {_CANDIDATE_ABS}"]
     if end < len(lines) and lines[end] == f"{pad}else:":
         out.append(lines[end])
         end += 1
-        while end < len(lines) and _indent(lines[end]) > len(pad):
+        while end < len(lines) and indentation(lines[end]) > len(pad):
             if not _CHARGE.fullmatch(lines[end].strip()):
                 return n, None
             out.append(lines[end])
             end += 1
-    if end < len(lines) and _indent(lines[end]) == len(pad) and lines[end].strip().startswith("elif "):
+    if end < len(lines) and indentation(lines[end]) == len(pad) and lines[end].strip().startswith("elif "):
         return n, None
     return end, out
 
@@ -187,6 +188,3 @@ def _zero_test(line: str, pad: str, element: str) -> str | None:
         return None
     return f"{pad}if ({_BEST} {op} {high}):"
 
-
-def _indent(line: str) -> int:
-    return len(line) - len(line.lstrip())

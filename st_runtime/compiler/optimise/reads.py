@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import re
 
+from ..pysrc import indentation
+
 _ASSIGNMENT = re.compile(r"( *)([A-Za-z_]\w*) ((?:[-+*/%&|^]|//|\*\*|<<|>>)?=) (.+)")
 _CALLED = re.compile(r"([A-Za-z_][\w.]*)\(")
 _NUMERIC = re.compile(r"_m_(?:sin|cos|tan|sqrt)|_sf_(?:SIN|COS|TAN|ASIN|ACOS|ATAN|SQRT|LN|LOG|EXP|EXPT|ABS)")
@@ -36,9 +38,9 @@ def share_in_loops(lines: list[str], start: int, temp) -> None:
     while n < len(lines):
         line = lines[n]
         if line.lstrip().startswith("for ") and line.endswith(":"):
-            indent = len(line) - len(line.lstrip(" "))
+            indent = indentation(line)
             end = n + 1
-            while end < len(lines) and len(lines[end]) - len(lines[end].lstrip(" ")) > indent:
+            while end < len(lines) and indentation(lines[end]) > indent:
                 end += 1
             lines[n + 1:end] = shared_reads(lines[n + 1:end], temp)
         n += 1

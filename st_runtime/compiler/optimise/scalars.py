@@ -42,7 +42,7 @@ import re
 from ... import ast
 from ...types import ArrayType, ElementaryType, resolve_alias
 from ..scope import walk
-from ..pysrc import pyident
+from ..pysrc import indentation, pyident
 from . import fastpath
 
 #: Literal accesses a list needs in the fast copy to repay its unpack and write-backs.
@@ -163,7 +163,7 @@ class _Rewrite:
         self.augmented = re.compile(rf"(?<![\w.])(?:{'|'.join([name, *others])})\[[^\]]*\] (?:[-+*/%&|^@]|//|\*\*|<<|>>)= ")
 
     def whole(self, lines: list[str]) -> list[str]:
-        indent = _indent(lines[0]) if lines else 0
+        indent = indentation(lines[0]) if lines else 0
         out: list[str] = []
         state = self.block(lines, indent, {}, 0, out, None)
         if state is not None:
@@ -295,7 +295,7 @@ class _Rewrite:
 
     # ------------------------------------------------------------- lines
     def simple(self, line: str, state: dict, depth: int, out: list[str]):
-        indent = _indent(line)
+        indent = indentation(line)
         leaves = line.strip().startswith(("return", "raise", "break", "continue"))
         if not self.named.search(line):
             if _LEAVES.search(line):
@@ -382,9 +382,6 @@ def _dirty(states) -> set[int]:
     """The elements dirty in any of `states`."""
     return {k for s in states for k, dirty in s.items() if dirty}
 
-
-def _indent(line: str) -> int:
-    return len(line) - len(line.lstrip())
 
 
 def _starts(lines, indent: int) -> list[int]:

@@ -48,6 +48,7 @@ from __future__ import annotations
 import re
 
 from ...types import ArrayType, ElementaryType, resolve_alias
+from ..pysrc import indentation
 from .unguard import _ATTRIBUTE_OR_CALL
 
 #: Tests a run needs to be folded (its sum and test must cost less than the tests it skips).
@@ -103,7 +104,7 @@ def fold(lines: list[str], start: int, lists: dict[str, tuple[int, bool, bool]])
             out.append(line)                # (no run open and no test: the common line)
             n += 1
             continue
-        indent = _indent(line)
+        indent = indentation(line)
         end = _statement_end(lines, n, indent)
         test = _test(lines, n, end, lists) if _MARK in line else None
         if run is not None and not (indent == run.indent and run.admits(test, lines[n:end])):
@@ -219,13 +220,13 @@ def _test(lines: list[str], n: int, end: int, lists) -> tuple[str, int, tuple[st
     if info is None or not info[1] or k >= info[0]:
         return None
     body = tuple(line.strip() for line in lines[n + 1:end])
-    if _indent(lines[n + 1]) != _indent(lines[n]) + 4 or \
+    if indentation(lines[n + 1]) != indentation(lines[n]) + 4 or \
             not all(_CHARGE.fullmatch(line) or _LITERAL_STORE.fullmatch(line) for line in body):
         return None
     if any(_LITERAL_STORE.fullmatch(line) and _LITERAL_STORE.fullmatch(line).group(1) in (name, "_spent")
            for line in body):
         return None
-    if end < len(lines) and _indent(lines[end]) == _indent(lines[n]) and \
+    if end < len(lines) and indentation(lines[end]) == indentation(lines[n]) and \
             lines[end].strip().startswith(("elif ", "else:")):
         return None
     return name, k, body
@@ -234,10 +235,7 @@ def _test(lines: list[str], n: int, end: int, lists) -> tuple[str, int, tuple[st
 def _statement_end(lines: list[str], n: int, indent: int) -> int:
     """The index after line n and the lines indented deeper than it (its body)."""
     end = n + 1
-    while end < len(lines) and _indent(lines[end]) > indent:
+    while end < len(lines) and indentation(lines[end]) > indent:
         end += 1
     return end
 
-
-def _indent(line: str) -> int:
-    return len(line) - len(line.lstrip())
