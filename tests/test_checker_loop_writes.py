@@ -6,9 +6,11 @@ controls the loop (itself, or through what it calls) alters it: W-ASSIGN-001 at 
 warning (the program still loads and runs: the loop goes on from the value the callee leaves,
 which tests/test_compiler_tables_core.py pins; a write in the loop's own text is E-ASSIGN-003). The
 near misses (a read, another global, a local of the same name, a loop over a local, a call after
-the loop) stay accepted. Inside an FB, a FOR over one of its variables: a METHOD called on this
-instance (`M()`, `THIS.M()`, `SUPER.M()`) that writes it, or calls one that does, is warned of the
-same way. Expected places are counted by hand in each text.
+the loop) stay accepted. A METHOD of any instance that writes the global (through its FB's
+VAR_EXTERNAL) alters it the same way. Inside an FB, a FOR over one of its variables: a METHOD
+called on this instance (`M()`, `THIS.M()`, `SUPER.M()`) that writes it, or calls one that does,
+is warned of the same way; another instance's method writes that instance's variable (accepted).
+Expected places are counted by hand in each text.
 """
 
 from __future__ import annotations
@@ -197,3 +199,68 @@ def test_each_method_call_in_the_loop_is_warned_of():
     assert diagnostics(text, "iec") == [
         ("W-ASSIGN-001", CALL_LINE, 3, method_alters("Bump", "Bump writes it")),
         ("W-ASSIGN-001", CALL_LINE + 1, 3, method_alters("Reset", "Reset writes it"))]
+
+
+# ====================================================================== METHODs of other instances
+# A global names one storage from every POU: a METHOD of any instance that writes it (through its
+# FB's VAR_EXTERNAL), itself or through what it calls, alters a FOR over it. X's methods on lines
+# 8-25 (Inc writes g, Via calls Bump, Own writes X's i, Other writes h, Loop runs a FOR over g
+# calling {inner} on line 23); Main from line 27, its FOR calling {call} on line 31.
+
+INSTANCES = (GLOBALS                                                            # 1-4
+             + "FUNCTION_BLOCK X\nVAR_EXTERNAL g : INT; h : INT; END_VAR\nVAR i : INT; END_VAR\n"  # 5-7
+             "METHOD Inc\ng := g + 1;\nEND_METHOD\n"                            # 8-10
+             "METHOD Via\nBump();\nEND_METHOD\n"                                # 11-13
+             "METHOD Own\ni := i + 1;\nEND_METHOD\n"                            # 14-16
+             "METHOD Other\nh := 1;\nEND_METHOD\n"                              # 17-19
+             "METHOD Loop\nVAR s : INT; END_VAR\nFOR g := 1 TO 2 DO\n  {inner}\nEND_FOR;\nEND_METHOD\n"   # 20-25
+             "END_FUNCTION_BLOCK\n"                                             # 26
+             "PROGRAM Main\nVAR_EXTERNAL g : INT; END_VAR\n"                    # 27-28
+             "VAR x : X; xs : ARRAY[1..2] OF X; s : INT; END_VAR\n"             # 29
+             "FOR g := 1 TO 3 DO\n  {call}\nEND_FOR;\nEND_PROGRAM\n"            # 30-33
+             + function("Bump", "g := g + 1;"))
+INNER_LINE, OUTER_LINE = 23, 31
+
+
+def method_alters_global(callee: str, chain: str) -> str:
+    return alters(f"method {callee}", chain)
+
+
+INSTANCE_WARNED = [
+    pytest.param("x.Inc();", "s := 0;", OUTER_LINE, method_alters_global("Inc", "Inc writes it"),
+                 id="a_method_of_an_instance_writes_it"),
+    pytest.param("xs[2].Via();", "s := 0;", OUTER_LINE,
+                 method_alters_global("Via", "Via calls Bump, which writes it"),
+                 id="an_array_elements_method_calls_a_function_that_writes_it"),
+    pytest.param("x.Own();", "Inc();", INNER_LINE, method_alters_global("Inc", "Inc writes it"),
+                 id="a_method_of_this_instance_writes_the_global"),
+    pytest.param("x.Own();", "THIS.Via();", INNER_LINE,
+                 method_alters_global("Via", "Via calls Bump, which writes it"),
+                 id="this_instance_through_a_function"),
+]
+
+
+@pytest.mark.parametrize("dialect", ("iec", "codesys"))
+@pytest.mark.parametrize("call, inner, line, message", INSTANCE_WARNED)
+def test_a_method_of_any_instance_that_writes_the_loops_global_is_warned_of(call, inner, line, message, dialect):
+    text = INSTANCES.format(call=call, inner=inner)
+    assert diagnostics(text, dialect) == [("W-ASSIGN-001", line, 3, message)]
+
+
+@pytest.mark.parametrize("dialect", ("iec", "codesys"))
+@pytest.mark.parametrize("call", [
+    pytest.param("x.Own();", id="the_method_writes_its_instances_own_variable"),
+    pytest.param("xs[1].Other();", id="the_method_writes_another_global"),
+    pytest.param("s := 1;", id="no_call"),
+])
+def test_instance_near_misses_stay_accepted(call, dialect):
+    assert diagnostics(INSTANCES.format(call=call, inner="s := 0;"), dialect) == []
+
+
+def test_stgen_check_names_another_instances_method_and_its_chain(tmp_path, capsys):
+    path = tmp_path / "instances.st"
+    path.write_text(INSTANCES.format(call="xs[2].Via();", inner="s := 0;"), encoding="utf-8")
+    assert main(["check", "--dialect", "codesys", str(path)]) == 0
+    out = capsys.readouterr().err
+    assert f"{path}:{OUTER_LINE}:3: warning[W-ASSIGN-001]: " + method_alters_global(
+        "Via", "Via calls Bump, which writes it") in out

@@ -11,7 +11,7 @@ from .. import types as T
 from ..ast import key
 from ..symbols import CallTarget, PouInfo
 from . import builtins as B
-from .loop_writes import note_loop_call, note_this_call
+from .loop_writes import note_call, note_method_call
 from .oo import find_method, interface_methods, may_call
 from .operator_calls import OPERATOR_FUNCTIONS, lower, ordered_inputs
 from . import typesys as ts
@@ -281,8 +281,7 @@ class CallChecker:
             self.ctx.error("E-DECL-016", f"SUPER.{method.name}: the method of {method.owner.name} "
                            f"is ABSTRACT (it has no body to call)", call.callee.pos)
         self.program.call_targets[id(call)] = CallTarget("method", how, method)
-        if self.ex.scope.fb is not None:
-            note_this_call(self.ex, method, call.callee, how, call.pos)
+        note_method_call(self.ex, method, call.callee, how, call.pos)
         return self._bind_and_type(call, method, f"method {name}", statement)
 
     def _not_a_variable(self, name: ast.Name) -> bool:
@@ -302,8 +301,7 @@ class CallChecker:
     def _user_function(self, call, pou: PouInfo, statement: bool):
         self.program.call_targets[id(call)] = CallTarget("function", key(pou.name), pou)
         self.ctx.add_call_edge(self.ex.scope.pou_key, key(pou.name), call.pos)
-        if self.ex.loop_vars:
-            note_loop_call(self.ex, key(pou.name), call.pos)
+        note_call(self.ex, pou, call.pos)
         return self._bind_and_type(call, pou, f"function {pou.name}", statement)
 
     def _bind_and_type(self, call, pou: PouInfo, what: str, statement: bool):
@@ -321,8 +319,8 @@ class CallChecker:
         pou = self.program.pous.get(key(fb.name))
         self.program.call_targets[id(call)] = CallTarget("fb", key(fb.name), pou)
         self.ctx.add_call_edge(self.ex.scope.pou_key, key(fb.name), call.pos)
-        if self.ex.loop_vars:
-            note_loop_call(self.ex, key(fb.name), call.pos)
+        if pou is not None:
+            note_call(self.ex, pou, call.pos)
         if not statement:
             self.ctx.error("E-CALL-010", f"function block instance of {fb.name} called inside an "
                            f"expression: call it as a statement, then read its outputs", call.pos)

@@ -10,6 +10,7 @@ from ..ast import key
 from ..dialects import DIALECTS, Dialect, refusal
 from ..diagnostics import ERROR, Diagnostic, DiagnosticSink
 from ..symbols import CheckedProgram, PouInfo, Symbol
+from .loop_writes import WriteGraph
 
 BUILTIN_FILE = "<builtin>"
 
@@ -49,16 +50,8 @@ class Context:
     symbol_values: dict[int, object] = field(default_factory=dict)
     # call graph for the recursion check: caller -> [(callee, pos)]
     calls: dict[str, list[tuple[str, ast.Pos]]] = field(default_factory=dict)
-    # POU key -> upper-case names of the globals its body writes (loop_writes.py)
-    global_writes: dict[str, set[str]] = field(default_factory=dict)
-    # calls made inside a FOR over a global: (callee key, pos, {global key: loop's name})
-    loop_calls: list[tuple[str, ast.Pos, dict[str, str]]] = field(default_factory=list)
-    # the same for METHODs on this instance: 'FB.M' -> ids of the FB variables it writes,
-    # 'FB.M' -> [('FB.N', name)] it calls on this instance, and the calls made in a FOR over an
-    # FB variable: ('FB.M', name, pos, {id(variable): its name})
-    member_writes: dict[str, set[int]] = field(default_factory=dict)
-    this_calls: dict[str, list[tuple[str, str]]] = field(default_factory=dict)
-    loop_method_calls: list[tuple[str, str, ast.Pos, dict[int, str]]] = field(default_factory=list)
+    # calls and writes gathered for the FOR control variable check (loop_writes.py)
+    writes: WriteGraph = field(default_factory=WriteGraph)
     namespaces: set = field(default_factory=set)     # upper-case "A", "A.B"
     direct_types: dict = field(default_factory=dict)  # "%MW1" -> type declared AT it
     # id(item) -> what the structural walk (limits.check_files) found in it for later passes

@@ -9,66 +9,119 @@ Such a program runs: the loop tests the variable as the callee left it, which th
 compiler keeps and tests/test_compiler_tables_core.py pins.  So the checker warns,
 at the call, naming the chain of calls.
 
-When the control variable is a global (a VAR_GLOBAL, named through VAR_EXTERNAL
-or, where the dialect allows, directly), a FUNCTION or FB instance called in the
-loop alters it if its body writes that global, itself or through the FUNCTIONs
-and FBs it calls: the pass follows the recursion check's call graph
-(`Context.calls`) from each such call.  Inside a FUNCTION_BLOCK, for a FOR over
-one of its own variables, a METHOD called on this instance (`M()`, `THIS.M()`,
-`SUPER.M()`) alters it when its body writes that variable, itself or through the
-methods it calls on this instance; the method is the one the name resolves to
-here (an override in an FB extending this one is not looked at).
+A callee alters the control variable only by writing the same storage.  The pass
+follows the two ways a callee names that storage without a reference:
 
-Not followed (they need alias analysis): methods called on another instance, and
-writes through a reference, a pointer or a VAR_IN_OUT bound to the variable
-somewhere else.
+* a global (a VAR_GLOBAL, named through VAR_EXTERNAL or, where the dialect allows,
+  directly): every POU names the same variable, so a FUNCTION, FB instance or
+  METHOD (of any instance) called in the loop alters it if its body writes that
+  global, itself or through what it calls;
+* a variable of the FB running the loop: only this instance's METHODs name it
+  (`M()`, `THIS.M()`, `SUPER.M()`), so for a FOR over one of them a method called
+  on this instance alters it when its body writes it, itself or through the
+  methods it calls on this instance.  A method of another instance (`other.M()`,
+  `peer.M()` for a VAR_IN_OUT, `others[1].M()`) writes that instance's variable
+  of the name, other storage, unless the instance is this one reached through a
+  reference or a VAR_IN_OUT bound to THIS, which is alias analysis (not done).
+
+The METHOD followed is the one the call resolves to where it is written (an
+override in an FB extending the instance's type is not looked at).
+
+Not followed: writes through a reference, a pointer or a VAR_IN_OUT bound to the
+variable somewhere else (alias analysis), and the body of a derived FB run by a
+call of an FB instance through a VAR_IN_OUT of its base type.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
+from typing import NamedTuple
+
 from .. import ast
 from ..ast import key
-from .context import Context
 
 #: Symbol kinds that name a global variable.
 GLOBAL_KINDS = frozenset({"VAR_GLOBAL", "VAR_EXTERNAL"})
 
 
-def note_write(ctx: Context, scope, sym) -> None:
+class LoopCall(NamedTuple):
+    """A call made inside FOR loops: the nodes it may run (the declared one first), the
+    loops' globals ({upper-case name: name}) and, for a call on this instance, the loops'
+    variables of the FB ({id(symbol): name})."""
+
+    callees: tuple[str, ...]
+    pos: ast.Pos
+    globals: dict[str, str]
+    members: dict[int, str]
+
+
+@dataclass
+class WriteGraph:
+    """What the bodies' check gathers for this pass.  A node is a POU's key, or 'FB.M' for
+    a METHOD (a POU key holds no '.': namespaces share one name space)."""
+
+    infos: dict = field(default_factory=dict)                 # node -> its PouInfo
+    global_writes: dict[str, set[str]] = field(default_factory=dict)
+    member_writes: dict[str, set[int]] = field(default_factory=dict)     # method node ->
+    calls: dict[str, list[str]] = field(default_factory=dict)            # every call
+    this_calls: dict[str, list[str]] = field(default_factory=dict)       # methods on THIS
+    loop_calls: list[LoopCall] = field(default_factory=list)
+
+
+def node_of(graph: WriteGraph, pou) -> str:
+    """The node of POU or METHOD `pou`, registered."""
+    node = f"{key(pou.owner.name)}.{key(pou.name)}" if pou.kind == "METHOD" else key(pou.name)
+    graph.infos.setdefault(node, pou)
+    return node
+
+
+def note_write(ctx, scope, sym) -> None:
     """Record that the POU being checked writes `sym` (a store, or a FOR over it), when `sym`
     is a global, or a variable of the FB whose METHOD is being checked."""
+    if scope.pou is None:
+        return
+    graph = ctx.writes
     if sym.kind in GLOBAL_KINDS:
-        pou = scope.pou_key
-        if pou is not None:
-            ctx.global_writes.setdefault(pou, set()).add(key(sym.name))
+        graph.global_writes.setdefault(node_of(graph, scope.pou), set()).add(key(sym.name))
     elif scope.fb is not None and scope.pou.kind == "METHOD" \
             and scope.fb.variables.get(key(sym.name)) is sym:
-        ctx.member_writes.setdefault(method_key(scope.pou), set()).add(id(sym))
+        graph.member_writes.setdefault(node_of(graph, scope.pou), set()).add(id(sym))
 
 
-def note_loop_call(ex, callee: str, pos) -> None:
-    """Record a call of POU `callee` made inside FOR loops over globals."""
-    loops = {key(sym.name): sym.name for sym in ex.loop_vars if sym.kind in GLOBAL_KINDS}
-    if loops:
-        ex.ctx.loop_calls.append((callee, pos, loops))
+def note_call(ex, pou, pos) -> None:
+    """Record a call of FUNCTION or FB `pou` (its body)."""
+    _note(ex, (node_of(ex.ctx.writes, pou),), pos, this=False)
 
 
-def method_key(method) -> str:
-    """'FB.M': a METHOD in the tables below (methods are outside the recursion check's graph)."""
-    return f"{key(method.owner.name)}.{key(method.name)}"
+def note_method_call(ex, method, callee, how: str, pos) -> None:
+    """Record a call of `method` (as resolved where it is written, `how` the checker's kind
+    of call: "self", "super", "virtual" or "interface")."""
+    graph = ex.ctx.writes
+    candidates = tuple(node_of(graph, m) for m in _candidates(ex, method, callee, how))
+    _note(ex, candidates, pos, this=how in ("self", "super") or _on_this(callee))
 
 
-def note_this_call(ex, method, callee, how: str, pos) -> None:
-    """Record a call of `method` on this instance (made in an FB's body or one of its methods)."""
-    if how not in ("self", "super") and not _on_this(callee):
+def _note(ex, callees: tuple[str, ...], pos, this: bool) -> None:
+    scope, graph = ex.scope, ex.ctx.writes
+    if scope.pou is not None:
+        caller = node_of(graph, scope.pou)
+        graph.calls.setdefault(caller, []).extend(callees)
+        if this and scope.pou.kind == "METHOD":
+            graph.this_calls.setdefault(caller, []).extend(callees)
+    if not ex.loop_vars:
         return
-    scope, ctx = ex.scope, ex.ctx
-    if scope.pou.kind == "METHOD":
-        ctx.this_calls.setdefault(method_key(scope.pou), []).append((method_key(method), method.name))
-    members = scope.fb.variables
-    loops = {id(sym): sym.name for sym in ex.loop_vars if members.get(key(sym.name)) is sym}
-    if loops:
-        ctx.loop_method_calls.append((method_key(method), method.name, pos, loops))
+    globals_ = {key(sym.name): sym.name for sym in ex.loop_vars if sym.kind in GLOBAL_KINDS}
+    members = {}
+    if this:
+        fields = scope.fb.variables
+        members = {id(sym): sym.name for sym in ex.loop_vars if fields.get(key(sym.name)) is sym}
+    if globals_ or members:
+        graph.loop_calls.append(LoopCall(callees, pos, globals_, members))
+
+
+def _candidates(ex, method, callee, how: str) -> list:
+    """The METHODs a call may run (overrides in derived FBs are not looked at)."""
+    return [method]
 
 
 def _on_this(callee) -> bool:
@@ -78,30 +131,37 @@ def _on_this(callee) -> bool:
     return isinstance(base, ast.Name) and key(base.name) == "THIS"
 
 
-def check_calls_in_loops(ctx: Context) -> None:
+def check_calls_in_loops(ctx) -> None:
     """W-ASSIGN-001 at each call, made in a FOR over a global or over a variable of the FB,
     of a POU or METHOD that writes it."""
-    pous = ctx.program.pous
-    for callee, pos, loops in ctx.loop_calls:
-        for global_key, name in loops.items():
-            path = _path_to_writer(callee, lambda pou: global_key in ctx.global_writes.get(pou, ()),
-                                   lambda pou: (edge[0] for edge in ctx.calls.get(pou, ())))
-            if path:
-                names = [pous[pou].name for pou in path]
-                _warn(ctx, f"{names[0]} alters global '{name}'", names, pos)
+    graph = ctx.writes
+    for call in graph.loop_calls:
+        for global_key, name in call.globals.items():
+            if _warn_first(ctx, call, f"global '{name}'",
+                           lambda node: global_key in graph.global_writes.get(node, ()), graph.calls):
                 break
-    method_names = {k: name for calls in ctx.this_calls.values() for k, name in calls}
-    for callee, callee_name, pos, loops in ctx.loop_method_calls:
-        method_names[callee] = callee_name
-        for sym_id, name in loops.items():
-            path = _path_to_writer(callee, lambda m: sym_id in ctx.member_writes.get(m, ()),
-                                   lambda m: (k for k, _ in ctx.this_calls.get(m, ())))
-            if path:
-                _warn(ctx, f"method {callee_name} alters '{name}'", [method_names[m] for m in path], pos)
+        for sym_id, name in call.members.items():
+            if _warn_first(ctx, call, f"'{name}'",
+                           lambda node: sym_id in graph.member_writes.get(node, ()), graph.this_calls):
                 break
 
 
-def _warn(ctx: Context, what: str, names: list[str], pos) -> None:
+def _warn_first(ctx, call: LoopCall, what: str, writes, calls) -> bool:
+    """Warn of the first of the call's candidates that reaches a writer; whether one did."""
+    for callee in call.callees:
+        path = _path_to_writer(callee, writes, lambda node: calls.get(node, ()))
+        if path:
+            names = [ctx.writes.infos[node].name for node in path]
+            _warn(ctx, f"{_called(ctx.writes.infos[path[0]])} alters {what}", names, call.pos)
+            return True
+    return False
+
+
+def _called(info) -> str:
+    return f"method {info.name}" if info.kind == "METHOD" else info.name
+
+
+def _warn(ctx, what: str, names: list[str], pos) -> None:
     chain = f"{names[0]} writes it" if len(names) == 1 else \
         f"{names[0]} calls " + ", which calls ".join(names[1:]) + ", which writes it"
     ctx.warning("W-ASSIGN-001", f"call of {what}, the control variable of an enclosing FOR loop "
