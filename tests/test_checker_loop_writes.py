@@ -10,7 +10,9 @@ the loop) stay accepted. A METHOD of any instance that writes the global (throug
 VAR_EXTERNAL) alters it the same way. Inside an FB, a FOR over one of its variables: a METHOD
 called on this instance (`M()`, `THIS.M()`, `SUPER.M()`) that writes it, or calls one that does,
 is warned of the same way; another instance's method writes that instance's variable (accepted).
-Expected places are counted by hand in each text.
+A call that may run an override (`M()`, `THIS.M()`, through a VAR_IN_OUT or an INTERFACE) follows
+every override in the program and names the one that writes; SUPER and an instance held by value
+run the declared method. Expected places are counted by hand in each text.
 """
 
 from __future__ import annotations
@@ -264,3 +266,81 @@ def test_stgen_check_names_another_instances_method_and_its_chain(tmp_path, caps
     out = capsys.readouterr().err
     assert f"{path}:{OUTER_LINE}:3: warning[W-ASSIGN-001]: " + method_alters_global(
         "Via", "Via calls Bump, which writes it") in out
+
+
+# ====================================================================== overrides
+# `M()`, `THIS.M()`, a call through a VAR_IN_OUT and one through an INTERFACE run the method of
+# the instance's dynamic type, which may be an FB extending the declared one: every override in
+# the program counts, and the warning names it. A SUPER call and an instance held by value run
+# the declared method. Base.Run's FOR over i calls {call} on line 9; D (13-26) overrides Step
+# with {override} on line 16 and runs a FOR over i calling {again} on line 23; Impl.Go (34-36) is
+# {go} on line 35; User's FOR over g (line 42) calls {use} on line 43.
+
+OVERRIDES = (
+    "VAR_GLOBAL g : INT; END_VAR\n"                                                 # 1
+    "FUNCTION_BLOCK Base\nVAR i : INT; s : INT; END_VAR\n"                          # 2-3
+    "METHOD Step\ns := s + 1;\nEND_METHOD\n"                                        # 4-6
+    "METHOD Run\nFOR i := 1 TO 3 DO\n  {call}\nEND_FOR;\nEND_METHOD\n"              # 7-11
+    "END_FUNCTION_BLOCK\n"                                                          # 12
+    "FUNCTION_BLOCK D EXTENDS Base\nVAR_EXTERNAL g : INT; END_VAR\n"                # 13-14
+    "METHOD Step\n{override}\nEND_METHOD\n"                                         # 15-17
+    "METHOD Helper\ni := 0;\nEND_METHOD\n"                                          # 18-20
+    "METHOD Again\nFOR i := 1 TO 3 DO\n  {again}\nEND_FOR;\nEND_METHOD\n"           # 21-25
+    "END_FUNCTION_BLOCK\n"                                                          # 26
+    "INTERFACE I\nMETHOD Go\nEND_METHOD\nEND_INTERFACE\n"                           # 27-30
+    "FUNCTION_BLOCK Impl IMPLEMENTS I\nVAR_EXTERNAL g : INT; END_VAR\nVAR t : INT; END_VAR\n"  # 31-33
+    "METHOD Go\n{go}\nEND_METHOD\n"                                                 # 34-36
+    "END_FUNCTION_BLOCK\n"                                                          # 37
+    "FUNCTION_BLOCK User\nVAR_EXTERNAL g : INT; END_VAR\nVAR_IN_OUT io : Base; END_VAR\n"  # 38-40
+    "VAR b : Base; it : I; END_VAR\n"                                               # 41
+    "FOR g := 1 TO 3 DO\n  {use}\nEND_FOR;\nEND_FUNCTION_BLOCK\n")                  # 42-45
+RUN_LINE, USE_LINE = 9, 43
+QUIET = {"call": "s := 0;", "override": "s := 2;", "again": "s := 0;", "go": "t := 1;", "use": "b.Step();"}
+
+
+def overrides(**parts: str) -> str:
+    return OVERRIDES.format(**{**QUIET, **parts})
+
+
+def override_alters(method: str, what: str, fb: str, chain: str) -> str:
+    return (f"call of method {method} alters {what}, the control variable of an enclosing FOR loop "
+            f"(for an instance of {fb}, {fb}.{chain}): {GOES_ON}")
+
+
+OVERRIDE_WARNED = [
+    pytest.param({"call": "Step();", "override": "i := 0;"}, RUN_LINE,
+                 override_alters("Step", "'i'", "D", "Step writes it"), id="unqualified_call_its_override_writes"),
+    pytest.param({"call": "THIS.Step();", "override": "Helper();"}, RUN_LINE,
+                 override_alters("Step", "'i'", "D", "Step calls Helper, which writes it"),
+                 id="through_this_the_override_calls_a_writer"),
+    pytest.param({"use": "io.Step();", "override": "g := 1;"}, USE_LINE,
+                 override_alters("Step", "global 'g'", "D", "Step writes it"), id="through_a_var_in_out"),
+    pytest.param({"use": "it.Go();", "go": "g := 2;"}, USE_LINE,
+                 override_alters("Go", "global 'g'", "Impl", "Go writes it"), id="through_an_interface"),
+]
+
+
+@pytest.mark.parametrize("dialect", ("iec", "codesys"))
+@pytest.mark.parametrize("parts, line, message", OVERRIDE_WARNED)
+def test_an_override_that_may_run_and_writes_is_warned_of(parts, line, message, dialect):
+    assert diagnostics(overrides(**parts), dialect) == [("W-ASSIGN-001", line, 3, message)]
+
+
+@pytest.mark.parametrize("dialect", ("iec", "codesys"))
+@pytest.mark.parametrize("parts", [
+    pytest.param({"call": "Step();"}, id="the_override_does_not_write"),
+    pytest.param({"use": "b.Step();", "override": "g := 1;"}, id="an_instance_held_by_value_runs_the_declared_method"),
+    pytest.param({"again": "SUPER.Step();", "override": "i := 0;"}, id="super_runs_the_base_method"),
+    pytest.param({"use": "it.Go();"}, id="the_implementation_does_not_write"),
+])
+def test_override_near_misses_stay_accepted(parts, dialect):
+    assert diagnostics(overrides(**parts), dialect) == []
+
+
+def test_stgen_check_names_the_override(tmp_path, capsys):
+    path = tmp_path / "overrides.st"
+    path.write_text(overrides(call="THIS.Step();", override="Helper();"), encoding="utf-8")
+    assert main(["check", str(path)]) == 0
+    out = capsys.readouterr().err
+    assert f"{path}:{RUN_LINE}:3: warning[W-ASSIGN-001]: " + override_alters(
+        "Step", "'i'", "D", "Step calls Helper, which writes it") in out

@@ -24,8 +24,15 @@ follows the two ways a callee names that storage without a reference:
   of the name, other storage, unless the instance is this one reached through a
   reference or a VAR_IN_OUT bound to THIS, which is alias analysis (not done).
 
-The METHOD followed is the one the call resolves to where it is written (an
-override in an FB extending the instance's type is not looked at).
+Which METHOD a call runs: `SUPER.M()` the base FB's M; `inst.M()` on an instance
+held by value (a VAR, an input, an array element, a STRUCT member: its type is
+the declared one) the declared type's M; `M()`, `THIS.M()` and a call through a
+VAR_IN_OUT or a dereferenced reference run the M of the instance's dynamic type,
+which may be any FB extending the declared one (an instance of a derived FB runs
+its base's code, and a derived instance binds to a base VAR_IN_OUT), and
+`itf.M()` the M of any FB implementing the INTERFACE.  The checker does not know
+the dynamic type, so it follows every candidate in the program (the declared
+FB's first) and names, in the warning, the derived FB whose override writes.
 
 Not followed: writes through a reference, a pointer or a VAR_IN_OUT bound to the
 variable somewhere else (alias analysis), and the body of a derived FB run by a
@@ -120,8 +127,31 @@ def _note(ex, callees: tuple[str, ...], pos, this: bool) -> None:
 
 
 def _candidates(ex, method, callee, how: str) -> list:
-    """The METHODs a call may run (overrides in derived FBs are not looked at)."""
-    return [method]
+    """The METHODs a call may run: `method`, then the overrides a dynamic type may run."""
+    if how == "super" or (how == "virtual" and _by_value(ex, callee.base)):
+        return [method]
+    pous = ex.ctx.program.pous.values()
+    if how == "interface":
+        fbs = [info for info in pous if info.kind == "FUNCTION_BLOCK" and info.implements(method.owner)]
+    else:
+        declared = ex.scope.fb if how == "self" else ex.program.expr_types[id(callee.base)].info
+        fbs = [info for info in pous if info.kind == "FUNCTION_BLOCK" and info.descends_from(declared)]
+    found = [method]
+    for fb in fbs:
+        override = fb.methods.get(key(method.name))
+        if override is not None and override not in found:
+            found.append(override)
+    return found
+
+
+def _by_value(ex, instance) -> bool:
+    """Whether the instance a call names is of its declared type: not THIS, a VAR_IN_OUT or a
+    dereferenced reference, which may hold an FB extending it (a member or an element of any
+    instance is stored by value)."""
+    if isinstance(instance, ast.Deref):
+        return False
+    sym = ex.program.name_refs.get(id(instance)) if isinstance(instance, ast.Name) else None
+    return sym is None or sym.kind not in ("VAR_IN_OUT", "THIS")
 
 
 def _on_this(callee) -> bool:
@@ -148,11 +178,17 @@ def check_calls_in_loops(ctx) -> None:
 
 def _warn_first(ctx, call: LoopCall, what: str, writes, calls) -> bool:
     """Warn of the first of the call's candidates that reaches a writer; whether one did."""
+    infos = ctx.writes.infos
+    declared = infos[call.callees[0]]
     for callee in call.callees:
         path = _path_to_writer(callee, writes, lambda node: calls.get(node, ()))
         if path:
-            names = [ctx.writes.infos[node].name for node in path]
-            _warn(ctx, f"{_called(ctx.writes.infos[path[0]])} alters {what}", names, call.pos)
+            names = [infos[node].name for node in path]
+            when = ""
+            if callee != call.callees[0]:           # an override: name its FB
+                owner = infos[callee].owner.name
+                when, names[0] = f"for an instance of {owner}, ", f"{owner}.{names[0]}"
+            _warn(ctx, f"{_called(declared)} alters {what}", when, names, call.pos)
             return True
     return False
 
@@ -161,11 +197,11 @@ def _called(info) -> str:
     return f"method {info.name}" if info.kind == "METHOD" else info.name
 
 
-def _warn(ctx, what: str, names: list[str], pos) -> None:
+def _warn(ctx, what: str, when: str, names: list[str], pos) -> None:
     chain = f"{names[0]} writes it" if len(names) == 1 else \
         f"{names[0]} calls " + ", which calls ".join(names[1:]) + ", which writes it"
     ctx.warning("W-ASSIGN-001", f"call of {what}, the control variable of an enclosing FOR loop "
-                f"({chain}): IEC 61131-3 forbids it; the loop goes on from the value left", pos)
+                f"({when}{chain}): IEC 61131-3 forbids it; the loop goes on from the value left", pos)
 
 
 def _path_to_writer(start: str, writes, callees) -> list[str]:
