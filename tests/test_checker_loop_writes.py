@@ -12,7 +12,10 @@ called on this instance (`M()`, `THIS.M()`, `SUPER.M()`) that writes it, or call
 is warned of the same way; another instance's method writes that instance's variable (accepted).
 A call that may run an override (`M()`, `THIS.M()`, through a VAR_IN_OUT or an INTERFACE) follows
 every override in the program and names the one that writes; SUPER and an instance held by value
-run the declared method. Expected places are counted by hand in each text.
+run the declared method. A reference whose every store is `r := REF(i)` (ADR under codesys) refers
+to i: a write through it in a FOR over i, or a call in the loop handing it to an input its callee
+writes through, is warned of; a reference to another variable, or with any other store, is not.
+Expected places are counted by hand in each text.
 """
 
 from __future__ import annotations
@@ -344,3 +347,78 @@ def test_stgen_check_names_the_override(tmp_path, capsys):
     out = capsys.readouterr().err
     assert f"{path}:{RUN_LINE}:3: warning[W-ASSIGN-001]: " + override_alters(
         "Step", "'i'", "D", "Step calls Helper, which writes it") in out
+
+
+# ====================================================================== references
+# A reference every store of which is `r := REF(i)` (ADR under codesys) refers to i: a write
+# through it in a FOR over i, or a call handing it to an input its callee writes through, alters
+# i. Poke (1-5) writes through its input, Peek (6-9) reads through it; Main's r refers to i (line
+# 12), q to {q} (line 13), line 14 is {before}, and the FOR over i (15-17) runs {body} on line 16.
+
+REFERENCES = (
+    "FUNCTION Poke : INT\nVAR_INPUT p : REF_TO INT; END_VAR\np^ := 0;\nPoke := 0;\nEND_FUNCTION\n"   # 1-5
+    "FUNCTION Peek : INT\nVAR_INPUT p : REF_TO INT; END_VAR\nPeek := p^;\nEND_FUNCTION\n"          # 6-9
+    "PROGRAM Main\nVAR i : INT; j : INT; r : REF_TO INT; q : REF_TO INT; s : INT; END_VAR\n"        # 10-11
+    "r := REF(i);\nq := REF({q});\n{before}\n"                                                      # 12-14
+    "FOR i := 1 TO 3 DO\n  {body}\nEND_FOR;\nEND_PROGRAM\n"                                          # 15-18
+    "FUNCTION Rebind : INT\nVAR_IN_OUT io : REF_TO INT; END_VAR\nRebind := 0;\nEND_FUNCTION\n")         # 19-22
+BODY_LINE = 16
+
+
+def references(dialect: str, body: str, q: str = "j", before: str = "s := 0;") -> str:
+    text = REFERENCES.format(body=body, q=q, before=before)
+    return text.replace("REF_TO", "POINTER TO").replace("REF(", "ADR(") if dialect == "codesys" else text
+
+
+def through(dialect: str, what: str, ref: str, why: str = "") -> str:
+    how = "ADR" if dialect == "codesys" else "REF"
+    line = 12 if ref == "r" else 13
+    return (f"{what} alters 'i', the control variable of an enclosing FOR loop ({why}'{ref}' refers "
+            f"to it: {ref} := {how}(i) on line {line}): {GOES_ON}")
+
+
+REFERENCE_WARNED = [
+    pytest.param({"body": "r^ := 5;"}, 3, "write through 'r'", "r", "", id="written_through_in_the_loop"),
+    pytest.param({"body": "s := Poke(r);"}, 8, "call of Poke", "r",
+                 "Poke writes through its input 'p', given 'r'; ", id="handed_to_a_callee_that_writes_through_it"),
+    pytest.param({"body": "Poke(p := q);", "q": "i"}, 3, "call of Poke", "q",
+                 "Poke writes through its input 'p', given 'q'; ", id="handed_as_a_formal_argument"),
+]
+
+
+@pytest.mark.parametrize("dialect", ("iec", "codesys"))
+@pytest.mark.parametrize("parts, column, what, ref, why", REFERENCE_WARNED)
+def test_a_reference_to_the_control_variable_written_through_is_warned_of(parts, column, what, ref, why, dialect):
+    assert diagnostics(references(dialect, **parts), dialect) == [
+        ("W-ASSIGN-001", BODY_LINE, column, through(dialect, what, ref, why))]
+
+
+@pytest.mark.parametrize("dialect", ("iec", "codesys"))
+@pytest.mark.parametrize("parts", [
+    pytest.param({"body": "q^ := 5;"}, id="a_reference_to_another_variable"),
+    pytest.param({"body": "s := Peek(r);"}, id="the_callee_only_reads_through_it"),
+    pytest.param({"body": "s := Poke(q);"}, id="a_callee_given_a_reference_to_another_variable"),
+    pytest.param({"body": "r^ := 5;", "before": "r := REF(j);"}, id="a_reference_made_to_two_variables"),
+    pytest.param({"body": "r^ := 5;", "before": "r := q;"}, id="a_reference_stored_from_another"),
+    pytest.param({"body": "r^ := 5;", "before": "r := NULL;"}, id="a_reference_also_set_to_null"),
+    pytest.param({"body": "s := r^;"}, id="read_through"),
+])
+def test_reference_near_misses_stay_accepted(parts, dialect):
+    assert diagnostics(references(dialect, **parts), dialect) == []
+
+
+def test_stgen_check_names_the_reference_and_where_it_was_taken(tmp_path, capsys):
+    path = tmp_path / "references.st"
+    path.write_text(references("codesys", "s := Poke(r);"), encoding="utf-8")
+    assert main(["check", "--dialect", "codesys", str(path)]) == 0
+    out = capsys.readouterr().err
+    assert f"{path}:{BODY_LINE}:8: warning[W-ASSIGN-001]: " + through(
+        "codesys", "call of Poke", "r", "Poke writes through its input 'p', given 'r'; ") in out
+
+
+@pytest.mark.parametrize("dialect", ("iec", "codesys"))
+def test_a_reference_bound_to_a_var_in_out_has_no_known_target(dialect):
+    """The callee may store another reference into it. (Binding it is refused today, E-CALL-011:
+    typesys.same_type knows no reference types; the bound reference still counts as stored.)"""
+    found = diagnostics(references(dialect, "r^ := 5;", before="s := Rebind(r);"), dialect)
+    assert [d for d in found if d[0] == "W-ASSIGN-001"] == []

@@ -54,7 +54,7 @@ from .limits import check_files
 from .memory import check_memory
 from .nj_rules import check_identifiers
 from .prelude_base import prelude_base
-from .loop_writes import check_calls_in_loops
+from .loop_writes import check_calls_in_loops, check_references_in_loops
 from .recursion import check_recursion
 from .statements import StatementChecker
 
@@ -123,6 +123,7 @@ def _check(files, dialect, memory_limit=None, open_instances=False, share_prelud
                     StatementChecker(ex).block(method.node.body)
         check_recursion(ctx)
         check_calls_in_loops(ctx)
+        check_references_in_loops(ctx)
         check_dialect(ctx, files)
         if not any(d.code == "E-REC-001" for d in ctx.sink.items):   # sizes need acyclic types
             check_memory(ctx, memory_limit)

@@ -11,7 +11,7 @@ from .. import types as T
 from ..ast import key
 from ..symbols import CallTarget, PouInfo
 from . import builtins as B
-from .loop_writes import note_call, note_method_call
+from .loop_writes import note_argument, note_call, note_in_out, note_method_call
 from .oo import find_method, interface_methods, may_call
 from .operator_calls import OPERATOR_FUNCTIONS, lower, ordered_inputs
 from . import typesys as ts
@@ -399,8 +399,10 @@ class CallChecker:
             return
         if sym.kind == "VAR_IN_OUT":
             self._in_out(pou, arg.value, sym)
+            note_in_out(self.ex, arg.value)
             return
         self.ex.check_value(arg.value, sym.type, what)
+        note_argument(self.ex, pou, sym, arg.value, call.pos)
 
     def _in_out(self, pou, value, sym) -> None:
         if not is_variable_path(value):

@@ -52,7 +52,7 @@ CHECKER_CODES = register({
     "E-ASSIGN-001": "assignment to a CONSTANT variable",
     "E-ASSIGN-002": "assignment to a VAR_INPUT inside its own POU (inputs are read-only)",
     "E-ASSIGN-003": "a FOR control variable written inside its loop: assigned, an output (=>) target, taken by REF or ADR, or the control variable of a nested FOR",
-    "W-ASSIGN-001": "a FOR control variable that a FUNCTION, FB or METHOD called in its loop writes (a global: a METHOD of any instance; a variable of the FB: a METHOD of this instance): IEC 61131-3 forbids it; the loop goes on from the value the callee leaves",
+    "W-ASSIGN-001": "a FOR control variable that a FUNCTION, FB or METHOD called in its loop writes (a global: a METHOD of any instance, overrides included; a variable of the FB: a METHOD of this instance), or a write through a reference known to refer to it, in the loop or by a callee handed it: IEC 61131-3 forbids it; the loop goes on from the value the callee leaves",
     "E-ASSIGN-004": "assignment to an output or internal variable of a function block instance from outside, or to a PROPERTY without SET",
     # calls
     "E-CALL-001": "a call of something that is not a function or function block instance (NS.F() of "

@@ -34,9 +34,22 @@ its base's code, and a derived instance binds to a base VAR_IN_OUT), and
 the dynamic type, so it follows every candidate in the program (the declared
 FB's first) and names, in the warning, the derived FB whose override writes.
 
-Not followed: writes through a reference, a pointer or a VAR_IN_OUT bound to the
-variable somewhere else (alias analysis), and the body of a derived FB run by a
-call of an FB instance through a VAR_IN_OUT of its base type.
+A reference alters the variable it refers to.  The pass knows what a reference
+refers to when it is a VAR or VAR_TEMP (written only by the code of its POU, and
+of its FB's methods) without an initial value whose every store is an assignment
+`r := REF(i)` (or `ADR(i)`) of one variable: then `r` refers to `i` or is NULL
+(a write through NULL faults instead), wherever the assignment stands (a VAR
+keeps the reference from one call to the next).  A write through it (`r^ := ...`)
+in a FOR over `i` is warned of where it stands, and so is a call in the loop that
+hands `r` to an input of a FUNCTION, FB or METHOD whose body writes through that
+input (the callee's own text: what it passes on is not followed).
+
+Not followed: a reference with another store (`r := NULL`, `r := q`, an output
+or VAR_IN_OUT bound to it, `REF(r)`), one held in an array, a STRUCT, an input or
+a global, a reference to a global or to the FB's variable taken in another POU,
+a VAR_IN_OUT bound to the variable somewhere else (alias analysis), and the body
+of a derived FB run by a call of an FB instance through a VAR_IN_OUT of its base
+type.
 """
 
 from __future__ import annotations
@@ -45,6 +58,7 @@ from dataclasses import dataclass, field
 from typing import NamedTuple
 
 from .. import ast
+from .. import types as T
 from ..ast import key
 
 #: Symbol kinds that name a global variable.
@@ -62,6 +76,17 @@ class LoopCall(NamedTuple):
     members: dict[int, str]
 
 
+class ThroughReference(NamedTuple):
+    """A write through reference variable `ref` in FOR loops ({id(control variable): name}):
+    in the loop's text, or by the callees (the nodes a call may run) given it as input `param`."""
+
+    ref: object
+    pos: ast.Pos
+    loops: dict[int, str]
+    callees: tuple[str, ...] = ()
+    param: str = ""
+
+
 @dataclass
 class WriteGraph:
     """What the bodies' check gathers for this pass.  A node is a POU's key, or 'FB.M' for
@@ -73,6 +98,10 @@ class WriteGraph:
     calls: dict[str, list[str]] = field(default_factory=dict)            # every call
     this_calls: dict[str, list[str]] = field(default_factory=dict)       # methods on THIS
     loop_calls: list[LoopCall] = field(default_factory=list)
+    ref_stores: dict[int, int] = field(default_factory=dict)         # id(reference) -> count
+    ref_targets: dict[int, list] = field(default_factory=dict)       # -> [(symbol, how, pos)]
+    param_writes: dict[str, set[str]] = field(default_factory=dict)  # node -> its inputs
+    through_references: list[ThroughReference] = field(default_factory=list)
 
 
 def node_of(graph: WriteGraph, pou) -> str:
@@ -88,11 +117,69 @@ def note_write(ctx, scope, sym) -> None:
     if scope.pou is None:
         return
     graph = ctx.writes
+    if _is_reference(sym):
+        _count_store(graph, sym)
     if sym.kind in GLOBAL_KINDS:
         graph.global_writes.setdefault(node_of(graph, scope.pou), set()).add(key(sym.name))
     elif scope.fb is not None and scope.pou.kind == "METHOD" \
             and scope.fb.variables.get(key(sym.name)) is sym:
         graph.member_writes.setdefault(node_of(graph, scope.pou), set()).add(id(sym))
+
+
+def _is_reference(sym) -> bool:
+    return isinstance(T.resolve_alias(sym.type), T.RefType)
+
+
+def _count_store(graph: WriteGraph, ref) -> None:
+    graph.ref_stores[id(ref)] = graph.ref_stores.get(id(ref), 0) + 1
+
+
+def _loops(ex) -> dict[int, str]:
+    """{id(control variable): its name} of the FOR loops enclosing the statement checked."""
+    return {id(sym): sym.name for sym in ex.loop_vars}
+
+
+def note_in_out(ex, value) -> None:
+    """Record a reference variable bound to a VAR_IN_OUT: the callee may store into it."""
+    sym = ex.program.name_refs.get(id(value)) if isinstance(value, ast.Name) else None
+    if hasattr(sym, "kind") and _is_reference(sym):
+        _count_store(ex.ctx.writes, sym)
+
+
+def note_assignment(ex, target, value) -> None:
+    """Record `r := REF(x)` / `r := ADR(x)`: reference `r` refers to variable `x`."""
+    how = ex.program.call_targets.get(id(value))       # (a checked REF's argument is a variable)
+    if isinstance(target, ast.Name) and how is not None and how.kind == "ref" \
+            and isinstance(value.args[0].value, ast.Name):
+        names = ex.program.name_refs
+        ex.ctx.writes.ref_targets.setdefault(id(names[id(target)]), []).append(
+            (names[id(value.args[0].value)], how.name, value.pos))
+
+
+def note_write_through(ex, target) -> None:
+    """Record a store through reference variable `r` (`r^ := ...`, `r^.x := ...`): in FOR loops,
+    and by a POU through one of its inputs."""
+    graph, root = ex.ctx.writes, target
+    deref = None
+    while isinstance(root, (ast.Member, ast.Index, ast.Deref, ast.BitAccess)):
+        deref = root if isinstance(root, ast.Deref) else deref
+        root = root.base
+    if deref is None or deref.base is not root:
+        return
+    ref = ex.program.name_refs.get(id(root))
+    if ref.kind == "VAR_INPUT" and ex.scope.pou.variables.get(key(ref.name)) is ref:
+        graph.param_writes.setdefault(node_of(graph, ex.scope.pou), set()).add(key(ref.name))
+    if ex.loop_vars:
+        graph.through_references.append(ThroughReference(ref, root.pos, _loops(ex)))
+
+
+def note_argument(ex, pou, param, value, pos) -> None:
+    """Record reference variable `value` given to input `param` of `pou` in FOR loops."""
+    ref = ex.program.name_refs.get(id(value)) if isinstance(value, ast.Name) else None
+    if ex.loop_vars and hasattr(ref, "kind") and _is_reference(ref):
+        graph = ex.ctx.writes
+        graph.through_references.append(
+            ThroughReference(ref, pos, _loops(ex), (node_of(graph, pou),), param.name))
 
 
 def note_call(ex, pou, pos) -> None:
@@ -176,6 +263,37 @@ def check_calls_in_loops(ctx) -> None:
                 break
 
 
+def check_references_in_loops(ctx) -> None:
+    """W-ASSIGN-001 at each write through, or call handed, a reference known to refer to the
+    control variable of an enclosing FOR."""
+    graph = ctx.writes
+    for use in graph.through_references:
+        target = _sole_target(graph, use.ref)
+        if target is None or id(target[0]) not in use.loops:
+            continue
+        sym, how, pos = target
+        refers = f"'{use.ref.name}' refers to it: {use.ref.name} := {how}({sym.name}) on line {pos.line}"
+        if not use.callees:
+            _say(ctx, f"write through '{use.ref.name}' alters '{sym.name}'", refers, use.pos)
+            continue
+        callee = graph.infos[use.callees[0]]
+        if key(use.param) in graph.param_writes.get(use.callees[0], ()):
+            _say(ctx, f"call of {_called(callee)} alters '{sym.name}'",
+                 f"{callee.name} writes through its input '{use.param}', given '{use.ref.name}'; "
+                 f"{refers}", use.pos)
+
+
+def _sole_target(graph: WriteGraph, ref):
+    """(variable, "REF" or "ADR", position) of the one variable reference `ref` is ever made to
+    refer to, when every store into it is such an assignment; else None."""
+    taken = graph.ref_targets.get(id(ref), ())
+    if ref.kind not in ("VAR", "VAR_TEMP") or ref.init is not None \
+            or not taken or len(taken) != graph.ref_stores.get(id(ref), 0) \
+            or any(sym is not taken[0][0] for sym, _, _ in taken):
+        return None
+    return taken[0]
+
+
 def _warn_first(ctx, call: LoopCall, what: str, writes, calls) -> bool:
     """Warn of the first of the call's candidates that reaches a writer; whether one did."""
     infos = ctx.writes.infos
@@ -200,8 +318,12 @@ def _called(info) -> str:
 def _warn(ctx, what: str, when: str, names: list[str], pos) -> None:
     chain = f"{names[0]} writes it" if len(names) == 1 else \
         f"{names[0]} calls " + ", which calls ".join(names[1:]) + ", which writes it"
-    ctx.warning("W-ASSIGN-001", f"call of {what}, the control variable of an enclosing FOR loop "
-                f"({when}{chain}): IEC 61131-3 forbids it; the loop goes on from the value left", pos)
+    _say(ctx, f"call of {what}", when + chain, pos)
+
+
+def _say(ctx, what: str, why: str, pos) -> None:
+    ctx.warning("W-ASSIGN-001", f"{what}, the control variable of an enclosing FOR loop ({why}): "
+                f"IEC 61131-3 forbids it; the loop goes on from the value left", pos)
 
 
 def _path_to_writer(start: str, writes, callees) -> list[str]:

@@ -10,7 +10,7 @@ from ..ast import key
 from . import typesys as ts
 from .constfold import NOT_CONSTANT
 from .expressions import ExprChecker, start_pos
-from .loop_writes import note_write
+from .loop_writes import note_assignment, note_write
 from .stores import check_store, controls_a_loop
 
 
@@ -52,6 +52,7 @@ class StatementChecker:
             return
         # A constant outside a subrange target's limits is refused here, as it is for an input.
         self.ex.check_value(s.value, self.program.subranges.get(id(s.target), target), "assignment")
+        note_assignment(self.ex, s.target, s.value)
 
     def _CallStmt(self, s: ast.CallStmt) -> None:
         self.ex.calls.check_call(s.call, None, statement=True)

@@ -7,7 +7,7 @@ from .. import ast
 from .. import types as T
 from ..dialects import accepting
 from . import typesys as ts
-from .loop_writes import note_write
+from .loop_writes import note_write, note_write_through
 
 
 def root_name(e) -> ast.Name | None:
@@ -59,7 +59,10 @@ def check_store(ex, target, what: str = "assignment"):
             ex.ctx.error("E-ASSIGN-004", f"{what}: property '{target.name}' has no SET", target.pos)
             return ts.ERROR
         return t
-    if t is ts.ERROR or through_reference(target):
+    if t is ts.ERROR:
+        return t
+    if through_reference(target):
+        note_write_through(ex, target)
         return t                   # (the referenced variable was writable where REF took it)
     root = root_name(target)
     sym = ex.program.name_refs.get(id(root))
