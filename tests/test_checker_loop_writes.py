@@ -174,6 +174,14 @@ def test_a_method_called_through_an_in_out_of_this_fbs_type_is_not_followed():
     assert diagnostics(text, "iec") == []
 
 
+def test_a_method_of_this_instance_calling_another_instances_method_is_not_followed():
+    """Outer calls `peer.Bump()`, which writes peer's `i`: the chain leaves this instance."""
+    text = COUNTER.format(var="i", call="Outer();").replace(
+        "FUNCTION_BLOCK Counter EXTENDS Base\n", "FUNCTION_BLOCK Counter EXTENDS Base\nVAR_IN_OUT peer : Counter; END_VAR\n"
+    ).replace("METHOD Outer\nBump();", "METHOD Outer\npeer.Bump();")
+    assert diagnostics(text, "iec") == []
+
+
 def test_a_method_called_on_an_array_element_is_not_followed():
     text = COUNTER.format(var="i", call="others[1].Bump();").replace(
         "FUNCTION_BLOCK Counter EXTENDS Base\n",
@@ -197,6 +205,20 @@ def test_each_call_in_the_loop_is_warned_of():
     assert diagnostics(text, "iec") == [
         ("W-ASSIGN-001", MAIN_LINE + 4, 3, alters("Bump", "Bump writes it")),
         ("W-ASSIGN-001", MAIN_LINE + 5, 3, alters("Outer", "Outer calls Bump, which writes it"))]
+
+
+def test_nested_loops_over_two_globals_one_warning_per_call():
+    """FOR g, FOR h inside it (Main from line 21, the calls on 26 and 27): Other writes h, the inner loop's
+    global (a warning though g, the first looked at, is not written); Both writes both (one
+    warning, for g)."""
+    text = (GLOBALS + function("Other", "h := 1;", externals="h : INT;")
+            + function("Both", "g := 1; h := 1;", externals="g : INT; h : INT;") + FB_T    # 5-20
+            + main_program("FOR g := 1 TO 3 DO\n  FOR h := 1 TO 2 DO\n    Other();\n    Both();\n"
+                           "  END_FOR;\nEND_FOR;", externals="g : INT; h : INT;"))
+    other = ("call of Other alters global 'h', the control variable of an enclosing FOR loop "
+             f"(Other writes it): {GOES_ON}")
+    assert diagnostics(text, "iec") == [("W-ASSIGN-001", 26, 5, other),
+                                        ("W-ASSIGN-001", 27, 5, alters("Both", "Both writes it"))]
 
 
 def test_each_method_call_in_the_loop_is_warned_of():
@@ -295,8 +317,13 @@ OVERRIDES = (
     "METHOD Go\n{go}\nEND_METHOD\n"                                                 # 34-36
     "END_FUNCTION_BLOCK\n"                                                          # 37
     "FUNCTION_BLOCK User\nVAR_EXTERNAL g : INT; END_VAR\nVAR_IN_OUT io : Base; END_VAR\n"  # 38-40
-    "VAR b : Base; it : I; END_VAR\n"                                               # 41
-    "FOR g := 1 TO 3 DO\n  {use}\nEND_FOR;\nEND_FUNCTION_BLOCK\n")                  # 42-45
+    "VAR b : Base; it : I; rb : REF_TO Base; END_VAR\n"                             # 41
+    "FOR g := 1 TO 3 DO\n  {use}\nEND_FOR;\nEND_FUNCTION_BLOCK\n"                   # 42-45
+    # an FB with methods of those names that neither extends Base nor implements I, and an
+    # ABSTRACT FB implementing I without a Go of its own
+    "FUNCTION_BLOCK Stranger\nVAR_EXTERNAL g : INT; END_VAR\n"
+    "METHOD Step\ng := 3;\nEND_METHOD\nMETHOD Go\ng := 4;\nEND_METHOD\nEND_FUNCTION_BLOCK\n"
+    "FUNCTION_BLOCK ABSTRACT Half IMPLEMENTS I\nEND_FUNCTION_BLOCK\n")
 RUN_LINE, USE_LINE = 9, 43
 QUIET = {"call": "s := 0;", "override": "s := 2;", "again": "s := 0;", "go": "t := 1;", "use": "b.Step();"}
 
@@ -318,6 +345,8 @@ OVERRIDE_WARNED = [
                  id="through_this_the_override_calls_a_writer"),
     pytest.param({"use": "io.Step();", "override": "g := 1;"}, USE_LINE,
                  override_alters("Step", "global 'g'", "D", "Step writes it"), id="through_a_var_in_out"),
+    pytest.param({"use": "rb^.Step();", "override": "g := 1;"}, USE_LINE,
+                 override_alters("Step", "global 'g'", "D", "Step writes it"), id="through_a_reference"),
     pytest.param({"use": "it.Go();", "go": "g := 2;"}, USE_LINE,
                  override_alters("Go", "global 'g'", "Impl", "Go writes it"), id="through_an_interface"),
 ]
@@ -335,6 +364,7 @@ def test_an_override_that_may_run_and_writes_is_warned_of(parts, line, message, 
     pytest.param({"use": "b.Step();", "override": "g := 1;"}, id="an_instance_held_by_value_runs_the_declared_method"),
     pytest.param({"again": "SUPER.Step();", "override": "i := 0;"}, id="super_runs_the_base_method"),
     pytest.param({"use": "it.Go();"}, id="the_implementation_does_not_write"),
+    pytest.param({"use": "io.Step();"}, id="an_unrelated_fbs_method_of_that_name_writes"),
 ])
 def test_override_near_misses_stay_accepted(parts, dialect):
     assert diagnostics(overrides(**parts), dialect) == []
@@ -358,7 +388,8 @@ def test_stgen_check_names_the_override(tmp_path, capsys):
 REFERENCES = (
     "FUNCTION Poke : INT\nVAR_INPUT p : REF_TO INT; END_VAR\np^ := 0;\nPoke := 0;\nEND_FUNCTION\n"   # 1-5
     "FUNCTION Peek : INT\nVAR_INPUT p : REF_TO INT; END_VAR\nPeek := p^;\nEND_FUNCTION\n"          # 6-9
-    "PROGRAM Main\nVAR i : INT; j : INT; r : REF_TO INT; q : REF_TO INT; s : INT; END_VAR\n"        # 10-11
+    "PROGRAM Main\nVAR i : INT; j : INT; r : REF_TO INT; q : REF_TO INT; s : INT; END_VAR "         # 10-11
+    "VAR_TEMP t : REF_TO INT; END_VAR VAR_INPUT ri : REF_TO INT; END_VAR\n"
     "r := REF(i);\nq := REF({q});\n{before}\n"                                                      # 12-14
     "FOR i := 1 TO 3 DO\n  {body}\nEND_FOR;\nEND_PROGRAM\n"                                          # 15-18
     "FUNCTION Rebind : INT\nVAR_IN_OUT io : REF_TO INT; END_VAR\nRebind := 0;\nEND_FUNCTION\n")         # 19-22
@@ -372,7 +403,7 @@ def references(dialect: str, body: str, q: str = "j", before: str = "s := 0;") -
 
 def through(dialect: str, what: str, ref: str, why: str = "") -> str:
     how = "ADR" if dialect == "codesys" else "REF"
-    line = 12 if ref == "r" else 13
+    line = {"r": 12, "q": 13, "t": 14}[ref]
     return (f"{what} alters 'i', the control variable of an enclosing FOR loop ({why}'{ref}' refers "
             f"to it: {ref} := {how}(i) on line {line}): {GOES_ON}")
 
@@ -383,6 +414,8 @@ REFERENCE_WARNED = [
                  "Poke writes through its input 'p', given 'r'; ", id="handed_to_a_callee_that_writes_through_it"),
     pytest.param({"body": "Poke(p := q);", "q": "i"}, 3, "call of Poke", "q",
                  "Poke writes through its input 'p', given 'q'; ", id="handed_as_a_formal_argument"),
+    pytest.param({"body": "t^ := 5;", "before": "t := REF(i);"}, 3, "write through 't'", "t", "",
+                 id="a_var_temp_reference"),
 ]
 
 
@@ -416,9 +449,24 @@ def test_stgen_check_names_the_reference_and_where_it_was_taken(tmp_path, capsys
         "codesys", "call of Poke", "r", "Poke writes through its input 'p', given 'r'; ") in out
 
 
+def test_an_input_reference_has_no_known_target():
+    """A caller may store into an input (codesys lets the POU write its inputs too)."""
+    assert diagnostics(references("codesys", "ri^ := 5;", before="ri := ADR(i);"), "codesys") == []
+
+
 @pytest.mark.parametrize("dialect", ("iec", "codesys"))
 def test_a_reference_bound_to_a_var_in_out_has_no_known_target(dialect):
     """The callee may store another reference into it. (Binding it is refused today, E-CALL-011:
     typesys.same_type knows no reference types; the bound reference still counts as stored.)"""
     found = diagnostics(references(dialect, "r^ := 5;", before="s := Rebind(r);"), dialect)
-    assert [d for d in found if d[0] == "W-ASSIGN-001"] == []
+    assert [d for d in found if d[0] in ("W-ASSIGN-001", "E-CHECK-999")] == []
+
+
+@pytest.mark.parametrize("dialect", ("iec", "codesys"))
+def test_each_write_through_and_hand_off_in_the_loop_is_warned_of(dialect):
+    """After a near miss (q refers to j), the two uses of r: a warning at each, in order."""
+    text = references(dialect, "q^ := 5;\n  r^ := 5;\n  s := Poke(r);")
+    assert diagnostics(text, dialect) == [
+        ("W-ASSIGN-001", BODY_LINE + 1, 3, through(dialect, "write through 'r'", "r")),
+        ("W-ASSIGN-001", BODY_LINE + 2, 8, through(dialect, "call of Poke", "r",
+                                                   "Poke writes through its input 'p', given 'r'; "))]

@@ -36,7 +36,8 @@ FB's first) and names, in the warning, the derived FB whose override writes.
 
 A reference alters the variable it refers to.  The pass knows what a reference
 refers to when it is a VAR or VAR_TEMP (written only by the code of its POU, and
-of its FB's methods) without an initial value whose every store is an assignment
+of its FB's methods; a reference takes no initial value, E-DECL-008) whose every
+store is an assignment
 `r := REF(i)` (or `ADR(i)`) of one variable: then `r` refers to `i` or is NULL
 (a write through NULL faults instead), wherever the assignment stands (a VAR
 keeps the reference from one call to the next).  A write through it (`r^ := ...`)
@@ -100,7 +101,7 @@ class WriteGraph:
     loop_calls: list[LoopCall] = field(default_factory=list)
     ref_stores: dict[int, int] = field(default_factory=dict)         # id(reference) -> count
     ref_targets: dict[int, list] = field(default_factory=dict)       # -> [(symbol, how, pos)]
-    param_writes: dict[str, set[str]] = field(default_factory=dict)  # node -> its inputs
+    param_writes: dict[str, set[str]] = field(default_factory=dict)  # node -> written through
     through_references: list[ThroughReference] = field(default_factory=list)
 
 
@@ -121,8 +122,7 @@ def note_write(ctx, scope, sym) -> None:
         _count_store(graph, sym)
     if sym.kind in GLOBAL_KINDS:
         graph.global_writes.setdefault(node_of(graph, scope.pou), set()).add(key(sym.name))
-    elif scope.fb is not None and scope.pou.kind == "METHOD" \
-            and scope.fb.variables.get(key(sym.name)) is sym:
+    elif scope.pou.kind == "METHOD" and scope.fb.variables.get(key(sym.name)) is sym:
         graph.member_writes.setdefault(node_of(graph, scope.pou), set()).add(id(sym))
 
 
@@ -141,7 +141,7 @@ def _loops(ex) -> dict[int, str]:
 
 def note_in_out(ex, value) -> None:
     """Record a reference variable bound to a VAR_IN_OUT: the callee may store into it."""
-    sym = ex.program.name_refs.get(id(value)) if isinstance(value, ast.Name) else None
+    sym = ex.program.name_refs.get(id(value))        # (None but for a Name)
     if hasattr(sym, "kind") and _is_reference(sym):
         _count_store(ex.ctx.writes, sym)
 
@@ -158,24 +158,22 @@ def note_assignment(ex, target, value) -> None:
 
 def note_write_through(ex, target) -> None:
     """Record a store through reference variable `r` (`r^ := ...`, `r^.x := ...`): in FOR loops,
-    and by a POU through one of its inputs."""
-    graph, root = ex.ctx.writes, target
-    deref = None
-    while isinstance(root, (ast.Member, ast.Index, ast.Deref, ast.BitAccess)):
-        deref = root if isinstance(root, ast.Deref) else deref
-        root = root.base
-    if deref is None or deref.base is not root:
+    and by a POU through one of its own variables (its inputs among them)."""
+    inner = target
+    while isinstance(inner.base, (ast.Member, ast.Index, ast.Deref, ast.BitAccess)):
+        inner = inner.base
+    if not isinstance(inner, ast.Deref):       # `s.r^`, `refs[1]^`: not a variable's reference
         return
-    ref = ex.program.name_refs.get(id(root))
-    if ref.kind == "VAR_INPUT" and ex.scope.pou.variables.get(key(ref.name)) is ref:
+    graph, ref = ex.ctx.writes, ex.program.name_refs[id(inner.base)]
+    if ex.scope.pou.variables.get(key(ref.name)) is ref:
         graph.param_writes.setdefault(node_of(graph, ex.scope.pou), set()).add(key(ref.name))
     if ex.loop_vars:
-        graph.through_references.append(ThroughReference(ref, root.pos, _loops(ex)))
+        graph.through_references.append(ThroughReference(ref, inner.base.pos, _loops(ex)))
 
 
 def note_argument(ex, pou, param, value, pos) -> None:
     """Record reference variable `value` given to input `param` of `pou` in FOR loops."""
-    ref = ex.program.name_refs.get(id(value)) if isinstance(value, ast.Name) else None
+    ref = ex.program.name_refs.get(id(value))        # (None but for a Name)
     if ex.loop_vars and hasattr(ref, "kind") and _is_reference(ref):
         graph = ex.ctx.writes
         graph.through_references.append(
@@ -237,7 +235,7 @@ def _by_value(ex, instance) -> bool:
     instance is stored by value)."""
     if isinstance(instance, ast.Deref):
         return False
-    sym = ex.program.name_refs.get(id(instance)) if isinstance(instance, ast.Name) else None
+    sym = ex.program.name_refs.get(id(instance))      # (None for a member or an element)
     return sym is None or sym.kind not in ("VAR_IN_OUT", "THIS")
 
 
@@ -286,10 +284,9 @@ def check_references_in_loops(ctx) -> None:
 def _sole_target(graph: WriteGraph, ref):
     """(variable, "REF" or "ADR", position) of the one variable reference `ref` is ever made to
     refer to, when every store into it is such an assignment; else None."""
-    taken = graph.ref_targets.get(id(ref), ())
-    if ref.kind not in ("VAR", "VAR_TEMP") or ref.init is not None \
-            or not taken or len(taken) != graph.ref_stores.get(id(ref), 0) \
-            or any(sym is not taken[0][0] for sym, _, _ in taken):
+    taken = graph.ref_targets.get(id(ref))
+    if ref.kind not in ("VAR", "VAR_TEMP") or not taken \
+            or len(taken) != graph.ref_stores[id(ref)] or any(sym is not taken[0][0] for sym, _, _ in taken):
         return None
     return taken[0]
 
