@@ -493,3 +493,29 @@ def test_lifted_charges_leave_the_same_time_charged_scan_by_scan():
     outcomes = stopped_runs(_legs(), 12, Optimisations.none(), Optimisations.only("charges"), SETTLE_ON)
     assert outcomes[0] == outcomes[1] == outcomes[2]
     assert outcomes[0][0] == [("F-DIV-ZERO", 17, 9)]
+
+
+def test_indentation_counts_leading_spaces_only_when_a_line_holds_other_white_space():
+    """`_indents` reads a line's leading spaces with `str.lstrip()` when no line holds other
+    white space; a tab (or a form feed) after the spaces is then not indentation."""
+    from st_runtime.compiler.optimise.charges import _indents
+
+    assert _indents(["def f():", "    x = 1", "", "        y"]) == [0, 4, 1 << 20, 8]
+    assert _indents(["  \tx = 1", "    y = 2"]) == [2, 4]
+    assert _indents(["    \x0cz", "\u3000w"]) == [4, 0]
+
+
+def test_a_word_across_two_lines_is_on_neither():
+    """`_lines_holding` finds a word in the lines joined without a break: a place that
+    starts in one line and ends in the next is no line's."""
+    from itertools import accumulate
+
+    from st_runtime.compiler.optimise.charges import _lines_holding
+
+    text = ["    x = v_A", "B", "    v_AB = 1", "", "v_AB v_AB"]
+    flat = "".join(text)
+    ends = list(accumulate(map(len, text)))
+    assert _lines_holding(flat, ends, "v_AB") == [2, 4]
+    assert _lines_holding(flat, ends, "v_A") == [0, 2, 4]
+    assert _lines_holding(flat, ends, "Bv") == []
+

@@ -64,7 +64,7 @@ def drop_unused(lines: list[str], start: int) -> None:
         del lines[i]
 
 
-_LOAD_LINE = re.compile(r"( *)(v_\w+) = (?:self|_G)\.\2")      # a whole line
+_LOAD_LINE = re.compile(r"( *+)(v_\w+) = (?:self|_G)\.\2")      # a whole line
 #: A local `v_...` not after a dot or a word character.  Spelled with the literal `v`
 #: first and the look-behind after it (the same matches): the regex engine then skips
 #: to each `v` instead of trying the look-behind at every character (9x faster).

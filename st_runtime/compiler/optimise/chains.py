@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import re
 
-_STORE = re.compile(r"(\s*)((?:self\.)?[A-Za-z_]\w*)\[(\d+)\] = (.+)")
+_STORE = re.compile(r"(\s*+)((?:self\.)?[A-Za-z_]\w*)\[(\d+)\] = (.+)")
 _LITERAL_INDEX = re.compile(r"\[(\d+)\]")
 
 

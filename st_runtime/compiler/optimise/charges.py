@@ -30,10 +30,12 @@ from __future__ import annotations
 import functools
 import itertools
 import re
+from bisect import bisect_left, bisect_right
+from operator import is_not, itemgetter, not_, sub
 
 from ..pysrc import indentation
 
-_CHARGE = re.compile(r"( *)_spent \+= (\d+)")
+_CHARGE = re.compile(r"( *+)_spent \+= (\d+)")
 # A line that can raise, check the budget or leave the level: a word of these (the first
 # test: a substring, then the word as a whole), a loop's head, or a line opening a block
 # other than a branch of an IF (`try:`, `for ...:`; not `if`, `elif`, `else:`).
@@ -41,8 +43,8 @@ _BARRIER_WORDS = ("try:", "except", "finally:", "_ctx", "_overrun", "return", "b
                   ".execute(", "_fn_")
 _BARRIER_WORD = re.compile(r"\btry:|\bexcept\b|\bfinally:|_ctx|_overrun|\breturn\b|\bbreak\b|\bcontinue\b"
                            r"|\.execute\(|_fn_")
-_LOOP = re.compile(r" *(?:for|while|with)\b")
-_BRANCH = re.compile(" *(?:if |elif |else:)")
+_LOOP = re.compile(r" *+(?:for|while|with)\b")
+_BRANCH = re.compile(" *+(?:if |elif |else:)")
 
 
 def merge(lines: list[str], start: int) -> None:
@@ -416,15 +418,18 @@ class _Unread(Exception):
     """A line more indented than its block's statements (no such line is generated)."""
 
 
-_SETS = re.compile(r"\s*_spent\s*(?:[-+*]?=)")        # a line that sets `_spent`
-_COMPOUND = re.compile(r" *(if|elif|else|try|except|finally|for|while|with|def)\b.*:$")
+_SETS = re.compile(r"\s*+_spent\s*+(?:[-+*]?=)")        # a line that sets `_spent`
+_COMPOUND = re.compile(r" *+(if|elif|else|try|except|finally|for|while|with|def)\b.*:$")
 # `v_X = 4`, `v_X = True`: a local set to a literal (a Python name the body assigns is local).
-_LITERAL_STORE = re.compile(r" *(v_\w+) = (-?\d+|True|False)")
+_LITERAL_STORE = re.compile(r" *+(v_\w+) = (-?\d+|True|False)")
 # A clause's test of a local alone: `if v_X:`, `elif (not v_X):`, `if (v_X == 4):`, `!=`.
-_LOCAL_TEST = re.compile(r" *(?:if|elif) \(?(not )?(v_\w+)(?: (==|!=) (-?\d+))?\)?:")
+_LOCAL_TEST = re.compile(r" *+(?:if|elif) \(?(not )?(v_\w+)(?: (==|!=) (-?\d+))?\)?:")
 _LITERALS = {"True": 1, "False": 0}
+_FIRST, _SECOND = itemgetter(0), itemgetter(1)
+_IS_SOMETHING = functools.partial(is_not, None)
 #: At most this many paths are told apart; beyond it only a total they all share is kept.
 _PATH_CAP = 64
+_UNKNOWN = {None}
 
 
 class _Paths(frozenset):
@@ -434,42 +439,51 @@ class _Paths(frozenset):
 
     def total(self) -> int | None:
         """The value every path gives `_spent`, or None (no path, or not one value)."""
-        totals = {total for total, _ in self}
+        totals = set(map(_FIRST, self))
         return totals.pop() if len(totals) == 1 and None not in totals else None
 
     def charged(self, amount: int) -> "_Paths":
-        return _Paths((None if total is None else total + amount, facts) for total, facts in self)
+        totals = list(map(_FIRST, self))
+        if None in totals:
+            return _Paths((None if total is None else total + amount, facts) for total, facts in self)
+        return _Paths(zip(map(amount.__add__, totals), map(_SECOND, self)))
 
     def zeroed(self) -> "_Paths":
-        return _Paths((0, facts) for _, facts in self)
+        return _Paths(zip(itertools.repeat(0), map(_SECOND, self)))
 
     def told(self, local: str, value: int | None) -> "_Paths":
         """Each path with `local` set to `value` (None: to what the walk does not know)."""
-        return _Paths((total, _told(facts, local, value)) for total, facts in self)
+        return self._refacted(lambda facts: _told(facts, local, value))
 
-    @functools.cached_property
     def locals(self) -> frozenset:
         """The locals some path knows the value of."""
-        return frozenset(local for _, facts in self for local, _ in facts)
+        return frozenset(map(_FIRST, itertools.chain.from_iterable(map(_SECOND, self))))
 
     def forgetting(self, line: str) -> "_Paths":
         """Each path without what it knew of a local that `line` may set (`_may_set`)."""
-        lost = {local for local in self.locals if local in line and _may_set(local, line)}
+        lost = {local for local in self.locals() if local in line and _may_set(local, line)}
         if not lost:
             return self
-        return _Paths((total, tuple(fact for fact in facts if fact[0] not in lost)) for total, facts in self)
+        return self._refacted(lambda facts: tuple(fact for fact in facts if fact[0] not in lost))
 
     def taking(self, local: str, test, held: int | None) -> "_Paths":
         """The paths on which `test(value of local)` may hold; a path that does not know the
         value knows it is `held` there (None: not one value)."""
-        kept = []
-        for total, facts in self:
+        def fate(facts: tuple) -> tuple | None:
             value = dict(facts).get(local)
             if value is None:
-                kept.append((total, facts if held is None else _told(facts, local, held)))
-            elif test(value):
-                kept.append((total, facts))
-        return _Paths(kept)
+                return facts if held is None else _told(facts, local, held)
+            return facts if test(value) else None
+        return self._refacted(fate)
+
+    def _refacted(self, fate) -> "_Paths":
+        """Each path with its facts `fate(facts)`, or without the path where that is None;
+        `fate` asked once for each distinct facts (many paths share theirs: they differ by
+        their totals), the paths rebuilt in C."""
+        fates = {facts: fate(facts) for facts in set(map(_SECOND, self))}
+        facts = list(map(fates.__getitem__, map(_SECOND, self)))
+        pairs = zip(map(_FIRST, self), facts)
+        return _Paths(itertools.compress(pairs, map(_IS_SOMETHING, facts)) if None in fates.values() else pairs)
 
 
 def _may_set(local: str, line: str) -> bool:
@@ -483,7 +497,7 @@ def _may_set(local: str, line: str) -> bool:
     return re.search(rf"(?<![\w.]){local}\s*(?::=|(?:[-+*/%&|^@]|//|\*\*|>>|<<)?=(?!=)|,)", line) is not None
 
 
-_BINDS = re.compile(r" *(?:for|with|del|async|import|from|global|nonlocal|class|def|lambda)\b")
+_BINDS = re.compile(r" *+(?:for|with|del|async|import|from|global|nonlocal|class|def|lambda)\b")
 
 
 def _told(facts: tuple, local: str, value: int | None) -> tuple:
@@ -500,8 +514,10 @@ def _kept(paths: "_Paths") -> "_Paths | None":
     `_spent = 0` (no path knows its total; or not one total and no path knows a local,
     which alone could tell the totals apart: every later line acts on all paths alike), one
     path of the total they share beyond `_PATH_CAP`."""
-    if paths and (all(total is None for total, _ in paths) or not paths.locals and paths.total() is None):
-        return None
+    if paths:
+        totals = set(map(_FIRST, paths))
+        if totals == _UNKNOWN or not any(map(_SECOND, paths)) and (len(totals) > 1 or None in totals):
+            return None
     if len(paths) > _PATH_CAP:
         total = paths.total()
         return None if total is None else _Paths({(total, ())})
@@ -541,10 +557,21 @@ class _Settle:
 
     def __init__(self, text: list[str]):
         self.text = text
-        self.indent = _indents(text)
+        flat = "".join(text)
+        self.indent = _indents(text, _stripped(text, flat))
         self.after = _Nearest(self.indent, 1)     # (where a statement or clause ends)
+        ends = list(itertools.accumulate(map(len, text)))     # (where each line ends in `flat`)
         # The locals a clause tests alone: only what a path knows of these may tell it apart.
-        self.tested = {test.group(2) for line in text if "if " in line and (test := _LOCAL_TEST.fullmatch(line))}
+        self.tested = {test.group(2) for n in _lines_holding(flat, ends, "if ")
+                       if (test := _LOCAL_TEST.fullmatch(text[n]))}
+        # The lines that set `_spent`, and those that name a tested local (a substring): a
+        # path's facts are of tested locals only, so any other line keeps them as they are.
+        # (The walk reads only these lines of a region.)
+        self.setting = [n for n in _lines_holding(flat, ends, "_spent") if _SETS.match(text[n])]
+        self.sets_spent = set(self.setting)
+        self.names = set().union(*(_lines_holding(flat, ends, local) for local in self.tested))
+        self.naming = sorted(self.names)
+        self.read = self.sets_spent | self.names      # (the lines `_simple` may act on)
 
     def block(self, n: int, value: "_Paths | None", ended: bool = True) -> tuple[int, "_Paths | None"]:
         """Read the block whose first line is `n` (its indentation: that line's); the line
@@ -561,9 +588,11 @@ class _Settle:
             if value is not None and not value:        # (no path reaches the rest of the block)
                 n = self._known_again(n, indent, True)
                 continue
-            head = _COMPOUND.fullmatch(text[n])
+            line = text[n]
+            head = _COMPOUND.fullmatch(line) if line[-1:] == ":" else None
             if head is None:
-                value = self._simple(n, value)
+                if n in self.read:
+                    value = self._simple(n, value)
                 n += 1
             elif head.group(1) == "if":
                 n, value = self._chain(n, indent, value)
@@ -589,28 +618,29 @@ class _Settle:
             return zero
         if not ended and zero is None:
             return len(text)
-        end = n + 1
-        while end < len(text) and indents[end] >= indent:
-            end += 1
-        return end
+        # (the first later line less indented than the block, found in C)
+        return next(itertools.compress(itertools.count(n + 1), map(indent.__gt__, itertools.islice(indents, n + 1, None))),
+                    len(text))
 
     def _sets(self, first: int, end: int) -> bool:
         """Whether a line from `first` to `end - 1` sets `_spent`."""
-        for line in itertools.islice(self.text, first, end):
-            if "_spent" in line and _SETS.match(line):
-                return True
-        return False
+        setting = self.setting
+        k = bisect_left(setting, first)
+        return k < len(setting) and setting[k] < end
 
     def _forgetting(self, value: "_Paths | None", first: int, end: int) -> "_Paths | None":
         """`value` without what it knew of a local named on a line from `first` to `end - 1`."""
         if value is not None:
-            for line in itertools.islice(self.text, first, end):
-                value = value.forgetting(line)
+            naming, text = self.naming, self.text
+            for k in range(bisect_left(naming, first), bisect_left(naming, end)):
+                value = value.forgetting(text[naming[k]])
         return value
 
     def _simple(self, n: int, value: "_Paths | None") -> "_Paths | None":
+        """What is known after the simple statement on line `n`, one that sets `_spent` or
+        names a tested local (any other keeps what is known)."""
         line = self.text[n]
-        if "_spent" not in line or not _SETS.match(line):
+        if n not in self.sets_spent:
             store = _LITERAL_STORE.fullmatch(line)
             if store is not None and store.group(1) in self.tested:
                 literal = store.group(2)
@@ -660,10 +690,54 @@ class _Settle:
         return end, None if self._sets(n, end) else self._forgetting(value, n, end)
 
 
-def _indents(text: list[str]) -> list[int]:
-    """Each line's indentation, `indentation` written out (no call a line: the walks read
-    every line's); an empty line's is 1 << 20, more than any line's."""
-    return [len(line) - len(line.lstrip(" ")) if line else 1 << 20 for line in text]
+def _indents(text: list[str], stripped: list[str] | None = None) -> list[int]:
+    """Each line's indentation (`indentation`: its leading spaces), of every line in C (the
+    walks read every line's); an empty line's is 1 << 20, more than any line's.  `stripped`:
+    `_stripped(text)`, when the caller has it."""
+    if stripped is None:
+        stripped = _stripped(text)
+    indents = list(map(sub, map(len, text), map(len, stripped)))
+    if "" in text:
+        for n in itertools.compress(itertools.count(), map(not_, text)):
+            indents[n] = 1 << 20
+    return indents
+
+
+def _stripped(text: list[str], flat: str | None = None) -> list[str]:
+    """Each line without its leading spaces.  Where no line holds a white space but the
+    space (`flat`: the lines joined), that is `str.lstrip()` (`lstrip(" ")` reads each space
+    through a search of its argument: ten times the machine instructions)."""
+    if flat is None:
+        flat = "".join(text)
+    if _plain(flat):
+        return list(map(str.lstrip, text))
+    return list(map(str.lstrip, text, itertools.repeat(" ")))
+
+
+def _plain(flat: str) -> bool:
+    """Whether the text `flat` holds no white space but the space."""
+    return flat.isascii() and not any(map(flat.__contains__, _WHITE_SPACE_BUT_SPACE))
+
+
+# The ASCII white space but the space (`str.isspace`).
+_WHITE_SPACE_BUT_SPACE = ("\n", "\t", "\x0b", "\x0c", "\r", "\x1c", "\x1d", "\x1e", "\x1f")
+
+
+def _lines_holding(flat: str, ends: list[int], part: str) -> list[int]:
+    """The lines that hold `part`, in order: each place of it in `flat` (the lines joined
+    without a break; `ends`: where each ends there) found by `str.find`, its line by
+    bisection (a place across two lines is none), so that only the places are read in
+    Python, not every line."""
+    found, size = [], len(part)
+    at = flat.find(part)
+    while at >= 0:
+        n = bisect_right(ends, at)
+        if at + size <= ends[n]:
+            found.append(n)
+            at = flat.find(part, ends[n])
+        else:
+            at = flat.find(part, at + 1)
+    return found
 
 
 class _Shape:

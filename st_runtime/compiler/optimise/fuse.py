@@ -35,10 +35,10 @@ from . import TEMP_NAME, remembered
 
 MERGE_CAP = 24
 
-_PURE = re.compile(r"^(\s*)([A-Za-z_]\w*) = ([\w\s.()+*-]+)$")
+_PURE = re.compile(r"^(\s*+)([A-Za-z_]\w*) = ([\w\s.()+*-]+)$")
 _TOKEN = re.compile(r"[A-Za-z_]\w*")
-_ACCUMULATE = re.compile(r"^(\s*)([A-Za-z_]\w*) = \(\2 ([+*-]) (.+)\)$")
-_LOOP = re.compile(r"^\s*(for|while) ")
+_ACCUMULATE = re.compile(r"^(\s*+)([A-Za-z_]\w*) = \(\2 ([+*-]) (.+)\)$")
+_LOOP = re.compile(r"^\s*+(for|while) ")
 _CALL_OR_ATTRIBUTE = re.compile(r"\w\s*\(|\.[A-Za-z_]")
 _PARENTHESIS = re.compile(r"[()]")
 

@@ -30,7 +30,7 @@ from ...types import ElementaryType, EnumType
 MIN_CLAUSES = 6     # fewer clauses are tested in a row
 LEAF = 3            # a group of this many clauses or fewer is tested in a row
 FAR = 24            # lines of a branch past which its test's jump takes an EXTENDED_ARG (about)
-_SINGLE_TEST = re.compile(r"( *(?:el)?if )(_t\d+ (?:==|<) -?\d+):")
+_SINGLE_TEST = re.compile(r"( *+(?:el)?if )(_t\d+ (?:==|<) -?\d+):")
 
 
 @dataclass(frozen=True)

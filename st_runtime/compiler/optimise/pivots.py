@@ -48,7 +48,7 @@ from ..pysrc import indentation
 from .sums import quiet_store
 
 #: A candidate's test: `if (abs(E) > abs(X[P * a - b])):`, E a list element or a local.
-_CANDIDATE = re.compile(r"( *)if \(abs\(([A-Za-z_]\w*(?:\[\d+\])?)\) > abs\(([A-Za-z_]\w*)\[([A-Za-z_]\w*)"
+_CANDIDATE = re.compile(r"( *+)if \(abs\(([A-Za-z_]\w*(?:\[\d+\])?)\) > abs\(([A-Za-z_]\w*)\[([A-Za-z_]\w*)"
                         r"(?: \* (\d+))? - (\d+)\]\)\):")
 _ROW = re.compile(r"([A-Za-z_]\w*) = (\d+)")
 _CHARGE = re.compile(r"_spent (?:\+=|=) \d+")

@@ -22,7 +22,7 @@ import re
 
 from ..pysrc import indentation
 
-_ASSIGNMENT = re.compile(r"( *)([A-Za-z_]\w*) ((?:[-+*/%&|^]|//|\*\*|<<|>>)?=) (.+)")
+_ASSIGNMENT = re.compile(r"( *+)([A-Za-z_]\w*) ((?:[-+*/%&|^]|//|\*\*|<<|>>)?=) (.+)")
 _CALLED = re.compile(r"([A-Za-z_][\w.]*)\(")
 _NUMERIC = re.compile(r"_m_(?:sin|cos|tan|sqrt)|_sf_(?:SIN|COS|TAN|ASIN|ACOS|ATAN|SQRT|LN|LOG|EXP|EXPT|ABS)")
 _ELEMENT = re.compile(r"(?<![\w.])(v_\w+)\[(_t\d+)\]")

@@ -44,7 +44,7 @@ from ..scope import _LOOPS, _nodes, root_name
 from . import branches      # (branches imports this module: its names are read at call time)
 
 _TOKEN = re.compile("\x03(\\d+)\x03")
-_MARKER = re.compile("^( *)\x04([\\d,]+)\x04$", re.M)
+_MARKER = re.compile("^( *+)\x04([\\d,]+)\x04$", re.M)
 _NUMBER = re.compile(r"-?\(?-?\d[\d.e+-]*\)?")
 _VARIABLE = re.compile(r"(?:self\.|_G\.)?(v_\w+)")
 _TESTABLE = re.compile(r"(?:self\.)?v_\w+")      # a local, or a slot of the instance itself

@@ -45,12 +45,12 @@ from ... import ast
 from ...types import ArrayType, ElementaryType, resolve_alias
 from . import branches, kept, remembered
 
-_ASSIGNMENT = re.compile(r"\s*[A-Za-z_]\w* = ([\w\s()+\-*.]+)")
+_ASSIGNMENT = re.compile(r"\s*+[A-Za-z_]\w* = ([\w\s()+\-*.]+)")
 _ATTRIBUTE_OR_CALL = re.compile(r"[A-Za-z_]\w*\s*[.(]")
-_STORE = re.compile(r"\s*(?:self\.)?[A-Za-z_]\w* = (.+)")
-_ELEMENT_STORE = re.compile(r"\s*(?:self\.)?[A-Za-z_]\w*\[\d+\] = (.+)")
+_STORE = re.compile(r"\s*+(?:self\.)?[A-Za-z_]\w* = (.+)")
+_ELEMENT_STORE = re.compile(r"\s*+(?:self\.)?[A-Za-z_]\w*\[\d+\] = (.+)")
 _PLAIN_KINDS = {"VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP", "RETURN"}
-_COPY = re.compile(r"\s*v_\w+\[:\] = v_\w+")
+_COPY = re.compile(r"\s*+v_\w+\[:\] = v_\w+")
 
 
 def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:

@@ -128,7 +128,7 @@ class _Graph:
         return True
 
 
-_TOKEN = re.compile(r"\s*(?:([()+*-])|([A-Za-z_]\w*)|(\d+(?:\.\d*)?(?:[eE][+-]?\d+)?))")
+_TOKEN = re.compile(r"\s*+(?:([()+*-])|([A-Za-z_]\w*)|(\d+(?:\.\d*)?(?:[eE][+-]?\d+)?))")
 _WORDS = {"True": True, "False": False}
 
 
