@@ -222,6 +222,7 @@ def test_an_else_that_only_charges_is_kept_with_the_test():
     assert _keep(lines) == [_BEST_LINE, *_kept_test("v_X[3]", 2), "else:", "    _spent += 3", "v_R = 1"]
 
 
-def test_an_else_that_does_more_than_charge_keeps_the_test():
-    lines = [*_candidate("v_X[3]", 2), "else:", "    _spent += 3", "    v_Q = 1"]
+@pytest.mark.parametrize("body", [("    _spent += 3", "    v_Q = 1"), ("    v_Q = 1", "    _spent += 3")])
+def test_an_else_that_does_more_than_charge_keeps_the_test(body):
+    lines = [*_candidate("v_X[3]", 2), "else:", *body]
     assert _keep(lines) == lines
