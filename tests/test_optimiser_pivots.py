@@ -164,3 +164,65 @@ def test_a_zero_test_of_another_element_or_bound_stays():
     for test in ("if (-0.0 <= v_X[v_P * 3 - 2] <= 0.0):", "if (-1.0 <= v_X[v_P * 3 - 3] <= 2.0):",
                  "if (-v_T <= v_X[v_P * 3 - 3] <= v_T):"):
         assert _keep([*_candidate("v_X[3]", 2), test])[-1] == test
+
+
+# Session 20's rows (docs/mutation.md, "Session 20, session 19's new passes"): each expected
+# list written from the module docstring's rewrite, by hand.
+
+_BEST_LINE = "_best = abs(v_X[v_P * 3 - 3])"
+
+
+def _kept_test(element: str, row: int, body=("    _spent += 5",)) -> list[str]:
+    """A candidate test as the pass rewrites it (module docstring)."""
+    return [f"if ((_cand := abs({element})) > _best):", *body, f"    v_P = {row}", "    _best = _cand"]
+
+
+def test_a_chain_that_ends_the_lines():
+    """The last test's body is the last line: the chain ends with the lines."""
+    assert _keep(_candidate("v_X[3]", 2)) == [_BEST_LINE, *_kept_test("v_X[3]", 2)]
+
+
+def test_a_branch_that_only_moves_the_row():
+    lines = ["if (abs(v_X[3]) > abs(v_X[v_P * 3 - 3])):", "    v_P = 2", "v_R = 1"]
+    assert _keep(lines) == [_BEST_LINE, *_kept_test("v_X[3]", 2, ()), "v_R = 1"]
+
+
+def test_a_test_that_is_no_move_ends_the_chain_kept_so_far():
+    """The second test's candidate (element 7) is not row 3's (3 * 3 - 3 = 6): the first test
+    is rewritten, the second stays as written, reading the list."""
+    second = _candidate("v_X[7]", 3)
+    assert _keep([*_candidate("v_X[3]", 2), *second]) == [_BEST_LINE, *_kept_test("v_X[3]", 2), *second]
+
+
+def test_a_test_that_is_no_move_after_other_lines_stays():
+    """No chain, no `_best` line: the lines as they were, wherever the test stands."""
+    lines = ["v_R = 7", *_candidate("v_X[6]", 2)]
+    assert _keep(lines) == lines
+
+
+def test_a_scale_other_than_the_offset():
+    """`X[P * 4 - 2]`: row 2's element is 2 * 4 - 2 = 6 (a 4-column matrix's column 3)."""
+    lines = ["if (abs(v_X[6]) > abs(v_X[v_P * 4 - 2])):", "    _spent += 5", "    v_P = 2"]
+    assert _keep(lines) == ["_best = abs(v_X[v_P * 4 - 2])", *_kept_test("v_X[6]", 2)]
+
+
+@pytest.mark.parametrize("line", ["    v_Q = _f(v_Y)", "    v_Q = v_Y"])
+def test_a_branch_that_moves_the_row_and_does_more_stays(line):
+    lines = [*_candidate("v_X[3]", 2), line]
+    assert _keep(lines) == lines
+
+
+def test_a_branch_that_does_not_move_the_row_stays():
+    lines = ["if (abs(v_X[3]) > abs(v_X[v_P * 3 - 3])):", "    _spent += 5", "v_R = 1"]
+    assert _keep(lines) == lines
+
+
+def test_an_else_that_only_charges_is_kept_with_the_test():
+    lines = [*_candidate("v_X[3]", 2), "else:", "    _spent += 3", "v_R = 1"]
+    assert _keep(lines) == [_BEST_LINE, *_kept_test("v_X[3]", 2), "else:", "    _spent += 3", "v_R = 1"]
+
+
+@pytest.mark.parametrize("body", [("    _spent += 3", "    v_Q = 1"), ("    v_Q = 1", "    _spent += 3")])
+def test_an_else_that_does_more_than_charge_keeps_the_test(body):
+    lines = [*_candidate("v_X[3]", 2), "else:", *body]
+    assert _keep(lines) == lines

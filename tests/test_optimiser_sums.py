@@ -283,6 +283,8 @@ def test_a_list_not_tested_whole_is_summed_by_element():
     "v_X = v_A[v_I]",               # a read at a data index
     "v_X = (v_Y / 2.0)",            # a division
     "v_X = self.v_Y",               # an attribute
+    "_spent = 12",                  # a charge settled into a store (charges.settle)
+    "v_X = (_spent + 1)",           # the charge read
 ])
 def test_a_line_the_tests_may_not_pass_splits_the_run(between):
     lines = [*_finite("v_A", 0), *_finite("v_A", 1), between, *_finite("v_A", 2), *_finite("v_B", 0)]
@@ -320,3 +322,11 @@ def test_runs_in_a_nested_block_fold_there():
     assert folded[0] == "if v_GO:" and folded[-1] == "v_X = 1"
     assert folded[1].startswith("    if not (-1.7976931348623157e+308 <= (_sum(v_A, v_B[0]))")
     assert folded[2:-1] == ["    " + line for line in inner]
+
+
+def test_a_list_of_one_element_is_added_as_its_element():
+    """A one-element list tested whole is read as its element, not summed by a call."""
+    lists = {**_LISTS, "v_D": (1, True, True)}
+    lines = [*_finite("v_D", 0), *_finite("v_A", 0), *_finite("v_A", 1), *_finite("v_A", 2)]
+    assert _fold(lines, lists)[0] == \
+        "if not (-1.7976931348623157e+308 <= (_sum(v_A, v_D[0])) <= 1.7976931348623157e+308):"

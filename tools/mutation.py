@@ -134,7 +134,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   # session 19: the sums and pivots passes' own tests
                   "tests/test_optimiser_sums.py", "tests/test_optimiser_pivots.py",
                   # session 19: the native pass's own tests (skipped without llvmlite)
-                  "tests/test_optimiser_native.py"]),
+                  "tests/test_optimiser_native.py",
+                  # session 20: the reads and seal passes' own tests, which the selection had missed
+                  "tests/test_optimiser_reads.py", "tests/test_optimiser_seal.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",

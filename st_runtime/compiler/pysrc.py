@@ -19,6 +19,14 @@ def indentation(line: str) -> int:
     return len(line) - len(line.lstrip(" "))
 
 
+def statement_end(lines: list[str], n: int, indent: int) -> int:
+    """The index after line n and the lines after it indented deeper than `indent` (its body)."""
+    end = n + 1
+    while end < len(lines) and indentation(lines[end]) > indent:
+        end += 1
+    return end
+
+
 def pyliteral(value) -> str:
     """Python source for a constant value (bool, int, float, str)."""
     if isinstance(value, bool):

@@ -247,8 +247,8 @@ class BodyCompiler(ExprCompiler):
         outputs = [s for s in self.pou.variables.values() if s.kind == "VAR_OUTPUT"]
         if not outputs:
             return f"return {result}"
-        reads = [self.scope.lvalue_of_name(self, ast.Name(s.name)).read() for s in outputs]
-        return f"return ({result}, {', '.join(reads)})"
+        values = [self.scope.lvalue_of_name(self, ast.Name(s.name)).read() for s in outputs]
+        return f"return ({result}, {', '.join(values)})"
 
     # --------------------------------------------------------- statements
 

@@ -24,6 +24,8 @@ from __future__ import annotations
 
 import re
 
+from ..pysrc import indentation
+
 _STORE = re.compile(r"(\s*+)((?:self\.)?[A-Za-z_]\w*)\[(\d+)\] = (.+)")
 _LITERAL_INDEX = re.compile(r"\[(\d+)\]")
 
@@ -42,7 +44,7 @@ def merge(lines: list[str], start: int) -> None:
             if merged is not None:
                 out[-1] = merged
                 continue
-        depth = len(line) - len(line.lstrip())
+        depth = indentation(line)
         while openers and openers[-1][0] >= depth:
             openers.pop()
         free = not openers or not openers[-1][1]

@@ -32,6 +32,7 @@ NumPy kernel runs, as before this module.
 
 from __future__ import annotations
 
+import functools
 import importlib.util
 import os
 import struct
@@ -51,9 +52,17 @@ _TYPE, _SIZE, _ITEMS, _FVAL = 8, 16, 24, 16      # ob_type, ob_size, list ob_ite
 
 def enabled() -> bool:
     """Whether native kernels may be built: llvmlite found (not imported: loads stay as
-    fast) and not switched off by `ST_RUNTIME_NATIVE=0` (to compare with NumPy's kernel)."""
+    fast) and not switched off by `ST_RUNTIME_NATIVE=0` (to compare with NumPy's kernel).
+    The environment is read at each call (a test may switch it), llvmlite looked for once."""
     if os.environ.get("ST_RUNTIME_NATIVE", "1").strip().lower() in ("0", "off", "no", "false"):
         return False
+    return _llvmlite_found()
+
+
+@functools.cache
+def _llvmlite_found() -> bool:
+    """Whether llvmlite is installed: `find_spec` walks the import path (~90 us), and the
+    answer does not change while the process runs."""
     return importlib.util.find_spec("llvmlite") is not None
 
 

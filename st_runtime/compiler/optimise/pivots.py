@@ -44,7 +44,7 @@ from __future__ import annotations
 
 import re
 
-from ..pysrc import indentation
+from ..pysrc import indentation, statement_end
 from .sums import quiet_store
 
 #: A candidate's test: `if (abs(E) > abs(X[P * a - b])):`, E a list element or a local.
@@ -131,11 +131,8 @@ def _test(lines: list[str], n: int, match) -> tuple[int, list[str] | None]:
     pad = match.group(1)
     candidate, row_name = match.group(2), match.group(4)
     scale, offset = int(match.group(5) or 1), int(match.group(6))
-    end = n + 1
-    body = []
-    while end < len(lines) and indentation(lines[end]) > len(pad):
-        body.append(lines[end])
-        end += 1
+    end = statement_end(lines, n, len(pad))
+    body = lines[n + 1:end]
     rows = [_ROW.fullmatch(line.strip()) for line in body]
     moves = [row for row in rows if row is not None and row.group(1) == row_name]
     if len(moves) != 1 or not all(row is not None or _CHARGE.fullmatch(line.strip())
@@ -148,13 +145,11 @@ def _test(lines: list[str], n: int, match) -> tuple[int, list[str] | None]:
     out = [f"{pad}if (({_CANDIDATE_ABS} := abs({candidate})) > {_BEST}):", *body,
            f"{inner}{_BEST} = {_CANDIDATE_ABS}"]
     if end < len(lines) and lines[end] == f"{pad}else:":
-        out.append(lines[end])
-        end += 1
-        while end < len(lines) and indentation(lines[end]) > len(pad):
-            if not _CHARGE.fullmatch(lines[end].strip()):
-                return n, None
-            out.append(lines[end])
-            end += 1
+        after = statement_end(lines, end, len(pad))
+        if not all(_CHARGE.fullmatch(line.strip()) for line in lines[end + 1:after]):
+            return n, None
+        out += lines[end:after]
+        end = after
     if end < len(lines) and indentation(lines[end]) == len(pad) and lines[end].strip().startswith("elif "):
         return n, None
     return end, out

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import re
 
-from ..pysrc import indentation
+from ..pysrc import indentation, statement_end
 
 _ASSIGNMENT = re.compile(r"( *+)([A-Za-z_]\w*) ((?:[-+*/%&|^]|//|\*\*|<<|>>)?=) (.+)")
 _CALLED = re.compile(r"([A-Za-z_][\w.]*)\(")
@@ -38,10 +38,7 @@ def share_in_loops(lines: list[str], start: int, temp) -> None:
     while n < len(lines):
         line = lines[n]
         if line.lstrip().startswith("for ") and line.endswith(":"):
-            indent = indentation(line)
-            end = n + 1
-            while end < len(lines) and indentation(lines[end]) > indent:
-                end += 1
+            end = statement_end(lines, n, indentation(line))
             lines[n + 1:end] = shared_reads(lines[n + 1:end], temp)
         n += 1
 

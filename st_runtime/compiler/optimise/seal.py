@@ -14,6 +14,8 @@ from __future__ import annotations
 import io
 import tokenize
 
+from ..pysrc import indentation
+
 _READ = "_ctx.seal"
 
 
@@ -40,7 +42,7 @@ def _reads(line: str) -> list[int]:
                   if t.type in (tokenize.NAME, tokenize.OP, tokenize.STRING)]
     except (tokenize.TokenError, SyntaxError):      # a line that is not a whole statement
         return []
-    indent = len(line) - len(line.lstrip())
+    indent = indentation(line)
     return [indent + first.start[1] for first, dot, name in zip(tokens, tokens[1:], tokens[2:])
             if (first.string, dot.string, name.string) == ("_ctx", ".", "seal")
             and first.end == dot.start and dot.end == name.start]

@@ -48,7 +48,7 @@ from __future__ import annotations
 import re
 
 from ...types import ArrayType, ElementaryType, resolve_alias
-from ..pysrc import indentation
+from ..pysrc import indentation, statement_end
 from .unguard import _ATTRIBUTE_OR_CALL
 
 #: Tests a run needs to be folded (its sum and test must cost less than the tests it skips).
@@ -105,7 +105,7 @@ def fold(lines: list[str], start: int, lists: dict[str, tuple[int, bool, bool]])
             n += 1
             continue
         indent = indentation(line)
-        end = _statement_end(lines, n, indent)
+        end = statement_end(lines, n, indent)
         test = _test(lines, n, end, lists) if _MARK in line else None
         if run is not None and not (indent == run.indent and run.admits(test, lines[n:end])):
             run.close(out)
@@ -230,12 +230,4 @@ def _test(lines: list[str], n: int, end: int, lists) -> tuple[str, int, tuple[st
             lines[end].strip().startswith(("elif ", "else:")):
         return None
     return name, k, body
-
-
-def _statement_end(lines: list[str], n: int, indent: int) -> int:
-    """The index after line n and the lines indented deeper than it (its body)."""
-    end = n + 1
-    while end < len(lines) and indentation(lines[end]) > indent:
-        end += 1
-    return end
 
