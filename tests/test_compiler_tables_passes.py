@@ -318,10 +318,10 @@ row("unguard", "a located variable's store keeps its handler", main("m AT %MW2 :
     "m := 5;\ny := m + 1;"), {"m": 5, "y": 6}, never=("MAIN", r"\n        self\.v_M = 5"),
     shape=("MAIN", r"\n        (?:self\.)?v_Y = "))
 row("unguard", "an array copy", main("a, b : ARRAY[1..3] OF INT; y : INT;",
-    "b[2] := 7;\na := b;\ny := a[2];"), {"a": [0, 7, 0], "y": 7}, shape=("MAIN", r"\n        v_A\[:\] = v_B"))
+    "b[2] := 7;\na := b;\ny := a[2];"), {"a": [0, 7, 0], "y": 7}, shape=("MAIN", r"\n        v_A\[_WHOLE\] = v_B"))
 row("unguard", "a copy of a global array", main("a : ARRAY[1..3] OF INT;", "a := G;",
     before="VAR_GLOBAL G : ARRAY[1..3] OF INT := [4, 5, 6]; END_VAR"), {"a": [4, 5, 6]},
-    shape=("MAIN", r"\n        v_A\[:\] = v_G"))
+    shape=("MAIN", r"\n        v_A\[_WHOLE\] = v_G"))
 row("unguard", "an element store of a division keeps its handler", main("a : ARRAY[1..3] OF INT; k : INT;",
     "a[1] := 6 / k;\na[2] := 6 - k;"), {"a": [0, 6, 0]}, faults=[("F-DIV-ZERO", 4, 1)],
     never=("MAIN", r"\n        v_A\[0\] = "), shape=("MAIN", r"\n        v_A\[1\] = "))

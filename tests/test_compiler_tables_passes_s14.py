@@ -132,13 +132,13 @@ row("unguard", "a copy of an in-out's array keeps its handler", main(
 VAR_IN_OUT x : ARRAY[1..3] OF INT; END_VAR VAR a : ARRAY[1..3] OF INT; END_VAR
 a := x;
 F := a[2];
-END_FUNCTION"""), {"m": [1, 2, 3], "y": 2}, never=("F", r"\n        v_A\[:\] = v_X"))
+END_FUNCTION"""), {"m": [1, 2, 3], "y": 2}, never=("F", r"\n        v_A\[_WHOLE\] = v_X"))
 row("unguard", "a copy between a FUNCTION's own arrays", main("y : INT;", "y := F(1);", before="""FUNCTION F : INT
 VAR_INPUT n : INT; END_VAR VAR a, b : ARRAY[1..3] OF INT; END_VAR
 b[2] := 7;
 a := b;
 F := a[2] + n;
-END_FUNCTION"""), {"y": 8}, shape=("F", r"\n        v_A\[:\] = v_B"))
+END_FUNCTION"""), {"y": 8}, shape=("F", r"\n        v_A\[_WHOLE\] = v_B"))
 
 # ----------------------------------------------------------------------------------- sets
 # A TIME compared with TIME literals is no integer variable: no membership test (T#2s = 2 s).

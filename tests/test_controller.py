@@ -127,6 +127,10 @@ def test_runaway_loop_ends_the_scan_with_task_period_exceeded():
     assert main["scans"] == 2 and main["after"] == 0
     assert other["n"] == 0              # the rest of the task is abandoned
     assert list(plc.controller.task_times["Primary"]) == [first + (bodies_run + 1) * per_iteration] * 2
+    # held as unsigned 64-bit integers (an append without PyArg_Parse); a run's time is never
+    # below zero, and an overrun's, above the limit, fits
+    record = plc.controller.task_times["Primary"]
+    assert (record.typecode, record.itemsize) == ("Q", 8) and record[0] > period_ps
 
 
 def test_for_loops_are_charged_by_their_blocks():

@@ -139,8 +139,8 @@ def test_array_copies_between_owned_lists_need_no_guard():
     program = api.load_text(COPIES).program
     lines = compiled_lines(program, "KEEPER", ON)
     at = {line: i for i, line in enumerate(lines)}
-    assert lines[at["v_BEFORE[:] = v_LAST"] - 1] != "try:" and lines[at["v_LAST[:] = v_SHARED"] - 1] != "try:"
-    assert lines[at["v_OUTSIDE[:] = v_LAST"] - 1] == "try:"
+    assert lines[at["v_BEFORE[_WHOLE] = v_LAST"] - 1] != "try:" and lines[at["v_LAST[_WHOLE] = v_SHARED"] - 1] != "try:"
+    assert lines[at["v_OUTSIDE[_WHOLE] = v_LAST"] - 1] == "try:"
     assert "v_FRESH = self.v_FRESH" not in lines and "self.v_FRESH = v_FRESH" in lines
     alone = same_alone_and_with_all(lambda: api.load_text(COPIES).program, 5, "unguard")
     assert alone[0] == []

@@ -24,7 +24,7 @@ LINES = ["        _spent += 12", "    _spent = 0", "  _spent -= 3", "    if v_X:
          "    with a:", "    else:", "        try:", "    except E as v_E:", "    del v_X", "            x = 1",
          "            if x > 2: y = 3", "    _spentx = 1", "     ", "", "\t_spent += 1", "  \t if v_X:",
          "    v_A = self.v_A", "    v_A = _G.v_A", "    v_A = self.v_B", "        x += (a * b)",
-         "    x = (x + 1.5)", "    self.v_Q[3] = v_R", "    v_Q[:] = v_R", "    v_Q[2] = (a - b)",
+         "    x = (x + 1.5)", "    self.v_Q[3] = v_R", "    v_Q[:] = v_R", "    v_Q[_WHOLE] = v_R", "    v_Q[2] = (a - b)",
          "      elif _t3 == 4:", "    if _t1 < 8:", "    if (abs(v_A[1]) > abs(v_M[v_K])):",
          "  \x04" + "1,2\x04", "\x04" + "7\x04", "    a\n    \x04" + "3\x04", "  ( x + 1 )", "12.5e3 * y"]
 

@@ -65,9 +65,9 @@ def test_siblings_share_their_temps():
     plain = compile_program(_program(), optimise=WITHOUT).python_sources["MAIN"]
     # (one slot each since session 19: `A[I] * A[I]` reads A[I] once, into a temp: reads.py)
     assert (_slots(ON), _slots(WITHOUT)) == (22, 26)
-    # _t1: the walrus of SIN, the guarded IF's condition, then the FOR's range
+    # _t1: the walrus of SIN, the guarded IF's condition, then the FOR's range (from a table)
     assert [line.strip()[:12] for line in source.splitlines() if line.strip().startswith(("_t1 =", "self.v_X ="))] \
-        == ["self.v_X = (", "_t1 = (_idiv", "_t1 = None", "_t1 = range(", "_t1 = None"]
+        == ["self.v_X = (", "_t1 = (_idiv", "_t1 = None", "_t1 = (_FROM", "_t1 = None"]
     assert "_t3 = (_idiv" in plain
     assert "_t6 = v_K * 4 - 5" in source and "_t7 := (v_SUM" in source   # hoisted: stays taken
 

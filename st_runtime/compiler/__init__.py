@@ -98,6 +98,8 @@ _NAMESPACE = {
     "_INF": math.inf, "_NAN": math.nan, "_NINF": -math.inf,
     "_m_sin": math.sin, "_m_cos": math.cos, "_m_tan": math.tan, "_m_sqrt": math.sqrt,
     "_type": type, "_list": list, "_sum": sum,
+    "_WHOLE": slice(None),       # an array copy's slice (calls.copy_statement)
+    "_FROM_0": support.FROM_0, "_FROM_1": support.FROM_1,     # FOR ranges (statements._for_range)
 }
 
 

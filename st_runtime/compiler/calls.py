@@ -428,12 +428,16 @@ class Calls:
 
 
 def copy_statement(target: str, source: str, t) -> str:
-    """`target := source` for an aggregate: copy in place."""
+    """`target := source` for an aggregate: copy in place.
+
+    An array of elementary elements is a slice store, `target[_WHOLE] = source`: `_WHOLE` is
+    the namespace's `slice(None)`, the very slice `target[:]` builds (CPython 3.11 makes and
+    frees a new one each time, `BUILD_SLICE`); the store is the same `__setitem__` call."""
     t = resolve_alias(t)
     if isinstance(t, ArrayType):
         if is_aggregate(t.element):
             return f"_assign_list({target}, {source})"
-        return f"{target}[:] = {source}"
+        return f"{target}[_WHOLE] = {source}"
     if isinstance(t, (StructType, FBType)):
         return f"{target}._assign({source})"
     raise AssertionError(f"not an aggregate: {t}")

@@ -45,6 +45,7 @@ from .optimise import (aliases, branches, chains, charges, cse, fastpath, fold, 
 from .optimise import branched, may_reuse
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, assigned_in, kinds, once, walk
+from .support import SMALL_END
 
 
 class BodyCompiler(ExprCompiler):
@@ -911,7 +912,11 @@ class BodyCompiler(ExprCompiler):
             edge = pyliteral(end_c + (1 if step > 0 else -1))
         else:
             edge = f"{end} + 1" if step > 0 else f"{end} - 1"
-        o.line(f"{rng} = range({start}, {edge})" if step == 1 else f"{rng} = range({start}, {edge}, {step})")
+        if step == 1 and start_c in (0, 1) and _is_int(start_c):
+            # (`end` a temp: read twice, made once)
+            o.line(f"{rng} = (_FROM_{start_c}[{end}] if 0 <= {end} < {SMALL_END} else range({start}, {edge}))")
+        else:
+            o.line(f"{rng} = range({start}, {edge})" if step == 1 else f"{rng} = range({start}, {edge}, {step})")
         if step == 1:
             return rng, None, f"({edge} if {start} <= {end} else {start})"
         if step == -1:

@@ -70,7 +70,7 @@ _LOAD_LINE = re.compile(r"( *+)(v_\w+) = (?:self|_G)\.\2")      # a whole line
 #: to each `v` instead of trying the look-behind at every character (9x faster).
 _LOCAL_NAME = re.compile(r"(v(?<![.\w]v)_\w+)")
 _SET = re.compile(r"        ((?:self\.)?\w+) = (.+)")
-_COPY = re.compile(r"        v_\w+\[:\] = v_\w+")
+_COPY = re.compile(r"        v_\w+\[_WHOLE\] = v_\w+")
 _INLINE_TRIG = re.compile(r"\(_m_(?:sin|cos|tan)\((_t\d+)\) if \(\1 := ((?:self\.)?\w+)\) < 1e309 and \1 > -1e309"
                           r" else _sf_(?:SIN|COS|TAN)\(\1\)\)")          # (pysrc.finite_test)
 #: The same with the finite test a value of `reuse` (`finite`): `_cN` is that test of x.

@@ -21,7 +21,7 @@ Two rules, either one suffices:
   or a local raises nothing; the conversion to the target's type, where one
   is needed, is a call and keeps the handler.
 * owned copy: `A := B` of arrays of one elementary element type and the same
-  bounds compiled to `v_A[:] = v_B`, A the POU's own (as above) and B its own
+  bounds compiled to `v_A[_WHOLE] = v_B`, A the POU's own (as above) and B its own
   or a global's (not located, not a reference): a slice store of a list.
 * owned element store: `A[i, j] := expression` compiled to `v_A[k] = code`
   with a literal index (the compiler writes one only where the index is
@@ -50,7 +50,7 @@ _ATTRIBUTE_OR_CALL = re.compile(r"[A-Za-z_]\w*\s*[.(]")
 _STORE = re.compile(r"\s*+(?:self\.)?[A-Za-z_]\w* = (.+)")
 _ELEMENT_STORE = re.compile(r"\s*+(?:self\.)?[A-Za-z_]\w*\[\d+\] = (.+)")
 _PLAIN_KINDS = {"VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP", "RETURN"}
-_COPY = re.compile(r"\s*+v_\w+\[:\] = v_\w+")
+_COPY = re.compile(r"\s*+v_\w+\[_WHOLE\] = v_\w+")
 
 
 def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:
@@ -93,7 +93,7 @@ def _owned_store(compiler, node, lines: list[str]) -> bool:
 
 
 def _owned_copy(compiler, node) -> bool:
-    """`A := B` of two arrays of the same elementary type, compiled to `v_A[:] = v_B`: A the
+    """`A := B` of two arrays of the same elementary type, compiled to `v_A[_WHOLE] = v_B`: A the
     POU's own array, B its own or a global's (not located, not reached through a reference):
     both Python lists of the same length, and a slice store of a list raises nothing."""
     if not (isinstance(node.target, ast.Name) and isinstance(node.value, ast.Name)
