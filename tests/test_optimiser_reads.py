@@ -61,6 +61,15 @@ def test_a_store_of_the_index_or_the_array_ends_the_reuse(store):
                                              "    v_Q = _t50", store, "    v_S = (v_S + v_A[_t4])"]
 
 
+# A line that reads an element and then stores its index (or its array): the line's own read
+# comes first, the store ends the element's life, so the read keeps nothing (no name made for
+# a value no later line may use).
+@pytest.mark.parametrize("store", ["    _t4 = (v_A[_t4] + 1)", "    _t4 += v_A[_t4]"])
+def test_a_line_storing_the_index_it_reads_keeps_nothing(store):
+    body = ["    _t4 = v_K - 1", store, "    v_S = (v_S + v_A[_t4])"]
+    assert shared_reads(body, _temps()) == body
+
+
 # A program: the loop's end is known only at run time (N MOD 10), so the loop runs in two
 # versions, one for an end inside the arrays (its reads kept) and the checked one, which
 # faults at N = 9 (K = 9 is out of A's and W's bounds).
