@@ -120,6 +120,11 @@ def same_type(a, b) -> bool:
         return a.wide == b.wide
     if isinstance(a, T.ArrayType) and isinstance(b, T.ArrayType):
         return a.dims == b.dims and same_type(a.element, b.element)
+    if isinstance(a, T.RefType) and isinstance(b, T.RefType):
+        # REF_TO T is one type wherever it is written (IEC 61131-3 3rd ed. 6.4.4.10): a
+        # VAR_EXTERNAL matches its VAR_GLOBAL, a VAR_IN_OUT binds a variable of it.  A
+        # POINTER TO (codesys) and a REF_TO of one target stay two types.
+        return a.pointer == b.pointer and same_type(a.target, b.target)
     return False
 
 
