@@ -64,3 +64,30 @@ def test_no_array_copy_builds_a_slice(optimise):
             built += [pou for op in dis.get_instructions(code) if op.opname == "BUILD_SLICE"]
             stack += [const for const in code.co_consts if hasattr(const, "co_code")]
     assert built == []
+
+
+# Session 21 (h-mut-s21): an array of aggregates is copied element by element
+# (`_assign_list`), not by the slice store, which would share the elements (kills
+# calls.copy_statement_3).
+NESTED = """
+TYPE Pair : STRUCT X, Y : DINT; END_STRUCT; END_TYPE
+PROGRAM Main
+VAR
+  A, B : ARRAY[1..2] OF Pair; M, N : ARRAY[1..2] OF ARRAY[0..1] OF DINT;
+  BX, B2Y, AX, N0 : DINT;
+END_VAR
+A[1].X := 1; A[1].Y := 2; A[2].X := 3; A[2].Y := 4;
+M[1][0] := 5; M[1][1] := 6;
+B := A; N := M;
+A[1].X := 10;                   (* B[1].X keeps 1: B holds copies of the elements *)
+M[1][0] := 50;                  (* N[1][0] keeps 5 *)
+BX := B[1].X; B2Y := B[2].Y; AX := A[1].X; N0 := N[1][0];
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("optimise", [Optimisations.none(), Optimisations()], ids=["none", "all"])
+def test_an_array_of_aggregates_copies_its_elements(optimise):
+    values, faults, _ = run_main(NESTED, optimise, {}, ("BX", "B2Y", "AX", "N0"))
+    assert faults == []
+    assert values == (1, 4, 10, 5)

@@ -51,3 +51,34 @@ def test_the_loops_take_their_ranges_from_the_tables():
     source = compile_program(api.load_text(LOOPS).program, optimise=Optimisations()).python_sources["MAIN"]
     assert re.search(rf"_FROM_1\[(_t\d+)\] if 0 <= \1 < {support.SMALL_END} else range\(1, \1 \+ 1\)", source)
     assert "_FROM_0[" in source and source.count("range(") == 2
+
+
+# Session 21 (h-mut-s21): the loops the tables do not serve (statements._for_range's test of
+# a step of 1 from a literal 0 or 1; kills _for_range_66 and _67, which took `_FROM_2`,
+# `_FROM_None` or the table of step 1 for them).
+OTHERS = """
+PROGRAM Main
+VAR N, S : DINT; I, J, K : DINT; Sum2, SumS, SumE : DINT; END_VAR
+Sum2 := 0; SumS := 0; SumE := 0;
+FOR I := 2 TO N DO Sum2 := Sum2 + I; END_FOR;
+FOR J := S TO N DO SumS := SumS + J; END_FOR;
+FOR K := 0 TO N BY 2 DO SumE := SumE + K; END_FOR;
+END_PROGRAM
+"""
+OTHER_OUTPUTS = ("Sum2", "I", "SumS", "J", "SumE", "K")
+
+
+@pytest.mark.parametrize("n, s, want", [
+    (5, 1, (2 + 3 + 4 + 5, 6, 1 + 2 + 3 + 4 + 5, 6, 0 + 2 + 4, 6)),
+    (6, 3, (2 + 3 + 4 + 5 + 6, 7, 3 + 4 + 5 + 6, 7, 0 + 2 + 4 + 6, 8)),
+    (1, 0, (0, 2, 0 + 1, 2, 0, 2))])
+@pytest.mark.parametrize("optimise", [Optimisations.none(), Optimisations()], ids=["none", "all"])
+def test_a_loop_from_another_start_or_by_another_step_runs_its_own_range(n, s, want, optimise):
+    """From the literal 2, from a variable, and from 0 BY 2, each to a run-time end: the
+    values by hand (IEC 61131-3: the variable runs start, start + step, ... while at most the
+    end, and holds the first value past it afterwards)."""
+    values, faults, _ = run_main(OTHERS, optimise, {"N": n, "S": s}, OTHER_OUTPUTS)
+    assert faults == []
+    assert values == want
+    source = compile_program(api.load_text(OTHERS).program, optimise=optimise).python_sources["MAIN"]
+    assert "_FROM_" not in source

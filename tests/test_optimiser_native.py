@@ -161,3 +161,47 @@ def test_the_switch_and_the_environment_give_numpys_kernel(program, builds, monk
     assert not _is_native(run)
     m = [float((5 * k) % 13) - 6.0 for k in range(N * N)]
     assert _bits(_run(builds["numpy"], m)[0].v_D) == _bits(_run(builds["native"], m)[0].v_D) == _bits(_leibniz(m))
+
+
+# Session 21 (h-mut-s21): rows for the survivors of native.py's every mutant.
+
+@pytest.mark.parametrize("value, on", [("0", False), ("off", False), (" OFF ", False), ("No", False),
+                                       ("false", False), ("FALSE\n", False),
+                                       ("1", True), ("on", True), ("yes", True), ("", True)])
+def test_the_environment_switch_reads_its_off_words_in_any_case(value, on, monkeypatch):
+    """`ST_RUNTIME_NATIVE` turns the pass off with 0, off, no or false, spaces and case aside
+    (native.enabled's docstring and code); any other value leaves it on (llvmlite is here)."""
+    monkeypatch.setenv("ST_RUNTIME_NATIVE", value)
+    assert native.enabled() is on
+
+
+def test_unset_the_environment_leaves_native_kernels_on(monkeypatch):
+    monkeypatch.delenv("ST_RUNTIME_NATIVE", raising=False)
+    assert native.enabled() is True
+
+
+def test_the_kernel_is_a_builtin_named_native_run_bound_to_its_helper(program):
+    """The builtin function's name is its method definition's `ml_name`; its `__self__` the
+    Vectorised helper whose `exact` it calls."""
+    helper, = helpers_in(compile_program(program, optimise=Optimisations()))
+    run = native.builtin(helper, native.compiled(native.helper_ir(helper)))
+    assert run.__name__ == "native_run" and run.__self__ is helper and run.__doc__ is None
+
+
+def test_this_interpreters_layout_is_cpythons():
+    assert native._layout_is_cpythons() is True
+
+
+@pytest.mark.parametrize("name, pointer, gil_disabled", [("pypy", 8, 0), ("cpython", 4, 0), ("cpython", 8, 1)])
+def test_another_interpreters_layout_is_not_read(name, pointer, gil_disabled, monkeypatch):
+    """The kernels read CPython's 64-bit GIL build's object layout: another implementation,
+    4-byte pointers or a free-threaded build (`Py_GIL_DISABLED`) is refused before any
+    address is read, so `first_call` keeps NumPy's kernel (native.py's docstring)."""
+    import sysconfig
+
+    config = sysconfig.get_config_var
+    monkeypatch.setattr(native.sys, "implementation", types.SimpleNamespace(name=name))
+    monkeypatch.setattr(native.struct, "calcsize", lambda fmt: pointer)
+    monkeypatch.setattr(sysconfig, "get_config_var",
+                        lambda key: gil_disabled if key == "Py_GIL_DISABLED" else config(key))
+    assert native._layout_is_cpythons() is False
