@@ -205,3 +205,28 @@ def test_another_interpreters_layout_is_not_read(name, pointer, gil_disabled, mo
     monkeypatch.setattr(sysconfig, "get_config_var",
                         lambda key: gil_disabled if key == "Py_GIL_DISABLED" else config(key))
     assert native._layout_is_cpythons() is False
+
+
+@pytest.mark.parametrize("offset, wrong", [("_FVAL", 8), ("_TYPE", 0), ("_SIZE", 8)])
+def test_a_layout_that_is_not_where_the_kernels_read_is_refused(offset, wrong, monkeypatch):
+    """Each probe of the layout must hold: a float's double read at another offset (its
+    type pointer), a type read at the reference count, a list's size read at its type
+    (each still inside the object: nothing is dereferenced) make the check say no."""
+    monkeypatch.setattr(native, offset, wrong)
+    assert native._layout_is_cpythons() is False
+
+
+def test_the_first_call_keeps_numpys_kernel_where_the_layout_is_not_cpythons(monkeypatch):
+    """first_call's docstring: where the layout check says no, nothing is compiled and the
+    helper's own (NumPy) run is bound in place of the first call, with the same result."""
+    monkeypatch.setattr(native, "_layout_is_cpythons", lambda: False)
+    rng = random.Random(4321)
+    lines = FAMILIES["two chains, nested"](rng)[0]
+    lines.append(f"v_F = (_t1 * {rng.uniform(2.0, 3.0)!r})")      # an IR no other test has
+    _, bound = _native_vectorised(lines)
+    helper = bound["_k0"].__self__
+    values = tuple(rng.uniform(-1.0, 1.0) for _ in helper.variable_inputs)
+    got = bound["_k0"](None, values)
+    assert bound["_k0"] == helper.run and not isinstance(bound["_k0"], types.BuiltinFunctionType)
+    assert native.helper_ir(helper) not in native._KERNELS
+    assert got == helper.exact(None, values)
