@@ -226,3 +226,19 @@ def test_an_else_that_only_charges_is_kept_with_the_test():
 def test_an_else_that_does_more_than_charge_keeps_the_test(body):
     lines = [*_candidate("v_X[3]", 2), "else:", *body]
     assert _keep(lines) == lines
+
+
+# Session 21's rows (docs/mutation.md, "Session 21, the compiler's unrun mutants"): where
+# `_candidate_lines` finds the hint `) > abs(` in the joined text, and the line it names.
+
+def test_a_blank_first_line_does_not_shift_the_candidates():
+    """The line number counts every newline before the hint, the first one too (an empty
+    `lines[start]`): the test on the next line is found and rewritten (kills _candidate_lines_5)."""
+    assert _keep(["", *_candidate("v_X[3]", 2)]) == ["", _BEST_LINE, *_kept_test("v_X[3]", 2)]
+
+
+def test_the_hint_at_the_very_start_of_the_lines_is_searched_on_from():
+    """A first line that begins with the hint (not a test: no rewrite) does not end the
+    search: the test after it is still found (kills _candidate_lines_9 and _10)."""
+    first = ") > abs(v_Q)"
+    assert _keep([first, *_candidate("v_X[3]", 2)]) == [first, _BEST_LINE, *_kept_test("v_X[3]", 2)]
