@@ -242,3 +242,11 @@ def test_the_hint_at_the_very_start_of_the_lines_is_searched_on_from():
     search: the test after it is still found (kills _candidate_lines_9 and _10)."""
     first = ") > abs(v_Q)"
     assert _keep([first, *_candidate("v_X[3]", 2)]) == [first, _BEST_LINE, *_kept_test("v_X[3]", 2)]
+
+
+def test_a_last_line_holding_the_hint_ends_the_search():
+    """`ABS(Q) > ABS(R)` on the last line: the hint found there is the last (no newline after
+    it), and the chain before it is still rewritten (kills _candidate_lines_30, which returned
+    nothing for the lines found)."""
+    last = "v_B = (abs(v_Q) > abs(v_R))"
+    assert _keep([*_candidate("v_X[3]", 2), last]) == [_BEST_LINE, *_kept_test("v_X[3]", 2), last]
