@@ -250,3 +250,12 @@ def test_a_last_line_holding_the_hint_ends_the_search():
     nothing for the lines found)."""
     last = "v_B = (abs(v_Q) > abs(v_R))"
     assert _keep([*_candidate("v_X[3]", 2), last]) == [_BEST_LINE, *_kept_test("v_X[3]", 2), last]
+
+
+def test_every_chain_of_three_is_kept():
+    """Three tests, each chain ended by a call before the next: each hint is a chain's start,
+    the middle one too (kills _candidate_lines_36, whose `rfind` jumped to the last hint)."""
+    call = "v_R = _f(v_Q)"
+    lines = [*_candidate("v_X[3]", 2), call, *_candidate("v_X[6]", 3), call, *_candidate("v_X[9]", 4)]
+    assert _keep(lines) == [_BEST_LINE, *_kept_test("v_X[3]", 2), call, _BEST_LINE, *_kept_test("v_X[6]", 3),
+                            call, _BEST_LINE, *_kept_test("v_X[9]", 4)]
