@@ -11,7 +11,7 @@ import pytest
 
 from st_runtime import api
 from st_runtime.compiler import Optimisations
-from st_runtime.compiler.optimise.reads import shared_reads
+from st_runtime.compiler.optimise.reads import share_in_loops, shared_reads
 from test_optimiser_equivalence import compiled_lines, run_both, same_alone_and_with_all, stopped_runs
 
 
@@ -69,6 +69,20 @@ def test_a_line_storing_the_index_it_reads_keeps_nothing(store):
     body = ["    _t4 = v_K - 1", store, "    v_S = (v_S + v_A[_t4])"]
     assert shared_reads(body, _temps()) == body
 
+
+
+# Session 21 (h-mut-s21): only a `for` line's body is rewritten; another block's (an `if`,
+# a `while`, ending with ":" as well) keeps its lines, the element read twice (kills
+# share_in_loops_4, which took any line ending with ":").
+def test_only_the_body_of_a_for_loop_is_rewritten():
+    body = ["    _t4 = v_K - 1", "    v_P = (v_A[_t4] * 2.0)", "    v_S = (v_S + v_A[_t4])"]
+    for head in ("if v_Z:", "while v_Z:"):
+        lines = [head, *body]
+        share_in_loops(lines, 0, _temps())
+        assert lines == [head, *body]
+    lines = ["for v_K in _r1:", *body]
+    share_in_loops(lines, 0, _temps())
+    assert lines == ["for v_K in _r1:", "    _t4 = v_K - 1", "    v_P = ((_t50 := v_A[_t4]) * 2.0)", "    v_S = (v_S + _t50)"]
 
 # A program: the loop's end is known only at run time (N MOD 10), so the loop runs in two
 # versions, one for an end inside the arrays (its reads kept) and the checked one, which
