@@ -519,3 +519,17 @@ def test_a_word_across_two_lines_is_on_neither():
     assert _lines_holding(flat, ends, "v_A") == [0, 2, 4]
     assert _lines_holding(flat, ends, "Bv") == []
 
+
+
+# Session 21 (h-mut-s21): a clause taken on `v_K == 2` tells a path that did not know v_K
+# that it is 2 there, so a nested test of v_K == 2 is known to hold: its ELSE is reached by
+# no path (left as written) and the value after the nested IF is one, 5 + 1 + 2 = 8, by hand
+# (kills _Paths.taking_7, which told nothing and left 6 or 8).
+def test_settled_knows_a_local_inside_the_clause_that_tested_it():
+    from st_runtime.compiler.optimise.charges import settled
+
+    nested = ["    _spent = 0", "    if v_K == 2:", "        _spent += 5", "        if v_K == 2:",
+              "            _spent += 1", "        else:", "            _spent += 3", "        _spent += 2"]
+    assert settled(nested) == ["    _spent = 0", "    if v_K == 2:", "        _spent = 5", "        if v_K == 2:",
+                               "            _spent = 6", "        else:", "            _spent += 3",
+                               "        _spent = 8"]
