@@ -533,3 +533,16 @@ def test_settled_knows_a_local_inside_the_clause_that_tested_it():
     assert settled(nested) == ["    _spent = 0", "    if v_K == 2:", "        _spent = 5", "        if v_K == 2:",
                                "            _spent = 6", "        else:", "            _spent += 3",
                                "        _spent = 8"]
+
+
+# The same past a test of `!=`: the paths going on past `if v_K != 2` learn v_K is 2, so the
+# ELIF on v_K == 2 takes them all and the ELSE is reached by none (left as written); both
+# clauses charge 4, so the value after the chain is 4 + 1 = 5, by hand (kills _taken_66,
+# which told them nothing: the ELSE's 9 reached, 4 or 9 after).
+def test_settled_knows_a_local_past_a_test_of_not_equal():
+    from st_runtime.compiler.optimise.charges import settled
+
+    chain = ["    _spent = 0", "    if v_K != 2:", "        _spent += 4", "    elif v_K == 2:", "        _spent += 4",
+             "    else:", "        _spent += 9", "    _spent += 1"]
+    assert settled(chain) == ["    _spent = 0", "    if v_K != 2:", "        _spent = 4", "    elif v_K == 2:",
+                              "        _spent = 4", "    else:", "        _spent += 9", "    _spent = 5"]
