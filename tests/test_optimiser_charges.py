@@ -546,3 +546,17 @@ def test_settled_knows_a_local_past_a_test_of_not_equal():
              "    else:", "        _spent += 9", "    _spent += 1"]
     assert settled(chain) == ["    _spent = 0", "    if v_K != 2:", "        _spent = 4", "    elif v_K == 2:",
                               "        _spent = 4", "    else:", "        _spent += 9", "    _spent = 5"]
+
+
+# Beyond `_PATH_CAP` (64) paths the walk keeps one path of the total they share: seven IFs
+# on an unknown v_Q, each setting its own tested local (v_A ... v_G), make 2 ** 7 = 128 paths,
+# every one with _spent 0, so the charge after them is 1 on every path, by hand (kills
+# _kept_24, which dropped what was known where a total was shared).
+def test_settled_keeps_the_shared_total_beyond_the_path_cap():
+    from st_runtime.compiler.optimise.charges import settled
+
+    names = "ABCDEFG"
+    ifs = [line for name in names for line in ("    if v_Q:", f"        v_{name} = 1")]
+    tests = [line for name in names for line in (f"    if v_{name}:", "        v_Z = 0")]
+    lines = ["    _spent = 0", *ifs, "    _spent += 1", *tests]
+    assert settled(lines) == ["    _spent = 0", *ifs, "    _spent = 1", *tests]
