@@ -300,7 +300,6 @@ class CallChecker:
     # ------------------------------------------------------ user POUs
     def _user_function(self, call, pou: PouInfo, statement: bool):
         self.program.call_targets[id(call)] = CallTarget("function", key(pou.name), pou)
-        self.ctx.add_call_edge(self.ex.scope.pou_key, key(pou.name), call.pos)
         note_call(self.ex, pou, call.pos)
         return self._bind_and_type(call, pou, f"function {pou.name}", statement)
 
@@ -318,7 +317,6 @@ class CallChecker:
     def _fb_call(self, call, fb: T.FBType, statement: bool):
         pou = self.program.pous.get(key(fb.name))
         self.program.call_targets[id(call)] = CallTarget("fb", key(fb.name), pou)
-        self.ctx.add_call_edge(self.ex.scope.pou_key, key(fb.name), call.pos)
         if pou is not None:
             note_call(self.ex, pou, call.pos)
         if not statement:

@@ -48,7 +48,8 @@ class Context:
     enum_values: dict[str, list] = field(default_factory=dict)
     # id(Symbol) -> folded value of a CONSTANT variable
     symbol_values: dict[int, object] = field(default_factory=dict)
-    # call graph for the recursion check: caller -> [(callee, pos)]
+    # every call of every body: caller -> [(callee, pos)], a node a POU's key or "FB.M" for a
+    # METHOD (loop_writes.node_of); the recursion check takes the POUs' edges, W-ASSIGN-001 all
     calls: dict[str, list[tuple[str, ast.Pos]]] = field(default_factory=dict)
     # calls and writes gathered for the FOR control variable check (loop_writes.py)
     writes: WriteGraph = field(default_factory=WriteGraph)
@@ -100,10 +101,6 @@ class Context:
         item = self.pou_decls.get(k) or self.type_decls.get(k)
         return item if item is not None and key(item.namespace) == key(space) else None
 
-    def add_call_edge(self, caller: str | None, callee: str, pos: ast.Pos) -> None:
-        if caller is not None:
-            self.calls.setdefault(caller, []).append((callee, pos))
-
 
 class Scope:
     """Name lookup inside one POU (or at global level when `pou` is None)."""
@@ -115,12 +112,6 @@ class Scope:
         self.fb = pou.owner if pou is not None and pou.kind == "METHOD" else (
             pou if pou is not None and pou.kind == "FUNCTION_BLOCK" else None)
         self._this = None
-
-    @property
-    def pou_key(self) -> str | None:
-        if self.pou is None or self.pou.kind == "METHOD":
-            return None          # (methods stay out of the recursion check's call graph)
-        return key(self.pou.name)
 
     def lookup(self, name: str) -> Symbol | None:
         k = key(name)

@@ -91,12 +91,12 @@ class ThroughReference(NamedTuple):
 @dataclass
 class WriteGraph:
     """What the bodies' check gathers for this pass.  A node is a POU's key, or 'FB.M' for
-    a METHOD (a POU key holds no '.': namespaces share one name space)."""
+    a METHOD (a POU key holds no '.': namespaces share one name space).  Every call is in
+    the checker's one graph of calls, `Context.calls`, by the same nodes."""
 
     infos: dict = field(default_factory=dict)                 # node -> its PouInfo
     global_writes: dict[str, set[str]] = field(default_factory=dict)
     member_writes: dict[str, set[int]] = field(default_factory=dict)     # method node ->
-    calls: dict[str, list[str]] = field(default_factory=dict)            # every call
     this_calls: dict[str, list[str]] = field(default_factory=dict)       # methods on THIS
     loop_calls: list[LoopCall] = field(default_factory=list)
     ref_stores: dict[int, int] = field(default_factory=dict)         # id(reference) -> count
@@ -197,7 +197,7 @@ def _note(ex, callees: tuple[str, ...], pos, this: bool) -> None:
     scope, graph = ex.scope, ex.ctx.writes
     if scope.pou is not None:
         caller = node_of(graph, scope.pou)
-        graph.calls.setdefault(caller, []).extend(callees)
+        ex.ctx.calls.setdefault(caller, []).extend([(callee, pos) for callee in callees])
         if this and scope.pou.kind == "METHOD":
             graph.this_calls.setdefault(caller, []).extend(callees)
     if not ex.loop_vars:
@@ -250,14 +250,21 @@ def check_calls_in_loops(ctx) -> None:
     """W-ASSIGN-001 at each call, made in a FOR over a global or over a variable of the FB,
     of a POU or METHOD that writes it."""
     graph = ctx.writes
+
+    def callees(node):
+        return [callee for callee, _ in ctx.calls.get(node, ())]
+
+    def on_this(node):
+        return graph.this_calls.get(node, ())
+
     for call in graph.loop_calls:
         for global_key, name in call.globals.items():
             if _warn_first(ctx, call, f"global '{name}'",
-                           lambda node: global_key in graph.global_writes.get(node, ()), graph.calls):
+                           lambda node: global_key in graph.global_writes.get(node, ()), callees):
                 break
         for sym_id, name in call.members.items():
             if _warn_first(ctx, call, f"'{name}'",
-                           lambda node: sym_id in graph.member_writes.get(node, ()), graph.this_calls):
+                           lambda node: sym_id in graph.member_writes.get(node, ()), on_this):
                 break
 
 
@@ -291,12 +298,13 @@ def _sole_target(graph: WriteGraph, ref):
     return taken[0]
 
 
-def _warn_first(ctx, call: LoopCall, what: str, writes, calls) -> bool:
-    """Warn of the first of the call's candidates that reaches a writer; whether one did."""
+def _warn_first(ctx, call: LoopCall, what: str, writes, callees) -> bool:
+    """Warn of the first of the call's candidates that reaches a writer (`callees(node)` the
+    nodes a node calls); whether one did."""
     infos = ctx.writes.infos
     declared = infos[call.callees[0]]
     for callee in call.callees:
-        path = _path_to_writer(callee, writes, lambda node: calls.get(node, ()))
+        path = _path_to_writer(callee, writes, callees)
         if path:
             names = [infos[node].name for node in path]
             when = ""

@@ -24,7 +24,11 @@ def _edges(ctx: Context) -> dict[str, list]:
     edge into them: they were checked alone without a cycle (prelude_base), and no
     edge leads from them to the user's POUs (their declarations name only the
     prelude's, and their bodies are native), so a cycle holds none of them and the
-    user's POUs are met in the search in the same order, with the same components."""
+    user's POUs are met in the search in the same order, with the same components.
+
+    `ctx.calls` holds every call of every body, a METHOD's too (its node 'FB.M' holds a
+    '.', no POU's key): the edges between POUs are this check's, the rest W-ASSIGN-001's
+    (loop_writes.py), so a call from or to a METHOD stays out of this graph."""
     pous = iter(ctx.program.pous.items())
     base = ctx.program.prelude
     if base is not None:
