@@ -427,10 +427,9 @@ class CallChecker:
                            f"writable variable, found {problem}", start_pos(value))
             return
         if isinstance(sym.type, T.ArrayType) and sym.type.is_open and isinstance(t, T.ArrayType) \
-                and len(t.dims) == len(sym.type.dims) and (ts.same_type(t.element, sym.type.element)
-                                                           or t.element is sym.type.element):
+                and len(t.dims) == len(sym.type.dims) and ts.same_type(t.element, sym.type.element):
             return                  # ARRAY[*]: any bounds, same rank and element type
-        if not (ts.same_type(t, sym.type) or t is sym.type):
+        if not ts.same_type(t, sym.type):
             self.ctx.error("E-CALL-011", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
                            f"variable of type {sym.type}, found {t} (in-out parameters are passed "
                            f"by reference, without conversion)", start_pos(value))
