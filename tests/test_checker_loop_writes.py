@@ -387,6 +387,16 @@ def test_override_near_misses_stay_accepted(parts, dialect):
     assert diagnostics(overrides(**parts), dialect) == []
 
 
+def test_each_declared_fb_has_its_own_overrides():
+    # st.Step() may run Stranger's Step only, io.Step() Base's or D's: each call's candidates
+    # come from its own declared FB, whichever was asked first.
+    text = overrides(use="st.Step();\n  io.Step();", override="g := 1;").replace(
+        "VAR_IN_OUT io : Base;", "VAR_IN_OUT io : Base; st : Stranger;")
+    assert diagnostics(text, "codesys") == [
+        ("W-ASSIGN-001", USE_LINE, 3, alters("method Step", "Step writes it")),
+        ("W-ASSIGN-001", USE_LINE + 1, 3, override_alters("Step", "global 'g'", "D", "Step writes it"))]
+
+
 def test_stgen_check_names_the_override(tmp_path, capsys):
     path = tmp_path / "overrides.st"
     path.write_text(overrides(call="THIS.Step();", override="Helper();"), encoding="utf-8")

@@ -103,6 +103,7 @@ class WriteGraph:
     ref_targets: dict[int, list] = field(default_factory=dict)       # -> [(symbol, how, pos)]
     param_writes: dict[str, set[str]] = field(default_factory=dict)  # node -> written through
     through_references: list[ThroughReference] = field(default_factory=list)
+    heirs: dict[tuple, list] = field(default_factory=dict)   # _heirs' table, filled lazily
 
 
 def node_of(graph: WriteGraph, pou) -> str:
@@ -215,17 +216,27 @@ def _candidates(ex, method, callee, how: str) -> list:
     """The METHODs a call may run: `method`, then the overrides a dynamic type may run."""
     if how == "super" or (how == "virtual" and _by_value(ex, callee.base)):
         return [method]
-    pous = ex.ctx.program.pous.values()
     if how == "interface":
-        fbs = [info for info in pous if info.kind == "FUNCTION_BLOCK" and info.implements(method.owner)]
+        fbs = _heirs(ex.ctx, method.owner, by_interface=True)
     else:
-        declared = ex.scope.fb if how == "self" else ex.program.expr_types[id(callee.base)].info
-        fbs = [info for info in pous if info.kind == "FUNCTION_BLOCK" and info.descends_from(declared)]
+        fbs = _heirs(ex.ctx, ex.scope.fb if how == "self" else ex.program.expr_types[id(callee.base)].info)
     found = [method]
     for fb in fbs:
         override = fb.methods.get(key(method.name))
         if override is not None and override not in found:
             found.append(override)
+    return found
+
+
+def _heirs(ctx, declared, by_interface: bool = False) -> list:
+    """The program's FBs, in its order, that extend FB `declared` (itself among them), or that
+    implement INTERFACE `declared`: found once a load for each (the bodies' check declares none)."""
+    table = ctx.writes.heirs
+    found = table.get((id(declared), by_interface))
+    if found is None:
+        fbs = [info for info in ctx.program.pous.values() if info.kind == "FUNCTION_BLOCK"]
+        found = table[id(declared), by_interface] = [
+            fb for fb in fbs if (fb.implements(declared) if by_interface else fb.descends_from(declared))]
     return found
 
 
