@@ -35,8 +35,11 @@ class FastSink(DiagnosticSink):
             self.items.append(diag)
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, init=False)
 class Context:
+    """What one check of a program gathers.  Made once a load: `__init__` written out, like
+    CheckedProgram's."""
+
     program: CheckedProgram
     sink: DiagnosticSink
     dialect: str = "iec"
@@ -57,6 +60,22 @@ class Context:
     direct_types: dict = field(default_factory=dict)  # "%MW1" -> type declared AT it
     # id(item) -> what the structural walk (limits.check_files) found in it for later passes
     walked: dict = field(default_factory=dict)
+
+    def __init__(self, program: CheckedProgram, sink: DiagnosticSink, dialect: str = "iec",
+                 open_instances: bool = False) -> None:
+        self.program = program
+        self.sink = sink
+        self.dialect = dialect
+        self.open_instances = open_instances
+        self.type_decls = {}
+        self.pou_decls = {}
+        self.enum_values = {}
+        self.symbol_values = {}
+        self.calls = {}
+        self.writes = WriteGraph()
+        self.namespaces = set()
+        self.direct_types = {}
+        self.walked = {}
 
     @property
     def rules(self) -> Dialect:

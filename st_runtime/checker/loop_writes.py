@@ -88,11 +88,12 @@ class ThroughReference(NamedTuple):
     param: str = ""
 
 
-@dataclass
+@dataclass(init=False)
 class WriteGraph:
     """What the bodies' check gathers for this pass.  A node is a POU's key, or 'FB.M' for
     a METHOD (a POU key holds no '.': namespaces share one name space).  Every call is in
-    the checker's one graph of calls, `Context.calls`, by the same nodes."""
+    the checker's one graph of calls, `Context.calls`, by the same nodes.  Made once a load:
+    `__init__` written out, like CheckedProgram's."""
 
     infos: dict = field(default_factory=dict)                 # node -> its PouInfo
     global_writes: dict[str, set[str]] = field(default_factory=dict)
@@ -104,6 +105,18 @@ class WriteGraph:
     param_writes: dict[str, set[str]] = field(default_factory=dict)  # node -> written through
     through_references: list[ThroughReference] = field(default_factory=list)
     heirs: dict[tuple, list] = field(default_factory=dict)   # _heirs' table, filled lazily
+
+    def __init__(self) -> None:
+        self.infos = {}
+        self.global_writes = {}
+        self.member_writes = {}
+        self.this_calls = {}
+        self.loop_calls = []
+        self.ref_stores = {}
+        self.ref_targets = {}
+        self.param_writes = {}
+        self.through_references = []
+        self.heirs = {}
 
 
 def node_of(graph: WriteGraph, pou) -> str:
