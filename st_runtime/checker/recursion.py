@@ -14,7 +14,7 @@ from itertools import islice
 from .. import types as T
 from ..ast import key
 from .context import Context, a_or_an
-from .declarations import _INSTANCE_KINDS, fb_type_of
+from .declarations import _INSTANCE_KINDS
 
 
 def _edges(ctx: Context) -> dict[str, list]:
@@ -44,25 +44,22 @@ def _edges(ctx: Context) -> dict[str, list]:
 
 
 def _declared_edges(info) -> list[tuple[str, object, str]]:
-    """The edges of a POU's instance declarations (FBs, and FBs inside STRUCTs)."""
+    """The edges of a POU's instance declarations (FBs, and FBs inside STRUCTs): of a
+    variable whose type, or its arrays' element type, is an FB or a STRUCT."""
     edges = []
     for sym in info.variables.values():
         if sym.kind not in _INSTANCE_KINDS or sym.decl is None:
             continue
-        fb = fb_type_of(sym.type)
-        if fb is not None:
-            edges.append((key(fb.name), sym.decl.pos, "declares an instance of"))
-        for struct, inner in _fbs_inside_structs(sym.type) if _holds_struct(sym.type) else ():
-            how = f"declares {a_or_an(struct)} holding an instance of"
-            edges.append((key(inner.name), sym.decl.pos, how))
+        t = sym.type
+        while isinstance(t, T.ArrayType):
+            t = t.element
+        if isinstance(t, T.FBType):
+            edges.append((key(t.name), sym.decl.pos, "declares an instance of"))
+        elif isinstance(t, T.StructType):
+            for struct, inner in _fbs_inside_structs(t):
+                how = f"declares {a_or_an(struct)} holding an instance of"
+                edges.append((key(inner.name), sym.decl.pos, how))
     return edges
-
-
-def _holds_struct(t) -> bool:
-    """Whether `t` is a STRUCT or an array of them: else `_fbs_inside_structs` finds none."""
-    while isinstance(t, T.ArrayType):
-        t = t.element
-    return isinstance(t, T.StructType)
 
 
 def _fbs_inside_structs(t) -> list[tuple[str, object]]:
