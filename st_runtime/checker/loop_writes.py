@@ -274,6 +274,8 @@ def check_calls_in_loops(ctx) -> None:
     """W-ASSIGN-001 at each call, made in a FOR over a global or over a variable of the FB,
     of a POU or METHOD that writes it."""
     graph = ctx.writes
+    if not graph.loop_calls:
+        return
 
     def callees(node):
         return [callee for callee, _ in ctx.calls.get(node, ())]
