@@ -106,9 +106,12 @@ class CallTarget:
     generic_type: Type | None = None
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, init=False)
 class CheckedProgram:
-    """Everything the compiler needs, resolved and typed."""
+    """Everything the compiler needs, resolved and typed.  Made once a load: its `__init__`
+    is written out (`{}` for each table) where the dataclass's tests a sentinel and calls
+    the field's factory, eight bytecodes a table more (tests/test_checker_tables.py holds
+    the two to the same fields)."""
 
     files: list[ast.SourceFile]
     types: dict[str, Type] = field(default_factory=dict)           # upper-case name ->
@@ -139,6 +142,25 @@ class CheckedProgram:
     # The shared checked prelude this program's native declarations come from
     # (checker/prelude_base.py), or None; the compiler shares its classes too.
     prelude: object = None
+
+    def __init__(self, files: list[ast.SourceFile], dialect: str = "iec") -> None:
+        self.files = files
+        self.types = {}
+        self.pous = {}
+        self.globals = {}
+        self.expr_types = {}
+        self.call_targets = {}
+        self.name_refs = {}
+        self.constants = {}
+        self.sources = {}
+        self.dialect = dialect
+        self.for_vars = {}
+        self.subranges = {}
+        self.lowered = {}
+        self.properties = {}
+        self.image_inits = []
+        self.enables = {}
+        self.prelude = None
 
     def type_of(self, expr: ast.Node) -> Type:
         return self.expr_types[id(expr)]

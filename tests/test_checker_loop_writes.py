@@ -284,6 +284,23 @@ def test_instance_near_misses_stay_accepted(call, dialect):
     assert diagnostics(INSTANCES.format(call=call, inner="s := 0;"), dialect) == []
 
 
+# Z's body calls y.Chain (lines 11-14), Chain calls Inc on its instance (8-10), Inc writes g:
+# the chain goes through the calls made in METHODs' bodies.
+THROUGH_METHODS = (GLOBALS                                                      # 1-4
+                   + "FUNCTION_BLOCK Y\nVAR_EXTERNAL g : INT; END_VAR\n"        # 5-6
+                   "METHOD Inc\ng := g + 1;\nEND_METHOD\nMETHOD Chain\nInc();\nEND_METHOD\n"   # 7-12
+                   "END_FUNCTION_BLOCK\n"                                     # 13
+                   "FUNCTION_BLOCK Z\nVAR y : Y; END_VAR\ny.Chain();\nEND_FUNCTION_BLOCK\n"   # 14-17
+                   "PROGRAM Main\nVAR_EXTERNAL g : INT; END_VAR\nVAR z : Z; END_VAR\n"  # 18-20
+                   "FOR g := 1 TO 3 DO\n  z();\nEND_FOR;\nEND_PROGRAM\n")         # 21-24
+
+
+@pytest.mark.parametrize("dialect", ("iec", "codesys"))
+def test_a_chain_through_the_calls_of_methods_is_followed(dialect):
+    assert diagnostics(THROUGH_METHODS, dialect) == [
+        ("W-ASSIGN-001", 22, 3, alters("Z", "Z calls Chain, which calls Inc, which writes it"))]
+
+
 def test_stgen_check_names_another_instances_method_and_its_chain(tmp_path, capsys):
     path = tmp_path / "instances.st"
     path.write_text(INSTANCES.format(call="xs[2].Via();", inner="s := 0;"), encoding="utf-8")
@@ -368,6 +385,16 @@ def test_an_override_that_may_run_and_writes_is_warned_of(parts, line, message, 
 ])
 def test_override_near_misses_stay_accepted(parts, dialect):
     assert diagnostics(overrides(**parts), dialect) == []
+
+
+def test_each_declared_fb_has_its_own_overrides():
+    # st.Step() may run Stranger's Step only, io.Step() Base's or D's: each call's candidates
+    # come from its own declared FB, whichever was asked first.
+    text = overrides(use="st.Step();\n  io.Step();", override="g := 1;").replace(
+        "VAR_IN_OUT io : Base;", "VAR_IN_OUT io : Base; st : Stranger;")
+    assert diagnostics(text, "codesys") == [
+        ("W-ASSIGN-001", USE_LINE, 3, alters("method Step", "Step writes it")),
+        ("W-ASSIGN-001", USE_LINE + 1, 3, override_alters("Step", "global 'g'", "D", "Step writes it"))]
 
 
 def test_stgen_check_names_the_override(tmp_path, capsys):

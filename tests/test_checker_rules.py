@@ -95,6 +95,25 @@ def test_recursion_cycle_reported_once_with_its_path():
     assert "A calls B, B calls C, C calls A" in d.message
 
 
+def _calls_peer(method: str, body: str) -> str:
+    """A holds a VAR_IN_OUT of B (no instance: no edge), B an instance of A (B -> A)."""
+    return ("FUNCTION_BLOCK A\nVAR_IN_OUT peer : B; END_VAR\n"
+            f"METHOD M\n{method}\nEND_METHOD\n{body}\nEND_FUNCTION_BLOCK\n"
+            "FUNCTION_BLOCK B\nVAR a : A; END_VAR\nEND_FUNCTION_BLOCK\n")
+
+
+def test_a_methods_calls_stay_out_of_the_recursion_graph():
+    # recursion.py: the graph's call edges are the POU bodies' (a call in A's body is A -> B);
+    # the checker's one graph of calls also holds the METHODs' (node 'A.M', for W-ASSIGN-001),
+    # which are not A's: the same call in M closes no cycle.
+    result, _ = load(_calls_peer("peer();", ";"), "codesys")
+    assert result.diagnostics == []
+    result, _ = load(_calls_peer(";", "peer();"), "codesys")
+    assert [(d.code, d.pos.line, d.message) for d in result.errors] == [
+        ("E-REC-001", 6, "recursion: A calls B, B declares an instance of A; "
+                         "IEC 61131-3 and OMRON NJ forbid recursion")]
+
+
 # --------------------------------------------------------- never raises
 
 P0 = ast.Pos("h.st", 1, 1)

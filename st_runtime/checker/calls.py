@@ -300,7 +300,6 @@ class CallChecker:
     # ------------------------------------------------------ user POUs
     def _user_function(self, call, pou: PouInfo, statement: bool):
         self.program.call_targets[id(call)] = CallTarget("function", key(pou.name), pou)
-        self.ctx.add_call_edge(self.ex.scope.pou_key, key(pou.name), call.pos)
         note_call(self.ex, pou, call.pos)
         return self._bind_and_type(call, pou, f"function {pou.name}", statement)
 
@@ -318,7 +317,6 @@ class CallChecker:
     def _fb_call(self, call, fb: T.FBType, statement: bool):
         pou = self.program.pous.get(key(fb.name))
         self.program.call_targets[id(call)] = CallTarget("fb", key(fb.name), pou)
-        self.ctx.add_call_edge(self.ex.scope.pou_key, key(fb.name), call.pos)
         if pou is not None:
             note_call(self.ex, pou, call.pos)
         if not statement:
@@ -429,10 +427,9 @@ class CallChecker:
                            f"writable variable, found {problem}", start_pos(value))
             return
         if isinstance(sym.type, T.ArrayType) and sym.type.is_open and isinstance(t, T.ArrayType) \
-                and len(t.dims) == len(sym.type.dims) and (ts.same_type(t.element, sym.type.element)
-                                                           or t.element is sym.type.element):
+                and len(t.dims) == len(sym.type.dims) and ts.same_type(t.element, sym.type.element):
             return                  # ARRAY[*]: any bounds, same rank and element type
-        if not (ts.same_type(t, sym.type) or t is sym.type):
+        if not ts.same_type(t, sym.type):
             self.ctx.error("E-CALL-011", f"VAR_IN_OUT '{sym.name}' of {pou.name}: expected a "
                            f"variable of type {sym.type}, found {t} (in-out parameters are passed "
                            f"by reference, without conversion)", start_pos(value))

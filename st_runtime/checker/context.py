@@ -35,8 +35,11 @@ class FastSink(DiagnosticSink):
             self.items.append(diag)
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, init=False)
 class Context:
+    """What one check of a program gathers.  Made once a load: `__init__` written out, like
+    CheckedProgram's."""
+
     program: CheckedProgram
     sink: DiagnosticSink
     dialect: str = "iec"
@@ -48,7 +51,8 @@ class Context:
     enum_values: dict[str, list] = field(default_factory=dict)
     # id(Symbol) -> folded value of a CONSTANT variable
     symbol_values: dict[int, object] = field(default_factory=dict)
-    # call graph for the recursion check: caller -> [(callee, pos)]
+    # every call of every body: caller -> [(callee, pos)], a node a POU's key or "FB.M" for a
+    # METHOD (loop_writes.node_of); the recursion check takes the POUs' edges, W-ASSIGN-001 all
     calls: dict[str, list[tuple[str, ast.Pos]]] = field(default_factory=dict)
     # calls and writes gathered for the FOR control variable check (loop_writes.py)
     writes: WriteGraph = field(default_factory=WriteGraph)
@@ -56,6 +60,22 @@ class Context:
     direct_types: dict = field(default_factory=dict)  # "%MW1" -> type declared AT it
     # id(item) -> what the structural walk (limits.check_files) found in it for later passes
     walked: dict = field(default_factory=dict)
+
+    def __init__(self, program: CheckedProgram, sink: DiagnosticSink, dialect: str = "iec",
+                 open_instances: bool = False) -> None:
+        self.program = program
+        self.sink = sink
+        self.dialect = dialect
+        self.open_instances = open_instances
+        self.type_decls = {}
+        self.pou_decls = {}
+        self.enum_values = {}
+        self.symbol_values = {}
+        self.calls = {}
+        self.writes = WriteGraph()
+        self.namespaces = set()
+        self.direct_types = {}
+        self.walked = {}
 
     @property
     def rules(self) -> Dialect:
@@ -100,10 +120,6 @@ class Context:
         item = self.pou_decls.get(k) or self.type_decls.get(k)
         return item if item is not None and key(item.namespace) == key(space) else None
 
-    def add_call_edge(self, caller: str | None, callee: str, pos: ast.Pos) -> None:
-        if caller is not None:
-            self.calls.setdefault(caller, []).append((callee, pos))
-
 
 class Scope:
     """Name lookup inside one POU (or at global level when `pou` is None)."""
@@ -115,12 +131,6 @@ class Scope:
         self.fb = pou.owner if pou is not None and pou.kind == "METHOD" else (
             pou if pou is not None and pou.kind == "FUNCTION_BLOCK" else None)
         self._this = None
-
-    @property
-    def pou_key(self) -> str | None:
-        if self.pou is None or self.pou.kind == "METHOD":
-            return None          # (methods stay out of the recursion check's call graph)
-        return key(self.pou.name)
 
     def lookup(self, name: str) -> Symbol | None:
         k = key(name)

@@ -456,8 +456,7 @@ class Declarations:
             if glob is None:
                 self.ctx.error("E-DECL-010", f"VAR_EXTERNAL '{decl.name}': expected a VAR_GLOBAL of "
                                f"that name, found none", decl.pos)
-            elif t is not ts.ERROR and glob.type is not ts.ERROR and not (
-                    ts.same_type(t, glob.type) or t is glob.type):
+            elif t is not ts.ERROR and glob.type is not ts.ERROR and not ts.same_type(t, glob.type):
                 self.ctx.error("E-DECL-010", f"VAR_EXTERNAL '{decl.name}': declared {t} here, but "
                                f"the VAR_GLOBAL is {glob.type}", decl.pos)
             else:

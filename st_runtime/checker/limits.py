@@ -107,7 +107,9 @@ class Walked:
     """What the walk found in one item for the passes after it: `constructs`, the
     (construct, position) of each node a dialect may refuse (`dialects.construct_of`),
     in the walk's order; `build_nodes`, whether any node is one the NJ build rules
-    look at (an Index, a Member or a CASE), else their walk of the item is skipped."""
+    look at (a CASE, or an Index or a Member of a member: `a.b[1]`, `a.b.c`; rule 006's
+    test, `_fb_variable_part`, passes over any other), else their walk of the item is
+    skipped."""
 
     __slots__ = ("constructs", "build_nodes")
 
@@ -156,7 +158,8 @@ def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
             what = construct_of(node)
             if what is not None:
                 constructs.append((what, node.pos))
-        build_nodes = build_nodes or build_node
+        if build_node and not build_nodes:
+            build_nodes = isinstance(node, ast.Case) or isinstance(node.base, ast.Member)
         if is_statement:
             statements += 1
             depth = 0

@@ -88,21 +88,35 @@ class ThroughReference(NamedTuple):
     param: str = ""
 
 
-@dataclass
+@dataclass(init=False)
 class WriteGraph:
     """What the bodies' check gathers for this pass.  A node is a POU's key, or 'FB.M' for
-    a METHOD (a POU key holds no '.': namespaces share one name space)."""
+    a METHOD (a POU key holds no '.': namespaces share one name space).  Every call is in
+    the checker's one graph of calls, `Context.calls`, by the same nodes.  Made once a load:
+    `__init__` written out, like CheckedProgram's."""
 
     infos: dict = field(default_factory=dict)                 # node -> its PouInfo
     global_writes: dict[str, set[str]] = field(default_factory=dict)
     member_writes: dict[str, set[int]] = field(default_factory=dict)     # method node ->
-    calls: dict[str, list[str]] = field(default_factory=dict)            # every call
     this_calls: dict[str, list[str]] = field(default_factory=dict)       # methods on THIS
     loop_calls: list[LoopCall] = field(default_factory=list)
     ref_stores: dict[int, int] = field(default_factory=dict)         # id(reference) -> count
     ref_targets: dict[int, list] = field(default_factory=dict)       # -> [(symbol, how, pos)]
     param_writes: dict[str, set[str]] = field(default_factory=dict)  # node -> written through
     through_references: list[ThroughReference] = field(default_factory=list)
+    heirs: dict[tuple, list] = field(default_factory=dict)   # _heirs' table, filled lazily
+
+    def __init__(self) -> None:
+        self.infos = {}
+        self.global_writes = {}
+        self.member_writes = {}
+        self.this_calls = {}
+        self.loop_calls = []
+        self.ref_stores = {}
+        self.ref_targets = {}
+        self.param_writes = {}
+        self.through_references = []
+        self.heirs = {}
 
 
 def node_of(graph: WriteGraph, pou) -> str:
@@ -197,7 +211,7 @@ def _note(ex, callees: tuple[str, ...], pos, this: bool) -> None:
     scope, graph = ex.scope, ex.ctx.writes
     if scope.pou is not None:
         caller = node_of(graph, scope.pou)
-        graph.calls.setdefault(caller, []).extend(callees)
+        ex.ctx.calls.setdefault(caller, []).extend([(callee, pos) for callee in callees])
         if this and scope.pou.kind == "METHOD":
             graph.this_calls.setdefault(caller, []).extend(callees)
     if not ex.loop_vars:
@@ -215,17 +229,27 @@ def _candidates(ex, method, callee, how: str) -> list:
     """The METHODs a call may run: `method`, then the overrides a dynamic type may run."""
     if how == "super" or (how == "virtual" and _by_value(ex, callee.base)):
         return [method]
-    pous = ex.ctx.program.pous.values()
     if how == "interface":
-        fbs = [info for info in pous if info.kind == "FUNCTION_BLOCK" and info.implements(method.owner)]
+        fbs = _heirs(ex.ctx, method.owner, by_interface=True)
     else:
-        declared = ex.scope.fb if how == "self" else ex.program.expr_types[id(callee.base)].info
-        fbs = [info for info in pous if info.kind == "FUNCTION_BLOCK" and info.descends_from(declared)]
+        fbs = _heirs(ex.ctx, ex.scope.fb if how == "self" else ex.program.expr_types[id(callee.base)].info)
     found = [method]
     for fb in fbs:
         override = fb.methods.get(key(method.name))
         if override is not None and override not in found:
             found.append(override)
+    return found
+
+
+def _heirs(ctx, declared, by_interface: bool = False) -> list:
+    """The program's FBs, in its order, that extend FB `declared` (itself among them), or that
+    implement INTERFACE `declared`: found once a load for each (the bodies' check declares none)."""
+    table = ctx.writes.heirs
+    found = table.get((id(declared), by_interface))
+    if found is None:
+        fbs = [info for info in ctx.program.pous.values() if info.kind == "FUNCTION_BLOCK"]
+        found = table[id(declared), by_interface] = [
+            fb for fb in fbs if (fb.implements(declared) if by_interface else fb.descends_from(declared))]
     return found
 
 
@@ -250,14 +274,23 @@ def check_calls_in_loops(ctx) -> None:
     """W-ASSIGN-001 at each call, made in a FOR over a global or over a variable of the FB,
     of a POU or METHOD that writes it."""
     graph = ctx.writes
+    if not graph.loop_calls:
+        return
+
+    def callees(node):
+        return [callee for callee, _ in ctx.calls.get(node, ())]
+
+    def on_this(node):
+        return graph.this_calls.get(node, ())
+
     for call in graph.loop_calls:
         for global_key, name in call.globals.items():
             if _warn_first(ctx, call, f"global '{name}'",
-                           lambda node: global_key in graph.global_writes.get(node, ()), graph.calls):
+                           lambda node: global_key in graph.global_writes.get(node, ()), callees):
                 break
         for sym_id, name in call.members.items():
             if _warn_first(ctx, call, f"'{name}'",
-                           lambda node: sym_id in graph.member_writes.get(node, ()), graph.this_calls):
+                           lambda node: sym_id in graph.member_writes.get(node, ()), on_this):
                 break
 
 
@@ -291,12 +324,13 @@ def _sole_target(graph: WriteGraph, ref):
     return taken[0]
 
 
-def _warn_first(ctx, call: LoopCall, what: str, writes, calls) -> bool:
-    """Warn of the first of the call's candidates that reaches a writer; whether one did."""
+def _warn_first(ctx, call: LoopCall, what: str, writes, callees) -> bool:
+    """Warn of the first of the call's candidates that reaches a writer (`callees(node)` the
+    nodes a node calls); whether one did."""
     infos = ctx.writes.infos
     declared = infos[call.callees[0]]
     for callee in call.callees:
-        path = _path_to_writer(callee, writes, lambda node: calls.get(node, ()))
+        path = _path_to_writer(callee, writes, callees)
         if path:
             names = [infos[node].name for node in path]
             when = ""

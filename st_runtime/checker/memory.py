@@ -127,6 +127,7 @@ def check_memory(ctx, limit: int | None = None) -> None:
     limit = DEFAULT_LIMIT if limit is None else limit
     program = ctx.program
     model = MemoryModel()
+    string_max = ctx.rules.string_max_bytes
 
     def variable_bytes(sym, owner: str) -> int:
         size = _REFERENCE[0] if sym.kind == "VAR_IN_OUT" else model.layout(sym.type)[0]
@@ -134,7 +135,7 @@ def check_memory(ctx, limit: int | None = None) -> None:
             if size > limit:
                 ctx.error("E-LIMIT-008", f"{owner}{sym.name} needs {size:,} bytes ({sym.type}), above the"
                           f" memory limit of {limit:,} bytes", sym.decl.pos)
-            if ctx.rules.string_max_bytes is not None:
+            if string_max is not None:
                 _nj_strings(ctx, sym)
         return size
 
@@ -145,13 +146,15 @@ def check_memory(ctx, limit: int | None = None) -> None:
     pous = iter(program.pous.values())
     base = program.prelude      # the shared prelude's POUs lead the table
     if base is not None and _within(base.memo("bytes", lambda: _sizes(base.pous.values())), limit,
-                                    ctx.rules.string_max_bytes):
+                                    string_max):
         pous = islice(pous, len(base.pous), None)   # within the limit: nothing to report or count
     for info in pous:
         if info.node is None:
             continue
         stored = [s for s in info.variables.values() if s.kind in _STORED]
-        instance = sum(variable_bytes(s, f"{info.name}.") for s in stored)
+        owner, instance = f"{info.name}.", 0
+        for sym in stored:
+            instance += variable_bytes(sym, owner)
         if instance > limit and not any(variable_bytes_over(model, s, limit) for s in stored):
             ctx.error("E-LIMIT-009", f"an instance of {info.name} needs {instance:,} bytes, above the memory"
                       f" limit of {limit:,} bytes", info.node.pos)

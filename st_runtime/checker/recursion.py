@@ -14,7 +14,7 @@ from itertools import islice
 from .. import types as T
 from ..ast import key
 from .context import Context, a_or_an
-from .declarations import _INSTANCE_KINDS, fb_type_of
+from .declarations import _INSTANCE_KINDS
 
 
 def _edges(ctx: Context) -> dict[str, list]:
@@ -24,7 +24,11 @@ def _edges(ctx: Context) -> dict[str, list]:
     edge into them: they were checked alone without a cycle (prelude_base), and no
     edge leads from them to the user's POUs (their declarations name only the
     prelude's, and their bodies are native), so a cycle holds none of them and the
-    user's POUs are met in the search in the same order, with the same components."""
+    user's POUs are met in the search in the same order, with the same components.
+
+    `ctx.calls` holds every call of every body, a METHOD's too (its node 'FB.M' holds a
+    '.', no POU's key): the edges between POUs are this check's, the rest W-ASSIGN-001's
+    (loop_writes.py), so a call from or to a METHOD stays out of this graph."""
     pous = iter(ctx.program.pous.items())
     base = ctx.program.prelude
     if base is not None:
@@ -40,25 +44,22 @@ def _edges(ctx: Context) -> dict[str, list]:
 
 
 def _declared_edges(info) -> list[tuple[str, object, str]]:
-    """The edges of a POU's instance declarations (FBs, and FBs inside STRUCTs)."""
+    """The edges of a POU's instance declarations (FBs, and FBs inside STRUCTs): of a
+    variable whose type, or its arrays' element type, is an FB or a STRUCT."""
     edges = []
     for sym in info.variables.values():
         if sym.kind not in _INSTANCE_KINDS or sym.decl is None:
             continue
-        fb = fb_type_of(sym.type)
-        if fb is not None:
-            edges.append((key(fb.name), sym.decl.pos, "declares an instance of"))
-        for struct, inner in _fbs_inside_structs(sym.type) if _holds_struct(sym.type) else ():
-            how = f"declares {a_or_an(struct)} holding an instance of"
-            edges.append((key(inner.name), sym.decl.pos, how))
+        t = sym.type
+        while isinstance(t, T.ArrayType):
+            t = t.element
+        if isinstance(t, T.FBType):
+            edges.append((key(t.name), sym.decl.pos, "declares an instance of"))
+        elif isinstance(t, T.StructType):
+            for struct, inner in _fbs_inside_structs(t):
+                how = f"declares {a_or_an(struct)} holding an instance of"
+                edges.append((key(inner.name), sym.decl.pos, how))
     return edges
-
-
-def _holds_struct(t) -> bool:
-    """Whether `t` is a STRUCT or an array of them: else `_fbs_inside_structs` finds none."""
-    while isinstance(t, T.ArrayType):
-        t = t.element
-    return isinstance(t, T.StructType)
 
 
 def _fbs_inside_structs(t) -> list[tuple[str, object]]:
