@@ -37,6 +37,8 @@ Off without llvmlite or with `ST_RUNTIME_NATIVE=0` (native.enabled), and by its 
 
 from __future__ import annotations
 
+import functools
+import itertools
 import re
 
 from . import native
@@ -52,12 +54,71 @@ class _NotPure(Exception):
     """The line is not of the forms the kernel computes."""
 
 
+@functools.lru_cache(maxsize=8192)
+def _tree(text: str):
+    """(tree, names read as floats, lists read) of an expression the kernel computes, None
+    for any other: a tree is ("c", IR literal) | ("n", name) | ("e", list, index) |
+    (op, operand...) with op "*", "+", "-", "neg" or "sqrt".  Kept by text: the same lines
+    come back in every load of a program and in its fast and exact copies."""
+    tokens = _TOKEN.findall(text)
+    names: tuple[set, set] = (set(), set())
+    try:
+        tree, i = _sum(tokens, 0, names)
+    except (_NotPure, IndexError):
+        return None
+    if i != len(tokens) or names[0] & names[1]:
+        return None
+    return tree, frozenset(names[0]), frozenset(names[1])
+
+
+def _sum(tokens, i, names):
+    """`primary [op primary]` (the compiler parenthesises every operation)."""
+    left, i = _primary(tokens, i, names)
+    if i < len(tokens) and tokens[i][3] in ("+", "-", "*"):
+        op = tokens[i][3]
+        right, i = _primary(tokens, i + 1, names)
+        return (op, left, right), i
+    return left, i
+
+
+def _primary(tokens, i, names):
+    number, name, integer, char = tokens[i]
+    if number:
+        return ("c", native._double(float(number))), i + 1
+    if char == "(":
+        tree, i = _sum(tokens, i + 1, names)
+        if tokens[i][3] != ")":
+            raise _NotPure("(")
+        return tree, i + 1
+    if char == "-":
+        if tokens[i + 1][0]:                      # `-1.5`: Python's constant, folded
+            return ("c", native._double(-float(tokens[i + 1][0]))), i + 2
+        operand, i = _primary(tokens, i + 1, names)
+        return ("neg", operand), i
+    if name == "_m_sqrt" and tokens[i + 1][3] == "(":
+        operand, i = _sum(tokens, i + 2, names)
+        if tokens[i][3] != ")":
+            raise _NotPure("sqrt")
+        return ("sqrt", operand), i + 1
+    if not name or name in _NOT_NAMES:
+        raise _NotPure(name or char or integer)
+    if i + 1 < len(tokens) and tokens[i + 1][3] == "[":
+        if not tokens[i + 2][2] or tokens[i + 3][3] != "]":
+            raise _NotPure(name)
+        names[1].add(name)
+        return ("e", name, int(tokens[i + 2][2])), i + 4
+    names[0].add(name)
+    return ("n", name), i + 1
+
+
 class _Run:
     """The values of a run: arguments read before it, then operations in order."""
 
     def __init__(self):
         self.arguments: list[tuple] = []      # ("float", value) | ("list", {k: value}) by argument
         self.texts: list[str] = []            # each argument's Python expression
+        self.kind: dict[str, str] = {}        # an argument's text -> "float" | "list"
+        self.lists: dict[str, dict] = {}      # a list argument's text -> {index: value}
         self.env: dict[str, str] = {}         # local name -> its value now
         self.ops: list[tuple] = []
         self.assigned: dict[str, None] = {}   # the names the run sets, in order
@@ -68,110 +129,64 @@ class _Run:
         return f"%v{self.count}"
 
     def assign(self, target: str, text: str) -> bool:
-        """Add `target = text`; False, the run unchanged, when the line does not qualify."""
-        state = (len(self.arguments), len(self.ops), dict(self.env), self.count,
-                 {j: dict(held) for j, (kind, held) in enumerate(self.arguments) if kind == "list"})
-        try:
-            tokens = [t for t in _TOKEN.findall(text)]
-            value, rest = self._sum(tokens, 0)
-            if rest != len(tokens):
-                raise _NotPure(text)
-        except (_NotPure, IndexError):
-            n_args, n_ops, self.env, self.count, lists = state
-            del self.arguments[n_args:], self.texts[n_args:], self.ops[n_ops:]
-            for j, held in lists.items():
-                self.arguments[j] = ("list", held)
+        """Add `target = text`; False, the run unchanged, when the line does not qualify
+        (not of the forms, or a name read both as a float and as a list in the run)."""
+        parsed = _tree(text)
+        if parsed is None:
             return False
-        self.env[target] = value
+        tree, floats, lists = parsed
+        if any(name in self.env for name in lists) or any(self.kind.get(name) == "list" for name in floats):
+            return False
+        self.env[target] = self._value_of(tree)
         self.assigned[target] = None
         return True
 
-    def _sum(self, tokens, i):
-        """`primary [op primary]` (the compiler parenthesises every operation)."""
-        left, i = self._primary(tokens, i)
-        if i < len(tokens) and tokens[i][3] in ("+", "-", "*"):
-            op = tokens[i][3]
-            right, i = self._primary(tokens, i + 1)
-            return self._op(op, left, right), i
-        return left, i
-
-    def _primary(self, tokens, i):
-        number, name, integer, char = tokens[i]
-        if number:
-            return native._double(float(number)), i + 1
-        if char == "(":
-            value, i = self._sum(tokens, i + 1)
-            if tokens[i][3] != ")":
-                raise _NotPure("(")
-            return value, i + 1
-        if char == "-":
-            if tokens[i + 1][0]:                      # `-1.5`: Python's constant, folded
-                return native._double(-float(tokens[i + 1][0])), i + 2
-            operand, i = self._primary(tokens, i + 1)
-            return self._op("neg", operand), i
-        if name == "_m_sqrt" and tokens[i + 1][3] == "(":
-            operand, i = self._sum(tokens, i + 2)
-            if tokens[i][3] != ")":
-                raise _NotPure("sqrt")
-            return self._op("sqrt", operand), i + 1
-        if not name or name in _NOT_NAMES:
-            raise _NotPure(name or char or integer)
-        if i + 1 < len(tokens) and tokens[i + 1][3] == "[":
-            if not tokens[i + 2][2] or tokens[i + 3][3] != "]" or name in self.env:
-                raise _NotPure(name)
-            return self._element(name, int(tokens[i + 2][2])), i + 4
-        if name in self.env:
-            return self.env[name], i + 1
-        return self._argument(name, "float"), i + 1
-
-    def _op(self, op, *operands) -> str:
+    def _value_of(self, tree) -> str:
+        kind = tree[0]
+        if kind == "c":
+            return tree[1]
+        if kind == "n":
+            value = self.env.get(tree[1])
+            if value is None:
+                value = self.env[tree[1]] = self._argument(tree[1], "float", self.value())
+            return value
+        if kind == "e":
+            held = self.lists.get(tree[1])
+            if held is None:
+                held = self.lists[tree[1]] = self._argument(tree[1], "list", {})
+            if tree[2] not in held:
+                held[tree[2]] = self.value()
+            return held[tree[2]]
+        operands = [self._value_of(operand) for operand in tree[1:]]
         value = self.value()
-        self.ops.append((value, op, *operands))
+        self.ops.append((value, kind, *operands))
         return value
 
-    def _argument(self, text: str, kind: str):
-        if text in self.texts:
-            j = self.texts.index(text)
-            if self.arguments[j][0] != kind:
-                raise _NotPure(text)
-            return j
+    def _argument(self, text: str, kind: str, held):
         self.texts.append(text)
-        self.arguments.append((kind, self.value() if kind == "float" else {}))
-        if kind == "float":
-            self.env[text] = self.arguments[-1][1]
-            return self.arguments[-1][1]
-        return len(self.arguments) - 1
-
-    def _element(self, name: str, k: int) -> str:
-        j = self._argument(name, "list")
-        held = self.arguments[j][1]
-        if k not in held:
-            held[k] = self.value()
-        return held[k]
+        self.kind[text] = kind
+        self.arguments.append((kind, held))
+        return held
 
 
 def replace(lines: list[str], start: int, register, bind) -> None:
     """Replace the qualifying runs in `lines[start:]` (a body's finished lines) by a kernel
     call each.  `register(value)`: the namespace name bound to a value; `bind(name, value)`
     rebinds it (the kernel in place of its first call)."""
-    i = start
-    while i < len(lines):
-        match = _CANDIDATE.match(lines[i])
-        if match is None:
-            i += 1
+    matches = list(map(_CANDIDATE.match, lines[start:]))      # (one C loop over every line)
+    runs, end = [], 0
+    for i in itertools.compress(range(len(matches)), matches):
+        if i < end:
             continue
-        indent, run, j = match.group(1), _Run(), i
-        while j < len(lines):
-            line = _CANDIDATE.match(lines[j])
-            if line is None or line.group(1) != indent or not run.assign(line.group(2), line.group(3)):
-                break
-            j += 1
-        if j > i and sum(op[1] != "neg" for op in run.ops) >= MIN_OPERATIONS:
-            new = _call(lines[i:j], indent, run, register, bind)
-            lines[i:j] = new
-            i += len(new)
-        else:
-            i = max(j, i + 1)
+        indent, run, end = matches[i].group(1), _Run(), i
+        while end < len(matches) and matches[end] is not None and matches[end].group(1) == indent \
+                and run.assign(matches[end].group(2), matches[end].group(3)):
+            end += 1
+        end = max(end, i + 1)
+        if sum(op[1] != "neg" for op in run.ops) >= MIN_OPERATIONS:
+            runs.append((start + i, start + end, _call(lines[start + i:start + end], indent, run, register, bind)))
+    for i, j, new in reversed(runs):           # from the last: the indices stay true
+        lines[i:j] = new
 
 
 def _call(original: list[str], indent: str, run: _Run, register, bind) -> list[str]:
