@@ -192,9 +192,10 @@ def replace(lines: list[str], start: int, register, bind) -> None:
 def _call(original: list[str], indent: str, run: _Run, register, bind) -> list[str]:
     """The lines that call the run's kernel, with `original` where it returns None."""
     targets = list(run.assigned)
-    ir = native.run_ir(run.arguments, run.ops, [run.env[t] for t in targets])
+    outputs = [run.env[t] for t in targets]
     kernel = register(None)
-    bind(kernel, _first_call(ir, lambda built: bind(kernel, built)))
+    bind(kernel, _first_call(lambda: native.run_ir(run.arguments, run.ops, outputs),
+                             lambda built: bind(kernel, built)))
     return ([f"{indent}_kr = {kernel}({', '.join(run.texts)})", f"{indent}if _kr is None:"]
             + ["    " + line for line in original]
             + [f"{indent}else:", f"{indent}    {', '.join(targets)}, = _kr"])
@@ -204,11 +205,12 @@ class _Kernel:
     """What native.builtin needs of a kernel's `__self__` (it keeps the method's definition)."""
 
 
-def _first_call(ir: str, bind):
-    """The run's first call: builds the kernel (None where this interpreter's layout is not
-    CPython's: then the lines run in Python), binds it in its own place and calls it."""
+def _first_call(ir, bind):
+    """The run's first call: writes its IR (`ir()`: a load writes none) and builds the kernel
+    (None where this interpreter's layout is not CPython's: then the lines run in Python),
+    binds it in its own place and calls it."""
     def first(*arguments):
-        built = native.builtin(_Kernel(), native.compiled(ir)) if native.layout_is_cpythons() else _python
+        built = native.builtin(_Kernel(), native.compiled(ir())) if native.layout_is_cpythons() else _python
         bind(built)
         return built(*arguments)
     return first
