@@ -22,7 +22,8 @@ from st_runtime.compiler import Optimisations, compile_program
 from st_runtime.compiler.optimise import vector
 from test_optimiser_equivalence import _Context
 
-ON = replace(Optimisations(), native=False)     # NumPy's kernel (the native one: test_optimiser_native.py)
+ON = replace(Optimisations(), native=False, kernels=False)   # NumPy's kernel (the native one: test_optimiser_native.py;
+#                                                            kernels.py's runs: test_optimiser_kernels.py)
 NO_VECTOR = replace(ON, vector=False)
 N = 5
 PERMUTATIONS = list(itertools.permutations(range(1, N + 1)))       # lexicographic

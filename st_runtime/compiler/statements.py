@@ -40,8 +40,8 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import (aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, pivots, ranges, reads,
-                       reuse, scalars, seal, shortcut, stores, sums, unguard, unroll)
+from .optimise import (aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, kernels, native,
+                       pivots, ranges, reads, reuse, scalars, seal, shortcut, stores, sums, unguard, unroll)
 from .optimise import branched, may_reuse
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, assigned_in, kinds, once, walk
@@ -145,6 +145,8 @@ class BodyCompiler(ExprCompiler):
             charges.settle(o.lines, start)
         if self.opt.seal:
             seal.hoist(o.lines, start)
+        if self.opt.kernels and native.enabled():
+            kernels.replace(o.lines, start, self.unit.register_constant, self.unit.namespace.__setitem__)
         return o.source()
 
     def _body(self) -> None:

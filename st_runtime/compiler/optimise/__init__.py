@@ -176,6 +176,12 @@ states bit for bit:
   fast-math, no FMA), compiled by the run's first call and kept per process by its IR;
   an output that is not finite takes the run in Python, as NumPy's kernel does.  Off
   without llvmlite (the `native` extra) or with `ST_RUNTIME_NATIVE=0`: NumPy's kernel.
+* `kernels` (kernels.py): a body's run of at least `kernels.MIN_OPERATIONS` float
+  operations in consecutive assignments of plain names (`+ - *`, unary minus, float
+  literals, list elements at literal indices, SQRT as `math.sqrt`: IK's legs) is one call
+  of machine code LLVM compiles from it (native.py, by its first call), which returns the
+  values only when every argument is a float and every value computed is finite, else
+  None, and then the lines run in Python as written.  Off as `native` is.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -310,6 +316,7 @@ class Optimisations:
     sums: bool = True
     pivots: bool = True
     native: bool = True
+    kernels: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

@@ -66,7 +66,7 @@ def _llvmlite_found() -> bool:
     return importlib.util.find_spec("llvmlite") is not None
 
 
-def _layout_is_cpythons() -> bool:
+def layout_is_cpythons() -> bool:
     """Whether this interpreter's floats, lists and tuples lie where the kernels read them."""
     if sys.implementation.name != "cpython" or struct.calcsize("P") != 8:
         return False
@@ -95,6 +95,8 @@ _INSTRUCTION = {"*": "fmul", "+": "fadd", "-": "fsub"}
 
 _DECLARATIONS = """\
 declare double @llvm.fabs.f64(double)
+declare double @llvm.sqrt.f64(double)
+declare void @Py_IncRef(ptr)
 declare ptr @PyFloat_FromDouble(double)
 declare ptr @PyList_New(i64)
 declare void @Py_DecRef(ptr)
@@ -103,6 +105,7 @@ declare ptr @PyObject_CallMethodObjArgs(ptr, ptr, ...)
 @PyList_Type = external global i8
 @PyTuple_Type = external global i8
 @stgen_exact = external global i8
+@stgen_none = external global i8
 """
 
 
@@ -138,6 +141,22 @@ class _Writer:
                  f"%{obj[1:]}.size = load i64, ptr %{obj[1:]}.size.at, align 8",
                  f"%{obj[1:]}.sized = icmp eq i64 %{obj[1:]}.size, {size}")
         self.check(f"%{obj[1:]}.sized")
+
+    def returns_list(self, values: list[str]) -> None:
+        """Return a new list of new floats of the doubles `values` (NULL on no memory)."""
+        self.add(f"%list = call ptr @PyList_New(i64 {len(values)})",
+                 "%made = icmp ne ptr %list, null")
+        self.lines += ["  br i1 %made, label %fill, label %failed", "fill:"]
+        slots = self.object_of("slots", "%list", _ITEMS)
+        for j, value in enumerate(values):
+            self.add(f"%out{j} = call ptr @PyFloat_FromDouble(double {value})",
+                     f"%out{j}.at = getelementptr inbounds ptr, ptr {slots}, i64 {j}",
+                     f"store ptr %out{j}, ptr %out{j}.at, align 8",          # NULL on no memory: the list's
+                     f"%out{j}.made = icmp ne ptr %out{j}, null")              # Py_DecRef skips it
+            self.lines += [f"  br i1 %out{j}.made, label %made{j}, label %dropped", f"made{j}:"]
+        self.lines += ["  ret ptr %list",
+                       "dropped:", "  call void @Py_DecRef(ptr %list)", "  br label %failed",
+                       "failed:", "  ret ptr null"]
 
     def float_value(self, name: str, item: str) -> str:
         """`%name`: the double of the Python float `item` (checked to be one)."""
@@ -182,26 +201,63 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
         w.add(f"%abs{j} = call double @llvm.fabs.f64(double {name[o]})",
               f"%finite{j} = fcmp olt double %abs{j}, 0x7FF0000000000000")      # false for NaN
         w.check(f"%finite{j}")
-    w.add(f"%list = call ptr @PyList_New(i64 {len(outputs)})",
-          "%made = icmp ne ptr %list, null")
-    w.lines += ["  br i1 %made, label %fill, label %failed", "fill:"]
-    slots = w.object_of("slots", "%list", _ITEMS)
-    for j, o in enumerate(outputs):
-        w.add(f"%out{j} = call ptr @PyFloat_FromDouble(double {name[o]})",
-              f"%out{j}.at = getelementptr inbounds ptr, ptr {slots}, i64 {j}",
-              f"store ptr %out{j}, ptr %out{j}.at, align 8",          # NULL on no memory: the list's
-              f"%out{j}.made = icmp ne ptr %out{j}, null")              # Py_DecRef skips it
-        w.lines += [f"  br i1 %out{j}.made, label %made{j}, label %dropped", f"made{j}:"]
-    w.lines += ["  ret ptr %list",
-                "dropped:", "  call void @Py_DecRef(ptr %list)", "  br label %failed",
-                "failed:", "  ret ptr null",
-                "exact:",
+    w.returns_list([name[o] for o in outputs])
+    w.lines += ["exact:",
                 "  %slow = call ptr (ptr, ptr, ...) @PyObject_CallMethodObjArgs(ptr %self, ptr @stgen_exact,"
                 " ptr %whole, ptr %inputs, ptr null)",
                 "  ret ptr %slow",
                 "wrong:",                         # not two arguments: exact's own TypeError
                 "  %none = call ptr (ptr, ptr, ...) @PyObject_CallMethodObjArgs(ptr %self, ptr @stgen_exact, ptr null)",
                 "  ret ptr %none"]
+    return (_DECLARATIONS + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
+            + "\n".join(w.lines) + "\n}\n")
+
+
+_RUN_INSTRUCTION = {"*": "fmul", "+": "fadd", "-": "fsub"}
+
+
+def run_ir(arguments: list, ops: list[tuple], outputs: list[str]) -> str:
+    """The IR of `PyObject *run(PyObject *self, PyObject *const *args, Py_ssize_t nargs)` for
+    kernels.py's runs of statements, called as `run(a0, a1, ...)`: `arguments[j]` is
+    ("float", value) (args[j] a Python float, whose double is `value`) or ("list", {k:
+    value}) (args[j] a list with an element at every index k, each a Python float).
+    `ops[i]` is (value, op, operands...): op "*", "+" or "-" of two operands, "neg" or
+    "sqrt" of one; an operand a value's name or an IR double literal.  The result is a
+    new list of the doubles named by `outputs`, or None (a new reference) when an argument
+    is not as compiled for or a value computed is not finite."""
+    w = _Writer()
+    w.add(f"%n.ok = icmp eq i64 %nargs, {len(arguments)}")
+    w.check("%n.ok")
+    for j, (kind, held) in enumerate(arguments):
+        arg = w.object_of(f"a{j}", "%args", 8 * j)
+        if kind == "float":
+            w.float_value(held[1:], arg)
+            continue
+        w.has_type(arg, "PyList_Type")
+        w.add(f"%a{j}.size.at = getelementptr inbounds i8, ptr {arg}, i64 {_SIZE}",
+              f"%a{j}.size = load i64, ptr %a{j}.size.at, align 8",
+              f"%a{j}.long = icmp sgt i64 %a{j}.size, {max(held)}")
+        w.check(f"%a{j}.long")
+        items = w.object_of(f"a{j}.items", arg, _ITEMS)
+        for k, value in sorted(held.items()):
+            w.float_value(value[1:], w.object_of(f"a{j}.{k}", items, 8 * k))
+    finite = "true"
+    for i, (value, op, *operands) in enumerate(ops):
+        if op == "sqrt":
+            w.add(f"{value} = call double @llvm.sqrt.f64(double {operands[0]})")
+        elif op == "neg":
+            w.add(f"{value} = fneg double {operands[0]}")
+        else:
+            w.add(f"{value} = {_RUN_INSTRUCTION[op]} double {operands[0]}, {operands[1]}")
+        w.add(f"%abs.{i} = call double @llvm.fabs.f64(double {value})",
+              f"%fin.{i} = fcmp olt double %abs.{i}, 0x7FF0000000000000",      # false for NaN
+              f"%all.{i} = and i1 {finite}, %fin.{i}")
+        finite = f"%all.{i}"
+    w.check(finite)
+    w.returns_list(outputs)
+    w.lines += ["exact:",                         # the statements in Python, as written
+                "  call void @Py_IncRef(ptr @stgen_none)",
+                "  ret ptr @stgen_none"]
     return (_DECLARATIONS + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
             + "\n".join(w.lines) + "\n}\n")
 
@@ -218,10 +274,10 @@ def _machine():
         llvm.initialize_native_target()
         llvm.initialize_native_asmprinter()
         api = ctypes.pythonapi
-        for function in ("PyFloat_FromDouble", "PyList_New", "Py_DecRef", "PyObject_CallMethodObjArgs"):
+        for function in ("PyFloat_FromDouble", "PyList_New", "Py_DecRef", "Py_IncRef", "PyObject_CallMethodObjArgs"):
             llvm.add_symbol(function, ctypes.cast(getattr(api, function), ctypes.c_void_p).value)
         for symbol, obj in (("PyFloat_Type", float), ("PyList_Type", list), ("PyTuple_Type", tuple),
-                            ("stgen_exact", _EXACT)):
+                            ("stgen_exact", _EXACT), ("stgen_none", None)):
             llvm.add_symbol(symbol, id(obj))
         triple = llvm.get_process_triple()
         cpu = "x86-64" if triple.startswith("x86_64") else ""
@@ -273,7 +329,7 @@ def first_call(helper, bind):
     (or keeps NumPy's kernel, `helper.run`, where this interpreter's layout is not
     CPython's), binds it by `bind(run)` in place of itself and returns its result."""
     def first(self, whole, inputs):
-        run = builtin(self, compiled(helper_ir(self))) if _layout_is_cpythons() else self.run
+        run = builtin(self, compiled(helper_ir(self))) if layout_is_cpythons() else self.run
         bind(run)
         return run(whole, inputs)
     return types.MethodType(first, helper)
