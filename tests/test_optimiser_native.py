@@ -189,7 +189,7 @@ def test_the_kernel_is_a_builtin_named_native_run_bound_to_its_helper(program):
 
 
 def test_this_interpreters_layout_is_cpythons():
-    assert native._layout_is_cpythons() is True
+    assert native.layout_is_cpythons() is True
 
 
 @pytest.mark.parametrize("name, pointer, gil_disabled", [("pypy", 8, 0), ("cpython", 4, 0), ("cpython", 8, 1)])
@@ -204,7 +204,7 @@ def test_another_interpreters_layout_is_not_read(name, pointer, gil_disabled, mo
     monkeypatch.setattr(native.struct, "calcsize", lambda fmt: pointer)
     monkeypatch.setattr(sysconfig, "get_config_var",
                         lambda key: gil_disabled if key == "Py_GIL_DISABLED" else config(key))
-    assert native._layout_is_cpythons() is False
+    assert native.layout_is_cpythons() is False
 
 
 @pytest.mark.parametrize("offset, wrong", [("_FVAL", 8), ("_TYPE", 0), ("_SIZE", 8)])
@@ -213,13 +213,13 @@ def test_a_layout_that_is_not_where_the_kernels_read_is_refused(offset, wrong, m
     type pointer), a type read at the reference count, a list's size read at its type
     (each still inside the object: nothing is dereferenced) make the check say no."""
     monkeypatch.setattr(native, offset, wrong)
-    assert native._layout_is_cpythons() is False
+    assert native.layout_is_cpythons() is False
 
 
 def test_the_first_call_keeps_numpys_kernel_where_the_layout_is_not_cpythons(monkeypatch):
     """first_call's docstring: where the layout check says no, nothing is compiled and the
     helper's own (NumPy) run is bound in place of the first call, with the same result."""
-    monkeypatch.setattr(native, "_layout_is_cpythons", lambda: False)
+    monkeypatch.setattr(native, "layout_is_cpythons", lambda: False)
     rng = random.Random(4321)
     lines = FAMILIES["two chains, nested"](rng)[0]
     lines.append(f"v_F = (_t1 * {rng.uniform(2.0, 3.0)!r})")      # an IR no other test has
