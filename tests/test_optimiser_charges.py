@@ -534,10 +534,13 @@ def _settled(middle: list[str]) -> list[str]:
     return settled(_HEAD + middle + _TAIL)
 
 
-def test_a_straight_body_charges_its_running_total():
-    """Charges of the `try`'s top level around a branch that charges nothing: 5, then 5 + 7."""
-    out = _settled(["            v_A = 1"])
-    assert out[4] == "        _spent = 5" and out[7] == "        _spent = 12"
+@pytest.mark.parametrize("head", [0, 1])
+def test_a_straight_body_charges_its_running_total(head):
+    """Charges of the `try`'s top level around a branch that charges nothing: 5, then 5 + 7;
+    with the `def` line or, as the compiler hands it over, from the line after it."""
+    from st_runtime.compiler.optimise.charges import settled
+    out = settled((_HEAD + ["            v_A = 1"] + _TAIL)[head:])
+    assert out[4 - head] == "        _spent = 5" and out[7 - head] == "        _spent = 12"
 
 
 def test_a_charge_inside_a_branch_is_left_to_the_walk():

@@ -406,6 +406,8 @@ def settled(text: list[str]) -> list[str]:
     paths that reach it.  (SP_Controller's axes: `NewFault := 0`, then each axis's fault
     tests, whose every branch but the ELSE sets NewFault to a code; the next axis's tests run
     only `IF NewFault = 0`, which only the ELSE path reaches: its total is known.)"""
+    if not any(map(str.__contains__, text, itertools.repeat("_spent += "))):
+        return text             # (no charge: the walk replaces only `_CHARGE` lines)
     straight = _straight(text)
     if straight is not None:
         return straight
@@ -426,8 +428,8 @@ def _straight(text: list[str]) -> list[str] | None:
     line less indented than its block's and not at an open block's indentation, an empty line.
     One look at the lines that name `_spent` (`str.find`) and one at the indentations,
     instead of the walk's tables (its fixed cost was most of a small body's `settle`)."""
-    if not text or not text[0].startswith("def ") or not text[1:2] or \
-            not text[1].startswith(_LEVEL) or text[1][4:5] == " ":
+    first = 1 if text[:1] and text[0].startswith("def ") else 0      # (as `settled` starts the walk)
+    if not text[first:first + 1] or not text[first].startswith(_LEVEL) or text[first][4:5] == " ":
         return None
     flat = "".join(text)
     ends = list(itertools.accumulate(map(len, text)))
@@ -435,7 +437,8 @@ def _straight(text: list[str]) -> list[str] | None:
     if len(holding) < 3 or text[holding[0]] != _ZERO or text[holding[-1]] != _FLUSH:
         return None
     zero = holding[0]
-    if text[zero + 1:zero + 2] != [_OPEN] or not all(map(str.startswith, text[1:zero], itertools.repeat(_LEVEL))):
+    if text[zero + 1:zero + 2] != [_OPEN] or \
+            not all(map(str.startswith, text[first:zero], itertools.repeat(_LEVEL))):
         return None
     charges = holding[1:-1]
     matches = list(map(_TOP_CHARGE.fullmatch, map(text.__getitem__, charges)))
