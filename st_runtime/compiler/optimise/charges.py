@@ -432,6 +432,8 @@ def _straight(text: list[str]) -> list[str] | None:
     if not text[first:first + 1] or not text[first].startswith(_LEVEL) or text[first][4:5] == " ":
         return None
     flat = "".join(text)
+    if _DEEPER_SPENT in flat:
+        return None             # (a line deeper than the body's top level names `_spent`: found in C)
     ends = list(itertools.accumulate(map(len, text)))
     holding = _lines_holding(flat, ends, "_spent")
     if len(holding) < 3 or text[holding[0]] != _ZERO or text[holding[-1]] != _FLUSH:
@@ -486,6 +488,7 @@ def _top_level_end(text: list[str], first: int) -> int | None:
 _LEVEL, _BODY_LEVEL = " " * 4, " " * 8
 _ZERO, _OPEN, _FINALLY = _LEVEL + "_spent = 0", _LEVEL + "try:", _LEVEL + "finally:"
 _FLUSH = _BODY_LEVEL + "_ctx.budget -= _spent"
+_DEEPER_SPENT = _BODY_LEVEL + " _spent"
 _TOP_CHARGE = re.compile(r" {8}_spent \+= (\d+)")
 
 
