@@ -560,3 +560,53 @@ def test_settled_keeps_the_shared_total_beyond_the_path_cap():
     tests = [line for name in names for line in (f"    if v_{name}:", "        v_Z = 0")]
     lines = ["    _spent = 0", *ifs, "    _spent += 1", *tests]
     assert settled(lines) == ["    _spent = 0", *ifs, "    _spent = 1", *tests]
+
+
+# `settled`'s one look at a straight body (`_straight`): a body whose charges all stand at the
+# top level of its `try`.  Each expected text is the walk's, worked out by hand: a charge the
+# value of `_spent` is known at becomes the store of the running total.
+_HEAD = ["def f(self, _ctx):", "    v_A = self.v_A", "    _spent = 0", "    try:", "        _spent += 5",
+         "        if v_A:"]
+_TAIL = ["        _spent += 7", "    finally:", "        _ctx.budget -= _spent"]
+
+
+def _settled(middle: list[str]) -> list[str]:
+    from st_runtime.compiler.optimise.charges import settled
+    return settled(_HEAD + middle + _TAIL)
+
+
+@pytest.mark.parametrize("head", [0, 1])
+def test_a_straight_body_charges_its_running_total(head):
+    """Charges of the `try`'s top level around a branch that charges nothing: 5, then 5 + 7;
+    with the `def` line or, as the compiler hands it over, from the line after it."""
+    from st_runtime.compiler.optimise.charges import settled
+    out = settled((_HEAD + ["            v_A = 1"] + _TAIL)[head:])
+    assert out[4 - head] == "        _spent = 5" and out[7 - head] == "        _spent = 12"
+
+
+def test_a_charge_inside_a_branch_is_left_to_the_walk():
+    """The branch's charge is 5 + 3; after the IF the paths hold 8 and 5 (v_A not known on
+    either), so the charge after it stays an addition.  A one-look settle that took every
+    charge as straight would write 8 and 15 (or 12)."""
+    out = _settled(["            _spent += 3", "            v_A = 1"])
+    assert out[4:9] == ["        _spent = 5", "        if v_A:", "            _spent = 8", "            v_A = 1",
+                        "        _spent += 7"]
+
+
+def test_a_zero_between_the_charges_starts_the_total_again():
+    """`_spent = 0` of the `try`'s level: the next charge is 7, not 12."""
+    out = _settled(["            v_A = 1", "        _spent = 0"])
+    assert out[-3] == "        _spent = 7"
+
+
+@pytest.mark.parametrize("middle", [
+    ["            v_A = 1", "                v_B = 2"],            # deeper after a simple line
+    ["                v_A = 1", "            v_B = 2"],            # back to no open block's level
+    ["            v_A = 1", ""],                                    # an empty line (more indented than any)
+])
+def test_a_shape_the_walk_does_not_read_is_left_as_it_was(middle):
+    """The walk stops at a line more indented than its block's statements (`_Unread`) and
+    changes nothing; the one look must not replace the charges of such a body either."""
+    text = _HEAD + middle + _TAIL
+    from st_runtime.compiler.optimise.charges import settled
+    assert settled(text) == text

@@ -406,12 +406,90 @@ def settled(text: list[str]) -> list[str]:
     paths that reach it.  (SP_Controller's axes: `NewFault := 0`, then each axis's fault
     tests, whose every branch but the ELSE sets NewFault to a code; the next axis's tests run
     only `IF NewFault = 0`, which only the ELSE path reaches: its total is known.)"""
+    if not any(map(str.__contains__, text, itertools.repeat("_spent += "))):
+        return text             # (no charge: the walk replaces only `_CHARGE` lines)
+    straight = _straight(text)
+    if straight is not None:
+        return straight
     out = list(text)
     try:
         _Settle(out).block(1 if out and out[0].startswith("def ") else 0, None, ended=False)
     except _Unread:
         return text             # (a line of a shape the walk does not know: nothing changed)
     return out
+
+
+def _straight(text: list[str]) -> list[str] | None:
+    """`settled(text)` of a body whose every charge stands at the top level of the `try` after
+    its `_spent = 0`: each charge there is the running total, as the walk makes it (no line
+    of the body but those charges sets `_spent`, so every path reaches each charge with one
+    total).  None for any other body (the walk then), and for a shape the walk refuses
+    (`_Unread`): a line more indented than its block's without a compound line before it, a
+    line less indented than its block's and not at an open block's indentation, an empty line.
+    One look at the lines that name `_spent` (`str.find`) and one at the indentations,
+    instead of the walk's tables (its fixed cost was most of a small body's `settle`)."""
+    first = 1 if text[:1] and text[0].startswith("def ") else 0      # (as `settled` starts the walk)
+    if not text[first:first + 1] or not text[first].startswith(_LEVEL) or text[first][4:5] == " ":
+        return None
+    flat = "".join(text)
+    if _DEEPER_SPENT in flat:
+        return None             # (a line deeper than the body's top level names `_spent`: found in C)
+    ends = list(itertools.accumulate(map(len, text)))
+    holding = _lines_holding(flat, ends, "_spent")
+    if len(holding) < 3 or text[holding[0]] != _ZERO or text[holding[-1]] != _FLUSH:
+        return None
+    zero = holding[0]
+    if text[zero + 1:zero + 2] != [_OPEN] or \
+            not all(map(str.startswith, text[first:zero], itertools.repeat(_LEVEL))):
+        return None
+    charges = holding[1:-1]
+    matches = list(map(_TOP_CHARGE.fullmatch, map(text.__getitem__, charges)))
+    if None in matches:
+        return None
+    last = _top_level_end(text, zero + 2)
+    if last is None or text[last] != _FINALLY or charges and charges[-1] > last \
+            or not all(map(str.startswith, text[last + 1:], itertools.repeat(_BODY_LEVEL))):
+        return None
+    out = list(text)
+    total = 0
+    for n, match in zip(charges, matches):
+        total += int(match.group(1))
+        out[n] = f"{_BODY_LEVEL}_spent = {total}"
+    return out
+
+
+def _top_level_end(text: list[str], first: int) -> int | None:
+    """The first line from `first` (the first of the `try`'s body) back at `_LEVEL`, when the
+    lines before it nest as the walk reads them (see `_straight`) and the body's first line
+    is at `_BODY_LEVEL`; None when they do not."""
+    depths, opened = [len(_LEVEL)], True
+    for n in range(first, len(text)):
+        line = text[n]
+        depth = len(line) - len(line.lstrip(" "))
+        if depth == len(line):
+            return None
+        if depth > depths[-1]:
+            if not opened or (n == first and depth != len(_BODY_LEVEL)):
+                return None
+            depths.append(depth)
+        else:
+            if opened:
+                return None
+            while depth < depths[-1]:
+                depths.pop()
+            if depth != depths[-1]:
+                return None
+            if len(depths) == 1:
+                return n
+        opened = line[-1] == ":" and _COMPOUND.fullmatch(line) is not None
+    return None
+
+
+_LEVEL, _BODY_LEVEL = " " * 4, " " * 8
+_ZERO, _OPEN, _FINALLY = _LEVEL + "_spent = 0", _LEVEL + "try:", _LEVEL + "finally:"
+_FLUSH = _BODY_LEVEL + "_ctx.budget -= _spent"
+_DEEPER_SPENT = _BODY_LEVEL + " _spent"
+_TOP_CHARGE = re.compile(r" {8}_spent \+= (\d+)")
 
 
 class _Unread(Exception):
