@@ -213,9 +213,6 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
             + "\n".join(w.lines) + "\n}\n")
 
 
-_RUN_INSTRUCTION = {"*": "fmul", "+": "fadd", "-": "fsub"}
-
-
 def run_ir(arguments: list, ops: list[tuple], outputs: list[str]) -> str:
     """The IR of `PyObject *run(PyObject *self, PyObject *const *args, Py_ssize_t nargs)` for
     kernels.py's runs of statements, called as `run(a0, a1, ...)`: `arguments[j]` is
@@ -248,7 +245,7 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str]) -> str:
         elif op == "neg":
             w.add(f"{value} = fneg double {operands[0]}")
         else:
-            w.add(f"{value} = {_RUN_INSTRUCTION[op]} double {operands[0]}, {operands[1]}")
+            w.add(f"{value} = {_INSTRUCTION[op]} double {operands[0]}, {operands[1]}")
         w.add(f"%abs.{i} = call double @llvm.fabs.f64(double {value})",
               f"%fin.{i} = fcmp olt double %abs.{i}, 0x7FF0000000000000",      # false for NaN
               f"%all.{i} = and i1 {finite}, %fin.{i}")
