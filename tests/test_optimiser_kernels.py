@@ -148,6 +148,22 @@ def test_the_pass_makes_kernels_of_the_float_runs_only():
     assert native.layout_is_cpythons()
 
 
+def test_a_run_of_exactly_the_minimum_makes_a_kernel_and_one_fewer_none():
+    """MIN_OPERATIONS is 16 (kernels.py): a run of 15 binary operations and one SQRT (16)
+    makes one kernel, written without spaces so that only the operators themselves can
+    count; 15 makes none.  (The pass's gate counts `* + -` and `_m_sqrt(` in the body: a
+    gate that missed the SQRT, or counted spaced operators only, skips the first.)"""
+    assert kernels.MIN_OPERATIONS == 16
+    lines = ["_c1 = ((v_A*v_B)+(v_A-v_B))", "_c2 = ((_c1*2.5)-(v_A*0.5))",
+             "_c3 = ((_c2+_c1)*(_c2-v_B))", "_c4 = ((_c3*_c3)+(_c1*v_A))", "_c5 = (_m_sqrt(_c4)+_c2)",
+             "_c6 = ((_c5*v_A)+v_B)"]
+    assert sum(line.count(op) for line in lines for op in "*+-") == 15
+    after, bound = _passed(lines)
+    assert after[0].startswith("_kr = _k0(") and len(bound) == 2
+    fewer = lines[:-1] + ["_c6 = (_c5*v_A)"]
+    assert _passed(fewer)[0] == fewer
+
+
 def test_ik_runs_give_pythons_floats_bit_for_bit():
     """Ordinary poses and ones with inf, NaN, -0.0, subnormal, tiny and huge values (squares
     that overflow): every local and the stored positions as Python's lines give them."""

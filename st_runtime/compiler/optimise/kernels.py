@@ -173,7 +173,11 @@ def replace(lines: list[str], start: int, register, bind) -> None:
     """Replace the qualifying runs in `lines[start:]` (a body's finished lines) by a kernel
     call each.  `register(value)`: the namespace name bound to a value; `bind(name, value)`
     rebinds it (the kernel in place of its first call)."""
-    matches = list(map(_CANDIDATE.match, lines[start:]))      # (one C loop over every line)
+    body = lines[start:]
+    text = "".join(body)
+    if text.count("*") + text.count("+") + text.count("-") + text.count("_m_sqrt(") < MIN_OPERATIONS:
+        return          # (each operation of a run but a unary minus shows one of these: too few)
+    matches = list(map(_CANDIDATE.match, body))               # (one C loop over every line)
     runs, end = [], 0
     for i in itertools.compress(range(len(matches)), matches):
         if i < end:
