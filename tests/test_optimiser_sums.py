@@ -330,3 +330,32 @@ def test_a_list_of_one_element_is_added_as_its_element():
     lines = [*_finite("v_D", 0), *_finite("v_A", 0), *_finite("v_A", 1), *_finite("v_A", 2)]
     assert _fold(lines, lists)[0] == \
         "if not (-1.7976931348623157e+308 <= (_sum(v_A, v_D[0])) <= 1.7976931348623157e+308):"
+
+
+def test_arrays_declared_after_scalars_are_still_found():
+    """The arrays' table is read past every variable that is no array of REAL or LREAL: with
+    scalars, a FB instance and an array of STRING (each used, so the body holds it) declared
+    before J, Q and F the twelve tests still fold (and run as before)."""
+    source = CHECK.replace("VAR\n    J :", "VAR\n    Before : LREAL := 2.0;\n    Flag : BOOL;\n"
+                           "    Clock : TON;\n    Names : ARRAY[1..2] OF STRING;\n    J :", 1).replace(
+        "AllFinite := TRUE;\n", "AllFinite := TRUE;\nClock(IN := Flag);\nNames[1] := 'a';\n", 1)
+    fast = compile_program(load_text(source, "t.st").program, optimise=ON).python_sources["MAIN"]
+    assert "_sum(v_J, _sum(v_F, 0.0))" in fast
+    # by hand: J[2, 2] = inf fires its one test; F = 2Q - 1; N = 100 / 4
+    (ok, f, n), faults, _ = _same(source, {"J": _matrix({4: math.inf})}, ("AllFinite", "F", "N"))
+    assert (ok, f, n, faults) == (False, [1.0, 3.0, 5.0], 25, [])
+
+
+def test_a_finite_test_of_a_product_beside_the_element_tests():
+    """A finite test of an expression (`ABS(F[Row] * X)`) has the tests' form but no element of
+    its own: it is left as written, and the element tests around it still run."""
+    source = CHECK.replace(
+        "        IF NOT (ABS(J[Row, Column]) <= {BIG}) THEN AllFinite := FALSE; END_IF;".format(BIG=BIG),
+        "        IF NOT (ABS(J[Row, Column]) <= {BIG}) THEN AllFinite := FALSE; END_IF;\n"
+        "        IF NOT (ABS(F[Row] * X) <= {BIG}) THEN AllFinite := FALSE; END_IF;".format(BIG=BIG))
+    source = source.replace("    N : DINT;\n", "    N : DINT;\n    X : LREAL := 1.0E308;\n", 1)
+    # by hand: F = [1, 3, 5]; F[1] * 1e308 = 1e308 is finite, F[2] * 1e308 = 3e308 overflows
+    (ok, f, n), faults, _ = _same(source, {}, ("AllFinite", "F", "N"))
+    assert (ok, f, n, faults) == (False, [1.0, 3.0, 5.0], 25, [])
+    (ok, f, n), faults, _ = _same(source, {"X": 1.0}, ("AllFinite", "F", "N"))
+    assert (ok, f, n, faults) == (True, [1.0, 3.0, 5.0], 25, [])
