@@ -29,8 +29,7 @@ _INSTANCE_KINDS = ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP")
 
 def fb_type_of(t):
     """The FBType of an instance variable (or of an array's elements), else None."""
-    while isinstance(t, T.ArrayType):
-        t = t.element
+    t = ts.innermost(t)
     return t if isinstance(t, T.FBType) else None
 
 
