@@ -89,6 +89,11 @@ DECLARATIONS = rows(
      [("E-DECL-003", 2, 1, "duplicate declaration of 'speed': already declared at t.st:1:6")]),
     ("a_type_defined_in_terms_of_itself", "iec", "TYPE A : B; END_TYPE\nTYPE B : A; END_TYPE\n",
      [("E-DECL-005", 1, 6, "type A is defined in terms of itself")]),
+    # A variable of such a type: its initial value's look-up down the chain stops at the cycle;
+    # the type is already reported, so the variable adds nothing.
+    ("a_variable_of_a_type_defined_in_terms_of_itself", "iec",
+     "TYPE A : B; END_TYPE\nTYPE B : A; END_TYPE\nPROGRAM Main\nVAR\n    x : A;\nEND_VAR\nEND_PROGRAM\n",
+     [("E-DECL-005", 1, 6, "type A is defined in terms of itself")]),
     ("a_struct_member_twice", "iec", "TYPE S :\nSTRUCT\n    a : INT;\n    A : REAL;\nEND_STRUCT;\nEND_TYPE\n",
      [("E-DECL-002", 4, 5, "duplicate member 'A' in struct S")]),
     ("a_union_member_that_shares_no_bytes", "codesys",

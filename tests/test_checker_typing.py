@@ -201,3 +201,17 @@ def test_trunc_follows_its_integer_context():
     p = program_with("x : LREAL; i : INT; d : DINT;", "i := TRUNC(x);\nd := TRUNC(x);")
     assert value_of(p, 0)[0] is T.INT
     assert value_of(p, 1)[0] is T.DINT
+
+
+# ------------------------------------------------------ the type under an array's dimensions
+
+def test_innermost_strips_every_array_level_and_nothing_else():
+    """`ARRAY[1..2] OF ARRAY[0..3] OF F` holds F's; an array of one level its element; a
+    type that is no array is itself (a STRUCT of arrays is not looked into)."""
+    fb = T.FBType("F")
+    inner = T.ArrayType(((0, 3),), fb)
+    assert ts.innermost(T.ArrayType(((1, 2),), inner)) is fb
+    assert ts.innermost(inner) is fb
+    assert ts.innermost(fb) is fb
+    struct = T.StructType("S", {"A": ("A", inner)})
+    assert ts.innermost(struct) is struct

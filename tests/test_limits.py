@@ -224,6 +224,6 @@ def test_a_leaf_beyond_the_depth_is_the_place_reported():
     """`r := 1.0 + 1.0 + ...` of 65 terms: the innermost addition is 64 deep and its two
     terms 65; the walk meets its right term first (children are pushed in order and
     popped last first): the second `1.0`, at column 6 + len("1.0 + ") = 12.  A leaf
-    at or above the limit is not walked at all (limits._LEAVES), one beyond it is."""
+    at or above the limit is not walked at all (limits._QUIET), one beyond it is."""
     diagnostics = refused(program(sum_of(limits.MAX_EXPRESSION_DEPTH + 1)))
     assert [(d.code, d.pos.line, d.pos.col) for d in diagnostics] == [("E-LIMIT-002", 3, 12)]

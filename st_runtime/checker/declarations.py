@@ -29,8 +29,7 @@ _INSTANCE_KINDS = ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP")
 
 def fb_type_of(t):
     """The FBType of an instance variable (or of an array's elements), else None."""
-    while isinstance(t, T.ArrayType):
-        t = t.element
+    t = ts.innermost(t)
     return t if isinstance(t, T.FBType) else None
 
 
@@ -304,6 +303,12 @@ class Declarations:
 
     def resolve(self, ref, ex: ExprChecker):
         """A declared type reference as a semantic type (ERROR after a report)."""
+        if isinstance(ref, ast.NamedType):
+            # An elementary type spelled in capitals (the usual `INT`, `LREAL`) is its own key:
+            # one look-up, the type the steps below give it (no such key holds a '.' or is a STRING's).
+            elementary = T.ELEMENTARY.get(ref.name)
+            if elementary is not None:
+                return elementary
         if isinstance(ref, ast.NamedType) and "." in ref.name:
             short = self.qualified(ref.name, ref.pos)
             if short is None:
@@ -514,16 +519,17 @@ class Declarations:
         default is its parent's unless it gives its own). `seen` stops at a cycle, which
         the type checks refuse on their own."""
         seen: set[str] = set()
+        type_decls = self.ctx.type_decls
         while isinstance(ref, ast.NamedType):
             name = key(ref.name)
+            decl = type_decls.get(name)
+            if decl is None:
+                return None     # (an elementary type, or one refused: the usual end, looked up first)
+            if decl.init is not None:
+                return decl.init     # (never of a name seen: there, the same decl had none)
             if name in seen:
                 return None
             seen.add(name)
-            decl = self.ctx.type_decls.get(name)
-            if decl is None:
-                return None
-            if decl.init is not None:
-                return decl.init
             ref = decl.spec
         return None
 

@@ -55,28 +55,28 @@ def _item_constructs(item):
                    else "METHOD"), method.pos
 
 
-def construct_of(node) -> str | None:
-    """The dialect-dependent construct a node of a class in CONSTRUCT_NODES is, or None."""
-    kind = type(node)
-    if kind is ast.RefType:
-        return "POINTER" if node.pointer else "REF_TO"
-    if kind is ast.Deref:       # (CODESYS's SUPER^() is refused as SUPER_BODY, at the call)
-        return None if isinstance(node.base, ast.Name) and node.base.name.upper() == "SUPER" else "DEREF"
-    if kind is ast.Assign:
-        return "SET_RESET" if node.mode != ":=" else None
-    if kind is ast.Call:
-        return "TRAILING_COMMA" if node.trailing_comma else None
-    if kind is ast.StructType:
-        return "UNION" if node.union else None
-    if kind is ast.VarDecl:
-        return "EDGE_NAME" if node.name.upper() in ("R_EDGE", "F_EDGE") else None
-    if kind is ast.NullLiteral:
-        return "NULL"
-    if kind is ast.BitAccess:
-        return "BIT_ACCESS" if not node.size else None     # x.%X3 is the standard's
-    return None
+def _deref(node) -> str | None:       # (CODESYS's SUPER^() is refused as SUPER_BODY, at the call)
+    return None if isinstance(node.base, ast.Name) and node.base.name.upper() == "SUPER" else "DEREF"
 
+
+#: node class -> the dialect-dependent construct a node of it is, or None: one look-up a
+#: node where the walk (limits.check_limits) would otherwise test its class eight times.
+CONSTRUCTS = {
+    ast.RefType: lambda node: "POINTER" if node.pointer else "REF_TO",
+    ast.Deref: _deref,
+    ast.Assign: lambda node: "SET_RESET" if node.mode != ":=" else None,
+    ast.Call: lambda node: "TRAILING_COMMA" if node.trailing_comma else None,
+    ast.StructType: lambda node: "UNION" if node.union else None,
+    ast.VarDecl: lambda node: "EDGE_NAME" if node.name.upper() in ("R_EDGE", "F_EDGE") else None,
+    ast.NullLiteral: lambda node: "NULL",
+    ast.BitAccess: lambda node: "BIT_ACCESS" if not node.size else None,     # x.%X3 is the standard's
+}
 
 #: The node classes `construct_of` names (the walk passes the others by).
-CONSTRUCT_NODES = frozenset({ast.RefType, ast.Deref, ast.Assign, ast.Call, ast.StructType, ast.VarDecl,
-                             ast.NullLiteral, ast.BitAccess})
+CONSTRUCT_NODES = frozenset(CONSTRUCTS)
+
+
+def construct_of(node) -> str | None:
+    """The dialect-dependent construct a node of a class in CONSTRUCT_NODES is, or None."""
+    construct = CONSTRUCTS.get(type(node))
+    return construct(node) if construct is not None else None

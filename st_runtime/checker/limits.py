@@ -28,10 +28,12 @@ so that neither walks the tree again.
 
 from __future__ import annotations
 
+from operator import attrgetter
+
 from .. import ast
 from ..diagnostics import register
 from .context import BUILTIN_FILE
-from .dialects import CONSTRUCT_NODES, construct_of
+from .dialects import CONSTRUCTS
 
 MAX_EXPRESSION_DEPTH = 64
 MAX_BLOCK_DEPTH = 40
@@ -76,36 +78,73 @@ _TRANSPARENT = (ast.IfBranch, ast.CaseClause, ast.CaseRange, ast.Arg, ast.Pou, a
 #: The node classes of the NJ build rules (nj_build.py: rules 006 and 007).
 _BUILD_NODES = (ast.Index, ast.Member, ast.Case)
 
-#: node class -> (statement, block, loop, transparent, dialect construct, build rule node,
-#: fields that may hold a node): what check_limits asks of every node, worked out once per
-#: class (`_shape`).
-_SHAPES: dict[type, tuple] = {}
+class _Shapes(dict):
+    """node class -> (statement, block, loop, transparent, dialect construct (its function
+    of `dialects.CONSTRUCTS`, or None), build rule node, children): what check_limits asks
+    of every node, worked out once per class; `children(node)` is the tuple of the node's
+    fields that may hold a node, in field order."""
+
+    def __missing__(self, cls: type) -> tuple:
+        names = ast.CHILD_FIELDS[cls]
+        shape = self[cls] = (issubclass(cls, _STATEMENTS), issubclass(cls, _BLOCKS), issubclass(cls, _LOOPS),
+                             issubclass(cls, _TRANSPARENT), CONSTRUCTS.get(cls), cls in _BUILD_NODES,
+                             _children_getter(names))
+        return shape
 
 
-def _shape(cls: type) -> tuple:
-    shape = _SHAPES[cls] = (issubclass(cls, _STATEMENTS), issubclass(cls, _BLOCKS), issubclass(cls, _LOOPS),
-                            issubclass(cls, _TRANSPARENT), cls in CONSTRUCT_NODES, cls in _BUILD_NODES,
-                            ast.CHILD_FIELDS[cls])
-    return shape
+_SHAPES: dict[type, tuple] = _Shapes()
 
 
-class _Leaves(dict):
-    """node class -> whether a node of it is a plain leaf of an expression (a name, a
-    literal): no child, no statement, construct or build rule node, so all the walk
-    does with it is its depth's check, which cannot fail below the deepest level."""
-
-    def __missing__(self, cls: type) -> bool:
-        statement, _, _, transparent, construct, build_node, names = _SHAPES.get(cls) or _shape(cls)
-        leaf = self[cls] = not (statement or transparent or construct or build_node or names)
-        return leaf
+def _no_children(node) -> tuple:
+    return ()
 
 
-_LEAVES = _Leaves()
+def _children_getter(names: tuple[str, ...]):
+    """A function of a node giving the tuple of its fields `names`: `attrgetter` (one C call)
+    where it gives a tuple, that is for two fields or more."""
+    if len(names) > 1:
+        return attrgetter(*names)
+    if names:
+        name, = names
+        return lambda node: (getattr(node, name),)
+    return _no_children
+
+
+#: What the walk does with a child field's value, by its class: PUSH a node (walk it),
+#: look into a TUPLE of them, or SKIP it (None, a scalar).  `_QUIET` skips an
+#: expression's plain leaf too (a name, a literal: `_is_leaf`), whose depth's check
+#: cannot fail above the deepest level; `_LOUD` pushes it, for a node at that level.
+SKIP, PUSH, TUPLE = 0, 1, 2
+
+
+class _Kinds(dict):
+    def __init__(self, quiet: bool) -> None:
+        super().__init__()
+        self.quiet = quiet
+
+    def __missing__(self, cls: type) -> int:
+        if issubclass(cls, ast.Node):
+            kind = SKIP if self.quiet and _is_leaf(cls) else PUSH
+        else:
+            kind = TUPLE if issubclass(cls, tuple) else SKIP
+        self[cls] = kind
+        return kind
+
+
+def _is_leaf(cls: type) -> bool:
+    """Whether a node of `cls` is a plain leaf of an expression (a name, a literal): no
+    child, no statement, construct or build rule node, so all the walk does with it is
+    its depth's check, which cannot fail below the deepest level."""
+    statement, _, _, transparent, construct, build_node, _ = _SHAPES[cls]
+    return not (statement or transparent or construct or build_node or ast.CHILD_FIELDS[cls])
+
+
+_QUIET, _LOUD = _Kinds(quiet=True), _Kinds(quiet=False)
 
 
 class Walked:
     """What the walk found in one item for the passes after it: `constructs`, the
-    (construct, position) of each node a dialect may refuse (`dialects.construct_of`),
+    (construct, position) of each node a dialect may refuse (`dialects.CONSTRUCTS`),
     in the walk's order; `build_nodes`, whether any node is one the NJ build rules
     look at (a CASE, or an Index or a Member of a member: `a.b[1]`, `a.b.c`; rule 006's
     test, `_fb_variable_part`, passes over any other), else their walk of the item is
@@ -149,13 +188,12 @@ def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
     statements = 0
     # (node, statement depth, loop depth, expression depth)
     stack = [(pou, 0, 0, 0)]
-    push, Node, leaves = stack.append, ast.Node, _LEAVES
+    push, shapes, quiet, loud = stack.append, _SHAPES, _QUIET, _LOUD
     while stack:
         node, blocks, loops, depth = stack.pop()
-        is_statement, is_block, is_loop, transparent, construct, build_node, names = \
-            _SHAPES.get(type(node)) or _shape(type(node))
+        is_statement, is_block, is_loop, transparent, construct, build_node, children = shapes[type(node)]
         if construct:
-            what = construct_of(node)
+            what = construct(node)
             if what is not None:
                 constructs.append((what, node.pos))
         if build_node and not build_nodes:
@@ -187,15 +225,14 @@ def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
                 report("E-LIMIT-002", f"{what} nested more than {MAX_EXPRESSION_DEPTH} levels deep"
                        " (split it with intermediate variables or types)", node)
                 continue
-        quiet = depth < MAX_EXPRESSION_DEPTH    # (a leaf below here cannot be too deep: not pushed)
-        for field in names:         # the child nodes in field order, tuples flattened
-            value = getattr(node, field, None)
-            if isinstance(value, Node):
-                if not (quiet and leaves[type(value)]):
-                    push((value, blocks, loops, depth))
-            elif isinstance(value, tuple):
+        kinds = quiet if depth < MAX_EXPRESSION_DEPTH else loud   # (a leaf below here cannot be too deep)
+        for value in children(node):     # the child nodes in field order, tuples flattened
+            kind = kinds[type(value)]
+            if kind == PUSH:
+                push((value, blocks, loops, depth))
+            elif kind:
                 for item in value:
-                    if isinstance(item, Node) and not (quiet and leaves[type(item)]):
+                    if kinds[type(item)] == PUSH:
                         push((item, blocks, loops, depth))
     if statements > MAX_STATEMENTS:
         report("E-LIMIT-007", f"{statements} statements (at most {MAX_STATEMENTS}; split the POU)", pou)

@@ -49,6 +49,7 @@ from .. import types as T
 from ..dialects import DIALECTS
 from ..diagnostics import register
 from .context import BUILTIN_FILE
+from .typesys import innermost
 
 #: Bytes a variable, a POU instance or the project may need by default (64 MiB).
 DEFAULT_LIMIT = 64 * 2**20
@@ -181,7 +182,7 @@ def _sizes(pous) -> tuple:
         sizes = [_REFERENCE[0] if s.kind == "VAR_IN_OUT" else model.layout(s.type)[0]
                  for s in info.variables.values() if s.kind in _STORED]
         largest, instance = max([largest, *sizes]), max(instance, sum(sizes))
-        strings = strings or any(isinstance(_innermost(s.type), T.StringType) for s in info.variables.values())
+        strings = strings or any(isinstance(innermost(s.type), T.StringType) for s in info.variables.values())
         program = program or info.kind == "PROGRAM"
     return largest, instance, strings, program
 
@@ -192,13 +193,6 @@ def _within(sizes: tuple, limit: int, string_max) -> bool:
     return largest <= limit and instance <= limit and not program and not (strings and string_max is not None)
 
 
-def _innermost(t):
-    t = T.resolve_alias(t)
-    while isinstance(t, T.ArrayType):
-        t = T.resolve_alias(t.element)
-    return t
-
-
 def variable_bytes_over(model: MemoryModel, sym, limit: int) -> bool:
     """Whether this one variable is already beyond the limit (reported on its own)."""
     return sym.kind != "VAR_IN_OUT" and model.layout(sym.type)[0] > limit
@@ -206,9 +200,7 @@ def variable_bytes_over(model: MemoryModel, sym, limit: int) -> bool:
 
 def _nj_strings(ctx, sym) -> None:
     """E-LIMIT-011 for a STRING (or an array of them) beyond the NJ's largest."""
-    t = T.resolve_alias(sym.type)
-    while isinstance(t, T.ArrayType):
-        t = T.resolve_alias(t.element)
+    t = innermost(sym.type)
     # In Sysmac Studio STRING[n] reserves n bytes, the NULL included (W501: "STRING[11]" for 10 characters).
     if isinstance(t, T.StringType) and not t.wide and t.length > NJ_STRING_MAX_BYTES:
         ctx.error("E-LIMIT-011", f"{sym.name}: {t} is longer than the NJ's largest STRING,"

@@ -15,6 +15,7 @@ from .. import types as T
 from ..ast import key
 from .context import Context, a_or_an
 from .declarations import _INSTANCE_KINDS
+from .typesys import innermost
 
 
 def _edges(ctx: Context) -> dict[str, list]:
@@ -50,9 +51,7 @@ def _declared_edges(info) -> list[tuple[str, object, str]]:
     for sym in info.variables.values():
         if sym.kind not in _INSTANCE_KINDS or sym.decl is None:
             continue
-        t = sym.type
-        while isinstance(t, T.ArrayType):
-            t = t.element
+        t = innermost(sym.type)
         if isinstance(t, T.FBType):
             edges.append((key(t.name), sym.decl.pos, "declares an instance of"))
         elif isinstance(t, T.StructType):
@@ -74,8 +73,7 @@ def _fbs_inside_structs(t) -> list[tuple[str, object]]:
     work = [(t, None)]
     while work:
         t, outer = work.pop()
-        while isinstance(t, T.ArrayType):
-            t = t.element
+        t = innermost(t)
         if isinstance(t, T.FBType) and outer is not None:
             found.append((outer, t))
         elif isinstance(t, T.StructType) and id(t) not in seen:

@@ -111,6 +111,14 @@ def is_string(t) -> bool:
     return isinstance(t, T.StringType)
 
 
+def innermost(t):
+    """The type under all of `t`'s array dimensions: an array's element type, at any depth
+    (`ARRAY[..] OF ARRAY[..] OF F` gives F); `t` itself when it is no array."""
+    while isinstance(t, T.ArrayType):
+        t = t.element
+    return t
+
+
 def same_type(a, b) -> bool:
     if a is b:
         return True
