@@ -230,3 +230,23 @@ def test_the_first_call_keeps_numpys_kernel_where_the_layout_is_not_cpythons(mon
     assert bound["_k0"] == helper.run and not isinstance(bound["_k0"], types.BuiltinFunctionType)
     assert native.helper_ir(helper) not in native._KERNELS
     assert got == helper.exact(None, values)
+
+
+# Session 22 (h-comp15-s22): the switch is read once a load, not once a body.
+
+def test_a_load_reads_the_switch_once_and_each_load_reads_it_again(monkeypatch):
+    """`native.enabled` reads the environment (a test may switch it between loads): a compile
+    asks it once, however many bodies it compiles (three here: two FUNCTIONs and a PROGRAM),
+    and the next compile asks again."""
+    program = api.load_text("""
+FUNCTION F1 : LREAL VAR_INPUT x : LREAL; END_VAR F1 := x * 2.0; END_FUNCTION
+FUNCTION F2 : LREAL VAR_INPUT x : LREAL; END_VAR F2 := x + 1.0; END_FUNCTION
+PROGRAM P VAR y : LREAL; END_VAR y := F1(F2(y)); END_PROGRAM
+""").program
+    asked = []
+    enabled = native.enabled
+    monkeypatch.setattr(native, "enabled", lambda: asked.append(1) or enabled())
+    compile_program(program)
+    assert len(asked) == 1
+    compile_program(program)
+    assert len(asked) == 2

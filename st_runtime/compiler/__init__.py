@@ -50,7 +50,7 @@ from ..process_image import ProcessImage, located_property, parse_address, union
 from . import support
 from .calls import Calls
 from .initial import CompileError, Initial, InitialValues
-from .optimise import Optimisations
+from .optimise import Optimisations, native
 from .pysrc import Emitter, pyliteral, safe_name, pyident
 from .scope import edge_inputs, edge_slot, forget_walks
 from .statements import BodyCompiler
@@ -126,6 +126,8 @@ class CompileUnit:
         self.image = ProcessImage()
         #: "types", "pous" -> how many first entries of the table are the shared prelude's
         self.prelude_lead: dict[str, int] = {}
+        #: whether native kernels may be built (native.enabled: an environment read, once a load)
+        self.native = native.enabled()
 
     def register_maker(self, maker) -> str:
         self.makers += 1

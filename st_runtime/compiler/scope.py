@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from itertools import compress
+from operator import attrgetter
 
 from .. import ast
 from ..objects import is_aggregate
@@ -129,24 +130,50 @@ def _nodes(node) -> list:
 
 
 def _listed(node) -> list:
-    """`_nodes(node)`, listed."""
+    """`_nodes(node)`, listed: a stack of what is still to list, each item taken as its
+    class says (`_HOW`).  A node's child fields go on as they are, in order (so they come
+    off from the last), a tuple among them whole: its items go on when it comes off,
+    where they would have gone on had they been pushed then (nothing above it is left)."""
     out = []
     stack = [node]
-    pop, push, extend, add = stack.pop, stack.append, stack.extend, out.append
-    Node, fields = ast.Node, ast.CHILD_FIELDS
+    pop, push, extend, add, how = stack.pop, stack.append, stack.extend, out.append, _HOW
     while stack:
         n = pop()
-        if isinstance(n, Node):
+        children = how[type(n)]
+        if children is _LEAF:
             add(n)
-            for name in fields[type(n)]:
-                value = getattr(n, name)
-                if isinstance(value, Node):
-                    push(value)
-                elif isinstance(value, tuple):      # (its items now: the same order as later)
-                    extend(reversed(value))
-        elif isinstance(n, tuple):
+        elif children is _TUPLE:
             extend(reversed(n))
+        elif children is _SKIP:
+            continue
+        elif type(children) is str:     # (one child field)
+            add(n)
+            push(getattr(n, children))
+        else:
+            add(n)
+            extend(filter(None, children(n)))     # (None and empty tuples hold no node)
     return out
+
+
+_LEAF, _TUPLE, _SKIP = object(), object(), object()
+
+
+class _Listing(dict):
+    """class -> how `_listed` takes an item of it: a node without child fields is a leaf;
+    a tuple's items are listed; a node's one child field is named, its two or more are
+    read by one `attrgetter` (in C); anything else (None, a name) holds no node."""
+
+    def __missing__(self, cls: type):
+        if issubclass(cls, ast.Node):
+            fields = ast.CHILD_FIELDS[cls]
+            how = _LEAF if not fields else fields[0] if len(fields) == 1 else attrgetter(*fields)
+        else:
+            how = _TUPLE if issubclass(cls, tuple) else _SKIP
+        self[cls] = how
+        return how
+
+
+_HOW: dict[type, object] = _Listing()
 
 
 def root_name(e) -> str | None:

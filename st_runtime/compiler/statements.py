@@ -40,7 +40,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import (aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, kernels, native,
+from .optimise import (aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, kernels,
                        pivots, ranges, reads, reuse, scalars, seal, shortcut, stores, sums, unguard, unroll)
 from .optimise import branched, may_reuse
 from .pysrc import Emitter, pyliteral, pyident
@@ -145,7 +145,7 @@ class BodyCompiler(ExprCompiler):
             charges.settle(o.lines, start)
         if self.opt.seal:
             seal.hoist(o.lines, start)
-        if self.opt.kernels and native.enabled():
+        if self.opt.kernels and self.unit.native:
             kernels.replace(o.lines, start, self.unit.register_constant, self.unit.namespace.__setitem__)
         return o.source()
 

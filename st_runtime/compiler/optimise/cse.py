@@ -31,7 +31,7 @@ from dataclasses import replace
 
 from ... import ast
 from ..scope import walk
-from . import TEMP_NAME, fuse, native, vector
+from . import TEMP_NAME, fuse, vector
 
 _READ = re.compile(r"[A-Za-z_]\w*\[\d+\]")
 _NUMBER = re.compile(r"-?\(?-?\d[\d.e+-]*\)?")
@@ -182,7 +182,7 @@ def vector_hooks(compiler, region):
         return None
     return (vector.float_names(compiler, region), compiler.unit.register_constant,
             vector.region_elements(compiler, region),
-            compiler.unit.namespace.__setitem__ if compiler.opt.native and native.enabled() else None)
+            compiler.unit.namespace.__setitem__ if compiler.opt.native and compiler.unit.native else None)
 
 
 def _needed_reads(region, block: list[str]) -> list[tuple[str, str]]:
