@@ -114,10 +114,20 @@ def test_the_pass_makes_one_kernel_of_the_wave_loop():
                                      "    v_COMPONENT = (_t16 + 1 if 1 <= _t16 else 1)", *AFTER]
 
 
+def _kernel_answers(after, bound, row):
+    """What the kernel of the first line of `after` returns for `row` (PARAMS' values)."""
+    kernel, arguments = re.fullmatch(r"_kr = (\w+)\((.*)\)", after[0]).groups()
+    values = dict(zip(PARAMS, row))
+    return bound[kernel](*(values[name] for name in arguments.split(", ")))
+
+
 def test_the_kernel_gives_pythons_values_bit_for_bit():
     rng = random.Random(17)
     rows = [_row(rng, rng.randint(1, 8)) for _ in range(300)]
     assert _mismatches(rows) == []
+    after, bound = _passed(WAVE + AFTER)
+    _function(after, bound)(*rows[0])                     # the first call builds the kernel
+    assert all(type(_kernel_answers(after, bound, row)) is list for row in rows)    # computed, not None
 
 
 def test_special_values_take_the_loop_in_python():
@@ -184,3 +194,14 @@ def test_the_kernels_sin_and_cos_are_the_functions_math_calls():
     symbols = loops.libm_symbols()
     assert {name: ctypes.c_void_p.from_address(base + slot).value for name, slot in slots.items()} == \
         {"sin": symbols["sin"], "cos": symbols["cos"]}
+
+
+def test_an_interpreter_whose_ranges_lie_elsewhere_runs_the_loop_in_python(monkeypatch):
+    """Where ints or ranges are not CPython 3.11's, the kernel answers None on every call."""
+    assert loops.ranges_are_cpythons()
+    monkeypatch.setattr(loops, "ranges_are_cpythons", lambda: False)
+    after, bound = _passed(WAVE + AFTER)
+    row = _row(random.Random(3), 4)
+    got = _function(after, bound)(*row)
+    assert _same(_function(WAVE + AFTER, dict(NAMESPACE))(*row), got)
+    assert _kernel_answers(after, bound, row) is None        # the kernel the first call bound

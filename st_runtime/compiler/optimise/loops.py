@@ -47,7 +47,6 @@ Off without llvmlite or with `ST_RUNTIME_NATIVE=0` (native.enabled), and by its 
 from __future__ import annotations
 
 import ast
-import ctypes
 import functools
 import re
 
@@ -339,14 +338,38 @@ def libm_symbols() -> dict[str, int]:
     `sin` and `cos` as the dynamic linker resolves them for the whole process (`dlsym` of
     the global scope: the math module's calls of `sin` and `cos` go through the same
     resolution, so the same function, the same CPU variant of glibc's IFUNC)."""
+    import ctypes
+
     process = ctypes.CDLL(None)
     return {"sin": ctypes.cast(process.sin, ctypes.c_void_p).value,
             "cos": ctypes.cast(process.cos, ctypes.c_void_p).value,
             "PyLong_Type": id(int), "PyRange_Type": id(range)}
 
 
+@functools.cache
+def ranges_are_cpythons() -> bool:
+    """Whether a range's start, stop and step and a small int's size and first digit lie where
+    the kernels read them (CPython 3.11; 3.12 keeps an int's size as a tag, and a kernel
+    there would answer None on every call)."""
+    import ctypes
+
+    r = range(1, 37, 1)
+    word = ctypes.c_void_p.from_address
+    return (word(id(r) + _RANGE_START).value == id(r.start) and word(id(r) + _RANGE_STOP).value == id(r.stop)
+            and word(id(r) + _RANGE_STEP).value == id(r.step)
+            and ctypes.c_int64.from_address(id(r.stop) + native._SIZE).value == 1
+            and ctypes.c_uint32.from_address(id(r.stop) + _DIGIT).value == 37)
+
+
+#: The kernel where this interpreter's ints or ranges are not where the kernels read: None.
+_NONE = (native._DECLARATIONS + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
+         "  call void @Py_IncRef(ptr @stgen_none)\n  ret ptr @stgen_none\n}\n")
+
+
 def _ir_of(loop: _Loop):
     def ir() -> str:
+        if not ranges_are_cpythons():
+            return _NONE
         native._machine()
         for symbol, address in libm_symbols().items():
             native._llvm.add_symbol(symbol, address)
