@@ -48,6 +48,7 @@ from __future__ import annotations
 
 import ast
 import functools
+import itertools
 import re
 
 from . import native
@@ -382,14 +383,14 @@ def replace(lines: list[str], start: int, register, bind) -> None:
     kernel call.  `register(value)`: the namespace name bound to a value; `bind(name,
     value)` rebinds it (the kernel in place of its first call)."""
     body = lines[start:]
-    if not any("_m_sin(" in line or "_m_cos(" in line for line in body):
-        return
-    for n in reversed(range(len(body))):              # from the last: the indices stay true
-        found = _FOR.match(body[n])
-        if found is not None:
-            new = _kernel_loop(body, n, found, register, bind)
-            if new is not None:
-                lines[start + n:start + n + new[0]] = new[1]
+    text = "\n".join(body)
+    if "_m_sin(" not in text and "_m_cos(" not in text:
+        return              # (one C search a body: no Python loop over the lines of a load)
+    found = list(map(_FOR.match, body))
+    for n in reversed(list(itertools.compress(range(len(body)), found))):    # from the last: the indices stay true
+        new = _kernel_loop(body, n, found[n], register, bind)
+        if new is not None:
+            lines[start + n:start + n + new[0]] = new[1]
 
 
 def _kernel_loop(body: list[str], n: int, found, register, bind):
