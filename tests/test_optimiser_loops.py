@@ -205,3 +205,12 @@ def test_an_interpreter_whose_ranges_lie_elsewhere_runs_the_loop_in_python(monke
     got = _function(after, bound)(*row)
     assert _same(_function(WAVE + AFTER, dict(NAMESPACE))(*row), got)
     assert _kernel_answers(after, bound, row) is None        # the kernel the first call bound
+
+
+def test_a_loop_of_sums_without_sin_or_cos_is_left():
+    """The pass takes loops that call SIN or COS; a body that calls them elsewhere does not
+    make its other loops kernels."""
+    sums = ["for v_I in _t5:", "    _t6 = v_I - 1", "    v_S = (v_S + (v_A[_t6] * v_A[_t6]))", "else:",
+            "    v_I = (_t7 + 1 if 1 <= _t7 else 1)"]
+    lines = sums + ["v_X = _m_sin(v_S)", "v_DONE = (v_S, v_I)"]
+    assert _passed(lines)[0] == lines

@@ -58,6 +58,7 @@ from .kernels import _first_call
 _FOR = re.compile(r"( *)for (v_\w+) in (_t\d+):\Z")
 _INDEX = re.compile(r" *(_t\d+) = (v_\w+) - 1\Z")
 _ASSIGN = re.compile(r" *([A-Za-z_]\w*) = (.+)\Z")
+_LIBM = re.compile(r"_m_(?:sin|cos)\(")
 _BINARY = {ast.Add: "fadd", ast.Sub: "fsub", ast.Mult: "fmul"}
 _CALLS = {"_m_sin": "sin", "_m_cos": "cos"}
 _GUARDED = {"_m_sin": "_sf_SIN", "_m_cos": "_sf_COS"}
@@ -406,8 +407,8 @@ def _kernel_loop(body: list[str], n: int, found, register, bind):
     while after < len(body) and body[after].startswith(inner):
         after += 1
     index = _INDEX.match(body[n + 1]) if n + 1 < end else None
-    if index is None or index.group(2) != variable:
-        return None
+    if index is None or index.group(2) != variable or not any(map(_LIBM.search, body[n + 2:end])):
+        return None         # (a loop without SIN or COS: `kernels`' runs are its kind of work)
     loop = _Loop(variable, index.group(1))
     try:
         assignments = []
