@@ -24,9 +24,9 @@ A loop qualifies when it runs over a name (the range the compiler made), its fir
 `_tI = v_X - 1` and the rest are assignments of plain names of fully parenthesised `+ - *`,
 unary minus, float literals, names, elements `L[_tI]`, walrus temporaries, `_m_sin(x)` and
 `_m_cos(x)` (math.sin and math.cos), the compiler's finite test of a name and the SIN or
-COS it guards; it has an `else` (the loop variable's value after it) and no line of the
-body outside the loop names its temporaries (`_tI`, the walrus targets, the finite tests,
-each name it sets that is not a float): the kernel returns only the float names it sets.
+COS it guards; it calls SIN or COS, has an `else` (the loop variable's value after it), and
+no line of the body outside the loop names its temporaries (`_tI`, the walrus targets, the
+finite tests): the kernel returns the names it sets that the rest of the body names.
 
 Exactness: `+ - *` are the IEEE-754 instructions on the same operands in the same order
 (native.py: no fast-math flags, no FMA); `sin` and `cos` are called in the C library the
