@@ -140,7 +140,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   # session 20: array copies through one slice, FOR ranges from the tables
                   "tests/test_compiler_array_copies.py", "tests/test_compiler_for_ranges.py",
                   # session 21: the kernels pass's own tests (skipped without llvmlite)
-                  "tests/test_optimiser_kernels.py"]),
+                  "tests/test_optimiser_kernels.py",
+                  # session 22: the loops pass's own tests (skipped without llvmlite)
+                  "tests/test_optimiser_loops.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",

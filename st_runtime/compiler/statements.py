@@ -40,7 +40,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import (aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, kernels,
+from .optimise import (aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, kernels, loops,
                        pivots, ranges, reads, reuse, scalars, seal, shortcut, stores, sums, unguard, unroll)
 from .optimise import branched, may_reuse
 from .pysrc import Emitter, pyliteral, pyident
@@ -147,6 +147,8 @@ class BodyCompiler(ExprCompiler):
             seal.hoist(o.lines, start)
         if self.opt.kernels and self.unit.native:
             kernels.replace(o.lines, start, self.unit.register_constant, self.unit.namespace.__setitem__)
+        if self.opt.loops and self.unit.native:
+            loops.replace(o.lines, start, self.unit.register_constant, self.unit.namespace.__setitem__)
         return o.source()
 
     def _body(self) -> None:

@@ -182,6 +182,11 @@ states bit for bit:
   of machine code LLVM compiles from it (native.py, by its first call), which returns the
   values only when every argument is a float and every value computed is finite, else
   None, and then the lines run in Python as written.  Off as `native` is.
+* `loops` (loops.py): in a fast copy, a FOR loop of float sums over `L[i]` elements with SIN
+  and COS (TRJ_OceanWave's components) is one call of machine code LLVM compiles from its
+  body, `sin` and `cos` the C library's functions math.sin and math.cos call; the values
+  only when the range, lists, elements and every value are as the kernel needs (floats,
+  finite), else None and the loop runs in Python as written.  Off as `native` is.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -317,6 +322,7 @@ class Optimisations:
     pivots: bool = True
     native: bool = True
     kernels: bool = True
+    loops: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
