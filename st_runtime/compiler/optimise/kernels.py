@@ -242,8 +242,10 @@ class _Span:
         self.read_later: set[str] = set()        # names the deferred statements read
         self.targets: set[str] = {_CHARGE}       # names the deferred statements set (and the charge)
         self.end = first
+        if not self._assign(matches[first].group(2), matches[first].group(3)):
+            return                               # (a span starts with a run line)
         pending: list[tuple] = []                # deferred since the last run line or finite test
-        i = first
+        i = self.end = first + 1
         while i < len(body):
             match = matches[i]
             if match is not None and match.group(1) == self.indent and self._assign(match.group(2), match.group(3)):
@@ -309,10 +311,9 @@ class _Span:
         no run line reads or sets."""
         stores, reads, targets = [], set(), set()
         for line in lines:
-            tokens = _SAFE_TOKEN.findall(line)
-            if "".join(map(_text, tokens)) != line.replace(" ", ""):
+            words = _words(line)
+            if words is None:
                 return None
-            words = [(t[1], t[2]) if t[1] else t[0] or t[3] for t in tokens]
             if words[0] in (("if", ""), ("elif", "")) and words[-1] == ":":
                 expression = words[1:-1]
             elif words == [("else", ""), ":"]:
@@ -357,6 +358,16 @@ class _Span:
             elif word not in ("(", ")", "<", ">", "<=", ">=", "==", "!=", "-") and not word[0].isdigit():
                 return False
         return bool(words)
+
+
+@functools.lru_cache(maxsize=8192)
+def _words(line: str):
+    """A line's tokens: (name, index or "") for a name or a list element, else the text;
+    None when the line holds anything else.  Kept by text, as `_tree`."""
+    tokens = _SAFE_TOKEN.findall(line)
+    if "".join(map(_text, tokens)) != line.replace(" ", ""):
+        return None
+    return [(t[1], t[2]) if t[1] else t[0] or t[3] for t in tokens] or None
 
 
 def _text(token: tuple) -> str:
