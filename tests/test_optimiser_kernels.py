@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import random
+import re
 import struct
 
 import pytest
@@ -98,10 +99,13 @@ def _register(bound):
     return register
 
 
-def _passed(lines):
-    after, bound = list(lines), {"_m_sqrt": math.sqrt}
+def _passed(lines, read_after=True):
+    """The pass's lines; with `read_after`, as if a line after them read every name they set
+    (the kernel returns them all: the tests compare every local), that line left out."""
+    names = dict.fromkeys(line.split(" = ")[0].strip() for line in lines if re.match(r" *\w+ = ", line))
+    after, bound = list(lines) + [f"_live = ({', '.join(names)},)"] * read_after, {"_m_sqrt": math.sqrt}
     kernels.replace(after, 0, _register(bound), bound.__setitem__)
-    return after, bound
+    return after[:len(after) - read_after], bound
 
 
 def _same(want, got) -> bool:
@@ -387,3 +391,18 @@ WRONG_PASS = {
 @pytest.mark.parametrize("wrong", WRONG_PASS, ids=WRONG_PASS.keys())
 def test_a_wrong_span_fails_a_row(wrong):
     assert _legs_mismatches(LEGS, list(_legs_rows(random.Random(7))), WRONG_PASS[wrong])
+
+
+def test_the_kernel_returns_only_the_names_read_after_it():
+    """Without a line after them reading every name, IK's kernel returns the two names read
+    after it (leg 1's position, stored on its path; leg 2's, stored after the span)."""
+    after, bound = _passed(IK, read_after=False)
+    path = after[after.index("else:") + 1:]
+    assert path == ["    _c64, _c89, = _kr", "    v_DONE = True", "    v_POSITION[0] = _c64", "v_POSITION[1] = _c89"]
+    python = _function(IK, IK_INPUTS + ("v_POSE",), {"_m_sqrt": math.sqrt})
+    kernel = _function(after, IK_INPUTS + ("v_POSE",), bound)
+    read = ("_c64", "_c89", "v_DONE", "v_POSITION")
+    for k, row in enumerate(_ik_arguments(random.Random(3))):
+        want, got = python(*row), kernel(*row)
+        assert _same({name: want[name] for name in read}, {name: got[name] for name in read})
+        assert k >= 100 or "v_R11" not in got                  # (ordinary rows: the kernel answered)

@@ -37,6 +37,7 @@ Off without llvmlite or with `ST_RUNTIME_NATIVE=0` (native.enabled), and by its 
 
 from __future__ import annotations
 
+import collections
 import functools
 import itertools
 import re
@@ -47,6 +48,7 @@ MIN_OPERATIONS = 16      # a crossing costs about as much as a dozen float opera
 #: A line that may qualify: `name = ` and only the characters of the forms above.
 _CANDIDATE = re.compile(r"( *)([A-Za-z_]\w*) = ([\w.()+*\[\] -]+)\Z")
 _TOKEN = re.compile(r" *(?:(\d+\.\d*(?:e[+-]?\d+)?|\d+e[+-]?\d+)|([A-Za-z_]\w*)|(\d+)|(\S))")
+_NAME = re.compile(r"(?<![\w.])[A-Za-z_]\w*")
 _NOT_NAMES = frozenset({"True", "False", "None", "_m_sqrt", "_kr"})
 
 
@@ -204,16 +206,27 @@ def replace(lines: list[str], start: int, register, bind) -> None:
     if text.count("*") + text.count("+") + text.count("-") + text.count("_m_sqrt(") < MIN_OPERATIONS:
         return          # (each operation of a run but a unary minus shows one of these: too few)
     matches = list(map(_CANDIDATE.match, body))               # (one C loop over every line)
-    spans, end = [], 0
+    spans, end, mentions = [], 0, None
     for i in itertools.compress(range(len(matches)), matches):
         if i < end:
             continue
         span = _Span(body, matches, i)
         end = max(span.end, i + 1)
         if sum(op[1] != "neg" for op in span.run.ops) >= MIN_OPERATIONS:
-            spans.append((start + i, start + span.end, _call(body[i:span.end], span, register, bind)))
+            mentions = mentions or collections.Counter(_NAME.findall("\n".join(body)))
+            live = _read_after(span, body[i:span.end], mentions)
+            spans.append((start + i, start + span.end, _call(body[i:span.end], span, live, register, bind)))
     for i, j, new in reversed(spans):          # from the last: the indices stay true
         lines[i:j] = new
+
+
+def _read_after(span, original: list[str], mentions: collections.Counter) -> list[str]:
+    """The names the span sets that a line outside it or a statement it keeps names (the
+    others are never read again: the kernel need not return them); at least one."""
+    inside = collections.Counter(_NAME.findall("\n".join(original)))
+    kept = set(_NAME.findall("\n".join(line for lines in span.kept for line in lines)))
+    names = list(span.run.assigned)
+    return [name for name in names if mentions[name] > inside[name] or name in kept] or names[-1:]
 
 
 #: `if (not (x < 1e309 and x > -1e309)):`, the compiler's test that a REAL is finite.
@@ -384,10 +397,10 @@ def _elements(tree):
             yield from _elements(operand)
 
 
-def _call(original: list[str], span: _Span, register, bind) -> list[str]:
-    """The lines that call the span's kernel, with `original` where it returns None."""
+def _call(original: list[str], span: _Span, targets: list[str], register, bind) -> list[str]:
+    """The lines that call the span's kernel, returning `targets`, with `original` where it
+    returns None."""
     run, indent = span.run, span.indent
-    targets = list(run.assigned)
     outputs = [run.env[t] for t in targets]
     arguments, distinct = run.finished(span.stored)
     kernel = register(None)
