@@ -406,3 +406,28 @@ def test_the_kernel_returns_only_the_names_read_after_it():
         want, got = python(*row), kernel(*row)
         assert _same({name: want[name] for name in read}, {name: got[name] for name in read})
         assert k >= 100 or "v_R11" not in got                  # (ordinary rows: the kernel answered)
+
+
+MIXED = """
+FUNCTION Mix : LREAL
+VAR_INPUT A, B : LREAL; N : DINT; END_VAR
+VAR P, Q, R, Y : LREAL; M : {m}; END_VAR
+M := N + 1;
+P := (A * B + A - B) * (A + 2.5) - B * B;
+Q := (P * A - B * 0.5) * (P + B) + A * A;
+R := (Q * P + A) * (Q - B) - P * 3.0 + M * 1.5;
+Y := R * A + Q * B - P * A;
+Mix := Y * R + Q;
+END_FUNCTION
+"""
+
+
+@pytest.mark.parametrize("m, kernels_made", [("LREAL", 1), ("DINT", 0)])
+def test_a_run_reading_a_declared_int_makes_no_kernel(m, kernels_made):
+    """26 operations in one run; with M a DINT (a Python int: the kernel would answer None at
+    every call) the lines before it (13) and after it (6) are too short for a kernel."""
+    from st_runtime import api
+    from st_runtime.compiler import compile_program
+
+    compiled = compile_program(api.load_text(MIXED.format(m=m)).program)
+    assert compiled.python_sources["MIX"].count("_kr = ") == kernels_made

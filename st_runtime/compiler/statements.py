@@ -146,7 +146,8 @@ class BodyCompiler(ExprCompiler):
         if self.opt.seal:
             seal.hoist(o.lines, start)
         if self.opt.kernels and native.enabled():
-            kernels.replace(o.lines, start, self.unit.register_constant, self.unit.namespace.__setitem__)
+            kernels.replace(o.lines, start, self.unit.register_constant, self.unit.namespace.__setitem__,
+                            kernels.not_floats(self.scope.places))
         return o.source()
 
     def _body(self) -> None:

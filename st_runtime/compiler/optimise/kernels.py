@@ -197,10 +197,12 @@ class _Run:
         return held
 
 
-def replace(lines: list[str], start: int, register, bind) -> None:
+def replace(lines: list[str], start: int, register, bind, not_float=None) -> None:
     """Replace the qualifying spans in `lines[start:]` (a body's finished lines) by a kernel
     call each.  `register(value)`: the namespace name bound to a value; `bind(name, value)`
-    rebinds it (the kernel in place of its first call)."""
+    rebinds it (the kernel in place of its first call); `not_float(name, element)`: whether
+    a name (an element of it) is declared of a type other than REAL/LREAL (`not_floats`),
+    read by no run line: its kernel would answer None at every call."""
     body = lines[start:]
     text = "".join(body)
     if text.count("*") + text.count("+") + text.count("-") + text.count("_m_sqrt(") < MIN_OPERATIONS:
@@ -210,7 +212,7 @@ def replace(lines: list[str], start: int, register, bind) -> None:
     for i in itertools.compress(range(len(matches)), matches):
         if i < end:
             continue
-        span = _Span(body, matches, i)
+        span = _Span(body, matches, i, not_float)
         end = max(span.end, i + 1)
         if sum(op[1] != "neg" for op in span.run.ops) >= MIN_OPERATIONS:
             mentions = mentions or collections.Counter(_NAME.findall("\n".join(body)))
@@ -246,8 +248,9 @@ class _Span:
     stops before the first line that is none of these, or that would read or change what a
     line before or after it must see; it ends after its last run line or finite test."""
 
-    def __init__(self, body: list[str], matches: list, first: int):
+    def __init__(self, body: list[str], matches: list, first: int, not_float=None):
         self.run = _Run()
+        self.not_float = not_float
         self.indent = matches[first].group(1)
         self.kept: list[list[str]] = []          # the deferred statements' lines, in order
         self.stored: dict[str, set] = {}         # list -> indices the kept statements store into
@@ -306,7 +309,8 @@ class _Span:
         if parsed is None or target in self.read_later or target in self.targets:
             return False
         tree, floats, lists = parsed
-        if floats & self.targets:
+        if floats & self.targets or self.not_float is not None and (
+                any(self.not_float(name, False) for name in floats) or any(self.not_float(name, True) for name in lists)):
             return False
         overrides = {element: self.elements[element] for element in _elements(tree) if element in self.elements}
         if None in overrides.values():
@@ -386,6 +390,29 @@ def _words(line: str):
 def _text(token: tuple) -> str:
     number, name, index, char = token
     return f"{name}[{index}]" if index else number or name or char
+
+
+def not_floats(places):
+    """`replace`'s `not_float` for a scope's `places`: a variable (or an array's element) of a
+    declared type other than REAL/LREAL; a name no place has (a compiler temporary) is not
+    known to be one."""
+    from ...types import ArrayType, resolve_alias
+    from ..exprs import is_real
+
+    symbols = {}
+
+    def not_float(name: str, element: bool) -> bool:
+        if not symbols:
+            symbols.update((place.name, place) for place in places.values())
+            symbols.setdefault("", None)
+        place = symbols.get(name)
+        if place is None:
+            return False
+        t = resolve_alias(place.symbol.type)
+        if element:
+            return not (isinstance(t, ArrayType) and is_real(t.element))
+        return not is_real(t)
+    return not_float
 
 
 def _elements(tree):
