@@ -431,3 +431,27 @@ def test_a_run_reading_a_declared_int_makes_no_kernel(m, kernels_made):
 
     compiled = compile_program(api.load_text(MIXED.format(m=m)).program)
     assert compiled.python_sources["MIX"].count("_kr = ") == kernels_made
+
+
+BETWEEN = {          # a statement between leg 1 and leg 2 -> whether the span goes on across it
+    "v_DONE = (True if ((_c64 >= 0.0) and (_c64 <= -1.5)) else False)": True,
+    "_spent += 1196": True,
+    "v_DONE = (not -1.5)": True,
+    "v_POSITION[0] = _c64": True,
+    "if (not v_POSITION[0]):": False,                      # (a test of an element not stored)
+    "v_DONE = ((_c64 - 1.0) > 0.0)": False,                # arithmetic (an int's could raise)
+    "v_DONE = _c64(1.0)": False,                           # a call
+    "if _ctx.budget < _spent: _overrun(1)": False,         # a budget check
+    "v_DONE = (v_OTHER > 0.0)": False,                     # a name the run does not compute
+    "v_U = True": False,                                   # a name the run sets again after
+    "_c36 = True": False,                                  # a name the run reads after
+    "_spent += 1.5": False,
+    "v_DONE = (v_POSE[0] > 0.0)": False,
+}
+
+
+@pytest.mark.parametrize("between", BETWEEN)
+def test_a_span_goes_on_across_a_statement_only_where_it_may_run_after(between):
+    lines = IK[12:28] + [between] + IK[29:36]
+    after, _ = _passed(lines)
+    assert after.count("if _kr is None:") == (1 if BETWEEN[between] else 2)

@@ -359,10 +359,13 @@ class _Span:
         return lines, stores
 
     def _safe(self, words: list, reads: set) -> bool:
-        """Whether the expression `words` is a test as `_defer` describes (its names into `reads`)."""
-        for word in words:
+        """Whether the expression `words` is a test as `_defer` describes (its names into
+        `reads`): no call (a name before `(`), a minus only the sign of a number."""
+        for previous, word, following in zip([""] + words, words, words[1:] + [""]):
             if isinstance(word, tuple):
                 name, index = word
+                if following == "(" and name not in _KEYWORDS:
+                    return False
                 if index:
                     if (name, int(index)) not in self.elements:
                         return False
@@ -372,7 +375,12 @@ class _Span:
                     reads.add(name)
                 else:
                     return False
-            elif word not in ("(", ")", "<", ">", "<=", ">=", "==", "!=", "-") and not word[0].isdigit():
+            elif word == "-":
+                operand_before = (previous[0] not in _KEYWORDS if isinstance(previous, tuple)
+                                  else previous == ")" or previous[:1].isdigit())
+                if operand_before or isinstance(following, tuple) or not following[:1].isdigit():
+                    return False
+            elif word not in ("(", ")", "<", ">", "<=", ">=", "==", "!=") and not word[0].isdigit():
                 return False
         return bool(words)
 
