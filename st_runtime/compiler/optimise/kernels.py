@@ -7,30 +7,46 @@ SP_InverseKinematics' legs are, once unrolled and shared by reuse.py, runs of li
     _c89 = (_m_sqrt((((v_LEGX * v_LEGX) + (v_LEGY * v_LEGY)) + (v_LEGZ * v_LEGZ))) - 1192.63)
 
 each operation a bytecode that makes a float.  This pass, run on a body's finished lines,
-replaces each run of at least `MIN_OPERATIONS` consecutive such lines at one indentation by
+replaces each span of runs with at least `MIN_OPERATIONS` operations in all by
 
-    _kr = _k7(v_POSE, v_R11, v_R12, ...)
+    _kr = _k7(v_POSE, v_R11, v_R12, ..., v_POSITION)
     if _kr is None:
         <the lines as they were>
     else:
         v_U, v_LEGX, _c89, = _kr
+        <the span's statements between its runs, in their order, but its finite tests>
 
-where `_k7` is machine code LLVM makes from the run (native.run_ir), compiled by its first
-call.  A line qualifies when it assigns a plain name a fully parenthesised `+ - *` or unary
-minus of names, float literals, elements of a list at a literal index (`v_POSE[2]`) and
-`_m_sqrt(...)` (the namespace's `math.sqrt`).
+where `_k7` is machine code LLVM makes from the runs (native.run_ir), compiled by its first
+call.  A run line assigns a plain name a fully parenthesised `+ - *` or unary minus of
+names, float literals, elements of a list at a literal index (`v_POSE[2]`) and
+`_m_sqrt(...)` (the namespace's `math.sqrt`), and reads no variable declared of another
+type than REAL/LREAL (`not_floats`).  A span (`_Span`) goes on across, at its indentation:
+
+* a finite test `if (not (x < 1e309 and x > -1e309)):` (no `else`) of a value the kernel
+  computed: where it answers every such value is finite, so the branch is not taken there;
+* a statement that cannot raise on floats, ints and bools (`_Span._defer`): a store of a
+  run's value or of a test into a list element at a literal index, a test's `if`/`else`,
+  a charge `_spent += <int>`, an assignment of a test to a name no run line reads or sets.
+  Where the kernel answers these run after it, in their order; a run line that would read
+  or change what one of them reads or sets ends the span before it (a run line reading an
+  element stored in the span reads the run's value stored there, any other ends it).  The
+  kernel checks each list stored into is a list long enough and no other list it reads, so
+  no store can raise or change what it read.  No budget check is such a statement: the
+  charges total the same on every path and no fault can fire in between.
 
 Exactness: each operation is the IEEE-754 binary64 instruction on the same operands in the
 same order (`fmul`/`fadd`/`fsub`/`fneg`, no fast-math flags, no FMA: see native.py), and
 `llvm.sqrt.f64` is correctly rounded, as `math.sqrt` is (IEEE-754 requires both).  The
-kernel returns the values only when every argument is what the lines read as a float (a
-Python float, a list long enough whose elements are floats) and every value it computed is
-finite; otherwise None, and the lines run in Python as written, so an int operand, a short
-list (its IndexError), a negative SQRT argument (its ValueError), an inf or a NaN (whose sign
-or payload could differ) all take today's code, statement for statement.  The arguments are
-read before the run instead of where the lines read them: nothing in the run stores
-anything but its own local names, so each reads what the lines would have read.  Every name
-the run assigns gets its last value, as after the lines.
+kernel returns the values only when every argument is what the lines read (a Python float,
+a list long enough whose elements it reads are floats, lists stored into distinct from the
+others) and every value it computed is finite; otherwise None, and the lines run in Python
+as written, so an int operand, a short list (its IndexError), a negative SQRT argument (its
+ValueError), an inf or a NaN (whose sign or payload could differ) all take today's code,
+statement for statement.  The arguments are read before the span instead of where the lines
+read them: nothing in it stores anything the runs read but their own local names and the
+elements they then read as the values stored, so each reads what the lines would have read.
+The kernel returns the names the span sets that a line outside it or a statement it keeps
+names, each with its last value, as after the lines (the others are never read again).
 
 Off without llvmlite or with `ST_RUNTIME_NATIVE=0` (native.enabled), and by its switch.
 """
