@@ -226,7 +226,7 @@ def replace(lines: list[str], start: int, register, bind, not_float=None) -> Non
     matches = list(map(_CANDIDATE.match, body))               # (one C loop over every line)
     spans, end, mentions = [], 0, None
     for i in itertools.compress(range(len(matches)), matches):
-        if i < end:
+        if i < end or _tree(matches[i].group(3)) is None:      # (a span starts with a run line)
             continue
         span = _Span(body, matches, i, not_float)
         end = max(span.end, i + 1)
@@ -328,7 +328,8 @@ class _Span:
         if floats & self.targets or self.not_float is not None and (
                 any(self.not_float(name, False) for name in floats) or any(self.not_float(name, True) for name in lists)):
             return False
-        overrides = {element: self.elements[element] for element in _elements(tree) if element in self.elements}
+        overrides = {element: self.elements[element] for element in _elements(tree)
+                     if element in self.elements} if self.elements else {}
         if None in overrides.values():
             return False
         return self.run.assign(target, text, overrides)
@@ -423,9 +424,15 @@ def not_floats(places):
     from ...types import ArrayType, resolve_alias
     from ..exprs import is_real
 
-    symbols = {}
+    symbols, known = {}, {}
 
     def not_float(name: str, element: bool) -> bool:
+        answer = known.get((name, element))
+        if answer is None:
+            answer = known[name, element] = _declared_not_float(name, element)
+        return answer
+
+    def _declared_not_float(name: str, element: bool) -> bool:
         if not symbols:
             symbols.update((place.name, place) for place in places.values())
             symbols.setdefault("", None)
