@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import random
+import re
 import struct
 
 import pytest
@@ -98,10 +99,13 @@ def _register(bound):
     return register
 
 
-def _passed(lines):
-    after, bound = list(lines), {"_m_sqrt": math.sqrt}
+def _passed(lines, read_after=True):
+    """The pass's lines; with `read_after`, as if a line after them read every name they set
+    (the kernel returns them all: the tests compare every local), that line left out."""
+    names = dict.fromkeys(line.split(" = ")[0].strip() for line in lines if re.match(r" *\w+ = ", line))
+    after, bound = list(lines) + [f"_live = ({', '.join(names)},)"] * read_after, {"_m_sqrt": math.sqrt}
     kernels.replace(after, 0, _register(bound), bound.__setitem__)
-    return after, bound
+    return after[:len(after) - read_after], bound
 
 
 def _same(want, got) -> bool:
@@ -136,15 +140,17 @@ def _ik_arguments(rng):
     return [(*values, pose) for values, pose in _ik_rows(rng)]
 
 
-def test_the_pass_makes_kernels_of_the_float_runs_only():
+def test_the_pass_makes_one_kernel_across_the_stores_and_the_assignment_between():
+    """The rotation, `v_DONE = True` and the two legs with a store after each are one span: the
+    assignment and leg 1's store run after the kernel where it answers, leg 2's (after the
+    last run line) stays after the span."""
     after, bound = _passed(IK)
-    assert after.count("if _kr is None:") == 3              # the rotation, leg 1, leg 2 (a store between)
-    assert "v_DONE = True" in after and "v_POSITION[0] = _c64" in after and "v_POSITION[1] = _c89" in after
-    calls = [line for line in after if line.startswith("_kr = ")]
-    assert calls[0] == "_kr = _k0(v_COSALPHA, v_COSBETA, v_SINBETA, v_SINGAMMA, v_SINALPHA, v_COSGAMMA)"
-    assert calls[1] == "_kr = _k1(v_R11, v_R13, v_R12, v_R21, v_R23, v_R22, v_R31, v_R33, v_R32, v_POSE)"
-    assert calls[2] == "_kr = _k2(v_R11, v_R12, _c36, v_R21, v_R22, _c41, v_R31, v_R32, _c46, _c48, _c51, _c56)"
-    assert after[-3:] == ["else:", "    v_U, v_V, v_W, v_LEGX, v_LEGY, v_LEGZ, _c89, = _kr", "v_POSITION[1] = _c89"]
+    assert after.count("if _kr is None:") == 1
+    assert after[0] == ("_kr = _k0(v_COSALPHA, v_COSBETA, v_SINBETA, v_SINGAMMA, v_SINALPHA, v_COSGAMMA,"
+                        " v_POSE, v_POSITION)")
+    assert after[-4:] == ["    v_R11, _c16, v_R12, v_R13, v_R21, _c24, v_R22, v_R23, v_R31, v_R32, v_R33, _c33, _c36,"
+                          " v_U, _c38, _c41, v_V, _c43, _c46, v_W, _c48, v_LEGX, _c51, v_LEGY, _c56, v_LEGZ, _c64,"
+                          " _c89, = _kr", "    v_DONE = True", "    v_POSITION[0] = _c64", "v_POSITION[1] = _c89"]
     assert native.layout_is_cpythons()
 
 
@@ -201,11 +207,11 @@ def test_the_first_call_compiles_and_binds_the_kernel(monkeypatch):
     assert bound["_k0"].__name__ == "first" and written == []
     kernel = _function(after, IK_INPUTS + ("v_POSE",), bound)
     kernel(*(0.5,) * 6, [1.0, 2.0, 3.0])
-    assert len(written) == 3
+    assert len(written) == 1
     kernel(*(0.5,) * 6, [1.0, 2.0, 3.0])
-    assert len(written) == 3
+    assert len(written) == 1
     assert type(bound["_k0"]).__name__ == "builtin_function_or_method"
-    assert bound["_k0"](*(0.5,) * 5, 1) is None                    # an int: the lines run
+    assert bound["_k0"](*(0.5,) * 5, 1, [1.0, 2.0, 3.0], [0.0] * 6) is None      # an int: the lines run
 
 
 def _swap_first_fsub(ir: str) -> str:
@@ -234,3 +240,218 @@ def test_a_wrong_kernel_fails_a_row(wrong, monkeypatch):
     ik = _mismatches(IK, IK_INPUTS + ("v_POSE",), _ik_arguments(random.Random(5)))
     signed = _mismatches(SIGNED, ("v_A", "v_B"), [(1.0, 3.0), (-2.0, 0.5), (3.0, 1.0)])
     assert ik or signed
+
+
+#: SP_InverseKinematics' legs 1 and 2 as the compiler writes them on the wave: each leg's run,
+#: its store, its finite test (a charge, `AllFinite := FALSE`) and its in-stroke test (a store
+#: into another list, a test of it, charges); the rotation's values are the inputs.
+LEGS = IK[12:29] + """\
+if (not (_c64 < 1e309 and _c64 > -1e309)):
+    _spent = 795938
+    v_ALLFINITE = False
+v_LEGINSTROKE[0] = (True if ((_c64 >= 0.0) and (_c64 <= 600.0)) else False)
+if (not v_LEGINSTROKE[0]):
+    _spent += 83720
+    v_ALLINSTROKE = False
+else:
+    _spent += 82524""".splitlines() + IK[29:37] + """\
+if (not (_c89 < 1e309 and _c89 > -1e309)):
+    _spent += 1196
+    v_ALLFINITE = False
+v_LEGINSTROKE[1] = (True if ((_c89 >= 0.0) and (_c89 <= 600.0)) else False)
+if (not v_LEGINSTROKE[1]):
+    _spent += 1196
+    v_ALLINSTROKE = False""".splitlines()
+LEGS_INPUTS = ("v_R11", "v_R12", "v_R13", "v_R21", "v_R22", "v_R23", "v_R31", "v_R32", "v_R33", "v_POSE",
+               "v_POSITION", "v_LEGINSTROKE")
+LEGS_STATE = "_spent = 794742; v_ALLFINITE = True; v_ALLINSTROKE = True"
+
+#: A store into a list the span reads again, at the stored index and at another.
+STORED_AND_READ = """\
+_c1 = ((v_A * v_A) + (v_B * 0.5))
+_c2 = ((_c1 - v_B) * (_c1 + 3.0))
+_c3 = ((_c2 * v_A) - (_c1 * v_B))
+v_P[0] = _c3
+_c4 = ((v_P[0] * 2.0) + (v_P[1] * _c1))
+_c5 = ((_c4 - v_P[0]) * (_c2 + v_P[1]))
+_c6 = (_m_sqrt(((_c5 * _c5) + (_c4 * _c4))) - v_Q[0])
+v_P[1] = _c6
+_c7 = ((v_P[1] * v_P[0]) + v_Q[0])""".splitlines()
+
+
+def _stateful(lines: list[str], params: tuple[str, ...], namespace: dict, state: str = "", copy=True):
+    """`lines` as a function of `params` (lists copied unless not `copy`) returning its locals
+    and the lists."""
+    body = "\n".join("        " + line for line in [state] + lines if line)
+    source = (f"def run({', '.join(params)}):\n    try:\n{body}\n"
+              "    except Exception as exc:\n        return type(exc).__name__\n"
+              "    return {k: v for k, v in locals().items() if k not in ('exc', '_kr')}\n")
+    exec(compile(source, "<kernels test>", "exec"), namespace)
+    run = namespace["run"]
+    return lambda *row: run(*[list(x) if isinstance(x, list) else x for x in row]) if copy else run(*row)
+
+
+def _legs_rows(rng: random.Random):
+    """The rotation of random angles, a pose (ordinary, then with special values), the lists."""
+    for values, pose in _ik_rows(rng):
+        ca, cb, sb, sg, sa, cg = values
+        rotation = [ca * cb, ca * sb * sg - sa * cg, ca * sb * cg + sa * sg, sa * cb, sa * sb * sg + ca * cg,
+                    sa * sb * cg - ca * sg, -sb, cb * sg, cb * cg]
+        yield (*rotation, pose, [0.0] * 6, [False] * 6)
+        yield (*rotation[:8], -1e200 if rng.random() < 0.5 else rotation[8], [p * 10.0 for p in pose], [0.0] * 6,
+               [True] * 6)                     # out of stroke, or a square that overflows
+
+
+def _legs_mismatches(lines, rows, change=lambda after: after) -> list:
+    after, bound = _passed(lines)
+    python = _stateful(lines, LEGS_INPUTS, {"_m_sqrt": math.sqrt}, LEGS_STATE)
+    kernel = _stateful(change(after), LEGS_INPUTS, bound, LEGS_STATE)
+    return [row for row in rows if not _same(python(*row), kernel(*row))]
+
+
+def test_the_legs_are_one_kernel_their_tests_and_charges_after_it():
+    """Both legs are one span: the kernel's path keeps the stores, in-stroke tests and charges
+    in their order and drops the finite tests; the last leg's in-stroke test stays after."""
+    after, _ = _passed(LEGS)
+    assert after.count("if _kr is None:") == 1
+    assert after[0] == ("_kr = _k0(v_R11, v_R13, v_R12, v_R21, v_R23, v_R22, v_R31, v_R33, v_R32, v_POSE,"
+                        " v_POSITION, v_LEGINSTROKE)")
+    path = after[after.index("else:") + 2:]
+    assert path[:8] == ["    v_POSITION[0] = _c64", LEGS[20].join(["    ", ""]), "    if (not v_LEGINSTROKE[0]):",
+                        "        _spent += 83720", "        v_ALLINSTROKE = False", "    else:", "        _spent += 82524",
+                        "    v_POSITION[1] = _c89"]
+    assert path[8:] == LEGS[-4:] and not any("1e309" in line for line in path)
+
+
+def test_the_legs_give_pythons_values_charges_and_flags_bit_for_bit():
+    """Ordinary poses, poses out of stroke and ones with inf, NaN, -0.0, subnormal and huge
+    values: every local (the charge, AllFinite, AllInStroke) and both lists as Python's."""
+    rows = list(_legs_rows(random.Random(7)))
+    python = _stateful(LEGS, LEGS_INPUTS, {"_m_sqrt": math.sqrt}, LEGS_STATE)
+    results = [python(*row) for row in rows]
+    assert {r["v_ALLFINITE"] for r in results} == {True, False}            # both paths of the finite test
+    assert {r["v_ALLINSTROKE"] for r in results} == {True, False}
+    assert _legs_mismatches(LEGS, rows) == []
+
+
+def test_a_list_the_kernel_stores_must_be_a_long_enough_list_of_its_own():
+    """A short list to store into (IndexError on its line), a tuple, and the lists stored into
+    being the one read (`v_POSE`): the lines in Python."""
+    rotation = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
+    pose = [10.0, 20.0, 30.0]
+    rows = [(*rotation, pose, [0.0], [False] * 6), (*rotation, pose, (0.0,) * 6, [False] * 6),
+            (*rotation, pose, [0.0] * 6, [False])]
+    assert _legs_mismatches(LEGS, rows) == []
+    after, bound = _passed(LEGS)
+    python = _stateful(LEGS, LEGS_INPUTS, {"_m_sqrt": math.sqrt}, LEGS_STATE, copy=False)
+    kernel = _stateful(after, LEGS_INPUTS, bound, LEGS_STATE, copy=False)
+    for shared in ([10.0, 20.0, 30.0, 0.0, 0.0, 0.0], [10.0, 20.0, 30.0, False, False, False]):
+        want, got = python(*rotation, list(shared), *[list(shared)] * 2), kernel(*rotation, list(shared), *[list(shared)] * 2)
+        assert _same(want, got)
+        want, got = python(*rotation, *[list(shared)] * 2, [False] * 6), kernel(*rotation, *[list(shared)] * 2, [False] * 6)
+        assert _same(want, got)
+    one = list(shared)
+    assert bound["_k0"](*rotation, one, one, [False] * 6) is None            # v_POSE and v_POSITION one list
+    assert bound["_k0"](*rotation, [1.0] * 3, one, one) is None
+
+
+def test_a_store_into_a_list_the_span_reads_keeps_its_order():
+    rng = random.Random(11)
+    rows = [(rng.uniform(-3, 3), rng.uniform(-3, 3), [rng.uniform(-5, 5), rng.uniform(-5, 5)], [rng.uniform(0, 9)])
+            for _ in range(50)]
+    rows += [(a, b, [1.0, c], [2.0]) for a in (0.5, math.inf, -0.0) for b in (1.0, math.nan) for c in (5e-324, -1e300)]
+    after, bound = _passed(STORED_AND_READ)
+    assert after.count("if _kr is None:") == 1 and after[-2:] == ["    v_P[0] = _c3", "    v_P[1] = _c6"]
+    params = ("v_A", "v_B", "v_P", "v_Q")
+    python = _stateful(STORED_AND_READ, params, {"_m_sqrt": math.sqrt})
+    kernel = _stateful(after, params, bound)
+    assert [row for row in rows if not _same(python(*row), kernel(*row))] == []
+    python = _stateful(STORED_AND_READ, params, {"_m_sqrt": math.sqrt}, copy=False)
+    kernel = _stateful(after, params, bound, copy=False)
+    one, other = [1.0, 2.0], [1.0, 2.0]              # v_Q the list v_P: the store changes v_Q[0]
+    assert _same(python(1.5, 0.5, one, one), kernel(1.5, 0.5, other, other))
+    assert bound["_k0"](1.5, 0.5, one, one) is None
+
+
+def _kernel_path(after: list[str]) -> int:
+    return after.index("else:") + 2
+
+
+WRONG_PASS = {
+    "a store dropped": lambda after: after[:_kernel_path(after)] + after[_kernel_path(after) + 1:],
+    "a store moved after its test": lambda after: (
+        after[:_kernel_path(after) + 1] + after[_kernel_path(after) + 2:_kernel_path(after) + 7]
+        + after[_kernel_path(after) + 1:_kernel_path(after) + 2] + after[_kernel_path(after) + 7:]),
+    "a finite test dropped on the None path": lambda after: [
+        line for k, line in enumerate(after) if not ("1e309" in line or "1e309" in after[k - 1] and "_spent" in line
+                                                     or "1e309" in after[k - 2] and "ALLFINITE" in line)],
+}
+
+
+@pytest.mark.parametrize("wrong", WRONG_PASS, ids=WRONG_PASS.keys())
+def test_a_wrong_span_fails_a_row(wrong):
+    assert _legs_mismatches(LEGS, list(_legs_rows(random.Random(7))), WRONG_PASS[wrong])
+
+
+def test_the_kernel_returns_only_the_names_read_after_it():
+    """Without a line after them reading every name, IK's kernel returns the two names read
+    after it (leg 1's position, stored on its path; leg 2's, stored after the span)."""
+    after, bound = _passed(IK, read_after=False)
+    path = after[after.index("else:") + 1:]
+    assert path == ["    _c64, _c89, = _kr", "    v_DONE = True", "    v_POSITION[0] = _c64", "v_POSITION[1] = _c89"]
+    python = _function(IK, IK_INPUTS + ("v_POSE",), {"_m_sqrt": math.sqrt})
+    kernel = _function(after, IK_INPUTS + ("v_POSE",), bound)
+    read = ("_c64", "_c89", "v_DONE", "v_POSITION")
+    for k, row in enumerate(_ik_arguments(random.Random(3))):
+        want, got = python(*row), kernel(*row)
+        assert _same({name: want[name] for name in read}, {name: got[name] for name in read})
+        assert k >= 100 or "v_R11" not in got                  # (ordinary rows: the kernel answered)
+
+
+MIXED = """
+FUNCTION Mix : LREAL
+VAR_INPUT A, B : LREAL; N : DINT; END_VAR
+VAR P, Q, R, Y : LREAL; M : {m}; END_VAR
+M := N + 1;
+P := (A * B + A - B) * (A + 2.5) - B * B;
+Q := (P * A - B * 0.5) * (P + B) + A * A;
+R := (Q * P + A) * (Q - B) - P * 3.0 + M * 1.5;
+Y := R * A + Q * B - P * A;
+Mix := Y * R + Q;
+END_FUNCTION
+"""
+
+
+@pytest.mark.parametrize("m, kernels_made", [("LREAL", 1), ("DINT", 0)])
+def test_a_run_reading_a_declared_int_makes_no_kernel(m, kernels_made):
+    """26 operations in one run; with M a DINT (a Python int: the kernel would answer None at
+    every call) the lines before it (13) and after it (6) are too short for a kernel."""
+    from st_runtime import api
+    from st_runtime.compiler import compile_program
+
+    compiled = compile_program(api.load_text(MIXED.format(m=m)).program)
+    assert compiled.python_sources["MIX"].count("_kr = ") == kernels_made
+
+
+BETWEEN = {          # a statement between leg 1 and leg 2 -> whether the span goes on across it
+    "v_DONE = (True if ((_c64 >= 0.0) and (_c64 <= -1.5)) else False)": True,
+    "_spent += 1196": True,
+    "v_DONE = (not -1.5)": True,
+    "v_POSITION[0] = _c64": True,
+    "if (not v_POSITION[0]):": False,                      # (a test of an element not stored)
+    "v_DONE = ((_c64 - 1.0) > 0.0)": False,                # arithmetic (an int's could raise)
+    "v_DONE = _c64(1.0)": False,                           # a call
+    "if _ctx.budget < _spent: _overrun(1)": False,         # a budget check
+    "v_DONE = (v_OTHER > 0.0)": False,                     # a name the run does not compute
+    "v_U = True": False,                                   # a name the run sets again after
+    "_c36 = True": False,                                  # a name the run reads after
+    "_spent += 1.5": False,
+    "v_DONE = (v_POSE[0] > 0.0)": False,
+}
+
+
+@pytest.mark.parametrize("between", BETWEEN)
+def test_a_span_goes_on_across_a_statement_only_where_it_may_run_after(between):
+    lines = IK[12:28] + [between] + IK[29:36]
+    after, _ = _passed(lines)
+    assert after.count("if _kr is None:") == (1 if BETWEEN[between] else 2)

@@ -146,7 +146,8 @@ class BodyCompiler(ExprCompiler):
         if self.opt.seal:
             seal.hoist(o.lines, start)
         if self.opt.kernels and self.unit.native:
-            kernels.replace(o.lines, start, self.unit.register_constant, self.unit.namespace.__setitem__)
+            kernels.replace(o.lines, start, self.unit.register_constant, self.unit.namespace.__setitem__,
+                            kernels.not_floats(self.scope.places))
         if self.opt.loops and self.unit.native:
             loops.replace(o.lines, start, self.unit.register_constant, self.unit.namespace.__setitem__)
         return o.source()

@@ -181,7 +181,10 @@ states bit for bit:
   literals, list elements at literal indices, SQRT as `math.sqrt`: IK's legs) is one call
   of machine code LLVM compiles from it (native.py, by its first call), which returns the
   values only when every argument is a float and every value computed is finite, else
-  None, and then the lines run in Python as written.  Off as `native` is.
+  None, and then the lines run in Python as written.  One call spans runs separated by
+  finite tests of its values (not taken where it answers) and statements that cannot
+  raise (stores of its values or tests into list elements, tests, int charges), which
+  then run after it in their order (IK's six legs: one call).  Off as `native` is.
 * `loops` (loops.py): in a fast copy, a FOR loop of float sums over `L[i]` elements with SIN
   and COS (TRJ_OceanWave's components) is one call of machine code LLVM compiles from its
   body, `sin` and `cos` the C library's functions math.sin and math.cos call; the values

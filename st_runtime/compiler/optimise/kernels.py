@@ -7,36 +7,53 @@ SP_InverseKinematics' legs are, once unrolled and shared by reuse.py, runs of li
     _c89 = (_m_sqrt((((v_LEGX * v_LEGX) + (v_LEGY * v_LEGY)) + (v_LEGZ * v_LEGZ))) - 1192.63)
 
 each operation a bytecode that makes a float.  This pass, run on a body's finished lines,
-replaces each run of at least `MIN_OPERATIONS` consecutive such lines at one indentation by
+replaces each span of runs with at least `MIN_OPERATIONS` operations in all by
 
-    _kr = _k7(v_POSE, v_R11, v_R12, ...)
+    _kr = _k7(v_POSE, v_R11, v_R12, ..., v_POSITION)
     if _kr is None:
         <the lines as they were>
     else:
         v_U, v_LEGX, _c89, = _kr
+        <the span's statements between its runs, in their order, but its finite tests>
 
-where `_k7` is machine code LLVM makes from the run (native.run_ir), compiled by its first
-call.  A line qualifies when it assigns a plain name a fully parenthesised `+ - *` or unary
-minus of names, float literals, elements of a list at a literal index (`v_POSE[2]`) and
-`_m_sqrt(...)` (the namespace's `math.sqrt`).
+where `_k7` is machine code LLVM makes from the runs (native.run_ir), compiled by its first
+call.  A run line assigns a plain name a fully parenthesised `+ - *` or unary minus of
+names, float literals, elements of a list at a literal index (`v_POSE[2]`) and
+`_m_sqrt(...)` (the namespace's `math.sqrt`), and reads no variable declared of another
+type than REAL/LREAL (`not_floats`).  A span (`_Span`) goes on across, at its indentation:
+
+* a finite test `if (not (x < 1e309 and x > -1e309)):` (no `else`) of a value the kernel
+  computed: where it answers every such value is finite, so the branch is not taken there;
+* a statement that cannot raise on floats, ints and bools (`_Span._defer`): a store of a
+  run's value or of a test into a list element at a literal index, a test's `if`/`else`,
+  a charge `_spent += <int>`, an assignment of a test to a name no run line reads or sets.
+  Where the kernel answers these run after it, in their order; a run line that would read
+  or change what one of them reads or sets ends the span before it (a run line reading an
+  element stored in the span reads the run's value stored there, any other ends it).  The
+  kernel checks each list stored into is a list long enough and no other list it reads, so
+  no store can raise or change what it read.  No budget check is such a statement: the
+  charges total the same on every path and no fault can fire in between.
 
 Exactness: each operation is the IEEE-754 binary64 instruction on the same operands in the
 same order (`fmul`/`fadd`/`fsub`/`fneg`, no fast-math flags, no FMA: see native.py), and
 `llvm.sqrt.f64` is correctly rounded, as `math.sqrt` is (IEEE-754 requires both).  The
-kernel returns the values only when every argument is what the lines read as a float (a
-Python float, a list long enough whose elements are floats) and every value it computed is
-finite; otherwise None, and the lines run in Python as written, so an int operand, a short
-list (its IndexError), a negative SQRT argument (its ValueError), an inf or a NaN (whose sign
-or payload could differ) all take today's code, statement for statement.  The arguments are
-read before the run instead of where the lines read them: nothing in the run stores
-anything but its own local names, so each reads what the lines would have read.  Every name
-the run assigns gets its last value, as after the lines.
+kernel returns the values only when every argument is what the lines read (a Python float,
+a list long enough whose elements it reads are floats, lists stored into distinct from the
+others) and every value it computed is finite; otherwise None, and the lines run in Python
+as written, so an int operand, a short list (its IndexError), a negative SQRT argument (its
+ValueError), an inf or a NaN (whose sign or payload could differ) all take today's code,
+statement for statement.  The arguments are read before the span instead of where the lines
+read them: nothing in it stores anything the runs read but their own local names and the
+elements they then read as the values stored, so each reads what the lines would have read.
+The kernel returns the names the span sets that a line outside it or a statement it keeps
+names, each with its last value, as after the lines (the others are never read again).
 
 Off without llvmlite or with `ST_RUNTIME_NATIVE=0` (native.enabled), and by its switch.
 """
 
 from __future__ import annotations
 
+import collections
 import functools
 import itertools
 import re
@@ -47,6 +64,7 @@ MIN_OPERATIONS = 16      # a crossing costs about as much as a dozen float opera
 #: A line that may qualify: `name = ` and only the characters of the forms above.
 _CANDIDATE = re.compile(r"( *)([A-Za-z_]\w*) = ([\w.()+*\[\] -]+)\Z")
 _TOKEN = re.compile(r" *(?:(\d+\.\d*(?:e[+-]?\d+)?|\d+e[+-]?\d+)|([A-Za-z_]\w*)|(\d+)|(\S))")
+_NAME = re.compile(r"(?<![\w.])[A-Za-z_]\w*")
 _NOT_NAMES = frozenset({"True", "False", "None", "_m_sqrt", "_kr"})
 
 
@@ -122,24 +140,47 @@ class _Run:
         self.env: dict[str, str] = {}         # local name -> its value now
         self.ops: list[tuple] = []
         self.assigned: dict[str, None] = {}   # the names the run sets, in order
+        self.results: set[str] = set()        # the values operations computed
+        self.overrides: dict[tuple, str] = {} # (list, index) -> the value stored there in the span
         self.count = 0
 
     def value(self) -> str:
         self.count += 1
         return f"%v{self.count}"
 
-    def assign(self, target: str, text: str) -> bool:
-        """Add `target = text`; False, the run unchanged, when the line does not qualify
-        (not of the forms, or a name read both as a float and as a list in the run)."""
+    def assign(self, target: str, text: str, overrides: dict) -> bool:
+        """Add `target = text`, reading the list elements in `overrides` as those values;
+        False, the run unchanged, when the line does not qualify (not of the forms, or a
+        name read both as a float and as a list in the run)."""
         parsed = _tree(text)
         if parsed is None:
             return False
         tree, floats, lists = parsed
         if any(name in self.env for name in lists) or any(self.kind.get(name) == "list" for name in floats):
             return False
+        self.overrides.update(overrides)
         self.env[target] = self._value_of(tree)
         self.assigned[target] = None
         return True
+
+    def computed(self, name: str) -> bool:
+        """Whether `name`'s value now is one an operation of the run computed."""
+        return self.env.get(name) in self.results
+
+    def finished(self, stored: dict[str, set]) -> tuple[list, list]:
+        """The kernel's arguments, the lists `stored` (list -> indices) added (each checked
+        long enough for the stores), and the pairs of arguments that must not be one list
+        (a store into one would change what the kernel read of the other)."""
+        sizes = {}
+        for name, indices in stored.items():
+            if name not in self.kind:
+                self._argument(name, "list", {})
+            sizes[name] = max(indices) + 1
+        arguments = [(kind, held, max(sizes.get(text, 0), max(held, default=-1) + 1)) if kind == "list"
+                     else (kind, held) for text, (kind, held) in zip(self.texts, self.arguments)]
+        lists = [j for j, text in enumerate(self.texts) if self.kind[text] == "list"]
+        distinct = [(j, k) for j in lists for k in lists if j < k and (self.texts[j] in stored or self.texts[k] in stored)]
+        return arguments, distinct
 
     def _value_of(self, tree) -> str:
         kind = tree[0]
@@ -151,6 +192,8 @@ class _Run:
                 value = self.env[tree[1]] = self._argument(tree[1], "float", self.value())
             return value
         if kind == "e":
+            if (tree[1], tree[2]) in self.overrides:
+                return self.overrides[tree[1], tree[2]]
             held = self.lists.get(tree[1])
             if held is None:
                 held = self.lists[tree[1]] = self._argument(tree[1], "list", {})
@@ -160,6 +203,7 @@ class _Run:
         operands = [self._value_of(operand) for operand in tree[1:]]
         value = self.value()
         self.ops.append((value, kind, *operands))
+        self.results.add(value)
         return value
 
     def _argument(self, text: str, kind: str, held):
@@ -169,40 +213,261 @@ class _Run:
         return held
 
 
-def replace(lines: list[str], start: int, register, bind) -> None:
-    """Replace the qualifying runs in `lines[start:]` (a body's finished lines) by a kernel
+def replace(lines: list[str], start: int, register, bind, not_float=None) -> None:
+    """Replace the qualifying spans in `lines[start:]` (a body's finished lines) by a kernel
     call each.  `register(value)`: the namespace name bound to a value; `bind(name, value)`
-    rebinds it (the kernel in place of its first call)."""
+    rebinds it (the kernel in place of its first call); `not_float(name, element)`: whether
+    a name (an element of it) is declared of a type other than REAL/LREAL (`not_floats`),
+    read by no run line: its kernel would answer None at every call."""
     body = lines[start:]
     text = "".join(body)
     if text.count("*") + text.count("+") + text.count("-") + text.count("_m_sqrt(") < MIN_OPERATIONS:
         return          # (each operation of a run but a unary minus shows one of these: too few)
     matches = list(map(_CANDIDATE.match, body))               # (one C loop over every line)
-    runs, end = [], 0
+    spans, end, mentions = [], 0, None
     for i in itertools.compress(range(len(matches)), matches):
-        if i < end:
+        if i < end or _tree(matches[i].group(3)) is None:      # (a span starts with a run line)
             continue
-        indent, run, end = matches[i].group(1), _Run(), i
-        while end < len(matches) and matches[end] is not None and matches[end].group(1) == indent \
-                and run.assign(matches[end].group(2), matches[end].group(3)):
-            end += 1
-        end = max(end, i + 1)
-        if sum(op[1] != "neg" for op in run.ops) >= MIN_OPERATIONS:
-            runs.append((start + i, start + end, _call(lines[start + i:start + end], indent, run, register, bind)))
-    for i, j, new in reversed(runs):           # from the last: the indices stay true
+        span = _Span(body, matches, i, not_float)
+        end = max(span.end, i + 1)
+        if sum(op[1] != "neg" for op in span.run.ops) >= MIN_OPERATIONS:
+            mentions = mentions or collections.Counter(_NAME.findall("\n".join(body)))
+            live = _read_after(span, body[i:span.end], mentions)
+            spans.append((start + i, start + span.end, _call(body[i:span.end], span, live, register, bind)))
+    for i, j, new in reversed(spans):          # from the last: the indices stay true
         lines[i:j] = new
 
 
-def _call(original: list[str], indent: str, run: _Run, register, bind) -> list[str]:
-    """The lines that call the run's kernel, with `original` where it returns None."""
-    targets = list(run.assigned)
+def _read_after(span, original: list[str], mentions: collections.Counter) -> list[str]:
+    """The names the span sets that a line outside it or a statement it keeps names (the
+    others are never read again: the kernel need not return them); at least one."""
+    inside = collections.Counter(_NAME.findall("\n".join(original)))
+    kept = set(_NAME.findall("\n".join(line for lines in span.kept for line in lines)))
+    names = list(span.run.assigned)
+    return [name for name in names if mentions[name] > inside[name] or name in kept] or names[-1:]
+
+
+#: `if (not (x < 1e309 and x > -1e309)):`, the compiler's test that a REAL is finite.
+_FINITE_TEST = re.compile(r"( *)if \(not \(([A-Za-z_]\w*) < 1e309 and \2 > -1e309\)\):\Z")
+#: The tokens of a statement that may run after the kernel (`_Span.defer`).
+_SAFE_TOKEN = re.compile(r" *(?:(\d+\.\d*(?:e[+-]?\d+)?|\d+e[+-]?\d+|\d+)|([A-Za-z_]\w*)(?:\[(\d+)\])?"
+                         r"|(<=|>=|==|!=|\+=|[<>()=:-]))")
+_KEYWORDS = frozenset({"True", "False", "not", "and", "or", "if", "else", "elif"})
+_CHARGE = "_spent"          # the compiler's charge counter, an int (charges.py)
+
+
+class _Span:
+    """The lines from `body[first]` on that one kernel computes: runs of float assignments
+    (`_Run`), separated by statements that run after the kernel where it answers (stores
+    of its values into list elements, tests and charges that cannot raise: `_defer`) and by
+    finite tests of values it computed (never taken where it answers: dropped there).  It
+    stops before the first line that is none of these, or that would read or change what a
+    line before or after it must see; it ends after its last run line or finite test."""
+
+    def __init__(self, body: list[str], matches: list, first: int, not_float=None):
+        self.run = _Run()
+        self.not_float = not_float
+        self.indent = matches[first].group(1)
+        self.kept: list[list[str]] = []          # the deferred statements' lines, in order
+        self.stored: dict[str, set] = {}         # list -> indices the kept statements store into
+        self.elements: dict[tuple, object] = {}  # (list, index) stored -> the run's value, or None
+        self.read_later: set[str] = set()        # names the deferred statements read
+        self.targets: set[str] = {_CHARGE}       # names the deferred statements set (and the charge)
+        self.end = first
+        if not self._assign(matches[first].group(2), matches[first].group(3)):
+            return                               # (a span starts with a run line)
+        pending: list[tuple] = []                # deferred since the last run line or finite test
+        i = self.end = first + 1
+        while i < len(body):
+            match = matches[i]
+            if match is not None and match.group(1) == self.indent and self._assign(match.group(2), match.group(3)):
+                i += 1
+            else:
+                j = self._statement_end(body, i)
+                if j is None:
+                    break
+                if not self._finite_test(body[i:j]):
+                    deferred = self._defer(body[i:j])
+                    if deferred is None:
+                        break
+                    pending.append(deferred)
+                    i = j
+                    continue
+                i = j
+            for lines, stores in pending:
+                self.kept.append(lines)
+                for name, index in stores:
+                    self.stored.setdefault(name, set()).add(index)
+            pending, self.end = [], i
+
+    def _statement_end(self, body: list[str], i: int):
+        """The end of the statement at `body[i]`: its block and any `elif`/`else`; None when
+        it is not at the span's indentation."""
+        if not body[i].startswith(self.indent) or body[i][len(self.indent):len(self.indent) + 1] in ("", " "):
+            return None
+        deeper, following = self.indent + " ", (self.indent + "else:", self.indent + "elif ")
+        j = i + 1
+        while j < len(body) and (body[j].startswith(deeper) or body[j].startswith(following)):
+            j += 1
+        return j
+
+    def _finite_test(self, lines: list[str]) -> bool:
+        """Whether `lines` are an `if` without `else` testing that a value the run computed is
+        finite: where the kernel answers, every such value is, and the branch is not taken."""
+        test = _FINITE_TEST.match(lines[0])
+        return (test is not None and test.group(1) == self.indent and self.run.computed(test.group(2))
+                and not any(line.startswith(self.indent) and line[len(self.indent)] != " " for line in lines[1:]))
+
+    def _assign(self, target: str, text: str) -> bool:
+        """Add a run's line, unless it sets what a deferred statement reads or sets, reads
+        what one sets, or reads a list element one stored other than a value of the run."""
+        parsed = _tree(text)
+        if parsed is None or target in self.read_later or target in self.targets:
+            return False
+        tree, floats, lists = parsed
+        if floats & self.targets or self.not_float is not None and (
+                any(self.not_float(name, False) for name in floats) or any(self.not_float(name, True) for name in lists)):
+            return False
+        overrides = {element: self.elements[element] for element in _elements(tree)
+                     if element in self.elements} if self.elements else {}
+        if None in overrides.values():
+            return False
+        return self.run.assign(target, text, overrides)
+
+    def _defer(self, lines: list[str]):
+        """(lines, stores) when the statement `lines` may run after the kernel where it
+        answers, else None.  Each line is `if/elif <test>:`, `else:`, `_spent += <int>`,
+        `_spent = <int>` or `<name or list[int]> = <test>`, a test made of the run's names
+        (floats where it answers) that no later run line sets, elements this span stored
+        before, numbers, `True`/`False`, comparisons, `not`, `and`, `or` and `x if c else y`:
+        none of it can raise on floats, ints and bools.  A list it stores into is one the
+        kernel checks (a list, long enough, no other list it reads); a name it sets is one
+        no run line reads or sets."""
+        stores, reads, targets = [], set(), set()
+        for line in lines:
+            words = _words(line)
+            if words is None:
+                return None
+            if words[0] in (("if", ""), ("elif", "")) and words[-1] == ":":
+                expression = words[1:-1]
+            elif words == [("else", ""), ":"]:
+                continue
+            elif words[0] == (_CHARGE, "") and len(words) == 3 and words[1] in ("+=", "=") and words[2].isdigit():
+                continue
+            elif len(words) > 2 and words[1] == "=" and isinstance(words[0], tuple) and words[0][0] != _CHARGE \
+                    and words[0][0] not in _KEYWORDS:
+                (name, index), expression = words[0], words[2:]
+                if name in self.run.env or name in self.read_later or self.run.kind.get(name) == "float" \
+                        or not index and name in self.run.kind:
+                    return None
+                if index:
+                    stores.append((name, int(index)))
+                    value = expression[0] if len(expression) == 1 else None
+                    self.elements[(name, int(index))] = (
+                        self.run.env.get(value[0]) if isinstance(value, tuple) and not value[1] else None)
+                else:
+                    targets.add(name)
+            else:
+                return None
+            if not self._safe(expression, reads):
+                return None
+        self.read_later |= reads
+        self.targets |= targets | {name for name, _ in stores}
+        return lines, stores
+
+    def _safe(self, words: list, reads: set) -> bool:
+        """Whether the expression `words` is a test as `_defer` describes (its names into
+        `reads`): no call (a name before `(`), a minus only the sign of a number."""
+        for previous, word, following in zip([""] + words, words, words[1:] + [""]):
+            if isinstance(word, tuple):
+                name, index = word
+                if following == "(" and name not in _KEYWORDS:
+                    return False
+                if index:
+                    if (name, int(index)) not in self.elements:
+                        return False
+                elif name in _KEYWORDS:
+                    continue
+                elif name in self.run.env and self.run.kind.get(name) != "list":
+                    reads.add(name)
+                else:
+                    return False
+            elif word == "-":
+                operand_before = (previous[0] not in _KEYWORDS if isinstance(previous, tuple)
+                                  else previous == ")" or previous[:1].isdigit())
+                if operand_before or isinstance(following, tuple) or not following[:1].isdigit():
+                    return False
+            elif word not in ("(", ")", "<", ">", "<=", ">=", "==", "!=") and not word[0].isdigit():
+                return False
+        return bool(words)
+
+
+@functools.lru_cache(maxsize=8192)
+def _words(line: str):
+    """A line's tokens: (name, index or "") for a name or a list element, else the text;
+    None when the line holds anything else.  Kept by text, as `_tree`."""
+    tokens = _SAFE_TOKEN.findall(line)
+    if "".join(map(_text, tokens)) != line.replace(" ", ""):
+        return None
+    return [(t[1], t[2]) if t[1] else t[0] or t[3] for t in tokens] or None
+
+
+def _text(token: tuple) -> str:
+    number, name, index, char = token
+    return f"{name}[{index}]" if index else number or name or char
+
+
+def not_floats(places):
+    """`replace`'s `not_float` for a scope's `places`: a variable (or an array's element) of a
+    declared type other than REAL/LREAL; a name no place has (a compiler temporary) is not
+    known to be one."""
+    from ...types import ArrayType, resolve_alias
+    from ..exprs import is_real
+
+    symbols, known = {}, {}
+
+    def not_float(name: str, element: bool) -> bool:
+        answer = known.get((name, element))
+        if answer is None:
+            answer = known[name, element] = _declared_not_float(name, element)
+        return answer
+
+    def _declared_not_float(name: str, element: bool) -> bool:
+        if not symbols:
+            symbols.update((place.name, place) for place in places.values())
+            symbols.setdefault("", None)
+        place = symbols.get(name)
+        if place is None:
+            return False
+        t = resolve_alias(place.symbol.type)
+        if element:
+            return not (isinstance(t, ArrayType) and is_real(t.element))
+        return not is_real(t)
+    return not_float
+
+
+def _elements(tree):
+    """The (list, index) elements a tree reads."""
+    if tree[0] == "e":
+        yield tree[1], tree[2]
+    elif tree[0] not in ("c", "n"):
+        for operand in tree[1:]:
+            yield from _elements(operand)
+
+
+def _call(original: list[str], span: _Span, targets: list[str], register, bind) -> list[str]:
+    """The lines that call the span's kernel, returning `targets`, with `original` where it
+    returns None."""
+    run, indent = span.run, span.indent
     outputs = [run.env[t] for t in targets]
+    arguments, distinct = run.finished(span.stored)
     kernel = register(None)
-    bind(kernel, _first_call(lambda: native.run_ir(run.arguments, run.ops, outputs),
+    bind(kernel, _first_call(lambda: native.run_ir(arguments, run.ops, outputs, distinct),
                              lambda built: bind(kernel, built)))
     return ([f"{indent}_kr = {kernel}({', '.join(run.texts)})", f"{indent}if _kr is None:"]
             + ["    " + line for line in original]
-            + [f"{indent}else:", f"{indent}    {', '.join(targets)}, = _kr"])
+            + [f"{indent}else:", f"{indent}    {', '.join(targets)}, = _kr"]
+            + ["    " + line for lines in span.kept for line in lines])
 
 
 class _Kernel:

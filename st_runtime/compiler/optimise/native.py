@@ -213,11 +213,12 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
             + "\n".join(w.lines) + "\n}\n")
 
 
-def run_ir(arguments: list, ops: list[tuple], outputs: list[str]) -> str:
+def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -> str:
     """The IR of `PyObject *run(PyObject *self, PyObject *const *args, Py_ssize_t nargs)` for
     kernels.py's runs of statements, called as `run(a0, a1, ...)`: `arguments[j]` is
     ("float", value) (args[j] a Python float, whose double is `value`) or ("list", {k:
-    value}) (args[j] a list with an element at every index k, each a Python float).
+    value}, size) (args[j] a list of at least `size` elements, the one at every index k a
+    Python float); `distinct` holds pairs (j, k) of arguments that must be two objects.
     `ops[i]` is (value, op, operands...): op "*", "+" or "-" of two operands, "neg" or
     "sqrt" of one; an operand a value's name or an IR double literal.  The result is a
     new list of the doubles named by `outputs`, or None (a new reference) when an argument
@@ -225,7 +226,7 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str]) -> str:
     w = _Writer()
     w.add(f"%n.ok = icmp eq i64 %nargs, {len(arguments)}")
     w.check("%n.ok")
-    for j, (kind, held) in enumerate(arguments):
+    for j, (kind, held, *size) in enumerate(arguments):
         arg = w.object_of(f"a{j}", "%args", 8 * j)
         if kind == "float":
             w.float_value(held[1:], arg)
@@ -233,11 +234,15 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str]) -> str:
         w.has_type(arg, "PyList_Type")
         w.add(f"%a{j}.size.at = getelementptr inbounds i8, ptr {arg}, i64 {_SIZE}",
               f"%a{j}.size = load i64, ptr %a{j}.size.at, align 8",
-              f"%a{j}.long = icmp sgt i64 %a{j}.size, {max(held)}")
+              f"%a{j}.long = icmp sge i64 %a{j}.size, {max(size or [0], default=0) if size else max(held) + 1}")
         w.check(f"%a{j}.long")
-        items = w.object_of(f"a{j}.items", arg, _ITEMS)
+        if held:
+            items = w.object_of(f"a{j}.items", arg, _ITEMS)
         for k, value in sorted(held.items()):
             w.float_value(value[1:], w.object_of(f"a{j}.{k}", items, 8 * k))
+    for j, k in distinct:
+        w.add(f"%a{j}.not.a{k} = icmp ne ptr %a{j}, %a{k}")
+        w.check(f"%a{j}.not.a{k}")
     finite = "true"
     for i, (value, op, *operands) in enumerate(ops):
         if op == "sqrt":
