@@ -227,3 +227,19 @@ def test_a_leaf_beyond_the_depth_is_the_place_reported():
     at or above the limit is not walked at all (limits._QUIET), one beyond it is."""
     diagnostics = refused(program(sum_of(limits.MAX_EXPRESSION_DEPTH + 1)))
     assert [(d.code, d.pos.line, d.pos.col) for d in diagnostics] == [("E-LIMIT-002", 3, 12)]
+
+
+def test_the_walk_takes_a_nodes_fields_from_the_last():
+    """`p^ := NULL;`: the Assign's fields are (target, value); the walk pushes them in
+    field order and pops the last first, so the NULL (column 7) is noted before the
+    DEREF (column 1), the order the dialect pass reports them in.  A walk taking the
+    fields in another order (limits._children_getter) fails here."""
+    from st_runtime.checker.context import Context, FastSink
+    from st_runtime.parser import parse
+    from st_runtime.symbols import CheckedProgram
+
+    parsed, _ = parse(program("p^ := NULL;", "p : REF_TO DINT;"), "limits.st")
+    ctx = Context(CheckedProgram(files=[parsed]), FastSink())
+    assert limits.check_files(ctx, [parsed])
+    constructs = [(what, pos.line, pos.col) for what, pos in ctx.walked[id(parsed.items[0])].constructs]
+    assert constructs == [("NULL", 3, 7), ("DEREF", 3, 1), ("REF_TO", 2, 9)]
