@@ -253,10 +253,7 @@ class _Loop:
             arg = w.object_of(f"a{j}", "%args", 8 * j)
             if name in self.lists:
                 w.has_type(arg, "PyList_Type")
-                w.add(f"%a{j}.size.at = getelementptr inbounds i8, ptr {arg}, i64 {native._SIZE}",
-                      f"%a{j}.size = load i64, ptr %a{j}.size.at, align 8",
-                      f"%a{j}.long = icmp sge i64 %a{j}.size, %n")
-                w.check(f"%a{j}.long")
+                w.has_at_least(arg, "%n")
                 w.object_of(f"{name}.items", arg, native._ITEMS)
             else:
                 w.float_value(f"{name}.in", arg)
@@ -282,12 +279,9 @@ class _Loop:
         for part, offset, one in (("start", _RANGE_START, True), ("step", _RANGE_STEP, True), ("stop", _RANGE_STOP, False)):
             obj = w.object_of(part, rng, offset)
             w.has_type(obj, "PyLong_Type")
-            w.add(f"%{part}.size.at = getelementptr inbounds i8, ptr {obj}, i64 {native._SIZE}",
-                  f"%{part}.size = load i64, ptr %{part}.size.at, align 8",
-                  f"%{part}.digit.at = getelementptr inbounds i8, ptr {obj}, i64 {_DIGIT}",
-                  f"%{part}.digit = load i32, ptr %{part}.digit.at, align 4",
-                  f"%{part}.one.size = icmp eq i64 %{part}.size, 1")
-            w.check(f"%{part}.one.size")                  # one digit: 1 <= value < 2**30
+            w.has_size(obj, 1)                            # one digit: 1 <= value < 2**30
+            w.add(f"%{part}.digit.at = getelementptr inbounds i8, ptr {obj}, i64 {_DIGIT}",
+                  f"%{part}.digit = load i32, ptr %{part}.digit.at, align 4")
             if one:
                 w.add(f"%{part}.one = icmp eq i32 %{part}.digit, 1")
                 w.check(f"%{part}.one")

@@ -137,10 +137,18 @@ class _Writer:
         self.check(f"%{obj[1:]}.is")
 
     def has_size(self, obj: str, size: int) -> None:
+        self.size_is(obj, "eq", size, "sized")
+
+    def has_at_least(self, obj: str, size) -> None:
+        """Go on when the list `obj` holds at least `size` items (an int or an i64's name)."""
+        self.size_is(obj, "sge", size, "long")
+
+    def size_is(self, obj: str, comparison: str, size, tag: str) -> None:
+        """Go on when `obj`'s ob_size compares to `size` by `comparison` (`icmp`'s)."""
         self.add(f"%{obj[1:]}.size.at = getelementptr inbounds i8, ptr {obj}, i64 {_SIZE}",
                  f"%{obj[1:]}.size = load i64, ptr %{obj[1:]}.size.at, align 8",
-                 f"%{obj[1:]}.sized = icmp eq i64 %{obj[1:]}.size, {size}")
-        self.check(f"%{obj[1:]}.sized")
+                 f"%{obj[1:]}.{tag} = icmp {comparison} i64 %{obj[1:]}.size, {size}")
+        self.check(f"%{obj[1:]}.{tag}")
 
     def returns_list(self, values: list[str]) -> None:
         """Return a new list of new floats of the doubles `values` (NULL on no memory)."""
@@ -232,10 +240,7 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
             w.float_value(held[1:], arg)
             continue
         w.has_type(arg, "PyList_Type")
-        w.add(f"%a{j}.size.at = getelementptr inbounds i8, ptr {arg}, i64 {_SIZE}",
-              f"%a{j}.size = load i64, ptr %a{j}.size.at, align 8",
-              f"%a{j}.long = icmp sge i64 %a{j}.size, {max(size or [0], default=0) if size else max(held) + 1}")
-        w.check(f"%a{j}.long")
+        w.has_at_least(arg, max(size or [0], default=0) if size else max(held) + 1)
         if held:
             items = w.object_of(f"a{j}.items", arg, _ITEMS)
         for k, value in sorted(held.items()):
