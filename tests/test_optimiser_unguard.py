@@ -161,3 +161,46 @@ def test_element_stores_at_literal_indices_of_owned_arrays_lose_their_try():
     assert outcomes[0] == outcomes[1]
     assert [f[1] for f in outcomes[0][0]] == ["F-NULL-REF", "F-NULL-REF"]
     assert outcomes[0][1:3] == ([1.25, 5.25, 0.0], [0, 8, 0])     # 2.5 * 2.5 - 1.0; 7 + 1
+
+
+INSTANCE_COPIES = """
+FUNCTION_BLOCK Source
+VAR_INPUT Scale : LREAL; END_VAR
+VAR_OUTPUT Out : ARRAY[1..3] OF LREAL; Flags : ARRAY[1..3] OF BOOL; END_VAR
+Out[1] := Scale; Out[2] := Scale * 2.0; Out[3] := Scale * 3.0;
+Flags[2] := Scale > 1.0;
+END_FUNCTION_BLOCK
+FUNCTION_BLOCK Copier
+VAR_IN_OUT Lent : Source; END_VAR
+VAR Own : Source; Values : ARRAY[1..3] OF LREAL; Kept : ARRAY[1..3] OF BOOL; Borrowed : ARRAY[1..3] OF LREAL;
+    Ref : REF_TO Source; Via : ARRAY[1..3] OF LREAL; END_VAR
+Own(Scale := 1.5);
+Values := Own.Out;          (* the own instance's output arrays: no guard *)
+Kept := Own.Flags;
+Borrowed := Lent.Out;       (* an in-out instance, unconnected: F-NULL-REF *)
+Via := Ref^.Out;            (* through a NULL reference: F-NULL-REF *)
+END_FUNCTION_BLOCK
+"""
+
+
+def test_copies_of_an_own_instances_arrays_lose_their_try():
+    """`Values := Own.Out` copies a list of the FB's own instance into its own list: no `try`.
+    The same copy from an in-out instance (a NullRef when unconnected) or through a
+    reference keeps it, and faults at its line with the passes on and off."""
+    from st_runtime.api import load_text
+    from test_optimiser_equivalence import _Context
+
+    program = load_text(INSTANCE_COPIES, "copies.st").program
+    source = compile_program(program, optimise=Optimisations()).python_sources["COPIER"]
+    for fragment in ("v_VALUES[_WHOLE] = v_OWN.v_OUT", "v_KEPT[_WHOLE] = v_OWN.v_FLAGS"):
+        assert not _guarded(source, fragment), fragment
+    for fragment in ("v_BORROWED[_WHOLE] = ", "v_VIA[_WHOLE] = "):
+        assert _guarded(source, fragment), fragment
+    outcomes = []
+    for optimise in (Optimisations.none(), Optimisations()):
+        fb, context = compile_program(program, optimise=optimise).new("Copier"), _Context()
+        type(fb).execute(fb, context)
+        outcomes.append((context.faults, context.budget, fb.v_VALUES, fb.v_KEPT, fb.v_BORROWED, fb.v_VIA))
+    assert outcomes[0] == outcomes[1]
+    assert [(code, where[2]) for _, code, where in outcomes[0][0]] == [("F-NULL-REF", 15), ("F-NULL-REF", 16)]
+    assert outcomes[0][2:] == ([1.5, 3.0, 4.5], [False, True, False], [0.0] * 3, [0.0] * 3)  # 1.5 x 1, 2, 3

@@ -22,7 +22,11 @@ Two rules, either one suffices:
   is needed, is a call and keeps the handler.
 * owned copy: `A := B` of arrays of one elementary element type and the same
   bounds compiled to `v_A[_WHOLE] = v_B`, A the POU's own (as above) and B its own
-  or a global's (not located, not a reference): a slice store of a list.
+  or a global's (not located, not a reference), or an array variable of the POU's
+  own FB instance (`A := Ik.CylinderPos`, `v_A[_WHOLE] = v_IK.v_CYLINDERPOS`: the
+  instance a slot or local, not an in-out or a reference, which an unconnected
+  NullRef or a NULL reference would make raise; the member not an in-out of the
+  FB, not located): a slice store of a list.
 * owned element store: `A[i, j] := expression` compiled to `v_A[k] = code`
   with a literal index (the compiler writes one only where the index is
   in range), where A is an array the POU owns as plain storage (as above;
@@ -42,7 +46,7 @@ from __future__ import annotations
 import re
 
 from ... import ast
-from ...types import ArrayType, ElementaryType, resolve_alias
+from ...types import ArrayType, ElementaryType, FBType, resolve_alias
 from . import branches, kept, remembered
 
 _ASSIGNMENT = re.compile(r"\s*+[A-Za-z_]\w* = ([\w\s()+\-*.]+)")
@@ -50,7 +54,8 @@ _ATTRIBUTE_OR_CALL = re.compile(r"[A-Za-z_]\w*\s*[.(]")
 _STORE = re.compile(r"\s*+(?:self\.)?[A-Za-z_]\w* = (.+)")
 _ELEMENT_STORE = re.compile(r"\s*+(?:self\.)?[A-Za-z_]\w*\[\d+\] = (.+)")
 _PLAIN_KINDS = {"VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_TEMP", "RETURN"}
-_COPY = re.compile(r"\s*+v_\w+\[_WHOLE\] = v_\w+")
+_INSTANCE_KINDS = {"VAR", "VAR_INPUT", "VAR_OUTPUT"}
+_COPY = re.compile(r"\s*+v_\w+\[_WHOLE\] = v_\w+(?:\.v_\w+)?")
 
 
 def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:
@@ -94,10 +99,13 @@ def _owned_store(compiler, node, lines: list[str]) -> bool:
 
 def _owned_copy(compiler, node) -> bool:
     """`A := B` of two arrays of the same elementary type, compiled to `v_A[_WHOLE] = v_B`: A the
-    POU's own array, B its own or a global's (not located, not reached through a reference):
-    both Python lists of the same length, and a slice store of a list raises nothing."""
-    if not (isinstance(node.target, ast.Name) and isinstance(node.value, ast.Name)
-            and _plain_array(compiler, node.target)):
+    POU's own array, B its own or a global's (not located, not reached through a reference) or
+    an array of its own FB instance (`_instance_array`): both Python lists of the same length, and a slice store of a list raises nothing."""
+    if not (isinstance(node.target, ast.Name) and _plain_array(compiler, node.target)):
+        return False
+    if isinstance(node.value, ast.Member):
+        return _same_array(compiler, node.target, _instance_array(compiler, node.value))
+    if not isinstance(node.value, ast.Name):
         return False
     source = branches._symbol(compiler, node.value)
     if source is None or source.kind not in _PLAIN_KINDS | {"VAR_GLOBAL", "VAR_EXTERNAL"} \
@@ -106,7 +114,26 @@ def _owned_copy(compiler, node) -> bool:
     place = compiler.scope.places.get(node.value.name.upper())
     if place is not None and place.how not in ("alias", "global"):
         return False
-    a, b = resolve_alias(branches._symbol(compiler, node.target).type), resolve_alias(source.type)
+    return _same_array(compiler, node.target, source.type)
+
+
+def _instance_array(compiler, member):
+    """The type of `member`, `I.V` of the POU's own FB instance I (a slot or local: not an
+    in-out, not through a reference) and its variable V (an instance slot: VAR, VAR_INPUT or
+    VAR_OUTPUT, not located); None otherwise."""
+    if not isinstance(member.base, ast.Name) or _own_symbol(compiler, member.base) is None:
+        return None
+    fb = resolve_alias(compiler.ty(member.base))
+    variable = fb.variables.get(member.name.upper()) if isinstance(fb, FBType) else None
+    if variable is None or variable.kind not in _INSTANCE_KINDS \
+            or variable.decl is not None and getattr(variable.decl, "location", None) is not None:
+        return None
+    return variable.type
+
+
+def _same_array(compiler, target, source_type) -> bool:
+    """The source's type `source_type` is an array of the target's bounds and element type."""
+    a, b = resolve_alias(branches._symbol(compiler, target).type), resolve_alias(source_type)
     return isinstance(b, ArrayType) and a.dims == b.dims and resolve_alias(a.element) == resolve_alias(b.element)
 
 
