@@ -40,7 +40,7 @@ from .calls import copy_statement
 from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
-from .optimise import (aliases, branches, chains, charges, cse, fastpath, fold, gather, halves, kernels, loops,
+from .optimise import (aliases, branches, chains, charges, cse, elements, fastpath, fold, gather, halves, kernels, loops,
                        pivots, ranges, reads, reuse, scalars, seal, shortcut, stores, sums, unguard, unroll)
 from .optimise import branched, may_reuse
 from .pysrc import Emitter, pyliteral, pyident
@@ -564,8 +564,11 @@ class BodyCompiler(ExprCompiler):
         n = len(s.branches)
         conditions = [self.expr(branch.condition) for branch in s.branches]
         if all(self._tested_in_place(b.condition, c) for b, c in zip(s.branches, conditions)):
-            for i, (branch, condition) in enumerate(zip(s.branches, conditions)):   # branches.py
-                o.line(f"{'if' if i == 0 else 'elif'} {shortcut.condition(self, branch.condition, condition)}:")
+            tests = [shortcut.condition(self, b.condition, c) for b, c in zip(s.branches, conditions)]
+            if self.opt.elements and self.region is None:
+                tests = elements.shared(tests, self.temp)
+            for i, (branch, test) in enumerate(zip(s.branches, tests)):     # branches.py
+                o.line(f"{'if' if i == 0 else 'elif'} {test}:")
                 self._branch(ends, branch.body, leads[i])
             if s.else_body:
                 o.line("else:")

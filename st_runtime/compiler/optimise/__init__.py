@@ -190,6 +190,10 @@ states bit for bit:
   body, `sin` and `cos` the C library's functions math.sin and math.cos call; the values
   only when the range, lists, elements and every value are as the kernel needs (floats,
   finite), else None and the loop runs in Python as written.  Off as `native` is.
+* `elements` (elements.py): in an IF chain tested in place (`branches`), an element of a
+  local array at a literal index that two or more conditions read is read once, into a
+  temp, where its first read runs whenever its condition does; the later reads read the
+  temp: nothing between the conditions can store into the array.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -326,6 +330,7 @@ class Optimisations:
     native: bool = True
     kernels: bool = True
     loops: bool = True
+    elements: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
