@@ -72,6 +72,15 @@ def _read_back(lines: list[str], instance: str, stored: dict[str, str]) -> list[
     return text.split("\n")
 
 
+def _stores_a_float(ec, symbol, arg) -> bool:
+    """Whether the call stores a Python float into input `symbol`: a REAL or LREAL input given
+    an elementary value, which `convert` makes one (a literal as a float literal, an integer
+    through `float()` or `_f32()`, a REAL or LREAL value as the float it is)."""
+    target = elementary(symbol.type)
+    return symbol.kind == "VAR_INPUT" and target is not None and target.kind == "real" \
+        and elementary(ec.ty(arg.value)) is not None
+
+
 def _selected_pair(test: str, first: str, second: str, temp) -> str:
     """`(second if first <test> second else first)`, each code evaluated once, in order: a
     temporary (from `temp()`) holds one that is not a Python name or literal."""
@@ -205,7 +214,7 @@ class Calls:
         params = [s for s in variables.values() if s.kind in ("VAR_INPUT", "VAR_IN_OUT")]
         inputs, outputs = self.bind(call, params, variables)
         instance = ec.aggregate(call.callee)
-        lines, stored = [], {}
+        lines, stored, floats = [], {}, set()
         if not instance.isidentifier():
             tmp = ec.temp()
             lines.append(f"{tmp} = {instance}")
@@ -222,13 +231,16 @@ class Calls:
                 lines.append(f"{attr} = {shortcut.stored(ec, arg.value, value) if symbol.kind == 'VAR_INPUT' else value}")
                 if value.isidentifier() and value != instance:
                     stored[pyident(symbol.name)] = value
-        lines += _read_back(self._execute(ec, target, call, instance), instance, stored)
+                if _stores_a_float(ec, symbol, arg):
+                    floats.add(pyident(symbol.name))
+        lines += _read_back(self._execute(ec, target, call, instance, frozenset(floats)), instance, stored)
         for symbol, arg in outputs:
             lines.append(self.store_output(ec, f"{instance}.{pyident(symbol.name)}", symbol, arg))
         return lines
 
-    def _execute(self, ec, target, call, instance: str) -> list[str]:
-        """The call of the body (see the module docstring for `CALL_NEEDED`)."""
+    def _execute(self, ec, target, call, instance: str, floats: frozenset[str]) -> list[str]:
+        """The call of the body (see the module docstring for `CALL_NEEDED`); `floats`: the
+        inputs the call site has just stored as Python floats (`_stores_a_float`)."""
         native = target.pou.native if target.pou is not None else getattr(ec.ty(call.callee), "native", None)
         needed = getattr(native, "CALL_NEEDED", None) if ec.opt.inline else None
         hot = getattr(native, "HOT_PATH", None) if ec.opt.inline else None
@@ -239,7 +251,7 @@ class Calls:
                     f"        {call}", "    else:", f"        {rest.note.format(fb=instance)}"]
         if hot is None:
             return [call] if needed is None else [f"if {needed.format(fb=instance)}:", f"    {call}"]
-        test, statements = hot.inline(instance, ec.temp)
+        test, statements = hot.inline(instance, ec.temp, floats)
         otherwise = "else:" if needed is None else f"elif {needed.format(fb=instance)}:"
         return [f"if {test}:", *("    " + line for line in statements), otherwise, f"    {call}"]
 
