@@ -259,7 +259,8 @@ def _execute_rules(self, ctx):
 
 # An idle Execute FB at rest: noted by its compiled caller under the controller's seal, which
 # is new whenever code other than the scans' own may have stored into the FB (ScanContext.seal).
-_REST = RestTest(awake="{fb}.v_EXECUTE or {fb}._at_rest is not _ctx.seal", note="{fb}._at_rest = _ctx.seal")
+_REST = RestTest(awake="{fb}.v_EXECUTE or {fb}._at_rest is not _ctx.seal", note="{fb}._at_rest = _ctx.seal",
+                 forget="{fb}._at_rest = None", unnoted="{fb}._at_rest is not _ctx.seal")
 
 
 def _spell_out_idle_call(cls) -> None:

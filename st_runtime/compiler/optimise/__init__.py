@@ -190,6 +190,10 @@ states bit for bit:
   body, `sin` and `cos` the C library's functions math.sin and math.cos call; the values
   only when the range, lists, elements and every value are as the kernel needs (floats,
   finite), else None and the loop runs in Python as written.  Off as `native` is.
+* `dormant` (dormant.py, with `inline`): the call site of an idle Execute FB (MC_Stop,
+  MC_Reset) that is the only code of the program writing its instance runs under one test,
+  `X or <the rest note does not hold>`, X the BOOL its Execute is given: at rest it would
+  store what the instance holds (constants, the same AXIS_REF, FALSE) and call nothing.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -326,6 +330,7 @@ class Optimisations:
     native: bool = True
     kernels: bool = True
     loops: bool = True
+    dormant: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
