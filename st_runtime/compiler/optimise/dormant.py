@@ -52,9 +52,7 @@ def guard(ec, call, inputs: dict, variables: dict, codes: dict) -> str | None:
         return None
     execute = None
     for key, arg in inputs.items():
-        symbol = variables.get(key)
-        if symbol is None:
-            return None
+        symbol = variables[key]             # (fb_call has refused an input the FB lacks)
         if key == "EXECUTE" and symbol.kind == "VAR_INPUT":
             execute = _execute_variable(ec, arg.value, codes[key])
             if execute is None:
