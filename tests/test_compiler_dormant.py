@@ -176,3 +176,11 @@ def test_an_execute_of_false_is_stored_again_as_0_when_the_program_stores_0(monk
     run = ("IF Poke THEN DoStop := Flag AND Nope; END_IF;", {"v_FLAG": 1})
     expected = [(False, bool)] * 4 + [(0, int)] * 4
     assert _executes(monkeypatch, "all", *run) == _executes(monkeypatch, "none", *run) == expected
+
+
+def test_a_word_spelt_like_the_instance_elsewhere_keeps_its_code():
+    """The census counts the instance's spelling in the project's texts: a mention it cannot
+    place (here a comment; a member or another POU's name would count the same) keeps the
+    site's code, the sure side."""
+    assert not _guarded(_source("(* Stops are cheap *)"), "v_DOSTOP", "v_STOPS[0]")
+    assert _guarded(_source("(* Resets are not *)"), "v_DOSTOP", "v_STOPS[0]")

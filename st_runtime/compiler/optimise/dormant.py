@@ -19,11 +19,13 @@ site would have stored what the instance holds already and found it at rest:
   the object False (the site's last lines forget it then: a BOOL may hold 0 or 1, and
   forgetting only makes the next rest test the full one);
 * nothing else of the program writes the instance (`_SoleSites`): it is a PROGRAM's VAR (or
-  one element, by a constant index, of a VAR array), every mention of it in the project is
-  this one call or a read of a member in an expression outside any call's arguments, and no
-  member anywhere is named like it (`P.V`; the checker refuses a program's variable named
-  from another POU, and a VAR_ACCESS path is read by nothing); so its inputs are what this
-  site stored when it last ran, Execute the object False;
+  one element, by a constant index, of a VAR array); every Name of it in the PROGRAM's code
+  is this one call or the base of a member read outside any assignment's target and any
+  call's arguments; and the project's texts spell it no more often than those Names and its
+  declaration (another POU, a member named like it, a comment: a mention the census cannot
+  place spoils it; the checker refuses a program's variable named from another POU, and a
+  VAR_ACCESS path is read by nothing).  So its inputs are what this site stored when it
+  last ran, Execute the object False;
 * the site stores the same values again: each other input is a constant or the in-out an
   aggregate variable (one object for the whole run: aggregates are copied in place, never
   rebound), and Execute is X itself while X is False (`X`, or `(X if not X else ...)`, the
@@ -34,11 +36,13 @@ Every other site, and one with `=>` outputs or an input of another kind, keeps i
 
 from __future__ import annotations
 
+import re
+
 from ... import ast
 from ...objects import is_aggregate
 from ...symbols import Symbol
 from ...types import ElementaryType, resolve_alias
-from ..scope import walk
+from ..scope import listed, of_classes, walk
 
 # The reads a skipped `X AND e` may leave out: variables, members, literals, NOT and logic.
 _PURE = (ast.Name, ast.Member, ast.BoolLiteral, ast.Unary, ast.Binary)
@@ -111,45 +115,49 @@ def _fixed_aggregate(ec, symbol, value) -> bool:
 
 
 def sole_sites(ec) -> frozenset[int]:
-    """id() of every CallStmt's Call that is the only writer of its instance (a PROGRAM's
-    VAR or a constant element of one), for the whole load (kept on the unit)."""
-    found = getattr(ec.unit, "dormant_sites", None)
-    if found is None:
-        found = ec.unit.dormant_sites = _SoleSites(ec.program).sites()
-    return found
+    """id() of every CallStmt's Call in the PROGRAM being compiled that is the only writer of
+    its instance (a VAR of it, or a constant element of one); worked out once a load and POU."""
+    table = ec.unit.__dict__.setdefault("dormant_sites", {})
+    key = ec.pou.name.upper()
+    if key not in table:
+        table[key] = _SoleSites(ec.program, ec.pou).sites()
+    return table[key]
+
+
+_CALL_STMT, _MEMBER, _NAME = frozenset({ast.CallStmt}), frozenset({ast.Member}), frozenset({ast.Name})
+_WRITERS = frozenset({ast.Assign, ast.Call})
 
 
 class _SoleSites:
-    """The census of `sole_sites`: every mention of a PROGRAM's VAR in the project's files."""
+    """The census of `sole_sites` for one PROGRAM: its VARs' mentions in its code, and the
+    project's texts for every other mention (another POU, a member named like it, a comment:
+    any word spelt like it that is not one of those mentions spoils it)."""
 
-    def __init__(self, program) -> None:
+    def __init__(self, program, pou) -> None:
         self.refs = program.name_refs
         self.constants = program.constants
-        self.files = program.files
-        symbols = [symbol for pou in program.pous.values() if pou.kind == "PROGRAM"
-                   for symbol in pou.variables.values() if symbol.kind == "VAR"]
-        self.owned = {id(symbol) for symbol in symbols}
-        self.spellings: dict[str, list[int]] = {}       # upper-case name -> ids of the symbols
-        for symbol in symbols:
-            self.spellings.setdefault(symbol.name.upper(), []).append(id(symbol))
+        self.texts = list(program.sources.values())
+        self.nodes = listed(pou.node)
+        self.owned = {id(symbol): symbol for symbol in pou.variables.values() if symbol.kind == "VAR"}
 
     def sites(self) -> frozenset[int]:
-        nodes = list(walk(tuple(self.files)))
         calls: dict[tuple, list[int]] = {}      # (symbol, index) -> ids of the calls
         allowed: set[int] = set()               # ids of the Names mentioned as allowed
-        for node in nodes:
-            if type(node) is ast.CallStmt:
-                name, index = self._instance(node.call.callee)
-                if name is not None:
-                    calls.setdefault((id(self.refs[id(name)]), index), []).append(id(node.call))
-                    allowed.add(id(name))
-        for root in self._read_roots(nodes):
-            allowed.update(self._read_bases(root))
-        spoilt = self._spoilt(nodes, allowed)
+        for statement in of_classes(self.nodes, _CALL_STMT):
+            name, index = self._instance(statement.call.callee)
+            if name is not None:
+                calls.setdefault((id(self.refs[id(name)]), index), []).append(id(statement.call))
+                allowed.add(id(name))
+        written = self._written()
+        for member in of_classes(self.nodes, _MEMBER):
+            name, _ = self._instance(member.base)
+            if name is not None and id(member) not in written:
+                allowed.add(id(name))
+        spoilt = self._spoilt(allowed)
         return frozenset(ids[0] for (symbol, _), ids in calls.items() if len(ids) == 1 and symbol not in spoilt)
 
     def _instance(self, node):
-        """(the Name, index) of `V` or `V[c]`, V a PROGRAM's VAR and c a constant, else (None, None)."""
+        """(the Name, index) of `V` or `V[c]`, V a VAR of the PROGRAM and c a constant, else (None, None)."""
         index = None
         if type(node) is ast.Index and len(node.indices) == 1 and id(node.indices[0]) in self.constants:
             index, node = self.constants[id(node.indices[0])], node.base
@@ -157,40 +165,36 @@ class _SoleSites:
             return node, index
         return None, None
 
-    @staticmethod
-    def _read_roots(nodes):
-        """The expressions a statement only reads: a plain assignment's value, conditions,
-        a CASE's selector, a FOR's bounds."""
-        for node in nodes:
-            kind = type(node)
-            if kind is ast.Assign and node.mode == ":=":
-                yield node.value
-            elif kind in (ast.IfBranch, ast.While, ast.Repeat):
-                yield node.condition
-            elif kind is ast.Case:
-                yield node.selector
-            elif kind is ast.For:
-                yield from (e for e in (node.start, node.end, node.step) if e is not None)
+    def _written(self) -> set[int]:
+        """ids of the nodes a statement may write through: an assignment's target (and value,
+        for `REF=` and the like), every call's arguments (in-outs, outputs, REF(), ADR())."""
+        written: set[int] = set()
+        for node in of_classes(self.nodes, _WRITERS):
+            if type(node) is ast.Call:
+                written.update(map(id, listed(node.args)))
+            else:
+                written.update(map(id, listed(node.target)))
+                if node.mode != ":=":
+                    written.update(map(id, listed(node.value)))
+        return written
 
-    def _read_bases(self, root):
-        """ids of the Names of `V.m` and `V[c].m` read in `root`, outside any call's arguments."""
-        inside_calls = {id(part) for call in walk(root) if type(call) is ast.Call
-                        for part in walk(call.args)}
-        for member in walk(root):
-            if type(member) is ast.Member and id(member) not in inside_calls:
-                name, _ = self._instance(member.base)
-                if name is not None:
-                    yield id(name)
-
-    def _spoilt(self, nodes, allowed: set[int]) -> set[int]:
-        """id() of the symbols mentioned anywhere but in `allowed` (by a Name of their
-        spelling, whatever it refers to) or named as a member (`Prog.V`)."""
-        owned = self.spellings
+    def _spoilt(self, allowed: set[int]) -> set[int]:
+        """id() of the VARs mentioned but as `allowed`, or spelt in the project's texts more
+        often than their declaration and their Names here."""
+        names: dict[int, int] = {}
         spoilt: set[int] = set()
-        for node in nodes:
-            kind = type(node)
-            if kind is ast.Name and id(node) not in allowed:
-                spoilt.update(owned.get(node.name.upper(), ()))
-            elif kind is ast.Member:
-                spoilt.update(owned.get(node.name.upper(), ()))
+        for node in of_classes(self.nodes, _NAME):
+            symbol = id(self.refs.get(id(node)))
+            if symbol in self.owned:
+                names[symbol] = names.get(symbol, 0) + 1
+                if id(node) not in allowed:
+                    spoilt.add(symbol)
+        for symbol, count in names.items():
+            if symbol not in spoilt and self._spelt(self.owned[symbol].name) != count + 1:
+                spoilt.add(symbol)
         return spoilt
+
+    def _spelt(self, name: str) -> int:
+        """How often the word `name` stands in the project's texts (any case)."""
+        word = re.compile(rf"(?<![\w]){re.escape(name)}(?![\w])", re.IGNORECASE)
+        return sum(len(word.findall(text)) for text in self.texts)
