@@ -137,7 +137,8 @@ class _SoleSites:
         self.refs = program.name_refs
         self.constants = program.constants
         self.texts = list(program.sources.values())
-        self.nodes = listed(pou.node)
+        self.nodes = listed(pou.node.body)    # (kept from the compile's own walks; a mention
+        #  anywhere else, declarations, methods, a chart, is one the texts count and no Name here)
         self.owned = {id(symbol): symbol for symbol in pou.variables.values() if symbol.kind == "VAR"}
 
     def sites(self) -> frozenset[int]:
