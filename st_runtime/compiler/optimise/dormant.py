@@ -37,8 +37,6 @@ Every other site, and one with `=>` outputs or an input of another kind, keeps i
 from __future__ import annotations
 
 import re
-from itertools import compress
-from operator import attrgetter
 
 from ... import ast
 from ...objects import is_aggregate
@@ -126,8 +124,7 @@ def sole_sites(ec) -> frozenset[int]:
     return table[key]
 
 
-_CALL_STMT, _HOLDERS, _NAME = frozenset({ast.CallStmt}), frozenset({ast.Member, ast.Index}), frozenset({ast.Name})
-_NAME_OF = attrgetter("name")
+_CALL_STMT, _MEMBER, _NAME = frozenset({ast.CallStmt}), frozenset({ast.Member}), frozenset({ast.Name})
 _WRITERS = frozenset({ast.Assign, ast.Call})
 
 
@@ -143,10 +140,6 @@ class _SoleSites:
         self.nodes = listed(pou.node.body)    # (kept from the compile's own walks; a mention
         #  anywhere else, declarations, methods, a chart, is one the texts count and no Name here)
         self.owned = {id(symbol): symbol for symbol in pou.variables.values() if symbol.kind == "VAR"}
-        spellings = frozenset(symbol.name.upper() for symbol in self.owned.values())
-        names = list(of_classes(self.nodes, _NAME))
-        # the Names spelt like a VAR (picked in C: most of a body's Names are others)
-        self.names = list(compress(names, map(spellings.__contains__, map(str.upper, map(_NAME_OF, names)))))
 
     def sites(self) -> frozenset[int]:
         calls: dict[tuple, list[int]] = {}      # (symbol, index) -> ids of the calls
@@ -157,12 +150,9 @@ class _SoleSites:
                 calls.setdefault((id(self.refs[id(name)]), index), []).append(id(statement.call))
                 allowed.add(id(name))
         written = self._written()
-        holders = {id(node.base): node for node in of_classes(self.nodes, _HOLDERS)}   # base -> Member, Index
-        for name in self.names:
-            holder = holders.get(id(name))
-            if type(holder) is ast.Index:
-                holder = holders.get(id(holder))
-            if type(holder) is ast.Member and id(holder) not in written and self._instance(holder.base)[0] is name:
+        for member in of_classes(self.nodes, _MEMBER):
+            name, _ = self._instance(member.base)
+            if name is not None and id(member) not in written:
                 allowed.add(id(name))
         spoilt = self._spoilt(allowed)
         return frozenset(ids[0] for (symbol, _), ids in calls.items() if len(ids) == 1 and symbol not in spoilt)
@@ -194,7 +184,7 @@ class _SoleSites:
         often than their declaration and their Names here."""
         names: dict[int, int] = {}
         spoilt: set[int] = set()
-        for node in self.names:
+        for node in of_classes(self.nodes, _NAME):
             symbol = id(self.refs.get(id(node)))
             if symbol in self.owned:
                 names[symbol] = names.get(symbol, 0) + 1
