@@ -102,10 +102,13 @@ def prelude_source(dialect: str = "iec") -> str:
 class RestTest(NamedTuple):
     """`NativeFB.REST`: Python of the instance `{fb}` and the caller's `_ctx`.  `awake` is false
     only while the FB is known to be at rest (an earlier CALL_NEEDED test was false and nothing
-    has touched the FB since: `ScanContext.seal`); `note` is the statement that records it."""
+    has touched the FB since: `ScanContext.seal`); `note` is the statement that records it,
+    `forget` one that drops it; `unnoted`, the part of `awake` false while the note holds."""
 
     awake: str
     note: str
+    forget: str
+    unnoted: str
 
 
 class NativeFB:

@@ -290,3 +290,54 @@ def test_the_inputs_stored_from_names_are_read_back_by_name(monkeypatch):
     assert "if v_CYL1 is " in source and ".v_AXIS is " not in source
     assert "True if v_ENABLED else False" in source and "or not v_GO)" in source
     assert "if v_RESETTING or " in source
+
+
+# MC_SyncMoveAbsolute's hot path takes Position as the command's target, a Python float.
+# Given at the call site, the compiled store has just made it one (an INT through float(), an
+# LREAL as the float it is), so the path takes it as it is; not given, it holds whatever was
+# stored (here an int, written by Python), and the path makes it a float.
+POSITIONS = """
+PROGRAM Main
+VAR
+    Power1, Power2, Power3 : MC_Power;
+    Counted : MC_SyncMoveAbsolute;
+    Ramped : MC_SyncMoveAbsolute;
+    Held : MC_SyncMoveAbsolute;
+    Steps : INT;
+    Ramp : LREAL;
+END_VAR
+Power1(Axis := Cyl1, Enable := TRUE);
+Power2(Axis := Cyl2, Enable := TRUE);
+Power3(Axis := Cyl3, Enable := TRUE);
+IF Power1.Status AND Power2.Status AND Power3.Status THEN
+    Steps := Steps + 1;
+    Ramp := Ramp + 0.25;
+    Counted(Axis := Cyl1, Execute := TRUE, Position := Steps);
+    Ramped(Axis := Cyl2, Execute := TRUE, Position := Ramp);
+    Held(Axis := Cyl3, Execute := TRUE);
+END_IF;
+END_PROGRAM
+"""
+
+
+@pytest.mark.parametrize("optimise", ["none", "all"])
+def test_the_sync_hot_path_takes_a_position_stored_as_a_float_as_it_is(monkeypatch, optimise):
+    from test_motion_st import AXIS, make_plc
+
+    monkeypatch.setenv("ST_RUNTIME_OPTIMISE", optimise)
+    plc, main, _ = make_plc(POSITIONS, *(dict(AXIS, name=f"Cyl{k}") for k in (1, 2, 3)))
+    instance = plc.controller.instances["Main"]
+    instance.v_HELD.v_POSITION = 0
+    for scan in range(1, 9):
+        plc.run(1)
+        if scan == 5:
+            instance.v_HELD.v_POSITION = 2                  # an int, as Python may store one
+    steps = main["Steps"]
+    assert steps >= 5                                       # powered in the first scans
+    targets = [instance.v_COUNTED._command.target, instance.v_RAMPED._command.target,
+               instance.v_HELD._command.target]
+    assert targets == [float(steps), 0.25 * steps, 2.0]
+    assert [type(target) for target in targets] == [float] * 3
+    if optimise == "all":
+        source = plc.controller.compiled.python_sources["MAIN"]
+        assert source.count("_type(") == 1                  # Held's Position alone is tested

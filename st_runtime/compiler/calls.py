@@ -28,7 +28,7 @@ from ..objects import is_aggregate
 from ..types import BOOL, ArrayType, ElementaryType, FBType, StructType, resolve_alias
 from .exprs import elementary, is_real
 from .initial import CompileError
-from .optimise import shortcut
+from .optimise import dormant, shortcut
 from .pysrc import finite_test, pyliteral, safe_name, pyident
 
 # Standard functions that map to a Python builtin or to their argument.
@@ -70,6 +70,29 @@ def _read_back(lines: list[str], instance: str, stored: dict[str, str]) -> list[
         if not re.search(member + r"\s*=(?!=)", text):
             text = re.sub(member, name, text)
     return text.split("\n")
+
+
+def _native_class(ec, target, call):
+    """The Python class of the FB a call statement calls, or None (an ST FB)."""
+    return target.pou.native if target.pou is not None else getattr(ec.ty(call.callee), "native", None)
+
+
+def _rest_test(ec, target, call):
+    """The RestTest the call's site makes (`inline`: a native FB with CALL_NEEDED and REST,
+    no HOT_PATH), or None."""
+    native = _native_class(ec, target, call)
+    if not ec.opt.inline or getattr(native, "CALL_NEEDED", None) is None or getattr(native, "HOT_PATH", None):
+        return None
+    return getattr(native, "REST", None)
+
+
+def _stores_a_float(ec, symbol, arg) -> bool:
+    """Whether the call stores a Python float into input `symbol`: a REAL or LREAL input given
+    an elementary value, which `convert` makes one (a literal as a float literal, an integer
+    through `float()` or `_f32()`, a REAL or LREAL value as the float it is)."""
+    target = elementary(symbol.type)
+    return symbol.kind == "VAR_INPUT" and target is not None and target.kind == "real" \
+        and elementary(ec.ty(arg.value)) is not None
 
 
 def _selected_pair(test: str, first: str, second: str, temp) -> str:
@@ -205,7 +228,8 @@ class Calls:
         params = [s for s in variables.values() if s.kind in ("VAR_INPUT", "VAR_IN_OUT")]
         inputs, outputs = self.bind(call, params, variables)
         instance = ec.aggregate(call.callee)
-        lines, stored = [], {}
+        lines, stored, floats, codes = [], {}, set(), {}
+        callee = instance
         if not instance.isidentifier():
             tmp = ec.temp()
             lines.append(f"{tmp} = {instance}")
@@ -219,27 +243,37 @@ class Calls:
                 lines.append(copy_statement(attr, ec.aggregate(arg.value), symbol.type))
             else:
                 value = self.argument(ec, symbol, arg)
-                lines.append(f"{attr} = {shortcut.stored(ec, arg.value, value) if symbol.kind == 'VAR_INPUT' else value}")
+                codes[key] = shortcut.stored(ec, arg.value, value) if symbol.kind == "VAR_INPUT" else value
+                lines.append(f"{attr} = {codes[key]}")
                 if value.isidentifier() and value != instance:
                     stored[pyident(symbol.name)] = value
-        lines += _read_back(self._execute(ec, target, call, instance), instance, stored)
+                if _stores_a_float(ec, symbol, arg):
+                    floats.add(pyident(symbol.name))
+        body = _read_back(self._execute(ec, target, call, instance, frozenset(floats)), instance, stored)
         for symbol, arg in outputs:
-            lines.append(self.store_output(ec, f"{instance}.{pyident(symbol.name)}", symbol, arg))
-        return lines
+            body.append(self.store_output(ec, f"{instance}.{pyident(symbol.name)}", symbol, arg))
+        rest = _rest_test(ec, target, call)
+        if rest is not None and ec.opt.dormant and not outputs:
+            execute = dormant.guard(ec, call, inputs, variables, codes)
+            if execute is not None:     # the whole site skipped while the FB is at rest
+                forget = _read_back(dormant.forget_lines(instance, rest), instance, stored)
+                return dormant.site(execute, rest.unnoted.format(fb=callee), lines, body + forget)
+        return lines + body
 
-    def _execute(self, ec, target, call, instance: str) -> list[str]:
-        """The call of the body (see the module docstring for `CALL_NEEDED`)."""
-        native = target.pou.native if target.pou is not None else getattr(ec.ty(call.callee), "native", None)
+    def _execute(self, ec, target, call, instance: str, floats: frozenset[str]) -> list[str]:
+        """The call of the body (see the module docstring for `CALL_NEEDED`); `floats`: the
+        inputs the call site has just stored as Python floats (`_stores_a_float`)."""
+        native = _native_class(ec, target, call)
         needed = getattr(native, "CALL_NEEDED", None) if ec.opt.inline else None
         hot = getattr(native, "HOT_PATH", None) if ec.opt.inline else None
+        rest = _rest_test(ec, target, call)
         call = f"{instance}.execute(_ctx)"
-        rest = getattr(native, "REST", None) if needed is not None and hot is None else None
         if rest is not None:
             return [f"if {rest.awake.format(fb=instance)}:", f"    if {needed.format(fb=instance)}:",
                     f"        {call}", "    else:", f"        {rest.note.format(fb=instance)}"]
         if hot is None:
             return [call] if needed is None else [f"if {needed.format(fb=instance)}:", f"    {call}"]
-        test, statements = hot.inline(instance, ec.temp)
+        test, statements = hot.inline(instance, ec.temp, floats)
         otherwise = "else:" if needed is None else f"elif {needed.format(fb=instance)}:"
         return [f"if {test}:", *("    " + line for line in statements), otherwise, f"    {call}"]
 

@@ -77,6 +77,10 @@ class _AxisFB(NativeFB):
 # `_AxisFB._axis`'s cached case as an expression: the AXIS_REF is the one resolved before.
 _BOUND = "{fb}.v_AXIS is {fb}._bound_ref"
 
+# An LREAL input's value `{0}` as a Python float: itself when it is one (`_type`, the compiled
+# code's `type`: a call CPython 3.11 specialises, where the load of `x.__class__` is not).
+_AS_FLOAT = "{0} if _type({0}) is float else float({0})"
+
 # An axis FB's `execute`, spelt out from its HotPath (`{pre}`: `True` when it has none).
 _HOT_EXECUTE = """
 def execute(self, ctx):
@@ -103,22 +107,34 @@ class HotPath:
     resolves the axis (`_AxisFB._axis`) and runs `body` with it, or calls method `cold` when
     `pre` fails or no axis is found.  `pre` and the test of the binding only read.
     `temps`: the other names the source uses (locals of the caller, one set per call site).
+    `floats`: (temp, input) pairs, an LREAL input the body reads into that temp and needs as a
+    Python float, as `{<temp>_float}`: the temp itself where the call site has just stored the
+    input as a float (`inline`'s `floats`), else `_type(t) is float` tests it (`_AS_FLOAT`).
     """
 
     pre: str
     body: tuple[str, ...]
     temps: tuple[str, ...]
     cold: str
+    floats: tuple[tuple[str, str], ...] = ()
 
-    def inline(self, fb: str, temp) -> tuple[str, list[str]]:
-        """(test, statements) of the call of `fb` (a Python name), new locals from `temp()`."""
+    def inline(self, fb: str, temp, floats: frozenset[str] = frozenset()) -> tuple[str, list[str]]:
+        """(test, statements) of the call of `fb` (a Python name), new locals from `temp()`;
+        `floats`: the inputs (attribute names) the call site stored as Python floats."""
         names = {"fb": fb, "axis": temp(), **{name: temp() for name in self.temps}}
+        names.update(self._as_floats(names, floats))
         test = " and ".join(part for part in (self.pre, _BOUND) if part).format(**names)
         return test, [f"{names['axis']} = {fb}._bound_axis"] + [line.format(**names) for line in self.body]
+
+    def _as_floats(self, names: dict[str, str], floats: frozenset[str]) -> dict[str, str]:
+        """`{<temp>_float}` of each of `self.floats`, the temps named as in `names`."""
+        return {f"{name}_float": names[name] if attribute in floats else _AS_FLOAT.format(names[name])
+                for name, attribute in self.floats}
 
     def install(self, cls) -> None:
         """`cls.execute` from this path."""
         names = {"fb": "self", "axis": "axis", **{name: name for name in self.temps}}
+        names.update(self._as_floats(names, frozenset()))
         body = "\n".join(" " * 12 + line.format(**names) for line in self.body)
         source = _HOT_EXECUTE.format(pre=(self.pre or "True").format(**names), bound=_BOUND.format(**names),
                                      body=body, cold=self.cold)
@@ -243,7 +259,8 @@ def _execute_rules(self, ctx):
 
 # An idle Execute FB at rest: noted by its compiled caller under the controller's seal, which
 # is new whenever code other than the scans' own may have stored into the FB (ScanContext.seal).
-_REST = RestTest(awake="{fb}.v_EXECUTE or {fb}._at_rest is not _ctx.seal", note="{fb}._at_rest = _ctx.seal")
+_REST = RestTest(awake="{fb}.v_EXECUTE or {fb}._at_rest is not _ctx.seal", note="{fb}._at_rest = _ctx.seal",
+                 forget="{fb}._at_rest = None", unnoted="{fb}._at_rest is not _ctx.seal")
 
 
 def _spell_out_idle_call(cls) -> None:
@@ -477,9 +494,8 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
     # -range <= d <= range (the same answer for every float d and range > 0, NaN included;
     # the axis holds both bounds, made from its config once, so no float is made a call),
     # tested by jumps, which CPython 3.11 specialises (a comparison whose value is stored it
-    # does not), without the call of abs() and its float; an LREAL input holds a float:
-    # float() only if not (`_type(x)`, the compiled code's `type`: a call CPython 3.11
-    # specialises, where the load of `x.__class__` is not).  With Execute TRUE, `pre` found the Execute the FB
+    # does not), without the call of abs() and its float; Position as a float (`floats`: no
+    # test where the caller has just stored it as one).  With Execute TRUE, `pre` found the Execute the FB
     # remembers TRUE (the FB only ever stores a bool there): only a FALSE one is stored.
     HOT_PATH = HotPath(
         pre=("{fb}.v_BUSY and ({command} := {fb}._command) is not None and not {command}.aborted"
@@ -490,9 +506,10 @@ class MC_SyncMoveAbsolute(_ExecuteFB):
               "{fb}.v_INPOSITION = (True if {axis}._in_position_floor"
               " <= {axis}.act_pos - {command}.target <= {axis}._in_position_range else False)",
               "{position} = {fb}.v_POSITION",
-              "{command}.target = {position} if _type({position}) is float else float({position})"),
+              "{command}.target = {position_float}"),
         temps=("command", "position"),
-        cold="_execute_rules")
+        cold="_execute_rules",
+        floats=(("position", "v_POSITION"),))
 
     def _start(self, axis: Axis | None) -> None:
         command = self._command

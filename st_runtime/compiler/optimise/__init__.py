@@ -194,6 +194,10 @@ states bit for bit:
   local array at a literal index that two or more conditions read is read once, into a
   temp, where its first read runs whenever its condition does; the later reads read the
   temp: nothing between the conditions can store into the array.
+* `dormant` (dormant.py, with `inline`): the call site of an idle Execute FB (MC_Stop,
+  MC_Reset) that is the only code of the program writing its instance runs under one test,
+  `X or <the rest note does not hold>`, X the BOOL its Execute is given: at rest it would
+  store what the instance holds (constants, the same AXIS_REF, FALSE) and call nothing.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -331,6 +335,7 @@ class Optimisations:
     kernels: bool = True
     loops: bool = True
     elements: bool = True
+    dormant: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

@@ -1,0 +1,201 @@
+"""`dormant`: the call site of an idle Execute FB at rest skips its input stores too.
+
+A call site of a native FB with a `REST` test (MC_Stop, MC_Reset, ...) stores the inputs it
+gives every scan and then tests the rest note (calls.py `_execute`).  When it is the only
+code of the program that writes the instance, the whole site runs under one test:
+
+    if X is not False or <instance>._at_rest is not _ctx.seal:
+        <the input stores>
+        <the rest test and the call, as before>
+        if <instance>.v_EXECUTE is not False:
+            <instance>._at_rest = None
+
+where X is the variable its Execute is given as (`Execute := X` or `X AND e`).  Skipped, the
+site would have stored what the instance holds already and found it at rest:
+
+* the note holds under the seal: the FB was found at rest under it, and since then no call
+  (a call forgets it), no code but the scans' own (the seal is new after any other: a hook
+  that writes, `--set`, the API) and no run of the site that stored an Execute other than
+  the object False (the site's last lines forget it then: a BOOL may hold 0 or 1, and
+  forgetting only makes the next rest test the full one);
+* nothing else of the program writes the instance (`_SoleSites`): it is a PROGRAM's VAR (or
+  one element, by a constant index, of a VAR array); every Name of it in the PROGRAM's code
+  is this one call or the base of a member read outside any assignment's target and any
+  call's arguments; and the project's texts spell it no more often than those Names and its
+  declaration (another POU, a member named like it, a comment: a mention the census cannot
+  place spoils it; the checker refuses a program's variable named from another POU, and a
+  VAR_ACCESS path is read by nothing).  So its inputs are what this site stored when it
+  last ran, Execute the object False;
+* the site stores the same values again: each other input is a constant or the in-out an
+  aggregate variable (one object for the whole run: aggregates are copied in place, never
+  rebound), and Execute is X itself while X is False (`X`, or `(X if not X else ...)`, the
+  `shortcut` pass's `X AND e`; `e` a read that cannot fault or call, left out either way).
+
+Every other site, and one with `=>` outputs or an input of another kind, keeps its code.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ... import ast
+from ...objects import is_aggregate
+from ...symbols import Symbol
+from ...types import ElementaryType, resolve_alias
+from ..scope import listed, of_classes, walk
+
+# The reads a skipped `X AND e` may leave out: variables, members, literals, NOT and logic.
+_PURE = (ast.Name, ast.Member, ast.BoolLiteral, ast.Unary, ast.Binary)
+_LOGIC = frozenset(("AND", "&", "OR", "XOR", "NOT"))
+
+
+def guard(ec, call, inputs: dict, variables: dict, codes: dict) -> str | None:
+    """The Python of X when the site of `call` may run under `X is not False or <unnoted>`
+    (the module docstring), else None.  `codes`: input key -> the Python the site stores."""
+    if ec.pou.kind != "PROGRAM" or id(call) not in sole_sites(ec):
+        return None
+    execute = None
+    for key, arg in inputs.items():
+        symbol = variables[key]             # (fb_call has refused an input the FB lacks)
+        if key == "EXECUTE" and symbol.kind == "VAR_INPUT":
+            execute = _execute_variable(ec, arg.value, codes[key])
+            if execute is None:
+                return None
+        elif not (_fixed_aggregate(ec, symbol, arg.value) or ec.constant_of(arg.value) is not None):
+            return None
+    return execute
+
+
+def forget_lines(instance: str, rest) -> list[str]:
+    """The last lines of a dormant site: an Execute that is not the object False drops the
+    note (the module docstring; an FB never writes its inputs, so the call left it as stored)."""
+    return [f"if {instance}.v_EXECUTE is not False:", f"    {rest.forget.format(fb=instance)}"]
+
+
+def site(execute: str, unnoted: str, stores: list[str], rest: list[str]) -> list[str]:
+    """The dormant site: the stores and the rest of the call under one test."""
+    return [f"if {execute} is not False or {unnoted}:", *("    " + line for line in stores + rest)]
+
+
+def _execute_variable(ec, value, code: str) -> str | None:
+    """The Python of X for `Execute := X` or `X AND e` (X a BOOL variable, e a pure read)
+    stored as X while X is False, else None."""
+    if type(value) is ast.Binary and value.op in ("AND", "&") and _pure(value.right):
+        value = value.left
+    if type(value) is not ast.Name or not _is_bool(ec, value) \
+            or not isinstance(ec.program.name_refs.get(id(value)), Symbol):
+        return None
+    x = ec.expr(value)
+    return x if code == x or code.startswith(f"({x} if not {x} else ") else None
+
+
+def _pure(node) -> bool:
+    """`node` reads only: names, members, literals, NOT and logic operators; no index (which
+    may fault), no call, no dereference."""
+    for part in walk(node):
+        if not isinstance(part, _PURE):
+            return False
+        if type(part) in (ast.Unary, ast.Binary) and part.op.upper() not in _LOGIC:
+            return False
+    return True
+
+
+def _is_bool(ec, node) -> bool:
+    t = resolve_alias(ec.ty(node))
+    return isinstance(t, ElementaryType) and t.kind == "bool"
+
+
+def _fixed_aggregate(ec, symbol, value) -> bool:
+    """An in-out given a variable that holds an aggregate: one object for the whole run."""
+    if symbol.kind != "VAR_IN_OUT" or type(value) is not ast.Name:
+        return False
+    target = ec.program.name_refs.get(id(value))
+    return isinstance(target, Symbol) and target.kind in ("VAR", "VAR_GLOBAL", "VAR_EXTERNAL") \
+        and is_aggregate(target.type)
+
+
+def sole_sites(ec) -> frozenset[int]:
+    """id() of every CallStmt's Call in the PROGRAM being compiled that is the only writer of
+    its instance (a VAR of it, or a constant element of one); worked out once a load and POU."""
+    table = ec.unit.__dict__.setdefault("dormant_sites", {})
+    key = ec.pou.name.upper()
+    if key not in table:
+        table[key] = _SoleSites(ec.program, ec.pou).sites()
+    return table[key]
+
+
+_CALL_STMT, _MEMBER, _NAME = frozenset({ast.CallStmt}), frozenset({ast.Member}), frozenset({ast.Name})
+_WRITERS = frozenset({ast.Assign, ast.Call})
+
+
+class _SoleSites:
+    """The census of `sole_sites` for one PROGRAM: its VARs' mentions in its code, and the
+    project's texts for every other mention (another POU, a member named like it, a comment:
+    any word spelt like it that is not one of those mentions spoils it)."""
+
+    def __init__(self, program, pou) -> None:
+        self.refs = program.name_refs
+        self.constants = program.constants
+        self.texts = list(program.sources.values())
+        self.nodes = listed(pou.node.body)    # (kept from the compile's own walks; a mention
+        #  anywhere else, declarations, methods, a chart, is one the texts count and no Name here)
+        self.owned = {id(symbol): symbol for symbol in pou.variables.values() if symbol.kind == "VAR"}
+
+    def sites(self) -> frozenset[int]:
+        calls: dict[tuple, list[int]] = {}      # (symbol, index) -> ids of the calls
+        allowed: set[int] = set()               # ids of the Names mentioned as allowed
+        for statement in of_classes(self.nodes, _CALL_STMT):
+            name, index = self._instance(statement.call.callee)
+            if name is not None:
+                calls.setdefault((id(self.refs[id(name)]), index), []).append(id(statement.call))
+                allowed.add(id(name))
+        written = self._written()
+        for member in of_classes(self.nodes, _MEMBER):
+            name, _ = self._instance(member.base)
+            if name is not None and id(member) not in written:
+                allowed.add(id(name))
+        spoilt = self._spoilt(allowed)
+        return frozenset(ids[0] for (symbol, _), ids in calls.items() if len(ids) == 1 and symbol not in spoilt)
+
+    def _instance(self, node):
+        """(the Name, index) of `V` or `V[c]`, V a VAR of the PROGRAM and c a constant, else (None, None)."""
+        index = None
+        if type(node) is ast.Index and len(node.indices) == 1 and id(node.indices[0]) in self.constants:
+            index, node = self.constants[id(node.indices[0])], node.base
+        if type(node) is ast.Name and id(self.refs.get(id(node))) in self.owned:
+            return node, index
+        return None, None
+
+    def _written(self) -> set[int]:
+        """ids of the nodes a statement may write through: an assignment's target (and value,
+        for `REF=` and the like), every call's arguments (in-outs, outputs, REF(), ADR())."""
+        written: set[int] = set()
+        for node in of_classes(self.nodes, _WRITERS):
+            if type(node) is ast.Call:
+                written.update(map(id, listed(node.args)))
+            else:
+                written.update(map(id, listed(node.target)))
+                if node.mode != ":=":
+                    written.update(map(id, listed(node.value)))
+        return written
+
+    def _spoilt(self, allowed: set[int]) -> set[int]:
+        """id() of the VARs mentioned but as `allowed`, or spelt in the project's texts more
+        often than their declaration and their Names here."""
+        names: dict[int, int] = {}
+        spoilt: set[int] = set()
+        for node in of_classes(self.nodes, _NAME):
+            symbol = id(self.refs.get(id(node)))
+            if symbol in self.owned:
+                names[symbol] = names.get(symbol, 0) + 1
+                if id(node) not in allowed:
+                    spoilt.add(symbol)
+        for symbol, count in names.items():
+            if symbol not in spoilt and self._spelt(self.owned[symbol].name) != count + 1:
+                spoilt.add(symbol)
+        return spoilt
+
+    def _spelt(self, name: str) -> int:
+        """How often the word `name` stands in the project's texts (any case)."""
+        word = re.compile(rf"(?<![\w]){re.escape(name)}(?![\w])", re.IGNORECASE)
+        return sum(len(word.findall(text)) for text in self.texts)
