@@ -625,3 +625,19 @@ def test_a_line_holding_a_barrier_word_is_a_barrier_and_a_name_holding_its_lette
     assert [line for line in barriers if not _is_barrier(line)] == []
     plain = ["        v_returned = v_breaks + 1", "        v_X = v_continued - v_trying", "        _spent += 12"]
     assert [line for line in plain if _is_barrier(line)] == []
+
+
+def test_charges_opening_a_try_go_before_it_one_after_another():
+    """`_out_of_try`: a charge that opens a `try` body with more lines after it goes before the
+    `try`, and then the next one that opens it; not in the body's own `try` (after
+    `_spent = 0`), nor where the charge is all the body holds (worked out by its rules)."""
+    from st_runtime.compiler.optimise.charges import _out_of_try
+
+    handler = ["        except _FAULTS as _e:", "            pass"]
+    text = ["    _spent = 0", "    try:", "        _spent += 2", "        x = 1",
+            "        try:", "            _spent += 5", "            _spent += 7", "            y = 2", *handler,
+            "        try:", "            _spent += 4", *handler]
+    _out_of_try(text)
+    assert text == ["    _spent = 0", "    try:", "        _spent += 2", "        x = 1",
+                    "        _spent += 5", "        _spent += 7", "        try:", "            y = 2", *handler,
+                    "        try:", "            _spent += 4", *handler]
