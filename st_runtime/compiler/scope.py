@@ -21,7 +21,6 @@ them; aggregate inputs the body modifies are copied at entry (by value).
 
 from __future__ import annotations
 
-from collections import Counter
 from dataclasses import dataclass
 from itertools import compress
 from operator import attrgetter
@@ -113,9 +112,6 @@ _LEAVES = frozenset({ast.Name, ast.IntLiteral, ast.RealLiteral, ast.BoolLiteral,
 _LOOPS = (ast.For, ast.While, ast.Repeat)
 _USAGE_NODES = frozenset((ast.Assign, ast.Call) + _LOOPS)     # what `Usage` reads besides names
 _READ_BY_USAGE = _USAGE_NODES | {ast.Name}
-_STORES_AND_CALLS = frozenset({ast.Assign, ast.Call})        # what it reads besides names in a body without loops
-_NAMES = frozenset({ast.Name})
-_NAME = attrgetter("name")
 
 
 def _nodes(node) -> list:
@@ -196,14 +192,9 @@ class Usage:
         self.count: dict[str, int] = {}      # occurrences; inside a loop they count 10
         self.nodes = nodes = listed(body)    # the body's nodes, in the walk's order (read only)
         self.kinds = set(map(type, nodes))   # their classes (`kinds`): the passes' gates
-        read = _READ_BY_USAGE
-        if self.kinds.isdisjoint(_LOOPS):    # (no loop: each name counts 1, counted in C)
-            self.count = dict(Counter(map(str.upper, map(_NAME, of_classes(nodes, _NAMES)))))
-            self.used = set(self.count)
-            read = _STORES_AND_CALLS
         in_loops: set[int] = set()      # every node of a loop (a walk meets the loop first)
         used, count, Name = self.used, self.count, ast.Name
-        for node in of_classes(nodes, read):
+        for node in of_classes(nodes, _READ_BY_USAGE):
             cls = type(node)
             if cls is Name:
                 key = node.name.upper()

@@ -53,7 +53,8 @@ def merge(lines: list[str], start: int) -> None:
         return                  # (fewer than two charges: none to join, no line to read)
     text = joined.split("\n")
     _out_of_try(text)
-    found = [(n, match) for n in _holding(text, "_spent += ") if (match := _CHARGE.fullmatch(text[n]))]
+    found = [(n, match) for n, line in enumerate(text)
+             if "_spent += " in line and (match := _CHARGE.fullmatch(line))]
     if len(found) < 2:
         return
     totals = [int(match.group(2)) for _, match in found]
@@ -87,22 +88,14 @@ def _out_of_try(text: list[str]) -> None:
     of `_spent` (the handler's, the `finally`'s) sees the same; before it, the charge may
     join the one of the level above (`merge`): TRJ_OceanWave's body after its latch.  Not
     the `try` that holds the whole body (its charges join one another inside it)."""
-    for n in _ending(text, "try:"):
-        while n < len(text) - 2 and _charge_before_try(text, n):
-            n += 1              # (the `try` one line down: a next charge may come out too)
-
-
-def _charge_before_try(text: list[str], n: int) -> bool:
-    """Whether line `n`, a `try:`, had the charge that opens its body put before it."""
-    line = text[n]
-    if line.strip() == "try:" and "_spent += " in text[n + 1] \
-            and text[n - 1].strip() != "_spent = 0":       # (the body's own `try`: its level joins)
-        match = _CHARGE.fullmatch(text[n + 1])
-        indent = indentation(line)
-        if match is not None and len(match.group(1)) == indent + 4 and indentation(text[n + 2]) > indent:
-            text[n], text[n + 1] = f"{line[:indent]}_spent += {match.group(2)}", line
-            return True
-    return False
+    for n in range(len(text) - 2):
+        line = text[n]
+        if line.endswith("try:") and line.strip() == "try:" and "_spent += " in text[n + 1] \
+                and text[n - 1].strip() != "_spent = 0":       # (the body's own `try`: its level joins)
+            match = _CHARGE.fullmatch(text[n + 1])
+            indent = indentation(line)
+            if match is not None and len(match.group(1)) == indent + 4 and indentation(text[n + 2]) > indent:
+                text[n], text[n + 1] = f"{line[:indent]}_spent += {match.group(2)}", line
 
 
 def _sunk(text: list[str]) -> list[str]:
@@ -112,7 +105,7 @@ def _sunk(text: list[str]) -> list[str]:
     charges it): every path through the chain charges the same total, and no read of
     `_spent` lies between the two places.  A branch's charge then goes on into a chain of its
     own (the text is read again while a charge moved: a few times, as deep as chains nest)."""
-    candidates = _holding(text, "_spent += ")
+    candidates = [n for n, line in enumerate(text) if "_spent += " in line]
     for _ in range(_ROUNDS):
         moved = _sink_once(text, candidates)
         if moved is None:
@@ -278,8 +271,8 @@ def _lifted(text: list[str]) -> list[str]:
     that charges the tests).  A negative amount is written `_spent -= N`."""
     stops = _Stops(text)
     amounts: dict[int, int] = {}            # line of a charge -> its amount now
-    chains = [n for n in _ending(text, "else:") if n + 1 < len(text)
-              and (charge := _CHARGE.fullmatch(text[n + 1])) and len(charge.group(1)) == indentation(text[n]) + 4]
+    chains = [n for n, line in enumerate(text) if line.endswith("else:") and n + 1 < len(text)
+              and (charge := _CHARGE.fullmatch(text[n + 1])) and len(charge.group(1)) == indentation(line) + 4]
     shape = _Shape(text) if chains else None
     for else_line in reversed(chains):
         _lift(text, else_line, stops, amounts, shape)
@@ -814,16 +807,6 @@ def _plain(flat: str) -> bool:
 
 # The ASCII white space but the space (`str.isspace`).
 _WHITE_SPACE_BUT_SPACE = ("\n", "\t", "\x0b", "\x0c", "\r", "\x1c", "\x1d", "\x1e", "\x1f")
-
-
-def _holding(text: list[str], part: str) -> list[int]:
-    """The lines of `text` that hold `part`, in order, found in C."""
-    return list(itertools.compress(range(len(text)), map(str.__contains__, text, itertools.repeat(part))))
-
-
-def _ending(text: list[str], end: str) -> list[int]:
-    """The lines of `text` that end with `end`, in order, found in C."""
-    return list(itertools.compress(range(len(text)), map(str.endswith, text, itertools.repeat(end))))
 
 
 def _lines_holding(flat: str, ends: list[int], part: str) -> list[int]:
