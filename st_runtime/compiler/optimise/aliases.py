@@ -42,7 +42,8 @@ def drop_unused(lines: list[str], start: int) -> None:
     literal (with `spread`, one such load in each branch that named it).  The load only
     binds the local, so leaving it out changes nothing else."""
     text = "\n".join(lines[start:])
-    found = [(start + text.count("\n", 0, match.start()), match) for match in _LOAD_LINE.finditer(text)]
+    found = [(start + n, match) for n, line in enumerate(text.split("\n"))
+             if ("= self.v_" in line or "= _G.v_" in line) and (match := _LOAD_LINE.fullmatch(line))]
     if not found:
         return                  # (no load to leave out: no name needs counting)
     counts = Counter(_LOCAL_NAME.findall(text))
@@ -63,7 +64,7 @@ def drop_unused(lines: list[str], start: int) -> None:
         del lines[i]
 
 
-_LOAD_LINE = re.compile(r"^( *+)(v_\w+) = (?:self|_G)\.\2$", re.MULTILINE)     # a whole line
+_LOAD_LINE = re.compile(r"( *+)(v_\w+) = (?:self|_G)\.\2")      # a whole line
 #: A local `v_...` not after a dot or a word character.  Spelled with the literal `v`
 #: first and the look-behind after it (the same matches): the regex engine then skips
 #: to each `v` instead of trying the look-behind at every character (9x faster).
