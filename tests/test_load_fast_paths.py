@@ -144,6 +144,24 @@ def test_the_walk_lists_every_node_of_the_corpus_in_its_order():
     assert leaves > 1000
 
 
+def test_usage_counts_a_name_once_an_occurrence_and_ten_times_inside_a_loop():
+    """`scope.Usage` (a variable is cached in a local from CACHE_THRESHOLD occurrences): each
+    occurrence of a name counts 1, whatever its case; inside a loop 10, and a FOR's variable
+    10 more (stored every iteration).  Counted by hand from the two bodies."""
+    from types import SimpleNamespace
+
+    from st_runtime.compiler.scope import Usage
+    from st_runtime.parser import parse_body
+
+    program = SimpleNamespace(call_targets={})
+    straight = Usage(program, parse_body("a := b + B; c := a * 2;", "u.st")[0], None)
+    assert straight.count == {"A": 2, "B": 2, "C": 1}
+    assert straight.used == {"A", "B", "C"} and straight.assigned == {"A", "C"}
+    looped = Usage(program, parse_body("a := b; FOR i := 1 TO 3 DO c := a + b; END_FOR;", "u.st")[0], None)
+    assert looped.count == {"A": 11, "B": 11, "C": 10, "I": 10}
+    assert looped.used == {"A", "B", "C", "I"} and looped.assigned == {"A", "C", "I"}
+
+
 def test_a_field_the_walks_pass_by_never_holds_a_node():
     """The walks read only `ast.CHILD_FIELDS` (fields annotated as names, flags or
     numbers are passed by): in every .st file of the repository, parsed, and in the

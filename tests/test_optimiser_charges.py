@@ -610,3 +610,34 @@ def test_a_shape_the_walk_does_not_read_is_left_as_it_was(middle):
     text = _HEAD + middle + _TAIL
     from st_runtime.compiler.optimise.charges import settled
     assert settled(text) == text
+
+
+def test_a_line_holding_a_barrier_word_is_a_barrier_and_a_name_holding_its_letters_is_not():
+    """`_is_barrier` of lines neither a block's head nor a loop's: each holding one word of a
+    line that can raise, check the budget or leave its level (the handler's `_ctx`, a `try:`,
+    `except`, `finally:`, the overrun test, `return`, `break`, `continue`, an FB's
+    `.execute(`, a FUNCTION's `_fn_`) is one; names that hold such letters are not."""
+    from st_runtime.compiler.optimise.charges import _is_barrier
+
+    barriers = ["        _ctx.budget -= _spent", "        try: v_X = 1", "        except _FAULTS: v_X = 0",
+                "        finally: v_X = 0", "        _overrun(7)", "        return v_X", "        break",
+                "        continue", "        v_T.execute(None)", "        v_Y = _fn_F(1)"]
+    assert [line for line in barriers if not _is_barrier(line)] == []
+    plain = ["        v_returned = v_breaks + 1", "        v_X = v_continued - v_trying", "        _spent += 12"]
+    assert [line for line in plain if _is_barrier(line)] == []
+
+
+def test_charges_opening_a_try_go_before_it_one_after_another():
+    """`_out_of_try`: a charge that opens a `try` body with more lines after it goes before the
+    `try`, and then the next one that opens it; not in the body's own `try` (after
+    `_spent = 0`), nor where the charge is all the body holds (worked out by its rules)."""
+    from st_runtime.compiler.optimise.charges import _out_of_try
+
+    handler = ["        except _FAULTS as _e:", "            pass"]
+    text = ["    _spent = 0", "    try:", "        _spent += 2", "        x = 1",
+            "        try:", "            _spent += 5", "            _spent += 7", "            y = 2", *handler,
+            "        try:", "            _spent += 4", *handler]
+    _out_of_try(text)
+    assert text == ["    _spent = 0", "    try:", "        _spent += 2", "        x = 1",
+                    "        _spent += 5", "        _spent += 7", "        try:", "            y = 2", *handler,
+                    "        try:", "            _spent += 4", *handler]

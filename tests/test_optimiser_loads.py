@@ -70,6 +70,28 @@ def test_a_load_nothing_names_is_left_out():
     assert "v_A = self.v_A" in lines
 
 
+def test_only_whole_load_lines_of_names_nothing_else_names_are_left_out():
+    """`aliases.drop_unused` from line `start` on: a whole line `v_X = self.v_X` or `_G.v_X`
+    whose local no other line names goes (the first and last line of the text among them);
+    a load whose local is read, a line that only holds a load's text, a load of another
+    name, one before `start`, and the only line of its block stay (worked out by its rules)."""
+    from st_runtime.compiler.optimise.aliases import drop_unused
+
+    lines = ["    v_K = self.v_K",              # before start: never read
+             "    v_A = self.v_A",              # unused: goes
+             "    v_B = _G.v_B",                # read below: stays
+             "    v_C = self.v_D",              # another name's: no load of its own name
+             "    x = 1; v_E = self.v_E",       # not a whole line
+             "    v_H = self.v_H.v_I",          # nor this
+             "    if x:",
+             "        v_F = self.v_F",          # the only line of its block: stays
+             "    y = v_B + 1",
+             "    v_G = _G.v_G"]                # the last line, unused: goes
+    drop_unused(lines, 1)
+    assert lines == ["    v_K = self.v_K", "    v_B = _G.v_B", "    v_C = self.v_D", "    x = 1; v_E = self.v_E",
+                     "    v_H = self.v_H.v_I", "    if x:", "        v_F = self.v_F", "    y = v_B + 1"]
+
+
 @pytest.mark.parametrize("name", ["offsets", "unused"])
 def test_the_scans_see_the_same_with_and_without_the_pass(name):
     faults = same_alone_and_with_all(_program, 12, name)[0]

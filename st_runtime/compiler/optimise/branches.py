@@ -36,7 +36,7 @@ import re
 
 from ... import ast
 from ...types import FBType, InterfaceType, RefType, StructType, resolve_alias
-from ..scope import listed as nodes_under, of_classes, once
+from ..scope import _LEAVES, listed as nodes_under, of_classes, once
 from . import kept, remembered, reuse
 
 # Characters an expression that cannot fault is made of: no quote, `/`, `%`, `:`, `@`.
@@ -113,7 +113,10 @@ def expr_cannot_fault(compiler, node, code: str) -> bool:
 
 def _read_nodes(compiler, node) -> tuple:
     """The Deref, Name and Member nodes under `node` in walk order, found once a node (an
-    unrolled loop's copies compile the same expressions again)."""
+    unrolled loop's copies compile the same expressions again); a leaf (a name, a literal)
+    at once."""
+    if type(node) in _LEAVES:
+        return (node,) if type(node) is ast.Name else ()
     return once(compiler.__dict__.setdefault("_read_nodes", {}), node,
                 lambda: tuple(of_classes(nodes_under(node), _READ_NODES)))
 

@@ -37,10 +37,9 @@ from ..pysrc import indentation
 
 _CHARGE = re.compile(r"( *+)_spent \+= (\d+)")
 # A line that can raise, check the budget or leave the level: a word of these (the first
-# test: a substring, then the word as a whole), a loop's head, or a line opening a block
-# other than a branch of an IF (`try:`, `for ...:`; not `if`, `elif`, `else:`).
-_BARRIER_WORDS = ("try:", "except", "finally:", "_ctx", "_overrun", "return", "break", "continue",
-                  ".execute(", "_fn_")
+# test: a substring, `_holds_barrier_word`, then the word as a whole), a loop's head, or a
+# line opening a block other than a branch of an IF (`try:`, `for ...:`; not `if`, `elif`,
+# `else:`).
 _BARRIER_WORD = re.compile(r"\btry:|\bexcept\b|\bfinally:|_ctx|_overrun|\breturn\b|\bbreak\b|\bcontinue\b"
                            r"|\.execute\(|_fn_")
 _LOOP = re.compile(r" *+(?:for|while|with)\b")
@@ -244,7 +243,16 @@ class _Stops:
 
 def _is_barrier(line: str) -> bool:
     return (line.endswith(":") and not _BRANCH.match(line)) or _LOOP.match(line) is not None \
-        or any(word in line for word in _BARRIER_WORDS) and _BARRIER_WORD.search(line) is not None
+        or _holds_barrier_word(line) and _BARRIER_WORD.search(line) is not None
+
+
+def _holds_barrier_word(line: str) -> bool:
+    """Whether `line` holds, as a substring, the word of one of `_BARRIER_WORD`'s branches:
+    a test of each in C, twice as fast as that search, which only the lines holding one
+    need (written out: a generator over the words cost as much again)."""
+    return "_ctx" in line or "try:" in line or "except" in line or "finally:" in line \
+        or "_overrun" in line or "return" in line or "break" in line or "continue" in line \
+        or ".execute(" in line or "_fn_" in line
 
 
 def _lifted(text: list[str]) -> list[str]:
