@@ -60,12 +60,14 @@ _COPY = re.compile(r"\s*+v_\w+\[_WHOLE\] = v_\w+(?:\.v_\w+)?")
 
 def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:
     """The assignment's code `lines` raises nothing `_FAULTS` catches (module docstring).
-    Either rule suffices and neither changes anything: the owned store, which most
-    assignments are (a slot's store `self.v_X = ...` never is local arithmetic), is
-    asked first."""
+    Either rule suffices and neither changes anything. A slot's store `self.v_X = ...` is
+    never local arithmetic (`_ASSIGNMENT` takes no dotted target): only the owned store is
+    asked; any other line asks the arithmetic first, whose answer is kept by its text."""
     if compiler is None:
         return bool(lines) and all(map(_local_arithmetic, lines))
-    return _owned_store(compiler, node, lines) or bool(lines) and all(map(_judge(compiler), lines))
+    if lines and lines[0].lstrip().startswith("self."):
+        return _owned_store(compiler, node, lines)
+    return bool(lines) and all(map(_judge(compiler), lines)) or _owned_store(compiler, node, lines)
 
 
 def _judge(compiler):
