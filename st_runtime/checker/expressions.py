@@ -174,7 +174,13 @@ class ExprChecker:
             self.program.subranges[id(e)] = t
             t = T.ELEMENTARY[t.name]
         self.program.expr_types[id(e)] = t
-        if value is not NOT_CONSTANT and value is not None and t is not ts.ERROR:
+        if value is NOT_CONSTANT or value is None or t is ts.ERROR:
+            return t
+        limits = ts.INT_RANGES.get(id(t))
+        if limits is not None and type(value) is int and limits[0] <= value <= limits[1] \
+                or id(t) in ts.STORED_AS_IS:
+            self.program.constants[id(e)] = value    # (what either way below gives it)
+        else:
             self.program.constants[id(e)] = value if self._keeps_exact(e, value, t) \
                 else ts.coerce_constant(value, t)
         return t
@@ -283,15 +289,16 @@ class ExprChecker:
         Returns None when it cannot be folded (e.g. `1.5 MOD 2`): the caller
         then types it operator by operator and reports what is wrong.
         """
-        if ts.is_bool(expected) and isinstance(e, ast.IntLiteral) and e.value in (0, 1):
-            # IEC 61131-3 6.3.2: a BOOL literal is 0, 1, TRUE or FALSE (Annex F
-            # writes `BOOL := 0`); only the bare digit, not `1 - 0`.
-            return self.record(e, T.BOOL, bool(e.value))
-        if type(e) is ast.IntLiteral and isinstance(expected, T.ElementaryType) \
-                and expected.kind in ("int", "bits") and ts.fits(e.value, expected):
-            # A lone literal that fits the integer type it is expected as (`x + 1`, `n := 5`),
-            # the commonest case: that type, what `_settle_folded` gives it.
-            return self.record(e, expected, e.value)
+        if type(e) is ast.IntLiteral:
+            if expected is T.BOOL and e.value in (0, 1):
+                # IEC 61131-3 6.3.2: a BOOL literal is 0, 1, TRUE or FALSE (Annex F
+                # writes `BOOL := 0`); only the bare digit, not `1 - 0`.
+                return self.record(e, T.BOOL, bool(e.value))
+            if isinstance(expected, T.ElementaryType) and expected.kind in ("int", "bits") \
+                    and ts.fits(e.value, expected):
+                # A lone literal that fits the integer type it is expected as (`x + 1`, `n := 5`),
+                # the commonest case: that type, what `_settle_folded` gives it.
+                return self.record(e, expected, e.value)
         return self._settle_folded(e, expected, strict)
 
     def _settle_folded(self, e, expected, strict: bool):
