@@ -81,8 +81,11 @@ _TIME_SUMS = {
           ("DATE_AND_TIME", "DATE_AND_TIME"): T.TIME},
 }
 
-#: The only nodes `is_untyped_constant` may find true (others need no look).
-_MAYBE_UNTYPED = (ast.IntLiteral, ast.RealLiteral, ast.Unary, ast.Binary)
+#: The only nodes `is_untyped_constant` may find true (others need no look): a literal is
+#: untyped when it has no prefix, an operation when `is_untyped_constant` says so.
+_LITERAL, _OPERATION = "literal", "operation"
+_MAYBE_UNTYPED = {ast.IntLiteral: _LITERAL, ast.RealLiteral: _LITERAL,
+                  ast.Unary: _OPERATION, ast.Binary: _OPERATION}
 
 
 def start_pos(e) -> ast.Pos:
@@ -103,6 +106,11 @@ def _is_plain_literal(e) -> bool:
         e = e.operand
     return isinstance(e, ast.IntLiteral)
 
+
+#: The classes of a type that `require_assignable` takes as assignable to itself: all but
+#: FB instances (never copied), references and interfaces (their own rules), strings
+#: (a literal may be truncated) and subranges (a constant's limits).
+_SELF_ASSIGNABLE = frozenset((T.ElementaryType, T.EnumType, T.StructType, T.ArrayType))
 
 #: node class -> the ExprChecker method that types it (`_` + the class name), or None.
 _TYPERS: dict = {}
@@ -163,6 +171,11 @@ class ExprChecker:
         self.calls = (_CALL_CHECKER or _call_checker())(self)
 
     def untyped(self, e) -> bool:
+        maybe = _MAYBE_UNTYPED.get(type(e))
+        if maybe is None:
+            return False
+        if maybe is _LITERAL:
+            return e.type_prefix is None
         known = self._untyped_memo.get(id(e))     # (the memo's look-up, inline: most asks are again)
         return known if known is not None else is_untyped_constant(e, self._untyped_memo)
 
@@ -215,7 +228,8 @@ class ExprChecker:
         constant that does not fit `expected` an error."""
         if e is None:
             return ts.ERROR
-        if isinstance(e, _MAYBE_UNTYPED) and self.untyped(e):
+        maybe = _MAYBE_UNTYPED.get(type(e))
+        if maybe is not None and (e.type_prefix is None if maybe is _LITERAL else self.untyped(e)):
             settled = self.settle(e, expected, strict)
             if settled is not None:
                 return settled
@@ -227,6 +241,8 @@ class ExprChecker:
     def check_value(self, e, dst, what: str):
         """Type `e` for storing into type `dst`; report when it cannot be."""
         src = self.infer(e, dst, strict=True)
+        if src is dst and type(dst) in _SELF_ASSIGNABLE:
+            return src       # (what `require_assignable` finds at once; no string to shorten)
         if self.require_assignable(src, dst, start_pos(e), what) and isinstance(e, ast.StringLiteral) \
                 and isinstance(dst, T.StringType) and T.string_size(e.value, self.ctx.dialect) > dst.length:
             size, unit = T.string_size(e.value, self.ctx.dialect), T.STRING_UNITS[self.ctx.dialect]
