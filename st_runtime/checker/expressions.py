@@ -112,13 +112,20 @@ def _is_plain_literal(e) -> bool:
 #: (a literal may be truncated) and subranges (a constant's limits).
 _SELF_ASSIGNABLE = frozenset((T.ElementaryType, T.EnumType, T.StructType, T.ArrayType))
 
-#: node class -> the ExprChecker method that types it (`_` + the class name), or None.
-_TYPERS: dict = {}
+class _Typers(dict):
+    """node class -> the ExprChecker method that types it (`_` + the class name), or
+    `_untypable` (a node that is no expression): found on a class's first node."""
+
+    def __missing__(self, cls: type):
+        method = self[cls] = getattr(ExprChecker, "_" + cls.__name__, _untypable)
+        return method
 
 
-def _typer(cls: type):
-    method = _TYPERS[cls] = getattr(ExprChecker, "_" + cls.__name__, None)
-    return method
+def _untypable(checker, e, expected):
+    return checker.record(e, ts.ERROR)
+
+
+_TYPERS = _Typers()
 
 
 def _range(t) -> str:
@@ -168,7 +175,15 @@ class ExprChecker:
         self.loop_vars: list = []  # Symbols of the enclosing FOR loops
         self.storing = None        # the target check_store is typing (written, not read)
         self._untyped_memo: dict[int, bool] = {}
-        self.calls = (_CALL_CHECKER or _call_checker())(self)
+        self._calls = None
+
+    @property
+    def calls(self):
+        """The CallChecker of this scope, made at its first call (most bodies' and
+        declarations' checkers meet none)."""
+        if self._calls is None:
+            self._calls = (_CALL_CHECKER or _call_checker())(self)
+        return self._calls
 
     def untyped(self, e) -> bool:
         maybe = _MAYBE_UNTYPED.get(type(e))
@@ -228,15 +243,13 @@ class ExprChecker:
         constant that does not fit `expected` an error."""
         if e is None:
             return ts.ERROR
-        maybe = _MAYBE_UNTYPED.get(type(e))
+        cls = type(e)
+        maybe = _MAYBE_UNTYPED.get(cls)
         if maybe is not None and (e.type_prefix is None if maybe is _LITERAL else self.untyped(e)):
             settled = self.settle(e, expected, strict)
             if settled is not None:
                 return settled
-        method = _TYPERS.get(type(e)) or _typer(type(e))
-        if method is None:
-            return self.record(e, ts.ERROR)
-        return method(self, e, expected)
+        return _TYPERS[cls](self, e, expected)
 
     def check_value(self, e, dst, what: str):
         """Type `e` for storing into type `dst`; report when it cannot be."""

@@ -56,7 +56,8 @@ class StatementChecker:
             return
         # A constant outside a subrange target's limits is refused here, as it is for an input.
         self.ex.check_value(s.value, self.program.subranges.get(id(s.target), target), "assignment")
-        note_assignment(self.ex, s.target, s.value)
+        if type(s.value) is ast.Call:     # (what note_assignment records is a REF's or ADR's)
+            note_assignment(self.ex, s.target, s.value)
 
     def _CallStmt(self, s: ast.CallStmt) -> None:
         self.ex.calls.check_call(s.call, None, statement=True)
