@@ -54,20 +54,23 @@ def _time_scaled(op: str, ns: int, k) -> int:
 
 
 def is_untyped_constant(e, memo: dict | None = None) -> bool:
-    """Whether `e` is made only of untyped literals and + - * / MOD (see above)."""
+    """Whether `e` is made only of untyped literals and + - * / MOD (see above); `memo`
+    keeps the answers for operations (a leaf is answered from its class at once)."""
+    maybe = _MAYBE_UNTYPED.get(type(e))
+    if maybe is None:
+        return False
+    if maybe is _LITERAL:
+        return e.type_prefix is None
     if memo is not None:
         known = memo.get(id(e))
         if known is not None:
             return known
-    if isinstance(e, (ast.IntLiteral, ast.RealLiteral)):
-        result = e.type_prefix is None
-    elif isinstance(e, ast.Unary) and e.op in ("-", "+"):
-        result = is_untyped_constant(e.operand, memo)
-    elif isinstance(e, ast.Binary) and e.op in ARITHMETIC:
-        # Right first: in a long left-deep sum `a + b + c ...` it fails at once.
-        result = is_untyped_constant(e.right, memo) and is_untyped_constant(e.left, memo)
+    if type(e) is ast.Unary:
+        result = e.op in ("-", "+") and is_untyped_constant(e.operand, memo)
     else:
-        result = False
+        # Right first: in a long left-deep sum `a + b + c ...` it fails at once.
+        result = e.op in ARITHMETIC and is_untyped_constant(e.right, memo) \
+            and is_untyped_constant(e.left, memo)
     if memo is not None:
         memo[id(e)] = result
     return result
@@ -186,13 +189,7 @@ class ExprChecker:
         return self._calls
 
     def untyped(self, e) -> bool:
-        maybe = _MAYBE_UNTYPED.get(type(e))
-        if maybe is None:
-            return False
-        if maybe is _LITERAL:
-            return e.type_prefix is None
-        known = self._untyped_memo.get(id(e))     # (the memo's look-up, inline: most asks are again)
-        return known if known is not None else is_untyped_constant(e, self._untyped_memo)
+        return is_untyped_constant(e, self._untyped_memo)
 
     # ------------------------------------------------------------ recording
     def record(self, e, t, value=NOT_CONSTANT):
@@ -245,7 +242,8 @@ class ExprChecker:
             return ts.ERROR
         cls = type(e)
         maybe = _MAYBE_UNTYPED.get(cls)
-        if maybe is not None and (e.type_prefix is None if maybe is _LITERAL else self.untyped(e)):
+        if maybe is not None and (e.type_prefix is None if maybe is _LITERAL
+                                  else is_untyped_constant(e, self._untyped_memo)):
             settled = self.settle(e, expected, strict)
             if settled is not None:
                 return settled
@@ -663,8 +661,8 @@ class ExprChecker:
 
     def _Binary(self, e, expected):
         op = e.op
-        left_untyped = self.untyped(e.left)
-        right_untyped = self.untyped(e.right)
+        left_untyped = is_untyped_constant(e.left, self._untyped_memo)
+        right_untyped = is_untyped_constant(e.right, self._untyped_memo)
         if left_untyped and not right_untyped:
             rt = self.infer(e.right)
             lt = self.infer(e.left, self._hint(op, rt, expected, left=True))
