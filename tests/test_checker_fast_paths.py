@@ -112,3 +112,31 @@ def test_the_corpus_is_typed_as_the_general_way_types_it(monkeypatch):
         assert short[:2] == general[:2], path.name
         taken += short[2] - general[2]
     assert taken > 300
+
+
+#: (type, constant recorded for a name of it, what the table of constants must hold): an
+#: integer wraps to its type's width (two's complement), a REAL rounds to float32, the rest
+#: stays as it is (hand values; session 23's `record` keeps in-range integers and the
+#: unchanged kinds by a look-up).
+STORED = [
+    ("SINT", 127, 127), ("SINT", -128, -128), ("SINT", 128, -128), ("SINT", -129, 127),
+    ("INT", 32767, 32767), ("INT", 32768, -32768), ("USINT", 255, 255), ("USINT", 256, 0),
+    ("UINT", -1, 65535), ("BYTE", 256, 0), ("WORD", 65535, 65535), ("WORD", 65536, 0),
+    ("DINT", 2147483648, -2147483648), ("UDINT", 4294967295, 4294967295),
+    ("LINT", 2**63, -2**63), ("ULINT", -1, 2**64 - 1), ("DINT", True, True),
+    ("REAL", 0.1, 0.10000000149011612), ("REAL", 3, 3.0), ("LREAL", 0.1, 0.1),
+    ("BOOL", True, True), ("BOOL", 0, 0), ("TIME", 10**12, 10**12), ("DATE", -5, -5),
+]
+
+
+@pytest.mark.parametrize("name, value, stored", STORED)
+def test_a_recorded_constant_is_stored_as_its_type_holds_it(name, value, stored):
+    from st_runtime.checker.context import Context, FastSink, Scope
+    from st_runtime.symbols import CheckedProgram
+
+    ctx = Context(CheckedProgram(files=[]), FastSink(), "iec", False)
+    ex = ExprChecker(ctx, Scope(ctx, None))
+    node = ast.Name("x")
+    assert ex.record(node, T.ELEMENTARY[name], value) is T.ELEMENTARY[name]
+    held = ctx.program.constants[id(node)]
+    assert held == stored and type(held) is type(stored)

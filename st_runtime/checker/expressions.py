@@ -54,20 +54,23 @@ def _time_scaled(op: str, ns: int, k) -> int:
 
 
 def is_untyped_constant(e, memo: dict | None = None) -> bool:
-    """Whether `e` is made only of untyped literals and + - * / MOD (see above)."""
+    """Whether `e` is made only of untyped literals and + - * / MOD (see above); `memo`
+    keeps the answers for operations (a leaf is answered from its class at once)."""
+    maybe = _MAYBE_UNTYPED.get(type(e))
+    if maybe is None:
+        return False
+    if maybe is _LITERAL:
+        return e.type_prefix is None
     if memo is not None:
         known = memo.get(id(e))
         if known is not None:
             return known
-    if isinstance(e, (ast.IntLiteral, ast.RealLiteral)):
-        result = e.type_prefix is None
-    elif isinstance(e, ast.Unary) and e.op in ("-", "+"):
-        result = is_untyped_constant(e.operand, memo)
-    elif isinstance(e, ast.Binary) and e.op in ARITHMETIC:
-        # Right first: in a long left-deep sum `a + b + c ...` it fails at once.
-        result = is_untyped_constant(e.right, memo) and is_untyped_constant(e.left, memo)
+    if type(e) is ast.Unary:
+        result = e.op in ("-", "+") and is_untyped_constant(e.operand, memo)
     else:
-        result = False
+        # Right first: in a long left-deep sum `a + b + c ...` it fails at once.
+        result = e.op in ARITHMETIC and is_untyped_constant(e.right, memo) \
+            and is_untyped_constant(e.left, memo)
     if memo is not None:
         memo[id(e)] = result
     return result
@@ -81,8 +84,11 @@ _TIME_SUMS = {
           ("DATE_AND_TIME", "DATE_AND_TIME"): T.TIME},
 }
 
-#: The only nodes `is_untyped_constant` may find true (others need no look).
-_MAYBE_UNTYPED = (ast.IntLiteral, ast.RealLiteral, ast.Unary, ast.Binary)
+#: The only nodes `is_untyped_constant` may find true (others need no look): a literal is
+#: untyped when it has no prefix, an operation when `is_untyped_constant` says so.
+_LITERAL, _OPERATION = "literal", "operation"
+_MAYBE_UNTYPED = {ast.IntLiteral: _LITERAL, ast.RealLiteral: _LITERAL,
+                  ast.Unary: _OPERATION, ast.Binary: _OPERATION}
 
 
 def start_pos(e) -> ast.Pos:
@@ -104,13 +110,25 @@ def _is_plain_literal(e) -> bool:
     return isinstance(e, ast.IntLiteral)
 
 
-#: node class -> the ExprChecker method that types it (`_` + the class name), or None.
-_TYPERS: dict = {}
+#: The classes of a type that `require_assignable` takes as assignable to itself: all but
+#: FB instances (never copied), references and interfaces (their own rules), strings
+#: (a literal may be truncated) and subranges (a constant's limits).
+_SELF_ASSIGNABLE = frozenset((T.ElementaryType, T.EnumType, T.StructType, T.ArrayType))
+
+class _Typers(dict):
+    """node class -> the ExprChecker method that types it (`_` + the class name), or
+    `_untypable` (a node that is no expression): found on a class's first node."""
+
+    def __missing__(self, cls: type):
+        method = self[cls] = getattr(ExprChecker, "_" + cls.__name__, _untypable)
+        return method
 
 
-def _typer(cls: type):
-    method = _TYPERS[cls] = getattr(ExprChecker, "_" + cls.__name__, None)
-    return method
+def _untypable(checker, e, expected):
+    return checker.record(e, ts.ERROR)
+
+
+_TYPERS = _Typers()
 
 
 def _range(t) -> str:
@@ -160,11 +178,18 @@ class ExprChecker:
         self.loop_vars: list = []  # Symbols of the enclosing FOR loops
         self.storing = None        # the target check_store is typing (written, not read)
         self._untyped_memo: dict[int, bool] = {}
-        self.calls = (_CALL_CHECKER or _call_checker())(self)
+        self._calls = None
+
+    @property
+    def calls(self):
+        """The CallChecker of this scope, made at its first call (most bodies' and
+        declarations' checkers meet none)."""
+        if self._calls is None:
+            self._calls = (_CALL_CHECKER or _call_checker())(self)
+        return self._calls
 
     def untyped(self, e) -> bool:
-        known = self._untyped_memo.get(id(e))     # (the memo's look-up, inline: most asks are again)
-        return known if known is not None else is_untyped_constant(e, self._untyped_memo)
+        return is_untyped_constant(e, self._untyped_memo)
 
     # ------------------------------------------------------------ recording
     def record(self, e, t, value=NOT_CONSTANT):
@@ -174,7 +199,13 @@ class ExprChecker:
             self.program.subranges[id(e)] = t
             t = T.ELEMENTARY[t.name]
         self.program.expr_types[id(e)] = t
-        if value is not NOT_CONSTANT and value is not None and t is not ts.ERROR:
+        if value is NOT_CONSTANT or value is None or t is ts.ERROR:
+            return t
+        limits = ts.INT_RANGES.get(id(t))
+        if limits is not None and type(value) is int and limits[0] <= value <= limits[1] \
+                or id(t) in ts.STORED_AS_IS:
+            self.program.constants[id(e)] = value    # (what either way below gives it)
+        else:
             self.program.constants[id(e)] = value if self._keeps_exact(e, value, t) \
                 else ts.coerce_constant(value, t)
         return t
@@ -209,18 +240,20 @@ class ExprChecker:
         constant that does not fit `expected` an error."""
         if e is None:
             return ts.ERROR
-        if isinstance(e, _MAYBE_UNTYPED) and self.untyped(e):
+        cls = type(e)
+        maybe = _MAYBE_UNTYPED.get(cls)
+        if maybe is not None and (e.type_prefix is None if maybe is _LITERAL
+                                  else is_untyped_constant(e, self._untyped_memo)):
             settled = self.settle(e, expected, strict)
             if settled is not None:
                 return settled
-        method = _TYPERS.get(type(e)) or _typer(type(e))
-        if method is None:
-            return self.record(e, ts.ERROR)
-        return method(self, e, expected)
+        return _TYPERS[cls](self, e, expected)
 
     def check_value(self, e, dst, what: str):
         """Type `e` for storing into type `dst`; report when it cannot be."""
         src = self.infer(e, dst, strict=True)
+        if src is dst and type(dst) in _SELF_ASSIGNABLE:
+            return src       # (what `require_assignable` finds at once; no string to shorten)
         if self.require_assignable(src, dst, start_pos(e), what) and isinstance(e, ast.StringLiteral) \
                 and isinstance(dst, T.StringType) and T.string_size(e.value, self.ctx.dialect) > dst.length:
             size, unit = T.string_size(e.value, self.ctx.dialect), T.STRING_UNITS[self.ctx.dialect]
@@ -283,15 +316,16 @@ class ExprChecker:
         Returns None when it cannot be folded (e.g. `1.5 MOD 2`): the caller
         then types it operator by operator and reports what is wrong.
         """
-        if ts.is_bool(expected) and isinstance(e, ast.IntLiteral) and e.value in (0, 1):
-            # IEC 61131-3 6.3.2: a BOOL literal is 0, 1, TRUE or FALSE (Annex F
-            # writes `BOOL := 0`); only the bare digit, not `1 - 0`.
-            return self.record(e, T.BOOL, bool(e.value))
-        if type(e) is ast.IntLiteral and isinstance(expected, T.ElementaryType) \
-                and expected.kind in ("int", "bits") and ts.fits(e.value, expected):
-            # A lone literal that fits the integer type it is expected as (`x + 1`, `n := 5`),
-            # the commonest case: that type, what `_settle_folded` gives it.
-            return self.record(e, expected, e.value)
+        if type(e) is ast.IntLiteral:
+            if expected is T.BOOL and e.value in (0, 1):
+                # IEC 61131-3 6.3.2: a BOOL literal is 0, 1, TRUE or FALSE (Annex F
+                # writes `BOOL := 0`); only the bare digit, not `1 - 0`.
+                return self.record(e, T.BOOL, bool(e.value))
+            if isinstance(expected, T.ElementaryType) and expected.kind in ("int", "bits") \
+                    and ts.fits(e.value, expected):
+                # A lone literal that fits the integer type it is expected as (`x + 1`, `n := 5`),
+                # the commonest case: that type, what `_settle_folded` gives it.
+                return self.record(e, expected, e.value)
         return self._settle_folded(e, expected, strict)
 
     def _settle_folded(self, e, expected, strict: bool):
@@ -627,8 +661,8 @@ class ExprChecker:
 
     def _Binary(self, e, expected):
         op = e.op
-        left_untyped = self.untyped(e.left)
-        right_untyped = self.untyped(e.right)
+        left_untyped = is_untyped_constant(e.left, self._untyped_memo)
+        right_untyped = is_untyped_constant(e.right, self._untyped_memo)
         if left_untyped and not right_untyped:
             rt = self.infer(e.right)
             lt = self.infer(e.left, self._hint(op, rt, expected, left=True))

@@ -141,7 +141,7 @@ def note_write(ctx, scope, sym) -> None:
 
 
 def _is_reference(sym) -> bool:
-    return isinstance(T.resolve_alias(sym.type), T.RefType)
+    return isinstance(sym.type, T.RefType)     # (the checker's types hold no alias)
 
 
 def _count_store(graph: WriteGraph, ref) -> None:

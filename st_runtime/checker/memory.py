@@ -69,15 +69,27 @@ _STORED = ("VAR", "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "RETURN")
 _REFERENCE = (8, 8)
 
 
+def _elementary_layout(t: T.ElementaryType) -> tuple[int, int]:
+    if t.kind in _ELEMENTARY:
+        return _ELEMENTARY[t.kind]
+    size = max(1, t.bits // 8)
+    return size, size
+
+
+#: id of each elementary type (a singleton, alive for the process) -> its layout, computed once
+#: a process where each load's MemoryModel computed it again (a subrange is laid out as met).
+_ELEMENTARY_LAYOUTS = {id(t): _elementary_layout(t) for t in T.ELEMENTARY.values()}
+
+
 class MemoryModel:
     """Bytes and alignment of types, memoised (a type is laid out once)."""
 
     def __init__(self) -> None:
-        self._layouts: dict[int, tuple[int, int]] = {}
+        self._layouts: dict[int, tuple[int, int]] = dict(_ELEMENTARY_LAYOUTS)
 
     def layout(self, t) -> tuple[int, int]:
-        """(bytes, alignment) of a value of type `t`."""
-        t = T.resolve_alias(t)
+        """(bytes, alignment) of a value of type `t` (the checker's types hold no alias: a TYPE
+        alias maps to its target, `checker/__init__.py`)."""
         known = self._layouts.get(id(t))
         if known is not None:
             return known
@@ -88,16 +100,13 @@ class MemoryModel:
 
     def _compute(self, t) -> tuple[int, int]:
         if isinstance(t, T.ElementaryType):
-            if t.kind in _ELEMENTARY:
-                return _ELEMENTARY[t.kind]
-            size = max(1, t.bits // 8)
-            return size, size
+            return _elementary_layout(t)
         if isinstance(t, T.StringType):
             return ((t.length + 1) * 2, 2) if t.wide else (t.length + 1, 1)
         if isinstance(t, T.EnumType):
             return 4, 4
         if isinstance(t, T.ArrayType):
-            element = T.resolve_alias(t.element)
+            element = t.element
             if isinstance(element, T.ElementaryType) and element.kind == "bool":
                 return 2 * ((t.size - 1) // 16 + 1), 2
             size, align = self.layout(element)

@@ -14,9 +14,20 @@ from .loop_writes import note_assignment, note_write
 from .stores import check_store, controls_a_loop
 
 
-#: statement class -> the StatementChecker method that checks it (`_` + the class name), or None.
-_CHECKS: dict = {}
-_UNKNOWN = object()
+class _Checks(dict):
+    """statement class -> the StatementChecker method that checks it (`_` + the class name),
+    or `_nothing` (EMPTY, RETURN): found on a class's first statement, one look-up after."""
+
+    def __missing__(self, cls: type):
+        method = self[cls] = getattr(StatementChecker, "_" + cls.__name__, _nothing)
+        return method
+
+
+def _nothing(checker, s) -> None:
+    """A statement with nothing to check."""
+
+
+_CHECKS = _Checks()
 
 
 class StatementChecker:
@@ -28,14 +39,7 @@ class StatementChecker:
 
     def block(self, stmts) -> None:
         for stmt in stmts or ():
-            self.statement(stmt)
-
-    def statement(self, s) -> None:
-        method = _CHECKS.get(type(s), _UNKNOWN)
-        if method is _UNKNOWN:
-            method = _CHECKS[type(s)] = getattr(StatementChecker, "_" + type(s).__name__, None)
-        if method is not None:
-            method(self, s)
+            _CHECKS[type(stmt)](self, stmt)
 
     # ------------------------------------------------------------ simple
     def _Assign(self, s: ast.Assign) -> None:
@@ -52,7 +56,8 @@ class StatementChecker:
             return
         # A constant outside a subrange target's limits is refused here, as it is for an input.
         self.ex.check_value(s.value, self.program.subranges.get(id(s.target), target), "assignment")
-        note_assignment(self.ex, s.target, s.value)
+        if type(s.value) is ast.Call:     # (what note_assignment records is a REF's or ADR's)
+            note_assignment(self.ex, s.target, s.value)
 
     def _CallStmt(self, s: ast.CallStmt) -> None:
         self.ex.calls.check_call(s.call, None, statement=True)

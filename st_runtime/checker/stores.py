@@ -17,24 +17,29 @@ def root_name(e) -> ast.Name | None:
     return e if isinstance(e, ast.Name) else None
 
 
-def through_reference(e) -> bool:
-    """`r^`, `r^.x`, `a[i]^`: the path writes what a reference refers to."""
-    while isinstance(e, (ast.Member, ast.Index, ast.Deref, ast.BitAccess)):
-        if isinstance(e, ast.Deref):
-            return True
-        e = e.base
-    return False
-
-
 def is_variable_path(e) -> bool:
     return isinstance(e, (ast.Name, ast.Member, ast.Index, ast.Deref, ast.BitAccess)) \
         and root_name(e) is not None
 
 
+#: The classes of a variable path's steps from a node to its base (`a.b[i]^.%X1`).
+_STEPS = frozenset((ast.Member, ast.Index, ast.Deref, ast.BitAccess))
+
+
+def _root_and_reference(e) -> tuple[ast.Name | None, bool]:
+    """(`root_name(e)`, whether the path writes what a reference refers to: `r^`, `r^.x`,
+    `a[i]^`), by one walk down the path."""
+    through = False
+    while type(e) in _STEPS:
+        through = through or type(e) is ast.Deref
+        e = e.base
+    return (e if type(e) is ast.Name else None), through
+
+
 def controls_a_loop(ex, sym) -> bool:
     """`sym` is the control variable of a FOR that encloses the statement being checked
     (IEC 61131-3 3rd ed. 7.3.3.4.2: the repeated statements shall not alter it)."""
-    return any(sym is loop_var for loop_var in ex.loop_vars)
+    return bool(ex.loop_vars) and any(sym is loop_var for loop_var in ex.loop_vars)
 
 
 def check_store(ex, target, what: str = "assignment"):
@@ -45,7 +50,8 @@ def check_store(ex, target, what: str = "assignment"):
     """
     if isinstance(target, ast.DirectVar):     # a place of the process image
         return ex.infer(target)
-    if not is_variable_path(target):
+    root, through = _root_and_reference(target)
+    if root is None:                          # no variable path
         ex.infer(target)
         ex.ctx.error("E-TYPE-014", f"{what}: expected a variable, found "
                      f"{_describe(target)}", target.pos)
@@ -61,10 +67,9 @@ def check_store(ex, target, what: str = "assignment"):
         return t
     if t is ts.ERROR:
         return t
-    if through_reference(target):
+    if through:
         note_write_through(ex, target)
         return t                   # (the referenced variable was writable where REF took it)
-    root = root_name(target)
     sym = ex.program.name_refs.get(id(root))
     if not hasattr(sym, "kind"):  # an enumeration value
         ex.ctx.error("E-TYPE-014", f"{what}: '{root.name}' is an enumeration value, not a variable",
@@ -84,7 +89,8 @@ def check_store(ex, target, what: str = "assignment"):
                      f"enclosing FOR loop", target.pos)
         return ts.ERROR
     note_write(ex.ctx, ex.scope, sym)
-    member = None if ex.ctx.open_instances else _fb_member(ex, target)
+    # (a Name is no FB's member: `_fb_member` finds nothing without a step)
+    member = None if ex.ctx.open_instances or target is root else _fb_member(ex, target)
     if member is not None:
         fb, var = member
         ex.ctx.error("E-ASSIGN-004", f"{what}: '{var.name}' is a {var.kind} of function block "

@@ -203,9 +203,23 @@ _SIGNED_BY_SIZE = ("SINT", "INT", "DINT", "LINT")
 _BITS_BY_SIZE = ("BYTE", "WORD", "DWORD", "LWORD")
 
 
+#: id of each elementary integer and bit-string type (a singleton, alive for the process) ->
+#: its (min, max), read once: `min` and `max` are computed properties.  A subrange is not here.
+INT_RANGES: dict[int, tuple[int, int]] = {
+    id(t): (t.min, t.max) for t in T.ELEMENTARY.values() if t.kind in ("int", "bits")}
+
+#: id of each elementary type whose constants `coerce_constant` leaves as they are (BOOL, the
+#: times and dates: no wrap, no rounding).
+STORED_AS_IS: frozenset[int] = frozenset(
+    id(t) for t in T.ELEMENTARY.values() if t.kind not in ("int", "bits", "real"))
+
+
 def fits(value: int, t) -> bool:
     """Whether an integer value lies in the range of an integer or bit-string type."""
-    if isinstance(t, ElementaryType) and t.kind in ("int", "bits"):
+    limits = INT_RANGES.get(id(t))
+    if limits is not None:
+        return limits[0] <= value <= limits[1]
+    if isinstance(t, ElementaryType) and t.kind in ("int", "bits"):     # a subrange
         return t.min <= value <= t.max
     if t is T.BOOL:
         return value in (0, 1)
