@@ -462,29 +462,9 @@ def _call(original: list[str], span: _Span, targets: list[str], register, bind) 
     outputs = [run.env[t] for t in targets]
     arguments, distinct = run.finished(span.stored)
     kernel = register(None)
-    bind(kernel, _first_call(lambda: native.run_ir(arguments, run.ops, outputs, distinct),
+    bind(kernel, native.on_first_call(lambda: native.run_ir(arguments, run.ops, outputs, distinct),
                              lambda built: bind(kernel, built)))
     return ([f"{indent}_kr = {kernel}({', '.join(run.texts)})", f"{indent}if _kr is None:"]
             + ["    " + line for line in original]
             + [f"{indent}else:", f"{indent}    {', '.join(targets)}, = _kr"]
             + ["    " + line for lines in span.kept for line in lines])
-
-
-class _Kernel:
-    """What native.builtin needs of a kernel's `__self__` (it keeps the method's definition)."""
-
-
-def _first_call(ir, bind):
-    """The run's first call: writes its IR (`ir()`: a load writes none) and builds the kernel
-    (None where this interpreter's layout is not CPython's: then the lines run in Python),
-    binds it in its own place and calls it."""
-    def first(*arguments):
-        built = native.builtin(_Kernel(), native.compiled(ir())) if native.layout_is_cpythons() else _python
-        bind(built)
-        return built(*arguments)
-    return first
-
-
-def _python(*arguments):
-    """The kernel where none can be built: the lines run as written."""
-    return None
