@@ -455,3 +455,144 @@ def test_a_span_goes_on_across_a_statement_only_where_it_may_run_after(between):
     lines = IK[12:28] + [between] + IK[29:36]
     after, _ = _passed(lines)
     assert after.count("if _kr is None:") == (1 if BETWEEN[between] else 2)
+
+
+#: SP_InverseKinematics' prologue as the compiler writes it on the wave (the angles are the
+#: instance's variables; COS and SIN behind the compiler's finite test, the library's SIN and
+#: COS where it fails), then the rotation: one span (h-native17-s23).
+PROLOGUE = """\
+self.v_ALPHA = (v_POSE[3] * 0.017453292519943295)
+self.v_BETA = (v_POSE[4] * 0.017453292519943295)
+self.v_GAMMA = (v_POSE[5] * 0.017453292519943295)
+_c6 = (True if (self.v_ALPHA < 1e309 and self.v_ALPHA > -1e309) else False)
+v_COSALPHA = (_m_cos(self.v_ALPHA) if _c6 else _sf_COS(self.v_ALPHA))
+v_SINALPHA = (_m_sin(self.v_ALPHA) if _c6 else _sf_SIN(self.v_ALPHA))
+_c9 = (True if (self.v_BETA < 1e309 and self.v_BETA > -1e309) else False)
+v_COSBETA = (_m_cos(self.v_BETA) if _c9 else _sf_COS(self.v_BETA))
+v_SINBETA = (_m_sin(self.v_BETA) if _c9 else _sf_SIN(self.v_BETA))
+_c12 = (True if (self.v_GAMMA < 1e309 and self.v_GAMMA > -1e309) else False)
+v_COSGAMMA = (_m_cos(self.v_GAMMA) if _c12 else _sf_COS(self.v_GAMMA))
+v_SINGAMMA = (_m_sin(self.v_GAMMA) if _c12 else _sf_SIN(self.v_GAMMA))""".splitlines() + IK[:11]
+#: Angles in degrees beyond the ordinary: special values, huge ones (SIN and COS of 1.7e298
+#: rad: the C library's argument reduction), the largest finite double.
+ANGLES = SPECIAL + [1e300, -1e300, 1.7976931348623157e308, 123456789.0, 5e-324]
+
+
+def _trig_namespace() -> dict:
+    from st_runtime.stdlib.functions import FUNCTIONS
+
+    return {"_m_sqrt": math.sqrt, "_m_sin": math.sin, "_m_cos": math.cos,
+            "_sf_SIN": FUNCTIONS["SIN"], "_sf_COS": FUNCTIONS["COS"]}
+
+
+class _Instance:
+    """The instance the generated body's `self` is: the angles its variables."""
+
+    def __init__(self):
+        self.v_ALPHA = self.v_BETA = self.v_GAMMA = 0.25
+
+
+def _with_instance(lines: list[str], namespace: dict):
+    """`lines` as a function of a pose: its locals and the instance's variables afterwards."""
+    run = _function(lines, ("self", "v_POSE"), namespace)
+
+    def call(pose):
+        instance = _Instance()
+        found = run(instance, list(pose))
+        return found if isinstance(found, str) else {**found, "self": None, **vars(instance)}
+    return call
+
+
+def _prologue_rows(rng: random.Random):
+    for k in range(300):
+        pose = [rng.uniform(-100.0, 100.0) for _ in range(3)] + [rng.uniform(-30.0, 30.0) for _ in range(3)]
+        if k >= 100:
+            for _ in range(1 + k % 3):
+                pose[3 + rng.randrange(3)] = rng.choice(ANGLES)
+        yield pose
+
+
+def _prologue_mismatches(lines=PROLOGUE, rows=None) -> list:
+    after, bound = _passed(lines)
+    python = _with_instance(lines, _trig_namespace())
+    kernel = _with_instance(after, {**_trig_namespace(), **bound})
+    rows = list(_prologue_rows(random.Random(11))) if rows is None else rows
+    return [row for row in rows if not _same(python(row), kernel(row))]
+
+
+def test_the_prologue_and_the_rotation_are_one_kernel():
+    """The angles (the instance's variables, always returned), their finite tests (True where
+    the kernel answers: set so after it), COS and SIN and the rotation: one call."""
+    after, bound = _passed(PROLOGUE)
+    assert after[0] == "_kr = _k0(v_POSE)" and after.count("if _kr is None:") == 1
+    path = after[after.index("else:") + 1:]
+    assert path[0].startswith("    self.v_ALPHA, self.v_BETA, self.v_GAMMA, v_COSALPHA, v_SINALPHA, v_COSBETA,")
+    assert path[1:] == ["    _c6 = True", "    _c9 = True", "    _c12 = True"]
+    ir = native.run_ir(*_kernel_arguments(PROLOGUE))
+    assert ir.count("call double @cos(double") == 3 and ir.count("call double @sin(double") == 3
+
+
+def _kernel_arguments(lines):
+    """run_ir's arguments for the span the pass makes of `lines` (written by its first call)."""
+    captured = []
+    right = native.run_ir
+    native.run_ir = lambda *a: captured.append(a) or right(*a)
+    try:
+        after, bound = _passed(lines)
+        _with_instance(after, {**_trig_namespace(), **bound})([0.0] * 6)
+    finally:
+        native.run_ir = right
+    return captured[0]
+
+
+def test_the_prologue_gives_pythons_values_bit_for_bit():
+    """Ordinary angles and inf, -inf, NaN, -0.0, subnormal, huge (1e300 degrees, the largest
+    double) ones: every local and the instance's angles as Python's lines give them; a
+    non-finite angle takes the library's SIN and COS in Python (the kernel answers None)."""
+    assert _prologue_mismatches() == []
+    after, bound = _passed(PROLOGUE)
+    native.bind_symbols(native.libm_symbols())
+    kernel = native.builtin(type("K", (), {})(), native.compiled(native.run_ir(*_kernel_arguments(PROLOGUE))))
+    assert kernel([0.0, 0.0, 0.0, math.inf, 1.0, 2.0]) is None
+    assert kernel([0.0, 0.0, 0.0, 1e300, 1.0, 2.0])[3] == math.cos(1e300 * 0.017453292519943295)
+
+
+def test_sin_and_cos_are_the_math_modules():
+    """The kernel's `sin` and `cos` are the addresses the process resolves for the names
+    (the functions math.sin and math.cos call: test_optimiser_loops.py's GOT check)."""
+    import ctypes
+
+    process = ctypes.CDLL(None)
+    assert native.libm_symbols() == {"sin": ctypes.cast(process.sin, ctypes.c_void_p).value,
+                                     "cos": ctypes.cast(process.cos, ctypes.c_void_p).value}
+
+
+def test_a_guard_of_another_value_or_a_test_read_as_a_float_ends_the_span():
+    """SIN behind a test of another value, a test read in arithmetic, SIN and COS guarded
+    crosswise: the span of the angles and the test ends before them (three operations: no
+    kernel), where with SIN of the tested angle it goes on into the rotation."""
+    base = PROLOGUE[:4]
+    assert _passed(base + ["v_X = (_m_sin(self.v_ALPHA) if _c6 else _sf_SIN(self.v_ALPHA))"] + IK[:11])[0][0] \
+        == "_kr = _k0(v_POSE, v_COSALPHA, v_COSBETA, v_SINBETA, v_SINGAMMA, v_SINALPHA, v_COSGAMMA)"
+    for line in ("v_X = (_m_sin(self.v_BETA) if _c6 else _sf_SIN(self.v_BETA))",
+                 "v_X = (_c6 * 2.0)",
+                 "v_X = (_m_sin(self.v_ALPHA) if _c6 else _sf_COS(self.v_ALPHA))"):
+        after, _ = _passed(base + [line] + IK[:11])
+        assert after[:4] == base, line          # (a later span may start at the line itself)
+
+
+WRONG_TRIG = {
+    "sin and cos swapped": lambda ir: ir.replace("@sin(double %", "@tmp(double %").replace(
+        "@cos(double %", "@sin(double %").replace("@tmp(double %", "@cos(double %"),
+    "the angle's sign dropped": lambda ir: re.sub(r"(call double @(?:sin|cos)\(double )(%v\d+)\)",
+                                                  r"\1\2.abs)", re.sub(r"(%v\d+) = fmul (.*)", r"\1 = fmul \2\n  \1.abs = call double @llvm.fabs.f64(double \1)", ir)),
+    "finite test dropped": lambda ir: ir.replace("fcmp olt double %abs", "fcmp une double %abs"),
+}
+
+
+@pytest.mark.parametrize("wrong", WRONG_TRIG, ids=WRONG_TRIG.keys())
+def test_a_wrong_trigonometric_kernel_fails_a_row(wrong, monkeypatch):
+    right = native.run_ir
+    monkeypatch.setattr(native, "run_ir", lambda *a: WRONG_TRIG[wrong](right(*a)))
+    assert _prologue_mismatches()
+

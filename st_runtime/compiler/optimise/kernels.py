@@ -20,7 +20,12 @@ where `_k7` is machine code LLVM makes from the runs (native.run_ir), compiled b
 call.  A run line assigns a plain name a fully parenthesised `+ - *` or unary minus of
 names, float literals, elements of a list at a literal index (`v_POSE[2]`) and
 `_m_sqrt(...)` (the namespace's `math.sqrt`), and reads no variable declared of another
-type than REAL/LREAL (`not_floats`).  A span (`_Span`) goes on across, at its indentation:
+type than REAL/LREAL (`not_floats`); or it is the compiler's finite test of a name
+`_cN = (True if (x < 1e309 and x > -1e309) else False)` (where the kernel answers x is
+checked finite: `_cN = True` after it), or SIN or COS of a name behind such a test of the
+same value, `(_m_cos(x) if _cN else _sf_COS(x))` (the C library's `cos`, the very function
+math.cos calls: native.libm_symbols).  A name may be an instance's variable, `self.v_X`
+(read as an argument, or set: always returned).  A span (`_Span`) goes on across, at its indentation:
 
 * a finite test `if (not (x < 1e309 and x > -1e309)):` (no `else`) of a value the kernel
   computed: where it answers every such value is finite, so the branch is not taken there;
@@ -62,8 +67,12 @@ from . import native
 
 MIN_OPERATIONS = 16      # a crossing costs about as much as a dozen float operations in Python
 #: A line that may qualify: `name = ` and only the characters of the forms above.
-_CANDIDATE = re.compile(r"( *)([A-Za-z_]\w*) = ([\w.()+*\[\] -]+)\Z")
-_TOKEN = re.compile(r" *(?:(\d+\.\d*(?:e[+-]?\d+)?|\d+e[+-]?\d+)|([A-Za-z_]\w*)|(\d+)|(\S))")
+_CANDIDATE = re.compile(r"( *)((?:self\.)?[A-Za-z_]\w*) = ([\w.()+*\[\]<> -]+)\Z")
+_TOKEN = re.compile(r" *(?:(\d+\.\d*(?:e[+-]?\d+)?|\d+e[+-]?\d+)|((?:self\.)?[A-Za-z_]\w*)|(\d+)|(\S))")
+#: The compiler's finite test of a name kept in a temporary (calls.py, pysrc.finite_test).
+_TEST = re.compile(r"\(True if \(((?:self\.)?[A-Za-z_]\w*) < 1e309 and \1 > -1e309\) else False\)\Z")
+#: SIN or COS of a name behind that test (calls.py `_GUARDED`): `(_m_sin(x) if _cN else _sf_SIN(x))`.
+_GUARDED = re.compile(r"\(_m_(sin|cos)\(((?:self\.)?[A-Za-z_]\w*)\) if ([A-Za-z_]\w*) else _sf_(SIN|COS)\(\2\)\)\Z")
 _NAME = re.compile(r"(?<![\w.])[A-Za-z_]\w*")
 _NOT_NAMES = frozenset({"True", "False", "None", "_m_sqrt", "_kr"})
 
@@ -76,8 +85,17 @@ class _NotPure(Exception):
 def _tree(text: str):
     """(tree, names read as floats, lists read) of an expression the kernel computes, None
     for any other: a tree is ("c", IR literal) | ("n", name) | ("e", list, index) |
-    (op, operand...) with op "*", "+", "-", "neg" or "sqrt".  Kept by text: the same lines
-    come back in every load of a program and in its fast and exact copies."""
+    (op, operand...) with op "*", "+", "-", "neg" or "sqrt" | ("test", ("n", name)) (the
+    finite test) | ("sin" or "cos", ("n", name), the test's name).  Kept by text: the same
+    lines come back in every load of a program and in its fast and exact copies."""
+    test = _TEST.match(text)
+    if test is not None:
+        return ("test", ("n", test[1])), frozenset([test[1]]), frozenset()
+    guarded = _GUARDED.match(text)
+    if guarded is not None:
+        if guarded[1].upper() != guarded[4]:
+            return None
+        return (guarded[1], ("n", guarded[2]), guarded[3]), frozenset([guarded[2]]), frozenset()
     tokens = _TOKEN.findall(text)
     names: tuple[set, set] = (set(), set())
     try:
@@ -142,6 +160,7 @@ class _Run:
         self.assigned: dict[str, None] = {}   # the names the run sets, in order
         self.results: set[str] = set()        # the values operations computed
         self.overrides: dict[tuple, str] = {} # (list, index) -> the value stored there in the span
+        self.tests: dict[str, str] = {}       # a finite test's name -> the value it tested
         self.count = 0
 
     def value(self) -> str:
@@ -158,8 +177,16 @@ class _Run:
         tree, floats, lists = parsed
         if any(name in self.env for name in lists) or any(self.kind.get(name) == "list" for name in floats):
             return False
+        if target in self.tests or not floats.isdisjoint(self.tests) or tree[0] in native.LIBM and (
+                tree[2] not in self.tests or self.tests[tree[2]] != self.env.get(tree[1][1])):
+            return False            # (a test is read only as the guard of SIN or COS of the value it tested)
         self.overrides.update(overrides)
-        self.env[target] = self._value_of(tree)
+        if tree[0] == "test":       # True where the kernel answers: the value it tested is checked finite
+            self.tests[target] = tested = self._value_of(tree[1])
+            self.ops.append((None, "finite", tested))
+            self.env[target] = "test"
+        else:
+            self.env[target] = self._value_of(tree)
         self.assigned[target] = None
         return True
 
@@ -200,7 +227,7 @@ class _Run:
             if tree[2] not in held:
                 held[tree[2]] = self.value()
             return held[tree[2]]
-        operands = [self._value_of(operand) for operand in tree[1:]]
+        operands = [self._value_of(operand) for operand in (tree[1:2] if kind in native.LIBM else tree[1:])]
         value = self.value()
         self.ops.append((value, kind, *operands))
         self.results.add(value)
@@ -230,7 +257,7 @@ def replace(lines: list[str], start: int, register, bind, not_float=None) -> Non
             continue
         span = _Span(body, matches, i, not_float)
         end = max(span.end, i + 1)
-        if sum(op[1] != "neg" for op in span.run.ops) >= MIN_OPERATIONS:
+        if sum(op[1] not in ("neg", "finite") for op in span.run.ops) >= MIN_OPERATIONS:
             mentions = mentions or collections.Counter(_NAME.findall("\n".join(body)))
             live = _read_after(span, body[i:span.end], mentions)
             spans.append((start + i, start + span.end, _call(body[i:span.end], span, live, register, bind)))
@@ -239,12 +266,14 @@ def replace(lines: list[str], start: int, register, bind, not_float=None) -> Non
 
 
 def _read_after(span, original: list[str], mentions: collections.Counter) -> list[str]:
-    """The names the span sets that a line outside it or a statement it keeps names (the
-    others are never read again: the kernel need not return them); at least one."""
+    """The names the span sets that a line outside it or a statement it keeps names, and
+    the instance's variables it sets (`self.v_X`): the others are never read again, the
+    kernel need not return them; at least one value."""
     inside = collections.Counter(_NAME.findall("\n".join(original)))
     kept = set(_NAME.findall("\n".join(line for lines in span.kept for line in lines)))
     names = list(span.run.assigned)
-    return [name for name in names if mentions[name] > inside[name] or name in kept] or names[-1:]
+    return ([name for name in names if mentions[name] > inside[name] or name in kept or name.startswith("self.")]
+            or [name for name in names if name not in span.run.tests][-1:])
 
 
 #: `if (not (x < 1e309 and x > -1e309)):`, the compiler's test that a REAL is finite.
@@ -326,7 +355,8 @@ class _Span:
             return False
         tree, floats, lists = parsed
         if floats & self.targets or self.not_float is not None and (
-                any(self.not_float(name, False) for name in floats) or any(self.not_float(name, True) for name in lists)):
+                any(self.not_float(_variable(name), False) for name in floats)
+                or any(self.not_float(_variable(name), True) for name in lists)):
             return False
         overrides = {element: self.elements[element] for element in _elements(tree)
                      if element in self.elements} if self.elements else {}
@@ -446,6 +476,11 @@ def not_floats(places):
     return not_float
 
 
+def _variable(name: str) -> str:
+    """The variable a name of the generated code holds: `self.v_X` and `v_X` are `v_X`."""
+    return name[5:] if name.startswith("self.") else name
+
+
 def _elements(tree):
     """The (list, index) elements a tree reads."""
     if tree[0] == "e":
@@ -459,12 +494,20 @@ def _call(original: list[str], span: _Span, targets: list[str], register, bind) 
     """The lines that call the span's kernel, returning `targets`, with `original` where it
     returns None."""
     run, indent = span.run, span.indent
+    tests = [t for t in targets if t in run.tests]          # True where the kernel answers
+    targets = [t for t in targets if t not in run.tests]
     outputs = [run.env[t] for t in targets]
     arguments, distinct = run.finished(span.stored)
     kernel = register(None)
-    bind(kernel, native.on_first_call(lambda: native.run_ir(arguments, run.ops, outputs, distinct),
-                             lambda built: bind(kernel, built)))
+    libm = any(op[1] in native.LIBM for op in run.ops)
+
+    def ir() -> str:
+        if libm:
+            native.bind_symbols(native.libm_symbols())
+        return native.run_ir(arguments, run.ops, outputs, distinct)
+    bind(kernel, native.on_first_call(ir, lambda built: bind(kernel, built)))
     return ([f"{indent}_kr = {kernel}({', '.join(run.texts)})", f"{indent}if _kr is None:"]
             + ["    " + line for line in original]
             + [f"{indent}else:", f"{indent}    {', '.join(targets)}, = _kr"]
+            + [f"{indent}    {t} = True" for t in tests]
             + ["    " + line for lines in span.kept for line in lines])

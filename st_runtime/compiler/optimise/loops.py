@@ -318,16 +318,9 @@ def _compares(tree, op, bound: float) -> bool:
 
 
 def libm_symbols() -> dict[str, int]:
-    """The addresses the kernels' `sin`, `cos` and type symbols bind to: the C library's
-    `sin` and `cos` as the dynamic linker resolves them for the whole process (`dlsym` of
-    the global scope: the math module's calls of `sin` and `cos` go through the same
-    resolution, so the same function, the same CPU variant of glibc's IFUNC)."""
-    import ctypes
-
-    process = ctypes.CDLL(None)
-    return {"sin": ctypes.cast(process.sin, ctypes.c_void_p).value,
-            "cos": ctypes.cast(process.cos, ctypes.c_void_p).value,
-            "PyLong_Type": id(int), "PyRange_Type": id(range)}
+    """The addresses the kernels' `sin`, `cos` and type symbols bind to: native.libm_symbols'
+    `sin` and `cos` (the very functions math.sin and math.cos call), int and range."""
+    return {**native.libm_symbols(), "PyLong_Type": id(int), "PyRange_Type": id(range)}
 
 
 @functools.cache

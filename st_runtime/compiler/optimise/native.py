@@ -231,8 +231,10 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
     ("float", value) (args[j] a Python float, whose double is `value`) or ("list", {k:
     value}, size) (args[j] a list of at least `size` elements, the one at every index k a
     Python float); `distinct` holds pairs (j, k) of arguments that must be two objects.
-    `ops[i]` is (value, op, operands...): op "*", "+" or "-" of two operands, "neg" or
-    "sqrt" of one; an operand a value's name or an IR double literal.  The result is a
+    `ops[i]` is (value, op, operands...): op "*", "+" or "-" of two operands, "neg",
+    "sqrt", "sin" or "cos" (the C library's: `libm_symbols`) of one, or "finite" of one
+    (value None: the operand only checked to be finite); an operand a value's name or an
+    IR double literal.  The result is a
     new list of the doubles named by `outputs`, or None (a new reference) when an argument
     is not as compiled for or a value computed is not finite."""
     w = Writer()
@@ -254,8 +256,12 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
         w.check(f"%a{j}.not.a{k}")
     finite = "true"
     for i, (value, op, *operands) in enumerate(ops):
-        if op == "sqrt":
+        if op == "finite":                        # the value a finite test tested: checked, not computed
+            value = operands[0]
+        elif op == "sqrt":
             w.add(f"{value} = call double @llvm.sqrt.f64(double {operands[0]})")
+        elif op in LIBM:
+            w.add(f"{value} = call double @{op}(double {operands[0]}) #0")
         elif op == "neg":
             w.add(f"{value} = fneg double {operands[0]}")
         else:
@@ -269,8 +275,26 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
     w.lines += ["exact:",                         # the statements in Python, as written
                 "  call void @Py_IncRef(ptr @stgen_none)",
                 "  ret ptr @stgen_none"]
-    return (DECLARATIONS + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
-            + "\n".join(w.lines) + "\n}\n")
+    libm = sorted({op for _, op, *_ in ops if op in LIBM})
+    return (DECLARATIONS + "".join(f"declare double @{f}(double)\n" for f in libm)
+            + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
+            + "\n".join(w.lines) + "\n}\n" + ("attributes #0 = { nobuiltin }\n" if libm else ""))
+
+
+#: The C library's functions a kernel may call (`libm_symbols`), by the name the IR calls.
+LIBM = ("sin", "cos")
+
+
+def libm_symbols() -> dict[str, int]:
+    """The addresses the kernels' `sin` and `cos` bind to: the C library's functions as the
+    dynamic linker resolves them for the whole process (`dlsym` of the global scope: the
+    math module's calls of `sin` and `cos` go through the same resolution, so the same
+    function, the same CPU variant of glibc's IFUNC).  For a finite argument math.sin and
+    math.cos return that function's result unchanged (mathmodule.c `math_1`)."""
+    import ctypes
+
+    process = ctypes.CDLL(None)
+    return {name: ctypes.cast(getattr(process, name), ctypes.c_void_p).value for name in LIBM}
 
 
 def _machine():
