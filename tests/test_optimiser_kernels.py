@@ -596,3 +596,93 @@ def test_a_wrong_trigonometric_kernel_fails_a_row(wrong, monkeypatch):
     monkeypatch.setattr(native, "run_ir", lambda *a: WRONG_TRIG[wrong](right(*a)))
     assert _prologue_mismatches()
 
+
+#: IK's rotation, the two flags, the budget check between the rotation and the legs (its
+#: branch loads the variables the legs set: aliases.py `drop_unread`) and legs 1 and 2.
+CHECK = ("if _ctx.budget < _spent: v_U = self.v_U; v_V = self.v_V; v_W = self.v_W; v_LEGX = self.v_LEGX;"
+         " v_LEGY = self.v_LEGY; v_LEGZ = self.v_LEGZ; _overrun(('SP_InverseKinematics', 'SP_InverseKinematics.st', 104, 1))")
+CHECKED = IK[:11] + ["v_ALLFINITE = True", "v_ALLINSTROKE = True", CHECK] + LEGS
+CHECKED_INPUTS = IK_INPUTS + ("v_POSE", "v_POSITION", "v_LEGINSTROKE", "self", "_ctx")
+
+
+class _Overrun(Exception):
+    pass
+
+
+def _overrun(where):
+    raise _Overrun(where)
+
+
+def _faulting(lines: list[str], namespace: dict):
+    """`lines` as a function returning its locals, after a fault too (but reuse.py's shared
+    values `_cN`: locals no store back writes, gone when the overrun ends the body), and the
+    instance's variables."""
+    body = "\n".join("        " + line for line in [LEGS_STATE] + lines)
+    source = (f"def run({', '.join(CHECKED_INPUTS)}):\n    try:\n{body}\n"
+              "    except _Overrun as exc:\n        return {'fault': exc.args, **{k: v for k, v in locals().items()"
+              " if k not in ('exc', '_kr', 'self', '_ctx') and not _shared(k)}}\n"
+              "    return {k: v for k, v in locals().items() if k not in ('_kr', 'self', '_ctx')}\n")
+
+    def call(values, pose, budget):
+        instance = type("Instance", (), {})()
+        for name in ("v_U", "v_V", "v_W", "v_LEGX", "v_LEGY", "v_LEGZ"):
+            setattr(instance, name, -7.5)
+        context = type("Context", (), {"budget": budget})()
+        exec(compile(source, "<kernels test>", "exec"),
+             scope := {**namespace, "_Overrun": _Overrun, "_overrun": _overrun, "_shared": re.compile(r"_c\d+\Z").match})
+        found = scope["run"](*values, list(pose), [0.0] * 6, [False] * 6, instance, context)
+        return {**found, **{f"self.{k}": v for k, v in vars(instance).items()}}
+    return call
+
+
+def _checked_rows():
+    for values, pose in _ik_rows(random.Random(13)):
+        for budget in (10**9, 794741, 794742):           # passes, fails, passes at the charge
+            yield values, pose, budget
+
+
+def _checked_mismatches() -> list:
+    after, bound = _passed(CHECKED)
+    python = _faulting(CHECKED, {"_m_sqrt": math.sqrt})
+    kernel = _faulting(after, {"_m_sqrt": math.sqrt, **bound})
+    return [row for row in _checked_rows() if not _same(python(*row), kernel(*row))]
+
+
+def test_the_rotation_and_the_legs_are_one_kernel_across_the_budget_check():
+    """The check runs after the kernel where it answers, after the flags, before leg 1's
+    store: in its place among the statements the kernel's path keeps."""
+    after, _ = _passed(CHECKED)
+    assert after.count("if _kr is None:") == 1
+    path = after[after.index("else:") + 2:]
+    assert path[:4] == ["    v_ALLFINITE = True", "    v_ALLINSTROKE = True", "    " + CHECK, "    v_POSITION[0] = _c64"]
+
+
+def test_a_budget_check_that_fails_finds_the_state_it_finds_in_python():
+    """Budgets that pass and fail at the check: the fault's place, every local the body set
+    before it (the rotation, the flags), the variables its branch loads, the lists and the
+    instance as Python's, on ordinary and special values (the None path too)."""
+    assert _checked_mismatches() == []
+    python = _faulting(CHECKED, {"_m_sqrt": math.sqrt})
+    assert "fault" in python([0.5] * 6, [1.0, 2.0, 3.0], 794741) and "v_POSITION" in python([0.5] * 6, [1.0, 2.0, 3.0], 10**9)
+
+
+def test_a_variable_the_check_does_not_load_ends_the_span_before_it():
+    """A run line after the check setting a variable its branch does not load (here LegZ)
+    would show the kernel's value where the check fails: the span ends before that line."""
+    lines = [line.replace(" v_LEGZ = self.v_LEGZ;", "") for line in CHECKED]
+    after, _ = _passed(lines)
+    second = after.index("if _kr is None:", after.index("if _kr is None:") + 1)
+    assert after.count("if _kr is None:") == 2 and after[second + 1] == "    v_LEGZ = (v_W + _c56)"
+
+
+def test_a_wrong_check_rule_fails_a_row(monkeypatch):
+    """Every target allowed after the check (the rule left out): the fault shows the legs'
+    values the check's branch does not load."""
+    global CHECKED
+    right = CHECKED
+    monkeypatch.setattr(kernels, "_SHARED", re.compile(r".*"))
+    CHECKED = [line.replace(" v_LEGZ = self.v_LEGZ;", "") for line in right]
+    try:
+        assert _checked_mismatches()
+    finally:
+        CHECKED = right

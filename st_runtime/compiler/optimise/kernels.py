@@ -36,8 +36,13 @@ math.cos calls: native.libm_symbols).  A name may be an instance's variable, `se
   or change what one of them reads or sets ends the span before it (a run line reading an
   element stored in the span reads the run's value stored there, any other ends it).  The
   kernel checks each list stored into is a list long enough and no other list it reads, so
-  no store can raise or change what it read.  No budget check is such a statement: the
-  charges total the same on every path and no fault can fire in between.
+  no store can raise or change what it read.  The charges total the same on every path;
+* one budget check (`_Span._budget_check`), which runs in its place among those statements
+  (the charges before it made, the names the runs set before it set), where a run line
+  after it may set only reuse.py's shared values `_cN` and the variables the check's
+  branch loads before `_overrun`: where it fails, the body ends (ScanOverrun) with every
+  variable it stores back as without the kernel (SP_InverseKinematics: the prologue, the
+  rotation and the six legs one kernel).
 
 Exactness: each operation is the IEEE-754 binary64 instruction on the same operands in the
 same order (`fmul`/`fadd`/`fsub`/`fneg`, no fast-math flags, no FMA: see native.py), and
@@ -283,6 +288,12 @@ _SAFE_TOKEN = re.compile(r" *(?:(\d+\.\d*(?:e[+-]?\d+)?|\d+e[+-]?\d+|\d+)|([A-Za
                          r"|(<=|>=|==|!=|\+=|[<>()=:-]))")
 _KEYWORDS = frozenset({"True", "False", "not", "and", "or", "if", "else", "elif"})
 _CHARGE = "_spent"          # the compiler's charge counter, an int (charges.py)
+#: A budget check (statements.py `_charge`), with the loads aliases.py `drop_unread` makes
+#: in its branch of the variables set after it: `if _ctx.budget < _spent: v_U = self.v_U; _overrun((...))`.
+_BUDGET_CHECK = re.compile(r"( *)if _ctx\.budget < _spent: ((?:(\w+) = self\.\3; )*)_overrun\(\([^()]*\)\)\Z")
+_RELOAD = re.compile(r"(\w+) = self\.\1; ")
+#: reuse.py's shared values: locals of the body, never the instance's (no store back).
+_SHARED = re.compile(r"_c\d+\Z")
 
 
 class _Span:
@@ -302,6 +313,8 @@ class _Span:
         self.elements: dict[tuple, object] = {}  # (list, index) stored -> the run's value, or None
         self.read_later: set[str] = set()        # names the deferred statements read
         self.targets: set[str] = {_CHARGE}       # names the deferred statements set (and the charge)
+        self.reloaded: set[str] | None = None    # after a budget check: the names its branch loads
+        self.before_check: set[str] = set()      # the names the runs set before it
         self.end = first
         if not self._assign(matches[first].group(2), matches[first].group(3)):
             return                               # (a span starts with a run line)
@@ -316,7 +329,7 @@ class _Span:
                 if j is None:
                     break
                 if not self._finite_test(body[i:j]):
-                    deferred = self._defer(body[i:j])
+                    deferred = self._budget_check(body[i:j]) or self._defer(body[i:j])
                     if deferred is None:
                         break
                     pending.append(deferred)
@@ -347,11 +360,31 @@ class _Span:
         return (test is not None and test.group(1) == self.indent and self.run.computed(test.group(2))
                 and not any(line.startswith(self.indent) and line[len(self.indent)] != " " for line in lines[1:]))
 
+    def _budget_check(self, lines: list[str]):
+        """(lines, no stores) when `lines` are the span's first budget check: it runs after
+        the kernel where it answers, in its place among the deferred statements, so the
+        charges before it are made and the names the runs set before it are set when it
+        fails; a run line after it may set only reuse.py's shared values (locals no store
+        back writes) and the variables its branch loads (`_assign`): when it fails, those
+        hold what they held without the kernel.  Its fault (support.overrun's ScanOverrun,
+        none of the `_FAULTS` a handler in the body catches) ends the body: its locals are
+        seen after it only through the store back of its variables."""
+        check = _BUDGET_CHECK.match(lines[0]) if len(lines) == 1 and self.reloaded is None else None
+        if check is None or check.group(1) != self.indent:
+            return None
+        self.reloaded = set(_RELOAD.findall(check.group(2)))
+        self.before_check = set(self.run.assigned)
+        return lines, []
+
     def _assign(self, target: str, text: str) -> bool:
         """Add a run's line, unless it sets what a deferred statement reads or sets, reads
-        what one sets, or reads a list element one stored other than a value of the run."""
+        what one sets, or reads a list element one stored other than a value of the run;
+        after a budget check, unless it sets a variable the check's branch does not load."""
         parsed = _tree(text)
         if parsed is None or target in self.read_later or target in self.targets:
+            return False
+        if self.reloaded is not None and not (
+                _SHARED.match(target) or target in self.reloaded and target not in self.before_check):
             return False
         tree, floats, lists = parsed
         if floats & self.targets or self.not_float is not None and (
