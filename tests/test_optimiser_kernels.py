@@ -557,14 +557,15 @@ def test_the_prologue_gives_pythons_values_bit_for_bit():
     assert kernel([0.0, 0.0, 0.0, 1e300, 1.0, 2.0])[3] == math.cos(1e300 * 0.017453292519943295)
 
 
-def test_sin_and_cos_are_the_math_modules():
-    """The kernel's `sin` and `cos` are the addresses the process resolves for the names
-    (the functions math.sin and math.cos call: test_optimiser_loops.py's GOT check)."""
+def test_sin_cos_and_atan_are_the_math_modules():
+    """The kernel's `sin`, `cos` and `atan` are the addresses the process resolves for the
+    names (the functions math.sin, math.cos and math.atan call: test_optimiser_loops.py's
+    GOT check)."""
     import ctypes
 
     process = ctypes.CDLL(None)
-    assert native.libm_symbols() == {"sin": ctypes.cast(process.sin, ctypes.c_void_p).value,
-                                     "cos": ctypes.cast(process.cos, ctypes.c_void_p).value}
+    assert native.libm_symbols() == {name: ctypes.cast(getattr(process, name), ctypes.c_void_p).value
+                                     for name in ("sin", "cos", "atan")}
 
 
 def test_a_guard_of_another_value_or_a_test_read_as_a_float_ends_the_span():
@@ -686,3 +687,111 @@ def test_a_wrong_check_rule_fails_a_row(monkeypatch):
         assert _checked_mismatches()
     finally:
         CHECKED = right
+
+
+#: TRJ_OceanWave's pose as the compiler writes it on the wave: stores of expressions into the
+#: pose's elements, ATAN (the library's, math.atan) inside `try` with the fault's handler.
+POSE = """\
+v_POSE[0] = ((v_FADE * (self.v_HORIZONTAL * v_COSHEADING)) + v_CENTRE[0])
+v_POSE[1] = ((v_FADE * (self.v_HORIZONTAL * v_SINHEADING)) + v_CENTRE[1])
+v_POSE[2] = ((v_FADE * v_COSINESUM) + v_CENTRE[2])
+v_POSE[3] = v_CENTRE[3]
+try:
+    v_POSE[4] = ((v_FADE * (-(_sf_ATAN((self.v_SLOPEALONG * v_COSHEADING)) * 57.29577951308232))) + v_CENTRE[4])
+except _FAULTS as _e:
+    _ctx.fault(_e, ('TRJ_OceanWave', 'TRJ_OceanWave.st', 317, 5))
+try:
+    v_POSE[5] = ((v_FADE * (_sf_ATAN((self.v_SLOPEALONG * v_SINHEADING)) * 57.29577951308232)) + v_CENTRE[5])
+except _FAULTS as _e:
+    _ctx.fault(_e, ('TRJ_OceanWave', 'TRJ_OceanWave.st', 318, 5))""".splitlines()
+POSE_INPUTS = ("self", "_ctx", "v_FADE", "v_COSHEADING", "v_SINHEADING", "v_COSINESUM", "v_CENTRE", "v_POSE")
+
+
+def _pose_function(lines: list[str], namespace: dict):
+    """`lines` as a function of a row: its locals (the pose; not the kernel's values `_kvN`,
+    which only its stores read), the faults it reported."""
+    from st_runtime.compiler import _FAULTS
+    from st_runtime.stdlib.functions import FUNCTIONS
+
+    run = _function(lines, POSE_INPUTS, {**namespace, "_sf_ATAN": FUNCTIONS["ATAN"], "_FAULTS": _FAULTS})
+
+    def call(horizontal, slope, *row):
+        instance, context = type("Instance", (), {})(), type("Context", (), {})()
+        instance.v_HORIZONTAL, instance.v_SLOPEALONG, context.faults = horizontal, slope, []
+        context.fault = lambda e, where: context.faults.append((type(e).__name__, where))
+        found = run(instance, context, *[list(x) if isinstance(x, list) else x for x in row])
+        if isinstance(found, str):
+            return found
+        own = [name for name in found if re.match(r"_kv\d+\Z", name)]        # the pass's values of stores
+        return {**{k: v for k, v in found.items() if k not in own}, "self": None, "_ctx": None, "faults": context.faults}
+    return call
+
+
+def _pose_rows(rng: random.Random):
+    for k in range(300):
+        row = [rng.uniform(-50.0, 50.0), rng.uniform(-0.5, 0.5), rng.uniform(0.0, 1.0), math.cos(k), math.sin(k),
+               rng.uniform(-30.0, 30.0), [rng.uniform(-100.0, 100.0) for _ in range(6)], [0.0] * 6]
+        if k >= 100:
+            for _ in range(1 + k % 3):
+                j = rng.randrange(7)
+                if j == 6:
+                    row[6][rng.randrange(6)] = rng.choice(SPECIAL)
+                else:
+                    row[j] = rng.choice(SPECIAL + [1e300, -1e300])
+        yield row
+    yield [1.0, 0.1, 1.0, 0.5, 0.5, 1.0, [1.0, 2.0, 3.0, 4.0, 5, 6.0], [0.0] * 6]        # an int element
+    yield [1.0, 0.1, 1.0, 0.5, 0.5, 1.0, [1.0] * 6, [0.0] * 5]                          # a short pose
+    yield [1.0, 0.1, 1.0, 0.5, 0.5, 1.0, (1.0,) * 6, [0.0] * 6]                         # a tuple
+
+
+def _pose_mismatches(lines=POSE) -> list:
+    after, bound = _passed(lines)
+    python = _pose_function(lines, {"_m_sqrt": math.sqrt})
+    kernel = _pose_function(after, {"_m_sqrt": math.sqrt, **bound})
+    return [row for row in _pose_rows(random.Random(17)) if not _same(python(*row), kernel(*row))]
+
+
+def test_the_pose_is_one_kernel_its_stores_after_it():
+    """The four stores and the two `try` lines with ATAN: one kernel returning the six values,
+    stored in their order where it answers; no handler on the kernel's path."""
+    after, _ = _passed(POSE)
+    assert after[0] == ("_kr = _k0(v_FADE, self.v_HORIZONTAL, v_COSHEADING, v_CENTRE, v_SINHEADING, v_COSINESUM,"
+                        " self.v_SLOPEALONG, v_POSE)")
+    assert after[after.index("else:") + 1:] == ["    _kv0, _kv1, _kv2, _kv3, _kv4, _kv5, = _kr"] + [
+        f"    v_POSE[{k}] = _kv{k}" for k in range(6)]
+
+
+def test_the_pose_gives_pythons_values_and_faults_bit_for_bit():
+    """Ordinary rows and ones with inf, NaN, -0.0, subnormal and huge values (ATAN of an
+    infinite slope is pi/2 in Python: the kernel answers None there), an int element, a short
+    pose (IndexError), a tuple: every local, the pose and the faults reported as Python's."""
+    assert _pose_mismatches() == []
+
+
+def test_a_try_with_else_or_finally_and_a_store_of_a_name_are_not_run_lines():
+    """`try` with an `else:` or `finally:` (it runs more than the line) ends the span; a store
+    of a name stays a deferred store of the run's value (no value more returned).  (The
+    pose's 19 operations make one kernel; the lines before such a `try` and after it are too
+    few for one.)"""
+    for extra in (["else:", "    v_X = 1.0"], ["finally:", "    v_X = 1.0"]):
+        lines = POSE[:7] + extra + POSE[7:]
+        assert _passed(lines)[0] == lines
+    after, _ = _passed(IK)
+    assert not any("_kv" in line for line in after)
+
+
+WRONG_POSE = {
+    "atan as sin": lambda ir: ir.replace("@atan(double %", "@sin(double %").replace("declare double @atan(double)\n", ""),
+    "a store dropped": None,
+}
+
+
+@pytest.mark.parametrize("wrong", WRONG_POSE, ids=WRONG_POSE.keys())
+def test_a_wrong_pose_kernel_fails_a_row(wrong, monkeypatch):
+    if wrong == "a store dropped":
+        right_call = kernels._call
+        monkeypatch.setattr(kernels, "_call", lambda *a: [line for line in right_call(*a) if line != "    v_POSE[3] = _kv3"])
+    else:
+        right = native.run_ir
+        monkeypatch.setattr(native, "run_ir", lambda *a: WRONG_POSE[wrong](right(*a)))
+    assert _pose_mismatches()

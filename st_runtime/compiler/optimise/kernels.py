@@ -25,7 +25,11 @@ type than REAL/LREAL (`not_floats`); or it is the compiler's finite test of a na
 checked finite: `_cN = True` after it), or SIN or COS of a name behind such a test of the
 same value, `(_m_cos(x) if _cN else _sf_COS(x))` (the C library's `cos`, the very function
 math.cos calls: native.libm_symbols).  A name may be an instance's variable, `self.v_X`
-(read as an argument, or set: always returned).  A span (`_Span`) goes on across, at its indentation:
+(read as an argument, or set: always returned); `_sf_ATAN(...)` is the C library's `atan`
+where the library's ATAN is math.atan.  A run line may store into a list element at a
+literal index, `L[k] = <expression>` (the kernel returns the value as `_kvN`, stored after
+it as a deferred statement), and may be the one line of a `try:` whose `except _FAULTS`
+handler cannot run where the kernel answers (nothing in the line raises there).  A span (`_Span`) goes on across, at its indentation:
 
 * a finite test `if (not (x < 1e309 and x > -1e309)):` (no `else`) of a value the kernel
   computed: where it answers every such value is finite, so the branch is not taken there;
@@ -72,14 +76,17 @@ from . import native
 
 MIN_OPERATIONS = 16      # a crossing costs about as much as a dozen float operations in Python
 #: A line that may qualify: `name = ` and only the characters of the forms above.
-_CANDIDATE = re.compile(r"( *)((?:self\.)?[A-Za-z_]\w*) = ([\w.()+*\[\]<> -]+)\Z")
+_CANDIDATE = re.compile(r"( *)((?:self\.)?[A-Za-z_]\w*(?:\[\d+\])?) = ([\w.()+*\[\]<> -]+)\Z")
 _TOKEN = re.compile(r" *(?:(\d+\.\d*(?:e[+-]?\d+)?|\d+e[+-]?\d+)|((?:self\.)?[A-Za-z_]\w*)|(\d+)|(\S))")
 #: The compiler's finite test of a name kept in a temporary (calls.py, pysrc.finite_test).
 _TEST = re.compile(r"\(True if \(((?:self\.)?[A-Za-z_]\w*) < 1e309 and \1 > -1e309\) else False\)\Z")
 #: SIN or COS of a name behind that test (calls.py `_GUARDED`): `(_m_sin(x) if _cN else _sf_SIN(x))`.
 _GUARDED = re.compile(r"\(_m_(sin|cos)\(((?:self\.)?[A-Za-z_]\w*)\) if ([A-Za-z_]\w*) else _sf_(SIN|COS)\(\2\)\)\Z")
 _NAME = re.compile(r"(?<![\w.])[A-Za-z_]\w*")
-_NOT_NAMES = frozenset({"True", "False", "None", "_m_sqrt", "_kr"})
+_NOT_NAMES = frozenset({"True", "False", "None", "_m_sqrt", "_sf_ATAN", "_kr"})
+#: A store's target `L[k]`: the list and the index.
+_STORE = re.compile(r"([A-Za-z_]\w*)\[(\d+)\]\Z")
+_NAME_ONLY = re.compile(r"[A-Za-z_]\w*\Z")
 
 
 class _NotPure(Exception):
@@ -136,11 +143,11 @@ def _primary(tokens, i, names):
             return ("c", native._double(-float(tokens[i + 1][0]))), i + 2
         operand, i = _primary(tokens, i + 1, names)
         return ("neg", operand), i
-    if name == "_m_sqrt" and tokens[i + 1][3] == "(":
+    if (name == "_m_sqrt" or name == "_sf_ATAN" and _atan_is_maths()) and tokens[i + 1][3] == "(":
         operand, i = _sum(tokens, i + 2, names)
         if tokens[i][3] != ")":
-            raise _NotPure("sqrt")
-        return ("sqrt", operand), i + 1
+            raise _NotPure(name)
+        return ("sqrt" if name == "_m_sqrt" else "atan", operand), i + 1
     if not name or name in _NOT_NAMES:
         raise _NotPure(name or char or integer)
     if i + 1 < len(tokens) and tokens[i + 1][3] == "[":
@@ -150,6 +157,18 @@ def _primary(tokens, i, names):
         return ("e", name, int(tokens[i + 2][2])), i + 4
     names[0].add(name)
     return ("n", name), i + 1
+
+
+@functools.cache
+def _atan_is_maths() -> bool:
+    """Whether `_sf_ATAN`, the library's ATAN the compiler binds (CompileUnit.bind_function),
+    is math.atan itself (stdlib/functions.py: no wrapper), which calls the C library's `atan`
+    and returns its result unchanged for every float (mathmodule.c `math_1`: atan is finite)."""
+    import math
+
+    from ...stdlib.functions import FUNCTIONS
+
+    return FUNCTIONS.get("ATAN") is math.atan
 
 
 class _Run:
@@ -182,7 +201,7 @@ class _Run:
         tree, floats, lists = parsed
         if any(name in self.env for name in lists) or any(self.kind.get(name) == "list" for name in floats):
             return False
-        if target in self.tests or not floats.isdisjoint(self.tests) or tree[0] in native.LIBM and (
+        if target in self.tests or not floats.isdisjoint(self.tests) or tree[0] in ("sin", "cos") and (
                 tree[2] not in self.tests or self.tests[tree[2]] != self.env.get(tree[1][1])):
             return False            # (a test is read only as the guard of SIN or COS of the value it tested)
         self.overrides.update(overrides)
@@ -293,7 +312,7 @@ _CHARGE = "_spent"          # the compiler's charge counter, an int (charges.py)
 _BUDGET_CHECK = re.compile(r"( *)if _ctx\.budget < _spent: ((?:(\w+) = self\.\3; )*)_overrun\(\([^()]*\)\)\Z")
 _RELOAD = re.compile(r"(\w+) = self\.\1; ")
 #: reuse.py's shared values: locals of the body, never the instance's (no store back).
-_SHARED = re.compile(r"_c\d+\Z")
+_SHARED = re.compile(r"_c\d+\Z|_kv\d+\Z")            # (and this pass's own values of stores)
 
 
 class _Span:
@@ -315,15 +334,20 @@ class _Span:
         self.targets: set[str] = {_CHARGE}       # names the deferred statements set (and the charge)
         self.reloaded: set[str] | None = None    # after a budget check: the names its branch loads
         self.before_check: set[str] = set()      # the names the runs set before it
+        self.own: list[tuple] = []               # the stores of the run line just added
+        self.values = 0                          # the values of stores made (`_kv0`, `_kv1` ...)
         self.end = first
         if not self._assign(matches[first].group(2), matches[first].group(3)):
             return                               # (a span starts with a run line)
+        self._keep([])
         pending: list[tuple] = []                # deferred since the last run line or finite test
         i = self.end = first + 1
         while i < len(body):
             match = matches[i]
             if match is not None and match.group(1) == self.indent and self._assign(match.group(2), match.group(3)):
                 i += 1
+            elif (j := self._guarded_line(body, i, matches)) is not None:
+                i = j
             else:
                 j = self._statement_end(body, i)
                 if j is None:
@@ -336,11 +360,32 @@ class _Span:
                     i = j
                     continue
                 i = j
-            for lines, stores in pending:
-                self.kept.append(lines)
-                for name, index in stores:
-                    self.stored.setdefault(name, set()).add(index)
+            self._keep(pending)
             pending, self.end = [], i
+
+    def _keep(self, pending: list[tuple]) -> None:
+        """Keep the deferred statements `pending`, then the stores of the run line after them."""
+        for lines, stores in pending + self.own:
+            self.kept.append(lines)
+            for name, index in stores:
+                self.stored.setdefault(name, set()).add(index)
+        self.own = []
+
+    def _guarded_line(self, body: list[str], i: int, matches: list):
+        """The end of `try:`, a run line, `except _FAULTS as _e:` and its handler at `body[i]`
+        (the line added to the run), None for anything else: where the kernel answers the line
+        raises nothing (floats, lists long enough, every value finite), so the handler does not
+        run there."""
+        if body[i] != self.indent + "try:" or i + 2 >= len(body) or body[i + 2] != self.indent + "except _FAULTS as _e:":
+            return None
+        inner = matches[i + 1]
+        j = i + 3
+        while j < len(body) and body[j].startswith(self.indent + " "):
+            j += 1
+        if (inner is None or inner.group(1) != self.indent + "    " or j == i + 3
+                or j < len(body) and body[j].startswith((self.indent + "else:", self.indent + "finally:", self.indent + "except"))):
+            return None
+        return j if self._assign(inner.group(2), inner.group(3)) else None
 
     def _statement_end(self, body: list[str], i: int):
         """The end of the statement at `body[i]`: its block and any `elif`/`else`; None when
@@ -376,10 +421,29 @@ class _Span:
         self.before_check = set(self.run.assigned)
         return lines, []
 
+    def _store(self, name: str, index: int, text: str) -> bool:
+        """`L[k] = <expression>`: the run computes the expression as a value `_kvN` the kernel
+        returns, and the store of it is a deferred statement (`_defer`'s conditions).  A
+        store of a name is `_defer`'s: the run's value is stored as it is, no value more."""
+        if _NAME_ONLY.match(text) or name in self.run.env or name in self.read_later or self.run.kind.get(name) == "float" or name == _CHARGE:
+            return False
+        value = f"_kv{self.values}"
+        if not self._assign(value, text):
+            return False
+        self.values += 1
+        self.elements[(name, index)] = self.run.env[value]
+        self.targets.add(name)
+        self.own.append(([f"{self.indent}{name}[{index}] = {value}"], [(name, index)]))
+        return True
+
     def _assign(self, target: str, text: str) -> bool:
         """Add a run's line, unless it sets what a deferred statement reads or sets, reads
         what one sets, or reads a list element one stored other than a value of the run;
-        after a budget check, unless it sets a variable the check's branch does not load."""
+        after a budget check, unless it sets a variable the check's branch does not load.
+        A target `L[k]` is a store (`_store`)."""
+        store = _STORE.match(target)
+        if store is not None:
+            return self._store(store[1], int(store[2]), text)
         parsed = _tree(text)
         if parsed is None or target in self.read_later or target in self.targets:
             return False

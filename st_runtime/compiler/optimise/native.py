@@ -232,7 +232,7 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
     value}, size) (args[j] a list of at least `size` elements, the one at every index k a
     Python float); `distinct` holds pairs (j, k) of arguments that must be two objects.
     `ops[i]` is (value, op, operands...): op "*", "+" or "-" of two operands, "neg",
-    "sqrt", "sin" or "cos" (the C library's: `libm_symbols`) of one, or "finite" of one
+    "sqrt", "sin", "cos" or "atan" (the C library's: `libm_symbols`) of one, or "finite" of one
     (value None: the operand only checked to be finite); an operand a value's name or an
     IR double literal.  The result is a
     new list of the doubles named by `outputs`, or None (a new reference) when an argument
@@ -282,15 +282,15 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
 
 
 #: The C library's functions a kernel may call (`libm_symbols`), by the name the IR calls.
-LIBM = ("sin", "cos")
+LIBM = ("sin", "cos", "atan")
 
 
 def libm_symbols() -> dict[str, int]:
-    """The addresses the kernels' `sin` and `cos` bind to: the C library's functions as the
+    """The addresses the kernels' `sin`, `cos` and `atan` bind to: the C library's functions as the
     dynamic linker resolves them for the whole process (`dlsym` of the global scope: the
-    math module's calls of `sin` and `cos` go through the same resolution, so the same
-    function, the same CPU variant of glibc's IFUNC).  For a finite argument math.sin and
-    math.cos return that function's result unchanged (mathmodule.c `math_1`)."""
+    math module's calls go through the same resolution, so the same function, the same CPU
+    variant of glibc's IFUNC).  For a finite argument math.sin, math.cos and math.atan return
+    that function's result unchanged (mathmodule.c `math_1`)."""
     import ctypes
 
     process = ctypes.CDLL(None)
