@@ -773,6 +773,13 @@ def test_the_pose_gives_pythons_values_and_faults_bit_for_bit():
     assert _pose_mismatches() == []
 
 
+def test_a_store_into_an_instances_array_is_no_run_line():
+    """`self.v_P[k] = ...`: the list may be the one a local holds (`v_POSE = self.v_POSE`), which
+    the kernel would read before the store: no run line, nothing changed."""
+    lines = [line.replace("v_POSE[", "self.v_POSE[", 1) if line.startswith("v_POSE[") else line for line in POSE]
+    assert lines[0].startswith("self.v_POSE[0] = ") and _passed(lines)[0] == lines
+
+
 def test_a_try_with_else_or_finally_and_a_store_of_a_name_are_not_run_lines():
     """`try` with an `else:` or `finally:` (it runs more than the line) ends the span; a store
     of a name stays a deferred store of the run's value (no value more returned).  (The

@@ -77,8 +77,10 @@ import re
 from . import native
 
 MIN_OPERATIONS = 16      # a crossing costs about as much as a dozen float operations in Python
-#: A line that may qualify: `name = ` and only the characters of the forms above.
-_CANDIDATE = re.compile(r"( *)((?:self\.)?[A-Za-z_]\w*(?:\[\d+\])?) = ([\w.()+*\[\]<> -]+)\Z")
+#: A line that may qualify: `name = `, `self.name = ` or `list[k] = ` (not an element of an
+#: instance's array: its list may be one a local name holds too) and only the characters of
+#: the forms above.
+_CANDIDATE = re.compile(r"( *)((?:self\.)?[A-Za-z_]\w*|[A-Za-z_]\w*\[\d+\]) = ([\w.()+*\[\]<> -]+)\Z")
 _TOKEN = re.compile(r" *(?:(\d+\.\d*(?:e[+-]?\d+)?|\d+e[+-]?\d+)|((?:self\.)?[A-Za-z_]\w*)|(\d+)|(\S))")
 #: The compiler's finite test of a name kept in a temporary (calls.py, pysrc.finite_test).
 _TEST = re.compile(r"\(True if \(((?:self\.)?[A-Za-z_]\w*) < 1e309 and \1 > -1e309\) else False\)\Z")
