@@ -34,9 +34,7 @@ handler cannot run where the kernel answers (nothing in the line raises there). 
 * a finite test `if (not (x < 1e309 and x > -1e309)):` (no `else`) of a value the kernel
   computed: where it answers every such value is finite, so the branch is not taken there;
 * a statement that cannot raise on floats, ints and bools (`_Span._defer`): a store of a
-  run's value or of a test into a list element at a literal index (a range test of a
-  run's value, `(True if ((x >= a) and (x <= b)) else False)`, the kernel computes: ordered
-  `fcmp`s, Python's comparisons of floats, returned as True or False, `_kbN`), a test's `if`/`else`,
+  run's value or of a test into a list element at a literal index, a test's `if`/`else`,
   a charge `_spent += <int>`, an assignment of a test to a name no run line reads or sets.
   Where the kernel answers these run after it, in their order; a run line that would read
   or change what one of them reads or sets ends the span before it (a run line reading an
@@ -91,10 +89,6 @@ _NOT_NAMES = frozenset({"True", "False", "None", "_m_sqrt", "_sf_ATAN", "_kr"})
 #: A store's target `L[k]`: the list and the index.
 _STORE = re.compile(r"([A-Za-z_]\w*)\[(\d+)\]\Z")
 _NAME_ONLY = re.compile(r"[A-Za-z_]\w*\Z")
-
-
-#: The operations MIN_OPERATIONS counts (not a unary minus, a finite check or a truth).
-_ARITHMETIC = frozenset({"*", "+", "-", "sqrt", "sin", "cos", "atan"})
 
 
 class _NotPure(Exception):
@@ -193,7 +187,6 @@ class _Run:
         self.results: set[str] = set()        # the values operations computed
         self.overrides: dict[tuple, str] = {} # (list, index) -> the value stored there in the span
         self.tests: dict[str, str] = {}       # a finite test's name -> the value it tested
-        self.booleans: set[str] = set()       # the values that are truths (i1), returned as bools
         self.count = 0
 
     def value(self) -> str:
@@ -222,15 +215,6 @@ class _Run:
             self.env[target] = self._value_of(tree)
         self.assigned[target] = None
         return True
-
-    def compare(self, target: str, first: tuple, second: tuple) -> None:
-        """`target` = the `and` of the comparisons `first` and `second` ((op, a, b)): an i1
-        the kernel returns as True or False."""
-        values = [self.value() for _ in range(3)]
-        self.ops += [(values[0], *first), (values[1], *second), (values[2], "and", values[0], values[1])]
-        self.env[target] = values[2]
-        self.booleans.add(values[2])
-        self.assigned[target] = None
 
     def computed(self, name: str) -> bool:
         """Whether `name`'s value now is one an operation of the run computed."""
@@ -299,7 +283,7 @@ def replace(lines: list[str], start: int, register, bind, not_float=None) -> Non
             continue
         span = _Span(body, matches, i, not_float)
         end = max(span.end, i + 1)
-        if sum(op[1] in _ARITHMETIC for op in span.run.ops) >= MIN_OPERATIONS:
+        if sum(op[1] not in ("neg", "finite") for op in span.run.ops) >= MIN_OPERATIONS:
             mentions = mentions or collections.Counter(_NAME.findall("\n".join(body)))
             live = _read_after(span, body[i:span.end], mentions)
             spans.append((start + i, start + span.end, _call(body[i:span.end], span, live, register, bind)))
@@ -329,11 +313,6 @@ _CHARGE = "_spent"          # the compiler's charge counter, an int (charges.py)
 #: in its branch of the variables set after it: `if _ctx.budget < _spent: v_U = self.v_U; _overrun((...))`.
 _BUDGET_CHECK = re.compile(r"( *)if _ctx\.budget < _spent: ((?:(\w+) = self\.\3; )*)_overrun\(\([^()]*\)\)\Z")
 _RELOAD = re.compile(r"(\w+) = self\.\1; ")
-#: A store of a range test of a value (SP_InverseKinematics' in-stroke test):
-#: `L[k] = (True if ((x >= 0.0) and (x <= 600.0)) else False)`.
-_RANGE_TEST = re.compile(r"( *[A-Za-z_]\w*\[\d+\] = )\(True if \(\(([A-Za-z_]\w*) (>=|>|<=|<) (-?\d+\.\d*)\) and"
-                         r" \(\2 (>=|>|<=|<) (-?\d+\.\d*)\)\) else False\)\Z")
-_FCMP = {">=": "oge", ">": "ogt", "<=": "ole", "<": "olt"}
 #: reuse.py's shared values: locals of the body, never the instance's (no store back).
 _SHARED = re.compile(r"_c\d+\Z|_kv\d+\Z")            # (and this pass's own values of stores)
 
@@ -523,21 +502,7 @@ class _Span:
                 return None
         self.read_later |= reads
         self.targets |= targets | {name for name, _ in stores}
-        return [self._range_test(line) for line in lines], stores
-
-    def _range_test(self, line: str) -> str:
-        """`line`, or where it stores a range test of a value the run computed, the store of
-        that test's truth computed by the kernel (`_kbN`, True or False: the `and` of two
-        ordered comparisons, Python's `>= > <= <` of floats, its `and` of two bools)."""
-        test = _RANGE_TEST.match(line)
-        if test is None or not self.run.computed(test[2]):
-            return line
-        x = self.run.env[test[2]]
-        value = f"_kb{self.values}"
-        self.values += 1
-        self.run.compare(value, (_FCMP[test[3]], x, native._double(float(test[4]))),
-                         (_FCMP[test[5]], x, native._double(float(test[6]))))
-        return f"{test[1]}{value}"
+        return lines, stores
 
     def _safe(self, words: list, reads: set) -> bool:
         """Whether the expression `words` is a test as `_defer` describes (its names into
@@ -638,7 +603,7 @@ def _call(original: list[str], span: _Span, targets: list[str], register, bind) 
     def ir() -> str:
         if libm:
             native.bind_symbols(native.libm_symbols())
-        return native.run_ir(arguments, run.ops, outputs, distinct, frozenset(run.booleans))
+        return native.run_ir(arguments, run.ops, outputs, distinct)
     bind(kernel, native.on_first_call(ir, lambda built: bind(kernel, built)))
     return ([f"{indent}_kr = {kernel}({', '.join(run.texts)})", f"{indent}if _kr is None:"]
             + ["    " + line for line in original]

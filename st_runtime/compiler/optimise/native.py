@@ -154,20 +154,13 @@ class Writer:
                  f"%{obj[1:]}.{tag} = icmp {comparison} i64 %{obj[1:]}.size, {size}")
         self.check(f"%{obj[1:]}.{tag}")
 
-    def returns_list(self, values: list[str], booleans=frozenset()) -> None:
-        """Return a new list of new floats of the doubles `values` (NULL on no memory); a value
-        in `booleans` is an i1, True or False in the list."""
+    def returns_list(self, values: list[str]) -> None:
+        """Return a new list of new floats of the doubles `values` (NULL on no memory)."""
         self.add(f"%list = call ptr @PyList_New(i64 {len(values)})",
                  "%made = icmp ne ptr %list, null")
         self.lines += ["  br i1 %made, label %fill, label %failed", "fill:"]
         slots = self.object_of("slots", "%list", _ITEMS)
         for j, value in enumerate(values):
-            if value in booleans:
-                self.add(f"%out{j} = select i1 {value}, ptr @stgen_true, ptr @stgen_false",
-                         f"call void @Py_IncRef(ptr %out{j})",
-                         f"%out{j}.at = getelementptr inbounds ptr, ptr {slots}, i64 {j}",
-                         f"store ptr %out{j}, ptr %out{j}.at, align 8")
-                continue
             self.add(f"%out{j} = call ptr @PyFloat_FromDouble(double {value})",
                      f"%out{j}.at = getelementptr inbounds ptr, ptr {slots}, i64 {j}",
                      f"store ptr %out{j}, ptr %out{j}.at, align 8",          # NULL on no memory: the list's
@@ -232,7 +225,7 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
             + "\n".join(w.lines) + "\n}\n")
 
 
-def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=(), booleans=frozenset()) -> str:
+def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -> str:
     """The IR of `PyObject *run(PyObject *self, PyObject *const *args, Py_ssize_t nargs)` for
     kernels.py's runs of statements, called as `run(a0, a1, ...)`: `arguments[j]` is
     ("float", value) (args[j] a Python float, whose double is `value`) or ("list", {k:
@@ -240,10 +233,8 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=(), b
     Python float); `distinct` holds pairs (j, k) of arguments that must be two objects.
     `ops[i]` is (value, op, operands...): op "*", "+" or "-" of two operands, "neg",
     "sqrt", "sin", "cos" or "atan" (the C library's: `libm_symbols`) of one, or "finite" of one
-    (value None: the operand only checked to be finite); or an ordered comparison "oge",
-    "ogt", "ole", "olt" of two doubles (`fcmp`: false with a NaN, as Python's) or "and" of
-    two of those, whose value is an i1 (not checked: no double); an operand a value's name
-    or an IR double literal.  The outputs in `booleans` are such i1s: True or False.  The result is a
+    (value None: the operand only checked to be finite); an operand a value's name or an
+    IR double literal.  The result is a
     new list of the doubles named by `outputs`, or None (a new reference) when an argument
     is not as compiled for or a value computed is not finite."""
     w = Writer()
@@ -265,12 +256,6 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=(), b
         w.check(f"%a{j}.not.a{k}")
     finite = "true"
     for i, (value, op, *operands) in enumerate(ops):
-        if op in _COMPARISONS:                    # a truth value: nothing to check
-            w.add(f"{value} = fcmp {op} double {operands[0]}, {operands[1]}")
-            continue
-        if op == "and":
-            w.add(f"{value} = and i1 {operands[0]}, {operands[1]}")
-            continue
         if op == "finite":                        # the value a finite test tested: checked, not computed
             value = operands[0]
         elif op == "sqrt":
@@ -286,19 +271,16 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=(), b
               f"%all.{i} = and i1 {finite}, %fin.{i}")
         finite = f"%all.{i}"
     w.check(finite)
-    w.returns_list(outputs, booleans)
+    w.returns_list(outputs)
     w.lines += ["exact:",                         # the statements in Python, as written
                 "  call void @Py_IncRef(ptr @stgen_none)",
                 "  ret ptr @stgen_none"]
     libm = sorted({op for _, op, *_ in ops if op in LIBM})
-    truths = "@stgen_true = external global i8\n@stgen_false = external global i8\n" if booleans else ""
-    return (DECLARATIONS + truths + "".join(f"declare double @{f}(double)\n" for f in libm)
+    return (DECLARATIONS + "".join(f"declare double @{f}(double)\n" for f in libm)
             + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
             + "\n".join(w.lines) + "\n}\n" + ("attributes #0 = { nobuiltin }\n" if libm else ""))
 
 
-#: run_ir's comparisons: LLVM's ordered `fcmp`s, Python's `>= > <= <` of floats (NaN: false).
-_COMPARISONS = ("oge", "ogt", "ole", "olt")
 #: The C library's functions a kernel may call (`libm_symbols`), by the name the IR calls.
 LIBM = ("sin", "cos", "atan")
 
@@ -330,8 +312,7 @@ def _machine():
         for function in ("PyFloat_FromDouble", "PyList_New", "Py_DecRef", "Py_IncRef", "PyObject_CallMethodObjArgs"):
             llvm.add_symbol(function, ctypes.cast(getattr(api, function), ctypes.c_void_p).value)
         for symbol, obj in (("PyFloat_Type", float), ("PyList_Type", list), ("PyTuple_Type", tuple),
-                            ("stgen_exact", _EXACT), ("stgen_none", None), ("stgen_true", True),
-                            ("stgen_false", False)):
+                            ("stgen_exact", _EXACT), ("stgen_none", None)):
             llvm.add_symbol(symbol, id(obj))
         triple = llvm.get_process_triple()
         cpu = "x86-64" if triple.startswith("x86_64") else ""
