@@ -170,6 +170,44 @@ def test_a_run_of_exactly_the_minimum_makes_a_kernel_and_one_fewer_none():
     assert _passed(fewer)[0] == fewer
 
 
+#: A block's run of exactly MIN_OPERATIONS operations, two of them SIN and COS, after a finite
+#: test (its `-1e309` no operation), the body's other `+ - *` (the charges) after the block.
+BLOCK_AT_THE_MINIMUM = """\
+if v_GO:
+    _c6 = (True if (v_A < 1e309 and v_A > -1e309) else False)
+    v_S = (_m_sin(v_A) if _c6 else _sf_SIN(v_A))
+    v_C = (_m_cos(v_A) if _c6 else _sf_COS(v_A))
+    _c1 = ((v_S*v_C)+(v_S-v_C))
+    _c2 = ((_c1*2.5)-(v_S*0.5))
+    _c3 = ((_c2+_c1)*(_c2-v_C))
+    _c4 = ((_c3*_c3)+(_c1*v_S))
+    _c5 = ((_c4*v_S)+v_C)
+_spent += 1
+_spent += 1""".splitlines()
+
+
+def test_a_block_of_exactly_the_minimum_with_sin_and_cos_makes_a_kernel():
+    """The pass builds no span from a line whose block (its lines up to the first indented
+    less) shows fewer than MIN_OPERATIONS operations (kernels.py `_most_operations`): 14
+    binary operations, SIN and COS (16) make a kernel; a gate that missed SIN or COS, counted
+    every `1e309` of the finite test out (a sign too many), ended the block a line early or
+    skipped at the minimum itself makes none.  One operation fewer makes none."""
+    assert sum(line.count(op) for line in BLOCK_AT_THE_MINIMUM[4:9] for op in "*+-") == 14
+    after, bound = _passed(BLOCK_AT_THE_MINIMUM)
+    assert after[1] == "    _kr = _k0(v_A)" and after.count("    if _kr is None:") == 1
+    fewer = BLOCK_AT_THE_MINIMUM[:8] + ["    _c5 = (_c4*v_S)"] + BLOCK_AT_THE_MINIMUM[9:]
+    assert _passed(fewer)[0] == fewer
+
+
+def test_a_block_ends_before_the_first_line_indented_less():
+    """`_block_end`: the deeper lines and a blank line are in the block of line 0."""
+    body = ["    a = 1", "        b = 2", "", "    c = 3", "d = 4", "    e = 5"]
+    text = "\n".join(body)
+    offsets = [0, 9, 22, 22, 31, 36, 45]
+    assert [kernels._block_end(text, offsets, i, len(line) - len(line.lstrip())) for i, line in
+            enumerate(body) if line] == [4, 3, 4, 6, 6]
+
+
 def test_ik_runs_give_pythons_floats_bit_for_bit():
     """Ordinary poses and ones with inf, NaN, -0.0, subnormal, tiny and huge values (squares
     that overflow): every local and the stored positions as Python's lines give them."""

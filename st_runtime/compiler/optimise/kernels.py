@@ -273,22 +273,51 @@ def replace(lines: list[str], start: int, register, bind, not_float=None) -> Non
     a name (an element of it) is declared of a type other than REAL/LREAL (`not_floats`),
     read by no run line: its kernel would answer None at every call."""
     body = lines[start:]
-    text = "".join(body)
+    text = "\n".join(body)
     if text.count("*") + text.count("+") + text.count("-") + text.count("_m_sqrt(") < MIN_OPERATIONS:
         return          # (each operation of a run but a unary minus shows one of these: too few)
     matches = list(map(_CANDIDATE.match, body))               # (one C loop over every line)
+    offsets = list(itertools.accumulate(map(len, body), initial=0))   # line k starts at offsets[k] + k
     spans, end, mentions = [], 0, None
     for i in itertools.compress(range(len(matches)), matches):
         if i < end or _tree(matches[i].group(3)) is None:      # (a span starts with a run line)
             continue
+        block = _block_end(text, offsets, i, len(matches[i].group(1)))
+        if _most_operations(text[offsets[i] + i:offsets[block] + block]) < MIN_OPERATIONS:
+            end = block     # (no span from a line of the block reaches the minimum: none built)
+            continue
         span = _Span(body, matches, i, not_float)
         end = max(span.end, i + 1)
         if sum(op[1] not in ("neg", "finite") for op in span.run.ops) >= MIN_OPERATIONS:
-            mentions = mentions or collections.Counter(_NAME.findall("\n".join(body)))
+            mentions = mentions or collections.Counter(_NAME.findall(text))
             live = _read_after(span, body[i:span.end], mentions)
             spans.append((start + i, start + span.end, _call(body[i:span.end], span, live, register, bind)))
     for i, j, new in reversed(spans):          # from the last: the indices stay true
         lines[i:j] = new
+
+
+def _block_end(text: str, offsets: list[int], i: int, indent: int) -> int:
+    """The first line after line `i` of `text` (indented by `indent`) indented less, blank
+    lines aside: a span from a line of the block (indented as deep or deeper) ends before it
+    (`_Span`: a run line, a `try:` and a statement it goes on across are at its indentation,
+    their blocks deeper)."""
+    found = _shallower(indent).search(text, offsets[i] + i)
+    return len(offsets) - 1 if found is None else i + 1 + text.count("\n", offsets[i] + i, found.start())
+
+
+@functools.cache
+def _shallower(indent: int) -> re.Pattern:
+    """A line break before a line indented less than `indent` (never, for 0)."""
+    return re.compile(rf"\n {{0,{indent - 1}}}\S" if indent else r"(?!)")
+
+
+def _most_operations(text: str) -> int:
+    """At least the operations `_Span` counts of the run lines in `text` (whole lines): a
+    `+`, `-` or `*` each, or a call of `_m_sqrt`, `_sf_ATAN`, `_m_sin` or `_m_cos`; but the
+    charges' `+=` and the finite tests' `-1e309` (of lines that are no run line, or of the
+    finite test, whose operation is not counted)."""
+    return (text.count("*") + text.count("+") + text.count("-") + text.count("_m_sqrt(") + text.count("_sf_ATAN(")
+            + text.count("_m_sin(") + text.count("_m_cos(") - text.count(" += ") - text.count("> -1e309"))
 
 
 def _read_after(span, original: list[str], mentions: collections.Counter) -> list[str]:
