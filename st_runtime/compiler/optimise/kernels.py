@@ -283,7 +283,7 @@ def replace(lines: list[str], start: int, register, bind, not_float=None) -> Non
         if i < end or _tree(matches[i].group(3)) is None:      # (a span starts with a run line)
             continue
         block = _block_end(text, offsets, i, len(matches[i].group(1)))
-        if _most_operations(text[offsets[i] + i:offsets[block] + block]) < MIN_OPERATIONS:
+        if _most_operations("\n".join(_ASSIGNMENT.findall(text, offsets[i] + i, offsets[block] + block))) < MIN_OPERATIONS:
             end = block     # (no span from a line of the block reaches the minimum: none built)
             continue
         span = _Span(body, matches, i, not_float)
@@ -312,12 +312,12 @@ def _shallower(indent: int) -> re.Pattern:
 
 
 def _most_operations(text: str) -> int:
-    """At least the operations `_Span` counts of the run lines in `text` (whole lines): a
+    """At least the operations `_Span` counts of the run lines in `text` (whole lines; those
+    of a block: the same or fewer from a line of it, the block from there a part of it): a
     `+`, `-` or `*` each, or a call of `_m_sqrt`, `_sf_ATAN`, `_m_sin` or `_m_cos`; but the
-    charges' `+=` and the finite tests' `-1e309` (of lines that are no run line, or of the
-    finite test, whose operation is not counted)."""
+    finite tests' `-1e309` (in no run line but the finite test, whose operation is not counted)."""
     return (text.count("*") + text.count("+") + text.count("-") + text.count("_m_sqrt(") + text.count("_sf_ATAN(")
-            + text.count("_m_sin(") + text.count("_m_cos(") - text.count(" += ") - text.count("> -1e309"))
+            + text.count("_m_sin(") + text.count("_m_cos(") - text.count("> -1e309"))
 
 
 def _read_after(span, original: list[str], mentions: collections.Counter) -> list[str]:
@@ -331,6 +331,8 @@ def _read_after(span, original: list[str], mentions: collections.Counter) -> lis
             or [name for name in names if name not in span.run.tests][-1:])
 
 
+#: A line that holds ` = `: every run line is one (a charge's `+=`, an `if` are none).
+_ASSIGNMENT = re.compile(r"^.* = .*", re.MULTILINE)
 #: `if (not (x < 1e309 and x > -1e309)):`, the compiler's test that a REAL is finite.
 _FINITE_TEST = re.compile(r"( *)if \(not \(([A-Za-z_]\w*) < 1e309 and \2 > -1e309\)\):\Z")
 #: The tokens of a statement that may run after the kernel (`_Span.defer`).
