@@ -170,6 +170,44 @@ def test_a_run_of_exactly_the_minimum_makes_a_kernel_and_one_fewer_none():
     assert _passed(fewer)[0] == fewer
 
 
+#: A block's run of exactly MIN_OPERATIONS operations, two of them SIN and COS, after a finite
+#: test (its `-1e309` no operation), the body's other `+ - *` (the charges) after the block.
+BLOCK_AT_THE_MINIMUM = """\
+if v_GO:
+    _c6 = (True if (v_A < 1e309 and v_A > -1e309) else False)
+    v_S = (_m_sin(v_A) if _c6 else _sf_SIN(v_A))
+    v_C = (_m_cos(v_A) if _c6 else _sf_COS(v_A))
+    _c1 = ((v_S*v_C)+(v_S-v_C))
+    _c2 = ((_c1*2.5)-(v_S*0.5))
+    _c3 = ((_c2+_c1)*(_c2-v_C))
+    _c4 = ((_c3*_c3)+(_c1*v_S))
+    _c5 = ((_c4*v_S)+v_C)
+_spent += 1
+_spent += 1""".splitlines()
+
+
+def test_a_block_of_exactly_the_minimum_with_sin_and_cos_makes_a_kernel():
+    """The pass builds no span from a line whose block (its lines up to the first indented
+    less) shows fewer than MIN_OPERATIONS operations (kernels.py `_most_operations`): 14
+    binary operations, SIN and COS (16) make a kernel; a gate that missed SIN or COS, counted
+    every `1e309` of the finite test out (a sign too many), ended the block a line early or
+    skipped at the minimum itself makes none.  One operation fewer makes none."""
+    assert sum(line.count(op) for line in BLOCK_AT_THE_MINIMUM[4:9] for op in "*+-") == 14
+    after, bound = _passed(BLOCK_AT_THE_MINIMUM)
+    assert after[1] == "    _kr = _k0(v_A)" and after.count("    if _kr is None:") == 1
+    fewer = BLOCK_AT_THE_MINIMUM[:8] + ["    _c5 = (_c4*v_S)"] + BLOCK_AT_THE_MINIMUM[9:]
+    assert _passed(fewer)[0] == fewer
+
+
+def test_a_block_ends_before_the_first_line_indented_less():
+    """`_block_end`: the deeper lines and a blank line are in the block of line 0."""
+    body = ["    a = 1", "        b = 2", "", "    c = 3", "d = 4", "    e = 5"]
+    text = "\n".join(body)
+    offsets = [0, 9, 22, 22, 31, 36, 45]
+    assert [kernels._block_end(text, offsets, i, len(line) - len(line.lstrip())) for i, line in
+            enumerate(body) if line] == [4, 3, 4, 6, 6]
+
+
 def test_ik_runs_give_pythons_floats_bit_for_bit():
     """Ordinary poses and ones with inf, NaN, -0.0, subnormal, tiny and huge values (squares
     that overflow): every local and the stored positions as Python's lines give them."""
@@ -225,6 +263,12 @@ def _swap_first_fsub(ir: str) -> str:
     return ir                   # (a run without one: unchanged)
 
 
+def _wrong_ir(monkeypatch, change) -> None:
+    """Make every kernel from now on of the IR `change(ir)` (a hand-made wrong version)."""
+    right = native.run_ir
+    monkeypatch.setattr(native, "run_ir", lambda *a: change(right(*a)))
+
+
 WRONG = {
     "operands swapped": _swap_first_fsub,
     "sqrt dropped": lambda ir: ir.replace("call double @llvm.sqrt.f64(double", "call double @llvm.fabs.f64(double"),
@@ -235,8 +279,7 @@ WRONG = {
 @pytest.mark.parametrize("wrong", WRONG, ids=WRONG.keys())
 def test_a_wrong_kernel_fails_a_row(wrong, monkeypatch):
     """Each hand-made wrong kernel gives a value (or a missing ValueError) Python does not."""
-    right = native.run_ir
-    monkeypatch.setattr(native, "run_ir", lambda *a: WRONG[wrong](right(*a)))
+    _wrong_ir(monkeypatch, WRONG[wrong])
     ik = _mismatches(IK, IK_INPUTS + ("v_POSE",), _ik_arguments(random.Random(5)))
     signed = _mismatches(SIGNED, ("v_A", "v_B"), [(1.0, 3.0), (-2.0, 0.5), (3.0, 1.0)])
     assert ik or signed
@@ -455,3 +498,346 @@ def test_a_span_goes_on_across_a_statement_only_where_it_may_run_after(between):
     lines = IK[12:28] + [between] + IK[29:36]
     after, _ = _passed(lines)
     assert after.count("if _kr is None:") == (1 if BETWEEN[between] else 2)
+
+
+#: SP_InverseKinematics' prologue as the compiler writes it on the wave (the angles are the
+#: instance's variables; COS and SIN behind the compiler's finite test, the library's SIN and
+#: COS where it fails), then the rotation: one span (h-native17-s23).
+PROLOGUE = """\
+self.v_ALPHA = (v_POSE[3] * 0.017453292519943295)
+self.v_BETA = (v_POSE[4] * 0.017453292519943295)
+self.v_GAMMA = (v_POSE[5] * 0.017453292519943295)
+_c6 = (True if (self.v_ALPHA < 1e309 and self.v_ALPHA > -1e309) else False)
+v_COSALPHA = (_m_cos(self.v_ALPHA) if _c6 else _sf_COS(self.v_ALPHA))
+v_SINALPHA = (_m_sin(self.v_ALPHA) if _c6 else _sf_SIN(self.v_ALPHA))
+_c9 = (True if (self.v_BETA < 1e309 and self.v_BETA > -1e309) else False)
+v_COSBETA = (_m_cos(self.v_BETA) if _c9 else _sf_COS(self.v_BETA))
+v_SINBETA = (_m_sin(self.v_BETA) if _c9 else _sf_SIN(self.v_BETA))
+_c12 = (True if (self.v_GAMMA < 1e309 and self.v_GAMMA > -1e309) else False)
+v_COSGAMMA = (_m_cos(self.v_GAMMA) if _c12 else _sf_COS(self.v_GAMMA))
+v_SINGAMMA = (_m_sin(self.v_GAMMA) if _c12 else _sf_SIN(self.v_GAMMA))""".splitlines() + IK[:11]
+#: Angles in degrees beyond the ordinary: special values, huge ones (SIN and COS of 1.7e298
+#: rad: the C library's argument reduction), the largest finite double.
+ANGLES = SPECIAL + [1e300, -1e300, 1.7976931348623157e308, 123456789.0, 5e-324]
+
+
+def _trig_namespace() -> dict:
+    from st_runtime.stdlib.functions import FUNCTIONS
+
+    return {"_m_sqrt": math.sqrt, "_m_sin": math.sin, "_m_cos": math.cos,
+            "_sf_SIN": FUNCTIONS["SIN"], "_sf_COS": FUNCTIONS["COS"]}
+
+
+class _Instance:
+    """The instance the generated body's `self` is: the angles its variables."""
+
+    def __init__(self):
+        self.v_ALPHA = self.v_BETA = self.v_GAMMA = 0.25
+
+
+def _with_instance(lines: list[str], namespace: dict):
+    """`lines` as a function of a pose: its locals and the instance's variables afterwards."""
+    run = _function(lines, ("self", "v_POSE"), namespace)
+
+    def call(pose):
+        instance = _Instance()
+        found = run(instance, list(pose))
+        return found if isinstance(found, str) else {**found, "self": None, **vars(instance)}
+    return call
+
+
+def _prologue_rows(rng: random.Random):
+    for k in range(300):
+        pose = [rng.uniform(-100.0, 100.0) for _ in range(3)] + [rng.uniform(-30.0, 30.0) for _ in range(3)]
+        if k >= 100:
+            for _ in range(1 + k % 3):
+                pose[3 + rng.randrange(3)] = rng.choice(ANGLES)
+        yield pose
+
+
+def _prologue_mismatches(lines=PROLOGUE, rows=None) -> list:
+    after, bound = _passed(lines)
+    python = _with_instance(lines, _trig_namespace())
+    kernel = _with_instance(after, {**_trig_namespace(), **bound})
+    rows = list(_prologue_rows(random.Random(11))) if rows is None else rows
+    return [row for row in rows if not _same(python(row), kernel(row))]
+
+
+def test_the_prologue_and_the_rotation_are_one_kernel():
+    """The angles (the instance's variables, always returned), their finite tests (True where
+    the kernel answers: set so after it), COS and SIN and the rotation: one call."""
+    after, bound = _passed(PROLOGUE)
+    assert after[0] == "_kr = _k0(v_POSE)" and after.count("if _kr is None:") == 1
+    path = after[after.index("else:") + 1:]
+    assert path[0].startswith("    self.v_ALPHA, self.v_BETA, self.v_GAMMA, v_COSALPHA, v_SINALPHA, v_COSBETA,")
+    assert path[1:] == ["    _c6 = True", "    _c9 = True", "    _c12 = True"]
+    ir = native.run_ir(*_kernel_arguments(PROLOGUE))
+    assert ir.count("call double @cos(double") == 3 and ir.count("call double @sin(double") == 3
+
+
+def _kernel_arguments(lines):
+    """run_ir's arguments for the span the pass makes of `lines` (written by its first call)."""
+    captured = []
+    right = native.run_ir
+    native.run_ir = lambda *a: captured.append(a) or right(*a)
+    try:
+        after, bound = _passed(lines)
+        _with_instance(after, {**_trig_namespace(), **bound})([0.0] * 6)
+    finally:
+        native.run_ir = right
+    return captured[0]
+
+
+def test_the_prologue_gives_pythons_values_bit_for_bit():
+    """Ordinary angles and inf, -inf, NaN, -0.0, subnormal, huge (1e300 degrees, the largest
+    double) ones: every local and the instance's angles as Python's lines give them; a
+    non-finite angle takes the library's SIN and COS in Python (the kernel answers None)."""
+    assert _prologue_mismatches() == []
+    after, bound = _passed(PROLOGUE)
+    native.bind_symbols(native.libm_symbols())
+    kernel = native.builtin(type("K", (), {})(), native.compiled(native.run_ir(*_kernel_arguments(PROLOGUE))))
+    assert kernel([0.0, 0.0, 0.0, math.inf, 1.0, 2.0]) is None
+    assert kernel([0.0, 0.0, 0.0, 1e300, 1.0, 2.0])[3] == math.cos(1e300 * 0.017453292519943295)
+
+
+def test_sin_cos_and_atan_are_the_math_modules():
+    """The kernel's `sin`, `cos` and `atan` are the addresses the process resolves for the
+    names (the functions math.sin, math.cos and math.atan call: test_optimiser_loops.py's
+    GOT check)."""
+    import ctypes
+
+    process = ctypes.CDLL(None)
+    assert native.libm_symbols() == {name: ctypes.cast(getattr(process, name), ctypes.c_void_p).value
+                                     for name in ("sin", "cos", "atan")}
+
+
+def test_a_guard_of_another_value_or_a_test_read_as_a_float_ends_the_span():
+    """SIN behind a test of another value, a test read in arithmetic, SIN and COS guarded
+    crosswise: the span of the angles and the test ends before them (three operations: no
+    kernel), where with SIN of the tested angle it goes on into the rotation."""
+    base = PROLOGUE[:4]
+    assert _passed(base + ["v_X = (_m_sin(self.v_ALPHA) if _c6 else _sf_SIN(self.v_ALPHA))"] + IK[:11])[0][0] \
+        == "_kr = _k0(v_POSE, v_COSALPHA, v_COSBETA, v_SINBETA, v_SINGAMMA, v_SINALPHA, v_COSGAMMA)"
+    for line in ("v_X = (_m_sin(self.v_BETA) if _c6 else _sf_SIN(self.v_BETA))",
+                 "v_X = (_c6 * 2.0)",
+                 "v_X = (_m_sin(self.v_ALPHA) if _c6 else _sf_COS(self.v_ALPHA))"):
+        after, _ = _passed(base + [line] + IK[:11])
+        assert after[:4] == base, line          # (a later span may start at the line itself)
+
+
+WRONG_TRIG = {
+    "sin and cos swapped": lambda ir: ir.replace("@sin(double %", "@tmp(double %").replace(
+        "@cos(double %", "@sin(double %").replace("@tmp(double %", "@cos(double %"),
+    "finite test dropped": lambda ir: ir.replace("fcmp olt double %abs", "fcmp une double %abs"),
+}
+
+
+@pytest.mark.parametrize("wrong", WRONG_TRIG, ids=WRONG_TRIG.keys())
+def test_a_wrong_trigonometric_kernel_fails_a_row(wrong, monkeypatch):
+    _wrong_ir(monkeypatch, WRONG_TRIG[wrong])
+    assert _prologue_mismatches()
+
+
+#: IK's rotation, the two flags, the budget check between the rotation and the legs (its
+#: branch loads the variables the legs set: aliases.py `drop_unread`) and legs 1 and 2.
+CHECK = ("if _ctx.budget < _spent: v_U = self.v_U; v_V = self.v_V; v_W = self.v_W; v_LEGX = self.v_LEGX;"
+         " v_LEGY = self.v_LEGY; v_LEGZ = self.v_LEGZ; _overrun(('SP_InverseKinematics', 'SP_InverseKinematics.st', 104, 1))")
+CHECKED = IK[:11] + ["v_ALLFINITE = True", "v_ALLINSTROKE = True", CHECK] + LEGS
+CHECKED_INPUTS = IK_INPUTS + ("v_POSE", "v_POSITION", "v_LEGINSTROKE", "self", "_ctx")
+
+
+class _Overrun(Exception):
+    pass
+
+
+def _overrun(where):
+    raise _Overrun(where)
+
+
+def _faulting(lines: list[str], namespace: dict):
+    """`lines` as a function returning its locals, after a fault too (but reuse.py's shared
+    values `_cN`: locals no store back writes, gone when the overrun ends the body), and the
+    instance's variables."""
+    body = "\n".join("        " + line for line in [LEGS_STATE] + lines)
+    source = (f"def run({', '.join(CHECKED_INPUTS)}):\n    try:\n{body}\n"
+              "    except _Overrun as exc:\n        return {'fault': exc.args, **{k: v for k, v in locals().items()"
+              " if k not in ('exc', '_kr', 'self', '_ctx') and not _shared(k)}}\n"
+              "    return {k: v for k, v in locals().items() if k not in ('_kr', 'self', '_ctx')}\n")
+
+    def call(values, pose, budget):
+        instance = type("Instance", (), {})()
+        for name in ("v_U", "v_V", "v_W", "v_LEGX", "v_LEGY", "v_LEGZ"):
+            setattr(instance, name, -7.5)
+        context = type("Context", (), {"budget": budget})()
+        exec(compile(source, "<kernels test>", "exec"),
+             scope := {**namespace, "_Overrun": _Overrun, "_overrun": _overrun, "_shared": re.compile(r"_c\d+\Z").match})
+        found = scope["run"](*values, list(pose), [0.0] * 6, [False] * 6, instance, context)
+        return {**found, **{f"self.{k}": v for k, v in vars(instance).items()}}
+    return call
+
+
+def _checked_rows():
+    for values, pose in _ik_rows(random.Random(13)):
+        for budget in (10**9, 794741, 794742):           # passes, fails, passes at the charge
+            yield values, pose, budget
+
+
+def _checked_mismatches() -> list:
+    after, bound = _passed(CHECKED)
+    python = _faulting(CHECKED, {"_m_sqrt": math.sqrt})
+    kernel = _faulting(after, {"_m_sqrt": math.sqrt, **bound})
+    return [row for row in _checked_rows() if not _same(python(*row), kernel(*row))]
+
+
+def test_the_rotation_and_the_legs_are_one_kernel_across_the_budget_check():
+    """The check runs after the kernel where it answers, after the flags, before leg 1's
+    store: in its place among the statements the kernel's path keeps."""
+    after, _ = _passed(CHECKED)
+    assert after.count("if _kr is None:") == 1
+    path = after[after.index("else:") + 2:]
+    assert path[:4] == ["    v_ALLFINITE = True", "    v_ALLINSTROKE = True", "    " + CHECK, "    v_POSITION[0] = _c64"]
+
+
+def test_a_budget_check_that_fails_finds_the_state_it_finds_in_python():
+    """Budgets that pass and fail at the check: the fault's place, every local the body set
+    before it (the rotation, the flags), the variables its branch loads, the lists and the
+    instance as Python's, on ordinary and special values (the None path too)."""
+    assert _checked_mismatches() == []
+    python = _faulting(CHECKED, {"_m_sqrt": math.sqrt})
+    assert "fault" in python([0.5] * 6, [1.0, 2.0, 3.0], 794741) and "v_POSITION" in python([0.5] * 6, [1.0, 2.0, 3.0], 10**9)
+
+
+def test_a_variable_the_check_does_not_load_ends_the_span_before_it():
+    """A run line after the check setting a variable its branch does not load (here LegZ)
+    would show the kernel's value where the check fails: the span ends before that line."""
+    lines = [line.replace(" v_LEGZ = self.v_LEGZ;", "") for line in CHECKED]
+    after, _ = _passed(lines)
+    second = after.index("if _kr is None:", after.index("if _kr is None:") + 1)
+    assert after.count("if _kr is None:") == 2 and after[second + 1] == "    v_LEGZ = (v_W + _c56)"
+
+
+def test_a_wrong_check_rule_fails_a_row(monkeypatch):
+    """Every target allowed after the check (the rule left out): the fault shows the legs'
+    values the check's branch does not load."""
+    global CHECKED
+    right = CHECKED
+    monkeypatch.setattr(kernels, "_SHARED", re.compile(r".*"))
+    CHECKED = [line.replace(" v_LEGZ = self.v_LEGZ;", "") for line in right]
+    try:
+        assert _checked_mismatches()
+    finally:
+        CHECKED = right
+
+
+#: TRJ_OceanWave's pose as the compiler writes it on the wave: stores of expressions into the
+#: pose's elements, ATAN (the library's, math.atan) inside `try` with the fault's handler.
+POSE = """\
+v_POSE[0] = ((v_FADE * (self.v_HORIZONTAL * v_COSHEADING)) + v_CENTRE[0])
+v_POSE[1] = ((v_FADE * (self.v_HORIZONTAL * v_SINHEADING)) + v_CENTRE[1])
+v_POSE[2] = ((v_FADE * v_COSINESUM) + v_CENTRE[2])
+v_POSE[3] = v_CENTRE[3]
+try:
+    v_POSE[4] = ((v_FADE * (-(_sf_ATAN((self.v_SLOPEALONG * v_COSHEADING)) * 57.29577951308232))) + v_CENTRE[4])
+except _FAULTS as _e:
+    _ctx.fault(_e, ('TRJ_OceanWave', 'TRJ_OceanWave.st', 317, 5))
+try:
+    v_POSE[5] = ((v_FADE * (_sf_ATAN((self.v_SLOPEALONG * v_SINHEADING)) * 57.29577951308232)) + v_CENTRE[5])
+except _FAULTS as _e:
+    _ctx.fault(_e, ('TRJ_OceanWave', 'TRJ_OceanWave.st', 318, 5))""".splitlines()
+POSE_INPUTS = ("self", "_ctx", "v_FADE", "v_COSHEADING", "v_SINHEADING", "v_COSINESUM", "v_CENTRE", "v_POSE")
+
+
+def _pose_function(lines: list[str], namespace: dict):
+    """`lines` as a function of a row: its locals (the pose; not the kernel's values `_kvN`,
+    which only its stores read), the faults it reported."""
+    from st_runtime.compiler import _FAULTS
+    from st_runtime.stdlib.functions import FUNCTIONS
+
+    run = _function(lines, POSE_INPUTS, {**namespace, "_sf_ATAN": FUNCTIONS["ATAN"], "_FAULTS": _FAULTS})
+
+    def call(horizontal, slope, *row):
+        instance, context = type("Instance", (), {})(), type("Context", (), {})()
+        instance.v_HORIZONTAL, instance.v_SLOPEALONG, context.faults = horizontal, slope, []
+        context.fault = lambda e, where: context.faults.append((type(e).__name__, where))
+        found = run(instance, context, *[list(x) if isinstance(x, list) else x for x in row])
+        if isinstance(found, str):
+            return found
+        own = [name for name in found if re.match(r"_kv\d+\Z", name)]        # the pass's values of stores
+        return {**{k: v for k, v in found.items() if k not in own}, "self": None, "_ctx": None, "faults": context.faults}
+    return call
+
+
+def _pose_rows(rng: random.Random):
+    for k in range(300):
+        row = [rng.uniform(-50.0, 50.0), rng.uniform(-0.5, 0.5), rng.uniform(0.0, 1.0), math.cos(k), math.sin(k),
+               rng.uniform(-30.0, 30.0), [rng.uniform(-100.0, 100.0) for _ in range(6)], [0.0] * 6]
+        if k >= 100:
+            for _ in range(1 + k % 3):
+                j = rng.randrange(7)
+                if j == 6:
+                    row[6][rng.randrange(6)] = rng.choice(SPECIAL)
+                else:
+                    row[j] = rng.choice(SPECIAL + [1e300, -1e300])
+        yield row
+    yield [1.0, 0.1, 1.0, 0.5, 0.5, 1.0, [1.0, 2.0, 3.0, 4.0, 5, 6.0], [0.0] * 6]        # an int element
+    yield [1.0, 0.1, 1.0, 0.5, 0.5, 1.0, [1.0] * 6, [0.0] * 5]                          # a short pose
+    yield [1.0, 0.1, 1.0, 0.5, 0.5, 1.0, (1.0,) * 6, [0.0] * 6]                         # a tuple
+
+
+def _pose_mismatches(lines=POSE) -> list:
+    after, bound = _passed(lines)
+    python = _pose_function(lines, {"_m_sqrt": math.sqrt})
+    kernel = _pose_function(after, {"_m_sqrt": math.sqrt, **bound})
+    return [row for row in _pose_rows(random.Random(17)) if not _same(python(*row), kernel(*row))]
+
+
+def test_the_pose_is_one_kernel_its_stores_after_it():
+    """The four stores and the two `try` lines with ATAN: one kernel returning the six values,
+    stored in their order where it answers; no handler on the kernel's path."""
+    after, _ = _passed(POSE)
+    assert after[0] == ("_kr = _k0(v_FADE, self.v_HORIZONTAL, v_COSHEADING, v_CENTRE, v_SINHEADING, v_COSINESUM,"
+                        " self.v_SLOPEALONG, v_POSE)")
+    assert after[after.index("else:") + 1:] == ["    _kv0, _kv1, _kv2, _kv3, _kv4, _kv5, = _kr"] + [
+        f"    v_POSE[{k}] = _kv{k}" for k in range(6)]
+
+
+def test_the_pose_gives_pythons_values_and_faults_bit_for_bit():
+    """Ordinary rows and ones with inf, NaN, -0.0, subnormal and huge values (ATAN of an
+    infinite slope is pi/2 in Python: the kernel answers None there), an int element, a short
+    pose (IndexError), a tuple: every local, the pose and the faults reported as Python's."""
+    assert _pose_mismatches() == []
+
+
+def test_a_store_into_an_instances_array_is_no_run_line():
+    """`self.v_P[k] = ...`: the list may be the one a local holds (`v_POSE = self.v_POSE`), which
+    the kernel would read before the store: no run line, nothing changed."""
+    lines = [line.replace("v_POSE[", "self.v_POSE[", 1) if line.startswith("v_POSE[") else line for line in POSE]
+    assert lines[0].startswith("self.v_POSE[0] = ") and _passed(lines)[0] == lines
+
+
+def test_a_try_with_else_or_finally_and_a_store_of_a_name_are_not_run_lines():
+    """`try` with an `else:` or `finally:` (it runs more than the line) ends the span; a store
+    of a name stays a deferred store of the run's value (no value more returned).  (The
+    pose's 19 operations make one kernel; the lines before such a `try` and after it are too
+    few for one.)"""
+    for extra in (["else:", "    v_X = 1.0"], ["finally:", "    v_X = 1.0"]):
+        lines = POSE[:7] + extra + POSE[7:]
+        assert _passed(lines)[0] == lines
+    after, _ = _passed(IK)
+    assert not any("_kv" in line for line in after)
+
+
+WRONG_POSE = {
+    "atan as sin": lambda ir: ir.replace("@atan(double %", "@sin(double %").replace("declare double @atan(double)\n", ""),
+    "a store dropped": None,
+}
+
+
+@pytest.mark.parametrize("wrong", WRONG_POSE, ids=WRONG_POSE.keys())
+def test_a_wrong_pose_kernel_fails_a_row(wrong, monkeypatch):
+    if wrong == "a store dropped":
+        right_call = kernels._call
+        monkeypatch.setattr(kernels, "_call", lambda *a: [line for line in right_call(*a) if line != "    v_POSE[3] = _kv3"])
+    else:
+        _wrong_ir(monkeypatch, WRONG_POSE[wrong])
+    assert _pose_mismatches()

@@ -182,18 +182,18 @@ def test_loops_of_other_forms_are_left_as_they_are(lines):
 
 @pytest.mark.skipif(not sys.platform.startswith("linux") or shutil.which("readelf") is None, reason="ELF, readelf")
 def test_the_kernels_sin_and_cos_are_the_functions_math_calls():
-    """The math module calls `sin` and `cos` through its PLT: the addresses in its GOT (bound
-    by the first call) are the ones the kernels bind."""
+    """The math module calls `sin`, `cos` and `atan` through its PLT: the addresses in its GOT
+    (bound by the first call) are the ones the kernels bind (kernels.py's `atan` too)."""
     import math as m
 
     relocations = subprocess.run(["readelf", "-rW", m.__file__], capture_output=True, text=True).stdout
     slots = {name: int(offset, 16) for offset, name in
-             re.findall(r"^([0-9a-f]+)\s+\S+\s+R_X86_64_JUMP_SLOT\s+\S+\s+(sin|cos)@", relocations, re.M)}
-    m.sin(0.5), m.cos(0.5)
+             re.findall(r"^([0-9a-f]+)\s+\S+\s+R_X86_64_JUMP_SLOT\s+\S+\s+(sin|cos|atan)@", relocations, re.M)}
+    m.sin(0.5), m.cos(0.5), m.atan(0.5)
     base = next(int(line.split("-")[0], 16) for line in open("/proc/self/maps") if line.rstrip().endswith(m.__file__))
     symbols = loops.libm_symbols()
     assert {name: ctypes.c_void_p.from_address(base + slot).value for name, slot in slots.items()} == \
-        {"sin": symbols["sin"], "cos": symbols["cos"]}
+        {"sin": symbols["sin"], "cos": symbols["cos"], "atan": symbols["atan"]}
 
 
 def test_an_interpreter_whose_ranges_lie_elsewhere_runs_the_loop_in_python(monkeypatch):

@@ -20,7 +20,16 @@ where `_k7` is machine code LLVM makes from the runs (native.run_ir), compiled b
 call.  A run line assigns a plain name a fully parenthesised `+ - *` or unary minus of
 names, float literals, elements of a list at a literal index (`v_POSE[2]`) and
 `_m_sqrt(...)` (the namespace's `math.sqrt`), and reads no variable declared of another
-type than REAL/LREAL (`not_floats`).  A span (`_Span`) goes on across, at its indentation:
+type than REAL/LREAL (`not_floats`); or it is the compiler's finite test of a name
+`_cN = (True if (x < 1e309 and x > -1e309) else False)` (where the kernel answers x is
+checked finite: `_cN = True` after it), or SIN or COS of a name behind such a test of the
+same value, `(_m_cos(x) if _cN else _sf_COS(x))` (the C library's `cos`, the very function
+math.cos calls: native.libm_symbols).  A name may be an instance's variable, `self.v_X`
+(read as an argument, or set: always returned); `_sf_ATAN(...)` is the C library's `atan`
+where the library's ATAN is math.atan.  A run line may store into a list element at a
+literal index, `L[k] = <expression>` (the kernel returns the value as `_kvN`, stored after
+it as a deferred statement), and may be the one line of a `try:` whose `except _FAULTS`
+handler cannot run where the kernel answers (nothing in the line raises there).  A span (`_Span`) goes on across, at its indentation:
 
 * a finite test `if (not (x < 1e309 and x > -1e309)):` (no `else`) of a value the kernel
   computed: where it answers every such value is finite, so the branch is not taken there;
@@ -31,8 +40,13 @@ type than REAL/LREAL (`not_floats`).  A span (`_Span`) goes on across, at its in
   or change what one of them reads or sets ends the span before it (a run line reading an
   element stored in the span reads the run's value stored there, any other ends it).  The
   kernel checks each list stored into is a list long enough and no other list it reads, so
-  no store can raise or change what it read.  No budget check is such a statement: the
-  charges total the same on every path and no fault can fire in between.
+  no store can raise or change what it read.  The charges total the same on every path;
+* one budget check (`_Span._budget_check`), which runs in its place among those statements
+  (the charges before it made, the names the runs set before it set), where a run line
+  after it may set only reuse.py's shared values `_cN` and the variables the check's
+  branch loads before `_overrun`: where it fails, the body ends (ScanOverrun) with every
+  variable it stores back as without the kernel (SP_InverseKinematics: the prologue, the
+  rotation and the six legs one kernel).
 
 Exactness: each operation is the IEEE-754 binary64 instruction on the same operands in the
 same order (`fmul`/`fadd`/`fsub`/`fneg`, no fast-math flags, no FMA: see native.py), and
@@ -61,11 +75,20 @@ import re
 from . import native
 
 MIN_OPERATIONS = 16      # a crossing costs about as much as a dozen float operations in Python
-#: A line that may qualify: `name = ` and only the characters of the forms above.
-_CANDIDATE = re.compile(r"( *)([A-Za-z_]\w*) = ([\w.()+*\[\] -]+)\Z")
-_TOKEN = re.compile(r" *(?:(\d+\.\d*(?:e[+-]?\d+)?|\d+e[+-]?\d+)|([A-Za-z_]\w*)|(\d+)|(\S))")
+#: A line that may qualify: `name = `, `self.name = ` or `list[k] = ` (not an element of an
+#: instance's array: its list may be one a local name holds too) and only the characters of
+#: the forms above.
+_CANDIDATE = re.compile(r"( *)((?:self\.)?[A-Za-z_]\w*|[A-Za-z_]\w*\[\d+\]) = ([\w.()+*\[\]<> -]+)\Z")
+_TOKEN = re.compile(r" *(?:(\d+\.\d*(?:e[+-]?\d+)?|\d+e[+-]?\d+)|((?:self\.)?[A-Za-z_]\w*)|(\d+)|(\S))")
+#: The compiler's finite test of a name kept in a temporary (calls.py, pysrc.finite_test).
+_TEST = re.compile(r"\(True if \(((?:self\.)?[A-Za-z_]\w*) < 1e309 and \1 > -1e309\) else False\)\Z")
+#: SIN or COS of a name behind that test (calls.py `_GUARDED`): `(_m_sin(x) if _cN else _sf_SIN(x))`.
+_GUARDED = re.compile(r"\(_m_(sin|cos)\(((?:self\.)?[A-Za-z_]\w*)\) if ([A-Za-z_]\w*) else _sf_(SIN|COS)\(\2\)\)\Z")
 _NAME = re.compile(r"(?<![\w.])[A-Za-z_]\w*")
-_NOT_NAMES = frozenset({"True", "False", "None", "_m_sqrt", "_kr"})
+_NOT_NAMES = frozenset({"True", "False", "None", "_m_sqrt", "_sf_ATAN", "_kr"})
+#: A store's target `L[k]`: the list and the index.
+_STORE = re.compile(r"([A-Za-z_]\w*)\[(\d+)\]\Z")
+_NAME_ONLY = re.compile(r"[A-Za-z_]\w*\Z")
 
 
 class _NotPure(Exception):
@@ -76,8 +99,17 @@ class _NotPure(Exception):
 def _tree(text: str):
     """(tree, names read as floats, lists read) of an expression the kernel computes, None
     for any other: a tree is ("c", IR literal) | ("n", name) | ("e", list, index) |
-    (op, operand...) with op "*", "+", "-", "neg" or "sqrt".  Kept by text: the same lines
-    come back in every load of a program and in its fast and exact copies."""
+    (op, operand...) with op "*", "+", "-", "neg" or "sqrt" | ("test", ("n", name)) (the
+    finite test) | ("sin" or "cos", ("n", name), the test's name).  Kept by text: the same
+    lines come back in every load of a program and in its fast and exact copies."""
+    test = _TEST.match(text)
+    if test is not None:
+        return ("test", ("n", test[1])), frozenset([test[1]]), frozenset()
+    guarded = _GUARDED.match(text)
+    if guarded is not None:
+        if guarded[1].upper() != guarded[4]:
+            return None
+        return (guarded[1], ("n", guarded[2]), guarded[3]), frozenset([guarded[2]]), frozenset()
     tokens = _TOKEN.findall(text)
     names: tuple[set, set] = (set(), set())
     try:
@@ -113,11 +145,11 @@ def _primary(tokens, i, names):
             return ("c", native._double(-float(tokens[i + 1][0]))), i + 2
         operand, i = _primary(tokens, i + 1, names)
         return ("neg", operand), i
-    if name == "_m_sqrt" and tokens[i + 1][3] == "(":
+    if (name == "_m_sqrt" or name == "_sf_ATAN" and _atan_is_maths()) and tokens[i + 1][3] == "(":
         operand, i = _sum(tokens, i + 2, names)
         if tokens[i][3] != ")":
-            raise _NotPure("sqrt")
-        return ("sqrt", operand), i + 1
+            raise _NotPure(name)
+        return ("sqrt" if name == "_m_sqrt" else "atan", operand), i + 1
     if not name or name in _NOT_NAMES:
         raise _NotPure(name or char or integer)
     if i + 1 < len(tokens) and tokens[i + 1][3] == "[":
@@ -127,6 +159,18 @@ def _primary(tokens, i, names):
         return ("e", name, int(tokens[i + 2][2])), i + 4
     names[0].add(name)
     return ("n", name), i + 1
+
+
+@functools.cache
+def _atan_is_maths() -> bool:
+    """Whether `_sf_ATAN`, the library's ATAN the compiler binds (CompileUnit.bind_function),
+    is math.atan itself (stdlib/functions.py: no wrapper), which calls the C library's `atan`
+    and returns its result unchanged for every float (mathmodule.c `math_1`: atan is finite)."""
+    import math
+
+    from ...stdlib.functions import FUNCTIONS
+
+    return FUNCTIONS.get("ATAN") is math.atan
 
 
 class _Run:
@@ -142,6 +186,7 @@ class _Run:
         self.assigned: dict[str, None] = {}   # the names the run sets, in order
         self.results: set[str] = set()        # the values operations computed
         self.overrides: dict[tuple, str] = {} # (list, index) -> the value stored there in the span
+        self.tests: dict[str, str] = {}       # a finite test's name -> the value it tested
         self.count = 0
 
     def value(self) -> str:
@@ -158,8 +203,16 @@ class _Run:
         tree, floats, lists = parsed
         if any(name in self.env for name in lists) or any(self.kind.get(name) == "list" for name in floats):
             return False
+        if target in self.tests or not floats.isdisjoint(self.tests) or tree[0] in ("sin", "cos") and (
+                tree[2] not in self.tests or self.tests[tree[2]] != self.env.get(tree[1][1])):
+            return False            # (a test is read only as the guard of SIN or COS of the value it tested)
         self.overrides.update(overrides)
-        self.env[target] = self._value_of(tree)
+        if tree[0] == "test":       # True where the kernel answers: the value it tested is checked finite
+            self.tests[target] = tested = self._value_of(tree[1])
+            self.ops.append((None, "finite", tested))
+            self.env[target] = "test"
+        else:
+            self.env[target] = self._value_of(tree)
         self.assigned[target] = None
         return True
 
@@ -200,7 +253,7 @@ class _Run:
             if tree[2] not in held:
                 held[tree[2]] = self.value()
             return held[tree[2]]
-        operands = [self._value_of(operand) for operand in tree[1:]]
+        operands = [self._value_of(operand) for operand in (tree[1:2] if kind in native.LIBM else tree[1:])]
         value = self.value()
         self.ops.append((value, kind, *operands))
         self.results.add(value)
@@ -220,33 +273,66 @@ def replace(lines: list[str], start: int, register, bind, not_float=None) -> Non
     a name (an element of it) is declared of a type other than REAL/LREAL (`not_floats`),
     read by no run line: its kernel would answer None at every call."""
     body = lines[start:]
-    text = "".join(body)
+    text = "\n".join(body)
     if text.count("*") + text.count("+") + text.count("-") + text.count("_m_sqrt(") < MIN_OPERATIONS:
         return          # (each operation of a run but a unary minus shows one of these: too few)
     matches = list(map(_CANDIDATE.match, body))               # (one C loop over every line)
+    offsets = list(itertools.accumulate(map(len, body), initial=0))   # line k starts at offsets[k] + k
     spans, end, mentions = [], 0, None
     for i in itertools.compress(range(len(matches)), matches):
         if i < end or _tree(matches[i].group(3)) is None:      # (a span starts with a run line)
             continue
+        block = _block_end(text, offsets, i, len(matches[i].group(1)))
+        if _most_operations("\n".join(_ASSIGNMENT.findall(text, offsets[i] + i, offsets[block] + block))) < MIN_OPERATIONS:
+            end = block     # (no span from a line of the block reaches the minimum: none built)
+            continue
         span = _Span(body, matches, i, not_float)
         end = max(span.end, i + 1)
-        if sum(op[1] != "neg" for op in span.run.ops) >= MIN_OPERATIONS:
-            mentions = mentions or collections.Counter(_NAME.findall("\n".join(body)))
+        if sum(op[1] not in ("neg", "finite") for op in span.run.ops) >= MIN_OPERATIONS:
+            mentions = mentions or collections.Counter(_NAME.findall(text))
             live = _read_after(span, body[i:span.end], mentions)
             spans.append((start + i, start + span.end, _call(body[i:span.end], span, live, register, bind)))
     for i, j, new in reversed(spans):          # from the last: the indices stay true
         lines[i:j] = new
 
 
+def _block_end(text: str, offsets: list[int], i: int, indent: int) -> int:
+    """The first line after line `i` of `text` (indented by `indent`) indented less, blank
+    lines aside: a span from a line of the block (indented as deep or deeper) ends before it
+    (`_Span`: a run line, a `try:` and a statement it goes on across are at its indentation,
+    their blocks deeper)."""
+    found = _shallower(indent).search(text, offsets[i] + i)
+    return len(offsets) - 1 if found is None else i + 1 + text.count("\n", offsets[i] + i, found.start())
+
+
+@functools.cache
+def _shallower(indent: int) -> re.Pattern:
+    """A line break before a line indented less than `indent` (never, for 0)."""
+    return re.compile(rf"\n {{0,{indent - 1}}}\S" if indent else r"(?!)")
+
+
+def _most_operations(text: str) -> int:
+    """At least the operations `_Span` counts of the run lines in `text` (whole lines; those
+    of a block: the same or fewer from a line of it, the block from there a part of it): a
+    `+`, `-` or `*` each, or a call of `_m_sqrt`, `_sf_ATAN`, `_m_sin` or `_m_cos`; but the
+    finite tests' `-1e309` (in no run line but the finite test, whose operation is not counted)."""
+    return (text.count("*") + text.count("+") + text.count("-") + text.count("_m_sqrt(") + text.count("_sf_ATAN(")
+            + text.count("_m_sin(") + text.count("_m_cos(") - text.count("> -1e309"))
+
+
 def _read_after(span, original: list[str], mentions: collections.Counter) -> list[str]:
-    """The names the span sets that a line outside it or a statement it keeps names (the
-    others are never read again: the kernel need not return them); at least one."""
+    """The names the span sets that a line outside it or a statement it keeps names, and
+    the instance's variables it sets (`self.v_X`): the others are never read again, the
+    kernel need not return them; at least one value."""
     inside = collections.Counter(_NAME.findall("\n".join(original)))
     kept = set(_NAME.findall("\n".join(line for lines in span.kept for line in lines)))
     names = list(span.run.assigned)
-    return [name for name in names if mentions[name] > inside[name] or name in kept] or names[-1:]
+    return ([name for name in names if mentions[name] > inside[name] or name in kept or name.startswith("self.")]
+            or [name for name in names if name not in span.run.tests][-1:])
 
 
+#: A line that holds ` = `: every run line is one (a charge's `+=`, an `if` are none).
+_ASSIGNMENT = re.compile(r"^.* = .*", re.MULTILINE)
 #: `if (not (x < 1e309 and x > -1e309)):`, the compiler's test that a REAL is finite.
 _FINITE_TEST = re.compile(r"( *)if \(not \(([A-Za-z_]\w*) < 1e309 and \2 > -1e309\)\):\Z")
 #: The tokens of a statement that may run after the kernel (`_Span.defer`).
@@ -254,6 +340,12 @@ _SAFE_TOKEN = re.compile(r" *(?:(\d+\.\d*(?:e[+-]?\d+)?|\d+e[+-]?\d+|\d+)|([A-Za
                          r"|(<=|>=|==|!=|\+=|[<>()=:-]))")
 _KEYWORDS = frozenset({"True", "False", "not", "and", "or", "if", "else", "elif"})
 _CHARGE = "_spent"          # the compiler's charge counter, an int (charges.py)
+#: A budget check (statements.py `_charge`), with the loads aliases.py `drop_unread` makes
+#: in its branch of the variables set after it: `if _ctx.budget < _spent: v_U = self.v_U; _overrun((...))`.
+_BUDGET_CHECK = re.compile(r"( *)if _ctx\.budget < _spent: ((?:(\w+) = self\.\3; )*)_overrun\(\([^()]*\)\)\Z")
+_RELOAD = re.compile(r"(\w+) = self\.\1; ")
+#: reuse.py's shared values: locals of the body, never the instance's (no store back).
+_SHARED = re.compile(r"_c\d+\Z|_kv\d+\Z")            # (and this pass's own values of stores)
 
 
 class _Span:
@@ -273,32 +365,60 @@ class _Span:
         self.elements: dict[tuple, object] = {}  # (list, index) stored -> the run's value, or None
         self.read_later: set[str] = set()        # names the deferred statements read
         self.targets: set[str] = {_CHARGE}       # names the deferred statements set (and the charge)
+        self.reloaded: set[str] | None = None    # after a budget check: the names its branch loads
+        self.before_check: set[str] = set()      # the names the runs set before it
+        self.own: list[tuple] = []               # the stores of the run line just added
+        self.values = 0                          # the values of stores made (`_kv0`, `_kv1` ...)
         self.end = first
         if not self._assign(matches[first].group(2), matches[first].group(3)):
             return                               # (a span starts with a run line)
+        self._keep([])
         pending: list[tuple] = []                # deferred since the last run line or finite test
         i = self.end = first + 1
         while i < len(body):
             match = matches[i]
             if match is not None and match.group(1) == self.indent and self._assign(match.group(2), match.group(3)):
                 i += 1
+            elif (j := self._guarded_line(body, i, matches)) is not None:
+                i = j
             else:
                 j = self._statement_end(body, i)
                 if j is None:
                     break
                 if not self._finite_test(body[i:j]):
-                    deferred = self._defer(body[i:j])
+                    deferred = self._budget_check(body[i:j]) or self._defer(body[i:j])
                     if deferred is None:
                         break
                     pending.append(deferred)
                     i = j
                     continue
                 i = j
-            for lines, stores in pending:
-                self.kept.append(lines)
-                for name, index in stores:
-                    self.stored.setdefault(name, set()).add(index)
+            self._keep(pending)
             pending, self.end = [], i
+
+    def _keep(self, pending: list[tuple]) -> None:
+        """Keep the deferred statements `pending`, then the stores of the run line after them."""
+        for lines, stores in pending + self.own:
+            self.kept.append(lines)
+            for name, index in stores:
+                self.stored.setdefault(name, set()).add(index)
+        self.own = []
+
+    def _guarded_line(self, body: list[str], i: int, matches: list):
+        """The end of `try:`, a run line, `except _FAULTS as _e:` and its handler at `body[i]`
+        (the line added to the run), None for anything else: where the kernel answers the line
+        raises nothing (floats, lists long enough, every value finite), so the handler does not
+        run there."""
+        if body[i] != self.indent + "try:" or i + 2 >= len(body) or body[i + 2] != self.indent + "except _FAULTS as _e:":
+            return None
+        inner = matches[i + 1]
+        j = i + 3
+        while j < len(body) and body[j].startswith(self.indent + " "):
+            j += 1
+        if (inner is None or inner.group(1) != self.indent + "    " or j == i + 3
+                or j < len(body) and body[j].startswith((self.indent + "else:", self.indent + "finally:", self.indent + "except"))):
+            return None
+        return j if self._assign(inner.group(2), inner.group(3)) else None
 
     def _statement_end(self, body: list[str], i: int):
         """The end of the statement at `body[i]`: its block and any `elif`/`else`; None when
@@ -318,15 +438,55 @@ class _Span:
         return (test is not None and test.group(1) == self.indent and self.run.computed(test.group(2))
                 and not any(line.startswith(self.indent) and line[len(self.indent)] != " " for line in lines[1:]))
 
+    def _budget_check(self, lines: list[str]):
+        """(lines, no stores) when `lines` are the span's first budget check: it runs after
+        the kernel where it answers, in its place among the deferred statements, so the
+        charges before it are made and the names the runs set before it are set when it
+        fails; a run line after it may set only reuse.py's shared values (locals no store
+        back writes) and the variables its branch loads (`_assign`): when it fails, those
+        hold what they held without the kernel.  Its fault (support.overrun's ScanOverrun,
+        none of the `_FAULTS` a handler in the body catches) ends the body: its locals are
+        seen after it only through the store back of its variables."""
+        check = _BUDGET_CHECK.match(lines[0]) if len(lines) == 1 and self.reloaded is None else None
+        if check is None or check.group(1) != self.indent:
+            return None
+        self.reloaded = set(_RELOAD.findall(check.group(2)))
+        self.before_check = set(self.run.assigned)
+        return lines, []
+
+    def _store(self, name: str, index: int, text: str) -> bool:
+        """`L[k] = <expression>`: the run computes the expression as a value `_kvN` the kernel
+        returns, and the store of it is a deferred statement (`_defer`'s conditions).  A
+        store of a name is `_defer`'s: the run's value is stored as it is, no value more."""
+        if _NAME_ONLY.match(text) or name in self.run.env or name in self.read_later or self.run.kind.get(name) == "float" or name == _CHARGE:
+            return False
+        value = f"_kv{self.values}"
+        if not self._assign(value, text):
+            return False
+        self.values += 1
+        self.elements[(name, index)] = self.run.env[value]
+        self.targets.add(name)
+        self.own.append(([f"{self.indent}{name}[{index}] = {value}"], [(name, index)]))
+        return True
+
     def _assign(self, target: str, text: str) -> bool:
         """Add a run's line, unless it sets what a deferred statement reads or sets, reads
-        what one sets, or reads a list element one stored other than a value of the run."""
+        what one sets, or reads a list element one stored other than a value of the run;
+        after a budget check, unless it sets a variable the check's branch does not load.
+        A target `L[k]` is a store (`_store`)."""
+        store = _STORE.match(target)
+        if store is not None:
+            return self._store(store[1], int(store[2]), text)
         parsed = _tree(text)
         if parsed is None or target in self.read_later or target in self.targets:
             return False
+        if self.reloaded is not None and not (
+                _SHARED.match(target) or target in self.reloaded and target not in self.before_check):
+            return False
         tree, floats, lists = parsed
         if floats & self.targets or self.not_float is not None and (
-                any(self.not_float(name, False) for name in floats) or any(self.not_float(name, True) for name in lists)):
+                any(self.not_float(_variable(name), False) for name in floats)
+                or any(self.not_float(_variable(name), True) for name in lists)):
             return False
         overrides = {element: self.elements[element] for element in _elements(tree)
                      if element in self.elements} if self.elements else {}
@@ -446,6 +606,11 @@ def not_floats(places):
     return not_float
 
 
+def _variable(name: str) -> str:
+    """The variable a name of the generated code holds: `self.v_X` and `v_X` are `v_X`."""
+    return name[5:] if name.startswith("self.") else name
+
+
 def _elements(tree):
     """The (list, index) elements a tree reads."""
     if tree[0] == "e":
@@ -459,32 +624,20 @@ def _call(original: list[str], span: _Span, targets: list[str], register, bind) 
     """The lines that call the span's kernel, returning `targets`, with `original` where it
     returns None."""
     run, indent = span.run, span.indent
+    tests = [t for t in targets if t in run.tests]          # True where the kernel answers
+    targets = [t for t in targets if t not in run.tests]
     outputs = [run.env[t] for t in targets]
     arguments, distinct = run.finished(span.stored)
     kernel = register(None)
-    bind(kernel, _first_call(lambda: native.run_ir(arguments, run.ops, outputs, distinct),
-                             lambda built: bind(kernel, built)))
+    libm = any(op[1] in native.LIBM for op in run.ops)
+
+    def ir() -> str:
+        if libm:
+            native.bind_symbols(native.libm_symbols())
+        return native.run_ir(arguments, run.ops, outputs, distinct)
+    bind(kernel, native.on_first_call(ir, lambda built: bind(kernel, built)))
     return ([f"{indent}_kr = {kernel}({', '.join(run.texts)})", f"{indent}if _kr is None:"]
             + ["    " + line for line in original]
             + [f"{indent}else:", f"{indent}    {', '.join(targets)}, = _kr"]
+            + [f"{indent}    {t} = True" for t in tests]
             + ["    " + line for lines in span.kept for line in lines])
-
-
-class _Kernel:
-    """What native.builtin needs of a kernel's `__self__` (it keeps the method's definition)."""
-
-
-def _first_call(ir, bind):
-    """The run's first call: writes its IR (`ir()`: a load writes none) and builds the kernel
-    (None where this interpreter's layout is not CPython's: then the lines run in Python),
-    binds it in its own place and calls it."""
-    def first(*arguments):
-        built = native.builtin(_Kernel(), native.compiled(ir())) if native.layout_is_cpythons() else _python
-        bind(built)
-        return built(*arguments)
-    return first
-
-
-def _python(*arguments):
-    """The kernel where none can be built: the lines run as written."""
-    return None

@@ -52,7 +52,6 @@ import itertools
 import re
 
 from . import native
-from .kernels import _first_call
 
 #: `for v_X in _tR:` at some indentation.
 _FOR = re.compile(r"( *)for (v_\w+) in (_t\d+):\Z")
@@ -85,7 +84,7 @@ class _Loop:
 
     def __init__(self, variable: str, index: str):
         self.variable, self.index = variable, index
-        self.w = native._Writer()
+        self.w = native.Writer()
         self.texts: list[str] = []            # each argument's Python expression, after the range
         self.lists: dict[str, str] = {}       # list argument -> its items pointer
         self.floats: dict[str, str] = {}      # float argument -> its double
@@ -94,8 +93,8 @@ class _Loop:
         self.tests: dict[str, str] = {}       # finite test's name -> the value it tested
         self.finite: set[str] = set()         # the values checked to be finite
         self.private: set[str] = {index}      # names the loop sets that it does not return
-        self.body: list[str] = []             # the body's IR lines, written after the entry's
-        self.count = self.checks = 0
+        self.body = native.Writer("in")       # the body's IR, written after the entry's (blocks in1, in2 ...)
+        self.count = 0
         self.set_in_loop: set[str] = set()    # every name the body assigns (a read of one before
         self.temporaries: set[str] = set()    # its line is the last iteration's value); walrus targets
 
@@ -183,7 +182,7 @@ class _Loop:
         item = f"%{name}.{self.value()[1:]}"
         self.add(f"{item}.at = getelementptr inbounds ptr, ptr {self.lists[name]}, i64 %i",
                  f"{item} = load ptr, ptr {item}.at, align 8")
-        self._check_float(item)
+        self.body.has_type(item, "PyFloat_Type")
         double = self.value()
         self.add(f"{double}.at = getelementptr inbounds i8, ptr {item}, i64 {native._FVAL}",
                  f"{double} = load double, ptr {double}.at, align 8")
@@ -218,22 +217,11 @@ class _Loop:
         self.finite.add(value)
         self.add(f"{value}.abs = call double @llvm.fabs.f64(double {value})",
                  f"{value}.fin = fcmp olt double {value}.abs, {_INFINITY}")
-        self.check(f"{value}.fin")
+        self.body.check(f"{value}.fin")
         return value
 
-    def _check_float(self, item: str) -> None:
-        self.add(f"{item}.type.at = getelementptr inbounds i8, ptr {item}, i64 {native._TYPE}",
-                 f"{item}.type = load ptr, ptr {item}.type.at, align 8",
-                 f"{item}.is = icmp eq ptr {item}.type, @PyFloat_Type")
-        self.check(f"{item}.is")
-
     def add(self, *lines: str) -> None:
-        self.body += [f"  {line}" for line in lines]
-
-    def check(self, condition: str) -> None:
-        """Go on when `condition` holds, else to `%exact` (the body's blocks: `in1`, `in2` ...)."""
-        self.checks += 1
-        self.body += [f"  br i1 {condition}, label %in{self.checks}, label %exact", f"in{self.checks}:"]
+        self.body.add(*lines)
 
     def outputs(self) -> list[str]:
         """The names the loop sets and returns: the floats that are not its temporaries."""
@@ -263,11 +251,11 @@ class _Loop:
             first = self.floats.get(name, "0.0")   # a name set before it is read needs no value in
             w.lines.append(f"  {phi} = phi double [{first}, %{entry}], [{self.env[name]}, %latch]")
         w.lines += ["  %done = icmp eq i64 %i, %n", "  br i1 %done, label %finish, label %body", "body:"]
-        w.lines += self.body
+        w.lines += self.body.lines
         w.lines += ["  br label %latch", "latch:", "  %i.next = add i64 %i, 1", "  br label %loop", "finish:"]
         w.returns_list([self.carried[name] for name in self.outputs()])
         w.lines += ["exact:", "  call void @Py_IncRef(ptr @stgen_none)", "  ret ptr @stgen_none"]
-        return (native._DECLARATIONS + _DECLARATIONS + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\n"
+        return (native.DECLARATIONS + _DECLARATIONS + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\n"
                 "entry:\n" + "\n".join(w.lines) + "\n}\nattributes #0 = { nobuiltin }\n")
 
     @staticmethod
@@ -330,16 +318,9 @@ def _compares(tree, op, bound: float) -> bool:
 
 
 def libm_symbols() -> dict[str, int]:
-    """The addresses the kernels' `sin`, `cos` and type symbols bind to: the C library's
-    `sin` and `cos` as the dynamic linker resolves them for the whole process (`dlsym` of
-    the global scope: the math module's calls of `sin` and `cos` go through the same
-    resolution, so the same function, the same CPU variant of glibc's IFUNC)."""
-    import ctypes
-
-    process = ctypes.CDLL(None)
-    return {"sin": ctypes.cast(process.sin, ctypes.c_void_p).value,
-            "cos": ctypes.cast(process.cos, ctypes.c_void_p).value,
-            "PyLong_Type": id(int), "PyRange_Type": id(range)}
+    """The addresses the kernels' `sin`, `cos` and type symbols bind to: native.libm_symbols'
+    `sin` and `cos` (the very functions math.sin and math.cos call), int and range."""
+    return {**native.libm_symbols(), "PyLong_Type": id(int), "PyRange_Type": id(range)}
 
 
 @functools.cache
@@ -358,7 +339,7 @@ def ranges_are_cpythons() -> bool:
 
 
 #: The kernel where this interpreter's ints or ranges are not where the kernels read: None.
-_NONE = (native._DECLARATIONS + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
+_NONE = (native.DECLARATIONS + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
          "  call void @Py_IncRef(ptr @stgen_none)\n  ret ptr @stgen_none\n}\n")
 
 
@@ -366,9 +347,7 @@ def _ir_of(loop: _Loop):
     def ir() -> str:
         if not ranges_are_cpythons():
             return _NONE
-        native._machine()
-        for symbol, address in libm_symbols().items():
-            native._llvm.add_symbol(symbol, address)
+        native.bind_symbols(libm_symbols())
         return loop.ir()
     return ir
 
@@ -424,7 +403,7 @@ def _kernel_loop(body: list[str], n: int, found, register, bind):
     if not loop.outputs():
         return None
     kernel = register(None)
-    bind(kernel, _first_call(_ir_of(loop), lambda built: bind(kernel, built)))
+    bind(kernel, native.on_first_call(_ir_of(loop), lambda built: bind(kernel, built)))
     original = body[n:after]
     new = ([f"{indent}_kr = {kernel}({', '.join([iterated] + loop.texts)})", f"{indent}if _kr is None:"]
            + ["    " + line for line in original]

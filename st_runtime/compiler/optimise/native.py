@@ -93,7 +93,8 @@ def _double(value: float) -> str:
 
 _INSTRUCTION = {"*": "fmul", "+": "fadd", "-": "fsub"}
 
-_DECLARATIONS = """\
+#: The C API and types every kernel's IR may name (kernels.py's and loops.py's prepend it).
+DECLARATIONS = """\
 declare double @llvm.fabs.f64(double)
 declare double @llvm.sqrt.f64(double)
 declare void @Py_IncRef(ptr)
@@ -109,12 +110,15 @@ declare ptr @PyObject_CallMethodObjArgs(ptr, ptr, ...)
 """
 
 
-class _Writer:
-    """The lines of the kernel's IR: a block per check, each failing one to `exact`."""
+class Writer:
+    """The lines of a kernel's IR: a block per check, each failing one to `exact`; `label`
+    names the blocks the checks open (`ok1`, `ok2` ...), another for a second writer whose
+    lines go into the same function."""
 
-    def __init__(self):
+    def __init__(self, label: str = "ok"):
         self.lines: list[str] = []
         self.checks = 0
+        self.label = label
 
     def add(self, *lines: str) -> None:
         self.lines += [f"  {line}" for line in lines]
@@ -122,8 +126,8 @@ class _Writer:
     def check(self, condition: str) -> None:
         """Go on when `condition` (an i1) holds, else to `%exact`."""
         self.checks += 1
-        self.add(f"br i1 {condition}, label %ok{self.checks}, label %exact")
-        self.lines.append(f"ok{self.checks}:")
+        self.add(f"br i1 {condition}, label %{self.label}{self.checks}, label %exact")
+        self.lines.append(f"{self.label}{self.checks}:")
 
     def object_of(self, name: str, pointer: str, offset: int) -> str:
         """`%name` = the object pointer at `pointer + offset` bytes."""
@@ -184,7 +188,7 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
     the result is a new list of the outputs' floats, or `self.exact(list, tuple)` when an
     argument is not as compiled for (a list of n_list floats, a tuple of n_tuple) or an
     output is not finite."""
-    w = _Writer()
+    w = Writer()
     w.add("%two = icmp eq i64 %nargs, 2")
     w.lines += ["  br i1 %two, label %start, label %wrong", "start:"]
     whole = w.object_of("whole", "%args", 0)
@@ -217,7 +221,7 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
                 "wrong:",                         # not two arguments: exact's own TypeError
                 "  %none = call ptr (ptr, ptr, ...) @PyObject_CallMethodObjArgs(ptr %self, ptr @stgen_exact, ptr null)",
                 "  ret ptr %none"]
-    return (_DECLARATIONS + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
+    return (DECLARATIONS + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
             + "\n".join(w.lines) + "\n}\n")
 
 
@@ -227,11 +231,13 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
     ("float", value) (args[j] a Python float, whose double is `value`) or ("list", {k:
     value}, size) (args[j] a list of at least `size` elements, the one at every index k a
     Python float); `distinct` holds pairs (j, k) of arguments that must be two objects.
-    `ops[i]` is (value, op, operands...): op "*", "+" or "-" of two operands, "neg" or
-    "sqrt" of one; an operand a value's name or an IR double literal.  The result is a
+    `ops[i]` is (value, op, operands...): op "*", "+" or "-" of two operands, "neg",
+    "sqrt", "sin", "cos" or "atan" (the C library's: `libm_symbols`) of one, or "finite" of one
+    (value None: the operand only checked to be finite); an operand a value's name or an
+    IR double literal.  The result is a
     new list of the doubles named by `outputs`, or None (a new reference) when an argument
     is not as compiled for or a value computed is not finite."""
-    w = _Writer()
+    w = Writer()
     w.add(f"%n.ok = icmp eq i64 %nargs, {len(arguments)}")
     w.check("%n.ok")
     for j, (kind, held, *size) in enumerate(arguments):
@@ -250,8 +256,12 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
         w.check(f"%a{j}.not.a{k}")
     finite = "true"
     for i, (value, op, *operands) in enumerate(ops):
-        if op == "sqrt":
+        if op == "finite":                        # the value a finite test tested: checked, not computed
+            value = operands[0]
+        elif op == "sqrt":
             w.add(f"{value} = call double @llvm.sqrt.f64(double {operands[0]})")
+        elif op in LIBM:
+            w.add(f"{value} = call double @{op}(double {operands[0]}) #0")
         elif op == "neg":
             w.add(f"{value} = fneg double {operands[0]}")
         else:
@@ -265,8 +275,26 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
     w.lines += ["exact:",                         # the statements in Python, as written
                 "  call void @Py_IncRef(ptr @stgen_none)",
                 "  ret ptr @stgen_none"]
-    return (_DECLARATIONS + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
-            + "\n".join(w.lines) + "\n}\n")
+    libm = sorted({op for _, op, *_ in ops if op in LIBM})
+    return (DECLARATIONS + "".join(f"declare double @{f}(double)\n" for f in libm)
+            + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
+            + "\n".join(w.lines) + "\n}\n" + ("attributes #0 = { nobuiltin }\n" if libm else ""))
+
+
+#: The C library's functions a kernel may call (`libm_symbols`), by the name the IR calls.
+LIBM = ("sin", "cos", "atan")
+
+
+def libm_symbols() -> dict[str, int]:
+    """The addresses the kernels' `sin`, `cos` and `atan` bind to: the C library's functions as the
+    dynamic linker resolves them for the whole process (`dlsym` of the global scope: the
+    math module's calls go through the same resolution, so the same function, the same CPU
+    variant of glibc's IFUNC).  For a finite argument math.sin, math.cos and math.atan return
+    that function's result unchanged (mathmodule.c `math_1`)."""
+    import ctypes
+
+    process = ctypes.CDLL(None)
+    return {name: ctypes.cast(getattr(process, name), ctypes.c_void_p).value for name in LIBM}
 
 
 def _machine():
@@ -340,6 +368,34 @@ def first_call(helper, bind):
         bind(run)
         return run(whole, inputs)
     return types.MethodType(first, helper)
+
+
+class _Kernel:
+    """What `builtin` needs of a kernel's `__self__` (it keeps the method's definition)."""
+
+
+def on_first_call(ir, bind):
+    """What the generated code calls before a kernel of kernels.py or loops.py is built: the
+    first call writes its IR (`ir()`: a load writes none) and builds the kernel (where this
+    interpreter's layout is not CPython's, a function answering None: the lines run in
+    Python), binds it in its own place by `bind(kernel)` and calls it."""
+    def first(*arguments):
+        built = builtin(_Kernel(), compiled(ir())) if layout_is_cpythons() else _python
+        bind(built)
+        return built(*arguments)
+    return first
+
+
+def _python(*arguments):
+    """The kernel where none can be built: the lines run as written."""
+    return None
+
+
+def bind_symbols(symbols: dict[str, int]) -> None:
+    """Let the kernels' IR name each of `symbols` (name -> address in this process)."""
+    _machine()
+    for symbol, address in symbols.items():
+        _llvm.add_symbol(symbol, address)
 
 
 def helper_ir(helper) -> str:
