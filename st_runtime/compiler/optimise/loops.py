@@ -61,7 +61,6 @@ _LIBM = re.compile(r"_m_(?:sin|cos)\(")
 _BINARY = {ast.Add: "fadd", ast.Sub: "fsub", ast.Mult: "fmul"}
 _CALLS = {"_m_sin": "sin", "_m_cos": "cos"}
 _GUARDED = {"_m_sin": "_sf_SIN", "_m_cos": "_sf_COS"}
-_INFINITY = "0x7FF0000000000000"
 _RANGE_START, _RANGE_STOP, _RANGE_STEP = 16, 24, 32       # rangeobject's start, stop, step
 _DIGIT = 24                                               # a PyLongObject's first 30-bit digit
 
@@ -216,7 +215,7 @@ class _Loop:
             return value
         self.finite.add(value)
         self.add(f"{value}.abs = call double @llvm.fabs.f64(double {value})",
-                 f"{value}.fin = fcmp olt double {value}.abs, {_INFINITY}")
+                 f"{value}.fin = fcmp olt double {value}.abs, {native.INFINITY}")
         self.body.check(f"{value}.fin")
         return value
 

@@ -93,6 +93,9 @@ def _double(value: float) -> str:
 
 _INSTRUCTION = {"*": "fmul", "+": "fadd", "-": "fsub"}
 
+#: +inf as an IR double: `|x| < INFINITY` (fcmp olt) holds for every finite x, not for inf or NaN.
+INFINITY = "0x7FF0000000000000"
+
 #: The C API and types every kernel's IR may name (kernels.py's and loops.py's prepend it).
 DECLARATIONS = """\
 declare double @llvm.fabs.f64(double)
@@ -211,7 +214,7 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
         name[v] = f"%v{v}"
     for j, o in enumerate(outputs):
         w.add(f"%abs{j} = call double @llvm.fabs.f64(double {name[o]})",
-              f"%finite{j} = fcmp olt double %abs{j}, 0x7FF0000000000000")      # false for NaN
+              f"%finite{j} = fcmp olt double %abs{j}, {INFINITY}")
         w.check(f"%finite{j}")
     w.returns_list([name[o] for o in outputs])
     w.lines += ["exact:",
@@ -267,7 +270,7 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
         else:
             w.add(f"{value} = {_INSTRUCTION[op]} double {operands[0]}, {operands[1]}")
         w.add(f"%abs.{i} = call double @llvm.fabs.f64(double {value})",
-              f"%fin.{i} = fcmp olt double %abs.{i}, 0x7FF0000000000000",      # false for NaN
+              f"%fin.{i} = fcmp olt double %abs.{i}, {INFINITY}",
               f"%all.{i} = and i1 {finite}, %fin.{i}")
         finite = f"%all.{i}"
     w.check(finite)
