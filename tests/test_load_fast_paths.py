@@ -434,3 +434,33 @@ def test_the_passes_gates_leave_the_code_as_running_every_pass_makes_it(monkeypa
     monkeypatch.setattr(ranges.Flow, "__init__", holding)
     assert [compiled(p) for p in loads] == gated
     assert all(count > len(loads) // 2 for count in closed.values()), closed
+
+
+def test_a_compiled_init_source_is_one_store_a_member_in_declaration_order():
+    # `_install_init` writes an FB's `__init__` as `def _init_<n>(self):` and one line a
+    # member at one indentation (four spaces): a constant as its literal, an aggregate from
+    # its maker `_mk<n>()`; an FB without a variable stores nothing (`pass`, kept for reading).
+    text = """
+    FUNCTION_BLOCK F
+    VAR_INPUT x : INT := 3; END_VAR
+    VAR r : LREAL; a : ARRAY[1..2] OF INT; b : BOOL := TRUE; END_VAR
+    END_FUNCTION_BLOCK
+    FUNCTION_BLOCK Empty
+    END_FUNCTION_BLOCK
+    PROGRAM Main VAR f : F; e : Empty; END_VAR f(); e(); END_PROGRAM
+    """
+    compiled = compile_program(load_texts({"m.st": text}).program)
+    source = compiled.python_sources["init:F"]
+    lines = source.split("\n")
+    assert lines[0].startswith("def _init_") and lines[0].endswith("(self):")
+    maker = lines[3].split(" = ")[1]
+    assert lines[1:] == ["    self.v_X = 3", "    self.v_R = 0.0", f"    self.v_A = {maker}",
+                         "    self.v_B = True", ""]
+    assert maker.startswith("_mk") and maker.endswith("()")
+    assert type(compiled.namespace[maker[:-2]]()) is list
+    cls = compiled.classes["F"]
+    assert cls.__init__.__name__ == lines[0][4:].split("(")[0]        # compiled, not `_store_members`
+    one, two = cls(), cls()
+    assert (one.v_X, one.v_R, one.v_A, one.v_B) == (3, 0.0, [0, 0], True) and one.v_A is not two.v_A
+    empty = compiled.python_sources["init:EMPTY"]
+    assert empty.startswith("def _init_") and empty.endswith("(self):\n    pass\n") and empty.count("\n") == 2

@@ -51,7 +51,7 @@ from . import support
 from .calls import Calls
 from .initial import CompileError, Initial, InitialValues
 from .optimise import Optimisations, native
-from .pysrc import Emitter, pyliteral, safe_name, pyident
+from .pysrc import pyliteral, safe_name, pyident
 from .scope import edge_inputs, edge_slot, forget_walks
 from .statements import BodyCompiler
 
@@ -452,30 +452,32 @@ def _maker_of(value):
 
 
 def _install_init(unit: CompileUnit, key: str, members: list) -> None:
+    """The class's `__init__`: a source of one store a member, compiled, or (for the globals,
+    a PROGRAM, or no member: made once per run) the same stores by `_store_members`, the
+    source kept for reading.  The source's lines written as they are (one level, no block
+    but the `def`), without an `Emitter`: a class's few lines cost more to emit than to write."""
     makers = unit.makers
-    out = Emitter()
     pyname = "_init_" + str(len(unit.sources))
-    out.line(f"def {pyname}(self):")
-    out.indent()
-    mark = out.mark()
+    cls = unit.classes[key]
+    compiled = bool(members) and key != "<GLOBALS>" and cls._st_kind != "PROGRAM"
+    lines = [f"def {pyname}(self):"]
     steps = []
     for attr, value in members:
-        if value.is_const:
-            out.line(f"self.{attr} = {pyliteral(value.const)}")
-            steps.append((attr, None, _plain(value.const)))
+        if value.maker is None:         # (a constant: Initial.is_const)
+            lines.append(f"    self.{attr} = {pyliteral(value.const)}")
+            if not compiled:
+                steps.append((attr, None, _plain(value.const)))
         else:
-            maker = unit.register_maker(value.maker)
-            out.line(f"self.{attr} = {maker}()")
-            steps.append((attr, unit.namespace[maker], None))
-    out.ensure_body(mark)
-    cls = unit.classes[key]
-    if steps and key != "<GLOBALS>" and cls._st_kind != "PROGRAM":
-        unit.run_source("init:" + key, out.source())
+            lines.append(f"    self.{attr} = {unit.register_maker(value.maker)}()")
+            steps.append((attr, value.maker, None))
+    if not members:
+        lines.append("    pass")
+    source = "\n".join(lines) + "\n"
+    if compiled:
+        unit.run_source("init:" + key, source)
         cls.__init__ = unit.namespace[pyname]
     else:
-        # Made once per run (the globals, a PROGRAM) or setting nothing: the same
-        # stores, in the same order, without compiling the source (kept for reading).
-        unit.sources["init:" + key] = unit.sources.get("init:" + key, "") + out.source()
+        unit.sources["init:" + key] = unit.sources.get("init:" + key, "") + source
         if cls is not _NO_GLOBALS:      # (whose __init__ sets nothing already)
             cls.__init__ = _store_members(tuple(steps))
     unit.init_makers[key] = unit.makers - makers
