@@ -464,3 +464,24 @@ def test_a_compiled_init_source_is_one_store_a_member_in_declaration_order():
     assert (one.v_X, one.v_R, one.v_A, one.v_B) == (3, 0.0, [0, 0], True) and one.v_A is not two.v_A
     empty = compiled.python_sources["init:EMPTY"]
     assert empty.startswith("def _init_") and empty.endswith("(self):\n    pass\n") and empty.count("\n") == 2
+
+
+@pytest.mark.parametrize("decl, expected", [
+    ("BOOL", False), ("INT", 0), ("UDINT", 0), ("LREAL", 0.0), ("REAL", 0.0), ("WORD", 0),
+    ("TIME", 0), ("INT (5..10)", 5), ("INT (-3..4)", -3), ("STRING", ""),
+])
+def test_a_variable_without_an_initializer_takes_its_types_default(decl: str, expected):
+    # IEC 61131-3:2013 table 11: FALSE, 0, 0.0, T#0s (0 ns), the empty string; a subrange
+    # starts at its lower limit (6.4.4.4).  The elementary defaults are made once a kind
+    # (`initial._elementary_default`), a subrange's by its own bounds, each load of a
+    # variable of another kind, before and after, its own.
+    text = f"""
+    FUNCTION_BLOCK F
+    VAR before : LREAL; v : {decl}; after : BOOL; END_VAR
+    END_FUNCTION_BLOCK
+    PROGRAM Main VAR f : F; END_VAR f(); END_PROGRAM
+    """
+    for _ in range(2):
+        fb = compile_program(load_texts({"m.st": text}).program).classes["F"]()
+        assert type(fb.v_V) is type(expected) and fb.v_V == expected
+        assert type(fb.v_BEFORE) is float and fb.v_AFTER is False

@@ -14,7 +14,7 @@ from typing import Callable
 
 from .. import ast
 from ..objects import default_value, is_aggregate, store_value
-from ..types import ArrayType, EnumType, FBType, StructType, Type, resolve_alias
+from ..types import ArrayType, ElementaryType, EnumType, FBType, StructType, Type, resolve_alias
 from ..checker.constfold import NOT_CONSTANT, DivisionByZero, apply_binary
 from .pysrc import pyident
 
@@ -119,6 +119,8 @@ class InitialValues:
             init = self.type_inits.get((getattr(raw, "name", None) or "").upper())   # keys are upper case
         if not is_aggregate(t):
             if init is None:
+                if type(t) is ElementaryType:       # (most variables: the kind's default, one Initial)
+                    return _elementary_default(t)
                 return Initial(const=default_value(t, self.classes)())
             return Initial(const=store_value(t, self.const(init), self.program.dialect))
         if isinstance(t, ArrayType):
@@ -177,6 +179,19 @@ class InitialValues:
             return obj
 
         return make
+
+
+#: elementary kind -> the Initial of its default (frozen, so one serves every variable)
+_ELEMENTARY_DEFAULTS: dict[str, Initial] = {}
+
+
+def _elementary_default(t: ElementaryType) -> Initial:
+    """`Initial(const=default_value(t)())` of an elementary type (not a subrange): its kind's
+    default, which depends on nothing else, made once a kind."""
+    found = _ELEMENTARY_DEFAULTS.get(t.kind)
+    if found is None:
+        found = _ELEMENTARY_DEFAULTS[t.kind] = Initial(const=default_value(t, {})())
+    return found
 
 
 def _constant(value) -> Callable:
