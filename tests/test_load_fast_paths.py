@@ -485,3 +485,22 @@ def test_a_variable_without_an_initializer_takes_its_types_default(decl: str, ex
         fb = compile_program(load_texts({"m.st": text}).program).classes["F"]()
         assert type(fb.v_V) is type(expected) and fb.v_V == expected
         assert type(fb.v_BEFORE) is float and fb.v_AFTER is False
+
+
+def test_type_and_member_initializers_are_read_from_every_file_in_one_pass():
+    # IEC 61131-3:2013 table 11 (and 6.4.4.1): a derived type's initial value is the default of
+    # every variable and STRUCT member of that type without its own; a member's own value wins.
+    # `initial._initializers` reads both tables in one pass over the items of every file.
+    first = """
+    TYPE Pair : STRUCT a : Speed; b : Speed := 1.25; c : Count; END_STRUCT; END_TYPE
+    PROGRAM Main VAR p : Pair; s : Speed; n : Count; q : Speed := 4.0; END_VAR
+    p.a := p.a; END_PROGRAM
+    """
+    second = """
+    TYPE Speed : LREAL := 2.5; END_TYPE
+    TYPE Count : INT := 7; END_TYPE
+    """
+    compiled = compile_program(load_texts({"a.st": first, "b.st": second}).program)
+    main = compiled.new("Main")
+    assert (main.v_P.v_A, main.v_P.v_B, main.v_P.v_C) == (2.5, 1.25, 7)
+    assert (main.v_S, main.v_N, main.v_Q) == (2.5, 7, 4.0)

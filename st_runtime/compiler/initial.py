@@ -46,8 +46,8 @@ class InitialValues:
     def __init__(self, program, classes: dict[str, type]):
         self.program = program
         self.classes = classes
-        self.member_inits = _member_initializers(program)   # STRUCT/FB name -> {MEMBER: init}
-        self.type_inits = _type_initializers(program)       # TYPE name -> init
+        #: STRUCT name -> {MEMBER: init}; TYPE name -> init
+        self.member_inits, self.type_inits = _initializers(program)
 
     def member_init(self, struct_key: str, member_key: str):
         """A STRUCT member's initializer: its own, else its TYPE's (IEC 61131-3:2013 table 11:
@@ -204,48 +204,36 @@ def _members(t) -> dict[str, Type]:
     return {key: sym.type for key, sym in t.variables.items()}
 
 
-def _prelude_first(program, what: str, read) -> dict:
-    """`read(files)` over the program's files, the shared prelude's file read once."""
-    out: dict = {}
+def _initializers(program) -> tuple[dict, dict]:
+    """(STRUCT name -> {MEMBER: init}, TYPE name -> init) of the program's files, in one
+    reading of their items, the shared prelude's file read once a process."""
+    members: dict[str, dict] = {}
+    types: dict[str, object] = {}
     files = program.files
     base = getattr(program, "prelude", None)
     if base is not None and files and files[0] is base.file:
-        out.update(base.memo(what, lambda: read([base.file])))
+        prelude = base.memo("initializers", lambda: _initializers_of([base.file], {}, {}))
+        members.update(prelude[0])
+        types.update(prelude[1])
         files = files[1:]
-    out.update(read(files))
-    return out
+    return _initializers_of(files, members, types)
 
 
-def _member_initializers(program) -> dict[str, dict]:
-    return _prelude_first(program, "member_inits", _member_initializers_of)
-
-
-def _type_initializers(program) -> dict[str, object]:
-    return _prelude_first(program, "type_inits", _type_initializers_of)
-
-
-def _member_initializers_of(files) -> dict[str, dict]:
-    out: dict[str, dict] = {}
+def _initializers_of(files, members: dict, types: dict) -> tuple[dict, dict]:
+    """`_initializers` of `files`, added to `members` and `types`."""
     for sf in files:
         for item in sf.items:
-            if isinstance(item, ast.TypeDecl) and isinstance(item.spec, ast.StructType):
+            if not isinstance(item, ast.TypeDecl):
+                continue
+            if isinstance(item.spec, ast.StructType):
                 # a member without its own initial value whose type is a TYPE name keeps
                 # that name (resolved by InitialValues.member_init: the type may hold one)
-                out[item.name.upper()] = {m.name.upper(): m.init if m.init is not None or not
-                                          isinstance(m.type, ast.NamedType) else m.type
-                                          for m in item.spec.members}
-    return out
-
-
-def _type_initializers_of(files) -> dict[str, object]:
-    out: dict[str, object] = {}
-    for sf in files:
-        for item in sf.items:
-            if isinstance(item, ast.TypeDecl) and item.init is not None:
-                out[item.name.upper()] = item.init
-            elif isinstance(item, ast.TypeDecl) and isinstance(item.spec, ast.NamedType):
-                pass
-    return out
+                members[item.name.upper()] = {m.name.upper(): m.init if m.init is not None or not
+                                              isinstance(m.type, ast.NamedType) else m.type
+                                              for m in item.spec.members}
+            if item.init is not None:
+                types[item.name.upper()] = item.init
+    return members, types
 
 
 def _fold_binary(op: str, a, b, pos):
