@@ -504,3 +504,29 @@ def test_type_and_member_initializers_are_read_from_every_file_in_one_pass():
     main = compiled.new("Main")
     assert (main.v_P.v_A, main.v_P.v_B, main.v_P.v_C) == (2.5, 1.25, 7)
     assert (main.v_S, main.v_N, main.v_Q) == (2.5, 7, 4.0)
+
+
+def test_each_function_blocks_init_sets_its_own_variables_and_edge_inputs():
+    # `_make_classes` lays out each FB's instance variables and edge inputs once, and
+    # `_make_initializers` initialises from that layout: each FB its own (a derived FB its own
+    # and the ones it inherits), an edge input's previous value FALSE (IEC 61131-3 6.5.1.2:
+    # R_EDGE as an R_TRIG whose memory starts FALSE).
+    text = """
+    FUNCTION_BLOCK Base
+    VAR_INPUT go : BOOL R_EDGE; END_VAR
+    VAR a : INT := 1; END_VAR
+    END_FUNCTION_BLOCK
+    FUNCTION_BLOCK Child EXTENDS Base
+    VAR b : LREAL := 2.5; END_VAR
+    END_FUNCTION_BLOCK
+    FUNCTION_BLOCK Other
+    VAR_INPUT up : BOOL F_EDGE; END_VAR
+    VAR c : DINT := -4; END_VAR
+    END_FUNCTION_BLOCK
+    PROGRAM Main VAR x : Base; y : Child; z : Other; END_VAR x(); y(); z(); END_PROGRAM
+    """
+    compiled = compile_program(load_texts({"m.st": text}).program)
+    base, child, other = (compiled.classes[k]() for k in ("BASE", "CHILD", "OTHER"))
+    assert (base.v_A, base.v_GO, base._edgev_GO) == (1, False, False) and not hasattr(base, "v_B")
+    assert (child.v_A, child.v_B, child.v_GO, child._edgev_GO) == (1, 2.5, False, False)
+    assert (other.v_C, other.v_UP, other._edgev_UP) == (-4, False, False) and not hasattr(other, "v_A")

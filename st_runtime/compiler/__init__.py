@@ -114,6 +114,8 @@ class CompileUnit:
         self.namespace["_truncate"] = functools.partial(fit_string, dialect=program.dialect)
         self.makers = 0
         self.init_makers: dict[str, int] = {}     # class key -> makers its __init__ registered
+        #: POU key -> (its instance variables, its edge inputs), as `_make_classes` laid them out
+        self.instance_layouts: dict[str, tuple[list, list]] = {}
         self.guard_statements = True
         self.charge_costs = True
         self.initial = InitialValues(program, self.classes)
@@ -331,11 +333,11 @@ def _make_classes(unit: CompileUnit, shared=None) -> None:
             native._st_name = pou.name
             unit.classes[key] = native
             continue
-        variables = _instance_variables(pou)
+        variables, edges = unit.instance_layouts[key] = _instance_variables(pou), edge_inputs(pou)
         inherited = pou.parent.variables if pou.parent is not None else {}
         slots = tuple(pyident(s.name) for s in variables
                       if located_at(s) is None and inherited.get(s.name.upper()) is not s) + \
-            tuple(edge_slot(s) for s in edge_inputs(pou) if inherited.get(s.name.upper()) is not s)
+            tuple(edge_slot(s) for s in edges if inherited.get(s.name.upper()) is not s)
         layout = {s.name.upper(): (s.name, s.type) for s in variables}
         base = unit.classes[pou.parent.name.upper()] if pou.parent is not None else STObject
         unit.classes[key] = _new_class(pou.name, slots, layout, pou.kind, base)
@@ -430,9 +432,10 @@ def _make_initializers(unit: CompileUnit, shared=None) -> None:
             pairs = native_initializers(pou, lambda s: _maker_of(initial.of_symbol(s)))
             cls.set_initializers(pairs)
             continue
+        variables, edges = unit.instance_layouts.get(key) or (_instance_variables(pou), edge_inputs(pou))
         members = [(pyident(s.name), _unconnected(s) if s.kind == "VAR_IN_OUT" else initial.of_symbol(s))
-                   for s in _instance_variables(pou)]
-        members += [(edge_slot(s), Initial(const=False)) for s in edge_inputs(pou)]
+                   for s in variables]
+        members += [(edge_slot(s), Initial(const=False)) for s in edges]
         _install_init(unit, key, members)
     members = [(pyident(s.name), initial.of_symbol(s)) for s in program.globals.values()]
     _install_init(unit, "<GLOBALS>", members)
