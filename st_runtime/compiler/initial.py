@@ -99,7 +99,12 @@ class InitialValues:
     # ------------------------------------------------------------ values
 
     def of_symbol(self, symbol) -> Initial:
-        t = resolve_alias(symbol.type)
+        t = symbol.type
+        if symbol.init is None and type(t) is ElementaryType:
+            # (most variables: what `of` gives them, at once; no TYPE initializer is an elementary
+            # type's, whose name cannot be declared again, E-DECL-003)
+            return _elementary_default(t)
+        t = resolve_alias(t)
         if not (symbol.init is not None and isinstance(t, ArrayType) and not is_aggregate(resolve_alias(t.element))):
             return self.of(symbol.type, symbol.init, symbol.decl.pos if symbol.decl else ast.NOWHERE)
         # An initialised array of elementary values depends on nothing but its symbol: flattened
