@@ -142,6 +142,61 @@ def _is_leaf(cls: type) -> bool:
 _QUIET, _LOUD = _Kinds(quiet=True), _Kinds(quiet=False)
 
 
+class _Items(dict):
+    """node class -> what the walk does with a node inside a tuple field (a VAR block's
+    declarations, a call's arguments): SKIP it, PUSH it, or ask `test(node, kinds)`
+    whether walking it would add nothing (`_hollow_test`), then push it only if not.
+    A leaf's test is `_leaf_adds_nothing`: nothing above the deepest level."""
+
+    def __missing__(self, cls: type):
+        if not issubclass(cls, ast.Node):
+            item = SKIP
+        elif _is_leaf(cls):
+            item = _leaf_adds_nothing
+        elif _may_be_hollow(cls):
+            item = _hollow_test(cls)
+        else:
+            item = PUSH
+        self[cls] = item
+        return item
+
+
+def _leaf_adds_nothing(node, kinds) -> bool:
+    return kinds is _QUIET
+
+
+def _may_be_hollow(cls: type) -> bool:
+    """Whether a node of `cls` may add nothing to the walk: one that neither nests (a
+    transparent node) nor counts (no statement, no build rule node), whose fields hold
+    no tuple; it adds nothing when each of its fields is skipped (None, a scalar, a
+    leaf above the deepest level) and it names no construct (`VarDecl`, `Arg`, `CaseRange`)."""
+    statement, _, _, transparent, _, build_node, _ = _SHAPES[cls]
+    declared = cls.__dataclass_fields__
+    return transparent and not statement and not build_node and not any(
+        declared[name].type.startswith("tuple[") for name in ast.CHILD_FIELDS[cls])
+
+
+def _hollow_test(cls: type):
+    """Whether a node of `cls` (`_may_be_hollow`) adds nothing to the walk: what its visit
+    would do, without the visit.  A transparent node's fields are walked at its parent's
+    depth, so `kinds` is the parent's."""
+    *_, construct, _, children = _SHAPES[cls]
+    names = ast.CHILD_FIELDS[cls]
+    if construct is None and len(names) == 1:     # an argument, an enumeration value
+        field = attrgetter(*names)
+        return lambda node, kinds: not kinds[type(field(node))]
+
+    def adds_nothing(node, kinds) -> bool:
+        for value in children(node):
+            if kinds[type(value)]:
+                return False
+        return construct is None or construct(node) is None
+    return adds_nothing
+
+
+_ITEMS = _Items()
+
+
 class Walked:
     """What the walk found in one item for the passes after it: `constructs`, the
     (construct, position) of each node a dialect may refuse (`dialects.CONSTRUCTS`),
@@ -188,7 +243,7 @@ def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
     statements = 0
     # (node, statement depth, loop depth, expression depth)
     stack = [(pou, 0, 0, 0)]
-    push, shapes, quiet, loud = stack.append, _SHAPES, _QUIET, _LOUD
+    push, shapes, quiet, loud, items = stack.append, _SHAPES, _QUIET, _LOUD, _ITEMS
     while stack:
         node, blocks, loops, depth = stack.pop()
         is_statement, is_block, is_loop, transparent, construct, build_node, children = shapes[type(node)]
@@ -231,8 +286,9 @@ def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
             if kind == PUSH:
                 push((value, blocks, loops, depth))
             elif kind:
-                for item in value:
-                    if kinds[type(item)] == PUSH:
+                for item in value:   # (a node that would add nothing is not pushed: `_Items`)
+                    test = items[type(item)]
+                    if test == PUSH or test and not test(item, kinds):
                         push((item, blocks, loops, depth))
     if statements > MAX_STATEMENTS:
         report("E-LIMIT-007", f"{statements} statements (at most {MAX_STATEMENTS}; split the POU)", pou)
