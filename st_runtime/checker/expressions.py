@@ -30,6 +30,7 @@ import difflib
 import math
 
 from .oo import assignable_reference, find_property, may_call
+from ..per_class import PerClass
 from ..process_image import PLAIN_TYPES, parse_address
 from .. import ast
 from .. import types as T
@@ -115,20 +116,17 @@ def _is_plain_literal(e) -> bool:
 #: (a literal may be truncated) and subranges (a constant's limits).
 _SELF_ASSIGNABLE = frozenset((T.ElementaryType, T.EnumType, T.StructType, T.ArrayType))
 
-class _Typers(dict):
-    """node class -> the ExprChecker method that types it (`_` + the class name), or
-    `_untypable` (a node that is no expression): found on a class's first node."""
-
-    def __missing__(self, cls: type):
-        method = self[cls] = getattr(ExprChecker, "_" + cls.__name__, _untypable)
-        return method
+def _typer(cls: type):
+    """The ExprChecker method that types a node of `cls` (`_` + the class name), or
+    `_untypable` (a node that is no expression): `_TYPERS[cls]`, found on a class's first node."""
+    return getattr(ExprChecker, "_" + cls.__name__, _untypable)
 
 
 def _untypable(checker, e, expected):
     return checker.record(e, ts.ERROR)
 
 
-_TYPERS = _Typers()
+_TYPERS = PerClass(_typer)
 
 
 def _range(t) -> str:

@@ -32,6 +32,7 @@ from operator import attrgetter
 
 from .. import ast
 from ..diagnostics import register
+from ..per_class import PerClass
 from .context import BUILTIN_FILE
 from .dialects import CONSTRUCTS
 
@@ -78,21 +79,18 @@ _TRANSPARENT = (ast.IfBranch, ast.CaseClause, ast.CaseRange, ast.Arg, ast.Pou, a
 #: The node classes of the NJ build rules (nj_build.py: rules 006 and 007).
 _BUILD_NODES = (ast.Index, ast.Member, ast.Case)
 
-class _Shapes(dict):
-    """node class -> (statement, block, loop, transparent, dialect construct (its function
-    of `dialects.CONSTRUCTS`, or None), build rule node, children): what check_limits asks
-    of every node, worked out once per class; `children(node)` is the tuple of the node's
-    fields that may hold a node, in field order."""
 
-    def __missing__(self, cls: type) -> tuple:
-        names = ast.CHILD_FIELDS[cls]
-        shape = self[cls] = (issubclass(cls, _STATEMENTS), issubclass(cls, _BLOCKS), issubclass(cls, _LOOPS),
-                             issubclass(cls, _TRANSPARENT), CONSTRUCTS.get(cls), cls in _BUILD_NODES,
-                             _children_getter(names))
-        return shape
+def _shape(cls: type) -> tuple:
+    """(statement, block, loop, transparent, dialect construct (its function of
+    `dialects.CONSTRUCTS`, or None), build rule node, children): what check_limits asks
+    of every node of `cls`; `children(node)` is the tuple of the node's fields that may
+    hold a node, in field order."""
+    return (issubclass(cls, _STATEMENTS), issubclass(cls, _BLOCKS), issubclass(cls, _LOOPS),
+            issubclass(cls, _TRANSPARENT), CONSTRUCTS.get(cls), cls in _BUILD_NODES,
+            _children_getter(ast.CHILD_FIELDS[cls]))
 
 
-_SHAPES: dict[type, tuple] = _Shapes()
+_SHAPES: dict[type, tuple] = PerClass(_shape)
 
 
 def _no_children(node) -> tuple:
@@ -117,18 +115,18 @@ def _children_getter(names: tuple[str, ...]):
 SKIP, PUSH, TUPLE = 0, 1, 2
 
 
-class _Kinds(dict):
-    def __init__(self, quiet: bool) -> None:
-        super().__init__()
-        self.quiet = quiet
+def _quiet_kind(cls: type) -> int:
+    """`_QUIET[cls]`: `_loud_kind`, but SKIP for a plain leaf."""
+    if issubclass(cls, ast.Node):
+        return SKIP if _is_leaf(cls) else PUSH
+    return _loud_kind(cls)
 
-    def __missing__(self, cls: type) -> int:
-        if issubclass(cls, ast.Node):
-            kind = SKIP if self.quiet and _is_leaf(cls) else PUSH
-        else:
-            kind = TUPLE if issubclass(cls, tuple) else SKIP
-        self[cls] = kind
-        return kind
+
+def _loud_kind(cls: type) -> int:
+    """`_LOUD[cls]`: PUSH a node, look into a TUPLE, SKIP anything else."""
+    if issubclass(cls, ast.Node):
+        return PUSH
+    return TUPLE if issubclass(cls, tuple) else SKIP
 
 
 def _is_leaf(cls: type) -> bool:
@@ -139,26 +137,19 @@ def _is_leaf(cls: type) -> bool:
     return not (statement or transparent or construct or build_node or ast.CHILD_FIELDS[cls])
 
 
-_QUIET, _LOUD = _Kinds(quiet=True), _Kinds(quiet=False)
+_QUIET, _LOUD = PerClass(_quiet_kind), PerClass(_loud_kind)
 
 
-class _Items(dict):
-    """node class -> what the walk does with a node inside a tuple field (a VAR block's
+def _item_kind(cls: type):
+    """What the walk does with a node of `cls` inside a tuple field (a VAR block's
     declarations, a call's arguments): SKIP it, PUSH it, or ask `test(node, kinds)`
     whether walking it would add nothing (`_hollow_test`), then push it only if not.
     A leaf's test is `_leaf_adds_nothing`: nothing above the deepest level."""
-
-    def __missing__(self, cls: type):
-        if not issubclass(cls, ast.Node):
-            item = SKIP
-        elif _is_leaf(cls):
-            item = _leaf_adds_nothing
-        elif _may_be_hollow(cls):
-            item = _hollow_test(cls)
-        else:
-            item = PUSH
-        self[cls] = item
-        return item
+    if not issubclass(cls, ast.Node):
+        return SKIP
+    if _is_leaf(cls):
+        return _leaf_adds_nothing
+    return _hollow_test(cls) if _may_be_hollow(cls) else PUSH
 
 
 def _leaf_adds_nothing(node, kinds) -> bool:
@@ -194,7 +185,7 @@ def _hollow_test(cls: type):
     return adds_nothing
 
 
-_ITEMS = _Items()
+_ITEMS = PerClass(_item_kind)
 
 
 class Walked:
