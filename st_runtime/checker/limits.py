@@ -247,22 +247,24 @@ def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
         if is_statement:
             statements += 1
             depth = 0
-            if is_block:
+            if is_block:       # (IF and CASE are blocks, loops too)
                 blocks += 1
                 if blocks > MAX_BLOCK_DEPTH:
                     report("E-LIMIT-003", f"statements nested more than {MAX_BLOCK_DEPTH} levels deep"
                            f" ({type(node).__name__.upper()} here)", node)
                     continue
-            if is_loop:
-                loops += 1
-                if loops > MAX_LOOP_DEPTH:
-                    report("E-LIMIT-004", f"loops nested more than {MAX_LOOP_DEPTH} levels deep", node)
-                    continue
-            if isinstance(node, ast.If) and len(node.branches) - 1 > MAX_ELSIF:
-                report("E-LIMIT-005", f"IF with {len(node.branches) - 1} ELSIF branches (at most {MAX_ELSIF};"
-                       " a CASE takes many more)", node)
-            if isinstance(node, ast.Case) and len(node.clauses) > MAX_CASE_CLAUSES:
-                report("E-LIMIT-006", f"CASE with {len(node.clauses)} clauses (at most {MAX_CASE_CLAUSES})", node)
+                if is_loop:
+                    loops += 1
+                    if loops > MAX_LOOP_DEPTH:
+                        report("E-LIMIT-004", f"loops nested more than {MAX_LOOP_DEPTH} levels deep", node)
+                        continue
+                elif isinstance(node, ast.If):
+                    if len(node.branches) - 1 > MAX_ELSIF:
+                        report("E-LIMIT-005", f"IF with {len(node.branches) - 1} ELSIF branches (at most"
+                               f" {MAX_ELSIF}; a CASE takes many more)", node)
+                elif isinstance(node, ast.Case) and len(node.clauses) > MAX_CASE_CLAUSES:
+                    report("E-LIMIT-006", f"CASE with {len(node.clauses)} clauses (at most {MAX_CASE_CLAUSES})",
+                           node)
         elif not transparent:
             depth += 1
             if depth > MAX_EXPRESSION_DEPTH:
