@@ -140,3 +140,74 @@ def test_a_recorded_constant_is_stored_as_its_type_holds_it(name, value, stored)
     assert ex.record(node, T.ELEMENTARY[name], value) is T.ELEMENTARY[name]
     held = ctx.program.constants[id(node)]
     assert held == stored and type(held) is type(stored)
+
+
+#: Names met again in one body: variables, a CONSTANT (its value is recorded each time), a
+#: subrange (its limits are kept apart each time), a global, an input, THIS, an enumeration value.
+NAMES_AGAIN = """
+TYPE Small : INT (0..10); Color : (Red, Green); END_TYPE
+VAR_GLOBAL gl : DINT; END_VAR
+FUNCTION_BLOCK F
+VAR_INPUT inp : INT; END_VAR
+VAR n : INT; c : Color; END_VAR
+n := n + inp; n := THIS.n + inp; c := Green; c := Green;
+END_FUNCTION_BLOCK
+PROGRAM Main
+VAR CONSTANT K : INT := 7; Z : INT := 0; END_VAR
+VAR s : Small; i : INT; d : DINT; f : F; END_VAR
+i := K; i := K + K; i := i / Z; i := i / Z; s := s + 1; s := s; i := s * s;
+d := gl; gl := d + gl; f(inp := i); f(inp := K);
+CASE i OF K: i := 1; END_CASE;
+END_PROGRAM
+"""
+
+
+def _names_typed(monkeypatch, texts: dict, dialect: str, kept: bool) -> tuple[list, list]:
+    """(position, name, type, symbol, constant, subrange) of every name the checker typed,
+    in order, and the diagnostics; `kept=False`: every name looked up (no `_variables`)."""
+    from st_runtime.checker import expressions
+
+    load_texts({"warm.st": "PROGRAM W END_PROGRAM"}, dialect)     # (the prelude checked before)
+    typed, name, init = [], expressions._TYPERS[ast.Name], ExprChecker.__init__
+
+    def logged(self, e, expected):
+        t = name(self, e, expected)
+        program, k = self.program, id(e)
+        sym = program.name_refs.get(k)
+        typed.append((str(e.pos), e.name, str(t), getattr(sym, "name", None), getattr(sym, "kind", None),
+                      repr(program.constants.get(k, "-")), str(program.subranges.get(k))))
+        return t
+
+    def looking_up(self, ctx, scope, declared=False):
+        init(self, ctx, scope, False)
+
+    with monkeypatch.context() as patch:
+        patch.setitem(expressions._TYPERS, ast.Name, logged)
+        if not kept:
+            patch.setattr(ExprChecker, "__init__", looking_up)
+        result = load_texts(dict(texts), dialect)
+    return typed, [(d.code, d.message, str(d.pos), d.severity) for d in result.diagnostics]
+
+
+def test_a_name_met_again_in_a_body_is_typed_as_its_look_up_types_it(monkeypatch):
+    """A body's checker keeps the variables it found (`ExprChecker._variables`), not
+    the constants or subranges, whose `record` does more than store a type."""
+    texts = [{"t.st": NAMES_AGAIN}] + [{str(p.relative_to(ROOT)): p.read_text(encoding="utf-8")} for p in ACCEPT]
+    names = 0
+    for dialect in ("iec", "nj"):
+        for text in texts:
+            kept = _names_typed(monkeypatch, text, dialect, kept=True)
+            assert kept == _names_typed(monkeypatch, text, dialect, kept=False), list(text)
+            names += len(kept[0])
+    assert names > 2000
+
+
+def test_a_name_in_a_declaration_is_looked_up_where_it_is():
+    """While a POU's declarations are checked a name may refer to a global, then to a local
+    declared after it (`Scope.lookup`: a POU's own variables before the globals):
+    `b`'s initial value reads the local BOOL `g`, not the global INT `g` that `a`'s read."""
+    text = ("VAR_GLOBAL g : INT; END_VAR\nPROGRAM P\nVAR\n  a : INT := g;\n  g : BOOL;\n  b : INT := g;\n"
+            "END_VAR\nEND_PROGRAM\n")
+    found = [(d.code, d.pos.line, d.pos.col) for d in load_texts({"t.st": text}, "iec").diagnostics
+             if "expected INT, found BOOL" in d.message]
+    assert found == [("E-TYPE-004", 6, 14)]

@@ -107,15 +107,16 @@ def test_this_reads_the_instances_own_variables():
 
 def test_limits_worked_out_afresh(monkeypatch):
     """The limits walk keeps each node class's shape in a memo filled on first
-    use (`_Shapes.__missing__`); with an empty memo the same limits hold (MAX_LOOP_DEPTH = 12)."""
+    use (`PerClass(_shape)`); with an empty memo the same limits hold (MAX_LOOP_DEPTH = 12)."""
     limits = importlib.import_module("st_runtime.checker.limits")
+    from st_runtime.per_class import PerClass
 
     def nested(depth: int) -> str:
         return program("    i : INT;", "WHILE FALSE DO " * depth + "i := 1;" + " END_WHILE;" * depth)
 
-    monkeypatch.setattr(limits, "_SHAPES", limits._Shapes())
+    monkeypatch.setattr(limits, "_SHAPES", PerClass(limits._shape))
     assert diagnostics(nested(limits.MAX_LOOP_DEPTH)) == []
-    monkeypatch.setattr(limits, "_SHAPES", limits._Shapes())
+    monkeypatch.setattr(limits, "_SHAPES", PerClass(limits._shape))
     assert [d[:2] for d in diagnostics(nested(limits.MAX_LOOP_DEPTH + 1))] == [("E-LIMIT-004", 5)]
 
 

@@ -229,6 +229,28 @@ def test_a_leaf_beyond_the_depth_is_the_place_reported():
     assert [(d.code, d.pos.line, d.pos.col) for d in diagnostics] == [("E-LIMIT-002", 3, 12)]
 
 
+DEEP = limits.MAX_EXPRESSION_DEPTH
+
+
+@pytest.mark.parametrize("body, col", [
+    # 64 nested calls: the innermost at depth 64, its argument (an Arg, transparent) x at 65,
+    # at column 6 + 4 * 64 (after "x := " and the 64 "ABS(").
+    ("x := " + "ABS(" * DEEP + "x" + ")" * DEEP + ";", 6 + 4 * DEEP),
+    # `a[1]` the first of 64 terms: 63 additions, a[1] at depth 64, its index 1 (an item of
+    # a tuple field) at 65, at column 8 (after "r := a[").
+    ("r := a[1]" + " + 1.0" * (DEEP - 1) + ";", 8),
+])
+def test_a_leaf_inside_a_tuple_beyond_the_depth_is_the_place_reported(body, col):
+    """The walk does not push a node of a tuple field (an argument, a declaration, an index)
+    whose visit would add nothing (limits._Items); at the deepest level a leaf under it
+    is too deep, and it is the place reported.  One level less is within the limit."""
+    decls = "x : DINT; r : LREAL; a : ARRAY[1..1] OF LREAL;"
+    diagnostics = refused(program(body, decls))
+    assert [(d.code, d.pos.line, d.pos.col) for d in diagnostics] == [("E-LIMIT-002", 3, col)]
+    shallower = body.replace("ABS(", "", 1).replace(")", "", 1).replace(" + 1.0", "", 1)
+    runs(program(shallower, decls))
+
+
 def test_the_walk_takes_a_nodes_fields_from_the_last():
     """`p^ := NULL;`: the Assign's fields are (target, value); the walk pushes them in
     field order and pops the last first, so the NULL (column 7) is noted before the

@@ -115,11 +115,11 @@ def _check(files, dialect, memory_limit=None, open_instances=False, share_prelud
         for info in pous:
             if info.node is None or info.native is not None:
                 continue
-            ex = ExprChecker(ctx, Scope(ctx, info))
+            ex = ExprChecker(ctx, Scope(ctx, info), declared=True)
             StatementChecker(ex).block(info.node.body)
             for method in info.methods.values():
                 if method.owner is info and info.kind == "FUNCTION_BLOCK":
-                    ex = ExprChecker(ctx, Scope(ctx, method))
+                    ex = ExprChecker(ctx, Scope(ctx, method), declared=True)
                     StatementChecker(ex).block(method.node.body)
         check_recursion(ctx)
         check_calls_in_loops(ctx)

@@ -30,6 +30,7 @@ import difflib
 import math
 
 from .oo import assignable_reference, find_property, may_call
+from ..per_class import PerClass
 from ..process_image import PLAIN_TYPES, parse_address
 from .. import ast
 from .. import types as T
@@ -115,20 +116,17 @@ def _is_plain_literal(e) -> bool:
 #: (a literal may be truncated) and subranges (a constant's limits).
 _SELF_ASSIGNABLE = frozenset((T.ElementaryType, T.EnumType, T.StructType, T.ArrayType))
 
-class _Typers(dict):
-    """node class -> the ExprChecker method that types it (`_` + the class name), or
-    `_untypable` (a node that is no expression): found on a class's first node."""
-
-    def __missing__(self, cls: type):
-        method = self[cls] = getattr(ExprChecker, "_" + cls.__name__, _untypable)
-        return method
+def _typer(cls: type):
+    """The ExprChecker method that types a node of `cls` (`_` + the class name), or
+    `_untypable` (a node that is no expression): `_TYPERS[cls]`, found on a class's first node."""
+    return getattr(ExprChecker, "_" + cls.__name__, _untypable)
 
 
 def _untypable(checker, e, expected):
     return checker.record(e, ts.ERROR)
 
 
-_TYPERS = _Typers()
+_TYPERS = PerClass(_typer)
 
 
 def _range(t) -> str:
@@ -171,9 +169,15 @@ def _call_checker():
 class ExprChecker:
     """Types expressions inside one scope."""
 
-    def __init__(self, ctx: Context, scope: Scope):
+    def __init__(self, ctx: Context, scope: Scope, declared: bool = False):
+        """`declared`: every name of `scope` is declared (a body's checker, after the
+        declarations): a variable it names is then kept (`_variables`) for the next
+        name of the same spelling.  Not so while the declarations are checked: a name
+        looked up there may be declared after, or shadowed by a later local."""
         self.ctx = ctx
         self.scope = scope
+        self.declared = declared
+        self._variables: dict[str, object] = {}
         self.program = ctx.program
         self.loop_vars: list = []  # Symbols of the enclosing FOR loops
         self.storing = None        # the target check_store is typing (written, not read)
@@ -452,10 +456,18 @@ class ExprChecker:
 
     # ------------------------------------------------------------- names
     def _Name(self, e, expected):
+        sym = self._variables.get(e.name)
+        if sym is not None:     # met before: what the look-up and `record` give it, at once
+            self.program.name_refs[id(e)] = sym
+            self.program.expr_types[id(e)] = t = sym.type
+            return t
         sym = self.scope.lookup(e.name)
         if sym is not None:
             self.program.name_refs[id(e)] = sym
-            return self.record(e, sym.type, self.ctx.symbol_values.get(id(sym), NOT_CONSTANT))
+            value = self.ctx.symbol_values.get(id(sym), NOT_CONSTANT)
+            if self.declared and value is NOT_CONSTANT and not isinstance(sym.type, T.SubrangeType):
+                self._variables[e.name] = sym     # (`record` stores just its type)
+            return self.record(e, sym.type, value)
         enums = self.ctx.enum_values.get(key(e.name))
         if enums:
             if expected in enums:

@@ -32,6 +32,7 @@ from operator import attrgetter
 
 from .. import ast
 from ..diagnostics import register
+from ..per_class import PerClass
 from .context import BUILTIN_FILE
 from .dialects import CONSTRUCTS
 
@@ -78,21 +79,18 @@ _TRANSPARENT = (ast.IfBranch, ast.CaseClause, ast.CaseRange, ast.Arg, ast.Pou, a
 #: The node classes of the NJ build rules (nj_build.py: rules 006 and 007).
 _BUILD_NODES = (ast.Index, ast.Member, ast.Case)
 
-class _Shapes(dict):
-    """node class -> (statement, block, loop, transparent, dialect construct (its function
-    of `dialects.CONSTRUCTS`, or None), build rule node, children): what check_limits asks
-    of every node, worked out once per class; `children(node)` is the tuple of the node's
-    fields that may hold a node, in field order."""
 
-    def __missing__(self, cls: type) -> tuple:
-        names = ast.CHILD_FIELDS[cls]
-        shape = self[cls] = (issubclass(cls, _STATEMENTS), issubclass(cls, _BLOCKS), issubclass(cls, _LOOPS),
-                             issubclass(cls, _TRANSPARENT), CONSTRUCTS.get(cls), cls in _BUILD_NODES,
-                             _children_getter(names))
-        return shape
+def _shape(cls: type) -> tuple:
+    """(statement, block, loop, transparent, dialect construct (its function of
+    `dialects.CONSTRUCTS`, or None), build rule node, children): what check_limits asks
+    of every node of `cls`; `children(node)` is the tuple of the node's fields that may
+    hold a node, in field order."""
+    return (issubclass(cls, _STATEMENTS), issubclass(cls, _BLOCKS), issubclass(cls, _LOOPS),
+            issubclass(cls, _TRANSPARENT), CONSTRUCTS.get(cls), cls in _BUILD_NODES,
+            _children_getter(ast.CHILD_FIELDS[cls]))
 
 
-_SHAPES: dict[type, tuple] = _Shapes()
+_SHAPES: dict[type, tuple] = PerClass(_shape)
 
 
 def _no_children(node) -> tuple:
@@ -117,18 +115,18 @@ def _children_getter(names: tuple[str, ...]):
 SKIP, PUSH, TUPLE = 0, 1, 2
 
 
-class _Kinds(dict):
-    def __init__(self, quiet: bool) -> None:
-        super().__init__()
-        self.quiet = quiet
+def _quiet_kind(cls: type) -> int:
+    """`_QUIET[cls]`: `_loud_kind`, but SKIP for a plain leaf."""
+    if issubclass(cls, ast.Node):
+        return SKIP if _is_leaf(cls) else PUSH
+    return _loud_kind(cls)
 
-    def __missing__(self, cls: type) -> int:
-        if issubclass(cls, ast.Node):
-            kind = SKIP if self.quiet and _is_leaf(cls) else PUSH
-        else:
-            kind = TUPLE if issubclass(cls, tuple) else SKIP
-        self[cls] = kind
-        return kind
+
+def _loud_kind(cls: type) -> int:
+    """`_LOUD[cls]`: PUSH a node, look into a TUPLE, SKIP anything else."""
+    if issubclass(cls, ast.Node):
+        return PUSH
+    return TUPLE if issubclass(cls, tuple) else SKIP
 
 
 def _is_leaf(cls: type) -> bool:
@@ -139,7 +137,55 @@ def _is_leaf(cls: type) -> bool:
     return not (statement or transparent or construct or build_node or ast.CHILD_FIELDS[cls])
 
 
-_QUIET, _LOUD = _Kinds(quiet=True), _Kinds(quiet=False)
+_QUIET, _LOUD = PerClass(_quiet_kind), PerClass(_loud_kind)
+
+
+def _item_kind(cls: type):
+    """What the walk does with a node of `cls` inside a tuple field (a VAR block's
+    declarations, a call's arguments): SKIP it, PUSH it, or ask `test(node, kinds)`
+    whether walking it would add nothing (`_hollow_test`), then push it only if not.
+    A leaf's test is `_leaf_adds_nothing`: nothing above the deepest level."""
+    if not issubclass(cls, ast.Node):
+        return SKIP
+    if _is_leaf(cls):
+        return _leaf_adds_nothing
+    return _hollow_test(cls) if _may_be_hollow(cls) else PUSH
+
+
+def _leaf_adds_nothing(node, kinds) -> bool:
+    return kinds is _QUIET
+
+
+def _may_be_hollow(cls: type) -> bool:
+    """Whether a node of `cls` may add nothing to the walk: one that neither nests (a
+    transparent node) nor counts (no statement, no build rule node), whose fields hold
+    no tuple; it adds nothing when each of its fields is skipped (None, a scalar, a
+    leaf above the deepest level) and it names no construct (`VarDecl`, `Arg`, `CaseRange`)."""
+    statement, _, _, transparent, _, build_node, _ = _SHAPES[cls]
+    declared = cls.__dataclass_fields__
+    return transparent and not statement and not build_node and not any(
+        declared[name].type.startswith("tuple[") for name in ast.CHILD_FIELDS[cls])
+
+
+def _hollow_test(cls: type):
+    """Whether a node of `cls` (`_may_be_hollow`) adds nothing to the walk: what its visit
+    would do, without the visit.  A transparent node's fields are walked at its parent's
+    depth, so `kinds` is the parent's."""
+    *_, construct, _, children = _SHAPES[cls]
+    names = ast.CHILD_FIELDS[cls]
+    if construct is None and len(names) == 1:     # an argument, an enumeration value
+        field = attrgetter(*names)
+        return lambda node, kinds: not kinds[type(field(node))]
+
+    def adds_nothing(node, kinds) -> bool:
+        for value in children(node):
+            if kinds[type(value)]:
+                return False
+        return construct is None or construct(node) is None
+    return adds_nothing
+
+
+_ITEMS = PerClass(_item_kind)
 
 
 class Walked:
@@ -188,7 +234,7 @@ def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
     statements = 0
     # (node, statement depth, loop depth, expression depth)
     stack = [(pou, 0, 0, 0)]
-    push, shapes, quiet, loud = stack.append, _SHAPES, _QUIET, _LOUD
+    push, shapes, quiet, loud, items = stack.append, _SHAPES, _QUIET, _LOUD, _ITEMS
     while stack:
         node, blocks, loops, depth = stack.pop()
         is_statement, is_block, is_loop, transparent, construct, build_node, children = shapes[type(node)]
@@ -201,22 +247,24 @@ def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
         if is_statement:
             statements += 1
             depth = 0
-            if is_block:
+            if is_block:       # (IF and CASE are blocks, loops too)
                 blocks += 1
                 if blocks > MAX_BLOCK_DEPTH:
                     report("E-LIMIT-003", f"statements nested more than {MAX_BLOCK_DEPTH} levels deep"
                            f" ({type(node).__name__.upper()} here)", node)
                     continue
-            if is_loop:
-                loops += 1
-                if loops > MAX_LOOP_DEPTH:
-                    report("E-LIMIT-004", f"loops nested more than {MAX_LOOP_DEPTH} levels deep", node)
-                    continue
-            if isinstance(node, ast.If) and len(node.branches) - 1 > MAX_ELSIF:
-                report("E-LIMIT-005", f"IF with {len(node.branches) - 1} ELSIF branches (at most {MAX_ELSIF};"
-                       " a CASE takes many more)", node)
-            if isinstance(node, ast.Case) and len(node.clauses) > MAX_CASE_CLAUSES:
-                report("E-LIMIT-006", f"CASE with {len(node.clauses)} clauses (at most {MAX_CASE_CLAUSES})", node)
+                if is_loop:
+                    loops += 1
+                    if loops > MAX_LOOP_DEPTH:
+                        report("E-LIMIT-004", f"loops nested more than {MAX_LOOP_DEPTH} levels deep", node)
+                        continue
+                elif isinstance(node, ast.If):
+                    if len(node.branches) - 1 > MAX_ELSIF:
+                        report("E-LIMIT-005", f"IF with {len(node.branches) - 1} ELSIF branches (at most"
+                               f" {MAX_ELSIF}; a CASE takes many more)", node)
+                elif isinstance(node, ast.Case) and len(node.clauses) > MAX_CASE_CLAUSES:
+                    report("E-LIMIT-006", f"CASE with {len(node.clauses)} clauses (at most {MAX_CASE_CLAUSES})",
+                           node)
         elif not transparent:
             depth += 1
             if depth > MAX_EXPRESSION_DEPTH:
@@ -231,8 +279,9 @@ def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
             if kind == PUSH:
                 push((value, blocks, loops, depth))
             elif kind:
-                for item in value:
-                    if kinds[type(item)] == PUSH:
+                for item in value:   # (a node that would add nothing is not pushed: `_Items`)
+                    test = items[type(item)]
+                    if test == PUSH or test and not test(item, kinds):
                         push((item, blocks, loops, depth))
     if statements > MAX_STATEMENTS:
         report("E-LIMIT-007", f"{statements} statements (at most {MAX_STATEMENTS}; split the POU)", pou)

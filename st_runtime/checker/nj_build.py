@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from .. import ast
 from .. import types as T
+from ..per_class import PerClass
 from ..printer import format_expr as _text
 from ..values import FORMATTERS
 from .context import BUILTIN_FILE, Context
@@ -59,16 +60,13 @@ def check_build_rules(ctx: Context, files) -> None:
 _RULE_NODES = (ast.Index, ast.Member, ast.Case)
 
 
-class _LastFieldFirst(dict):
-    """node class -> its child fields from the last to the first (pushed so, the walk
-    pops them in field order)."""
-
-    def __missing__(self, cls: type) -> tuple:
-        names = self[cls] = tuple(reversed(ast.CHILD_FIELDS[cls]))
-        return names
+def _last_field_first(cls: type) -> tuple:
+    """A node class's child fields from the last to the first (pushed so, the walk pops
+    them in field order)."""
+    return tuple(reversed(ast.CHILD_FIELDS[cls]))
 
 
-_LAST_FIELD_FIRST = _LastFieldFirst()
+_LAST_FIELD_FIRST = PerClass(_last_field_first)
 
 
 def _walk(node) -> list:

@@ -7,6 +7,7 @@ import bisect
 from .. import ast
 from .. import types as T
 from ..ast import key
+from ..per_class import PerClass
 from . import typesys as ts
 from .constfold import NOT_CONSTANT
 from .expressions import ExprChecker, start_pos
@@ -14,20 +15,17 @@ from .loop_writes import note_assignment, note_write
 from .stores import check_store, controls_a_loop
 
 
-class _Checks(dict):
-    """statement class -> the StatementChecker method that checks it (`_` + the class name),
-    or `_nothing` (EMPTY, RETURN): found on a class's first statement, one look-up after."""
-
-    def __missing__(self, cls: type):
-        method = self[cls] = getattr(StatementChecker, "_" + cls.__name__, _nothing)
-        return method
+def _check_of(cls: type):
+    """The StatementChecker method that checks a statement of `cls` (`_` + the class name),
+    or `_nothing` (EMPTY, RETURN): `_CHECKS[cls]`, found on a class's first statement."""
+    return getattr(StatementChecker, "_" + cls.__name__, _nothing)
 
 
 def _nothing(checker, s) -> None:
     """A statement with nothing to check."""
 
 
-_CHECKS = _Checks()
+_CHECKS = PerClass(_check_of)
 
 
 class StatementChecker:
