@@ -27,6 +27,7 @@ from operator import attrgetter
 
 from .. import ast
 from ..objects import is_aggregate
+from ..per_class import PerClass
 from .exprs import LValue
 from .pysrc import pyident
 from .initial import CompileError
@@ -158,22 +159,17 @@ def _listed(node) -> list:
 _LEAF, _TUPLE, _SKIP = object(), object(), object()
 
 
-class _Listing(dict):
-    """class -> how `_listed` takes an item of it: a node without child fields is a leaf;
+def _how_listed(cls: type):
+    """How `_listed` takes an item of class `cls`: a node without child fields is a leaf;
     a tuple's items are listed; a node's one child field is named, its two or more are
     read by one `attrgetter` (in C); anything else (None, a name) holds no node."""
-
-    def __missing__(self, cls: type):
-        if issubclass(cls, ast.Node):
-            fields = ast.CHILD_FIELDS[cls]
-            how = _LEAF if not fields else fields[0] if len(fields) == 1 else attrgetter(*fields)
-        else:
-            how = _TUPLE if issubclass(cls, tuple) else _SKIP
-        self[cls] = how
-        return how
+    if issubclass(cls, ast.Node):
+        fields = ast.CHILD_FIELDS[cls]
+        return _LEAF if not fields else fields[0] if len(fields) == 1 else attrgetter(*fields)
+    return _TUPLE if issubclass(cls, tuple) else _SKIP
 
 
-_HOW: dict[type, object] = _Listing()
+_HOW: dict[type, object] = PerClass(_how_listed)
 
 
 def root_name(e) -> str | None:
