@@ -78,12 +78,18 @@ MIN_OPERATIONS = 16      # a crossing costs about as much as a dozen float opera
 #: A line that may qualify: `name = `, `self.name = ` or `list[k] = ` (not an element of an
 #: instance's array: its list may be one a local name holds too) and only the characters of
 #: the forms above.
-_CANDIDATE = re.compile(r"( *)((?:self\.)?[A-Za-z_]\w*|[A-Za-z_]\w*\[\d+\]) = ([\w.()+*\[\]<> -]+)\Z")
+_CANDIDATE = re.compile(r"( *)((?:self\.)?[A-Za-z_]\w*|[A-Za-z_]\w*\[\d+\]) = ([\w.()+*\[\]<> -]+"
+                        r"|\(_m_(?:sin|cos)\(_t\d+\) if \(_t\d+ := [\w.]+\) < 1e309 and _t\d+ > -1e309 else _sf_\w+\(_t\d+\)\))\Z")
 _TOKEN = re.compile(r" *(?:(\d+\.\d*(?:e[+-]?\d+)?|\d+e[+-]?\d+)|((?:self\.)?[A-Za-z_]\w*)|(\d+)|(\S))")
 #: The compiler's finite test of a name kept in a temporary (calls.py, pysrc.finite_test).
 _TEST = re.compile(r"\(True if \(((?:self\.)?[A-Za-z_]\w*) < 1e309 and \1 > -1e309\) else False\)\Z")
 #: SIN or COS of a name behind that test (calls.py `_GUARDED`): `(_m_sin(x) if _cN else _sf_SIN(x))`.
-_GUARDED = re.compile(r"\(_m_(sin|cos)\(((?:self\.)?[A-Za-z_]\w*)\) if ([A-Za-z_]\w*) else _sf_(SIN|COS)\(\2\)\)\Z")
+_GUARDED = re.compile(r"\(_m_(?P<f>sin|cos)\((?P<x>(?:self\.)?[A-Za-z_]\w*)\) if (?P<test>[A-Za-z_]\w*)"
+                      r" else _sf_(?P<F>SIN|COS)\((?P=x)\)\)\Z")
+#: SIN or COS of a name kept in the compiler's temporary behind its finite test, where no local
+#: holds the test (calls.py `_GUARDED`): `(_m_sin(_t1) if (_t1 := x) < 1e309 and _t1 > -1e309 else _sf_SIN(_t1))`.
+_TEMP_GUARDED = re.compile(r"\(_m_(?P<f>sin|cos)\((?P<t>_t\d+)\) if \((?P=t) := (?P<x>(?:self\.)?[A-Za-z_]\w*)\)"
+                           r" < 1e309 and (?P=t) > -1e309 else _sf_(?P<F>SIN|COS)\((?P=t)\)\)\Z")
 _NAME = re.compile(r"(?<![\w.])[A-Za-z_]\w*")
 _NOT_NAMES = frozenset({"True", "False", "None", "_m_sqrt", "_sf_ATAN", "_kr"})
 #: A store's target `L[k]`: the list and the index.
@@ -100,16 +106,17 @@ def _tree(text: str):
     """(tree, names read as floats, lists read) of an expression the kernel computes, None
     for any other: a tree is ("c", IR literal) | ("n", name) | ("e", list, index) |
     (op, operand...) with op "*", "+", "-", "neg" or "sqrt" | ("test", ("n", name)) (the
-    finite test) | ("sin" or "cos", ("n", name), the test's name).  Kept by text: the same
+    finite test) | ("sin" or "cos", ("n", name), the test's name, or None where the line
+    tests the name itself in the compiler's temporary `_tN`).  Kept by text: the same
     lines come back in every load of a program and in its fast and exact copies."""
     test = _TEST.match(text)
     if test is not None:
         return ("test", ("n", test[1])), frozenset([test[1]]), frozenset()
-    guarded = _GUARDED.match(text)
+    guarded = _GUARDED.match(text) or _TEMP_GUARDED.match(text)
     if guarded is not None:
-        if guarded[1].upper() != guarded[4]:
+        if guarded["f"].upper() != guarded["F"]:
             return None
-        return (guarded[1], ("n", guarded[2]), guarded[3]), frozenset([guarded[2]]), frozenset()
+        return (guarded["f"], ("n", guarded["x"]), guarded.groupdict().get("test")), frozenset([guarded["x"]]), frozenset()
     tokens = _TOKEN.findall(text)
     names: tuple[set, set] = (set(), set())
     try:
@@ -203,10 +210,12 @@ class _Run:
         tree, floats, lists = parsed
         if any(name in self.env for name in lists) or any(self.kind.get(name) == "list" for name in floats):
             return False
-        if target in self.tests or not floats.isdisjoint(self.tests) or tree[0] in ("sin", "cos") and (
+        if target in self.tests or not floats.isdisjoint(self.tests) or tree[0] in ("sin", "cos") and tree[2] and (
                 tree[2] not in self.tests or self.tests[tree[2]] != self.env.get(tree[1][1])):
             return False            # (a test is read only as the guard of SIN or COS of the value it tested)
         self.overrides.update(overrides)
+        if tree[0] in ("sin", "cos") and tree[2] is None:     # the line's own test: checked finite
+            self.ops.append((None, "finite", self._value_of(tree[1])))
         if tree[0] == "test":       # True where the kernel answers: the value it tested is checked finite
             self.tests[target] = tested = self._value_of(tree[1])
             self.ops.append((None, "finite", tested))
