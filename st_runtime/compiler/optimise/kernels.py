@@ -24,8 +24,11 @@ type than REAL/LREAL (`not_floats`); or it is the compiler's finite test of a na
 `_cN = (True if (x < 1e309 and x > -1e309) else False)` (where the kernel answers x is
 checked finite: `_cN = True` after it), or SIN or COS of a name behind such a test of the
 same value, `(_m_cos(x) if _cN else _sf_COS(x))` (the C library's `cos`, the very function
-math.cos calls: native.libm_symbols).  A name may be an instance's variable, `self.v_X`
-(read as an argument, or set: always returned); `_sf_ATAN(...)` is the C library's `atan`
+math.cos calls: native.libm_symbols), or behind its own test of the name kept in the
+compiler's temporary, `(_m_cos(_t1) if (_t1 := x) < 1e309 and _t1 > -1e309 else _sf_COS(_t1))`
+(the kernel checks x finite; it leaves `_t1` unset: exprs.py's `temp` is read only in the
+statement that sets it, and the next statement sets it before reading it).  A name may be
+an instance's variable, `self.v_X` (read as an argument, or set: always returned); `_sf_ATAN(...)` is the C library's `atan`
 where the library's ATAN is math.atan.  A run line may store into a list element at a
 literal index, `L[k] = <expression>` (the kernel returns the value as `_kvN`, stored after
 it as a deferred statement), and may be the one line of a `try:` whose `except _FAULTS`
