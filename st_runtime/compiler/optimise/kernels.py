@@ -298,7 +298,7 @@ def replace(lines: list[str], start: int, register, bind, not_float=None) -> Non
         if _most_operations("\n".join(_ASSIGNMENT.findall(text, offsets[i] + i, offsets[block] + block))) < MIN_OPERATIONS:
             end = block     # (no span from a line of the block reaches the minimum: none built)
             continue
-        span = _Span(body, matches, i, not_float)
+        span = _Span(body, matches, i, text, offsets, not_float)
         end = max(span.end, i + 1)
         if sum(op[1] not in ("neg", "finite") for op in span.run.ops) >= MIN_OPERATIONS:
             mentions = mentions or collections.Counter(_NAME.findall(text))
@@ -321,6 +321,14 @@ def _block_end(text: str, offsets: list[int], i: int, indent: int) -> int:
 def _shallower(indent: int) -> re.Pattern:
     """A line break before a line indented less than `indent` (never, for 0)."""
     return re.compile(rf"\n {{0,{indent - 1}}}\S" if indent else r"(?!)")
+
+
+@functools.cache
+def _statement_break(indent: int) -> re.Pattern:
+    """A line break before a line that does not go on a statement indented by `indent`: one
+    not indented deeper, nor its `else:` or `elif`."""
+    at = " " * indent
+    return re.compile(rf"\n(?!{at} |{at}else:|{at}elif )")
 
 
 def _most_operations(text: str) -> int:
@@ -368,9 +376,10 @@ class _Span:
     stops before the first line that is none of these, or that would read or change what a
     line before or after it must see; it ends after its last run line or finite test."""
 
-    def __init__(self, body: list[str], matches: list, first: int, not_float=None):
+    def __init__(self, body: list[str], matches: list, first: int, text: str, offsets: list[int], not_float=None):
         self.run = _Run()
         self.not_float = not_float
+        self.text, self.offsets = text, offsets  # the body's lines joined, where each starts (`replace`)
         self.indent = matches[first].group(1)
         self.kept: list[list[str]] = []          # the deferred statements' lines, in order
         self.stored: dict[str, set] = {}         # list -> indices the kept statements store into
@@ -437,11 +446,9 @@ class _Span:
         it is not at the span's indentation."""
         if not body[i].startswith(self.indent) or body[i][len(self.indent):len(self.indent) + 1] in ("", " "):
             return None
-        deeper, following = self.indent + " ", (self.indent + "else:", self.indent + "elif ")
-        j = i + 1
-        while j < len(body) and (body[j].startswith(deeper) or body[j].startswith(following)):
-            j += 1
-        return j
+        at = self.offsets[i] + i                  # (line i's start in the text: one C search)
+        found = _statement_break(len(self.indent)).search(self.text, at)
+        return len(body) if found is None else i + 1 + self.text.count("\n", at, found.start())
 
     def _finite_test(self, lines: list[str]) -> bool:
         """Whether `lines` are an `if` without `else` testing that a value the run computed is
