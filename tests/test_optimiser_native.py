@@ -207,7 +207,7 @@ def test_another_interpreters_layout_is_not_read(name, pointer, gil_disabled, mo
     assert native.layout_is_cpythons() is False
 
 
-@pytest.mark.parametrize("offset, wrong", [("_FVAL", 8), ("_TYPE", 0), ("_SIZE", 8)])
+@pytest.mark.parametrize("offset, wrong", [("OB_FVAL", 8), ("OB_TYPE", 0), ("OB_SIZE", 8)])
 def test_a_layout_that_is_not_where_the_kernels_read_is_refused(offset, wrong, monkeypatch):
     """Each probe of the layout must hold: a float's double read at another offset (its
     type pointer), a type read at the reference count, a list's size read at its type

@@ -144,7 +144,7 @@ def _sum(tokens, i, names):
 def _primary(tokens, i, names):
     number, name, integer, char = tokens[i]
     if number:
-        return ("c", native._double(float(number))), i + 1
+        return ("c", native.ir_double(float(number))), i + 1
     if char == "(":
         tree, i = _sum(tokens, i + 1, names)
         if tokens[i][3] != ")":
@@ -152,7 +152,7 @@ def _primary(tokens, i, names):
         return tree, i + 1
     if char == "-":
         if tokens[i + 1][0]:                      # `-1.5`: Python's constant, folded
-            return ("c", native._double(-float(tokens[i + 1][0]))), i + 2
+            return ("c", native.ir_double(-float(tokens[i + 1][0]))), i + 2
         operand, i = _primary(tokens, i + 1, names)
         return ("neg", operand), i
     if (name == "_m_sqrt" or name == "_sf_ATAN" and _atan_is_maths()) and tokens[i + 1][3] == "(":

@@ -47,7 +47,7 @@ _target_machine = None
 _EXACT = sys.intern("exact")
 _METH_FASTCALL = 0x0080
 #: CPython's object layout (64-bit, GIL build): the offsets the kernels read at.
-_TYPE, _SIZE, _ITEMS, _FVAL = 8, 16, 24, 16      # ob_type, ob_size, list ob_item / tuple items, ob_fval
+OB_TYPE, OB_SIZE, OB_ITEM, OB_FVAL = 8, 16, 24, 16      # ob_type, ob_size, list ob_item / tuple items, ob_fval
 
 
 def enabled() -> bool:
@@ -79,14 +79,14 @@ def layout_is_cpythons() -> bool:
     x = 1.5
     items, pair = [x], (x, x)
     word = ctypes.c_void_p.from_address
-    return (ctypes.c_double.from_address(id(x) + _FVAL).value == x and word(id(x) + _TYPE).value == id(float)
-            and word(id(items) + _TYPE).value == id(list) and word(id(items) + _SIZE).value == 1
-            and word(word(id(items) + _ITEMS).value).value == id(x)
-            and word(id(pair) + _TYPE).value == id(tuple) and word(id(pair) + _SIZE).value == 2
-            and word(id(pair) + _ITEMS + 8).value == id(x))
+    return (ctypes.c_double.from_address(id(x) + OB_FVAL).value == x and word(id(x) + OB_TYPE).value == id(float)
+            and word(id(items) + OB_TYPE).value == id(list) and word(id(items) + OB_SIZE).value == 1
+            and word(word(id(items) + OB_ITEM).value).value == id(x)
+            and word(id(pair) + OB_TYPE).value == id(tuple) and word(id(pair) + OB_SIZE).value == 2
+            and word(id(pair) + OB_ITEM + 8).value == id(x))
 
 
-def _double(value: float) -> str:
+def ir_double(value: float) -> str:
     """An LLVM IR double constant with `value`'s bits exactly (LLVM's 64-bit hex form)."""
     return "0x%016X" % struct.unpack("<Q", struct.pack("<d", value))[0]
 
@@ -139,7 +139,7 @@ class Writer:
         return f"%{name}"
 
     def has_type(self, obj: str, type_symbol: str) -> None:
-        t = self.object_of(f"{obj[1:]}.type", obj, _TYPE)
+        t = self.object_of(f"{obj[1:]}.type", obj, OB_TYPE)
         self.add(f"%{obj[1:]}.is = icmp eq ptr {t}, @{type_symbol}")
         self.check(f"%{obj[1:]}.is")
 
@@ -152,7 +152,7 @@ class Writer:
 
     def size_is(self, obj: str, comparison: str, size, tag: str) -> None:
         """Go on when `obj`'s ob_size compares to `size` by `comparison` (`icmp`'s)."""
-        self.add(f"%{obj[1:]}.size.at = getelementptr inbounds i8, ptr {obj}, i64 {_SIZE}",
+        self.add(f"%{obj[1:]}.size.at = getelementptr inbounds i8, ptr {obj}, i64 {OB_SIZE}",
                  f"%{obj[1:]}.size = load i64, ptr %{obj[1:]}.size.at, align 8",
                  f"%{obj[1:]}.{tag} = icmp {comparison} i64 %{obj[1:]}.size, {size}")
         self.check(f"%{obj[1:]}.{tag}")
@@ -162,7 +162,7 @@ class Writer:
         self.add(f"%list = call ptr @PyList_New(i64 {len(values)})",
                  "%made = icmp ne ptr %list, null")
         self.lines += ["  br i1 %made, label %fill, label %failed", "fill:"]
-        slots = self.object_of("slots", "%list", _ITEMS)
+        slots = self.object_of("slots", "%list", OB_ITEM)
         for j, value in enumerate(values):
             self.add(f"%out{j} = call ptr @PyFloat_FromDouble(double {value})",
                      f"%out{j}.at = getelementptr inbounds ptr, ptr {slots}, i64 {j}",
@@ -176,7 +176,7 @@ class Writer:
     def float_value(self, name: str, item: str) -> str:
         """`%name`: the double of the Python float `item` (checked to be one)."""
         self.has_type(item, "PyFloat_Type")
-        self.add(f"%{name}.at = getelementptr inbounds i8, ptr {item}, i64 {_FVAL}",
+        self.add(f"%{name}.at = getelementptr inbounds i8, ptr {item}, i64 {OB_FVAL}",
                  f"%{name} = load double, ptr %{name}.at, align 8")
         return f"%{name}"
 
@@ -199,13 +199,13 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
     if n_list:
         w.has_type(whole, "PyList_Type")
         w.has_size(whole, n_list)
-        items = w.object_of("items", whole, _ITEMS)
+        items = w.object_of("items", whole, OB_ITEM)
     w.has_type(inputs, "PyTuple_Type")
     w.has_size(inputs, n_tuple)
-    name = {i: _double(c) for i, c in constants.items()}
+    name = {i: ir_double(c) for i, c in constants.items()}
     for i, (where, k) in sources.items():
         item = w.object_of(f"x{i}", items if where == "list" else inputs,
-                           8 * k if where == "list" else _ITEMS + 8 * k)
+                           8 * k if where == "list" else OB_ITEM + 8 * k)
         name[i] = w.float_value(f"v{i}", item)
     for k in live:
         op, a, b = ops[k]
@@ -251,7 +251,7 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
         w.has_type(arg, "PyList_Type")
         w.has_at_least(arg, max(size or [0], default=0) if size else max(held) + 1)
         if held:
-            items = w.object_of(f"a{j}.items", arg, _ITEMS)
+            items = w.object_of(f"a{j}.items", arg, OB_ITEM)
         for k, value in sorted(held.items()):
             w.float_value(value[1:], w.object_of(f"a{j}.{k}", items, 8 * k))
     for j, k in distinct:
