@@ -277,9 +277,7 @@ class _Loop:
         w.check("%n.some")
 
 
-_DECLARATIONS = """\
-declare double @sin(double)
-declare double @cos(double)
+_DECLARATIONS = native.libm_declarations(("sin", "cos")) + """\
 @PyLong_Type = external global i8
 @PyRange_Type = external global i8
 """

@@ -279,13 +279,18 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
                 "  call void @Py_IncRef(ptr @stgen_none)",
                 "  ret ptr @stgen_none"]
     libm = sorted({op for _, op, *_ in ops if op in LIBM})
-    return (DECLARATIONS + "".join(f"declare double @{f}(double)\n" for f in libm)
+    return (DECLARATIONS + libm_declarations(libm)
             + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
             + "\n".join(w.lines) + "\n}\n" + ("attributes #0 = { nobuiltin }\n" if libm else ""))
 
 
 #: The C library's functions a kernel may call (`libm_symbols`), by the name the IR calls.
 LIBM = ("sin", "cos", "atan")
+
+
+def libm_declarations(functions) -> str:
+    """The IR declarations of the C library's `functions` (names of LIBM), in their order."""
+    return "".join(f"declare double @{f}(double)\n" for f in functions)
 
 
 def libm_symbols() -> dict[str, int]:
