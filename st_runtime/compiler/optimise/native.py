@@ -368,13 +368,14 @@ def builtin(helper, address: int):
 
 
 def first_call(helper, bind):
-    """What the generated code calls before the kernel is built: the first call builds it
-    (or keeps NumPy's kernel, `helper.run`, where this interpreter's layout is not
-    CPython's), binds it by `bind(run)` in place of itself and returns its result."""
+    """What the generated code calls before a `Vectorised` helper's kernel is built:
+    `on_first_call` of its IR, the kernel's `__self__` the helper, NumPy's kernel
+    (`helper.run`) kept where this interpreter's layout is not CPython's; a method of the
+    helper, as the kernel that takes its place is."""
+    build = on_first_call(lambda: helper_ir(helper), bind, helper, helper.run)
+
     def first(self, whole, inputs):
-        run = builtin(self, compiled(helper_ir(self))) if layout_is_cpythons() else self.run
-        bind(run)
-        return run(whole, inputs)
+        return build(whole, inputs)
     return types.MethodType(first, helper)
 
 
@@ -382,13 +383,17 @@ class _Kernel:
     """What `builtin` needs of a kernel's `__self__` (it keeps the method's definition)."""
 
 
-def on_first_call(ir, bind):
-    """What the generated code calls before a kernel of kernels.py or loops.py is built: the
-    first call writes its IR (`ir()`: a load writes none) and builds the kernel (where this
-    interpreter's layout is not CPython's, a function answering None: the lines run in
-    Python), binds it in its own place by `bind(kernel)` and calls it."""
+def on_first_call(ir, bind, owner=None, fallback=None):
+    """What the generated code calls before a kernel is built: the first call writes its IR
+    (`ir()`: a load writes none) and builds the kernel (its `__self__` `owner`, or a new
+    `_Kernel`; where this interpreter's layout is not CPython's, `fallback`, by default a
+    function answering None: the lines run in Python), binds it in its own place by
+    `bind(kernel)` and calls it."""
     def first(*arguments):
-        built = builtin(_Kernel(), compiled(ir())) if layout_is_cpythons() else _python
+        if layout_is_cpythons():
+            built = builtin(_Kernel() if owner is None else owner, compiled(ir()))
+        else:
+            built = _python if fallback is None else fallback
         bind(built)
         return built(*arguments)
     return first
