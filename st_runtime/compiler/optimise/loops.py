@@ -231,7 +231,7 @@ class _Loop:
         self.private |= set(self.carried) - named
 
     def ir(self) -> str:
-        """The kernel `run(range, arguments ...)`: a new list of the outputs' last values, or None."""
+        """The kernel `run(range, arguments ...)`: a new tuple of the outputs' last values, or None."""
         w = self.w
         w.add(f"%n.ok = icmp eq i64 %nargs, {len(self.texts) + 1}")
         w.check("%n.ok")
@@ -252,7 +252,7 @@ class _Loop:
         w.lines += ["  %done = icmp eq i64 %i, %n", "  br i1 %done, label %finish, label %body", "body:"]
         w.lines += self.body.lines
         w.lines += ["  br label %latch", "latch:", "  %i.next = add i64 %i, 1", "  br label %loop", "finish:"]
-        w.returns_list([self.carried[name] for name in self.outputs()])
+        w.returns_tuple([self.carried[name] for name in self.outputs()])
         w.lines += ["exact:", "  call void @Py_IncRef(ptr @stgen_none)", "  ret ptr @stgen_none"]
         return (native.DECLARATIONS + _DECLARATIONS + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\n"
                 "entry:\n" + "\n".join(w.lines) + "\n}\nattributes #0 = { nobuiltin }\n")

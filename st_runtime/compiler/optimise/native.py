@@ -22,7 +22,7 @@ The crossing: the kernel is a CPython builtin function (`METH_FASTCALL`, its `__
 the `Vectorised` helper) that the generated code calls as it called NumPy's kernel,
 `_kN(list, (inputs ...))`: it reads the floats straight from the list and the tuple
 (`ob_item`, `ob_fval`: CPython's object layout, checked on this interpreter before the
-first kernel is built, else NumPy's kernel stays) and returns a new list of new floats.
+first kernel is built, else NumPy's kernel stays) and returns a new tuple of new floats.
 No ctypes call, no packing: a call of the 6x6 determinant (2,670 operations) takes
 4,395 machine instructions, NumPy's kernel 95,917 (docs/performance.md, session 19).
 
@@ -102,7 +102,7 @@ declare double @llvm.fabs.f64(double)
 declare double @llvm.sqrt.f64(double)
 declare void @Py_IncRef(ptr)
 declare ptr @PyFloat_FromDouble(double)
-declare ptr @PyList_New(i64)
+declare ptr @PyTuple_New(i64)
 declare void @Py_DecRef(ptr)
 declare ptr @PyObject_CallMethodObjArgs(ptr, ptr, ...)
 @PyFloat_Type = external global i8
@@ -157,20 +157,20 @@ class Writer:
                  f"%{obj[1:]}.{tag} = icmp {comparison} i64 %{obj[1:]}.size, {size}")
         self.check(f"%{obj[1:]}.{tag}")
 
-    def returns_list(self, values: list[str]) -> None:
-        """Return a new list of new floats of the doubles `values` (NULL on no memory)."""
-        self.add(f"%list = call ptr @PyList_New(i64 {len(values)})",
-                 "%made = icmp ne ptr %list, null")
+    def returns_tuple(self, values: list[str]) -> None:
+        """Return a new tuple of new floats of the doubles `values` (NULL on no memory): one
+        object, its items inline (a list would allocate its items apart, and free them)."""
+        self.add(f"%tuple = call ptr @PyTuple_New(i64 {len(values)})",
+                 "%made = icmp ne ptr %tuple, null")
         self.lines += ["  br i1 %made, label %fill, label %failed", "fill:"]
-        slots = self.object_of("slots", "%list", OB_ITEM)
         for j, value in enumerate(values):
             self.add(f"%out{j} = call ptr @PyFloat_FromDouble(double {value})",
-                     f"%out{j}.at = getelementptr inbounds ptr, ptr {slots}, i64 {j}",
-                     f"store ptr %out{j}, ptr %out{j}.at, align 8",          # NULL on no memory: the list's
+                     f"%out{j}.at = getelementptr inbounds i8, ptr %tuple, i64 {OB_ITEM + 8 * j}",
+                     f"store ptr %out{j}, ptr %out{j}.at, align 8",          # NULL on no memory: the tuple's
                      f"%out{j}.made = icmp ne ptr %out{j}, null")              # Py_DecRef skips it
             self.lines += [f"  br i1 %out{j}.made, label %made{j}, label %dropped", f"made{j}:"]
-        self.lines += ["  ret ptr %list",
-                       "dropped:", "  call void @Py_DecRef(ptr %list)", "  br label %failed",
+        self.lines += ["  ret ptr %tuple",
+                       "dropped:", "  call void @Py_DecRef(ptr %tuple)", "  br label %failed",
                        "failed:", "  ret ptr null"]
 
     def float_value(self, name: str, item: str) -> str:
@@ -188,7 +188,7 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
     called as `run(list, tuple)`: input i is element k of the list (`sources[i]` ==
     ("list", k)) or of the tuple (("tuple", k)), or the literal `constants[i]`; operation k
     (value n_inputs + k) is `ops[k]` of two earlier values, for each k in `live`, in order;
-    the result is a new list of the outputs' floats, or `self.exact(list, tuple)` when an
+    the result is a new tuple of the outputs' floats, or `self.exact(list, tuple)` when an
     argument is not as compiled for (a list of n_list floats, a tuple of n_tuple) or an
     output is not finite."""
     w = Writer()
@@ -216,7 +216,7 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
         w.add(f"%abs{j} = call double @llvm.fabs.f64(double {name[o]})",
               f"%finite{j} = fcmp olt double %abs{j}, {INFINITY}")
         w.check(f"%finite{j}")
-    w.returns_list([name[o] for o in outputs])
+    w.returns_tuple([name[o] for o in outputs])
     w.lines += ["exact:",
                 "  %slow = call ptr (ptr, ptr, ...) @PyObject_CallMethodObjArgs(ptr %self, ptr @stgen_exact,"
                 " ptr %whole, ptr %inputs, ptr null)",
@@ -238,7 +238,7 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
     "sqrt", "sin", "cos" or "atan" (the C library's: `libm_symbols`) of one, or "finite" of one
     (value None: the operand only checked to be finite); an operand a value's name or an
     IR double literal.  The result is a
-    new list of the doubles named by `outputs`, or None (a new reference) when an argument
+    new tuple of the doubles named by `outputs`, or None (a new reference) when an argument
     is not as compiled for or a value computed is not finite."""
     w = Writer()
     w.add(f"%n.ok = icmp eq i64 %nargs, {len(arguments)}")
@@ -274,7 +274,7 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
               f"%all.{i} = and i1 {finite}, %fin.{i}")
         finite = f"%all.{i}"
     w.check(finite)
-    w.returns_list(outputs)
+    w.returns_tuple(outputs)
     w.lines += ["exact:",                         # the statements in Python, as written
                 "  call void @Py_IncRef(ptr @stgen_none)",
                 "  ret ptr @stgen_none"]
@@ -317,7 +317,7 @@ def _machine():
         llvm.initialize_native_target()
         llvm.initialize_native_asmprinter()
         api = ctypes.pythonapi
-        for function in ("PyFloat_FromDouble", "PyList_New", "Py_DecRef", "Py_IncRef", "PyObject_CallMethodObjArgs"):
+        for function in ("PyFloat_FromDouble", "PyTuple_New", "Py_DecRef", "Py_IncRef", "PyObject_CallMethodObjArgs"):
             llvm.add_symbol(function, ctypes.cast(getattr(api, function), ctypes.c_void_p).value)
         for symbol, obj in (("PyFloat_Type", float), ("PyList_Type", list), ("PyTuple_Type", tuple),
                             ("stgen_exact", _EXACT), ("stgen_none", None)):
