@@ -13,6 +13,7 @@ import math
 import random
 import re
 import struct
+import sys
 
 import pytest
 
@@ -791,14 +792,42 @@ def _pose_mismatches(lines=POSE) -> list:
     return [row for row in _pose_rows(random.Random(17)) if not _same(python(*row), kernel(*row))]
 
 
-def test_the_pose_is_one_kernel_its_stores_after_it():
-    """The four stores and the two `try` lines with ATAN: one kernel returning the six values,
-    stored in their order where it answers; no handler on the kernel's path."""
+def test_the_pose_is_one_kernel_that_stores_it():
+    """The four stores and the two `try` lines with ATAN: one kernel that stores the six
+    values into the pose itself where it answers (session 24; no value returned, nothing
+    after it); no handler on the kernel's path."""
     after, _ = _passed(POSE)
     assert after[0] == ("_kr = _k0(v_FADE, self.v_HORIZONTAL, v_COSHEADING, v_CENTRE, v_SINHEADING, v_COSINESUM,"
                         " self.v_SLOPEALONG, v_POSE)")
-    assert after[after.index("else:") + 1:] == ["    _kv0, _kv1, _kv2, _kv3, _kv4, _kv5, = _kr"] + [
-        f"    v_POSE[{k}] = _kv{k}" for k in range(6)]
+    assert after[1] == "if _kr is None:" and "else:" not in after and after[2:] == ["    " + line for line in POSE]
+    written = []
+    right = native.run_ir
+    native.run_ir = lambda *a: written.append(right(*a)) or written[-1]
+    try:
+        _pose_mismatches()
+    finally:
+        native.run_ir = right
+    assert written[0].count("store ptr %st") == 6 and written[0].count("call ptr @PyTuple_New(i64 0)") == 1
+
+
+def test_the_pose_kernel_frees_the_floats_it_replaces():
+    """Each item the kernel replaces loses the pose's reference (no leak), each new float is
+    held by the pose alone; a pose holding an int where it stores: the kernel answers None."""
+    from st_runtime.compiler import _FAULTS
+
+    after, bound = _passed(POSE)
+    run = _function(after, POSE_INPUTS, {"_sf_ATAN": math.atan, "_FAULTS": _FAULTS, **bound})
+    instance = type("Instance", (), {"v_HORIZONTAL": 20.0, "v_SLOPEALONG": 0.1})()
+    old = [float(k) + 0.5 for k in range(6)]
+    pose, held = list(old), [sys.getrefcount(x) for x in old]
+    arguments = [instance, None, 0.5, math.cos(1.0), math.sin(1.0), 3.0, [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]]
+    assert not isinstance(run(*arguments, pose), str)
+    assert type(bound["_k0"]).__name__ == "builtin_function_or_method"
+    assert [sys.getrefcount(x) for x in old] == [n - 1 for n in held] and pose != old
+    assert [sys.getrefcount(pose[k]) for k in range(6)] == [2] * 6     # (the pose's and the call's own)
+    kernel_arguments = [0.5, 20.0, math.cos(1.0), arguments[6], math.sin(1.0), 3.0, 0.1]
+    assert bound["_k0"](*kernel_arguments, [0.0, 0.0, 0.0, 4, 0.0, 0.0]) is None
+    assert bound["_k0"](*kernel_arguments, [0.0] * 6) == ()
 
 
 def test_the_pose_gives_pythons_values_and_faults_bit_for_bit():
@@ -829,17 +858,14 @@ def test_a_try_with_else_or_finally_and_a_store_of_a_name_are_not_run_lines():
 
 WRONG_POSE = {
     "atan as sin": lambda ir: ir.replace("@atan(double %", "@sin(double %").replace("declare double @atan(double)\n", ""),
-    "a store dropped": None,
+    "a store dropped": lambda ir: ir.replace("  store ptr %st3, ptr %st3.at, align 8\n", "").replace(
+        "@Py_DecRef(ptr %st3.old)", "@Py_DecRef(ptr %st3)"),       # (the new float freed, the old kept)
 }
 
 
 @pytest.mark.parametrize("wrong", WRONG_POSE, ids=WRONG_POSE.keys())
 def test_a_wrong_pose_kernel_fails_a_row(wrong, monkeypatch):
-    if wrong == "a store dropped":
-        right_call = kernels._call
-        monkeypatch.setattr(kernels, "_call", lambda *a: [line for line in right_call(*a) if line != "    v_POSE[3] = _kv3"])
-    else:
-        _wrong_ir(monkeypatch, WRONG_POSE[wrong])
+    _wrong_ir(monkeypatch, WRONG_POSE[wrong])
     assert _pose_mismatches()
 
 

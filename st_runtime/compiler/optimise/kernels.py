@@ -302,8 +302,9 @@ def replace(lines: list[str], start: int, register, bind, not_float=None) -> Non
         end = max(span.end, i + 1)
         if sum(op[1] not in ("neg", "finite") for op in span.run.ops) >= MIN_OPERATIONS:
             mentions = mentions or collections.Counter(_NAME.findall(text))
-            live = _read_after(span, body[i:span.end], mentions)
-            spans.append((start + i, start + span.end, _call(body[i:span.end], span, live, register, bind)))
+            stores = span.stores_in_kernel()
+            live = _read_after(span, body[i:span.end], mentions, one=not stores)
+            spans.append((start + i, start + span.end, _call(body[i:span.end], span, live, stores, register, bind)))
     for i, j, new in reversed(spans):          # from the last: the indices stay true
         lines[i:j] = new
 
@@ -340,15 +341,16 @@ def _most_operations(text: str) -> int:
             + text.count("_m_sin(") + text.count("_m_cos(") - text.count("> -1e309"))
 
 
-def _read_after(span, original: list[str], mentions: collections.Counter) -> list[str]:
+def _read_after(span, original: list[str], mentions: collections.Counter, one=True) -> list[str]:
     """The names the span sets that a line outside it or a statement it keeps names, and
     the instance's variables it sets (`self.v_X`): the others are never read again, the
-    kernel need not return them; at least one value."""
+    kernel need not return them; with `one`, at least one value (a kernel that stores
+    nothing itself returns one)."""
     inside = collections.Counter(_NAME.findall("\n".join(original)))
     kept = set(_NAME.findall("\n".join(line for lines in span.kept for line in lines)))
     names = list(span.run.assigned)
     return ([name for name in names if mentions[name] > inside[name] or name in kept or name.startswith("self.")]
-            or [name for name in names if name not in span.run.tests][-1:])
+            or [name for name in names if name not in span.run.tests][-1:] * one)
 
 
 #: A line that holds ` = `: every run line is one (a charge's `+=`, an `if` are none).
@@ -366,6 +368,9 @@ _BUDGET_CHECK = re.compile(r"( *)if _ctx\.budget < _spent: ((?:(\w+) = self\.\3;
 _RELOAD = re.compile(r"(\w+) = self\.\1; ")
 #: reuse.py's shared values: locals of the body, never the instance's (no store back).
 _SHARED = re.compile(r"_c\d+\Z|_kv\d+\Z")            # (and this pass's own values of stores)
+#: A kept line that stores into a list element, and one that stores a value of `_store`.
+_STORED = re.compile(r" *([A-Za-z_]\w*)\[(\d+)\] = ")
+_OWN_STORE = re.compile(r" *([A-Za-z_]\w*)\[(\d+)\] = _kv\d+\Z")
 
 
 class _Span:
@@ -416,6 +421,27 @@ class _Span:
                 i = j
             self._keep(pending)
             pending, self.end = [], i
+
+    def stores_in_kernel(self) -> list[tuple[str, int, str]]:
+        """The stores of the run's values `L[k] = _kvN` (`_store`) the kernel makes itself,
+        taken out of the kept statements, as (list, index, value): each one before the budget
+        check, into an element no other kept statement stores into.  Where the kernel answers
+        it makes them after every check, so they happen exactly where the kept statements
+        before them happen (none of those raises, none reads the element: a kept statement
+        reads only elements stored before it, `_safe`) and the ones after them read what they
+        store; L is a list the kernel checks (long enough, no other list it reads)."""
+        stored = collections.Counter(store.groups() for lines in self.kept for line in lines
+                                     if (store := _STORED.match(line)) is not None)
+        moved, kept, checked = [], [], False
+        for lines in self.kept:
+            own = _OWN_STORE.match(lines[0]) if len(lines) == 1 and not checked else None
+            if own is not None and stored[own.groups()] == 1:
+                moved.append((own[1], int(own[2]), self.elements[own[1], int(own[2])]))
+            else:
+                checked = checked or _BUDGET_CHECK.match(lines[0]) is not None
+                kept.append(lines)
+        self.kept = kept
+        return moved
 
     def _keep(self, pending: list[tuple]) -> None:
         """Keep the deferred statements `pending`, then the stores of the run line after them."""
@@ -639,9 +665,9 @@ def _elements(tree):
             yield from _elements(operand)
 
 
-def _call(original: list[str], span: _Span, targets: list[str], register, bind) -> list[str]:
-    """The lines that call the span's kernel, returning `targets`, with `original` where it
-    returns None."""
+def _call(original: list[str], span: _Span, targets: list[str], stores: list[tuple], register, bind) -> list[str]:
+    """The lines that call the span's kernel, returning `targets` and making `stores` (list,
+    index, value), with `original` where it returns None."""
     run, indent = span.run, span.indent
     tests = [t for t in targets if t in run.tests]          # True where the kernel answers
     targets = [t for t in targets if t not in run.tests]
@@ -653,10 +679,15 @@ def _call(original: list[str], span: _Span, targets: list[str], register, bind) 
     def ir() -> str:
         if libm:
             native.bind_symbols(native.libm_symbols())
-        return native.run_ir(arguments, run.ops, outputs, distinct)
+        return native.run_ir(arguments, run.ops, outputs, distinct,
+                             [(run.texts.index(name), k, value) for name, k, value in stores])
     bind(kernel, native.on_first_call(ir, lambda built: bind(kernel, built)))
     return ([f"{indent}_kr = {kernel}({', '.join(run.texts)})", f"{indent}if _kr is None:"]
             + ["    " + line for line in original]
-            + [f"{indent}else:", f"{indent}    {', '.join(targets)}, = _kr"]
-            + [f"{indent}    {t} = True" for t in tests]
-            + ["    " + line for lines in span.kept for line in lines])
+            + _else(indent, [f"    {', '.join(targets)}, = _kr"] * bool(targets) + [f"    {t} = True" for t in tests]
+                    + ["    " + line[len(indent):] for lines in span.kept for line in lines]))
+
+
+def _else(indent: str, lines: list[str]) -> list[str]:
+    """`else:` and `lines` under it, nothing without lines (a kernel that stores all it makes)."""
+    return [f"{indent}else:"] + [indent + line for line in lines] if lines else []

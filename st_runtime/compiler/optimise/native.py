@@ -173,6 +173,26 @@ class Writer:
                        "dropped:", "  call void @Py_DecRef(ptr %tuple)", "  br label %failed",
                        "failed:", "  ret ptr null"]
 
+    def stores_floats(self, stores: list[tuple]) -> list[str]:
+        """Store a new float of each (list, index, double) of `stores` into the list, freeing
+        the item it replaces; the floats made first, so that no memory means no store made
+        (NULL returned; between the checks and the stores no Python code runs, the lists
+        stay as checked).  The blocks that free them on no memory are returned, for the
+        function's end."""
+        for n, (_, _, value) in enumerate(stores):
+            self.add(f"%st{n} = call ptr @PyFloat_FromDouble(double {value})", f"%st{n}.made = icmp ne ptr %st{n}, null")
+            self.lines += [f"  br i1 %st{n}.made, label %st{n}.ok, label %undo{n}", f"st{n}.ok:"]
+        undo = []
+        for n, (obj, k, _) in enumerate(stores):
+            items = self.object_of(f"st{n}.items", obj, OB_ITEM)
+            self.add(f"%st{n}.at = getelementptr inbounds ptr, ptr {items}, i64 {k}",
+                     f"%st{n}.old = load ptr, ptr %st{n}.at, align 8",
+                     f"store ptr %st{n}, ptr %st{n}.at, align 8",
+                     f"call void @Py_DecRef(ptr %st{n}.old)")
+            undo += [f"undo{n}:"] + ([f"  call void @Py_DecRef(ptr %st{n - 1})", f"  br label %undo{n - 1}"]
+                                     if n else ["  ret ptr null"])
+        return undo
+
     def float_value(self, name: str, item: str) -> str:
         """`%name`: the double of the Python float `item` (checked to be one)."""
         self.has_type(item, "PyFloat_Type")
@@ -228,7 +248,7 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
             + "\n".join(w.lines) + "\n}\n")
 
 
-def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -> str:
+def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=(), stores=()) -> str:
     """The IR of `PyObject *run(PyObject *self, PyObject *const *args, Py_ssize_t nargs)` for
     kernels.py's runs of statements, called as `run(a0, a1, ...)`: `arguments[j]` is
     ("float", value) (args[j] a Python float, whose double is `value`) or ("list", {k:
@@ -237,9 +257,11 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
     `ops[i]` is (value, op, operands...): op "*", "+" or "-" of two operands, "neg",
     "sqrt", "sin", "cos" or "atan" (the C library's: `libm_symbols`) of one, or "finite" of one
     (value None: the operand only checked to be finite); an operand a value's name or an
-    IR double literal.  The result is a
-    new tuple of the doubles named by `outputs`, or None (a new reference) when an argument
-    is not as compiled for or a value computed is not finite."""
+    IR double literal.  Each of `stores`, (j, k, value), stores a new float of `value` into
+    element k of the list args[j] (the item there checked a float: freeing it runs no code).
+    The result is a new tuple of the doubles named by `outputs`, the stores made, or None (a
+    new reference, nothing stored) when an argument is not as compiled for or a value
+    computed is not finite."""
     w = Writer()
     w.add(f"%n.ok = icmp eq i64 %nargs, {len(arguments)}")
     w.check("%n.ok")
@@ -257,6 +279,8 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
     for j, k in distinct:
         w.add(f"%a{j}.not.a{k} = icmp ne ptr %a{j}, %a{k}")
         w.check(f"%a{j}.not.a{k}")
+    for n, (j, k, _) in enumerate(stores):
+        w.has_type(w.object_of(f"old{n}", w.object_of(f"old{n}.items", f"%a{j}", OB_ITEM), 8 * k), "PyFloat_Type")
     finite = "true"
     for i, (value, op, *operands) in enumerate(ops):
         if op == "finite":                        # the value a finite test tested: checked, not computed
@@ -274,10 +298,11 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
               f"%all.{i} = and i1 {finite}, %fin.{i}")
         finite = f"%all.{i}"
     w.check(finite)
+    undo = w.stores_floats([(f"%a{j}", k, value) for j, k, value in stores])
     w.returns_tuple(outputs)
     w.lines += ["exact:",                         # the statements in Python, as written
                 "  call void @Py_IncRef(ptr @stgen_none)",
-                "  ret ptr @stgen_none"]
+                "  ret ptr @stgen_none"] + undo
     libm = sorted({op for _, op, *_ in ops if op in LIBM})
     return (DECLARATIONS + libm_declarations(libm)
             + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
