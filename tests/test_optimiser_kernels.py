@@ -730,6 +730,46 @@ def test_a_wrong_check_rule_fails_a_row(monkeypatch):
         CHECKED = right
 
 
+#: CHECKED with a store of an expression before the check and one after it (session 24).
+STORED_AROUND_CHECK = (IK[:11] + ["v_POSITION[4] = (v_R12 * 1.5)", "v_ALLFINITE = True", "v_ALLINSTROKE = True", CHECK,
+                                  "v_POSITION[5] = (v_R11 * 2.5)"] + LEGS)
+
+
+def _stored_around_check_mismatches() -> list:
+    """As `_checked_mismatches`, the pass's values of stores `_kvN` left out (locals only its
+    stores read)."""
+    after, bound = _passed(STORED_AROUND_CHECK)
+    python = _faulting(STORED_AROUND_CHECK, {"_m_sqrt": math.sqrt})
+    kernel = _faulting(after, {"_m_sqrt": math.sqrt, **bound})
+
+    def state(found):
+        return {k: v for k, v in found.items() if not re.match(r"_kv\d+\Z", k)}
+    return [row for row in _checked_rows() if not _same(state(python(*row)), state(kernel(*row)))]
+
+
+def test_the_kernel_stores_only_before_the_budget_check():
+    """The store before the check is the kernel's own (no line after it); the one after it
+    stays a kept statement after the check, so a check that fails finds the element as
+    Python leaves it (budgets that pass and fail, ordinary and special values)."""
+    after, _ = _passed(STORED_AROUND_CHECK)
+    path = after[after.index("else:") + 2:]
+    assert not any(line.startswith("    v_POSITION[4] = ") for line in path)
+    assert path[2:4] == ["    " + CHECK, "    v_POSITION[5] = _kv1"]
+    assert _stored_around_check_mismatches() == []
+
+
+def test_a_wrong_store_rule_fails_a_row(monkeypatch):
+    """Every store of a run's value made by the kernel (the check left out of the rule): a
+    failing check finds element 5 stored, where Python had not stored it yet."""
+    def every_store(span):
+        moved = [(own[1], int(own[2]), span.elements[own[1], int(own[2])]) for lines in span.kept
+                 if (own := kernels._OWN_STORE.match(lines[0])) is not None]
+        span.kept = [lines for lines in span.kept if kernels._OWN_STORE.match(lines[0]) is None]
+        return moved
+    monkeypatch.setattr(kernels._Span, "stores_in_kernel", every_store)
+    assert _stored_around_check_mismatches()
+
+
 #: TRJ_OceanWave's pose as the compiler writes it on the wave: stores of expressions into the
 #: pose's elements, ATAN (the library's, math.atan) inside `try` with the fault's handler.
 POSE = """\
