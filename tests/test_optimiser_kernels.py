@@ -956,6 +956,14 @@ def test_sin_and_cos_tested_in_a_temporary_give_pythons_values_bit_for_bit():
     assert _temp_guarded_mismatches() == []
 
 
+def test_sin_tested_in_a_temporary_after_a_store_in_the_span():
+    """A store of an expression before the angles (the span then looks up the elements a line
+    reads among those it stored): the same one kernel, and Python's values."""
+    lines = ["v_OUT[0] = (v_POSE[0] * 2.0)"] + TEMP_GUARDED
+    after, _ = _passed(lines)
+    assert after[0] == "_kr = _k0(v_POSE, v_OUT)" and after.count("if _kr is None:") == 1
+
+
 def test_sin_behind_cos_s_fallback_in_a_temporary_ends_the_span():
     """`_m_sin` with the library's COS where the test fails is not SIN: the span stops there."""
     line = "v_X = (_m_sin(_t1) if (_t1 := _c0) < 1e309 and _t1 > -1e309 else _sf_COS(_t1))"
