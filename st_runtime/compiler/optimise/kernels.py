@@ -24,8 +24,11 @@ type than REAL/LREAL (`not_floats`); or it is the compiler's finite test of a na
 `_cN = (True if (x < 1e309 and x > -1e309) else False)` (where the kernel answers x is
 checked finite: `_cN = True` after it), or SIN or COS of a name behind such a test of the
 same value, `(_m_cos(x) if _cN else _sf_COS(x))` (the C library's `cos`, the very function
-math.cos calls: native.libm_symbols).  A name may be an instance's variable, `self.v_X`
-(read as an argument, or set: always returned); `_sf_ATAN(...)` is the C library's `atan`
+math.cos calls: native.libm_symbols), or behind its own test of the name kept in the
+compiler's temporary, `(_m_cos(_t1) if (_t1 := x) < 1e309 and _t1 > -1e309 else _sf_COS(_t1))`
+(the kernel checks x finite; it leaves `_t1` unset: exprs.py's `temp` is read only in the
+statement that sets it, and the next statement sets it before reading it).  A name may be
+an instance's variable, `self.v_X` (read as an argument, or set: always returned); `_sf_ATAN(...)` is the C library's `atan`
 where the library's ATAN is math.atan.  A run line may store into a list element at a
 literal index, `L[k] = <expression>` (the kernel returns the value as `_kvN`, stored after
 it as a deferred statement), and may be the one line of a `try:` whose `except _FAULTS`
@@ -78,12 +81,18 @@ MIN_OPERATIONS = 16      # a crossing costs about as much as a dozen float opera
 #: A line that may qualify: `name = `, `self.name = ` or `list[k] = ` (not an element of an
 #: instance's array: its list may be one a local name holds too) and only the characters of
 #: the forms above.
-_CANDIDATE = re.compile(r"( *)((?:self\.)?[A-Za-z_]\w*|[A-Za-z_]\w*\[\d+\]) = ([\w.()+*\[\]<> -]+)\Z")
+_CANDIDATE = re.compile(r"( *)((?:self\.)?[A-Za-z_]\w*|[A-Za-z_]\w*\[\d+\]) = ([\w.()+*\[\]<> -]+"
+                        r"|\(_m_(?:sin|cos)\(_t\d+\) if \(_t\d+ := [\w.]+\) < 1e309 and _t\d+ > -1e309 else _sf_\w+\(_t\d+\)\))\Z")
 _TOKEN = re.compile(r" *(?:(\d+\.\d*(?:e[+-]?\d+)?|\d+e[+-]?\d+)|((?:self\.)?[A-Za-z_]\w*)|(\d+)|(\S))")
 #: The compiler's finite test of a name kept in a temporary (calls.py, pysrc.finite_test).
 _TEST = re.compile(r"\(True if \(((?:self\.)?[A-Za-z_]\w*) < 1e309 and \1 > -1e309\) else False\)\Z")
 #: SIN or COS of a name behind that test (calls.py `_GUARDED`): `(_m_sin(x) if _cN else _sf_SIN(x))`.
-_GUARDED = re.compile(r"\(_m_(sin|cos)\(((?:self\.)?[A-Za-z_]\w*)\) if ([A-Za-z_]\w*) else _sf_(SIN|COS)\(\2\)\)\Z")
+_GUARDED = re.compile(r"\(_m_(?P<f>sin|cos)\((?P<x>(?:self\.)?[A-Za-z_]\w*)\) if (?P<test>[A-Za-z_]\w*)"
+                      r" else _sf_(?P<F>SIN|COS)\((?P=x)\)\)\Z")
+#: SIN or COS of a name kept in the compiler's temporary behind its finite test, where no local
+#: holds the test (calls.py `_GUARDED`): `(_m_sin(_t1) if (_t1 := x) < 1e309 and _t1 > -1e309 else _sf_SIN(_t1))`.
+_TEMP_GUARDED = re.compile(r"\(_m_(?P<f>sin|cos)\((?P<t>_t\d+)\) if \((?P=t) := (?P<x>(?:self\.)?[A-Za-z_]\w*)\)"
+                           r" < 1e309 and (?P=t) > -1e309 else _sf_(?P<F>SIN|COS)\((?P=t)\)\)\Z")
 _NAME = re.compile(r"(?<![\w.])[A-Za-z_]\w*")
 _NOT_NAMES = frozenset({"True", "False", "None", "_m_sqrt", "_sf_ATAN", "_kr"})
 #: A store's target `L[k]`: the list and the index.
@@ -100,16 +109,17 @@ def _tree(text: str):
     """(tree, names read as floats, lists read) of an expression the kernel computes, None
     for any other: a tree is ("c", IR literal) | ("n", name) | ("e", list, index) |
     (op, operand...) with op "*", "+", "-", "neg" or "sqrt" | ("test", ("n", name)) (the
-    finite test) | ("sin" or "cos", ("n", name), the test's name).  Kept by text: the same
+    finite test) | ("sin" or "cos", ("n", name), the test's name, or None where the line
+    tests the name itself in the compiler's temporary `_tN`).  Kept by text: the same
     lines come back in every load of a program and in its fast and exact copies."""
     test = _TEST.match(text)
     if test is not None:
         return ("test", ("n", test[1])), frozenset([test[1]]), frozenset()
-    guarded = _GUARDED.match(text)
+    guarded = _GUARDED.match(text) or _TEMP_GUARDED.match(text)
     if guarded is not None:
-        if guarded[1].upper() != guarded[4]:
+        if guarded["f"].upper() != guarded["F"]:
             return None
-        return (guarded[1], ("n", guarded[2]), guarded[3]), frozenset([guarded[2]]), frozenset()
+        return (guarded["f"], ("n", guarded["x"]), guarded.groupdict().get("test")), frozenset([guarded["x"]]), frozenset()
     tokens = _TOKEN.findall(text)
     names: tuple[set, set] = (set(), set())
     try:
@@ -134,7 +144,7 @@ def _sum(tokens, i, names):
 def _primary(tokens, i, names):
     number, name, integer, char = tokens[i]
     if number:
-        return ("c", native._double(float(number))), i + 1
+        return ("c", native.ir_double(float(number))), i + 1
     if char == "(":
         tree, i = _sum(tokens, i + 1, names)
         if tokens[i][3] != ")":
@@ -142,7 +152,7 @@ def _primary(tokens, i, names):
         return tree, i + 1
     if char == "-":
         if tokens[i + 1][0]:                      # `-1.5`: Python's constant, folded
-            return ("c", native._double(-float(tokens[i + 1][0]))), i + 2
+            return ("c", native.ir_double(-float(tokens[i + 1][0]))), i + 2
         operand, i = _primary(tokens, i + 1, names)
         return ("neg", operand), i
     if (name == "_m_sqrt" or name == "_sf_ATAN" and _atan_is_maths()) and tokens[i + 1][3] == "(":
@@ -203,10 +213,12 @@ class _Run:
         tree, floats, lists = parsed
         if any(name in self.env for name in lists) or any(self.kind.get(name) == "list" for name in floats):
             return False
-        if target in self.tests or not floats.isdisjoint(self.tests) or tree[0] in ("sin", "cos") and (
+        if target in self.tests or not floats.isdisjoint(self.tests) or tree[0] in ("sin", "cos") and tree[2] and (
                 tree[2] not in self.tests or self.tests[tree[2]] != self.env.get(tree[1][1])):
             return False            # (a test is read only as the guard of SIN or COS of the value it tested)
         self.overrides.update(overrides)
+        if tree[0] in ("sin", "cos") and tree[2] is None:     # the line's own test: checked finite
+            self.ops.append((None, "finite", self._value_of(tree[1])))
         if tree[0] == "test":       # True where the kernel answers: the value it tested is checked finite
             self.tests[target] = tested = self._value_of(tree[1])
             self.ops.append((None, "finite", tested))
@@ -286,12 +298,13 @@ def replace(lines: list[str], start: int, register, bind, not_float=None) -> Non
         if _most_operations("\n".join(_ASSIGNMENT.findall(text, offsets[i] + i, offsets[block] + block))) < MIN_OPERATIONS:
             end = block     # (no span from a line of the block reaches the minimum: none built)
             continue
-        span = _Span(body, matches, i, not_float)
+        span = _Span(body, matches, i, text, offsets, not_float)
         end = max(span.end, i + 1)
         if sum(op[1] not in ("neg", "finite") for op in span.run.ops) >= MIN_OPERATIONS:
             mentions = mentions or collections.Counter(_NAME.findall(text))
-            live = _read_after(span, body[i:span.end], mentions)
-            spans.append((start + i, start + span.end, _call(body[i:span.end], span, live, register, bind)))
+            stores = span.stores_in_kernel()
+            live = _read_after(span, body[i:span.end], mentions, one=not stores)
+            spans.append((start + i, start + span.end, _call(body[i:span.end], span, live, stores, register, bind)))
     for i, j, new in reversed(spans):          # from the last: the indices stay true
         lines[i:j] = new
 
@@ -311,6 +324,14 @@ def _shallower(indent: int) -> re.Pattern:
     return re.compile(rf"\n {{0,{indent - 1}}}\S" if indent else r"(?!)")
 
 
+@functools.cache
+def _statement_break(indent: int) -> re.Pattern:
+    """A line break before a line that does not go on a statement indented by `indent`: one
+    not indented deeper, nor its `else:` or `elif`."""
+    at = " " * indent
+    return re.compile(rf"\n(?!{at} |{at}else:|{at}elif )")
+
+
 def _most_operations(text: str) -> int:
     """At least the operations `_Span` counts of the run lines in `text` (whole lines; those
     of a block: the same or fewer from a line of it, the block from there a part of it): a
@@ -320,15 +341,16 @@ def _most_operations(text: str) -> int:
             + text.count("_m_sin(") + text.count("_m_cos(") - text.count("> -1e309"))
 
 
-def _read_after(span, original: list[str], mentions: collections.Counter) -> list[str]:
+def _read_after(span, original: list[str], mentions: collections.Counter, one=True) -> list[str]:
     """The names the span sets that a line outside it or a statement it keeps names, and
     the instance's variables it sets (`self.v_X`): the others are never read again, the
-    kernel need not return them; at least one value."""
+    kernel need not return them; with `one`, at least one value (a kernel that stores
+    nothing itself returns one)."""
     inside = collections.Counter(_NAME.findall("\n".join(original)))
     kept = set(_NAME.findall("\n".join(line for lines in span.kept for line in lines)))
     names = list(span.run.assigned)
     return ([name for name in names if mentions[name] > inside[name] or name in kept or name.startswith("self.")]
-            or [name for name in names if name not in span.run.tests][-1:])
+            or [name for name in names if name not in span.run.tests][-1:] * one)
 
 
 #: A line that holds ` = `: every run line is one (a charge's `+=`, an `if` are none).
@@ -346,6 +368,9 @@ _BUDGET_CHECK = re.compile(r"( *)if _ctx\.budget < _spent: ((?:(\w+) = self\.\3;
 _RELOAD = re.compile(r"(\w+) = self\.\1; ")
 #: reuse.py's shared values: locals of the body, never the instance's (no store back).
 _SHARED = re.compile(r"_c\d+\Z|_kv\d+\Z")            # (and this pass's own values of stores)
+#: A kept line that stores into a list element, and one that stores a value of `_store`.
+_STORED = re.compile(r" *([A-Za-z_]\w*)\[(\d+)\] = ")
+_OWN_STORE = re.compile(r" *([A-Za-z_]\w*)\[(\d+)\] = _kv\d+\Z")
 
 
 class _Span:
@@ -356,9 +381,10 @@ class _Span:
     stops before the first line that is none of these, or that would read or change what a
     line before or after it must see; it ends after its last run line or finite test."""
 
-    def __init__(self, body: list[str], matches: list, first: int, not_float=None):
+    def __init__(self, body: list[str], matches: list, first: int, text: str, offsets: list[int], not_float=None):
         self.run = _Run()
         self.not_float = not_float
+        self.text, self.offsets = text, offsets  # the body's lines joined, where each starts (`replace`)
         self.indent = matches[first].group(1)
         self.kept: list[list[str]] = []          # the deferred statements' lines, in order
         self.stored: dict[str, set] = {}         # list -> indices the kept statements store into
@@ -396,6 +422,27 @@ class _Span:
             self._keep(pending)
             pending, self.end = [], i
 
+    def stores_in_kernel(self) -> list[tuple[str, int, str]]:
+        """The stores of the run's values `L[k] = _kvN` (`_store`) the kernel makes itself,
+        taken out of the kept statements, as (list, index, value): each one before the budget
+        check, into an element no other kept statement stores into.  Where the kernel answers
+        it makes them after every check, so they happen exactly where the kept statements
+        before them happen (none of those raises, none reads the element: a kept statement
+        reads only elements stored before it, `_safe`) and the ones after them read what they
+        store; L is a list the kernel checks (long enough, no other list it reads)."""
+        stored = collections.Counter(store.groups() for lines in self.kept for line in lines
+                                     if (store := _STORED.match(line)) is not None)
+        moved, kept, checked = [], [], False
+        for lines in self.kept:
+            own = _OWN_STORE.match(lines[0]) if len(lines) == 1 and not checked else None
+            if own is not None and stored[own.groups()] == 1:
+                moved.append((own[1], int(own[2]), self.elements[own[1], int(own[2])]))
+            else:
+                checked = checked or _BUDGET_CHECK.match(lines[0]) is not None
+                kept.append(lines)
+        self.kept = kept
+        return moved
+
     def _keep(self, pending: list[tuple]) -> None:
         """Keep the deferred statements `pending`, then the stores of the run line after them."""
         for lines, stores in pending + self.own:
@@ -425,11 +472,9 @@ class _Span:
         it is not at the span's indentation."""
         if not body[i].startswith(self.indent) or body[i][len(self.indent):len(self.indent) + 1] in ("", " "):
             return None
-        deeper, following = self.indent + " ", (self.indent + "else:", self.indent + "elif ")
-        j = i + 1
-        while j < len(body) and (body[j].startswith(deeper) or body[j].startswith(following)):
-            j += 1
-        return j
+        at = self.offsets[i] + i                  # (line i's start in the text: one C search)
+        found = _statement_break(len(self.indent)).search(self.text, at)
+        return len(body) if found is None else i + 1 + self.text.count("\n", at, found.start())
 
     def _finite_test(self, lines: list[str]) -> bool:
         """Whether `lines` are an `if` without `else` testing that a value the run computed is
@@ -616,13 +661,13 @@ def _elements(tree):
     if tree[0] == "e":
         yield tree[1], tree[2]
     elif tree[0] not in ("c", "n"):
-        for operand in tree[1:]:
+        for operand in tree[1:2] if tree[0] in native.LIBM else tree[1:]:     # (SIN's test name no operand)
             yield from _elements(operand)
 
 
-def _call(original: list[str], span: _Span, targets: list[str], register, bind) -> list[str]:
-    """The lines that call the span's kernel, returning `targets`, with `original` where it
-    returns None."""
+def _call(original: list[str], span: _Span, targets: list[str], stores: list[tuple], register, bind) -> list[str]:
+    """The lines that call the span's kernel, returning `targets` and making `stores` (list,
+    index, value), with `original` where it returns None."""
     run, indent = span.run, span.indent
     tests = [t for t in targets if t in run.tests]          # True where the kernel answers
     targets = [t for t in targets if t not in run.tests]
@@ -634,10 +679,15 @@ def _call(original: list[str], span: _Span, targets: list[str], register, bind) 
     def ir() -> str:
         if libm:
             native.bind_symbols(native.libm_symbols())
-        return native.run_ir(arguments, run.ops, outputs, distinct)
+        return native.run_ir(arguments, run.ops, outputs, distinct,
+                             [(run.texts.index(name), k, value) for name, k, value in stores])
     bind(kernel, native.on_first_call(ir, lambda built: bind(kernel, built)))
     return ([f"{indent}_kr = {kernel}({', '.join(run.texts)})", f"{indent}if _kr is None:"]
             + ["    " + line for line in original]
-            + [f"{indent}else:", f"{indent}    {', '.join(targets)}, = _kr"]
-            + [f"{indent}    {t} = True" for t in tests]
-            + ["    " + line for lines in span.kept for line in lines])
+            + _else(indent, [f"    {', '.join(targets)}, = _kr"] * bool(targets) + [f"    {t} = True" for t in tests]
+                    + ["    " + line[len(indent):] for lines in span.kept for line in lines]))
+
+
+def _else(indent: str, lines: list[str]) -> list[str]:
+    """`else:` and `lines` under it, nothing without lines (a kernel that stores all it makes)."""
+    return [f"{indent}else:"] + [indent + line for line in lines] if lines else []

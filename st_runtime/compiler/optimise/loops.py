@@ -148,7 +148,7 @@ class _Loop:
 
     def _value_of(self, tree) -> str:
         if isinstance(tree, ast.Constant) and type(tree.value) is float:
-            return native._double(tree.value)
+            return native.ir_double(tree.value)
         if isinstance(tree, ast.Name):
             return self._read(tree.id)
         if isinstance(tree, ast.NamedExpr):
@@ -183,7 +183,7 @@ class _Loop:
                  f"{item} = load ptr, ptr {item}.at, align 8")
         self.body.has_type(item, "PyFloat_Type")
         double = self.value()
-        self.add(f"{double}.at = getelementptr inbounds i8, ptr {item}, i64 {native._FVAL}",
+        self.add(f"{double}.at = getelementptr inbounds i8, ptr {item}, i64 {native.OB_FVAL}",
                  f"{double} = load double, ptr {double}.at, align 8")
         return double
 
@@ -231,7 +231,7 @@ class _Loop:
         self.private |= set(self.carried) - named
 
     def ir(self) -> str:
-        """The kernel `run(range, arguments ...)`: a new list of the outputs' last values, or None."""
+        """The kernel `run(range, arguments ...)`: a new tuple of the outputs' last values, or None."""
         w = self.w
         w.add(f"%n.ok = icmp eq i64 %nargs, {len(self.texts) + 1}")
         w.check("%n.ok")
@@ -241,7 +241,7 @@ class _Loop:
             if name in self.lists:
                 w.has_type(arg, "PyList_Type")
                 w.has_at_least(arg, "%n")
-                w.object_of(f"{name}.items", arg, native._ITEMS)
+                w.object_of(f"{name}.items", arg, native.OB_ITEM)
             else:
                 w.float_value(f"{name}.in", arg)
         entry = f"ok{w.checks}"
@@ -252,7 +252,7 @@ class _Loop:
         w.lines += ["  %done = icmp eq i64 %i, %n", "  br i1 %done, label %finish, label %body", "body:"]
         w.lines += self.body.lines
         w.lines += ["  br label %latch", "latch:", "  %i.next = add i64 %i, 1", "  br label %loop", "finish:"]
-        w.returns_list([self.carried[name] for name in self.outputs()])
+        w.returns_tuple([self.carried[name] for name in self.outputs()])
         w.lines += ["exact:", "  call void @Py_IncRef(ptr @stgen_none)", "  ret ptr @stgen_none"]
         return (native.DECLARATIONS + _DECLARATIONS + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\n"
                 "entry:\n" + "\n".join(w.lines) + "\n}\nattributes #0 = { nobuiltin }\n")
@@ -277,9 +277,7 @@ class _Loop:
         w.check("%n.some")
 
 
-_DECLARATIONS = """\
-declare double @sin(double)
-declare double @cos(double)
+_DECLARATIONS = native.libm_declarations(("sin", "cos")) + """\
 @PyLong_Type = external global i8
 @PyRange_Type = external global i8
 """
@@ -333,7 +331,7 @@ def ranges_are_cpythons() -> bool:
     word = ctypes.c_void_p.from_address
     return (word(id(r) + _RANGE_START).value == id(r.start) and word(id(r) + _RANGE_STOP).value == id(r.stop)
             and word(id(r) + _RANGE_STEP).value == id(r.step)
-            and ctypes.c_int64.from_address(id(r.stop) + native._SIZE).value == 1
+            and ctypes.c_int64.from_address(id(r.stop) + native.OB_SIZE).value == 1
             and ctypes.c_uint32.from_address(id(r.stop) + _DIGIT).value == 37)
 
 

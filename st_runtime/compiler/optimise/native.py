@@ -22,7 +22,7 @@ The crossing: the kernel is a CPython builtin function (`METH_FASTCALL`, its `__
 the `Vectorised` helper) that the generated code calls as it called NumPy's kernel,
 `_kN(list, (inputs ...))`: it reads the floats straight from the list and the tuple
 (`ob_item`, `ob_fval`: CPython's object layout, checked on this interpreter before the
-first kernel is built, else NumPy's kernel stays) and returns a new list of new floats.
+first kernel is built, else NumPy's kernel stays) and returns a new tuple of new floats.
 No ctypes call, no packing: a call of the 6x6 determinant (2,670 operations) takes
 4,395 machine instructions, NumPy's kernel 95,917 (docs/performance.md, session 19).
 
@@ -47,7 +47,7 @@ _target_machine = None
 _EXACT = sys.intern("exact")
 _METH_FASTCALL = 0x0080
 #: CPython's object layout (64-bit, GIL build): the offsets the kernels read at.
-_TYPE, _SIZE, _ITEMS, _FVAL = 8, 16, 24, 16      # ob_type, ob_size, list ob_item / tuple items, ob_fval
+OB_TYPE, OB_SIZE, OB_ITEM, OB_FVAL = 8, 16, 24, 16      # ob_type, ob_size, list ob_item / tuple items, ob_fval
 
 
 def enabled() -> bool:
@@ -79,14 +79,14 @@ def layout_is_cpythons() -> bool:
     x = 1.5
     items, pair = [x], (x, x)
     word = ctypes.c_void_p.from_address
-    return (ctypes.c_double.from_address(id(x) + _FVAL).value == x and word(id(x) + _TYPE).value == id(float)
-            and word(id(items) + _TYPE).value == id(list) and word(id(items) + _SIZE).value == 1
-            and word(word(id(items) + _ITEMS).value).value == id(x)
-            and word(id(pair) + _TYPE).value == id(tuple) and word(id(pair) + _SIZE).value == 2
-            and word(id(pair) + _ITEMS + 8).value == id(x))
+    return (ctypes.c_double.from_address(id(x) + OB_FVAL).value == x and word(id(x) + OB_TYPE).value == id(float)
+            and word(id(items) + OB_TYPE).value == id(list) and word(id(items) + OB_SIZE).value == 1
+            and word(word(id(items) + OB_ITEM).value).value == id(x)
+            and word(id(pair) + OB_TYPE).value == id(tuple) and word(id(pair) + OB_SIZE).value == 2
+            and word(id(pair) + OB_ITEM + 8).value == id(x))
 
 
-def _double(value: float) -> str:
+def ir_double(value: float) -> str:
     """An LLVM IR double constant with `value`'s bits exactly (LLVM's 64-bit hex form)."""
     return "0x%016X" % struct.unpack("<Q", struct.pack("<d", value))[0]
 
@@ -102,7 +102,7 @@ declare double @llvm.fabs.f64(double)
 declare double @llvm.sqrt.f64(double)
 declare void @Py_IncRef(ptr)
 declare ptr @PyFloat_FromDouble(double)
-declare ptr @PyList_New(i64)
+declare ptr @PyTuple_New(i64)
 declare void @Py_DecRef(ptr)
 declare ptr @PyObject_CallMethodObjArgs(ptr, ptr, ...)
 @PyFloat_Type = external global i8
@@ -139,7 +139,7 @@ class Writer:
         return f"%{name}"
 
     def has_type(self, obj: str, type_symbol: str) -> None:
-        t = self.object_of(f"{obj[1:]}.type", obj, _TYPE)
+        t = self.object_of(f"{obj[1:]}.type", obj, OB_TYPE)
         self.add(f"%{obj[1:]}.is = icmp eq ptr {t}, @{type_symbol}")
         self.check(f"%{obj[1:]}.is")
 
@@ -152,31 +152,51 @@ class Writer:
 
     def size_is(self, obj: str, comparison: str, size, tag: str) -> None:
         """Go on when `obj`'s ob_size compares to `size` by `comparison` (`icmp`'s)."""
-        self.add(f"%{obj[1:]}.size.at = getelementptr inbounds i8, ptr {obj}, i64 {_SIZE}",
+        self.add(f"%{obj[1:]}.size.at = getelementptr inbounds i8, ptr {obj}, i64 {OB_SIZE}",
                  f"%{obj[1:]}.size = load i64, ptr %{obj[1:]}.size.at, align 8",
                  f"%{obj[1:]}.{tag} = icmp {comparison} i64 %{obj[1:]}.size, {size}")
         self.check(f"%{obj[1:]}.{tag}")
 
-    def returns_list(self, values: list[str]) -> None:
-        """Return a new list of new floats of the doubles `values` (NULL on no memory)."""
-        self.add(f"%list = call ptr @PyList_New(i64 {len(values)})",
-                 "%made = icmp ne ptr %list, null")
+    def returns_tuple(self, values: list[str]) -> None:
+        """Return a new tuple of new floats of the doubles `values` (NULL on no memory): one
+        object, its items inline (a list would allocate its items apart, and free them)."""
+        self.add(f"%tuple = call ptr @PyTuple_New(i64 {len(values)})",
+                 "%made = icmp ne ptr %tuple, null")
         self.lines += ["  br i1 %made, label %fill, label %failed", "fill:"]
-        slots = self.object_of("slots", "%list", _ITEMS)
         for j, value in enumerate(values):
             self.add(f"%out{j} = call ptr @PyFloat_FromDouble(double {value})",
-                     f"%out{j}.at = getelementptr inbounds ptr, ptr {slots}, i64 {j}",
-                     f"store ptr %out{j}, ptr %out{j}.at, align 8",          # NULL on no memory: the list's
+                     f"%out{j}.at = getelementptr inbounds i8, ptr %tuple, i64 {OB_ITEM + 8 * j}",
+                     f"store ptr %out{j}, ptr %out{j}.at, align 8",          # NULL on no memory: the tuple's
                      f"%out{j}.made = icmp ne ptr %out{j}, null")              # Py_DecRef skips it
             self.lines += [f"  br i1 %out{j}.made, label %made{j}, label %dropped", f"made{j}:"]
-        self.lines += ["  ret ptr %list",
-                       "dropped:", "  call void @Py_DecRef(ptr %list)", "  br label %failed",
+        self.lines += ["  ret ptr %tuple",
+                       "dropped:", "  call void @Py_DecRef(ptr %tuple)", "  br label %failed",
                        "failed:", "  ret ptr null"]
+
+    def stores_floats(self, stores: list[tuple]) -> list[str]:
+        """Store a new float of each (list, index, double) of `stores` into the list, freeing
+        the item it replaces; the floats made first, so that no memory means no store made
+        (NULL returned; between the checks and the stores no Python code runs, the lists
+        stay as checked).  The blocks that free them on no memory are returned, for the
+        function's end."""
+        for n, (_, _, value) in enumerate(stores):
+            self.add(f"%st{n} = call ptr @PyFloat_FromDouble(double {value})", f"%st{n}.made = icmp ne ptr %st{n}, null")
+            self.lines += [f"  br i1 %st{n}.made, label %st{n}.ok, label %undo{n}", f"st{n}.ok:"]
+        undo = []
+        for n, (obj, k, _) in enumerate(stores):
+            items = self.object_of(f"st{n}.items", obj, OB_ITEM)
+            self.add(f"%st{n}.at = getelementptr inbounds ptr, ptr {items}, i64 {k}",
+                     f"%st{n}.old = load ptr, ptr %st{n}.at, align 8",
+                     f"store ptr %st{n}, ptr %st{n}.at, align 8",
+                     f"call void @Py_DecRef(ptr %st{n}.old)")
+            undo += [f"undo{n}:"] + ([f"  call void @Py_DecRef(ptr %st{n - 1})", f"  br label %undo{n - 1}"]
+                                     if n else ["  ret ptr null"])
+        return undo
 
     def float_value(self, name: str, item: str) -> str:
         """`%name`: the double of the Python float `item` (checked to be one)."""
         self.has_type(item, "PyFloat_Type")
-        self.add(f"%{name}.at = getelementptr inbounds i8, ptr {item}, i64 {_FVAL}",
+        self.add(f"%{name}.at = getelementptr inbounds i8, ptr {item}, i64 {OB_FVAL}",
                  f"%{name} = load double, ptr %{name}.at, align 8")
         return f"%{name}"
 
@@ -188,7 +208,7 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
     called as `run(list, tuple)`: input i is element k of the list (`sources[i]` ==
     ("list", k)) or of the tuple (("tuple", k)), or the literal `constants[i]`; operation k
     (value n_inputs + k) is `ops[k]` of two earlier values, for each k in `live`, in order;
-    the result is a new list of the outputs' floats, or `self.exact(list, tuple)` when an
+    the result is a new tuple of the outputs' floats, or `self.exact(list, tuple)` when an
     argument is not as compiled for (a list of n_list floats, a tuple of n_tuple) or an
     output is not finite."""
     w = Writer()
@@ -199,13 +219,13 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
     if n_list:
         w.has_type(whole, "PyList_Type")
         w.has_size(whole, n_list)
-        items = w.object_of("items", whole, _ITEMS)
+        items = w.object_of("items", whole, OB_ITEM)
     w.has_type(inputs, "PyTuple_Type")
     w.has_size(inputs, n_tuple)
-    name = {i: _double(c) for i, c in constants.items()}
+    name = {i: ir_double(c) for i, c in constants.items()}
     for i, (where, k) in sources.items():
         item = w.object_of(f"x{i}", items if where == "list" else inputs,
-                           8 * k if where == "list" else _ITEMS + 8 * k)
+                           8 * k if where == "list" else OB_ITEM + 8 * k)
         name[i] = w.float_value(f"v{i}", item)
     for k in live:
         op, a, b = ops[k]
@@ -216,7 +236,7 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
         w.add(f"%abs{j} = call double @llvm.fabs.f64(double {name[o]})",
               f"%finite{j} = fcmp olt double %abs{j}, {INFINITY}")
         w.check(f"%finite{j}")
-    w.returns_list([name[o] for o in outputs])
+    w.returns_tuple([name[o] for o in outputs])
     w.lines += ["exact:",
                 "  %slow = call ptr (ptr, ptr, ...) @PyObject_CallMethodObjArgs(ptr %self, ptr @stgen_exact,"
                 " ptr %whole, ptr %inputs, ptr null)",
@@ -228,7 +248,7 @@ def ir_text(n_inputs: int, sources: dict[int, tuple[str, int]], constants: dict[
             + "\n".join(w.lines) + "\n}\n")
 
 
-def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -> str:
+def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=(), stores=()) -> str:
     """The IR of `PyObject *run(PyObject *self, PyObject *const *args, Py_ssize_t nargs)` for
     kernels.py's runs of statements, called as `run(a0, a1, ...)`: `arguments[j]` is
     ("float", value) (args[j] a Python float, whose double is `value`) or ("list", {k:
@@ -237,9 +257,11 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
     `ops[i]` is (value, op, operands...): op "*", "+" or "-" of two operands, "neg",
     "sqrt", "sin", "cos" or "atan" (the C library's: `libm_symbols`) of one, or "finite" of one
     (value None: the operand only checked to be finite); an operand a value's name or an
-    IR double literal.  The result is a
-    new list of the doubles named by `outputs`, or None (a new reference) when an argument
-    is not as compiled for or a value computed is not finite."""
+    IR double literal.  Each of `stores`, (j, k, value), stores a new float of `value` into
+    element k of the list args[j] (the item there checked a float: freeing it runs no code).
+    The result is a new tuple of the doubles named by `outputs`, the stores made, or None (a
+    new reference, nothing stored) when an argument is not as compiled for or a value
+    computed is not finite."""
     w = Writer()
     w.add(f"%n.ok = icmp eq i64 %nargs, {len(arguments)}")
     w.check("%n.ok")
@@ -251,12 +273,14 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
         w.has_type(arg, "PyList_Type")
         w.has_at_least(arg, max(size or [0], default=0) if size else max(held) + 1)
         if held:
-            items = w.object_of(f"a{j}.items", arg, _ITEMS)
+            items = w.object_of(f"a{j}.items", arg, OB_ITEM)
         for k, value in sorted(held.items()):
             w.float_value(value[1:], w.object_of(f"a{j}.{k}", items, 8 * k))
     for j, k in distinct:
         w.add(f"%a{j}.not.a{k} = icmp ne ptr %a{j}, %a{k}")
         w.check(f"%a{j}.not.a{k}")
+    for n, (j, k, _) in enumerate(stores):
+        w.has_type(w.object_of(f"old{n}", w.object_of(f"old{n}.items", f"%a{j}", OB_ITEM), 8 * k), "PyFloat_Type")
     finite = "true"
     for i, (value, op, *operands) in enumerate(ops):
         if op == "finite":                        # the value a finite test tested: checked, not computed
@@ -274,18 +298,24 @@ def run_ir(arguments: list, ops: list[tuple], outputs: list[str], distinct=()) -
               f"%all.{i} = and i1 {finite}, %fin.{i}")
         finite = f"%all.{i}"
     w.check(finite)
-    w.returns_list(outputs)
+    undo = w.stores_floats([(f"%a{j}", k, value) for j, k, value in stores])
+    w.returns_tuple(outputs)
     w.lines += ["exact:",                         # the statements in Python, as written
                 "  call void @Py_IncRef(ptr @stgen_none)",
-                "  ret ptr @stgen_none"]
+                "  ret ptr @stgen_none"] + undo
     libm = sorted({op for _, op, *_ in ops if op in LIBM})
-    return (DECLARATIONS + "".join(f"declare double @{f}(double)\n" for f in libm)
+    return (DECLARATIONS + libm_declarations(libm)
             + "\ndefine ptr @run(ptr %self, ptr %args, i64 %nargs) {\nentry:\n"
             + "\n".join(w.lines) + "\n}\n" + ("attributes #0 = { nobuiltin }\n" if libm else ""))
 
 
 #: The C library's functions a kernel may call (`libm_symbols`), by the name the IR calls.
 LIBM = ("sin", "cos", "atan")
+
+
+def libm_declarations(functions) -> str:
+    """The IR declarations of the C library's `functions` (names of LIBM), in their order."""
+    return "".join(f"declare double @{f}(double)\n" for f in functions)
 
 
 def libm_symbols() -> dict[str, int]:
@@ -312,7 +342,7 @@ def _machine():
         llvm.initialize_native_target()
         llvm.initialize_native_asmprinter()
         api = ctypes.pythonapi
-        for function in ("PyFloat_FromDouble", "PyList_New", "Py_DecRef", "Py_IncRef", "PyObject_CallMethodObjArgs"):
+        for function in ("PyFloat_FromDouble", "PyTuple_New", "Py_DecRef", "Py_IncRef", "PyObject_CallMethodObjArgs"):
             llvm.add_symbol(function, ctypes.cast(getattr(api, function), ctypes.c_void_p).value)
         for symbol, obj in (("PyFloat_Type", float), ("PyList_Type", list), ("PyTuple_Type", tuple),
                             ("stgen_exact", _EXACT), ("stgen_none", None)):
@@ -363,13 +393,14 @@ def builtin(helper, address: int):
 
 
 def first_call(helper, bind):
-    """What the generated code calls before the kernel is built: the first call builds it
-    (or keeps NumPy's kernel, `helper.run`, where this interpreter's layout is not
-    CPython's), binds it by `bind(run)` in place of itself and returns its result."""
+    """What the generated code calls before a `Vectorised` helper's kernel is built:
+    `on_first_call` of its IR, the kernel's `__self__` the helper, NumPy's kernel
+    (`helper.run`) kept where this interpreter's layout is not CPython's; a method of the
+    helper, as the kernel that takes its place is."""
+    build = on_first_call(lambda: helper_ir(helper), bind, helper, helper.run)
+
     def first(self, whole, inputs):
-        run = builtin(self, compiled(helper_ir(self))) if layout_is_cpythons() else self.run
-        bind(run)
-        return run(whole, inputs)
+        return build(whole, inputs)
     return types.MethodType(first, helper)
 
 
@@ -377,13 +408,17 @@ class _Kernel:
     """What `builtin` needs of a kernel's `__self__` (it keeps the method's definition)."""
 
 
-def on_first_call(ir, bind):
-    """What the generated code calls before a kernel of kernels.py or loops.py is built: the
-    first call writes its IR (`ir()`: a load writes none) and builds the kernel (where this
-    interpreter's layout is not CPython's, a function answering None: the lines run in
-    Python), binds it in its own place by `bind(kernel)` and calls it."""
+def on_first_call(ir, bind, owner=None, fallback=None):
+    """What the generated code calls before a kernel is built: the first call writes its IR
+    (`ir()`: a load writes none) and builds the kernel (its `__self__` `owner`, or a new
+    `_Kernel`; where this interpreter's layout is not CPython's, `fallback`, by default a
+    function answering None: the lines run in Python), binds it in its own place by
+    `bind(kernel)` and calls it."""
     def first(*arguments):
-        built = builtin(_Kernel(), compiled(ir())) if layout_is_cpythons() else _python
+        if layout_is_cpythons():
+            built = builtin(_Kernel() if owner is None else owner, compiled(ir()))
+        else:
+            built = _python if fallback is None else fallback
         bind(built)
         return built(*arguments)
     return first
