@@ -198,6 +198,10 @@ states bit for bit:
   MC_Reset) that is the only code of the program writing its instance runs under one test,
   `X or <the rest note does not hold>`, X the BOOL its Execute is given: at rest it would
   store what the instance holds (constants, the same AXIS_REF, FALSE) and call nothing.
+* `threads` (threads.py): an IF chain whose first test reads a local alone (`IF NewFault = 0`)
+  right after an IF chain every path of which tells that test's answer (a branch set the
+  local to a literal, or tested it) is not tested: each path runs the branch it would take
+  at its end (jump threading); SP_Controller's axes, five tests a scan fewer.
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -336,6 +340,7 @@ class Optimisations:
     loops: bool = True
     elements: bool = True
     dormant: bool = True
+    threads: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":
