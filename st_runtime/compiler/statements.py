@@ -537,7 +537,7 @@ class BodyCompiler(ExprCompiler):
         if self.region is not None:
             self.region.whole = s.value
         value = self.convert(self.expr(s.value), self.ty(s.value), t, s.value)
-        self.out.line(target.store(shortcut.stored(self, s.value, value)))
+        self.out.line(target.store(shortcut.stored(self, s.value, value, kept=True)))
         if self.reuse is not None:
             self.reuse.stored(s.target, target.read(), value)
 
