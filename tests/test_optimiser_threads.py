@@ -4,8 +4,8 @@ chain before it has decided is not made; each path runs the branch it would take
 from __future__ import annotations
 
 from st_runtime import api
-from st_runtime.compiler import Optimisations
-from st_runtime.compiler.optimise import threads
+from st_runtime.compiler import Optimisations, compile_program
+from st_runtime.compiler.optimise import halves, threads
 
 from test_optimiser_equivalence import compiled_lines, run_both, same_alone_and_with_all
 
@@ -162,3 +162,39 @@ if (v_X == 1):
     short = text.replace(long_part, "    f(0)")
     assert _threaded(short) == ["if v_A:", "    v_X = 1", "    f(0)", "elif v_B:", "    v_X = 1", "    f(0)",
                                 "else:", "    v_X = 0"]
+
+
+def test_a_long_first_branch_made_by_threading_is_tested_the_other_way_round():
+    """The chain before gets the next chain's code in its first branch: past `halves.FAR` lines
+    its test is `!=` with the ELSE first, so the jump after the comparison is near."""
+    body = "\n".join(f"    f({k})" for k in range(halves.FAR))
+    text = f"""
+if (v_X == 0):
+    if v_A:
+        v_X = 1
+else:
+    g()
+if (v_X == 0):
+{body}
+"""
+    assert _threaded(text) == ["if (v_X != 0):", "    g()", "else:", "    if v_A:", "        v_X = 1",
+                               "    else:", *("    " + line for line in body.split("\n"))]
+    short = text.replace(body, "    f(0)")
+    assert _threaded(short)[0] == "if (v_X == 0):"
+
+
+def test_the_wave_state_tests_of_the_axes_jump_near():
+    """SP_Controller's first `NewFault` test holds the five other axes' tests: `!= 0` first."""
+    from stgen.scenarios.program import controller_sources
+
+    program = api.load_sources(dict(controller_sources(None))).program
+    source = compile_program(program, optimise=Optimisations()).python_sources["SP_CONTROLLER"].splitlines()
+    start = source.index("        if (v_STATE not in {0, 8, 9, 10}):")
+    assert source[start + 1:start + 4] == ["            if (v_NEWFAULT != 0):", "                _spent += 14352",
+                                           "            else:"]
+    axes = source[start + 4:source.index("        if ((((self.v_MOVEEDGE or self.v_WAVEEDGE) or self.v_PATHEDGE)"
+                                         " or self.v_PLAYBACKEDGE) and (not ((_G.v_SPPOWERON & (v_STATE == 3))"
+                                         " & (v_NEWFAULT == 0)))):")]
+    assert not any("v_NEWFAULT ==" in line or "v_NEWFAULT !=" in line for line in axes)
+    assert [line.strip() for line in axes if "_MFAULTLVL.v_ACTIVE:" in line] == \
+        [f"if v_MC_AXIS00{k}.v_MFAULTLVL.v_ACTIVE:" for k in range(6)]

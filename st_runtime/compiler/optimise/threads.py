@@ -32,6 +32,7 @@ from bisect import bisect_right
 
 from ..pysrc import indentation
 from .charges import _LITERALS, _LITERAL_STORE, _LOCAL_TEST, _may_set
+from .halves import FAR
 
 #: The longest part of S2 (in lines) that more than one path may run (a charge, a store).
 SMALL = 4
@@ -108,7 +109,28 @@ def _threaded(text: list[str], m: int):
         if opener is not None:
             body.insert(0, " " * opener + _ELSE)
         out[place:place] = body
+    _nearer(out, first, indent)
     return out, first
+
+
+def _nearer(text: list[str], first: int, indent: int) -> None:
+    """The chain at `first`, if `if (v_X == c):` with a long first branch and a short ELSE, as
+    `if (v_X != c):` with the two branches swapped (`==` and `!=` the other way round): the
+    same branch runs for every number, and the test's jump is to a near line (halves.py: a jump
+    past some 255 code units takes an EXTENDED_ARG, and CPython 3.11 then does not specialise
+    the comparison before it; threading made the first branch long)."""
+    test = _LOCAL_TEST.fullmatch(text[first])
+    if test is None or test.group(1) or test.group(3) is None:
+        return
+    clauses = _clauses(text, first, indent)
+    if len(clauses) != 2 or text[clauses[1][0]].lstrip(" ") != _ELSE:
+        return
+    (_, middle), (other, end) = clauses
+    taken, otherwise = text[first + 1:middle], text[other + 1:end]
+    if len(taken) > FAR >= len(otherwise):
+        swapped = "!=" if test.group(3) == "==" else "=="
+        text[first:end] = [f"{' ' * indent}if ({test.group(2)} {swapped} {test.group(4)}):", *otherwise,
+                           " " * indent + _ELSE, *taken]
 
 
 def _place(item) -> tuple:
