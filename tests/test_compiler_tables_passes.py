@@ -841,7 +841,7 @@ SWITCHES = ["fold", "unroll", "cse", "unguard", "fuse", "gather", "inline", "vec
             "aliases", "fastpath", "chains", "sets", "stores", "unused", "offsets", "reuse", "charges", "settle",
             "spread", "halves", "shortcut", "finite", "deferred", "wraps", "stores_read", "temps", "seal",
             "scalars", "sums", "pivots", "native", "kernels", "loops", "elements", "dormant",
-            "threads"]
+            "threads", "early"]
 
 
 def _switches(o: Optimisations) -> dict[str, bool]:

@@ -139,6 +139,8 @@ class BodyCompiler(ExprCompiler):
             aliases.drop_unused(o.lines, start)
             if self.method and self.unit.guard_statements:   # (a line without `try` then cannot raise)
                 aliases.drop_unread(o.lines, start, self.opt.deferred)
+        if self.opt.early and self.method:
+            aliases.store_early(o.lines, start)
         merging = self.opt.charges and charge and self.unit.guard_statements
         if merging:
             charges.merge(o.lines, start)

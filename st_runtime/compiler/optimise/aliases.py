@@ -31,6 +31,7 @@ from collections import Counter
 from ... import ast
 from ..scope import _nodes, listed, of_classes, root_name
 from . import branches
+from .charges import _may_set
 
 _ALIAS_LINE = re.compile(r"(v_\w+) = (?:self|_G)\.(v_\w+)")
 
@@ -133,6 +134,55 @@ def drop_unread(lines: list[str], start: int, deferred: bool = False) -> None:
 
 
 _CHECK = "        if _ctx.budget < _spent: "
+
+
+def store_early(lines: list[str], start: int) -> None:
+    """A method's cached variable that the body sets once, at the top level of its `try`,
+    before any line names it, is stored into its slot by that line (`self.v_X = v_X = ...`),
+    not loaded at the start and stored back at the end: until that line the slot holds what
+    the load would have read (a fault, an overrun or a RETURN before it stores back that same
+    value), after it the slot holds what the local does (no line sets the local again), and
+    no code but the body's reads the slot while the body runs (scope.py caches nothing a
+    reference, a METHOD or THIS can reach).  (SP_Controller's SyncExecute, StopExecute and
+    ResetExecute: set after the motion calls that may raise, one load a scan each fewer.)"""
+    try:
+        body = lines.index("    try:", start)
+        end = lines.index("    finally:", body)
+    except ValueError:
+        return
+    loads = {}
+    for i in range(start + 1, body):
+        match = _LOAD_LINE.fullmatch(lines[i])
+        if match is not None and lines[i] == f"    {match.group(2)} = self.{match.group(2)}":
+            loads[match.group(2)] = i
+    stores = {line: i for i in range(end + 1, len(lines)) if (line := lines[i]).startswith("        self.v_")}
+    moved = {}
+    for name, load in loads.items():
+        back = stores.get(f"        self.{name} = {name}")
+        first = _first_naming(lines, body + 1, end, name)
+        if back is None or first is None or not lines[first].startswith(f"        {name} = "):
+            continue
+        value = lines[first][len(f"        {name} = "):]
+        if _names(value, name) or any(_names(lines[i], name) and _may_set(name, lines[i])
+                                      for i in range(first + 1, end)):
+            continue
+        moved[first] = f"        self.{name} = {lines[first].lstrip()}"
+        moved[load] = moved[back] = None
+    for i, line in moved.items():
+        lines[i] = line
+    if moved:
+        lines[start:] = [line for line in lines[start:] if line is not None]
+
+
+def _first_naming(lines: list[str], first: int, end: int, name: str) -> int | None:
+    for i in range(first, end):
+        if _names(lines[i], name):
+            return i
+    return None
+
+
+def _names(line: str, name: str) -> bool:
+    return name in line and re.search(rf"(?<![.\w]){name}(?!\w)", line) is not None
 
 
 def late_loads(compiler, body) -> dict[int, list[str]]:
