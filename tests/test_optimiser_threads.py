@@ -110,6 +110,21 @@ if (v_X != 0):
     assert _threaded(unknown) == unknown.strip("\n").split("\n")     # (neither taken: v_X unknown)
 
 
+def test_paths_that_end_on_one_line_each_get_their_own_part():
+    """The inner chain's branch, its untaken path and the outer chain's untaken path all end
+    before the next chain's line: each gets its part, the ELSEs opened innermost first."""
+    assert _threaded("""
+if (v_X == 0):
+    if v_A:
+        v_X = 1
+if (v_X == 0):
+    f()
+else:
+    g()
+""") == ["if (v_X == 0):", "    if v_A:", "        v_X = 1", "        g()", "    else:", "        f()",
+         "else:", "    g()"]
+
+
 def test_a_test_is_kept_where_a_path_may_have_set_the_local():
     for setter in ("v_X = g()", "v_X, v_Y = g()", "v_X += 1", "h(v_X := 0)"):
         text = f"""

@@ -99,8 +99,8 @@ def _threaded(text: list[str], m: int):
     if max(at for _, at, _, _ in ends) + deepest > DEEPEST:
         return None
     out = text[:m] + text[end:]
-    # Inserted from the last place back (the earlier places keep their numbers); at one place
-    # the chain's own ELSE comes after the nested chains' (`_chain_ends` lists it after them).
+    # Inserted from the last place back (the earlier places keep their numbers), and at one
+    # place from the last in the text back (`_place`).
     for (place, at, opener, _), verdict in sorted(zip(ends, verdicts), key=_place, reverse=True):
         part = taken if verdict else rest
         if not part:
@@ -134,7 +134,11 @@ def _nearer(text: list[str], first: int, indent: int) -> None:
 
 
 def _place(item) -> tuple:
-    return item[0][0], -item[0][1]
+    """Where an end's code goes in the text: by line, and at one line (a chain whose last clause
+    ends with a chain, neither with an ELSE) the innermost clause's end first, then the ELSEs
+    opened there from the innermost chain's out."""
+    place, _, opener, _ = item[0]
+    return (place, 0, 0) if opener is None else (place, 1, -opener)
 
 
 def _chain_start_before(text: list[str], m: int, indent: int) -> int | None:
