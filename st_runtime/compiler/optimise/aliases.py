@@ -156,15 +156,20 @@ def store_early(lines: list[str], start: int) -> None:
         if match is not None and lines[i] == f"    {match.group(2)} = self.{match.group(2)}":
             loads[match.group(2)] = i
     stores = {line: i for i in range(end + 1, len(lines)) if (line := lines[i]).startswith("        self.v_")}
+    flat = "\n".join(lines[body + 1:end])
     moved = {}
     for name, load in loads.items():
         back = stores.get(f"        self.{name} = {name}")
-        first = _first_naming(lines, body + 1, end, name)
-        if back is None or first is None or not lines[first].startswith(f"        {name} = "):
+        if back is None:
+            continue            # (a variable the body only reads: loaded, never stored back)
+        # The lines that name it (found in C), the first of which must be its one set.
+        naming = sorted({body + 1 + flat.count("\n", 0, match.start())
+                         for match in re.finditer(rf"(?<![.\w]){name}(?!\w)", flat)})
+        if not naming or not lines[naming[0]].startswith(f"        {name} = "):
             continue
-        value = lines[first][len(f"        {name} = "):]
-        if _names(value, name) or any(_names(lines[i], name) and _may_set(name, lines[i])
-                                      for i in range(first + 1, end)):
+        first = naming[0]
+        if _names(lines[first][len(f"        {name} = "):], name) \
+                or any(_may_set(name, lines[i]) for i in naming[1:]):
             continue
         moved[first] = f"        self.{name} = {lines[first].lstrip()}"
         moved[load] = moved[back] = None
@@ -172,13 +177,6 @@ def store_early(lines: list[str], start: int) -> None:
         lines[i] = line
     if moved:
         lines[start:] = [line for line in lines[start:] if line is not None]
-
-
-def _first_naming(lines: list[str], first: int, end: int, name: str) -> int | None:
-    for i in range(first, end):
-        if _names(lines[i], name):
-            return i
-    return None
 
 
 def _names(line: str, name: str) -> bool:
