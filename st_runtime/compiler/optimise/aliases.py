@@ -162,13 +162,12 @@ def store_early(lines: list[str], start: int) -> None:
         back = stores.get(f"        self.{name} = {name}")
         if back is None:
             continue            # (a variable the body only reads: loaded, never stored back)
-        # The lines that name it (found in C), the first of which must be its one set.
-        naming = sorted({body + 1 + flat.count("\n", 0, match.start())
-                         for match in re.finditer(rf"(?<![.\w]){name}(?!\w)", flat)})
+        # The lines that name it, the first of which must be its one set.
+        naming = sorted({body + 1 + flat.count("\n", 0, at) for at in _occurrences(flat, name)})
         if not naming or not lines[naming[0]].startswith(f"        {name} = "):
             continue
         first = naming[0]
-        if _names(lines[first][len(f"        {name} = "):], name) \
+        if _occurrences(lines[first][len(f"        {name} = "):], name) \
                 or any(_may_set(name, lines[i]) for i in naming[1:]):
             continue
         moved[first] = f"        self.{name} = {lines[first].lstrip()}"
@@ -179,8 +178,24 @@ def store_early(lines: list[str], start: int) -> None:
         lines[start:] = [line for line in lines[start:] if line is not None]
 
 
-def _names(line: str, name: str) -> bool:
-    return name in line and re.search(rf"(?<![.\w]){name}(?!\w)", line) is not None
+def _occurrences(text: str, name: str) -> list[int]:
+    """Where the Python name `name` stands whole in `text`: not after a dot or a word
+    character, not before a word character (found by `str.find`, no pattern per name)."""
+    found, at, size = [], text.find(name), len(name)
+    while at >= 0:
+        after = at + size
+        if (at == 0 or not _NAME_BEFORE(text[at - 1])) and (after == len(text) or not _NAME_AFTER(text[after])):
+            found.append(at)
+        at = text.find(name, after)
+    return found
+
+
+def _NAME_AFTER(char: str) -> bool:
+    return char.isalnum() or char == "_"
+
+
+def _NAME_BEFORE(char: str) -> bool:
+    return char.isalnum() or char in "_."
 
 
 def late_loads(compiler, body) -> dict[int, list[str]]:

@@ -29,6 +29,7 @@ from __future__ import annotations
 import itertools
 import re
 from bisect import bisect_right
+from operator import sub
 
 from ..pysrc import indentation
 from .charges import _LITERALS, _LITERAL_STORE, _LOCAL_TEST, _may_set
@@ -53,8 +54,9 @@ def thread(lines: list[str], start: int) -> bool:
         return False
     done, after = 0, 0
     while done < LIMIT:
+        indents = _indents(text)
         for m in _candidates(text, after):
-            threaded = _threaded(text, m)
+            threaded = _threaded(text, indents, m)
             if threaded is not None:
                 (text, after), done = threaded, done + 1
                 break
@@ -70,25 +72,27 @@ _CANDIDATE = re.compile(r"^ *+if \(?(?:not )?v_\w+(?: (?:==|!=) -?\d+)?\)?:$", r
 
 def _candidates(text: list[str], after: int):
     """The lines from `after` on that open a chain testing a local alone (found in C)."""
-    starts = list(itertools.accumulate((len(line) + 1 for line in text), initial=0))
+    starts = list(itertools.accumulate(map((1).__add__, map(len, text)), initial=0))
     for match in _CANDIDATE.finditer("\n".join(text), starts[after]):
         yield bisect_right(starts, match.start()) - 1
 
 
-def _threaded(text: list[str], m: int):
+def _threaded(text: list[str], indents: list[int], m: int):
     """(the text with the chain opening at line `m` threaded into the chain before it, the line
-    to look on from), or None when it cannot be."""
-    indent = indentation(text[m])
+    to look on from), or None when it cannot be; `indents`: each line's indentation."""
+    indent = indents[m]
     first = _chain_start_before(text, m, indent)
     if first is None:
         return None
     test = _LOCAL_TEST.fullmatch(text[m])
     local = test.group(2)
-    ends = _chain_ends(text, first, indent, None, local)
+    if local not in "\n".join(text[first:m]):
+        return None             # (no path through the chain before knows anything of it)
+    ends = _chain_ends(text, indents, first, indent, None, local)
     if ends is None:
         return None
-    end = _chain_end(text, m, indent)
-    taken, rest = _parts(text, m, end, indent)
+    end = _chain_end(text, indents, m, indent)
+    taken, rest = _parts(text, indents, m, end, indent)
     verdicts = [_decided(test, facts) for _, _, _, facts in ends]
     if None in verdicts:
         return None
@@ -122,7 +126,7 @@ def _nearer(text: list[str], first: int, indent: int) -> None:
     test = _LOCAL_TEST.fullmatch(text[first])
     if test is None or test.group(1) or test.group(3) is None:
         return
-    clauses = _clauses(text, first, indent)
+    clauses = _clauses(text, _indents(text), first, indent)
     if len(clauses) != 2 or text[clauses[1][0]].lstrip(" ") != _ELSE:
         return
     (_, middle), (other, end) = clauses
@@ -159,30 +163,35 @@ def _chain_start_before(text: list[str], m: int, indent: int) -> int | None:
     return None
 
 
-def _clauses(text: list[str], first: int, indent: int) -> list[tuple[int, int]]:
+def _indents(text: list[str]) -> list[int]:
+    """Each line's indentation (found in C)."""
+    return list(map(sub, map(len, text), map(len, map(str.lstrip, text, itertools.repeat(" ")))))
+
+
+def _clauses(text: list[str], indents: list[int], first: int, indent: int) -> list[tuple[int, int]]:
     """The (header line, end) of each clause of the IF chain opening at `first`."""
     clauses = []
     n = first
     while True:
-        end = n + 1
-        while end < len(text) and indentation(text[end]) > indent:
-            end += 1
+        # (the first later line not deeper than the chain, found in C)
+        end = next(itertools.compress(itertools.count(n + 1), map(indent.__ge__, itertools.islice(indents, n + 1, None))),
+                   len(text))
         clauses.append((n, end))
-        if end < len(text) and indentation(text[end]) == indent \
+        if end < len(text) and indents[end] == indent \
                 and (text[end].lstrip(" ").startswith("elif ") or text[end].lstrip(" ") == _ELSE):
             n = end
             continue
         return clauses
 
 
-def _chain_end(text: list[str], first: int, indent: int) -> int:
-    return _clauses(text, first, indent)[-1][1]
+def _chain_end(text: list[str], indents: list[int], first: int, indent: int) -> int:
+    return _clauses(text, indents, first, indent)[-1][1]
 
 
-def _parts(text: list[str], m: int, end: int, indent: int) -> tuple[list[str], list[str]]:
+def _parts(text: list[str], indents: list[int], m: int, end: int, indent: int) -> tuple[list[str], list[str]]:
     """(the first branch's body, the rest of the chain as a statement), their indentation taken
     off: what a path runs where the first test holds and where it fails."""
-    clauses = _clauses(text, m, indent)
+    clauses = _clauses(text, indents, m, indent)
     header, clause_end = clauses[0]
     body_indent = indentation(text[header + 1])
     taken = [line[body_indent:] for line in text[header + 1:clause_end]]
@@ -199,14 +208,14 @@ def _parts(text: list[str], m: int, end: int, indent: int) -> tuple[list[str], l
 
 # A path's facts about the local: None (nothing), ("is", v) or ("not", v), v an int.
 
-def _chain_ends(text, first, indent, facts, local):
+def _chain_ends(text, indents, first, indent, facts, local):
     """The ends of the paths through the IF chain opening at `first`: (line where its code
     goes, its indentation, the indentation of an ELSE to open there or None, facts); None
     when a path's end cannot be told apart (a clause whose body is not deeper)."""
     ends = []
     rest = facts
     has_else = False
-    for header, end in _clauses(text, first, indent):
+    for header, end in _clauses(text, indents, first, indent):
         line = text[header]
         if line.lstrip(" ") == _ELSE:
             taken = rest
@@ -219,34 +228,34 @@ def _chain_ends(text, first, indent, facts, local):
                 taken = rest = None
             else:
                 taken = rest
-        if header + 1 >= end or indentation(text[header + 1]) <= indent:
+        if header + 1 >= end or indents[header + 1] <= indent:
             return None
-        inner = _block_ends(text, header + 1, end, taken, local)
+        inner = _block_ends(text, indents, header + 1, end, taken, local)
         if inner is None:
             return None
         ends += inner
     if not has_else:
-        step = indentation(text[first + 1]) - indent
-        ends.append((_chain_end(text, first, indent), indent + step, indent, rest))
+        step = indents[first + 1] - indent
+        ends.append((_chain_end(text, indents, first, indent), indent + step, indent, rest))
     return ends
 
 
-def _block_ends(text, first, end, facts, local):
+def _block_ends(text, indents, first, end, facts, local):
     """The ends of the paths through the block of lines `first` to `end - 1`."""
-    indent = indentation(text[first])
+    indent = indents[first]
     n = first
     while n < end:
         line = text[n]
         head = line.lstrip(" ")
         if head.startswith("if ") and line.endswith(":"):
-            chain_end = _chain_end(text, n, indent)
+            chain_end = _chain_end(text, indents, n, indent)
             if chain_end >= end:
-                return _chain_ends(text, n, indent, facts, local)
+                return _chain_ends(text, indents, n, indent, facts, local)
             facts = _after(text, n, chain_end, facts, local)
             n = chain_end
             continue
         statement_end = n + 1
-        while statement_end < end and indentation(text[statement_end]) > indent:
+        while statement_end < end and indents[statement_end] > indent:
             statement_end += 1
         facts = _after(text, n, statement_end, facts, local)
         n = statement_end
