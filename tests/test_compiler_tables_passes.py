@@ -840,7 +840,8 @@ def test_row(r: Row):
 SWITCHES = ["fold", "unroll", "cse", "unguard", "fuse", "gather", "inline", "vector", "ranges", "branches",
             "aliases", "fastpath", "chains", "sets", "stores", "unused", "offsets", "reuse", "charges", "settle",
             "spread", "halves", "shortcut", "finite", "deferred", "wraps", "stores_read", "temps", "seal",
-            "scalars", "sums", "pivots", "native", "kernels", "loops", "elements", "dormant"]
+            "scalars", "sums", "pivots", "native", "kernels", "loops", "elements", "dormant",
+            "threads", "early"]
 
 
 def _switches(o: Optimisations) -> dict[str, bool]:

@@ -131,7 +131,7 @@ def test_comparisons_anywhere_use_and_or():
     assert "self.v_OUTSIDE = (True if ((v_X < 0.0) or (v_X > 600.0)) else False)" in source
     assert "self.v_NESTED = (True if (((v_X >= 0.0) and (v_X <= 600.0)) or (v_X == 700.0)) else False)" in source
     assert "self.v_WITHNOT = ((not self.v_FLAG) and (v_X > 1.0))" in source
-    assert "self.v_WITHBOOL = (self.v_FLAG if not self.v_FLAG else (self.v_FLAG & (v_X > 1.0)))" in source
+    assert "self.v_WITHBOOL = (self.v_FLAG and (self.v_FLAG & (v_X > 1.0)))" in source
     assert " and " not in plain and " or " not in plain and "True if" not in plain
     assert "self.v_MAYFAULT = (True if ((v_X > 1.0) & (_idiv(10, self.v_Z, " in source
 
@@ -157,8 +157,9 @@ def test_comparisons_anywhere_run_the_same(budget_ns):
     assert [code for code, *_ in every[0]].count("F-DIV-ZERO") in (10, 0)   # each scan, unless cut before
 
 
-# A stored AND whose left operand is a BOOL read from a variable: tested first (`X if not X
-# else X & R`).  A BOOL set from Python may hold 0 or 1: the value and its type are `&`'s.
+# A stored AND whose left operand is a BOOL read from a variable: tested first (`X and X & R`;
+# an FB input `X if not X else X & R`).  A BOOL set from Python may hold 0 or 1: the value and
+# its type are `&`'s.
 HELD = """
 PROGRAM Main
 VAR Flag : BOOL; Other : BOOL; X : LREAL; WithNot, WithTest, Compared : BOOL; END_VAR

@@ -41,7 +41,7 @@ from .cost import CostModel, picoseconds
 from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
 from .optimise import (aliases, branches, chains, charges, cse, elements, fastpath, fold, gather, halves, kernels, loops,
-                       pivots, ranges, reads, reuse, scalars, seal, shortcut, stores, sums, unguard, unroll)
+                       pivots, ranges, reads, reuse, scalars, seal, shortcut, stores, sums, threads, unguard, unroll)
 from .optimise import branched, may_reuse
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, assigned_in, kinds, once, walk
@@ -139,8 +139,13 @@ class BodyCompiler(ExprCompiler):
             aliases.drop_unused(o.lines, start)
             if self.method and self.unit.guard_statements:   # (a line without `try` then cannot raise)
                 aliases.drop_unread(o.lines, start, self.opt.deferred)
-        if self.opt.charges and charge and self.unit.guard_statements:
+        if self.opt.early and self.method:
+            aliases.store_early(o.lines, start)
+        merging = self.opt.charges and charge and self.unit.guard_statements
+        if merging:
             charges.merge(o.lines, start)
+        if self.opt.threads and threads.thread(o.lines, start) and merging:
+            charges.merge(o.lines, start)       # (the charges each path now runs in a row)
         if self.opt.settle and charge:
             charges.settle(o.lines, start)
         if self.opt.seal:
@@ -534,7 +539,7 @@ class BodyCompiler(ExprCompiler):
         if self.region is not None:
             self.region.whole = s.value
         value = self.convert(self.expr(s.value), self.ty(s.value), t, s.value)
-        self.out.line(target.store(shortcut.stored(self, s.value, value)))
+        self.out.line(target.store(shortcut.stored(self, s.value, value, kept=True)))
         if self.reuse is not None:
             self.reuse.stored(s.target, target.read(), value)
 

@@ -198,6 +198,13 @@ states bit for bit:
   MC_Reset) that is the only code of the program writing its instance runs under one test,
   `X or <the rest note does not hold>`, X the BOOL its Execute is given: at rest it would
   store what the instance holds (constants, the same AXIS_REF, FALSE) and call nothing.
+* `threads` (threads.py): an IF chain whose first test reads a local alone (`IF NewFault = 0`)
+  right after an IF chain every path of which tells that test's answer (a branch set the
+  local to a literal, or tested it) is not tested: each path runs the branch it would take
+  at its end (jump threading); SP_Controller's axes, five tests a scan fewer.
+* `early` (aliases.py `store_early`): a method's cached variable set once at the top level
+  before any line names it is stored into its slot by that line, not loaded at the start
+  and stored back at the end (SP_Controller's SyncExecute, StopExecute, ResetExecute).
 
 None of them changes the NJ execution-time charges (cost.py): those come from
 the ST text, and an unrolled loop charges what the loop charged, at the same
@@ -336,6 +343,8 @@ class Optimisations:
     loops: bool = True
     elements: bool = True
     dormant: bool = True
+    threads: bool = True
+    early: bool = True
 
     @classmethod
     def none(cls) -> "Optimisations":

@@ -31,6 +31,7 @@ from collections import Counter
 from ... import ast
 from ..scope import _nodes, listed, of_classes, root_name
 from . import branches
+from .charges import _may_set
 
 _ALIAS_LINE = re.compile(r"(v_\w+) = (?:self|_G)\.(v_\w+)")
 
@@ -133,6 +134,68 @@ def drop_unread(lines: list[str], start: int, deferred: bool = False) -> None:
 
 
 _CHECK = "        if _ctx.budget < _spent: "
+
+
+def store_early(lines: list[str], start: int) -> None:
+    """A method's cached variable that the body sets once, at the top level of its `try`,
+    before any line names it, is stored into its slot by that line (`self.v_X = v_X = ...`),
+    not loaded at the start and stored back at the end: until that line the slot holds what
+    the load would have read (a fault, an overrun or a RETURN before it stores back that same
+    value), after it the slot holds what the local does (no line sets the local again), and
+    no code but the body's reads the slot while the body runs (scope.py caches nothing a
+    reference, a METHOD or THIS can reach).  (SP_Controller's SyncExecute, StopExecute and
+    ResetExecute: set after the motion calls that may raise, one load a scan each fewer.)"""
+    try:
+        body = lines.index("    try:", start)
+        end = lines.index("    finally:", body)
+    except ValueError:
+        return
+    loads = {}
+    for i in range(start + 1, body):
+        match = _LOAD_LINE.fullmatch(lines[i])
+        if match is not None and lines[i] == f"    {match.group(2)} = self.{match.group(2)}":
+            loads[match.group(2)] = i
+    stores = {line: i for i in range(end + 1, len(lines)) if (line := lines[i]).startswith("        self.v_")}
+    flat = "\n".join(lines[body + 1:end])
+    moved = {}
+    for name, load in loads.items():
+        back = stores.get(f"        self.{name} = {name}")
+        if back is None:
+            continue            # (a variable the body only reads: loaded, never stored back)
+        # The lines that name it, the first of which must be its one set.
+        naming = sorted({body + 1 + flat.count("\n", 0, at) for at in _occurrences(flat, name)})
+        if not naming or not lines[naming[0]].startswith(f"        {name} = "):
+            continue
+        first = naming[0]
+        if _occurrences(lines[first][len(f"        {name} = "):], name) \
+                or any(_may_set(name, lines[i]) for i in naming[1:]):
+            continue
+        moved[first] = f"        self.{name} = {lines[first].lstrip()}"
+        moved[load] = moved[back] = None
+    for i, line in moved.items():
+        lines[i] = line
+    if moved:
+        lines[start:] = [line for line in lines[start:] if line is not None]
+
+
+def _occurrences(text: str, name: str) -> list[int]:
+    """Where the Python name `name` stands whole in `text`: not after a dot or a word
+    character, not before a word character (found by `str.find`, no pattern per name)."""
+    found, at, size = [], text.find(name), len(name)
+    while at >= 0:
+        after = at + size
+        if (at == 0 or not _NAME_BEFORE(text[at - 1])) and (after == len(text) or not _NAME_AFTER(text[after])):
+            found.append(at)
+        at = text.find(name, after)
+    return found
+
+
+def _NAME_AFTER(char: str) -> bool:
+    return char.isalnum() or char == "_"
+
+
+def _NAME_BEFORE(char: str) -> bool:
+    return char.isalnum() or char in "_."
 
 
 def late_loads(compiler, body) -> dict[int, list[str]]:

@@ -22,8 +22,9 @@ nothing (SP_InverseKinematics' `LegInStroke[Leg] := Position[Leg] >= 0.0 AND Pos
 <= Stroke`: no `&` of two bools, which goes through the number protocol).
 
 A BOOL stored from a comparison of numbers (or an AND/OR of such) is tested for a jump,
-`True if ... else False`, and a stored `X AND R` of a BOOL variable X is `X if not X else
-X & R` (`stored`: CPython 3.11 specialises a comparison only where a jump follows it).
+`True if ... else False`, and a stored `X AND R` of a BOOL variable X is `X and X & R` (an
+FB input: `X if not X else X & R`; `stored`: CPython 3.11 specialises a comparison only
+where a jump follows it).
 """
 
 from __future__ import annotations
@@ -67,7 +68,7 @@ def of_comparisons(compiler, e, left: str, right: str) -> str | None:
     return f"({left} {_WORDS[e.op][1]} {right})"
 
 
-def stored(compiler, node, code: str) -> str:
+def stored(compiler, node, code: str, kept: bool = False) -> str:
     """The value `code` of `node`, a BOOL about to be stored: a comparison of numbers (or an
     AND/OR of such) as `True if code else False`.  Its value is a Python bool either way (a
     comparison of ints, floats and bools is one, and `and`/`or`/`&`/`|` of two bools is one of
@@ -80,7 +81,10 @@ def stored(compiler, node, code: str) -> str:
     a false X (FALSE or 0) is what `X & R` gives then (`False & b` is False, `0 & b` is 0),
     and leaving R out reads, stores and raises nothing; `&` of two values goes through the
     number protocol, the test of X is a jump (SP_Controller's six edges `Start AND NOT
-    Previous`, its MC_Stop's `StopExecute AND NOT ErrorStop`)."""
+    Previous`, its MC_Stop's `StopExecute AND NOT ErrorStop`).  Stored into a variable
+    (`kept`), it is `X and X & R`: Python's `and` is that test (X when X is false, else the
+    right operand), with one read of X fewer where X is false (the edges of a held input);
+    an FB input keeps the conditional, which dormant.py reads."""
     if type(node) is not ast.Binary or (node.op not in _COMPARISONS and node.op not in _WORDS) \
             or not compiler.opt.shortcut:
         return code         # (most stores: asked first, it is cheaper)
@@ -92,7 +96,7 @@ def stored(compiler, node, code: str) -> str:
         from . import branches      # (see of_comparisons)
 
         if branches.expr_cannot_fault(compiler, node.right, parts[1]):
-            return f"({parts[0]} if not {parts[0]} else {code})"
+            return f"({parts[0]} and {code})" if kept else f"({parts[0]} if not {parts[0]} else {code})"
     return code         # (`sets`' `x in (...)`: CPython 3.11 specialises no `in`)
 
 
