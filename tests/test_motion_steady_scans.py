@@ -10,9 +10,14 @@ writing observer, another exception.
 
 from __future__ import annotations
 
+import math
+import sys
+
 import pytest
 
+from st_runtime.api import load_sources
 from st_runtime.faults import STFault
+from st_runtime.motion import MotionTask
 from st_runtime.motion.axis import Axis
 
 from test_motion_stream_epoch import make_plc, state
@@ -239,3 +244,64 @@ def test_a_run_without_observers_ends_as_the_general_loop(chunks, setup, fused, 
     assert [(f.code, f.pou, f.line, f.scan) for f in controller.faults] == \
         [(f.code, f.pou, f.line, f.scan) for f in reference.faults]
     assert list(controller.task_times["Primary"]) == list(reference.task_times["Primary"])
+
+
+# A stream whose every step is one period's reach of an axis as fast as a float allows: the
+# velocity overflows to +inf from the first step on (validated: max_velocity is finite).
+_FASTEST = sys.float_info.max
+_DT = 1_000_000 * 1e-9                           # the period of "1ms", as the controller makes dt
+_SLACK = _FASTEST * _DT * (1 + 1e-9)             # Axis._set_period's step slack
+_OVERFLOWING_STEP = 1.797693135e305              # within the slack, over the largest velocity
+
+
+def _overflowing_stream(steady: bool, general: bool = False) -> tuple[list, int]:
+    """(Cmd.Vel, Cmd.AccDec) after each of 8 scans of the overflowing stream, and the scans
+    the steady loop ran; `general`: the motion processing as Axis.step and the writer."""
+    task = MotionTask.from_tables([{"name": "Ax", "max_velocity": _FASTEST}])
+    program = f"""
+    PROGRAM Main
+    VAR Power : MC_Power; Sync : MC_SyncMoveAbsolute; Target : LREAL; END_VAR
+    Power(Axis := Ax, Enable := TRUE);
+    IF Power.Status THEN Target := Target + {_OVERFLOWING_STEP!r}; END_IF;
+    Sync(Axis := Ax, Execute := Power.Status, Position := Target, BufferMode := _mcAborting);
+    END_PROGRAM
+    """
+    project = load_sources({"axes.st": task.globals_source(), "main.st": program}, dialect="nj")
+    assert not [d for d in project.diagnostics if d.is_error]
+    plc = project.controller(period="1ms")
+    task.install(plc.controller)
+    plc.add_program("Main")
+    controller = plc.controller
+    if general:
+        def after_programs(ctx):
+            for writer in task._writers:
+                Axis.step(writer.axis, ctx.period_ns * 1e-9)
+                writer.write()
+            task._published = False
+        controller.after_hooks[:] = [after_programs]
+    fused = []
+    if steady:
+        loop = task._steady_scans
+        task._steady_scans = lambda controller, cycles: fused.append(loop(controller, cycles)) or fused[-1]
+    else:
+        controller.steady_scans = None
+    cmd = controller.compiled.globals.v_AX.v_CMD
+    shown = []
+    controller.add_observer(lambda c: shown.append((cmd.v_VEL, cmd.v_ACCDEC)), reads_only=True)
+    plc.run(8)
+    return shown, sum(fused)
+
+
+def test_a_stream_of_infinite_velocity_keeps_accdec_zero_while_the_velocity_holds():
+    """Axis.step's AccDec is 0.0 for equal velocities, +inf == +inf included (OMRON's AccDec
+    is 0 at a constant velocity, W507 p.6-28).  The stream step tests the signs first and
+    takes (new - old) / dt for two positive velocities, NaN for two infinite ones: an axis
+    whose step's velocity can overflow never takes it (Axis._set_period)."""
+    assert _OVERFLOWING_STEP <= _SLACK and _OVERFLOWING_STEP / _DT == math.inf
+    got, fused = _overflowing_stream(steady=True)
+    assert fused >= 6
+    # by hand: scan 1 powers the axis, scan 2 starts the stream from rest (+inf, +inf), every
+    # later scan repeats the velocity +inf
+    assert got[1] == (math.inf, math.inf)
+    assert got[2:] == [(math.inf, 0.0)] * 6
+    assert got == _overflowing_stream(steady=False)[0] == _overflowing_stream(steady=False, general=True)[0]

@@ -55,6 +55,13 @@ _LIMIT_SLACK = 1e-9
 _ARRIVAL_EPS = 1e-12
 
 
+def _bounded_step_velocity(slack: float, dt: float) -> bool:
+    """Whether no step of at most `slack` in `dt` s is an infinite velocity: the motion task's
+    stream step takes only such axes (its AccDec relies on it: motion_task._LANE_STEP).  A `dt`
+    of 0 divides by zero in the step itself first, as before; a negative one never streams."""
+    return dt == 0.0 or not math.isinf(slack / dt)
+
+
 def _discrete_stopping_speed(deceleration: float, remaining: float, dt: float) -> float:
     """Highest speed for this scan from which steps of `deceleration * dt` less
     per scan still stop within `remaining`.
@@ -381,7 +388,7 @@ class Axis:
         self._step_slack = self._max_step * (1 + _LIMIT_SLACK)
         tau = cfg.servo_lag
         self._lag_gain = 1.0 if tau == 0 else 1.0 - math.exp(-dt / tau)
-        self._stream_dt = dt if self._lag_gain == 1.0 else None
+        self._stream_dt = dt if self._lag_gain == 1.0 and _bounded_step_velocity(self._step_slack, dt) else None
 
     # ------------------------------------------------------------ internals
     def _check_can_move(self) -> None:

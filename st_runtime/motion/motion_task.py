@@ -65,9 +65,12 @@ _ERRORSTOP = AxisState.ERRORSTOP
 # changes (neither velocity is a NaN then: the target passed the guard).  While the
 # direction holds, Axis.step's `magnitude if |new_vel| > |old_vel| else -magnitude`, with
 # magnitude = |new_vel - old_vel| / dt, is (new_vel - old_vel) / dt when both are positive
-# and (old_vel - new_vel) / dt when both are negative, bit for bit: the two differ (the
-# first test), so their difference is not zero, and IEEE rounding is symmetric in sign
-# (fl(b - a) = -fl(a - b), fl(-x / dt) = -fl(x / dt)): no call of abs(), no negation.
+# and (old_vel - new_vel) / dt when both are negative, bit for bit: where the two differ,
+# IEEE rounding is symmetric in sign (fl(b - a) = -fl(a - b), fl(-x / dt) = -fl(x / dt)), and
+# where they are equal the difference is +0.0 (x - x for a finite x), Axis.step's 0.0 for
+# equal velocities: new_vel is finite, |delta| <= slack and slack / dt finite (an axis has a
+# `_stream_dt` only then, Axis._set_period).  So the signs are tested first, the equality only
+# after them (a stream's velocity seldom repeats): no call of abs(), no negation.
 _LANE_STEP = """\
 {command_before}if {axis}._stream_epoch is not epoch:
 {command_inside}    if not ({command} is not None and {command}.kind == "sync" and (powered := {axis}.powered)
@@ -99,12 +102,12 @@ else:
     {cmd}.v_POS = {act}.v_POS = {axis}.cmd_pos = {axis}.act_pos = target
     old_vel = {axis}.cmd_vel
     {act}.v_VEL = {axis}.act_vel = {cmd}.v_VEL = {axis}.cmd_vel = new_vel = delta / dt
-    if new_vel == old_vel:
-        {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
-    elif new_vel > 0.0 and old_vel > 0.0:
+    if new_vel > 0.0 and old_vel > 0.0:
         {cmd}.v_ACCDEC = {axis}.cmd_accdec = (new_vel - old_vel) / dt
     elif new_vel < 0.0 and old_vel < 0.0:
         {cmd}.v_ACCDEC = {axis}.cmd_accdec = (old_vel - new_vel) / dt
+    elif new_vel == old_vel:
+        {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
     else:
         magnitude = abs(new_vel - old_vel) / dt
         if (new_vel if new_vel >= 0.0 else -new_vel) > (old_vel if old_vel >= 0.0 else -old_vel):
