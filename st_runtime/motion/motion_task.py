@@ -95,7 +95,7 @@ _LANE_STEP = """\
                 {cmd}.v_ACCDEC = {axis}.cmd_accdec = -magnitude
 {flags}
 elif not ({short_test}
-          and {soft_min} <= target <= {soft_max}):
+          and target >= {soft_min} and target <= {soft_max}):
     {axis}.step(dt)
     {writer}.write()
 else:
@@ -159,9 +159,12 @@ _LANE_CONSTANTS = ("slack{n}, soft_min{n}, soft_max{n} = axis{n}._step_slack, ax
 
 # The short step's test of the data, as the `after` hook and `process` make it and as the
 # steady loop does: -slack <= delta <= slack is |delta| <= slack for every float (a NaN or an
-# infinity fails both), without the call of abs() and the float it makes.
+# infinity fails both), without the call of abs() and the float it makes.  Each bound (and
+# each soft limit, `_LANE_STEP`) is a comparison of its own, not a chain: the same answer for
+# every float (a comparison has no side effect, a NaN fails both), and a chained comparison
+# spends a SWAP and a COPY keeping its middle operand.
 _SHORT_TEST = "abs(delta := (target := command.target) - {axis}.cmd_pos) <= {axis}._step_slack"
-_STEADY_SHORT_TEST = "floor{n} <= (delta := (target := command{n}.target) - {axis}.cmd_pos) <= slack{n}"
+_STEADY_SHORT_TEST = "(delta := (target := command{n}.target) - {axis}.cmd_pos) <= slack{n} and delta >= floor{n}"
 
 
 def _lane_step(parts: dict, **names) -> str:
