@@ -19,6 +19,7 @@ from st_runtime.api import load_sources
 from st_runtime.faults import STFault
 from st_runtime.motion import MotionTask
 from st_runtime.motion.axis import Axis
+from st_runtime.motion.error_ids import ErrorID
 
 from test_motion_stream_epoch import make_plc, state
 
@@ -254,16 +255,19 @@ _SLACK = _FASTEST * _DT * (1 + 1e-9)             # Axis._set_period's step slack
 _OVERFLOWING_STEP = 1.797693135e305              # within the slack, over the largest velocity
 
 
-def _overflowing_stream(steady: bool, general: bool = False) -> tuple[list, int]:
-    """(Cmd.Vel, Cmd.AccDec) after each of 8 scans of the overflowing stream, and the scans
-    the steady loop ran; `general`: the motion processing as Axis.step and the writer."""
-    task = MotionTask.from_tables([{"name": "Ax", "max_velocity": _FASTEST}])
+def _stream(axis: dict, step: str, steady: bool, general: bool = False, scans: int = 8) -> tuple[list, int]:
+    """(Cmd.Pos, Cmd.Vel, Cmd.AccDec, MFaultLvl.Code) after each scan of a sync stream on the
+    axis of table `axis` whose target moves by `step` a scan from 0 (powered in scan 1, the
+    stream from scan 2), and the scans the steady loop ran; `general`: the motion processing
+    as Axis.step and the writer."""
+    task = MotionTask.from_tables([{"name": "Ax", **axis}])
     program = f"""
     PROGRAM Main
     VAR Power : MC_Power; Sync : MC_SyncMoveAbsolute; Target : LREAL; END_VAR
     Power(Axis := Ax, Enable := TRUE);
-    IF Power.Status THEN Target := Target + {_OVERFLOWING_STEP!r}; END_IF;
-    Sync(Axis := Ax, Execute := Power.Status, Position := Target, BufferMode := _mcAborting);
+    IF Power.Status THEN Target := Target + {step}; END_IF;
+    Sync(Axis := Ax, Execute := Power.Status AND NOT Ax.Status.ErrorStop, Position := Target,
+         BufferMode := _mcAborting);
     END_PROGRAM
     """
     project = load_sources({"axes.st": task.globals_source(), "main.st": program}, dialect="nj")
@@ -285,11 +289,20 @@ def _overflowing_stream(steady: bool, general: bool = False) -> tuple[list, int]
         task._steady_scans = lambda controller, cycles: fused.append(loop(controller, cycles)) or fused[-1]
     else:
         controller.steady_scans = None
-    cmd = controller.compiled.globals.v_AX.v_CMD
+    ref = controller.compiled.globals.v_AX
     shown = []
-    controller.add_observer(lambda c: shown.append((cmd.v_VEL, cmd.v_ACCDEC)), reads_only=True)
-    plc.run(8)
+    controller.add_observer(lambda c: shown.append((ref.v_CMD.v_POS, ref.v_CMD.v_VEL, ref.v_CMD.v_ACCDEC,
+                                                    ref.v_MFAULTLVL.v_CODE)), reads_only=True)
+    plc.run(scans)
     return shown, sum(fused)
+
+
+def _same_in_all_three_loops(axis: dict, step: str, scans: int = 8) -> list:
+    """The stream's scans in the steady loop, held to the general loop and to Axis.step."""
+    got, fused = _stream(axis, step, True, scans=scans)
+    assert fused == scans - 1
+    assert got == _stream(axis, step, False, scans=scans)[0] == _stream(axis, step, False, True, scans)[0]
+    return got
 
 
 def test_a_stream_of_infinite_velocity_keeps_accdec_zero_while_the_velocity_holds():
@@ -298,10 +311,20 @@ def test_a_stream_of_infinite_velocity_keeps_accdec_zero_while_the_velocity_hold
     takes (new - old) / dt for two positive velocities, NaN for two infinite ones: an axis
     whose step's velocity can overflow never takes it (Axis._set_period)."""
     assert _OVERFLOWING_STEP <= _SLACK and _OVERFLOWING_STEP / _DT == math.inf
-    got, fused = _overflowing_stream(steady=True)
-    assert fused >= 6
+    got = _same_in_all_three_loops({"max_velocity": _FASTEST}, repr(_OVERFLOWING_STEP))
     # by hand: scan 1 powers the axis, scan 2 starts the stream from rest (+inf, +inf), every
     # later scan repeats the velocity +inf
-    assert got[1] == (math.inf, math.inf)
-    assert got[2:] == [(math.inf, 0.0)] * 6
-    assert got == _overflowing_stream(steady=False)[0] == _overflowing_stream(steady=False, general=True)[0]
+    assert [shown[1:3] for shown in got[1:]] == [(math.inf, math.inf)] + [(math.inf, 0.0)] * 6
+
+
+def test_a_stream_that_passes_the_lower_soft_limit_in_a_steady_scan():
+    """The steady loop's stream test holds the target to both soft limits: a target 0.25 mm
+    below the lower one (16#6441, W507's software limit error) stops the axis at the last
+    command within it, as Axis.step does."""
+    got = _same_in_all_three_loops({"max_velocity": 1000.0, "soft_limit_min": -5.0, "soft_limit_max": 50.0},
+                                   "-0.25", scans=24)
+    # by hand: the command is -0.25 * (k - 1) after scan k (exact in binary) until -5.0 in
+    # scan 21; scan 22's -5.25 is refused and the axis holds -5.0 in ErrorStop
+    assert [shown[0] for shown in got[:21]] == [-0.25 * k for k in range(21)]
+    assert [shown[3] for shown in got] == [0] * 21 + [int(ErrorID.TARGET_NEGATIVE_SOFT_LIMIT)] * 3
+    assert [shown[0] for shown in got[21:]] == [-5.0] * 3
