@@ -212,6 +212,49 @@ def test_an_observer_that_adds_a_hook_ends_the_steady_loop():
     assert calls[:1] == [151] and len(calls) == 2 * 250
 
 
+class _Counting:
+    """A program of Python that notes the scans it runs in."""
+
+    def __init__(self):
+        self.scans = []
+
+    def execute(self, ctx):
+        self.scans.append(ctx.scan)
+
+
+def _counted_runs(add_counter) -> list:
+    """The scans a counting program ran in, in the runs of `assert_same_runs([400])` (the steady
+    loop's, the general loop's); `add_counter(plc, program)` gives it to the controller."""
+    counters = []
+
+    def setup(plc, main, task):
+        counters.append(_Counting())
+        add_counter(plc, counters[-1])
+
+    assert_same_runs([400], setup, steady_at_least=140)
+    return [counter.scans for counter in counters]
+
+
+def test_a_task_of_two_programs_runs_both_in_every_steady_scan():
+    """The steady loop of a task of one program keeps it in locals; a task of two runs both."""
+    def second(plc, program):
+        plc.controller.tasks[0].programs.append(("Counter", program))
+
+    assert _counted_runs(second) == [list(range(1, 401))] * 2
+
+
+def test_an_observer_that_adds_a_program_ends_the_one_program_loop():
+    """An observer that breaks its word and adds a program to the task: the next scan runs it,
+    as in the general loop (the end of a scan with observers compares the programs)."""
+    def adding(plc, program):
+        def observer(controller):
+            if controller.scan_count == 150:
+                controller.tasks[0].programs.append(("Counter", program))
+        plc.controller.add_observer(observer, reads_only=True)
+
+    assert _counted_runs(adding) == [list(range(151, 401))] * 2
+
+
 def test_a_writing_observer_ends_the_steady_loop_at_once():
     def setup(plc, main, task):
         def writing(controller):
