@@ -371,3 +371,12 @@ def test_a_stream_that_passes_the_lower_soft_limit_in_a_steady_scan():
     assert [shown[0] for shown in got[:21]] == [-0.25 * k for k in range(21)]
     assert [shown[3] for shown in got] == [0] * 21 + [int(ErrorID.TARGET_NEGATIVE_SOFT_LIMIT)] * 3
     assert [shown[0] for shown in got[21:]] == [-5.0] * 3
+
+
+def test_an_axis_keeps_every_attribute_in_its_slots():
+    """Axis declares its attributes as slots (the lanes and the FBs' hot paths load and store
+    them every scan); an attribute left out would fall into the instance's `__dict__`, where
+    every access takes the slower path.  After the stream program (powers, streams, VelLimit,
+    ErrorStop, resets, MC_Stop, power off) none is there."""
+    _, _, controller = observed_run([400], True)
+    assert [vars(axis) for axis in controller.motion.axes] == [{}, {}]

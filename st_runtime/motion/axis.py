@@ -122,6 +122,15 @@ class MotionCommand:
 class Axis:
     """One simulated axis.  Positions in command units, velocities per second."""
 
+    # Slots: the motion task's lanes and the FBs' hot paths read and store these every scan
+    # (CPython 3.11 specialises a slot's load and store to a fixed offset, no values array to
+    # check); `__dict__` keeps any other attribute (a test's stand-in `step`, say) as before.
+    __slots__ = ("config", "axis_no", "state", "power_requested", "powered", "homed", "cmd_pos", "act_pos",
+                 "cmd_vel", "cmd_accdec", "act_vel", "fault_code", "observation_code", "vel_limit",
+                 "in_pos_waiting", "_in_pos_wait_s", "command", "_soft_min", "_soft_max", "_following_limit",
+                 "_following_warning", "_dt", "_max_step", "_step_slack", "_lag_gain", "_stream_dt",
+                 "_stream_epoch", "_in_position_range", "_in_position_floor", "__dict__")
+
     def __init__(self, config: AxisConfig, axis_no: int = 0):
         self.config = config
         self.axis_no = axis_no
