@@ -299,14 +299,16 @@ _OVERFLOWING_STEP = 1.797693135e305              # within the slack, over the la
 
 
 def _stream(axis: dict, step: str, steady: bool, general: bool = False, scans: int = 8) -> tuple[list, int]:
-    """(Cmd.Pos, Cmd.Vel, Cmd.AccDec, MFaultLvl.Code) after each scan of a sync stream on the
-    axis of table `axis` whose target moves by `step` a scan from 0 (powered in scan 1, the
-    stream from scan 2), and the scans the steady loop ran; `general`: the motion processing
-    as Axis.step and the writer."""
+    """(Cmd.Pos, Cmd.Vel, Cmd.AccDec, MFaultLvl.Code, Details.VelLimit) after each scan of a
+    sync stream on the axis of table `axis` whose target moves by `step` (an LREAL expression
+    that may read the scan's number `Scan`) a scan from 0 (powered in scan 1, the stream from
+    scan 2), and the scans the steady loop ran; `general`: the motion processing as Axis.step
+    and the writer."""
     task = MotionTask.from_tables([{"name": "Ax", **axis}])
     program = f"""
     PROGRAM Main
-    VAR Power : MC_Power; Sync : MC_SyncMoveAbsolute; Target : LREAL; END_VAR
+    VAR Power : MC_Power; Sync : MC_SyncMoveAbsolute; Target : LREAL; Scan : DINT; END_VAR
+    Scan := Scan + 1;
     Power(Axis := Ax, Enable := TRUE);
     IF Power.Status THEN Target := Target + {step}; END_IF;
     Sync(Axis := Ax, Execute := Power.Status AND NOT Ax.Status.ErrorStop, Position := Target,
@@ -335,7 +337,8 @@ def _stream(axis: dict, step: str, steady: bool, general: bool = False, scans: i
     ref = controller.compiled.globals.v_AX
     shown = []
     controller.add_observer(lambda c: shown.append((ref.v_CMD.v_POS, ref.v_CMD.v_VEL, ref.v_CMD.v_ACCDEC,
-                                                    ref.v_MFAULTLVL.v_CODE)), reads_only=True)
+                                                    ref.v_MFAULTLVL.v_CODE, ref.v_DETAILS.v_VELLIMIT)),
+                           reads_only=True)
     plc.run(scans)
     return shown, sum(fused)
 
@@ -380,3 +383,17 @@ def test_an_axis_keeps_every_attribute_in_its_slots():
     ErrorStop, resets, MC_Stop, power off) none is there."""
     _, _, controller = observed_run([400], True)
     assert [vars(axis) for axis in controller.motion.axes] == [{}, {}]
+
+
+def test_a_stream_that_leaves_the_short_step_and_comes_back_in_steady_scans():
+    """A jump of 5 mm out of one period's reach (1 mm) in scan 10: the steps in VelLimit are
+    the axis's general step, which ends its epoch and the task's stamp, so the scan that is
+    within reach again takes the whole test and shows VelLimit FALSE (W507: Details.VelLimit
+    while the command is limited)."""
+    got = _same_in_all_three_loops({"max_velocity": 1000.0}, "SEL(Scan = 10, 0.25, 5.25)", scans=20)
+    # by hand: the command is the target 0.25 * (k - 1) until scan 9 (2.0); the target is 7.25
+    # in scan 10 and 0.25 more a scan after it, the command 1 mm a scan more: 3, 4, ..., 8 in
+    # scans 10-15 (VelLimit), the target 8.75 in scan 16, within reach
+    assert [shown[4] for shown in got] == [False] * 9 + [True] * 6 + [False] * 5
+    assert [shown[0] for shown in got[:9]] == [0.25 * k for k in range(9)]
+    assert got[15][0] == 8.75

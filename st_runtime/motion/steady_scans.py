@@ -4,7 +4,7 @@ In a `Controller.run` whose controller has the shape of the project's controller
 task's two hooks its only I/O hooks, one task every scan, observers that only read), every
 scan after the first runs the same way: the seal and the motion epoch go on, the feedback in
 is skipped (the previous scan's motion processing published the axes: `ScanContext.resumed`),
-and the motion processing is the lanes of `_LANE_STEP`.  This module writes that scan once
+and the motion processing is the lanes of `_steady_lanes`.  This module writes that scan once
 per motion task as one loop, with the lanes inline: no call of the `before` hook (which would
 return at once) nor of the `after` hook, and none of the loop's tests of what the shape
 already decides (`Controller._scans` re-reads hooks, tasks and the seal's counts each scan).
@@ -25,7 +25,7 @@ import textwrap
 
 from ..faults import ScanOverrun, StopRun, STFault
 
-# `{lanes}`: the lane step of every axis (motion_task._LANE_STEP), as the `after` hook runs it
+# `{lanes}`: the lane steps of the axes (motion_task._steady_lanes), as the `after` hook runs them
 # but for the locals `{constants}` sets once a call.
 # `task._published` and `task._continuing` stay TRUE from scan to scan, as the hooks leave
 # them in the shape; only the hooks read them, so they are stored only where an exception
