@@ -388,8 +388,8 @@ def test_an_axis_keeps_every_attribute_in_its_slots():
 def test_a_stream_that_leaves_the_short_step_and_comes_back_in_steady_scans():
     """A jump of 5 mm out of one period's reach (1 mm) in scan 10: the steps in VelLimit are
     the axis's general step, which ends its epoch and the task's stamp, so the scan that is
-    within reach again takes the whole test and shows VelLimit FALSE (W507: Details.VelLimit
-    while the command is limited)."""
+    within reach again takes the whole test and shows VelLimit FALSE (VelLimit TRUE only while
+    the command moves at the maximum velocity: W507 9-2, docs/nj501.md's evidence table)."""
     got = _same_in_all_three_loops({"max_velocity": 1000.0}, "SEL(Scan = 10, 0.25, 5.25)", scans=20)
     # by hand: the command is the target 0.25 * (k - 1) until scan 9 (2.0); the target is 7.25
     # in scan 10 and 0.25 more a scan after it, the command 1 mm a scan more: 3, 4, ..., 8 in
