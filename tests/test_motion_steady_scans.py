@@ -10,10 +10,16 @@ writing observer, another exception.
 
 from __future__ import annotations
 
+import math
+import sys
+
 import pytest
 
+from st_runtime.api import load_sources
 from st_runtime.faults import STFault
+from st_runtime.motion import MotionTask
 from st_runtime.motion.axis import Axis
+from st_runtime.motion.error_ids import ErrorID
 
 from test_motion_stream_epoch import make_plc, state
 
@@ -206,6 +212,49 @@ def test_an_observer_that_adds_a_hook_ends_the_steady_loop():
     assert calls[:1] == [151] and len(calls) == 2 * 250
 
 
+class _Counting:
+    """A program of Python that notes the scans it runs in."""
+
+    def __init__(self):
+        self.scans = []
+
+    def execute(self, ctx):
+        self.scans.append(ctx.scan)
+
+
+def _counted_runs(add_counter) -> list:
+    """The scans a counting program ran in, in the runs of `assert_same_runs([400])` (the steady
+    loop's, the general loop's); `add_counter(plc, program)` gives it to the controller."""
+    counters = []
+
+    def setup(plc, main, task):
+        counters.append(_Counting())
+        add_counter(plc, counters[-1])
+
+    assert_same_runs([400], setup, steady_at_least=140)
+    return [counter.scans for counter in counters]
+
+
+def test_a_task_of_two_programs_runs_both_in_every_steady_scan():
+    """The steady loop of a task of one program keeps it in locals; a task of two runs both."""
+    def second(plc, program):
+        plc.controller.tasks[0].programs.append(("Counter", program))
+
+    assert _counted_runs(second) == [list(range(1, 401))] * 2
+
+
+def test_an_observer_that_adds_a_program_ends_the_one_program_loop():
+    """An observer that breaks its word and adds a program to the task: the next scan runs it,
+    as in the general loop (the end of a scan with observers compares the programs)."""
+    def adding(plc, program):
+        def observer(controller):
+            if controller.scan_count == 150:
+                controller.tasks[0].programs.append(("Counter", program))
+        plc.controller.add_observer(observer, reads_only=True)
+
+    assert _counted_runs(adding) == [list(range(151, 401))] * 2
+
+
 def test_a_writing_observer_ends_the_steady_loop_at_once():
     def setup(plc, main, task):
         def writing(controller):
@@ -239,3 +288,112 @@ def test_a_run_without_observers_ends_as_the_general_loop(chunks, setup, fused, 
     assert [(f.code, f.pou, f.line, f.scan) for f in controller.faults] == \
         [(f.code, f.pou, f.line, f.scan) for f in reference.faults]
     assert list(controller.task_times["Primary"]) == list(reference.task_times["Primary"])
+
+
+# A stream whose every step is one period's reach of an axis as fast as a float allows: the
+# velocity overflows to +inf from the first step on (validated: max_velocity is finite).
+_FASTEST = sys.float_info.max
+_DT = 1_000_000 * 1e-9                           # the period of "1ms", as the controller makes dt
+_SLACK = _FASTEST * _DT * (1 + 1e-9)             # Axis._set_period's step slack
+_OVERFLOWING_STEP = 1.797693135e305              # within the slack, over the largest velocity
+
+
+def _stream(axis: dict, step: str, steady: bool, general: bool = False, scans: int = 8) -> tuple[list, int]:
+    """(Cmd.Pos, Cmd.Vel, Cmd.AccDec, MFaultLvl.Code, Details.VelLimit) after each scan of a
+    sync stream on the axis of table `axis` whose target moves by `step` (an LREAL expression
+    that may read the scan's number `Scan`) a scan from 0 (powered in scan 1, the stream from
+    scan 2), and the scans the steady loop ran; `general`: the motion processing as Axis.step
+    and the writer."""
+    task = MotionTask.from_tables([{"name": "Ax", **axis}])
+    program = f"""
+    PROGRAM Main
+    VAR Power : MC_Power; Sync : MC_SyncMoveAbsolute; Target : LREAL; Scan : DINT; END_VAR
+    Scan := Scan + 1;
+    Power(Axis := Ax, Enable := TRUE);
+    IF Power.Status THEN Target := Target + {step}; END_IF;
+    Sync(Axis := Ax, Execute := Power.Status AND NOT Ax.Status.ErrorStop, Position := Target,
+         BufferMode := _mcAborting);
+    END_PROGRAM
+    """
+    project = load_sources({"axes.st": task.globals_source(), "main.st": program}, dialect="nj")
+    assert not [d for d in project.diagnostics if d.is_error]
+    plc = project.controller(period="1ms")
+    task.install(plc.controller)
+    plc.add_program("Main")
+    controller = plc.controller
+    if general:
+        def after_programs(ctx):
+            for writer in task._writers:
+                Axis.step(writer.axis, ctx.period_ns * 1e-9)
+                writer.write()
+            task._published = False
+        controller.after_hooks[:] = [after_programs]
+    fused = []
+    if steady:
+        loop = task._steady_scans
+        task._steady_scans = lambda controller, cycles: fused.append(loop(controller, cycles)) or fused[-1]
+    else:
+        controller.steady_scans = None
+    ref = controller.compiled.globals.v_AX
+    shown = []
+    controller.add_observer(lambda c: shown.append((ref.v_CMD.v_POS, ref.v_CMD.v_VEL, ref.v_CMD.v_ACCDEC,
+                                                    ref.v_MFAULTLVL.v_CODE, ref.v_DETAILS.v_VELLIMIT)),
+                           reads_only=True)
+    plc.run(scans)
+    return shown, sum(fused)
+
+
+def _same_in_all_three_loops(axis: dict, step: str, scans: int = 8) -> list:
+    """The stream's scans in the steady loop, held to the general loop and to Axis.step."""
+    got, fused = _stream(axis, step, True, scans=scans)
+    assert fused == scans - 1
+    assert got == _stream(axis, step, False, scans=scans)[0] == _stream(axis, step, False, True, scans)[0]
+    return got
+
+
+def test_a_stream_of_infinite_velocity_keeps_accdec_zero_while_the_velocity_holds():
+    """Axis.step's AccDec is 0.0 for equal velocities, +inf == +inf included (OMRON's AccDec
+    is 0 at a constant velocity, W507 p.6-28).  The stream step tests the signs first and
+    takes (new - old) / dt for two positive velocities, NaN for two infinite ones: an axis
+    whose step's velocity can overflow never takes it (Axis._set_period)."""
+    assert _OVERFLOWING_STEP <= _SLACK and _OVERFLOWING_STEP / _DT == math.inf
+    got = _same_in_all_three_loops({"max_velocity": _FASTEST}, repr(_OVERFLOWING_STEP))
+    # by hand: scan 1 powers the axis, scan 2 starts the stream from rest (+inf, +inf), every
+    # later scan repeats the velocity +inf
+    assert [shown[1:3] for shown in got[1:]] == [(math.inf, math.inf)] + [(math.inf, 0.0)] * 6
+
+
+def test_a_stream_that_passes_the_lower_soft_limit_in_a_steady_scan():
+    """The steady loop's stream test holds the target to both soft limits: a target 0.25 mm
+    below the lower one (16#6441, W507's software limit error) stops the axis at the last
+    command within it, as Axis.step does."""
+    got = _same_in_all_three_loops({"max_velocity": 1000.0, "soft_limit_min": -5.0, "soft_limit_max": 50.0},
+                                   "-0.25", scans=24)
+    # by hand: the command is -0.25 * (k - 1) after scan k (exact in binary) until -5.0 in
+    # scan 21; scan 22's -5.25 is refused and the axis holds -5.0 in ErrorStop
+    assert [shown[0] for shown in got[:21]] == [-0.25 * k for k in range(21)]
+    assert [shown[3] for shown in got] == [0] * 21 + [int(ErrorID.TARGET_NEGATIVE_SOFT_LIMIT)] * 3
+    assert [shown[0] for shown in got[21:]] == [-5.0] * 3
+
+
+def test_an_axis_keeps_every_attribute_in_its_slots():
+    """Axis declares its attributes as slots (the lanes and the FBs' hot paths load and store
+    them every scan); an attribute left out would fall into the instance's `__dict__`, where
+    every access takes the slower path.  After the stream program (powers, streams, VelLimit,
+    ErrorStop, resets, MC_Stop, power off) none is there."""
+    _, _, controller = observed_run([400], True)
+    assert [vars(axis) for axis in controller.motion.axes] == [{}, {}]
+
+
+def test_a_stream_that_leaves_the_short_step_and_comes_back_in_steady_scans():
+    """A jump of 5 mm out of one period's reach (1 mm) in scan 10: the steps in VelLimit are
+    the axis's general step, which ends its epoch and the task's stamp, so the scan that is
+    within reach again takes the whole test and shows VelLimit FALSE (VelLimit TRUE only while
+    the command moves at the maximum velocity: W507 9-2, docs/nj501.md's evidence table)."""
+    got = _same_in_all_three_loops({"max_velocity": 1000.0}, "SEL(Scan = 10, 0.25, 5.25)", scans=20)
+    # by hand: the command is the target 0.25 * (k - 1) until scan 9 (2.0); the target is 7.25
+    # in scan 10 and 0.25 more a scan after it, the command 1 mm a scan more: 3, 4, ..., 8 in
+    # scans 10-15 (VelLimit), the target 8.75 in scan 16, within reach
+    assert [shown[4] for shown in got] == [False] * 9 + [True] * 6 + [False] * 5
+    assert [shown[0] for shown in got[:9]] == [0.25 * k for k in range(9)]
+    assert got[15][0] == 8.75

@@ -55,6 +55,13 @@ _LIMIT_SLACK = 1e-9
 _ARRIVAL_EPS = 1e-12
 
 
+def _bounded_step_velocity(slack: float, dt: float) -> bool:
+    """Whether no step of at most `slack` in `dt` s is an infinite velocity: the motion task's
+    stream step takes only such axes (its AccDec relies on it: motion_task._LANE_SHORT).  A `dt`
+    of 0 divides by zero in the step itself first, as before; a negative one never streams."""
+    return dt == 0.0 or not math.isinf(slack / dt)
+
+
 def _discrete_stopping_speed(deceleration: float, remaining: float, dt: float) -> float:
     """Highest speed for this scan from which steps of `deceleration * dt` less
     per scan still stop within `remaining`.
@@ -112,8 +119,28 @@ class MotionCommand:
     reached: bool = False   # move: the command position has arrived at the target
 
 
+class StreamStamp:
+    """The epoch in which every axis of a motion task took a sync stream's step, while none has
+    been changed since but by such a step (else None): one test a scan instead of one an axis
+    (`motion_task._STEADY_LANES`).  Every end of an axis's epoch ends it too."""
+
+    __slots__ = ("epoch",)
+
+    def __init__(self):
+        self.epoch = None
+
+
 class Axis:
     """One simulated axis.  Positions in command units, velocities per second."""
+
+    # Slots: the motion task's lanes and the FBs' hot paths read and store these every scan
+    # (CPython 3.11 specialises a slot's load and store to a fixed offset, no values array to
+    # check); `__dict__` keeps any other attribute (a test's stand-in `step`, say) as before.
+    __slots__ = ("config", "axis_no", "state", "power_requested", "powered", "homed", "cmd_pos", "act_pos",
+                 "cmd_vel", "cmd_accdec", "act_vel", "fault_code", "observation_code", "vel_limit",
+                 "in_pos_waiting", "_in_pos_wait_s", "command", "_soft_min", "_soft_max", "_following_limit",
+                 "_following_warning", "_dt", "_max_step", "_step_slack", "_lag_gain", "_stream_dt",
+                 "_streamed_in", "_task_stamp", "_in_position_range", "_in_position_floor", "__dict__")
 
     def __init__(self, config: AxisConfig, axis_no: int = 0):
         self.config = config
@@ -144,8 +171,9 @@ class Axis:
         self._stream_dt = None  # _dt for an ideal axis (no servo lag), else None: MotionTask.process
         # The motion task's epoch in which this axis last took a sync stream's step, while
         # nothing has changed it since but that step's data (MotionTask.process); every
-        # method that changes the axis ends it (`_changed`).
-        self._stream_epoch = None
+        # method that changes the axis ends it (`_changed`), and with it the task's stamp.
+        self._streamed_in = None
+        self._task_stamp = StreamStamp()     # the axis's own until a motion task shares one
         # MC_SyncMoveAbsolute's InPosition window (its hot path), made once: no negation a call.
         self._in_position_range = config.in_position_range
         self._in_position_floor = -config.in_position_range
@@ -177,9 +205,22 @@ class Axis:
         return not (busy or self.in_pos_waiting or self.decelerating_for_error)
 
     # ------------------------------------------------ requests from FBs
+    @property
+    def _stream_epoch(self):
+        """The motion task's epoch in which this axis last took a sync stream's step (None
+        once anything else may have changed it)."""
+        return self._streamed_in
+
+    @_stream_epoch.setter
+    def _stream_epoch(self, epoch) -> None:
+        """Ended (None) also for the task's stamp; MC_Power's hot path ends it so."""
+        if epoch is None:
+            self._task_stamp.epoch = None
+        self._streamed_in = epoch
+
     def _changed(self) -> None:
         """Something beyond a sync stream's step may change: the next step checks it all."""
-        self._stream_epoch = None
+        self._task_stamp.epoch = self._streamed_in = None
 
     def request_power(self, on: bool) -> None:
         """MC_Power's Enable; applied by the next motion processing."""
@@ -289,7 +330,7 @@ class Axis:
         (The motion task spells out the common case, an ideal axis following a
         sync Position within one period's reach: `MotionTask.process`.)
         """
-        self._stream_epoch = None    # _changed(), without the call
+        self._task_stamp.epoch = self._streamed_in = None    # _changed(), without the call
         if self.power_requested != self.powered:
             self._apply_power()
         if not self.powered:
@@ -381,7 +422,7 @@ class Axis:
         self._step_slack = self._max_step * (1 + _LIMIT_SLACK)
         tau = cfg.servo_lag
         self._lag_gain = 1.0 if tau == 0 else 1.0 - math.exp(-dt / tau)
-        self._stream_dt = dt if self._lag_gain == 1.0 else None
+        self._stream_dt = dt if self._lag_gain == 1.0 and _bounded_step_velocity(self._step_slack, dt) else None
 
     # ------------------------------------------------------------ internals
     def _check_can_move(self) -> None:

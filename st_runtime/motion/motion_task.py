@@ -29,7 +29,7 @@ from __future__ import annotations
 import textwrap
 from typing import Callable, Iterable, Mapping
 
-from .axis import Axis, AxisState
+from .axis import Axis, AxisState, StreamStamp
 from .axis_config import AxisConfig, axis_configs_from_tables, axis_configs_from_toml
 from . import steady_scans
 from .generated import define
@@ -65,11 +65,14 @@ _ERRORSTOP = AxisState.ERRORSTOP
 # changes (neither velocity is a NaN then: the target passed the guard).  While the
 # direction holds, Axis.step's `magnitude if |new_vel| > |old_vel| else -magnitude`, with
 # magnitude = |new_vel - old_vel| / dt, is (new_vel - old_vel) / dt when both are positive
-# and (old_vel - new_vel) / dt when both are negative, bit for bit: the two differ (the
-# first test), so their difference is not zero, and IEEE rounding is symmetric in sign
-# (fl(b - a) = -fl(a - b), fl(-x / dt) = -fl(x / dt)): no call of abs(), no negation.
-_LANE_STEP = """\
-{command_before}if {axis}._stream_epoch is not epoch:
+# and (old_vel - new_vel) / dt when both are negative, bit for bit: where the two differ,
+# IEEE rounding is symmetric in sign (fl(b - a) = -fl(a - b), fl(-x / dt) = -fl(x / dt)), and
+# where they are equal the difference is +0.0 (x - x for a finite x), Axis.step's 0.0 for
+# equal velocities: new_vel is finite, |delta| <= slack and slack / dt finite (an axis has a
+# `_stream_dt` only then, Axis._set_period).  So the signs are tested first, the equality only
+# after them (a stream's velocity seldom repeats): no call of abs(), no negation.
+_LANE_RENEWAL = """\
+{command_before}if {axis}._streamed_in is not epoch:
 {command_inside}    if not ({command} is not None and {command}.kind == "sync" and (powered := {axis}.powered)
             and {axis}.power_requested == powered and dt == {axis}._stream_dt
             and {floor_read} <= (delta := (target := {command}.target) - {axis}.cmd_pos) <= {slack_read}
@@ -91,20 +94,24 @@ _LANE_STEP = """\
             else:
                 {cmd}.v_ACCDEC = {axis}.cmd_accdec = -magnitude
 {flags}
-elif not ({short_test}
-          and {soft_min} <= target <= {soft_max}):
+el"""
+
+# The short step of an axis that carries the epoch (after `_LANE_RENEWAL`'s `el`, or alone).
+_LANE_SHORT = """\
+if not ({short_test}
+        and target >= {soft_min} and target <= {soft_max}):
     {axis}.step(dt)
     {writer}.write()
 else:
     {cmd}.v_POS = {act}.v_POS = {axis}.cmd_pos = {axis}.act_pos = target
     old_vel = {axis}.cmd_vel
     {act}.v_VEL = {axis}.act_vel = {cmd}.v_VEL = {axis}.cmd_vel = new_vel = delta / dt
-    if new_vel == old_vel:
-        {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
-    elif new_vel > 0.0 and old_vel > 0.0:
+    if new_vel > 0.0 and old_vel > 0.0:
         {cmd}.v_ACCDEC = {axis}.cmd_accdec = (new_vel - old_vel) / dt
     elif new_vel < 0.0 and old_vel < 0.0:
         {cmd}.v_ACCDEC = {axis}.cmd_accdec = (old_vel - new_vel) / dt
+    elif new_vel == old_vel:
+        {cmd}.v_ACCDEC = {axis}.cmd_accdec = 0.0
     else:
         magnitude = abs(new_vel - old_vel) / dt
         if (new_vel if new_vel >= 0.0 else -new_vel) > (old_vel if old_vel >= 0.0 else -old_vel):
@@ -117,7 +124,7 @@ else:
 # The flags of a stream's step, as AxisRefWriter.write decides them; the axis then carries
 # the epoch.
 _LANE_FLAGS = """\
-{axis}._stream_epoch = epoch
+{axis}._streamed_in = epoch
 state, waiting = {axis}.state, {axis}.in_pos_waiting
 idle = (({command}.done or {command}.reached) and not waiting
         and not (state == _ERRORSTOP and new_vel != 0.0))
@@ -156,18 +163,39 @@ _LANE_CONSTANTS = ("slack{n}, soft_min{n}, soft_max{n} = axis{n}._step_slack, ax
 
 # The short step's test of the data, as the `after` hook and `process` make it and as the
 # steady loop does: -slack <= delta <= slack is |delta| <= slack for every float (a NaN or an
-# infinity fails both), without the call of abs() and the float it makes.
+# infinity fails both), without the call of abs() and the float it makes.  Each bound (and
+# each soft limit, `_LANE_SHORT`) is a comparison of its own, not a chain: the same answer for
+# every float (a comparison has no side effect, a NaN fails both), and a chained comparison
+# spends a SWAP and a COPY keeping its middle operand.
 _SHORT_TEST = "abs(delta := (target := command.target) - {axis}.cmd_pos) <= {axis}._step_slack"
-_STEADY_SHORT_TEST = "floor{n} <= (delta := (target := command{n}.target) - {axis}.cmd_pos) <= slack{n}"
+_STEADY_SHORT_TEST = "(delta := (target := command{n}.target) - {axis}.cmd_pos) <= slack{n} and delta >= floor{n}"
 
 
-def _lane_step(parts: dict, **names) -> str:
-    """`_LANE_STEP` of one axis (`parts`: its names), with the `_LANE_FLAGS` of `names["command"]`."""
-    flags = _LANE_FLAGS.format(command=names["command"], **parts)
-    return _LANE_STEP.format(flags=textwrap.indent(flags, " " * 8).rstrip("\n"), **names, **parts)
+def _lane_step(parts: dict, renewal: bool = True, **names) -> str:
+    """The lane step of one axis (`parts`: its names), with the `_LANE_FLAGS` of
+    `names["command"]`: `_LANE_RENEWAL` and `_LANE_SHORT`, or (not `renewal`) the short step
+    alone."""
+    flags = textwrap.indent(_LANE_FLAGS.format(command=names["command"], **parts), " " * 8).rstrip("\n")
+    template = _LANE_RENEWAL + _LANE_SHORT if renewal else _LANE_SHORT
+    return template.format(flags=flags, **names, **parts)
 
 
-def _straight_line_process(task: "MotionTask", lanes: list[tuple]):
+def _steady_lanes(short: list[str], whole: list[str], axes: list[str]) -> str:
+    """The steady loop's motion processing: while the task's stamp shows that every axis
+    carries the epoch, the `short` steps alone (no test of an axis's epoch); else the `whole`
+    lane steps, which stamp the task when every axis carries the epoch after them.  Exact: only
+    here is the stamp set, after testing each axis, and whatever ends an axis's epoch ends the
+    stamp too (Axis._changed, Axis.step, MC_Power's changed request through the axis's
+    `_stream_epoch`); a short step that fails takes Axis.step, which ends both, so the next
+    scan takes the whole lanes again."""
+    if not axes:
+        return ""
+    stamped = " and ".join(f"{axis}._streamed_in is epoch" for axis in axes)
+    return (f"if stamp.epoch is epoch:\n{textwrap.indent(''.join(short), '    ')}else:\n"
+            f"{textwrap.indent(''.join(whole), '    ')}    if {stamped}:\n        stamp.epoch = epoch\n")
+
+
+def _straight_line_process(task: "MotionTask", lanes: list[tuple], stamp: StreamStamp):
     """(`after` hook, `process(dt, epoch)`, the steady loop of `steady_scans`) for these lanes
     as straight-line code: the lane step of every axis in turn, the task, axes, writers and
     structs as the functions' constants (no loop, no unpacking).
@@ -178,7 +206,7 @@ def _straight_line_process(task: "MotionTask", lanes: list[tuple]):
     with the period (`Axis._set_period`, inside `Axis.step`): both end the epoch, and the whole
     test that stamps an axis with the epoch reads them again.  So while the axis carries the
     epoch, its locals are what that test saw."""
-    names, steps, steady, constants = {"task": task}, [], [], []
+    names, steps, steady, short, constants = {"task": task, "stamp": stamp}, [], [], [], []
     for number, lane in enumerate(lanes):
         parts = {role: f"{role}{number}" for role in ("axis", "writer", "cmd", "act")}
         names.update(zip(parts.values(), lane))
@@ -187,15 +215,18 @@ def _straight_line_process(task: "MotionTask", lanes: list[tuple]):
                                 command_inside="", floor_read=f"-(slack := {axis}._step_slack)",
                                 slack_read="slack", short_test=_SHORT_TEST.format(axis=axis),
                                 soft_min=f"{axis}._soft_min", soft_max=f"{axis}._soft_max"))
-        steady.append(_lane_step(parts, command=steady_command, command_before="",
-                                 command_inside=f"    {steady_command} = {axis}.command\n",
-                                 floor_read=f"(floor{number} := -(slack{number} := {axis}._step_slack))",
-                                 slack_read=f"slack{number}", short_test=_STEADY_SHORT_TEST.format(axis=axis, n=number),
-                                 soft_min=f"soft_min{number}", soft_max=f"soft_max{number}"))
+        steady_names = dict(command=steady_command, command_before="",
+                            command_inside=f"    {steady_command} = {axis}.command\n",
+                            floor_read=f"(floor{number} := -(slack{number} := {axis}._step_slack))",
+                            slack_read=f"slack{number}", short_test=_STEADY_SHORT_TEST.format(axis=axis, n=number),
+                            soft_min=f"soft_min{number}", soft_max=f"soft_max{number}")
+        steady.append(_lane_step(parts, **steady_names))
+        short.append(_lane_step(parts, renewal=False, **steady_names))
         constants.append(_LANE_CONSTANTS.format(n=number))
     arguments = "".join(f", {name}={name}" for name in names)
     body = "".join(textwrap.indent(step, "    ") for step in steps) or "    pass\n"
-    loop, values = steady_scans.source("".join(constants), "".join(steady), names)
+    lanes = _steady_lanes(short, steady, [f"axis{number}" for number in range(len(lanes))])
+    loop, values = steady_scans.source("".join(constants), lanes, names)
     namespace = define(_AFTER_PROGRAMS.format(arguments=arguments, body=body) + loop, "motion task process",
                        {"_ERRORSTOP": _ERRORSTOP, **values})
     after = namespace["after_programs"]
@@ -231,7 +262,7 @@ class MotionTask:
         # them and no other hook runs in the scan (see _before_programs).
         self._published = False
         # New whenever code other than the programs' motion FBs may have changed an axis
-        # since the previous motion processing (see `_AFTER_PROGRAMS`, `_LANE_STEP`).
+        # since the previous motion processing (see `_AFTER_PROGRAMS`, `_LANE_RENEWAL`).
         self._epoch = object()
         self._continuing = False
 
@@ -269,8 +300,11 @@ class MotionTask:
         self._writers = [bind_axis_ref(lookup(axis.name), axis) for axis in self.axes]
         # What `process` works with, per axis: the axis, its writer and the Cmd and Act structs.
         hook = self._after_programs
+        stamp = StreamStamp()
+        for axis in self.axes:
+            axis._task_stamp = stamp
         self._after_programs, self._step_lanes, self._steady_scans = _straight_line_process(
-            self, [(writer.axis, writer, writer._cmd, writer._act) for writer in self._writers])
+            self, [(writer.axis, writer, writer._cmd, writer._act) for writer in self._writers], stamp)
         self._epoch = object()
         hooks = getattr(self._controller, "after_hooks", ())
         for index, registered in enumerate(hooks):     # bound again once installed

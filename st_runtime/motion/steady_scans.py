@@ -4,10 +4,11 @@ In a `Controller.run` whose controller has the shape of the project's controller
 task's two hooks its only I/O hooks, one task every scan, observers that only read), every
 scan after the first runs the same way: the seal and the motion epoch go on, the feedback in
 is skipped (the previous scan's motion processing published the axes: `ScanContext.resumed`),
-and the motion processing is the lanes of `_LANE_STEP`.  This module writes that scan once
+and the motion processing is the lanes of `_steady_lanes`.  This module writes that scan once
 per motion task as one loop, with the lanes inline: no call of the `before` hook (which would
 return at once) nor of the `after` hook, and none of the loop's tests of what the shape
 already decides (`Controller._scans` re-reads hooks, tasks and the seal's counts each scan).
+A task of one program (most controllers) takes a loop that holds it in locals.
 
 `offer(task, controller)` gives the loop only while the shape holds, and the loop checks it
 again at the end of every scan; a scan that leaves it (a fault in the motion processing, a
@@ -24,7 +25,7 @@ import textwrap
 
 from ..faults import ScanOverrun, StopRun, STFault
 
-# `{lanes}`: the lane step of every axis (motion_task._LANE_STEP), as the `after` hook runs it
+# `{lanes}`: the lane steps of the axes (motion_task._steady_lanes), as the `after` hook runs them
 # but for the locals `{constants}` sets once a call.
 # `task._published` and `task._continuing` stay TRUE from scan to scan, as the hooks leave
 # them in the shape; only the hooks read them, so they are stored only where an exception
@@ -36,12 +37,13 @@ from ..faults import ScanOverrun, StopRun, STFault
 # So a run that starts with no observer has none at any scan's end, and its shape is the one
 # `offer` found: only the stop and the hooks' own flag are read again (`unobserved`).
 _STEADY_SCANS = """\
-def steady_scans(controller, cycles{arguments}):
+def {name}(controller, cycles{arguments}):
     ctx = controller.ctx
     hooks_before, hooks_after = list(controller.before_hooks), list(controller.after_hooks)
     tasks = list(controller.tasks)
     primary = tasks[0]
-    append_time = controller.task_times[primary.name].append
+    programs = list(primary.programs)
+{programs_before}    append_time = controller.task_times[primary.name].append
     limit_ps = (controller.time_limit_ns or primary.period_ns) * 1000
     period = controller.period_ns
     dt = period * 1e-9
@@ -55,11 +57,7 @@ def steady_scans(controller, cycles{arguments}):
         try:
             try:
                 try:
-                    for name, instance in primary.programs:
-                        instance.execute(ctx)
-                        if ctx.budget < 0:
-                            raise ScanOverrun(controller._program_place(name))
-                except ScanOverrun as overrun:
+{programs}                except ScanOverrun as overrun:
                     controller._overran(primary, limit_ps, overrun)
                 finally:
                     append_time(limit_ps - ctx.budget)
@@ -88,21 +86,51 @@ def steady_scans(controller, cycles{arguments}):
             ctx.resumed = False
             return done
         if not (task._continuing and controller.before_hooks == hooks_before
-                and controller.after_hooks == hooks_after and controller.tasks == tasks):
+                and controller.after_hooks == hooks_after and controller.tasks == tasks
+                and primary.programs == programs):
             return done
     return cycles
+"""
+
+# The programs' runs in a scan, any number of them as `Controller._scans` runs them, and the
+# one program of most controllers with its name and instance in locals: no iterator made and
+# no pair unpacked a scan.  The task's programs are those `programs` holds while the loop runs
+# (the end of a scan with observers compares them), as in the general loop.
+_ANY_PROGRAMS = ("", """\
+for name, instance in programs:
+    instance.execute(ctx)
+    if ctx.budget < 0:
+        raise ScanOverrun(controller._program_place(name))
+""")
+_ONE_PROGRAM = ("(name, instance), = programs\n", """\
+instance.execute(ctx)
+if ctx.budget < 0:
+    raise ScanOverrun(controller._program_place(name))
+""")
+
+# The loop a call takes: the one-program loop for a task of one program.
+_DISPATCH = """\
+def steady_scans(controller, cycles):
+    if len(controller.tasks[0].programs) == 1:
+        return steady_scans_one(controller, cycles)
+    return steady_scans_any(controller, cycles)
 """
 
 _VALUES = {"ScanOverrun": ScanOverrun, "StopRun": StopRun, "STFault": STFault}
 
 
 def source(constants: str, lanes: str, names: dict) -> tuple[str, dict]:
-    """(the loop's source, the values it names) for `lanes`, the lane steps' source at no
+    """(the source of the loop `steady_scans`, which takes the one-program loop or the loop of
+    any programs, and the values it names) for `lanes`, the lane steps' source at no
     indentation, and `constants`, statements run once a call before the scans; both name the
     entries of `names` (the task under `task`)."""
     arguments = "".join(f", {name}={name}" for name in names)
-    return _STEADY_SCANS.format(arguments=arguments, constants=textwrap.indent(constants, " " * 4),
-                                lanes=textwrap.indent(lanes, " " * 16) or " " * 16 + "pass\n"), {**_VALUES, **names}
+    constants, lanes = textwrap.indent(constants, " " * 4), textwrap.indent(lanes, " " * 16) or " " * 16 + "pass\n"
+    loops = (_STEADY_SCANS.format(name=name, arguments=arguments, constants=constants, lanes=lanes,
+                                  programs_before=textwrap.indent(before, " " * 4),
+                                  programs=textwrap.indent(run, " " * 20))
+             for name, (before, run) in (("steady_scans_any", _ANY_PROGRAMS), ("steady_scans_one", _ONE_PROGRAM)))
+    return "".join(loops) + _DISPATCH, {**_VALUES, **names}
 
 
 def offer(task, controller):
