@@ -146,7 +146,8 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   # session 23: the elements pass's own tests
                   "tests/test_optimiser_elements.py",
                   # session 23: the dormant pass's own tests
-                  "tests/test_compiler_dormant.py"]),
+                  "tests/test_compiler_dormant.py",
+                  "tests/test_compiler_dormant_groups.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",
