@@ -103,12 +103,15 @@ class RestTest(NamedTuple):
     """`NativeFB.REST`: Python of the instance `{fb}` and the caller's `_ctx`.  `awake` is false
     only while the FB is known to be at rest (an earlier CALL_NEEDED test was false and nothing
     has touched the FB since: `ScanContext.seal`); `note` is the statement that records it,
-    `forget` one that drops it; `unnoted`, the part of `awake` false while the note holds."""
+    `forget` one that drops it; `unnoted`, the part of `awake` false while the note holds.
+    `group`: an attribute of the instance free for its caller's note of a group of call sites
+    (optimise/dormant.py: the FB and the others of its group found at rest under a seal)."""
 
     awake: str
     note: str
     forget: str
     unnoted: str
+    group: str
 
 
 class NativeFB:

@@ -76,18 +76,24 @@ def _decelerations(monkeypatch, optimise: str, writer: str = "", outside=None, e
     stops = controller.instances["Main"].v_STOPS       # (an array copy may put other FBs in it)
     seen = []
     controller.add_observer(lambda _c: seen.append(stops[0].v_DECELERATION), reads_only=True)
+    run_8_scans(plc, main, stops, outside)
+    return seen
+
+
+def run_8_scans(plc, main, stops: list, outside=None) -> None:
+    """8 scans of `plc`; `outside`: "hook", a hook (not quiet) sets Stops[1].Deceleration to
+    10.0 before scan 5; "api", the API does between two runs of 4 scans."""
     if outside == "hook":
         def poke(ctx):
             if ctx.scan == 5:
                 stops[0].v_DECELERATION = 10.0
-        controller.add_io_hook(before=poke)
+        plc.controller.add_io_hook(before=poke)
     if outside == "api":
         plc.run(4)
         main["Stops[1].Deceleration"] = 10.0
         plc.run(4)
     else:
         plc.run(8)
-    return seen
 
 
 def _source(writer: str, extra: str = "") -> str:
@@ -139,9 +145,9 @@ def test_a_write_from_outside_renews_the_seal_and_the_site_stores_again(monkeypa
 def test_the_controller_skips_its_twelve_idle_sites_under_one_test_each():
     program = api.load_sources(dict(controller_sources(None))).program
     source = compile_program(program, optimise=Optimisations()).python_sources["SP_CONTROLLER"]
-    for k in range(6):
-        assert f"if v_STOPEXECUTE is not False or v_AXISSTOP[{k}]._at_rest is not _seal:" in source
-        assert f"if v_RESETEXECUTE is not False or v_AXISRESET[{k}]._at_rest is not _seal:" in source
+    for k in range(6):      # (each under its group's test too: test_compiler_dormant_groups.py)
+        assert f"(v_STOPEXECUTE is not False or v_AXISSTOP[{k}]._at_rest is not _seal):" in source
+        assert f"(v_RESETEXECUTE is not False or v_AXISRESET[{k}]._at_rest is not _seal):" in source
     off = compile_program(program, optimise=Optimisations(dormant=False)).python_sources["SP_CONTROLLER"]
     assert "if v_STOPEXECUTE is not False or " not in off
 

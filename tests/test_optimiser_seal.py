@@ -22,8 +22,10 @@ def test_the_controller_reads_the_seal_once_a_scan():
     plain = compile_program(program, optimise=Optimisations.only("inline")).python_sources["SP_CONTROLLER"]
     assert source.splitlines()[1] == "    _seal = _ctx.seal" and source.count("_ctx.seal") == 1
     assert plain.count("_ctx.seal") == 24 and "_seal" not in plain.replace("_ctx.seal", "")
-    # twelve rest tests, and twelve `dormant` tests around the sites (the sole writers of their FBs)
-    assert source.count("._at_rest is not _seal") == 24 and source.count("._at_rest = _seal") == 12
+    # twelve rest tests, twelve `dormant` tests around the sites (the sole writers of their FBs)
+    # and twelve in the line after the group of them (dormant.Groups), whose own test is one
+    assert source.count("._at_rest is not _seal") == 36 and source.count("._at_rest = _seal") == 12
+    assert source.count("._group_at_rest is not _seal") == 1
 
 
 def test_fbs_at_rest_end_every_scan_as_with_every_call(monkeypatch):

@@ -147,8 +147,11 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   "tests/test_optimiser_elements.py",
                   # session 23: the dormant pass's own tests
                   "tests/test_compiler_dormant.py",
+                  "tests/test_compiler_dormant_groups.py",
                   # session 24: the threads pass's own tests
-                  "tests/test_optimiser_threads.py"]),
+                  "tests/test_optimiser_threads.py",
+                  # session 24: the early store's own tests (aliases.store_early)
+                  "tests/test_optimiser_early.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",

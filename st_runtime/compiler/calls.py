@@ -257,7 +257,7 @@ class Calls:
             execute = dormant.guard(ec, call, inputs, variables, codes)
             if execute is not None:     # the whole site skipped while the FB is at rest
                 forget = _read_back(dormant.forget_lines(instance, rest), instance, stored)
-                return dormant.site(execute, rest.unnoted.format(fb=callee), lines, body + forget)
+                return dormant.site(ec, call, execute, callee, rest, lines, body + forget)
         return lines + body
 
     def _execute(self, ec, target, call, instance: str, floats: frozenset[str]) -> list[str]:

@@ -42,7 +42,7 @@ from .exprs import ExprCompiler, int_bounds
 from .initial import CompileError
 from .optimise import (aliases, branches, chains, charges, cse, elements, fastpath, fold, gather, halves, kernels, loops,
                        pivots, ranges, reads, reuse, scalars, seal, shortcut, stores, sums, threads, unguard, unroll)
-from .optimise import branched, may_reuse
+from .optimise import branched, dormant, may_reuse
 from .pysrc import Emitter, pyliteral, pyident
 from .scope import Scope, Usage, assigned_in, kinds, once, walk
 from .support import SMALL_END
@@ -77,6 +77,8 @@ class BodyCompiler(ExprCompiler):
         self._segments: fastpath.Segments | None = None     # while the fast body is compiled
         self.reuse = reuse.Reuse(self) if self.opt.reuse and may_reuse(self) else None
         self.listed_in_outs: dict[str, str] = {}    # in-outs the fast body runs with as lists
+        # a PROGRAM's dormant call sites may form groups (optimise/dormant.py)
+        self._dormant_groups = self.opt.dormant and self.opt.inline and pou.kind == "PROGRAM"
 
     def _add_return_variable(self) -> None:
         key = self.pou.name.upper()
@@ -297,8 +299,11 @@ class BodyCompiler(ExprCompiler):
             if charge and not (first and first_charged):
                 self._charge(units, check if first else None)
             first = False
-            for stmt in simple:
-                self._statement_with_values(stmt)
+            if self._dormant_groups and len(simple) > 1:
+                self._grouped(simple)
+            else:
+                for stmt in simple:
+                    self._statement_with_values(stmt)
             if compound is not None:
                 self._statement_with_values(compound)
         if stored_back:
@@ -311,6 +316,15 @@ class BodyCompiler(ExprCompiler):
             segments.leave()
         if values is not None:
             values.leave()
+
+    def _grouped(self, simple) -> None:
+        """The simple statements of a block, their dormant call sites in groups (dormant.Groups)."""
+        groups = dormant.Groups(self)
+        for stmt in simple:
+            start = self.out.mark()
+            self._statement_with_values(stmt)
+            groups.add(stmt, start)
+        groups.close()
 
     def _costed_blocks(self, body) -> list[tuple[list, object, float]]:
         """`_blocks(body)`, each with the units it charges, once per body (an unrolled

@@ -160,6 +160,7 @@ class _ExecuteFB(_AxisFB):
         self._previous_execute = False
         self._command: MotionCommand | None = None
         self._at_rest = None    # the ScanContext.seal under which a caller found the FB at rest
+        self._group_at_rest = None      # the same for its caller's group of sites (`RestTest.group`)
 
     def __init_subclass__(cls, **kwargs) -> None:
         super().__init_subclass__(**kwargs)
@@ -260,7 +261,8 @@ def _execute_rules(self, ctx):
 # An idle Execute FB at rest: noted by its compiled caller under the controller's seal, which
 # is new whenever code other than the scans' own may have stored into the FB (ScanContext.seal).
 _REST = RestTest(awake="{fb}.v_EXECUTE or {fb}._at_rest is not _ctx.seal", note="{fb}._at_rest = _ctx.seal",
-                 forget="{fb}._at_rest = None", unnoted="{fb}._at_rest is not _ctx.seal")
+                 forget="{fb}._at_rest = None", unnoted="{fb}._at_rest is not _ctx.seal",
+                 group="{fb}._group_at_rest")
 
 
 def _spell_out_idle_call(cls) -> None:

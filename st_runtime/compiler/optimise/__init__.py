@@ -198,6 +198,9 @@ states bit for bit:
   MC_Reset) that is the only code of the program writing its instance runs under one test,
   `X or <the rest note does not hold>`, X the BOOL its Execute is given: at rest it would
   store what the instance holds (constants, the same AXIS_REF, FALSE) and call nothing.
+  Two or more such sites apart only by other call statements naming none of their X form a
+  group (`dormant.Groups`): one test a scan of each X and a note of the group, each site's
+  test only when that one is true.
 * `threads` (threads.py): an IF chain whose first test reads a local alone (`IF NewFault = 0`)
   right after an IF chain every path of which tells that test's answer (a branch set the
   local to a literal, or tested it) is not tested: each path runs the branch it would take

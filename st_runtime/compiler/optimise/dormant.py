@@ -37,6 +37,7 @@ Every other site, and one with `=>` outputs or an input of another kind, keeps i
 from __future__ import annotations
 
 import re
+from typing import NamedTuple
 
 from ... import ast
 from ...objects import is_aggregate
@@ -49,9 +50,26 @@ _PURE = (ast.Name, ast.Member, ast.BoolLiteral, ast.Unary, ast.Binary)
 _LOGIC = frozenset(("AND", "&", "OR", "XOR", "NOT"))
 
 
-def guard(ec, call, inputs: dict, variables: dict, codes: dict) -> str | None:
-    """The Python of X when the site of `call` may run under `X is not False or <unnoted>`
-    (the module docstring), else None.  `codes`: input key -> the Python the site stores."""
+class Execute(NamedTuple):
+    """X of a dormant site: its Python and its Symbol."""
+
+    code: str
+    symbol: Symbol
+
+
+class Site(NamedTuple):
+    """A dormant site as compiled, for `Groups`: its first line (the test), X, the instance's
+    Python and the FB's RestTest."""
+
+    test: str
+    execute: Execute
+    fb: str
+    rest: object
+
+
+def guard(ec, call, inputs: dict, variables: dict, codes: dict) -> Execute | None:
+    """X when the site of `call` may run under `X is not False or <unnoted>` (the module
+    docstring), else None.  `codes`: input key -> the Python the site stores."""
     if ec.pou.kind != "PROGRAM" or id(call) not in sole_sites(ec):
         return None
     execute = None
@@ -72,21 +90,24 @@ def forget_lines(instance: str, rest) -> list[str]:
     return [f"if {instance}.v_EXECUTE is not False:", f"    {rest.forget.format(fb=instance)}"]
 
 
-def site(execute: str, unnoted: str, stores: list[str], rest: list[str]) -> list[str]:
-    """The dormant site: the stores and the rest of the call under one test."""
-    return [f"if {execute} is not False or {unnoted}:", *("    " + line for line in stores + rest)]
+def site(ec, call, execute: Execute, fb: str, rest, stores: list[str], lines: list[str]) -> list[str]:
+    """The dormant site of `call` (instance `fb`): the stores and the rest of the call under
+    one test, kept for `Groups` (the site compiled last for each call)."""
+    test = f"if {execute.code} is not False or {rest.unnoted.format(fb=fb)}:"
+    ec.__dict__.setdefault("dormant_sites", {})[id(call)] = Site(test, execute, fb, rest)
+    return [test, *("    " + line for line in stores + lines)]
 
 
-def _execute_variable(ec, value, code: str) -> str | None:
-    """The Python of X for `Execute := X` or `X AND e` (X a BOOL variable, e a pure read)
-    stored as X while X is False, else None."""
+def _execute_variable(ec, value, code: str) -> Execute | None:
+    """X for `Execute := X` or `X AND e` (X a BOOL variable, e a pure read) stored as X while
+    X is False, else None."""
     if type(value) is ast.Binary and value.op in ("AND", "&") and _pure(value.right):
         value = value.left
-    if type(value) is not ast.Name or not _is_bool(ec, value) \
-            or not isinstance(ec.program.name_refs.get(id(value)), Symbol):
+    symbol = ec.program.name_refs.get(id(value)) if type(value) is ast.Name else None
+    if not isinstance(symbol, Symbol) or not _is_bool(ec, value):
         return None
     x = ec.expr(value)
-    return x if code == x or code.startswith(f"({x} if not {x} else ") else None
+    return Execute(x, symbol) if code == x or code.startswith(f"({x} if not {x} else ") else None
 
 
 def _pure(node) -> bool:
@@ -199,3 +220,103 @@ class _SoleSites:
         """How often the word `name` stands in the project's texts (any case)."""
         word = re.compile(rf"(?<![\w]){re.escape(name)}(?![\w])", re.IGNORECASE)
         return sum(len(word.findall(text)) for text in self.texts)
+
+
+class Groups:
+    """The dormant sites of one block of simple statements, two or more apart only by other
+    call statements, as one group: the group's first lines test what the sites would test
+    (each X, and a note that all were found at rest) once, and each site runs only when that
+    test was true (SP_Controller: six MC_Stop and six MC_Reset between its six
+    MC_SyncMoveAbsolute, one test a scan where there were twelve):
+
+        if X1 is not False or X2 is not False or <first>._group_at_rest is not _ctx.seal:
+            _dormantN = True
+            <first>._group_at_rest = None
+        else:
+            _dormantN = False
+        ...
+        if _dormantN and (X1 is not False or <instance>._at_rest is not _ctx.seal):  (each site)
+        ...
+        if _dormantN and not (<each instance>._at_rest is not _ctx.seal or ...):      (after the last)
+            <first>._group_at_rest = _ctx.seal
+
+    The group's note (`RestTest.group` of its first instance) holds only while every site's
+    own note holds: it is dropped before any site of the group may run and set after the
+    last one only when all their notes hold (a scan that ends between, by a fault, leaves it
+    dropped).  A site's note changes only at its own site (each is its instance's only
+    writer, `_SoleSites`) or with a new seal.  So while the group's note holds and each X is
+    the object False, every site's own test would be false where it stands: X is a local of
+    the body (a Python name: no reference, METHOD or other POU reaches it) that no statement
+    between the sites names, and the sites themselves only store into their own instances.
+    A skipped site, as before, is one that would have stored what its instance holds.
+    """
+
+    def __init__(self, ec) -> None:
+        self.ec = ec
+        self.placed: list[tuple] = []       # (statement, its first line, the line after it)
+
+    def add(self, statement, start: int) -> None:
+        self.placed.append((statement, start, len(self.ec.out.lines)))
+
+    def close(self) -> None:
+        """Rewrite the block's lines, each group as the class docstring shows."""
+        sites = self.ec.__dict__.get("dormant_sites")
+        if sites and len(self.placed) > 1:
+            for group in reversed(self._groups(sites)):
+                self._rewrite(group)
+
+    def _groups(self, sites: dict) -> list[list[tuple[int, Site]]]:
+        """Runs of sites ((index, Site), two or more) with only other call statements between
+        them, none naming an X of its run."""
+        runs, run, between = [], [], []
+        enables = self.ec.program.enables
+        for index, (statement, _, _) in enumerate(self.placed):
+            site = sites.get(id(statement.call)) if type(statement) is ast.CallStmt else None
+            if site is not None and enables.get(id(statement.call)) is None \
+                    and site.execute.code.isidentifier():
+                if between:
+                    run.extend(between)
+                    between = []
+                run.append((index, site))
+            elif type(statement) is ast.CallStmt and run:
+                between.append((index, None))
+            else:
+                runs.append(run)
+                run, between = [], []
+        runs.append(run)
+        return [members for members in map(self._checked, runs) if len(members) > 1]
+
+    def _checked(self, run: list) -> list[tuple[int, Site]]:
+        """The sites of `run`, or none when a statement between them names one of their X."""
+        members = [(index, site) for index, site in run if site is not None]
+        xs = {id(site.execute.symbol) for _, site in members}
+        refs = self.ec.program.name_refs
+        for index, site in run:
+            if site is None and any(type(node) is ast.Name and id(refs.get(id(node))) in xs
+                                    for node in walk(self.placed[index][0])):
+                return []
+        return members
+
+    def _rewrite(self, group: list[tuple[int, Site]]) -> None:
+        lines, pad = self.ec.out.lines, "    " * self.ec.out.depth
+        tests = []
+        for index, site in group:
+            _, start, end = self.placed[index]
+            found = [n for n in range(start, end) if lines[n].strip() == site.test]
+            if len(found) != 1:
+                return                          # (not the site as `site` wrote it: no group)
+            tests.append(found[0])
+        count = self.ec.__dict__["dormant_groups"] = self.ec.__dict__.get("dormant_groups", 0) + 1
+        awake, first = f"_dormant{count}", group[0][1]
+        note = first.rest.group.format(fb=first.fb)
+        unnoted = " or ".join(site.rest.unnoted.format(fb=site.fb) for _, site in group)
+        lines[self.placed[group[-1][0]][2]:self.placed[group[-1][0]][2]] = [
+            f"{pad}if {awake} and not ({unnoted}):", f"{pad}    {note} = _ctx.seal"]
+        for n in tests:
+            indent = lines[n][:len(lines[n]) - len(lines[n].lstrip())]
+            lines[n] = f"{indent}if {awake} and ({lines[n].strip()[3:-1]}):"
+        xs = dict.fromkeys(site.execute.code for _, site in group)
+        start = self.placed[group[0][0]][1]
+        lines[start:start] = [
+            f"{pad}if {' or '.join(f'{x} is not False' for x in xs)} or {note} is not _ctx.seal:",
+            f"{pad}    {awake} = True", f"{pad}    {note} = None", f"{pad}else:", f"{pad}    {awake} = False"]
