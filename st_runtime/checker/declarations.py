@@ -436,19 +436,11 @@ class Declarations:
             self.ctx.error("E-DECL-002", f"duplicate declaration of '{decl.name}' in {scope}{where}",
                            decl.pos)
             return None
-        if pou is not None and pou.kind == "FUNCTION" and kind != "VAR_IN_OUT" and fb_type_of(t):
-            self.ctx.error("E-DECL-009", f"FUNCTION {pou.name} declares '{decl.name}' of function "
-                           f"block type {fb_type_of(t).name}: functions keep no state; use a "
-                           f"FUNCTION_BLOCK", decl.pos)
-        if decl.location is not None:
-            self._located(decl, kind, t, pou)
-        if isinstance(t, T.ArrayType) and t.is_open and kind != "VAR_IN_OUT":
-            self.ctx.error("E-DECL-006", f"'{decl.name}' : {t}: ARRAY[*] is only for a VAR_IN_OUT "
-                           f"(the bounds come with the argument)", decl.pos)
-        fb_node = self.ctx.pou_decls.get(key(t.name)) if isinstance(t, T.FBType) else None
-        if fb_node is not None and "ABSTRACT" in fb_node.modifiers:
-            self.ctx.error("E-DECL-016", f"'{decl.name}': {t.name} is ABSTRACT and cannot be "
-                           f"instantiated (declare an FB that extends it)", decl.pos)
+        if type(t) is T.ElementaryType:       # (an INT is no FB, no array, nothing ABSTRACT)
+            if decl.location is not None:
+                self._located(decl, kind, t, pou)
+        else:
+            self._check_placed_type(decl, kind, t, pou)
         if decl.edge and (kind != "VAR_INPUT" or pou is None or pou.kind == "FUNCTION"
                           or (t is not ts.ERROR and not ts.is_bool(t))):
             self.ctx.error("E-DECL-013", f"'{decl.name}' is declared {decl.edge}: expected a BOOL "
@@ -490,6 +482,24 @@ class Declarations:
         table[k] = sym
         return sym
 
+    def _check_placed_type(self, decl: ast.VarDecl, kind: str, t, pou: PouInfo | None) -> None:
+        """What a variable's type (no elementary one) may not be where it is declared, in
+        this order: an FB in a FUNCTION (E-DECL-009), its address (`_located`), ARRAY[*]
+        outside a VAR_IN_OUT, an ABSTRACT FB's instance."""
+        if pou is not None and pou.kind == "FUNCTION" and kind != "VAR_IN_OUT" and fb_type_of(t):
+            self.ctx.error("E-DECL-009", f"FUNCTION {pou.name} declares '{decl.name}' of function "
+                           f"block type {fb_type_of(t).name}: functions keep no state; use a "
+                           f"FUNCTION_BLOCK", decl.pos)
+        if decl.location is not None:
+            self._located(decl, kind, t, pou)
+        if isinstance(t, T.ArrayType) and t.is_open and kind != "VAR_IN_OUT":
+            self.ctx.error("E-DECL-006", f"'{decl.name}' : {t}: ARRAY[*] is only for a VAR_IN_OUT "
+                           f"(the bounds come with the argument)", decl.pos)
+        fb_node = self.ctx.pou_decls.get(key(t.name)) if isinstance(t, T.FBType) else None
+        if fb_node is not None and "ABSTRACT" in fb_node.modifiers:
+            self.ctx.error("E-DECL-016", f"'{decl.name}': {t.name} is ABSTRACT and cannot be "
+                           f"instantiated (declare an FB that extends it)", decl.pos)
+
     def _located(self, decl: ast.VarDecl, kind: str, t, pou) -> None:
         """`x AT %IW3 : INT` (IEC 61131-3 6.5.5): a valid address of the type's width,
         in a PROGRAM, a configuration or the globals; an FB may only say `%I*`."""
@@ -518,6 +528,8 @@ class Declarations:
         type's, down the chain (IEC 61131-3:2013 table 11: a derived type's
         default is its parent's unless it gives its own). `seen` stops at a cycle, which
         the type checks refuse on their own."""
+        if type(ref) is ast.NamedType and ref.name in T.ELEMENTARY:
+            return None     # (`INT`: no TYPE takes an elementary type's name, `_declare_name`)
         seen: set[str] = set()
         type_decls = self.ctx.type_decls
         while isinstance(ref, ast.NamedType):
