@@ -9,6 +9,7 @@ AliasType), a FUNCTION_BLOCK name maps to its FBType.
 from __future__ import annotations
 
 import difflib
+from functools import cached_property
 
 from .. import ast
 from .. import native
@@ -41,8 +42,6 @@ class Declarations:
     def __init__(self, ctx: Context, base=None, record: bool = False):
         self.ctx = ctx
         self.program = ctx.program
-        self.global_scope = Scope(ctx, None)
-        self.global_ex = ExprChecker(ctx, self.global_scope)
         self.global_blocks: list[ast.VarBlock] = []
         self._resolving: set[str] = set()
         self._names: dict[str, ast.Pos] = dict(base.names) if base is not None else {}
@@ -54,6 +53,12 @@ class Declarations:
         self.type_events: dict[str, list] | None = {} if record else None
         self._recording: list[str] = []
         self._adopted = False        # a prelude TYPE entered this load's tables already
+
+    @cached_property
+    def global_ex(self) -> ExprChecker:
+        """The expressions' checker at global level (globals, TYPEs, configurations), made
+        at its first use: a load of POUs alone never asks for it."""
+        return ExprChecker(self.ctx, Scope(self.ctx, None))
 
     # ------------------------------------------------------------- driver
     def run(self, files: list[ast.SourceFile]) -> None:

@@ -276,10 +276,12 @@ def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
         kinds = quiet if depth < MAX_EXPRESSION_DEPTH else loud   # (a leaf below here cannot be too deep)
         for value in children(node):     # the child nodes in field order, tuples flattened
             kind = kinds[type(value)]
+            if not kind:           # (None, a scalar, a quiet leaf: the commonest, tested first)
+                continue
             if kind == PUSH:
                 push((value, blocks, loops, depth))
-            elif kind:
-                for item in value:   # (a node that would add nothing is not pushed: `_Items`)
+            else:
+                for item in value:   # (a node that would add nothing is not pushed: `_ITEMS`)
                     test = items[type(item)]
                     if test == PUSH or test and not test(item, kinds):
                         push((item, blocks, loops, depth))
