@@ -168,7 +168,7 @@ def _names_typed(monkeypatch, texts: dict, dialect: str, kept: bool) -> tuple[li
     from st_runtime.checker import expressions
 
     load_texts({"warm.st": "PROGRAM W END_PROGRAM"}, dialect)     # (the prelude checked before)
-    typed, name, init = [], expressions._TYPERS[ast.Name], ExprChecker.__init__
+    typed, (maybe, name), init = [], expressions._TYPERS[ast.Name], ExprChecker.__init__
 
     def logged(self, e, expected):
         t = name(self, e, expected)
@@ -182,7 +182,7 @@ def _names_typed(monkeypatch, texts: dict, dialect: str, kept: bool) -> tuple[li
         init(self, ctx, scope, False)
 
     with monkeypatch.context() as patch:
-        patch.setitem(expressions._TYPERS, ast.Name, logged)
+        patch.setitem(expressions._TYPERS, ast.Name, (maybe, logged))
         if not kept:
             patch.setattr(ExprChecker, "__init__", looking_up)
         result = load_texts(dict(texts), dialect)

@@ -116,10 +116,12 @@ def _is_plain_literal(e) -> bool:
 #: (a literal may be truncated) and subranges (a constant's limits).
 _SELF_ASSIGNABLE = frozenset((T.ElementaryType, T.EnumType, T.StructType, T.ArrayType))
 
-def _typer(cls: type):
-    """The ExprChecker method that types a node of `cls` (`_` + the class name), or
-    `_untypable` (a node that is no expression): `_TYPERS[cls]`, found on a class's first node."""
-    return getattr(ExprChecker, "_" + cls.__name__, _untypable)
+def _typer(cls: type) -> tuple:
+    """`_TYPERS[cls]`, found on a class's first node: whether a node of `cls` may be an
+    untyped constant (`_MAYBE_UNTYPED`'s answer, None for most), and the ExprChecker method
+    that types it (`_` + the class name), or `_untypable` (a node that is no expression).
+    One look-up gives `infer` both."""
+    return _MAYBE_UNTYPED.get(cls), getattr(ExprChecker, "_" + cls.__name__, _untypable)
 
 
 def _untypable(checker, e, expected):
@@ -244,14 +246,13 @@ class ExprChecker:
         constant that does not fit `expected` an error."""
         if e is None:
             return ts.ERROR
-        cls = type(e)
-        maybe = _MAYBE_UNTYPED.get(cls)
-        if maybe is not None and (e.type_prefix is None if maybe is _LITERAL
-                                  else is_untyped_constant(e, self._untyped_memo)):
+        maybe, typer = _TYPERS[type(e)]
+        if maybe and (e.type_prefix is None if maybe is _LITERAL
+                      else is_untyped_constant(e, self._untyped_memo)):
             settled = self.settle(e, expected, strict)
             if settled is not None:
                 return settled
-        return _TYPERS[cls](self, e, expected)
+        return typer(self, e, expected)
 
     def check_value(self, e, dst, what: str):
         """Type `e` for storing into type `dst`; report when it cannot be."""
