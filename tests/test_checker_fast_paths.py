@@ -16,6 +16,8 @@ from st_runtime import ast
 from st_runtime import types as T
 from st_runtime.checker import typesys as ts
 from st_runtime.checker.constfold import NOT_CONSTANT
+from st_runtime.checker.context import Scope
+from st_runtime.checker.declarations import Declarations
 from st_runtime.checker.expressions import ExprChecker
 from st_runtime.loader import load_texts
 
@@ -181,10 +183,14 @@ def _names_typed(monkeypatch, texts: dict, dialect: str, kept: bool) -> tuple[li
     def looking_up(self, ctx, scope, declared=False):
         init(self, ctx, scope, False)
 
+    def body_checker(self, info):     # (the declarations' checker would be declared)
+        return ExprChecker(self.ctx, Scope(self.ctx, info))
+
     with monkeypatch.context() as patch:
         patch.setitem(expressions._TYPERS, ast.Name, (maybe, logged))
         if not kept:
             patch.setattr(ExprChecker, "__init__", looking_up)
+            patch.setattr(Declarations, "body_checker", body_checker)
         result = load_texts(dict(texts), dialect)
     return typed, [(d.code, d.message, str(d.pos), d.severity) for d in result.diagnostics]
 

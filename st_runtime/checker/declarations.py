@@ -53,6 +53,18 @@ class Declarations:
         self.type_events: dict[str, list] | None = {} if record else None
         self._recording: list[str] = []
         self._adopted = False        # a prelude TYPE entered this load's tables already
+        # id(PouInfo) -> the checker of its declarations, which its body's takes on (`body_checker`)
+        self.checkers: dict[int, ExprChecker] = {}
+
+    def body_checker(self, info: PouInfo) -> ExprChecker:
+        """The expressions' checker of `info`'s body: the one its declarations were checked
+        with, in the same scope, now that every name is declared (`ExprChecker.declared`),
+        or a new one where this load checked none (a POU of the shared prelude)."""
+        ex = self.checkers.pop(id(info), None)
+        if ex is None:
+            return ExprChecker(self.ctx, Scope(self.ctx, info), declared=True)
+        ex.declared = True
+        return ex
 
     @cached_property
     def global_ex(self) -> ExprChecker:
@@ -638,7 +650,7 @@ class Declarations:
 
     def _interface(self, info: PouInfo, node: ast.Pou) -> None:
         scope = Scope(self.ctx, info)
-        ex = ExprChecker(self.ctx, scope)
+        ex = self.checkers[id(info)] = ExprChecker(self.ctx, scope)
         if node.kind in ("FUNCTION_BLOCK", "INTERFACE"):
             self.objects.inherit(info, node)
         if node.kind == "FUNCTION" and node.return_type is not None:

@@ -175,7 +175,8 @@ class ExprChecker:
         """`declared`: every name of `scope` is declared (a body's checker, after the
         declarations): a variable it names is then kept (`_variables`) for the next
         name of the same spelling.  Not so while the declarations are checked: a name
-        looked up there may be declared after, or shadowed by a later local."""
+        looked up there may be declared after, or shadowed by a later local.  The
+        declarations' checker becomes the body's by setting it (`Declarations.body_checker`)."""
         self.ctx = ctx
         self.scope = scope
         self.declared = declared
