@@ -467,9 +467,13 @@ class ExprChecker:
         if sym is not None:
             self.program.name_refs[id(e)] = sym
             value = self.ctx.symbol_values.get(id(sym), NOT_CONSTANT)
-            if self.declared and value is NOT_CONSTANT and not isinstance(sym.type, T.SubrangeType):
-                self._variables[e.name] = sym     # (`record` stores just its type)
-            return self.record(e, sym.type, value)
+            t = sym.type
+            if value is NOT_CONSTANT and not isinstance(t, T.SubrangeType):     # a plain variable
+                if self.declared:
+                    self._variables[e.name] = sym
+                self.program.expr_types[id(e)] = t      # (all `record` does with it)
+                return t
+            return self.record(e, t, value)
         enums = self.ctx.enum_values.get(key(e.name))
         if enums:
             if expected in enums:
