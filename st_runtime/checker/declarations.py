@@ -9,7 +9,6 @@ AliasType), a FUNCTION_BLOCK name maps to its FBType.
 from __future__ import annotations
 
 import difflib
-from functools import cached_property
 
 from .. import ast
 from .. import native
@@ -43,6 +42,7 @@ class Declarations:
         self.ctx = ctx
         self.program = ctx.program
         self.global_blocks: list[ast.VarBlock] = []
+        self._global_ex: ExprChecker | None = None      # (`global_ex`, made at its first use)
         self._resolving: set[str] = set()
         self._names: dict[str, ast.Pos] = dict(base.names) if base is not None else {}
         self.configurations: list[ast.Configuration] = []
@@ -66,11 +66,16 @@ class Declarations:
         ex.declared = True
         return ex
 
-    @cached_property
+    @property
     def global_ex(self) -> ExprChecker:
         """The expressions' checker at global level (globals, TYPEs, configurations), made
-        at its first use: a load of POUs alone never asks for it."""
-        return ExprChecker(self.ctx, Scope(self.ctx, None))
+        at its first use: a load of POUs alone never asks for it.  (Not a `cached_property`:
+        its first use would make the instance's `__dict__` a real dict, and CPython 3.11 then
+        reads `self.ctx` and every other attribute by a slower path.)"""
+        ex = self._global_ex
+        if ex is None:
+            ex = self._global_ex = ExprChecker(self.ctx, Scope(self.ctx, None))
+        return ex
 
     # ------------------------------------------------------------- driver
     def run(self, files: list[ast.SourceFile]) -> None:
