@@ -16,6 +16,8 @@ from st_runtime import ast
 from st_runtime import types as T
 from st_runtime.checker import typesys as ts
 from st_runtime.checker.constfold import NOT_CONSTANT
+from st_runtime.checker.context import Scope
+from st_runtime.checker.declarations import Declarations
 from st_runtime.checker.expressions import ExprChecker
 from st_runtime.loader import load_texts
 
@@ -168,7 +170,7 @@ def _names_typed(monkeypatch, texts: dict, dialect: str, kept: bool) -> tuple[li
     from st_runtime.checker import expressions
 
     load_texts({"warm.st": "PROGRAM W END_PROGRAM"}, dialect)     # (the prelude checked before)
-    typed, name, init = [], expressions._TYPERS[ast.Name], ExprChecker.__init__
+    typed, (maybe, name), init = [], expressions._TYPERS[ast.Name], ExprChecker.__init__
 
     def logged(self, e, expected):
         t = name(self, e, expected)
@@ -181,10 +183,14 @@ def _names_typed(monkeypatch, texts: dict, dialect: str, kept: bool) -> tuple[li
     def looking_up(self, ctx, scope, declared=False):
         init(self, ctx, scope, False)
 
+    def body_checker(self, info):     # (the declarations' checker would be declared)
+        return ExprChecker(self.ctx, Scope(self.ctx, info))
+
     with monkeypatch.context() as patch:
-        patch.setitem(expressions._TYPERS, ast.Name, logged)
+        patch.setitem(expressions._TYPERS, ast.Name, (maybe, logged))
         if not kept:
             patch.setattr(ExprChecker, "__init__", looking_up)
+            patch.setattr(Declarations, "body_checker", body_checker)
         result = load_texts(dict(texts), dialect)
     return typed, [(d.code, d.message, str(d.pos), d.severity) for d in result.diagnostics]
 
@@ -211,3 +217,17 @@ def test_a_name_in_a_declaration_is_looked_up_where_it_is():
     found = [(d.code, d.pos.line, d.pos.col) for d in load_texts({"t.st": text}, "iec").diagnostics
              if "expected INT, found BOOL" in d.message]
     assert found == [("E-TYPE-004", 6, 14)]
+
+
+def test_a_plain_variable_as_a_target_is_refused_for_each_reason():
+    """`check_store` types a plain variable target at once (no path walked, no property
+    looked up) and still refuses it for each reason a path is refused: a CONSTANT
+    (E-ASSIGN-001), the POU's own input (E-ASSIGN-002), an enclosing FOR's control variable
+    (E-ASSIGN-003), an enumeration value (E-TYPE-014), each at the target's name; a plain
+    local (`n`) is written.  A fast path that returned the type at once fails every row."""
+    text = ("TYPE Color : (Red, Green); END_TYPE\nPROGRAM P\nVAR_INPUT i : INT; END_VAR\n"
+            "VAR CONSTANT c : INT := 1; END_VAR\nVAR k : INT; n : INT; END_VAR\n"
+            "c := 2;\ni := 2;\nFOR k := 1 TO 2 DO\n  k := 3;\nEND_FOR;\nRed := 1;\nn := 4;\nEND_PROGRAM\n")
+    found = [(d.code, d.pos.line, d.pos.col) for d in load_texts({"t.st": text}, "iec").diagnostics]
+    assert found == [("E-ASSIGN-001", 6, 1), ("E-ASSIGN-002", 7, 1), ("E-ASSIGN-003", 9, 3),
+                     ("E-TYPE-014", 11, 1)]

@@ -105,9 +105,11 @@ def _check(files, dialect, memory_limit=None, open_instances=False, share_prelud
         if base is not None and not base.clashes(program.files[1:]):
             base.seed(ctx)
             program.prelude = base
-            Declarations(ctx, base).run(program.files[1:])
+            declarations = Declarations(ctx, base)
+            declarations.run(program.files[1:])
         else:
-            Declarations(ctx).run(program.files)
+            declarations = Declarations(ctx)
+            declarations.run(program.files)
         pous = iter(program.pous.values())
         if program.prelude is not None and program.prelude.memo("bodiless", lambda: all(
                 info.node is None or info.native is not None for info in base.pous.values())):
@@ -115,8 +117,7 @@ def _check(files, dialect, memory_limit=None, open_instances=False, share_prelud
         for info in pous:
             if info.node is None or info.native is not None:
                 continue
-            ex = ExprChecker(ctx, Scope(ctx, info), declared=True)
-            StatementChecker(ex).block(info.node.body)
+            StatementChecker(declarations.body_checker(info)).block(info.node.body)
             for method in info.methods.values():
                 if method.owner is info and info.kind == "FUNCTION_BLOCK":
                     ex = ExprChecker(ctx, Scope(ctx, method), declared=True)

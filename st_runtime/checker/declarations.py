@@ -41,9 +41,8 @@ class Declarations:
     def __init__(self, ctx: Context, base=None, record: bool = False):
         self.ctx = ctx
         self.program = ctx.program
-        self.global_scope = Scope(ctx, None)
-        self.global_ex = ExprChecker(ctx, self.global_scope)
         self.global_blocks: list[ast.VarBlock] = []
+        self._global_ex: ExprChecker | None = None      # (`global_ex`, made at its first use)
         self._resolving: set[str] = set()
         self._names: dict[str, ast.Pos] = dict(base.names) if base is not None else {}
         self.configurations: list[ast.Configuration] = []
@@ -54,6 +53,29 @@ class Declarations:
         self.type_events: dict[str, list] | None = {} if record else None
         self._recording: list[str] = []
         self._adopted = False        # a prelude TYPE entered this load's tables already
+        # id(PouInfo) -> the checker of its declarations, which its body's takes on (`body_checker`)
+        self.checkers: dict[int, ExprChecker] = {}
+
+    def body_checker(self, info: PouInfo) -> ExprChecker:
+        """The expressions' checker of `info`'s body: the one its declarations were checked
+        with, in the same scope, now that every name is declared (`ExprChecker.declared`),
+        or a new one where this load checked none (a POU of the shared prelude)."""
+        ex = self.checkers.pop(id(info), None)
+        if ex is None:
+            return ExprChecker(self.ctx, Scope(self.ctx, info), declared=True)
+        ex.declared = True
+        return ex
+
+    @property
+    def global_ex(self) -> ExprChecker:
+        """The expressions' checker at global level (globals, TYPEs, configurations), made
+        at its first use: a load of POUs alone never asks for it.  (Not a `cached_property`:
+        its first use would make the instance's `__dict__` a real dict, and CPython 3.11 then
+        reads `self.ctx` and every other attribute by a slower path.)"""
+        ex = self._global_ex
+        if ex is None:
+            ex = self._global_ex = ExprChecker(self.ctx, Scope(self.ctx, None))
+        return ex
 
     # ------------------------------------------------------------- driver
     def run(self, files: list[ast.SourceFile]) -> None:
@@ -436,19 +458,11 @@ class Declarations:
             self.ctx.error("E-DECL-002", f"duplicate declaration of '{decl.name}' in {scope}{where}",
                            decl.pos)
             return None
-        if pou is not None and pou.kind == "FUNCTION" and kind != "VAR_IN_OUT" and fb_type_of(t):
-            self.ctx.error("E-DECL-009", f"FUNCTION {pou.name} declares '{decl.name}' of function "
-                           f"block type {fb_type_of(t).name}: functions keep no state; use a "
-                           f"FUNCTION_BLOCK", decl.pos)
-        if decl.location is not None:
-            self._located(decl, kind, t, pou)
-        if isinstance(t, T.ArrayType) and t.is_open and kind != "VAR_IN_OUT":
-            self.ctx.error("E-DECL-006", f"'{decl.name}' : {t}: ARRAY[*] is only for a VAR_IN_OUT "
-                           f"(the bounds come with the argument)", decl.pos)
-        fb_node = self.ctx.pou_decls.get(key(t.name)) if isinstance(t, T.FBType) else None
-        if fb_node is not None and "ABSTRACT" in fb_node.modifiers:
-            self.ctx.error("E-DECL-016", f"'{decl.name}': {t.name} is ABSTRACT and cannot be "
-                           f"instantiated (declare an FB that extends it)", decl.pos)
+        if type(t) is T.ElementaryType:       # (an INT is no FB, no array, nothing ABSTRACT)
+            if decl.location is not None:
+                self._located(decl, kind, t, pou)
+        else:
+            self._check_placed_type(decl, kind, t, pou)
         if decl.edge and (kind != "VAR_INPUT" or pou is None or pou.kind == "FUNCTION"
                           or (t is not ts.ERROR and not ts.is_bool(t))):
             self.ctx.error("E-DECL-013", f"'{decl.name}' is declared {decl.edge}: expected a BOOL "
@@ -490,6 +504,24 @@ class Declarations:
         table[k] = sym
         return sym
 
+    def _check_placed_type(self, decl: ast.VarDecl, kind: str, t, pou: PouInfo | None) -> None:
+        """What a variable's type (no elementary one) may not be where it is declared, in
+        this order: an FB in a FUNCTION (E-DECL-009), its address (`_located`), ARRAY[*]
+        outside a VAR_IN_OUT, an ABSTRACT FB's instance."""
+        if pou is not None and pou.kind == "FUNCTION" and kind != "VAR_IN_OUT" and fb_type_of(t):
+            self.ctx.error("E-DECL-009", f"FUNCTION {pou.name} declares '{decl.name}' of function "
+                           f"block type {fb_type_of(t).name}: functions keep no state; use a "
+                           f"FUNCTION_BLOCK", decl.pos)
+        if decl.location is not None:
+            self._located(decl, kind, t, pou)
+        if isinstance(t, T.ArrayType) and t.is_open and kind != "VAR_IN_OUT":
+            self.ctx.error("E-DECL-006", f"'{decl.name}' : {t}: ARRAY[*] is only for a VAR_IN_OUT "
+                           f"(the bounds come with the argument)", decl.pos)
+        fb_node = self.ctx.pou_decls.get(key(t.name)) if isinstance(t, T.FBType) else None
+        if fb_node is not None and "ABSTRACT" in fb_node.modifiers:
+            self.ctx.error("E-DECL-016", f"'{decl.name}': {t.name} is ABSTRACT and cannot be "
+                           f"instantiated (declare an FB that extends it)", decl.pos)
+
     def _located(self, decl: ast.VarDecl, kind: str, t, pou) -> None:
         """`x AT %IW3 : INT` (IEC 61131-3 6.5.5): a valid address of the type's width,
         in a PROGRAM, a configuration or the globals; an FB may only say `%I*`."""
@@ -518,6 +550,8 @@ class Declarations:
         type's, down the chain (IEC 61131-3:2013 table 11: a derived type's
         default is its parent's unless it gives its own). `seen` stops at a cycle, which
         the type checks refuse on their own."""
+        if type(ref) is ast.NamedType and ref.name in T.ELEMENTARY:
+            return None     # (`INT`: no TYPE takes an elementary type's name, `_declare_name`)
         seen: set[str] = set()
         type_decls = self.ctx.type_decls
         while isinstance(ref, ast.NamedType):
@@ -621,7 +655,7 @@ class Declarations:
 
     def _interface(self, info: PouInfo, node: ast.Pou) -> None:
         scope = Scope(self.ctx, info)
-        ex = ExprChecker(self.ctx, scope)
+        ex = self.checkers[id(info)] = ExprChecker(self.ctx, scope)
         if node.kind in ("FUNCTION_BLOCK", "INTERFACE"):
             self.objects.inherit(info, node)
         if node.kind == "FUNCTION" and node.return_type is not None:

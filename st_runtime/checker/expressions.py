@@ -116,10 +116,12 @@ def _is_plain_literal(e) -> bool:
 #: (a literal may be truncated) and subranges (a constant's limits).
 _SELF_ASSIGNABLE = frozenset((T.ElementaryType, T.EnumType, T.StructType, T.ArrayType))
 
-def _typer(cls: type):
-    """The ExprChecker method that types a node of `cls` (`_` + the class name), or
-    `_untypable` (a node that is no expression): `_TYPERS[cls]`, found on a class's first node."""
-    return getattr(ExprChecker, "_" + cls.__name__, _untypable)
+def _typer(cls: type) -> tuple:
+    """`_TYPERS[cls]`, found on a class's first node: whether a node of `cls` may be an
+    untyped constant (`_MAYBE_UNTYPED`'s answer, None for most), and the ExprChecker method
+    that types it (`_` + the class name), or `_untypable` (a node that is no expression).
+    One look-up gives `infer` both."""
+    return _MAYBE_UNTYPED.get(cls), getattr(ExprChecker, "_" + cls.__name__, _untypable)
 
 
 def _untypable(checker, e, expected):
@@ -173,7 +175,8 @@ class ExprChecker:
         """`declared`: every name of `scope` is declared (a body's checker, after the
         declarations): a variable it names is then kept (`_variables`) for the next
         name of the same spelling.  Not so while the declarations are checked: a name
-        looked up there may be declared after, or shadowed by a later local."""
+        looked up there may be declared after, or shadowed by a later local.  The
+        declarations' checker becomes the body's by setting it (`Declarations.body_checker`)."""
         self.ctx = ctx
         self.scope = scope
         self.declared = declared
@@ -244,14 +247,13 @@ class ExprChecker:
         constant that does not fit `expected` an error."""
         if e is None:
             return ts.ERROR
-        cls = type(e)
-        maybe = _MAYBE_UNTYPED.get(cls)
-        if maybe is not None and (e.type_prefix is None if maybe is _LITERAL
-                                  else is_untyped_constant(e, self._untyped_memo)):
+        maybe, typer = _TYPERS[type(e)]
+        if maybe and (e.type_prefix is None if maybe is _LITERAL
+                      else is_untyped_constant(e, self._untyped_memo)):
             settled = self.settle(e, expected, strict)
             if settled is not None:
                 return settled
-        return _TYPERS[cls](self, e, expected)
+        return typer(self, e, expected)
 
     def check_value(self, e, dst, what: str):
         """Type `e` for storing into type `dst`; report when it cannot be."""
@@ -465,9 +467,13 @@ class ExprChecker:
         if sym is not None:
             self.program.name_refs[id(e)] = sym
             value = self.ctx.symbol_values.get(id(sym), NOT_CONSTANT)
-            if self.declared and value is NOT_CONSTANT and not isinstance(sym.type, T.SubrangeType):
-                self._variables[e.name] = sym     # (`record` stores just its type)
-            return self.record(e, sym.type, value)
+            t = sym.type
+            if value is NOT_CONSTANT and not isinstance(t, T.SubrangeType):     # a plain variable
+                if self.declared:
+                    self._variables[e.name] = sym
+                self.program.expr_types[id(e)] = t      # (all `record` does with it)
+                return t
+            return self.record(e, t, value)
         enums = self.ctx.enum_values.get(key(e.name))
         if enums:
             if expected in enums:

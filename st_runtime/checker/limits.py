@@ -138,6 +138,10 @@ def _is_leaf(cls: type) -> bool:
 
 
 _QUIET, _LOUD = PerClass(_quiet_kind), PerClass(_loud_kind)
+#: The table a node's fields are walked under, by its depth (at most the deepest level: a
+#: node beyond is reported, not walked): `_QUIET` above the deepest level, where a leaf
+#: below cannot be too deep, `_LOUD` at it.
+_KINDS_AT = (_QUIET,) * MAX_EXPRESSION_DEPTH + (_LOUD,)
 
 
 def _item_kind(cls: type):
@@ -234,9 +238,9 @@ def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
     statements = 0
     # (node, statement depth, loop depth, expression depth)
     stack = [(pou, 0, 0, 0)]
-    push, shapes, quiet, loud, items = stack.append, _SHAPES, _QUIET, _LOUD, _ITEMS
+    push, pop, shapes, kinds_at, items = stack.append, stack.pop, _SHAPES, _KINDS_AT, _ITEMS
     while stack:
-        node, blocks, loops, depth = stack.pop()
+        node, blocks, loops, depth = pop()
         is_statement, is_block, is_loop, transparent, construct, build_node, children = shapes[type(node)]
         if construct:
             what = construct(node)
@@ -273,13 +277,15 @@ def check_limits(ctx, pou, name: str, walked: Walked | None = None) -> bool:
                 report("E-LIMIT-002", f"{what} nested more than {MAX_EXPRESSION_DEPTH} levels deep"
                        " (split it with intermediate variables or types)", node)
                 continue
-        kinds = quiet if depth < MAX_EXPRESSION_DEPTH else loud   # (a leaf below here cannot be too deep)
+        kinds = kinds_at[depth]
         for value in children(node):     # the child nodes in field order, tuples flattened
             kind = kinds[type(value)]
+            if not kind:           # (None, a scalar, a quiet leaf: the commonest, tested first)
+                continue
             if kind == PUSH:
                 push((value, blocks, loops, depth))
-            elif kind:
-                for item in value:   # (a node that would add nothing is not pushed: `_Items`)
+            else:
+                for item in value:   # (a node that would add nothing is not pushed: `_ITEMS`)
                     test = items[type(item)]
                     if test == PUSH or test and not test(item, kinds):
                         push((item, blocks, loops, depth))

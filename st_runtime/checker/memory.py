@@ -137,6 +137,7 @@ def check_memory(ctx, limit: int | None = None) -> None:
     limit = DEFAULT_LIMIT if limit is None else limit
     program = ctx.program
     model = MemoryModel()
+    layout = model.layout
     string_max = ctx.rules.string_max_bytes
 
     def variable_bytes(sym, owner: str) -> int:
@@ -164,7 +165,10 @@ def check_memory(ctx, limit: int | None = None) -> None:
         stored = [s for s in info.variables.values() if s.kind in _STORED]
         owner, instance = f"{info.name}.", 0
         for sym in stored:
-            instance += variable_bytes(sym, owner)
+            size = _REFERENCE[0] if sym.kind == "VAR_IN_OUT" else layout(sym.type)[0]
+            if size > limit or string_max is not None:     # (something to report: said there)
+                size = variable_bytes(sym, owner)
+            instance += size
         if instance > limit and not any(variable_bytes_over(model, s, limit) for s in stored):
             ctx.error("E-LIMIT-009", f"an instance of {info.name} needs {instance:,} bytes, above the memory"
                       f" limit of {limit:,} bytes", info.node.pos)

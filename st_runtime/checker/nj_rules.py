@@ -68,13 +68,10 @@ def identifier_problems(name: str) -> list[tuple[str, str]]:
     return problems
 
 
-def _declared_names(files):
-    """(name, pos) of every identifier a user declares (POUs, types, members, variables)."""
-    def var_blocks(blocks):
-        for block in blocks:
-            for decl in block.decls:
-                yield decl.name, decl.pos
-
+def check_identifiers(ctx: Context, files) -> None:
+    """Report each NJ rule broken by an identifier the user declares (POUs, types,
+    members, variables), in the order they are declared: each node's name asked of
+    `_problems_of` where it is met (no list of the names made first)."""
     for f in files:
         if f.path == BUILTIN_FILE:
             continue
@@ -82,26 +79,29 @@ def _declared_names(files):
             if item.pos.file == BUILTIN_FILE:
                 continue
             if isinstance(item, ast.Pou):
-                yield item.name, item.pos
-                yield from var_blocks(item.var_blocks)
+                _check_names(ctx, (item,))
+                for block in item.var_blocks:
+                    _check_names(ctx, block.decls)
             elif isinstance(item, ast.TypeDecl):
-                yield item.name, item.pos
+                _check_names(ctx, (item,))
                 if isinstance(item.spec, ast.StructType):
-                    for m in item.spec.members:
-                        yield m.name, m.pos
+                    _check_names(ctx, item.spec.members)
                 elif isinstance(item.spec, ast.EnumType):
-                    for v in item.spec.values:
-                        yield v.name, v.pos
+                    _check_names(ctx, item.spec.values)
             elif isinstance(item, ast.VarBlock):
-                yield from var_blocks([item])
+                _check_names(ctx, item.decls)
             elif isinstance(item, ast.Configuration):
-                yield from var_blocks(item.globals)
+                for block in item.globals:
+                    _check_names(ctx, block.decls)
 
 
-def check_identifiers(ctx: Context, files) -> None:
-    for name, pos in _declared_names(files):
-        for rule, message in _problems_of(name):
-            ctx.nj_rule(rule, message, pos)
+def _check_names(ctx: Context, nodes) -> None:
+    """Report the NJ rules the names of `nodes` (each with a name and a position) break."""
+    for node in nodes:
+        problems = _problems_of(node.name)
+        if problems:
+            for rule, message in problems:
+                ctx.nj_rule(rule, message, node.pos)
 
 
 @functools.lru_cache(maxsize=4096)   # a pure function of the name, asked on every load (Main, x, ...)

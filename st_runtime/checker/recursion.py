@@ -49,9 +49,10 @@ def _declared_edges(info) -> list[tuple[str, object, str]]:
     variable whose type, or its arrays' element type, is an FB or a STRUCT."""
     edges = []
     for sym in info.variables.values():
-        if sym.kind not in _INSTANCE_KINDS or sym.decl is None:
-            continue
-        t = innermost(sym.type)
+        t = sym.type
+        if type(t) is T.ElementaryType or sym.kind not in _INSTANCE_KINDS or sym.decl is None:
+            continue       # (an INT holds no instance: the commonest variable, passed first)
+        t = innermost(t)
         if isinstance(t, T.FBType):
             edges.append((key(t.name), sym.decl.pos, "declares an instance of"))
         elif isinstance(t, T.StructType):

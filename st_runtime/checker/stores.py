@@ -48,6 +48,9 @@ def check_store(ex, target, what: str = "assignment"):
     Returns the target's type (ERROR after a report, so that the value is not
     also reported).
     """
+    if type(target) is ast.Name:      # the commonest: no step, no call, no property, no reference
+        t = ex.infer(target)
+        return t if t is ts.ERROR else _writable(ex, target, target, t, what)
     if isinstance(target, ast.DirectVar):     # a place of the process image
         return ex.infer(target)
     root, through = _root_and_reference(target)
@@ -70,6 +73,13 @@ def check_store(ex, target, what: str = "assignment"):
     if through:
         note_write_through(ex, target)
         return t                   # (the referenced variable was writable where REF took it)
+    return _writable(ex, target, root, t, what)
+
+
+def _writable(ex, target, root: ast.Name, t, what: str):
+    """`t` when the variable path `target` (typed `t`, no ERROR), whose root is `root`, may be
+    written here, else ERROR after a report: no enumeration value, no CONSTANT, no input
+    of this POU, no enclosing FOR's control variable, no FB instance's output."""
     sym = ex.program.name_refs.get(id(root))
     if not hasattr(sym, "kind"):  # an enumeration value
         ex.ctx.error("E-TYPE-014", f"{what}: '{root.name}' is an enumeration value, not a variable",
