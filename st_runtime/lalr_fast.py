@@ -32,6 +32,12 @@ the few that build a list or a `?rule`'s value.  Two shortcuts, same values:
 * an inlined `_rule` is a plain list of its children instead of a `Tree`
   that its parent takes apart at once (nothing else ever sees it).
 
+The end of the input is accepted where Lark's loop accepts it (the accepting state,
+the end as the token), but tested once, not after every reduction: the accepting state
+has no action, so the action's look-up fails there (a KeyError), and only a failed
+look-up asks.  Nor does a shift ask whether its token is the end: no table of the
+grammar shifts the end (`_Actions` refuses one that would).
+
 It is a fast path only: on any exception it returns `FAILED`, and the
 caller parses the text again with Lark's own parser, whose errors feed the
 syntax diagnostics (`recovery.py`) exactly as before.
