@@ -32,6 +32,12 @@ the few that build a list or a `?rule`'s value.  Two shortcuts, same values:
 * an inlined `_rule` is a plain list of its children instead of a `Tree`
   that its parent takes apart at once (nothing else ever sees it).
 
+The end of the input is accepted where Lark's loop accepts it (the accepting state,
+the end as the token), but tested once, not after every reduction: the accepting state
+has no action, so the action's look-up fails there (a KeyError), and only a failed
+look-up asks.  Nor does a shift ask whether its token is the end: no table of the
+grammar shifts the end (`_Actions` refuses one that would).
+
 It is a fast path only: on any exception it returns `FAILED`, and the
 caller parses the text again with Lark's own parser, whose errors feed the
 syntax diagnostics (`recovery.py`) exactly as before.
@@ -196,8 +202,11 @@ class _Actions(dict):
 
     def __missing__(self, state: int) -> dict:
         fast = self.fast
-        actions = self[state] = {kind: (action, arg) if action is Shift else (None, fast._step(arg))
-                                 for kind, (action, arg) in fast.states[state].items()}
+        actions = {kind: (action, arg) if action is Shift else (None, fast._step(arg))
+                   for kind, (action, arg) in fast.states[state].items()}
+        if actions.get("$END", (None,))[0] is Shift:     # (the loop shifts without looking)
+            raise ValueError("a shift at the end of the input")
+        self[state] = actions
         return actions
 
 
@@ -314,7 +323,7 @@ class FastLalr:
         return plan
 
     def _step(self, rule) -> tuple:
-        """(size, origin, how, function, pick, gotos): the rule's plan (_plan) as the
+        """(size, how, function, pick, gotos): the rule's plan (_plan) as the
         loop runs it; `pick` is an itemgetter (CALL_PICK), an index (CALL_ONE, LIST_ONE,
         CALL_SPREAD) or the plan (GENERAL); `function` is the written call for CALL_PLAN
         (`_call_of_plan`); `gotos` the rule's _Gotos."""
@@ -322,7 +331,8 @@ class FastLalr:
         origin = plan[1]
         if origin not in self.gotos:
             self.gotos[origin] = _Gotos(self.states, origin)
-        return (*self._how(plan), self.gotos[origin])
+        size, _, how, function, pick = self._how(plan)     # (the loop reads no origin: gotos knows it)
+        return size, how, function, pick, self.gotos[origin]
 
     @staticmethod
     def _how(plan: tuple) -> tuple:
@@ -422,117 +432,118 @@ class FastLalr:
         if retyped is not self.unread_beside:   # (a test retypes every token: then it reads each)
             self.unread, self.unread_beside = self.unkept - retyped, retyped
         unread = self.unread
-        pos = 0
-        while True:
-            # Lark's contextual lexer: the next token the parser's state accepts
-            # (BasicLexer.next_token, then the postlexer), inline
-            scan = scanners[state]
+        pos, token = 0, None
+        try:        # (the end: the state of an accepted input has no action, a KeyError)
             while True:
-                found = scan(text, pos)
-                if found is None:
-                    break
-                kind = found.lastgroup
-                start, pos = found.span(kind)
-                if kind not in ignored:
-                    break
-            if found is None:                   # blanks to the end, or no terminal here
-                if pos < len(text) and not self.blanks(text, pos):
-                    raise ValueError("no terminal matches here")
-                token, kind = _END, "$END"
-            else:
-                value = text[start:pos]
-                if kind in reserving:           # the keyword callback (parser.reserve_keywords), inline
-                    kind = keywords.get(value.upper(), kind)
-                if kind in unread:              # a token no callback is given: its place only
-                    token = kind
+                # Lark's contextual lexer: the next token the parser's state accepts
+                # (BasicLexer.next_token, then the postlexer), inline
+                scan = scanners[state]
+                while True:
+                    found = scan(text, pos)
+                    if found is None:
+                        break
+                    kind = found.lastgroup
+                    start, pos = found.span(kind)
+                    if kind not in ignored:
+                        break
+                if found is None:                   # blanks to the end, or no terminal here
+                    if pos < len(text) and not self.blanks(text, pos):
+                        raise ValueError("no terminal matches here")
+                    token, kind = _END, "$END"
                 else:
-                    token = str_new(lazy, value)    # Token._future_new, inline, the positions when asked
-                    token.type, token.start_pos, token.value, token.lines = kind, start, value, lines
-                    if kind in retyped:
-                        token = retype(token)
-                        kind = token.type
-            while True:
-                action, step = table[state][kind]
-                if action is Shift:
-                    if token is _END:
-                        raise ValueError("shift at the end of the input")
-                    state = step
-                    state_stack.append(state)
-                    push(token)
-                    break
-                size, origin, how, function, pick, gotos = step
-                if how >= CALL_TOP:     # in place: the top value replaced, or the list below grown
-                    if how == CALL_TOP:
-                        value_stack[-1] = function(value_stack[-1])
-                    elif how == LIST_TOP:
-                        value_stack[-1] = [value_stack[-1]]
-                    else:               # LIST_GROW, LIST_JOIN: two children, the first a list
-                        last = value_stack.pop()
-                        del state_stack[-1]
-                        if how == LIST_GROW:
-                            value_stack[-1].append(last)
-                        else:
-                            value_stack[-1] += last
-                    state = state_stack[-1] = gotos[state_stack[-2]]
-                elif how == UNIT:       # the value stays; the state is the goto's
-                    below = state_stack[-2]
-                    chain = (below, state, kind)
-                    state = units.get(chain)
-                    if state is None:
-                        state = units[chain] = self._unit_chain(below, gotos[below], kind)
-                    state_stack[-1] = state
-                    continue
-                else:
-                    if size:
-                        values = value_stack[-size:]
-                        del state_stack[-size:]
-                        del value_stack[-size:]
+                    value = text[start:pos]
+                    if kind in reserving:           # the keyword callback (parser.reserve_keywords), inline
+                        kind = keywords.get(value.upper(), kind)
+                    if kind in unread:              # a token no callback is given: its place only
+                        token = kind
                     else:
-                        values = []
-                    if how == CALL_PLAN:
-                        push(function(values))
-                    elif how == GENERAL:    # Lark's ChildFilterLALR and the wrapper, inline
-                        _, _, how, function, keep, nones, _ = pick
-                        if how == LARK:
-                            push(function(values))
+                        token = str_new(lazy, value)    # Token._future_new, inline, the positions when asked
+                        token.type, token.start_pos, token.value, token.lines = kind, start, value, lines
+                        if kind in retyped:
+                            token = retype(token)
+                            kind = token.type
+                while True:
+                    action, step = table[state][kind]
+                    if action is Shift:     # (never at the end: _Actions refuses a table that would)
+                        state = step
+                        state_stack.append(state)
+                        push(token)
+                        break
+                    size, how, function, pick, gotos = step
+                    if how >= CALL_TOP:     # in place: the top value replaced, or the list below grown
+                        if how == CALL_TOP:
+                            value_stack[-1] = function(value_stack[-1])
+                        elif how == LIST_TOP:
+                            value_stack[-1] = [value_stack[-1]]
+                        else:               # LIST_GROW, LIST_JOIN: two children, the first a list
+                            last = value_stack.pop()
+                            del state_stack[-1]
+                            if how == LIST_GROW:
+                                value_stack[-1].append(last)
+                            else:
+                                value_stack[-1] += last
+                        state = state_stack[-1] = gotos[state_stack[-2]]
+                    elif how == UNIT:       # the value stays; the state is the goto's
+                        below = state_stack[-2]
+                        chain = (below, state, kind)
+                        state = units.get(chain)
+                        if state is None:
+                            state = units[chain] = self._unit_chain(below, gotos[below], kind)
+                        state_stack[-1] = state
+                        continue
+                    else:
+                        if size:
+                            values = value_stack[-size:]
+                            del state_stack[-size:]
+                            del value_stack[-size:]
                         else:
-                            if keep is not None:
-                                children = []
-                                for i, splice, before in keep:
-                                    if before:
-                                        children += [None] * before
-                                    if splice:
-                                        if children:
-                                            children += values[i]
-                                        else:       # left recursion: extend the list in place
-                                            children = values[i]
-                                    else:
-                                        children.append(values[i])
-                                if nones:
-                                    children += [None] * nones
+                            values = []
+                        if how == CALL_PLAN:
+                            push(function(values))
+                        elif how == GENERAL:    # Lark's ChildFilterLALR and the wrapper, inline
+                            _, _, how, function, keep, nones, _ = pick
+                            if how == LARK:
+                                push(function(values))
                             else:
-                                children = values
-                            if how == INLINE:
-                                push(function(*children))
-                            elif how == SPLICE:
-                                push(children)
-                            elif how != TREE and len(children) == 1:        # SINGLE, SINGLE_TREE
-                                push(children[0])
-                            else:
-                                push(function(*children) if how == SINGLE else function(children))
-                    elif how == CALL_PICK:
-                        push(function(*pick(values)))
-                    elif how == LIST_ONE:
-                        push(values[pick])
-                    elif how == CALL_SPREAD:
-                        push(function(*values[pick]))
-                    elif how == CALL_ALL:
-                        push(function(*values))
-                    elif how == LIST_ALL:
-                        push(values)
-                    else:                   # CALL_ONE
-                        push(function(values[pick]))
-                    state = gotos[state_stack[-1]]
-                    state_stack.append(state)
-                if token is _END and state == end_state:
-                    return value_stack[-1]
+                                if keep is not None:
+                                    children = []
+                                    for i, splice, before in keep:
+                                        if before:
+                                            children += [None] * before
+                                        if splice:
+                                            if children:
+                                                children += values[i]
+                                            else:       # left recursion: extend the list in place
+                                                children = values[i]
+                                        else:
+                                            children.append(values[i])
+                                    if nones:
+                                        children += [None] * nones
+                                else:
+                                    children = values
+                                if how == INLINE:
+                                    push(function(*children))
+                                elif how == SPLICE:
+                                    push(children)
+                                elif how != TREE and len(children) == 1:        # SINGLE, SINGLE_TREE
+                                    push(children[0])
+                                else:
+                                    push(function(*children) if how == SINGLE else function(children))
+                        elif how == CALL_PICK:
+                            push(function(*pick(values)))
+                        elif how == LIST_ONE:
+                            push(values[pick])
+                        elif how == CALL_SPREAD:
+                            push(function(*values[pick]))
+                        elif how == CALL_ALL:
+                            push(function(*values))
+                        elif how == LIST_ALL:
+                            push(values)
+                        else:                   # CALL_ONE
+                            push(function(values[pick]))
+                        state = gotos[state_stack[-1]]
+                        state_stack.append(state)
+        except KeyError:
+            if token is _END and state == end_state:    # (Lark's loop tests this after each reduction)
+                return value_stack[-1]
+            raise

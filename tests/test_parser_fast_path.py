@@ -115,7 +115,7 @@ def test_a_written_plan_gives_the_children_larks_filter_gives():
     written = 0
     for rule in fast.callbacks:
         size, _, _, _, keep, nones, _ = fast._plan(rule)
-        if fast._step(rule)[2] != lalr_fast.CALL_PLAN:
+        if fast._step(rule)[1] != lalr_fast.CALL_PLAN:
             continue
         written += 1
         spliced = {i for i, splice, _ in keep if splice}
@@ -323,3 +323,46 @@ def test_plain_digits_are_the_integer_decode_int_gives(text):
     if not refused:
         literal = parsed.items[0].body[0].value
         assert type(literal.value) is int and literal.value == expected
+
+
+def test_a_table_that_shifts_at_the_end_is_refused():
+    """The loop shifts without asking whether the token is the end of the input
+    (Lark's loop asserts it is not): the action table of a state that would shift
+    $END is refused when it is made, so such a parse falls back to Lark's loop."""
+    from types import SimpleNamespace
+
+    from lark.parsers.lalr_analysis import Shift
+
+    from st_runtime.lalr_fast import _Actions
+
+    fake = SimpleNamespace(states={0: {"IDENT": (Shift, 1)}, 1: {"$END": (Shift, 0)}},
+                           _step=lambda rule: rule)
+    actions = _Actions(fake)
+    assert actions[0] == {"IDENT": (Shift, 1)}     # (a shift of a token: kept as it is)
+    with pytest.raises(ValueError):
+        actions[1]
+    assert 1 not in actions                         # (not kept: asked again, refused again)
+    # The grammar's own tables never shift the end; its accepting states have no action.
+    fast = st_parser.grammar().fast
+    assert all(fast.states[state] == {} for state in fast.end_states.values())
+    assert not any(row.get("$END", (None,))[0] is Shift for row in fast.states.values())
+
+
+@pytest.mark.parametrize("text", [
+    "PROGRAM P END_PROGRAM PROGRAM",          # a complete file, then a token: not accepted
+    "PROGRAM P END_PROGRAM END_PROGRAM",
+    "PROGRAM P",                              # the end before the file is complete
+    "x := 1; y",
+])
+def test_the_end_is_accepted_only_in_the_accepting_state(text: str):
+    """The loop accepts where its state's table has no action for the end (a KeyError,
+    lalr_fast.FastLalr._parse): only in the accepting state with the end as the token;
+    any other missing action, or the end elsewhere, is a syntax error (FAILED)."""
+    fast = st_parser.grammar().fast
+    for start in ("start", "stmt_list"):
+        st_parser.grammar().reset_builder("e.st")
+        assert fast.parse(text, start) is FAILED
+    st_parser.grammar().reset_builder("e.st")
+    assert fast.parse("PROGRAM P END_PROGRAM", "start") is not FAILED
+    st_parser.grammar().reset_builder("e.st")
+    assert fast.parse("x := 1;", "stmt_list") is not FAILED
