@@ -338,14 +338,14 @@ def test_settled_forgets_a_local_set_other_than_to_a_literal(setting):
 
 
 def test_may_set_tells_a_read_from_a_store_of_a_local():
-    from st_runtime.compiler.optimise.charges import _may_set
+    from st_runtime.compiler.optimise.charges import may_set
 
     for line in ("v_C = 1", "v_C += 2", "v_C //= 2", "v_C, v_D = p", "(v_C := 4)", "for v_C in r:",
                  "with f() as v_C:", "except _FAULTS as v_C:", "del v_C", "v_D = v_C = 1"):
-        assert _may_set("v_C", line), line
+        assert may_set("v_C", line), line
     for line in ("v_D = v_C", "self.v_C = 1", "v_CX = 1", "if (v_C == 0):", "v_D = (v_C >= 2)",
                  "v_D = (v_C <= 2)", "v_D = (v_C != 2)", "x.v_C = 1", "v_D = f(v_C)"):
-        assert not _may_set("v_C", line), line
+        assert not may_set("v_C", line), line
 
 
 # The same in a program: Code is 0, the first axis-like chain sets it in every branch but

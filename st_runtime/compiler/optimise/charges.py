@@ -34,6 +34,7 @@ from bisect import bisect_left, bisect_right
 from operator import is_not, itemgetter, not_, sub
 
 from ..pysrc import indentation
+from . import mentions
 
 _CHARGE = re.compile(r"( *+)_spent \+= (\d+)")
 # A line that can raise, check the budget or leave the level: a word of these (the first
@@ -507,10 +508,10 @@ class _Unread(Exception):
 _SETS = re.compile(r"\s*+_spent\s*+(?:[-+*]?=)")        # a line that sets `_spent`
 _COMPOUND = re.compile(r" *+(if|elif|else|try|except|finally|for|while|with|def)\b.*:$")
 # `v_X = 4`, `v_X = True`: a local set to a literal (a Python name the body assigns is local).
-_LITERAL_STORE = re.compile(r" *+(v_\w+) = (-?\d+|True|False)")
+LITERAL_STORE = re.compile(r" *+(v_\w+) = (-?\d+|True|False)")
 # A clause's test of a local alone: `if v_X:`, `elif (not v_X):`, `if (v_X == 4):`, `!=`.
-_LOCAL_TEST = re.compile(r" *+(?:if|elif) \(?(not )?(v_\w+)(?: (==|!=) (-?\d+))?\)?:")
-_LITERALS = {"True": 1, "False": 0}
+LOCAL_TEST = re.compile(r" *+(?:if|elif) \(?(not )?(v_\w+)(?: (==|!=) (-?\d+))?\)?:")
+LITERALS = {"True": 1, "False": 0}
 _FIRST, _SECOND = itemgetter(0), itemgetter(1)
 _IS_SOMETHING = functools.partial(is_not, None)
 #: At most this many paths are told apart; beyond it only a total they all share is kept.
@@ -546,8 +547,8 @@ class _Paths(frozenset):
         return frozenset(map(_FIRST, itertools.chain.from_iterable(map(_SECOND, self))))
 
     def forgetting(self, line: str) -> "_Paths":
-        """Each path without what it knew of a local that `line` may set (`_may_set`)."""
-        lost = {local for local in self.locals() if local in line and _may_set(local, line)}
+        """Each path without what it knew of a local that `line` may set (`may_set`)."""
+        lost = {local for local in self.locals() if local in line and may_set(local, line)}
         if not lost:
             return self
         return self._refacted(lambda facts: tuple(fact for fact in facts if fact[0] not in lost))
@@ -572,17 +573,21 @@ class _Paths(frozenset):
         return _Paths(itertools.compress(pairs, map(_IS_SOMETHING, facts)) if None in fates.values() else pairs)
 
 
-def _may_set(local: str, line: str) -> bool:
+def may_set(local: str, line: str) -> bool:
     """Whether `line` may set the Python local `local`: it names it as a target (`=`, `:=`,
     an augmented assignment, before a comma: a tuple's), or it is a line that binds names
     otherwise (`for`, `with ... as`, `except ... as`, `del`) and names it at all."""
-    if not re.search(rf"(?<![\w.]){local}(?!\w)", line):
+    found = mentions.places(line, local)
+    if not found:
         return False
     if _BINDS.match(line) or " as " in line:
         return True
-    return re.search(rf"(?<![\w.]){local}\s*(?::=|(?:[-+*/%&|^@]|//|\*\*|>>|<<)?=(?!=)|,)", line) is not None
+    after = len(local)
+    return any(_TARGET.match(line, at + after) for at in found)
 
 
+# What follows a local that a line sets: an assignment's operator or a comma (a tuple's).
+_TARGET = re.compile(r"\s*+(?::=|(?:[-+*/%&|^@]|//|\*\*|>>|<<)?=(?!=)|,)")
 _BINDS = re.compile(r" *+(?:for|with|del|async|import|from|global|nonlocal|class|def|lambda)\b")
 
 
@@ -612,12 +617,12 @@ def _kept(paths: "_Paths") -> "_Paths | None":
 
 def _taken(line: str, paths: "_Paths | None") -> tuple["_Paths | None", "_Paths | None"]:
     """(the paths that may take the clause on `line`, those that go on past its test): a test
-    of a local alone (`_LOCAL_TEST`) is read on each path that knows the local's value, and
+    of a local alone (`LOCAL_TEST`) is read on each path that knows the local's value, and
     tells one that does not what `==` (or a false `!=`) found; any other test takes every
     path both ways, without what they knew of a local it names (it may set one: `:=`)."""
     if paths is None or line.strip() == "else:":
         return paths, _Paths()
-    test = _LOCAL_TEST.fullmatch(line)
+    test = LOCAL_TEST.fullmatch(line)
     if test is None:
         paths = paths.forgetting(line)
         return paths, paths
@@ -649,7 +654,7 @@ class _Settle:
         ends = list(itertools.accumulate(map(len, text)))     # (where each line ends in `flat`)
         # The locals a clause tests alone: only what a path knows of these may tell it apart.
         self.tested = {test.group(2) for n in _lines_holding(flat, ends, "if ")
-                       if (test := _LOCAL_TEST.fullmatch(text[n]))}
+                       if (test := LOCAL_TEST.fullmatch(text[n]))}
         # The lines that set `_spent`, and those that name a tested local (a substring): a
         # path's facts are of tested locals only, so any other line keeps them as they are.
         # (The walk reads only these lines of a region.)
@@ -727,10 +732,10 @@ class _Settle:
         names a tested local (any other keeps what is known)."""
         line = self.text[n]
         if n not in self.sets_spent:
-            store = _LITERAL_STORE.fullmatch(line)
+            store = LITERAL_STORE.fullmatch(line)
             if store is not None and store.group(1) in self.tested:
                 literal = store.group(2)
-                return _start(value).told(store.group(1), _LITERALS.get(literal) if literal in _LITERALS
+                return _start(value).told(store.group(1), LITERALS.get(literal) if literal in LITERALS
                                           else int(literal))
             return value if value is None else value.forgetting(line)
         match = _CHARGE.fullmatch(line)

@@ -32,7 +32,7 @@ from bisect import bisect_right
 from operator import sub
 
 from ..pysrc import indentation
-from .charges import _LITERALS, _LITERAL_STORE, _LOCAL_TEST, _may_set
+from .charges import LITERAL_STORE, LITERALS, LOCAL_TEST, may_set
 from .halves import FAR
 
 #: The longest part of S2 (in lines) that more than one path may run (a charge, a store).
@@ -66,7 +66,7 @@ def thread(lines: list[str], start: int) -> bool:
     return done > 0
 
 
-# The `if` line of a chain whose first test reads a local alone (`_LOCAL_TEST`'s shapes).
+# The `if` line of a chain whose first test reads a local alone (`LOCAL_TEST`'s shapes).
 _CANDIDATE = re.compile(r"^ *+if \(?(?:not )?v_\w+(?: (?:==|!=) -?\d+)?\)?:$", re.MULTILINE)
 
 
@@ -84,7 +84,7 @@ def _threaded(text: list[str], indents: list[int], m: int):
     first = _chain_start_before(text, m, indent)
     if first is None:
         return None
-    test = _LOCAL_TEST.fullmatch(text[m])
+    test = LOCAL_TEST.fullmatch(text[m])
     local = test.group(2)
     if local not in "\n".join(text[first:m]):
         return None             # (no path through the chain before knows anything of it)
@@ -123,7 +123,7 @@ def _nearer(text: list[str], first: int, indent: int) -> None:
     same branch runs for every number, and the test's jump is to a near line (halves.py: a jump
     past some 255 code units takes an EXTENDED_ARG, and CPython 3.11 then does not specialise
     the comparison before it; threading made the first branch long)."""
-    test = _LOCAL_TEST.fullmatch(text[first])
+    test = LOCAL_TEST.fullmatch(text[first])
     if test is None or test.group(1) or test.group(3) is None:
         return
     clauses = _clauses(text, _indents(text), first, indent)
@@ -221,10 +221,10 @@ def _chain_ends(text, indents, first, indent, facts, local):
             taken = rest
             has_else = True
         else:
-            test = _LOCAL_TEST.fullmatch(line)
+            test = LOCAL_TEST.fullmatch(line)
             if test is not None and test.group(2) == local:
                 taken, rest = _split(test, rest)
-            elif _may_set(local, line):
+            elif may_set(local, line):
                 taken = rest = None
             else:
                 taken = rest
@@ -265,11 +265,11 @@ def _block_ends(text, indents, first, end, facts, local):
 def _after(text, first, end, facts, local):
     """What is known of the local after the statement on lines `first` to `end - 1`."""
     if end == first + 1:
-        store = _LITERAL_STORE.fullmatch(text[first])
+        store = LITERAL_STORE.fullmatch(text[first])
         if store is not None and store.group(1) == local:
             literal = store.group(2)
-            return "is", _LITERALS[literal] if literal in _LITERALS else int(literal)
-    if facts is not None and any(local in line and _may_set(local, line) for line in text[first:end]):
+            return "is", LITERALS[literal] if literal in LITERALS else int(literal)
+    if facts is not None and any(local in line and may_set(local, line) for line in text[first:end]):
         return None
     return facts
 
