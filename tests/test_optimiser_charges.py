@@ -644,3 +644,16 @@ def test_charges_opening_a_try_go_before_it_one_after_another():
     assert text == ["    _spent = 0", "    try:", "        _spent += 2", "        x = 1",
                     "        _spent += 5", "        _spent += 7", "        try:", "            y = 2", *handler,
                     "        try:", "            _spent += 4", *handler]
+
+
+def test_the_nearest_line_not_more_indented_each_way():
+    """By hand, indentations 0 4 8 8 4 8 0: from line 0 the later one is line 6, none earlier
+    (-1); from line 1 (4) line 4 later (2 and 3 are deeper), line 0 earlier; from line 2 (8)
+    line 3 (as deep) later, line 1 earlier; from line 4 (4) line 6 later, line 1 earlier; from
+    line 6 none later (7), line 0 earlier."""
+    from st_runtime.compiler.optimise.charges import _Nearest
+
+    indents = [0, 4, 8, 8, 4, 8, 0]
+    after, before = _Nearest(indents, 1), _Nearest(indents, -1)
+    assert [after[n] for n in range(7)] == [6, 4, 3, 4, 6, 6, 7]
+    assert [before[n] for n in range(7)] == [-1, 0, 1, 2, 1, 4, 0]

@@ -31,18 +31,15 @@ import functools
 import itertools
 import re
 from bisect import bisect_left, bisect_right
-from operator import is_not, itemgetter, not_, sub
+from operator import is_not, itemgetter, not_
 
 from ..pysrc import indentation
-from . import mentions
+from . import margins, mentions
 
 _CHARGE = re.compile(r"( *+)_spent \+= (\d+)")
-# A line that can raise, check the budget or leave the level: a word of these (the first
-# test: a substring, `_holds_barrier_word`, then the word as a whole), a loop's head, or a
-# line opening a block other than a branch of an IF (`try:`, `for ...:`; not `if`, `elif`,
-# `else:`).
-_BARRIER_WORD = re.compile(r"\btry:|\bexcept\b|\bfinally:|_ctx|_overrun|\breturn\b|\bbreak\b|\bcontinue\b"
-                           r"|\.execute\(|_fn_")
+# A line that can raise, check the budget or leave the level: one holding a barrier word
+# (`_holds_barrier_word`), a loop's head, or a line opening a block other than a branch of an
+# IF (`try:`, `for ...:`; not `if`, `elif`, `else:`).
 _LOOP = re.compile(r" *+(?:for|while|with)\b")
 _BRANCH = re.compile(" *+(?:if |elif |else:)")
 
@@ -80,7 +77,7 @@ def merge(lines: list[str], start: int) -> None:
             new[n] = None
         elif totals[k] != int(match.group(2)):
             new[n] = f"{match.group(1)}_spent += {totals[k]}"
-    lines[start:] = _lifted(_sunk([line for line in new if line is not None]))
+    lines[start:] = _lifted(_sunk([line for line in new if line is not None] if dropped else new))
 
 
 def _out_of_try(text: list[str]) -> None:
@@ -89,9 +86,12 @@ def _out_of_try(text: list[str]) -> None:
     of `_spent` (the handler's, the `finally`'s) sees the same; before it, the charge may
     join the one of the level above (`merge`): TRJ_OceanWave's body after its latch.  Not
     the `try` that holds the whole body (its charges join one another inside it)."""
-    for n in range(len(text) - 2):
+    # (`compress` reads each line's end as the loop comes to it, after a swap before it: a
+    # charge moved out of a `try` leaves that `try` the next line, read again as the loop did)
+    for n in itertools.compress(itertools.count(), map(str.endswith, itertools.islice(text, len(text) - 2),
+                                                       itertools.repeat("try:"))):
         line = text[n]
-        if line.endswith("try:") and line.strip() == "try:" and "_spent += " in text[n + 1] \
+        if line.strip() == "try:" and "_spent += " in text[n + 1] \
                 and text[n - 1].strip() != "_spent = 0":       # (the body's own `try`: its level joins)
             match = _CHARGE.fullmatch(text[n + 1])
             indent = indentation(line)
@@ -244,16 +244,42 @@ class _Stops:
 
 def _is_barrier(line: str) -> bool:
     return (line.endswith(":") and not _BRANCH.match(line)) or _LOOP.match(line) is not None \
-        or _holds_barrier_word(line) and _BARRIER_WORD.search(line) is not None
+        or _holds_barrier_word(line)
 
 
 def _holds_barrier_word(line: str) -> bool:
-    """Whether `line` holds, as a substring, the word of one of `_BARRIER_WORD`'s branches:
-    a test of each in C, twice as fast as that search, which only the lines holding one
-    need (written out: a generator over the words cost as much again)."""
-    return "_ctx" in line or "try:" in line or "except" in line or "finally:" in line \
-        or "_overrun" in line or "return" in line or "break" in line or "continue" in line \
-        or ".execute(" in line or "_fn_" in line
+    """Whether `line` holds a barrier word: a part of a name anywhere (the handler's `_ctx`,
+    the overrun test, an FB's `.execute(`, a FUNCTION's `_fn_`), or a keyword standing as a
+    word (`try:`, `except`, `finally:`, `return`, `break`, `continue`: no word character
+    before it, nor after one that ends with a letter).  Substring tests in C, written out
+    (a generator over the words cost as much again), and a line holding a keyword's letters
+    then read in Python: the regex engine's search of the words' alternation (a word
+    boundary first, so tried at every character) cost 100,000 machine instructions a line."""
+    if "_ctx" in line or "_overrun" in line or ".execute(" in line or "_fn_" in line:
+        return True
+    return ("try:" in line or "except" in line or "finally:" in line or "return" in line or "break" in line
+            or "continue" in line) and any(_stands(line, word) for word in _KEYWORDS)
+
+
+_KEYWORDS = ("try:", "except", "finally:", "return", "break", "continue")
+
+
+def _stands(line: str, word: str) -> bool:
+    """Whether `word` stands in `line` with no word character before it, nor after it when
+    it ends with one (the word boundaries of a regex around it)."""
+    size, closed = len(word), _word_character(word[-1])
+    at = line.find(word)
+    while at >= 0:
+        after = at + size
+        if (at == 0 or not _word_character(line[at - 1])) \
+                and not (closed and after < len(line) and _word_character(line[after])):
+            return True
+        at = line.find(word, at + 1)
+    return False
+
+
+def _word_character(char: str) -> bool:
+    return char.isalnum() or char == "_"
 
 
 def _lifted(text: list[str]) -> list[str]:
@@ -279,18 +305,18 @@ def _lifted(text: list[str]) -> list[str]:
         _lift(text, else_line, stops, amounts, shape)
     if not amounts:
         return text
-    out = []
-    for n, line in enumerate(text):
-        amount = amounts.get(n)
-        if amount is None:
-            out.append(line)
-        elif amount:
+    out, done = [], 0
+    for n in sorted(amounts):           # (the lines between copied as they are)
+        out.extend(text[done:n])
+        done, line, amount = n + 1, text[n], amounts[n]
+        if amount:
             indent = line[:indentation(line)]
             out.append(f"{indent}_spent += {amount}" if amount > 0 else f"{indent}_spent -= {-amount}")
         elif out[-1].strip() == "else:" and not _opens_block(text, n, indentation(out[-1])):
             out.pop()                   # (an ELSE left with nothing)
         elif indentation(out[-1]) < indentation(line) and not _opens_block(text, n, indentation(line) - 4):
             out.append(line[:indentation(line)] + "pass")
+    out.extend(text[done:])
     return out
 
 
@@ -649,7 +675,7 @@ class _Settle:
     def __init__(self, text: list[str]):
         self.text = text
         flat = "".join(text)
-        self.indent = _indents(text, _stripped(text, flat))
+        self.indent = _indents(text, margins.stripped(text, flat))
         self.after = _Nearest(self.indent, 1)     # (where a statement or clause ends)
         ends = list(itertools.accumulate(map(len, text)))     # (where each line ends in `flat`)
         # The locals a clause tests alone: only what a path knows of these may tell it apart.
@@ -710,8 +736,8 @@ class _Settle:
         if not ended and zero is None:
             return len(text)
         # (the first later line less indented than the block, found in C)
-        return next(itertools.compress(itertools.count(n + 1), map(indent.__gt__, itertools.islice(indents, n + 1, None))),
-                    len(text))
+        found = margins.first_passing(indents, n + 1, indent.__gt__)
+        return len(text) if found is None else found
 
     def _sets(self, first: int, end: int) -> bool:
         """Whether a line from `first` to `end - 1` sets `_spent`."""
@@ -784,34 +810,12 @@ class _Settle:
 def _indents(text: list[str], stripped: list[str] | None = None) -> list[int]:
     """Each line's indentation (`indentation`: its leading spaces), of every line in C (the
     walks read every line's); an empty line's is 1 << 20, more than any line's.  `stripped`:
-    `_stripped(text)`, when the caller has it."""
-    if stripped is None:
-        stripped = _stripped(text)
-    indents = list(map(sub, map(len, text), map(len, stripped)))
+    `margins.stripped(text)`, when the caller has it."""
+    indents = margins.widths(text, stripped)
     if "" in text:
         for n in itertools.compress(itertools.count(), map(not_, text)):
             indents[n] = 1 << 20
     return indents
-
-
-def _stripped(text: list[str], flat: str | None = None) -> list[str]:
-    """Each line without its leading spaces.  Where no line holds a white space but the
-    space (`flat`: the lines joined), that is `str.lstrip()` (`lstrip(" ")` reads each space
-    through a search of its argument: ten times the machine instructions)."""
-    if flat is None:
-        flat = "".join(text)
-    if _plain(flat):
-        return list(map(str.lstrip, text))
-    return list(map(str.lstrip, text, itertools.repeat(" ")))
-
-
-def _plain(flat: str) -> bool:
-    """Whether the text `flat` holds no white space but the space."""
-    return flat.isascii() and not any(map(flat.__contains__, _WHITE_SPACE_BUT_SPACE))
-
-
-# The ASCII white space but the space (`str.isspace`).
-_WHITE_SPACE_BUT_SPACE = ("\n", "\t", "\x0b", "\x0c", "\r", "\x1c", "\x1d", "\x1e", "\x1f")
 
 
 def _lines_holding(flat: str, ends: list[int], part: str) -> list[int]:
@@ -855,6 +859,7 @@ class _Nearest:
     def __getitem__(self, n: int) -> int:
         indent, step = self.indent, self.step
         depth, m = indent[n], n + step
-        while 0 <= m < len(indent) and indent[m] > depth:
-            m += step
-        return m
+        if not (0 <= m < len(indent) and indent[m] > depth):
+            return m            # (most often the next line: no scan set up)
+        found = margins.first_passing(indent, m + step, depth.__ge__, step)     # (the scan in C)
+        return (len(indent) if step == 1 else -1) if found is None else found
