@@ -657,3 +657,18 @@ def test_the_nearest_line_not_more_indented_each_way():
     after, before = _Nearest(indents, 1), _Nearest(indents, -1)
     assert [after[n] for n in range(7)] == [6, 4, 3, 4, 6, 6, 7]
     assert [before[n] for n in range(7)] == [-1, 0, 1, 2, 1, 4, 0]
+
+
+@pytest.mark.parametrize("line, barrier", [
+    # by hand, a keyword stands as a word: nothing of a name before it, nor after one ending
+    # with a letter (`try:` and `finally:` end with their colon)
+    ("        x.return_value = 1", False), ("        y = v_A.break", True), ("        (continue)", True),
+    ("        v_retry: int = 1", False), ("        _return = 1", False), ("        exceptional = 1", False),
+    ("        except: pass", True), ("        x = 1; try:", True), ("        v_breaké = 2", False),
+    ("        d = {v_finally: 1}", False), ("        v_X = 1 # finally: done", True),
+    # a part of a name anywhere (the sure side: `v_fn_X` is no FUNCTION's, but a barrier)
+    ("        v_X = self._ctxs", True), ("        v_fn_X = 1", True), ("        v_fnX = v_ct + 1", False),
+])
+def test_a_keyword_is_a_barrier_only_as_a_word(line, barrier):
+    from st_runtime.compiler.optimise.charges import _is_barrier
+    assert _is_barrier(line) is barrier
