@@ -190,3 +190,18 @@ def test_a_word_spelt_like_the_instance_elsewhere_keeps_its_code():
     site's code, the sure side."""
     assert not _guarded(_source("(* Stops are cheap *)"), "v_DOSTOP", "v_STOPS[0]")
     assert _guarded(_source("(* Resets are not *)"), "v_DOSTOP", "v_STOPS[0]")
+
+
+@pytest.mark.parametrize("texts, word, expected", [
+    # by hand: whole words in any case, a member's and a comment's too; not inside another word
+    (["Stops := STOPS; xStops stops_ (* stops *)", "s.Stops[1]"], "Stops", 4),
+    (["aaa", "aa aa", "(aa)"], "aa", 3),
+    (["Stop2 Stop_ _Stop", ""], "Stop", 0),
+    # a text that is not ASCII: `re.IGNORECASE` folds the long s and the Kelvin sign into s and
+    # k (the re docs), and `é` is a word character
+    (["\u017ftops Stopsé", "\u212aick kick"], "stops", 1),
+    (["\u212aick kick"], "KICK", 2),
+])
+def test_the_census_counts_a_word_as_the_pattern_does(texts, word, expected):
+    from st_runtime.compiler.optimise.dormant import _Words
+    assert _Words(texts).count(word) == expected

@@ -338,14 +338,14 @@ def test_settled_forgets_a_local_set_other_than_to_a_literal(setting):
 
 
 def test_may_set_tells_a_read_from_a_store_of_a_local():
-    from st_runtime.compiler.optimise.charges import _may_set
+    from st_runtime.compiler.optimise.charges import may_set
 
     for line in ("v_C = 1", "v_C += 2", "v_C //= 2", "v_C, v_D = p", "(v_C := 4)", "for v_C in r:",
                  "with f() as v_C:", "except _FAULTS as v_C:", "del v_C", "v_D = v_C = 1"):
-        assert _may_set("v_C", line), line
+        assert may_set("v_C", line), line
     for line in ("v_D = v_C", "self.v_C = 1", "v_CX = 1", "if (v_C == 0):", "v_D = (v_C >= 2)",
                  "v_D = (v_C <= 2)", "v_D = (v_C != 2)", "x.v_C = 1", "v_D = f(v_C)"):
-        assert not _may_set("v_C", line), line
+        assert not may_set("v_C", line), line
 
 
 # The same in a program: Code is 0, the first axis-like chain sets it in every branch but
@@ -644,3 +644,31 @@ def test_charges_opening_a_try_go_before_it_one_after_another():
     assert text == ["    _spent = 0", "    try:", "        _spent += 2", "        x = 1",
                     "        _spent += 5", "        _spent += 7", "        try:", "            y = 2", *handler,
                     "        try:", "            _spent += 4", *handler]
+
+
+def test_the_nearest_line_not_more_indented_each_way():
+    """By hand, indentations 0 4 8 8 4 8 0: from line 0 the later one is line 6, none earlier
+    (-1); from line 1 (4) line 4 later (2 and 3 are deeper), line 0 earlier; from line 2 (8)
+    line 3 (as deep) later, line 1 earlier; from line 4 (4) line 6 later, line 1 earlier; from
+    line 6 none later (7), line 0 earlier."""
+    from st_runtime.compiler.optimise.charges import _Nearest
+
+    indents = [0, 4, 8, 8, 4, 8, 0]
+    after, before = _Nearest(indents, 1), _Nearest(indents, -1)
+    assert [after[n] for n in range(7)] == [6, 4, 3, 4, 6, 6, 7]
+    assert [before[n] for n in range(7)] == [-1, 0, 1, 2, 1, 4, 0]
+
+
+@pytest.mark.parametrize("line, barrier", [
+    # by hand, a keyword stands as a word: nothing of a name before it, nor after one ending
+    # with a letter (`try:` and `finally:` end with their colon)
+    ("        x.return_value = 1", False), ("        y = v_A.break", True), ("        (continue)", True),
+    ("        v_retry: int = 1", False), ("        _return = 1", False), ("        exceptional = 1", False),
+    ("        except: pass", True), ("        x = 1; try:", True), ("        v_breaké = 2", False),
+    ("        d = {v_finally: 1}", False), ("        v_X = 1 # finally: done", True),
+    # a part of a name anywhere (the sure side: `v_fn_X` is no FUNCTION's, but a barrier)
+    ("        v_X = self._ctxs", True), ("        v_fn_X = 1", True), ("        v_fnX = v_ct + 1", False),
+])
+def test_a_keyword_is_a_barrier_only_as_a_word(line, barrier):
+    from st_runtime.compiler.optimise.charges import _is_barrier
+    assert _is_barrier(line) is barrier

@@ -13,7 +13,7 @@ import re
 import pytest
 
 PATTERNS = [("charges", name) for name in ("_CHARGE", "_LOOP", "_BRANCH", "_SETS", "_COMPOUND",
-                                           "_LITERAL_STORE", "_LOCAL_TEST", "_BINDS")] + [
+                                           "LITERAL_STORE", "LOCAL_TEST", "_BINDS", "_TARGET")] + [
     ("reads", "_ASSIGNMENT"), ("aliases", "_LOAD_LINE"), ("vector", "_TOKEN"), ("pivots", "_CANDIDATE"),
     ("unguard", "_ASSIGNMENT"), ("unguard", "_STORE"), ("unguard", "_ELEMENT_STORE"), ("unguard", "_COPY"),
     ("fuse", "_PURE"), ("fuse", "_ACCUMULATE"), ("fuse", "_LOOP"), ("halves", "_SINGLE_TEST"),

@@ -213,3 +213,16 @@ def test_the_wave_state_tests_of_the_axes_jump_near():
     assert not any("v_NEWFAULT ==" in line or "v_NEWFAULT !=" in line for line in axes)
     assert [line.strip() for line in axes if "_MFAULTLVL.v_ACTIVE:" in line] == \
         [f"if v_MC_AXIS00{k}.v_MFAULTLVL.v_ACTIVE:" for k in range(6)]
+
+
+def test_the_candidates_are_the_if_lines_testing_a_local_alone():
+    """By hand: the first line, an `if` of each shape the `settle` pass reads; not an `elif`,
+    not a test of anything else, not a line with more after the colon; a range of lines reads
+    only its own."""
+    from st_runtime.compiler.optimise.threads import _candidates
+
+    text = ["if v_A:", "    if (v_B == 4):", "    elif (v_B != 0):", "    if (not v_C):", "    if v_D > 2:",
+            "    x = 1", "if (v_E != -3):", "if v_F: y", "        if v_G:"]
+    assert _candidates(text, 0, len(text)) == [0, 1, 3, 6, 8]
+    assert _candidates(text, 1, 7) == [1, 3, 6]
+    assert _candidates(text, 2, 3) == []

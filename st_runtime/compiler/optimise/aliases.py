@@ -25,13 +25,15 @@ names the walk does not find as often as the body has them (a safety net).
 
 from __future__ import annotations
 
+import itertools
 import re
+from bisect import bisect_right
 from collections import Counter
 
 from ... import ast
 from ..scope import _nodes, listed, of_classes, root_name
-from . import branches
-from .charges import _may_set
+from . import branches, mentions
+from .charges import may_set
 
 _ALIAS_LINE = re.compile(r"(v_\w+) = (?:self|_G)\.(v_\w+)")
 
@@ -157,18 +159,19 @@ def store_early(lines: list[str], start: int) -> None:
             loads[match.group(2)] = i
     stores = {line: i for i in range(end + 1, len(lines)) if (line := lines[i]).startswith("        self.v_")}
     flat = "\n".join(lines[body + 1:end])
+    starts = list(itertools.accumulate(map((1).__add__, map(len, lines[body + 1:end])), initial=0))
     moved = {}
     for name, load in loads.items():
         back = stores.get(f"        self.{name} = {name}")
         if back is None:
             continue            # (a variable the body only reads: loaded, never stored back)
         # The lines that name it, the first of which must be its one set.
-        naming = sorted({body + 1 + flat.count("\n", 0, at) for at in _occurrences(flat, name)})
+        naming = list(dict.fromkeys(body + bisect_right(starts, at) for at in mentions.places(flat, name)))
         if not naming or not lines[naming[0]].startswith(f"        {name} = "):
             continue
         first = naming[0]
-        if _occurrences(lines[first][len(f"        {name} = "):], name) \
-                or any(_may_set(name, lines[i]) for i in naming[1:]):
+        if mentions.count(lines[first][len(f"        {name} = "):], name) \
+                or any(may_set(name, lines[i]) for i in naming[1:]):
             continue
         moved[first] = f"        self.{name} = {lines[first].lstrip()}"
         moved[load] = moved[back] = None
@@ -176,26 +179,6 @@ def store_early(lines: list[str], start: int) -> None:
         lines[i] = line
     if moved:
         lines[start:] = [line for line in lines[start:] if line is not None]
-
-
-def _occurrences(text: str, name: str) -> list[int]:
-    """Where the Python name `name` stands whole in `text`: not after a dot or a word
-    character, not before a word character (found by `str.find`, no pattern per name)."""
-    found, at, size = [], text.find(name), len(name)
-    while at >= 0:
-        after = at + size
-        if (at == 0 or not _NAME_BEFORE(text[at - 1])) and (after == len(text) or not _NAME_AFTER(text[after])):
-            found.append(at)
-        at = text.find(name, after)
-    return found
-
-
-def _NAME_AFTER(char: str) -> bool:
-    return char.isalnum() or char == "_"
-
-
-def _NAME_BEFORE(char: str) -> bool:
-    return char.isalnum() or char in "_."
 
 
 def late_loads(compiler, body) -> dict[int, list[str]]:

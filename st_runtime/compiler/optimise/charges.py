@@ -31,17 +31,15 @@ import functools
 import itertools
 import re
 from bisect import bisect_left, bisect_right
-from operator import is_not, itemgetter, not_, sub
+from operator import is_not, itemgetter, not_
 
 from ..pysrc import indentation
+from . import margins, mentions
 
 _CHARGE = re.compile(r"( *+)_spent \+= (\d+)")
-# A line that can raise, check the budget or leave the level: a word of these (the first
-# test: a substring, `_holds_barrier_word`, then the word as a whole), a loop's head, or a
-# line opening a block other than a branch of an IF (`try:`, `for ...:`; not `if`, `elif`,
-# `else:`).
-_BARRIER_WORD = re.compile(r"\btry:|\bexcept\b|\bfinally:|_ctx|_overrun|\breturn\b|\bbreak\b|\bcontinue\b"
-                           r"|\.execute\(|_fn_")
+# A line that can raise, check the budget or leave the level: one holding a barrier word
+# (`_holds_barrier_word`), a loop's head, or a line opening a block other than a branch of an
+# IF (`try:`, `for ...:`; not `if`, `elif`, `else:`).
 _LOOP = re.compile(r" *+(?:for|while|with)\b")
 _BRANCH = re.compile(" *+(?:if |elif |else:)")
 
@@ -79,7 +77,7 @@ def merge(lines: list[str], start: int) -> None:
             new[n] = None
         elif totals[k] != int(match.group(2)):
             new[n] = f"{match.group(1)}_spent += {totals[k]}"
-    lines[start:] = _lifted(_sunk([line for line in new if line is not None]))
+    lines[start:] = _lifted(_sunk([line for line in new if line is not None] if dropped else new))
 
 
 def _out_of_try(text: list[str]) -> None:
@@ -88,9 +86,12 @@ def _out_of_try(text: list[str]) -> None:
     of `_spent` (the handler's, the `finally`'s) sees the same; before it, the charge may
     join the one of the level above (`merge`): TRJ_OceanWave's body after its latch.  Not
     the `try` that holds the whole body (its charges join one another inside it)."""
-    for n in range(len(text) - 2):
+    # (`compress` reads each line's end as the loop comes to it, after a swap before it: a
+    # charge moved out of a `try` leaves that `try` the next line, read again as the loop did)
+    for n in itertools.compress(itertools.count(), map(str.endswith, itertools.islice(text, len(text) - 2),
+                                                       itertools.repeat("try:"))):
         line = text[n]
-        if line.endswith("try:") and line.strip() == "try:" and "_spent += " in text[n + 1] \
+        if line.strip() == "try:" and "_spent += " in text[n + 1] \
                 and text[n - 1].strip() != "_spent = 0":       # (the body's own `try`: its level joins)
             match = _CHARGE.fullmatch(text[n + 1])
             indent = indentation(line)
@@ -180,10 +181,10 @@ def _chain(text: list[str], first: int, indent: str, stops) -> tuple[list[int], 
     if n == end or any(stops.stop(k) for k in range(first, n)):
         return None             # (no IF near, or a line between that can raise or leave)
     end = len(text)
-    heads, inner = [], indent + " "
+    heads, inner, size = [], indent + " ", len(indent) + 1
     while n < end:
         line = text[n]
-        if line.startswith(inner):
+        if line[:size] == inner:    # (`startswith` parses its arguments: four times the cost)
             n += 1
             continue
         if not heads or (line.startswith(indent + "elif ") or line == indent + "else:") \
@@ -242,17 +243,43 @@ class _Stops:
 
 
 def _is_barrier(line: str) -> bool:
-    return (line.endswith(":") and not _BRANCH.match(line)) or _LOOP.match(line) is not None \
-        or _holds_barrier_word(line) and _BARRIER_WORD.search(line) is not None
+    return (line[-1:] == ":" and not _BRANCH.match(line)) or _LOOP.match(line) is not None \
+        or _holds_barrier_word(line)
 
 
 def _holds_barrier_word(line: str) -> bool:
-    """Whether `line` holds, as a substring, the word of one of `_BARRIER_WORD`'s branches:
-    a test of each in C, twice as fast as that search, which only the lines holding one
-    need (written out: a generator over the words cost as much again)."""
-    return "_ctx" in line or "try:" in line or "except" in line or "finally:" in line \
-        or "_overrun" in line or "return" in line or "break" in line or "continue" in line \
-        or ".execute(" in line or "_fn_" in line
+    """Whether `line` holds a barrier word: a part of a name anywhere (the handler's `_ctx`,
+    the overrun test, an FB's `.execute(`, a FUNCTION's `_fn_`), or a keyword standing as a
+    word (`try:`, `except`, `finally:`, `return`, `break`, `continue`: no word character
+    before it, nor after one that ends with a letter).  Substring tests in C, written out
+    (a generator over the words cost as much again), and a line holding a keyword's letters
+    then read in Python: the regex engine's search of the words' alternation (a word
+    boundary first, so tried at every character) cost 100,000 machine instructions a line."""
+    if "_ctx" in line or "_overrun" in line or ".execute(" in line or "_fn_" in line:
+        return True
+    return ("try:" in line or "except" in line or "finally:" in line or "return" in line or "break" in line
+            or "continue" in line) and any(_stands(line, word) for word in _KEYWORDS)
+
+
+_KEYWORDS = ("try:", "except", "finally:", "return", "break", "continue")
+
+
+def _stands(line: str, word: str) -> bool:
+    """Whether `word` stands in `line` with no word character before it, nor after it when
+    it ends with one (the word boundaries of a regex around it)."""
+    size, closed = len(word), _word_character(word[-1])
+    at = line.find(word)
+    while at >= 0:
+        after = at + size
+        if (at == 0 or not _word_character(line[at - 1])) \
+                and not (closed and after < len(line) and _word_character(line[after])):
+            return True
+        at = line.find(word, at + 1)
+    return False
+
+
+def _word_character(char: str) -> bool:
+    return char.isalnum() or char == "_"
 
 
 def _lifted(text: list[str]) -> list[str]:
@@ -278,18 +305,18 @@ def _lifted(text: list[str]) -> list[str]:
         _lift(text, else_line, stops, amounts, shape)
     if not amounts:
         return text
-    out = []
-    for n, line in enumerate(text):
-        amount = amounts.get(n)
-        if amount is None:
-            out.append(line)
-        elif amount:
+    out, done = [], 0
+    for n in sorted(amounts):           # (the lines between copied as they are)
+        out.extend(text[done:n])
+        done, line, amount = n + 1, text[n], amounts[n]
+        if amount:
             indent = line[:indentation(line)]
             out.append(f"{indent}_spent += {amount}" if amount > 0 else f"{indent}_spent -= {-amount}")
         elif out[-1].strip() == "else:" and not _opens_block(text, n, indentation(out[-1])):
             out.pop()                   # (an ELSE left with nothing)
         elif indentation(out[-1]) < indentation(line) and not _opens_block(text, n, indentation(line) - 4):
             out.append(line[:indentation(line)] + "pass")
+    out.extend(text[done:])
     return out
 
 
@@ -507,10 +534,10 @@ class _Unread(Exception):
 _SETS = re.compile(r"\s*+_spent\s*+(?:[-+*]?=)")        # a line that sets `_spent`
 _COMPOUND = re.compile(r" *+(if|elif|else|try|except|finally|for|while|with|def)\b.*:$")
 # `v_X = 4`, `v_X = True`: a local set to a literal (a Python name the body assigns is local).
-_LITERAL_STORE = re.compile(r" *+(v_\w+) = (-?\d+|True|False)")
+LITERAL_STORE = re.compile(r" *+(v_\w+) = (-?\d+|True|False)")
 # A clause's test of a local alone: `if v_X:`, `elif (not v_X):`, `if (v_X == 4):`, `!=`.
-_LOCAL_TEST = re.compile(r" *+(?:if|elif) \(?(not )?(v_\w+)(?: (==|!=) (-?\d+))?\)?:")
-_LITERALS = {"True": 1, "False": 0}
+LOCAL_TEST = re.compile(r" *+(?:if|elif) \(?(not )?(v_\w+)(?: (==|!=) (-?\d+))?\)?:")
+LITERALS = {"True": 1, "False": 0}
 _FIRST, _SECOND = itemgetter(0), itemgetter(1)
 _IS_SOMETHING = functools.partial(is_not, None)
 #: At most this many paths are told apart; beyond it only a total they all share is kept.
@@ -546,8 +573,8 @@ class _Paths(frozenset):
         return frozenset(map(_FIRST, itertools.chain.from_iterable(map(_SECOND, self))))
 
     def forgetting(self, line: str) -> "_Paths":
-        """Each path without what it knew of a local that `line` may set (`_may_set`)."""
-        lost = {local for local in self.locals() if local in line and _may_set(local, line)}
+        """Each path without what it knew of a local that `line` may set (`may_set`)."""
+        lost = {local for local in self.locals() if local in line and may_set(local, line)}
         if not lost:
             return self
         return self._refacted(lambda facts: tuple(fact for fact in facts if fact[0] not in lost))
@@ -572,17 +599,21 @@ class _Paths(frozenset):
         return _Paths(itertools.compress(pairs, map(_IS_SOMETHING, facts)) if None in fates.values() else pairs)
 
 
-def _may_set(local: str, line: str) -> bool:
+def may_set(local: str, line: str) -> bool:
     """Whether `line` may set the Python local `local`: it names it as a target (`=`, `:=`,
     an augmented assignment, before a comma: a tuple's), or it is a line that binds names
     otherwise (`for`, `with ... as`, `except ... as`, `del`) and names it at all."""
-    if not re.search(rf"(?<![\w.]){local}(?!\w)", line):
+    found = mentions.places(line, local)
+    if not found:
         return False
     if _BINDS.match(line) or " as " in line:
         return True
-    return re.search(rf"(?<![\w.]){local}\s*(?::=|(?:[-+*/%&|^@]|//|\*\*|>>|<<)?=(?!=)|,)", line) is not None
+    after = len(local)
+    return any(_TARGET.match(line, at + after) for at in found)
 
 
+# What follows a local that a line sets: an assignment's operator or a comma (a tuple's).
+_TARGET = re.compile(r"\s*+(?::=|(?:[-+*/%&|^@]|//|\*\*|>>|<<)?=(?!=)|,)")
 _BINDS = re.compile(r" *+(?:for|with|del|async|import|from|global|nonlocal|class|def|lambda)\b")
 
 
@@ -612,12 +643,12 @@ def _kept(paths: "_Paths") -> "_Paths | None":
 
 def _taken(line: str, paths: "_Paths | None") -> tuple["_Paths | None", "_Paths | None"]:
     """(the paths that may take the clause on `line`, those that go on past its test): a test
-    of a local alone (`_LOCAL_TEST`) is read on each path that knows the local's value, and
+    of a local alone (`LOCAL_TEST`) is read on each path that knows the local's value, and
     tells one that does not what `==` (or a false `!=`) found; any other test takes every
     path both ways, without what they knew of a local it names (it may set one: `:=`)."""
     if paths is None or line.strip() == "else:":
         return paths, _Paths()
-    test = _LOCAL_TEST.fullmatch(line)
+    test = LOCAL_TEST.fullmatch(line)
     if test is None:
         paths = paths.forgetting(line)
         return paths, paths
@@ -644,12 +675,12 @@ class _Settle:
     def __init__(self, text: list[str]):
         self.text = text
         flat = "".join(text)
-        self.indent = _indents(text, _stripped(text, flat))
+        self.indent = _indents(text, margins.stripped(text, flat))
         self.after = _Nearest(self.indent, 1)     # (where a statement or clause ends)
         ends = list(itertools.accumulate(map(len, text)))     # (where each line ends in `flat`)
         # The locals a clause tests alone: only what a path knows of these may tell it apart.
         self.tested = {test.group(2) for n in _lines_holding(flat, ends, "if ")
-                       if (test := _LOCAL_TEST.fullmatch(text[n]))}
+                       if (test := LOCAL_TEST.fullmatch(text[n]))}
         # The lines that set `_spent`, and those that name a tested local (a substring): a
         # path's facts are of tested locals only, so any other line keeps them as they are.
         # (The walk reads only these lines of a region.)
@@ -705,8 +736,8 @@ class _Settle:
         if not ended and zero is None:
             return len(text)
         # (the first later line less indented than the block, found in C)
-        return next(itertools.compress(itertools.count(n + 1), map(indent.__gt__, itertools.islice(indents, n + 1, None))),
-                    len(text))
+        found = margins.first_passing(indents, n + 1, indent.__gt__)
+        return len(text) if found is None else found
 
     def _sets(self, first: int, end: int) -> bool:
         """Whether a line from `first` to `end - 1` sets `_spent`."""
@@ -727,10 +758,10 @@ class _Settle:
         names a tested local (any other keeps what is known)."""
         line = self.text[n]
         if n not in self.sets_spent:
-            store = _LITERAL_STORE.fullmatch(line)
+            store = LITERAL_STORE.fullmatch(line)
             if store is not None and store.group(1) in self.tested:
                 literal = store.group(2)
-                return _start(value).told(store.group(1), _LITERALS.get(literal) if literal in _LITERALS
+                return _start(value).told(store.group(1), LITERALS.get(literal) if literal in LITERALS
                                           else int(literal))
             return value if value is None else value.forgetting(line)
         match = _CHARGE.fullmatch(line)
@@ -779,34 +810,12 @@ class _Settle:
 def _indents(text: list[str], stripped: list[str] | None = None) -> list[int]:
     """Each line's indentation (`indentation`: its leading spaces), of every line in C (the
     walks read every line's); an empty line's is 1 << 20, more than any line's.  `stripped`:
-    `_stripped(text)`, when the caller has it."""
-    if stripped is None:
-        stripped = _stripped(text)
-    indents = list(map(sub, map(len, text), map(len, stripped)))
+    `margins.stripped(text)`, when the caller has it."""
+    indents = margins.widths(text, stripped)
     if "" in text:
         for n in itertools.compress(itertools.count(), map(not_, text)):
             indents[n] = 1 << 20
     return indents
-
-
-def _stripped(text: list[str], flat: str | None = None) -> list[str]:
-    """Each line without its leading spaces.  Where no line holds a white space but the
-    space (`flat`: the lines joined), that is `str.lstrip()` (`lstrip(" ")` reads each space
-    through a search of its argument: ten times the machine instructions)."""
-    if flat is None:
-        flat = "".join(text)
-    if _plain(flat):
-        return list(map(str.lstrip, text))
-    return list(map(str.lstrip, text, itertools.repeat(" ")))
-
-
-def _plain(flat: str) -> bool:
-    """Whether the text `flat` holds no white space but the space."""
-    return flat.isascii() and not any(map(flat.__contains__, _WHITE_SPACE_BUT_SPACE))
-
-
-# The ASCII white space but the space (`str.isspace`).
-_WHITE_SPACE_BUT_SPACE = ("\n", "\t", "\x0b", "\x0c", "\r", "\x1c", "\x1d", "\x1e", "\x1f")
 
 
 def _lines_holding(flat: str, ends: list[int], part: str) -> list[int]:
@@ -850,6 +859,7 @@ class _Nearest:
     def __getitem__(self, n: int) -> int:
         indent, step = self.indent, self.step
         depth, m = indent[n], n + step
-        while 0 <= m < len(indent) and indent[m] > depth:
-            m += step
-        return m
+        if not (0 <= m < len(indent) and indent[m] > depth):
+            return m            # (most often the next line: no scan set up)
+        found = margins.first_passing(indent, m + step, depth.__ge__, step)     # (the scan in C)
+        return (len(indent) if step == 1 else -1) if found is None else found

@@ -157,7 +157,7 @@ class _SoleSites:
     def __init__(self, program, pou) -> None:
         self.refs = program.name_refs
         self.constants = program.constants
-        self.texts = list(program.sources.values())
+        self.words = _Words(program.sources.values())
         self.nodes = listed(pou.node.body)    # (kept from the compile's own walks; a mention
         #  anywhere else, declarations, methods, a chart, is one the texts count and no Name here)
         self.owned = {id(symbol): symbol for symbol in pou.variables.values() if symbol.kind == "VAR"}
@@ -212,14 +212,48 @@ class _SoleSites:
                 if id(node) not in allowed:
                     spoilt.add(symbol)
         for symbol, count in names.items():
-            if symbol not in spoilt and self._spelt(self.owned[symbol].name) != count + 1:
+            if symbol not in spoilt and self.words.count(self.owned[symbol].name) != count + 1:
                 spoilt.add(symbol)
         return spoilt
 
-    def _spelt(self, name: str) -> int:
-        """How often the word `name` stands in the project's texts (any case)."""
-        word = re.compile(rf"(?<![\w]){re.escape(name)}(?![\w])", re.IGNORECASE)
-        return sum(len(word.findall(text)) for text in self.texts)
+
+class _Words:
+    """The project's texts, to count how often a word stands in them, in any case: each text
+    lowered once and the word found there by `str.find` (C), not one pattern per word read
+    through every text by the regex engine (the load's cost: 45 times the time).  Exact for
+    ASCII texts and words (where `re.IGNORECASE` folds a letter as `str.lower` does, and a word
+    character is `isalnum` or `_`); any other text is read by the pattern, as before."""
+
+    def __init__(self, texts) -> None:
+        self.texts = list(texts)
+        self.lowered = [text.lower() for text in self.texts if text.isascii()]
+        self.others = [text for text in self.texts if not text.isascii()]
+
+    def count(self, word: str) -> int:
+        """How often `word` stands in the texts (any case), not next to a word character."""
+        if not word.isascii():
+            return _count_by_pattern(word, self.texts)
+        key, found = word.lower(), 0
+        for text in self.lowered:
+            at, size, end = text.find(key), len(key), len(text)
+            while at >= 0:
+                after = at + size
+                if (at == 0 or not _word_character(text[at - 1])) \
+                        and (after == end or not _word_character(text[after])):
+                    found += 1
+                    at = text.find(key, after)      # (as `findall`: on after a match)
+                else:
+                    at = text.find(key, at + 1)
+        return found + (_count_by_pattern(word, self.others) if self.others else 0)
+
+
+def _word_character(char: str) -> bool:
+    return char.isalnum() or char == "_"
+
+
+def _count_by_pattern(word: str, texts: list[str]) -> int:
+    pattern = re.compile(rf"(?<![\w]){re.escape(word)}(?![\w])", re.IGNORECASE)
+    return sum(len(pattern.findall(text)) for text in texts)
 
 
 class Groups:

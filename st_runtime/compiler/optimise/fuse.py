@@ -29,17 +29,20 @@ its own (`Optimisations.fuse`).
 from __future__ import annotations
 
 import re
-from itertools import islice
 
 from . import TEMP_NAME, remembered
+from .mentions import count, places
 
 MERGE_CAP = 24
 
 _PURE = re.compile(r"^(\s*+)([A-Za-z_]\w*) = ([\w\s.()+*-]+)$")
-_TOKEN = re.compile(r"[A-Za-z_]\w*")
 _ACCUMULATE = re.compile(r"^(\s*+)([A-Za-z_]\w*) = \(\2 ([+*-]) (.+)\)$")
 _LOOP = re.compile(r"^\s*+(for|while) ")
-_CALL_OR_ATTRIBUTE = re.compile(r"\w\s*\(|\.[A-Za-z_]")
+# A call `f(` (`\w\s*\(`) is searched for read backwards, `\(\s*\w`: the pattern's first
+# character a literal, the regex engine tries it at each `(` only, not at every character
+# (a fifth of the machine instructions); an attribute `.x` where the code holds a dot.
+_CALL_BACKWARDS = re.compile(r"\(\s*\w")
+_ATTRIBUTE = re.compile(r"\.[A-Za-z_]")
 _PARENTHESIS = re.compile(r"[()]")
 
 
@@ -49,13 +52,9 @@ def _pure(line: str):
     if match is None:
         return None
     expression = match.group(3)
-    if _CALL_OR_ATTRIBUTE.search(expression):
+    if _CALL_BACKWARDS.search(expression[::-1]) or "." in expression and _ATTRIBUTE.search(expression):
         return None
     return match.groups()
-
-
-def _mentions(text: str, name: str) -> int:
-    return _TOKEN.findall(text).count(name) if name in text else 0
 
 
 def _enclosed(text: str) -> bool:
@@ -81,10 +80,11 @@ def substitute(lines: list[str], start: int) -> None:
             head = pure(lines[i])
         use = pure(lines[i + 1])
         if head and use and head[0] == use[0] and head[1] != use[1] and not head[1].startswith("_t") \
-                and _mentions(head[2], head[1]) == 0 and _mentions(use[2], head[1]) == 1 \
+                and count(head[2], head[1]) == 0 and count(use[2], head[1]) == 1 \
                 and _set_again(lines, i + 2, head[0], head[1], pure):
             value = head[2] if _enclosed(head[2]) else f"({head[2]})"
-            expression = re.sub(rf"\b{head[1]}\b", lambda _: value, use[2], count=1)
+            at = places(use[2], head[1])[0]        # (its one place: `count` above)
+            expression = f"{use[2][:at]}{value}{use[2][at + len(head[1]):]}"
             lines[i:i + 2] = [f"{use[0]}{use[1]} = {expression}"]
             head = _UNREAD
             continue
@@ -94,13 +94,13 @@ def substitute(lines: list[str], start: int) -> None:
 def _set_again(lines: list[str], j: int, indent: str, name: str, pure_of=_pure) -> bool:
     """Whether the next line mentioning `name` sets it from what does not read it, with
     only pure lines at `indent` before it."""
-    for line in islice(lines, j, None):      # (not a copy of the rest)
-        pure = pure_of(line)
+    for k in range(j, len(lines)):      # (not a copy of the rest, nor `islice`: it steps over the first j)
+        pure = pure_of(lines[k])
         if pure is None or pure[0] != indent:
             return False
         if pure[1] == name:
-            return _mentions(pure[2], name) == 0
-        if _mentions(pure[2], name):
+            return count(pure[2], name) == 0
+        if count(pure[2], name):
             return False
     return False
 
@@ -115,7 +115,7 @@ def merge(lines: list[str], start: int) -> None:
             previous = appended if length == 1 else _ACCUMULATE.match(out[-1])
             indent, name, op, operand = step.groups()
             if previous and previous.group(1) == indent and previous.group(2) == name \
-                    and _mentions(operand, name) == 0:
+                    and count(operand, name) == 0:
                 value = out[-1][len(indent) + len(name) + 3:]
                 out[-1] = f"{indent}{name} = ({value} {op} {operand})"
                 length += 1
@@ -142,7 +142,7 @@ def rename(lines: list[str], start: int, fresh) -> None:
     ends: dict[int, list[str]] = {}
     for temp, (first, last) in sorted(span.items(), key=lambda item: item[1][0]):
         head = body[first].lstrip()
-        if temp in outside or not head.startswith(f"{temp} = ") or _mentions(head[len(temp) + 3:], temp):
+        if temp in outside or not head.startswith(f"{temp} = ") or count(head[len(temp) + 3:], temp):
             continue
         # names whose last line is before `first` are free again
         for line_no in sorted(k for k in ends if k < first):

@@ -28,11 +28,11 @@ from __future__ import annotations
 
 import itertools
 import re
-from bisect import bisect_right
-from operator import sub
+from bisect import bisect_left, bisect_right
 
 from ..pysrc import indentation
-from .charges import _LITERALS, _LITERAL_STORE, _LOCAL_TEST, _may_set
+from . import margins
+from .charges import LITERAL_STORE, LITERALS, LOCAL_TEST, may_set
 from .halves import FAR
 
 #: The longest part of S2 (in lines) that more than one path may run (a charge, a store).
@@ -48,17 +48,25 @@ _ELSE = "else:"
 
 
 def thread(lines: list[str], start: int) -> bool:
-    """The `threads` pass on the body from line `start`; whether it changed a line."""
+    """The `threads` pass on the body from line `start`; whether it changed a line.  Each
+    threading changes the lines of the two chains only: the lines before them and after them
+    keep their indentation and their being candidates (each a property of its line alone), so
+    only the changed lines are read again (the body's other lines once)."""
     text = lines[start:]
-    if _CANDIDATE.search("\n".join(text)) is None:
+    candidates = _candidates(text, 0, len(text))
+    if not candidates:
         return False
+    indents = _indents(text)
     done, after = 0, 0
     while done < LIMIT:
-        indents = _indents(text)
-        for m in _candidates(text, after):
+        for m in candidates[bisect_left(candidates, after):]:
             threaded = _threaded(text, indents, m)
             if threaded is not None:
-                (text, after), done = threaded, done + 1
+                out, indents, after, changed, end = threaded
+                shift = len(out) - len(text)
+                candidates = [*candidates[:bisect_left(candidates, after)], *_candidates(out, after, changed),
+                              *(n + shift for n in candidates[bisect_left(candidates, end):])]
+                text, done = out, done + 1
                 break
         else:
             break
@@ -66,25 +74,30 @@ def thread(lines: list[str], start: int) -> bool:
     return done > 0
 
 
-# The `if` line of a chain whose first test reads a local alone (`_LOCAL_TEST`'s shapes).
-_CANDIDATE = re.compile(r"^ *+if \(?(?:not )?v_\w+(?: (?:==|!=) -?\d+)?\)?:$", re.MULTILINE)
+# The `if` line of a chain whose first test reads a local alone (`LOCAL_TEST`'s shapes), with
+# the line break before it: the pattern's first character a literal, the regex engine finds
+# each line's start in C and tries the rest there only (`^` tried at every character: 3 to 5
+# times the time).  The text searched starts with a line break.
+_CANDIDATE = re.compile(r"\n *+if \(?(?:not )?v_\w+(?: (?:==|!=) -?\d+)?\)?:$", re.MULTILINE)
 
 
-def _candidates(text: list[str], after: int):
-    """The lines from `after` on that open a chain testing a local alone (found in C)."""
-    starts = list(itertools.accumulate(map((1).__add__, map(len, text)), initial=0))
-    for match in _CANDIDATE.finditer("\n".join(text), starts[after]):
-        yield bisect_right(starts, match.start()) - 1
+def _candidates(text: list[str], first: int, end: int) -> list[int]:
+    """The lines from `first` to `end - 1` that open a chain testing a local alone (found in C)."""
+    starts = list(itertools.accumulate(map((1).__add__, map(len, text[first:end])), initial=0))
+    return [first + bisect_right(starts, match.start()) - 1
+            for match in _CANDIDATE.finditer("\n" + "\n".join(text[first:end]))]
 
 
 def _threaded(text: list[str], indents: list[int], m: int):
-    """(the text with the chain opening at line `m` threaded into the chain before it, the line
-    to look on from), or None when it cannot be; `indents`: each line's indentation."""
+    """(the text with the chain opening at line `m` threaded into the chain before it, its
+    lines' indentation, the line to look on from (the chain's first), the first line after the
+    lines it changed, the first line after them in `text`), or None when it cannot be;
+    `indents`: each line's indentation."""
     indent = indents[m]
-    first = _chain_start_before(text, m, indent)
+    first = _chain_start_before(text, indents, m, indent)
     if first is None:
         return None
-    test = _LOCAL_TEST.fullmatch(text[m])
+    test = LOCAL_TEST.fullmatch(text[m])
     local = test.group(2)
     if local not in "\n".join(text[first:m]):
         return None             # (no path through the chain before knows anything of it)
@@ -113,28 +126,34 @@ def _threaded(text: list[str], indents: list[int], m: int):
         if opener is not None:
             body.insert(0, " " * opener + _ELSE)
         out[place:place] = body
-    _nearer(out, first, indent)
-    return out, first
+    changed = len(out) - (len(text) - end)          # (the lines from `first` up to here are new)
+    out_indents = [*indents[:first], *_indents(out[first:changed]), *indents[end:]]
+    if _nearer(out, out_indents, first, indent):
+        out_indents[first:changed] = _indents(out[first:changed])
+    return out, out_indents, first, changed, end
 
 
-def _nearer(text: list[str], first: int, indent: int) -> None:
+def _nearer(text: list[str], indents: list[int], first: int, indent: int) -> bool:
     """The chain at `first`, if `if (v_X == c):` with a long first branch and a short ELSE, as
     `if (v_X != c):` with the two branches swapped (`==` and `!=` the other way round): the
     same branch runs for every number, and the test's jump is to a near line (halves.py: a jump
     past some 255 code units takes an EXTENDED_ARG, and CPython 3.11 then does not specialise
-    the comparison before it; threading made the first branch long)."""
-    test = _LOCAL_TEST.fullmatch(text[first])
+    the comparison before it; threading made the first branch long).  `indents`: each line's
+    indentation; whether it swapped them."""
+    test = LOCAL_TEST.fullmatch(text[first])
     if test is None or test.group(1) or test.group(3) is None:
-        return
-    clauses = _clauses(text, _indents(text), first, indent)
+        return False
+    clauses = _clauses(text, indents, first, indent)
     if len(clauses) != 2 or text[clauses[1][0]].lstrip(" ") != _ELSE:
-        return
+        return False
     (_, middle), (other, end) = clauses
     taken, otherwise = text[first + 1:middle], text[other + 1:end]
     if len(taken) > FAR >= len(otherwise):
         swapped = "!=" if test.group(3) == "==" else "=="
         text[first:end] = [f"{' ' * indent}if ({test.group(2)} {swapped} {test.group(4)}):", *otherwise,
                            " " * indent + _ELSE, *taken]
+        return True
+    return False
 
 
 def _place(item) -> tuple:
@@ -145,27 +164,29 @@ def _place(item) -> tuple:
     return (place, 0, 0) if opener is None else (place, 1, -opener)
 
 
-def _chain_start_before(text: list[str], m: int, indent: int) -> int | None:
+def _chain_start_before(text: list[str], indents: list[int], m: int, indent: int) -> int | None:
     """The `if` line of the IF chain that ends right before line `m` at `indent`; None when the
     statement before it is no such chain (or there is none in its block)."""
-    k = m - 1
-    while k >= 0 and indentation(text[k]) > indent:
-        k -= 1
-    while k >= 0 and indentation(text[k]) == indent:
+    k = _back_to(indents, m - 1, indent)
+    while k >= 0 and indents[k] == indent:
         head = text[k].lstrip(" ")
         if head.startswith("if ") and head.endswith(":"):
             return k
         if not (head.startswith("elif ") and head.endswith(":") or head == _ELSE):
             return None
-        k -= 1
-        while k >= 0 and indentation(text[k]) > indent:
-            k -= 1
+        k = _back_to(indents, k - 1, indent)
     return None
+
+
+def _back_to(indents: list[int], k: int, indent: int) -> int:
+    """The last line from `k` back not deeper than `indent` (-1: none)."""
+    found = margins.first_passing(indents, k, indent.__ge__, -1)
+    return -1 if found is None else found
 
 
 def _indents(text: list[str]) -> list[int]:
     """Each line's indentation (found in C)."""
-    return list(map(sub, map(len, text), map(len, map(str.lstrip, text, itertools.repeat(" ")))))
+    return margins.widths(text)
 
 
 def _clauses(text: list[str], indents: list[int], first: int, indent: int) -> list[tuple[int, int]]:
@@ -174,8 +195,9 @@ def _clauses(text: list[str], indents: list[int], first: int, indent: int) -> li
     n = first
     while True:
         # (the first later line not deeper than the chain, found in C)
-        end = next(itertools.compress(itertools.count(n + 1), map(indent.__ge__, itertools.islice(indents, n + 1, None))),
-                   len(text))
+        end = margins.first_passing(indents, n + 1, indent.__ge__)
+        if end is None:
+            end = len(text)
         clauses.append((n, end))
         if end < len(text) and indents[end] == indent \
                 and (text[end].lstrip(" ").startswith("elif ") or text[end].lstrip(" ") == _ELSE):
@@ -221,10 +243,10 @@ def _chain_ends(text, indents, first, indent, facts, local):
             taken = rest
             has_else = True
         else:
-            test = _LOCAL_TEST.fullmatch(line)
+            test = LOCAL_TEST.fullmatch(line)
             if test is not None and test.group(2) == local:
                 taken, rest = _split(test, rest)
-            elif _may_set(local, line):
+            elif may_set(local, line):
                 taken = rest = None
             else:
                 taken = rest
@@ -265,11 +287,11 @@ def _block_ends(text, indents, first, end, facts, local):
 def _after(text, first, end, facts, local):
     """What is known of the local after the statement on lines `first` to `end - 1`."""
     if end == first + 1:
-        store = _LITERAL_STORE.fullmatch(text[first])
+        store = LITERAL_STORE.fullmatch(text[first])
         if store is not None and store.group(1) == local:
             literal = store.group(2)
-            return "is", _LITERALS[literal] if literal in _LITERALS else int(literal)
-    if facts is not None and any(local in line and _may_set(local, line) for line in text[first:end]):
+            return "is", LITERALS[literal] if literal in LITERALS else int(literal)
+    if facts is not None and any(local in line and may_set(local, line) for line in text[first:end]):
         return None
     return facts
 
