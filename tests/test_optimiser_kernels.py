@@ -189,7 +189,7 @@ _spent += 1""".splitlines()
 
 def test_a_block_of_exactly_the_minimum_with_sin_and_cos_makes_a_kernel():
     """The pass builds no span from a line whose block (its lines up to the first indented
-    less) shows fewer than MIN_OPERATIONS operations (kernels.py `_most_operations`): 14
+    less) shows fewer than MIN_OPERATIONS operations (kernels.py `_operations_before`): 14
     binary operations, SIN and COS (16) make a kernel; a gate that missed SIN or COS, counted
     every `1e309` of the finite test out (a sign too many), ended the block a line early or
     skipped at the minimum itself makes none.  One operation fewer makes none."""
@@ -201,12 +201,23 @@ def test_a_block_of_exactly_the_minimum_with_sin_and_cos_makes_a_kernel():
 
 
 def test_a_block_ends_before_the_first_line_indented_less():
-    """`_block_end`: the deeper lines and a blank line are in the block of line 0."""
+    """`_block_ends`: the deeper lines and a blank line are in the block of line 0; a line
+    of spaces, or whose first character after its spaces is a tab, ends no block (as blank);
+    a line of the outermost indentation, or the last block, ends at the end."""
     body = ["    a = 1", "        b = 2", "", "    c = 3", "d = 4", "    e = 5"]
-    text = "\n".join(body)
-    offsets = [0, 9, 22, 22, 31, 36, 45]
-    assert [kernels._block_end(text, offsets, i, len(line) - len(line.lstrip())) for i, line in
-            enumerate(body) if line] == [4, 3, 4, 6, 6]
+    assert [end for end, line in zip(kernels._block_ends(body), body) if line] == [4, 3, 4, 6, 6]
+    body = ["        a", "  ", "    \tb", "      c", "    d"]
+    assert [kernels._block_ends(body)[i] for i in (0, 3, 4)] == [3, 4, 5]
+    assert kernels._block_ends([]) == []
+
+
+def test_the_operations_before_each_line_count_each_assignment_once():
+    """`_operations_before`: a `+ - *` each and a call of `_m_sqrt` in the lines holding ` = `
+    before each line; a finite test's `> -1e309` is no operation, an `if` and a charge's
+    `+=` count none (wrong answers: 1 at line 2 counting the test's sign, 3 at the `if`)."""
+    body = ["x = ((a*b)+c)", "if x > -1e309 - 1:", "_c1 = (True if (y < 1e309 and y > -1e309) else False)",
+            "_spent += 1", "z = _m_sqrt((x-y))", "w = (_m_sin(x) if _c1 else _sf_SIN(x))"]
+    assert kernels._operations_before(body) == [0, 2, 2, 2, 2, 4, 5]
 
 
 def test_ik_runs_give_pythons_floats_bit_for_bit():

@@ -290,12 +290,14 @@ def replace(lines: list[str], start: int, register, bind, not_float=None) -> Non
         return          # (each operation of a run but a unary minus shows one of these: too few)
     matches = list(map(_CANDIDATE.match, body))               # (one C loop over every line)
     offsets = list(itertools.accumulate(map(len, body), initial=0))   # line k starts at offsets[k] + k
-    spans, end, mentions = [], 0, None
+    spans, end, mentions, blocks = [], 0, None, None
     for i in itertools.compress(range(len(matches)), matches):
         if i < end or _tree(matches[i].group(3)) is None:      # (a span starts with a run line)
             continue
-        block = _block_end(text, offsets, i, len(matches[i].group(1)))
-        if _most_operations("\n".join(_ASSIGNMENT.findall(text, offsets[i] + i, offsets[block] + block))) < MIN_OPERATIONS:
+        if blocks is None:      # (once a line may start a span: each line's block end and count once)
+            blocks, operations = _block_ends(body), _operations_before(body)
+        block = blocks[i]
+        if operations[block] - operations[i] < MIN_OPERATIONS:
             end = block     # (no span from a line of the block reaches the minimum: none built)
             continue
         span = _Span(body, matches, i, text, offsets, not_float)
@@ -309,19 +311,40 @@ def replace(lines: list[str], start: int, register, bind, not_float=None) -> Non
         lines[i:j] = new
 
 
-def _block_end(text: str, offsets: list[int], i: int, indent: int) -> int:
-    """The first line after line `i` of `text` (indented by `indent`) indented less, blank
-    lines aside: a span from a line of the block (indented as deep or deeper) ends before it
-    (`_Span`: a run line, a `try:` and a statement it goes on across are at its indentation,
-    their blocks deeper)."""
-    found = _shallower(indent).search(text, offsets[i] + i)
-    return len(offsets) - 1 if found is None else i + 1 + text.count("\n", offsets[i] + i, found.start())
+def _block_ends(lines: list[str]) -> list[int]:
+    """For each line, the first line after it indented less, blank lines aside (a line of
+    spaces, or whose first character after them is other white space); len(lines) for a line
+    of the outermost indentation or none such after it: a span from a line of the block
+    (indented as deep or deeper) ends before it (`_Span`: a run line, a `try:` and a
+    statement it goes on across are at its indentation, their blocks deeper).  One walk:
+    the lines still open are held on a stack, indented no less than those below them."""
+    ends = [len(lines)] * len(lines)
+    open_lines: list[tuple[int, int]] = []          # (indentation, line)
+    for j, line in enumerate(lines):
+        stripped = line.lstrip(" ")
+        if not stripped or stripped[0].isspace():
+            continue
+        indent = len(line) - len(stripped)
+        while open_lines and open_lines[-1][0] > indent:
+            ends[open_lines.pop()[1]] = j
+        open_lines.append((indent, j))
+    return ends
 
 
-@functools.cache
-def _shallower(indent: int) -> re.Pattern:
-    """A line break before a line indented less than `indent` (never, for 0)."""
-    return re.compile(rf"\n {{0,{indent - 1}}}\S" if indent else r"(?!)")
+def _operations_before(lines: list[str]) -> list[int]:
+    """For each line k (and len(lines)), at least the operations `_Span` counts of the run
+    lines before it, counted in every line that holds ` = ` (every run line is one; a
+    charge's `+=`, an `if` are none): a `+`, `-` or `*` each, or a call of `_m_sqrt`,
+    `_sf_ATAN`, `_m_sin` or `_m_cos`; but the finite tests' `-1e309` (in no run line but the
+    finite test, whose operation is not counted).  Lines i to j count `result[j] - result[i]`:
+    those of a block, the same or more than a span from a line of it (the block from there a
+    part of it), each line counted once."""
+    return list(itertools.accumulate([len(_OPERATION.findall(line)) - line.count("> -1e309") if " = " in line else 0
+                                      for line in lines], initial=0))
+
+
+#: What `_operations_before` counts, in one C scan of a line (no two of its parts overlap).
+_OPERATION = re.compile(r"[*+-]|_m_(?:sqrt|sin|cos)\(|_sf_ATAN\(")
 
 
 @functools.cache
@@ -330,15 +353,6 @@ def _statement_break(indent: int) -> re.Pattern:
     not indented deeper, nor its `else:` or `elif`."""
     at = " " * indent
     return re.compile(rf"\n(?!{at} |{at}else:|{at}elif )")
-
-
-def _most_operations(text: str) -> int:
-    """At least the operations `_Span` counts of the run lines in `text` (whole lines; those
-    of a block: the same or fewer from a line of it, the block from there a part of it): a
-    `+`, `-` or `*` each, or a call of `_m_sqrt`, `_sf_ATAN`, `_m_sin` or `_m_cos`; but the
-    finite tests' `-1e309` (in no run line but the finite test, whose operation is not counted)."""
-    return (text.count("*") + text.count("+") + text.count("-") + text.count("_m_sqrt(") + text.count("_sf_ATAN(")
-            + text.count("_m_sin(") + text.count("_m_cos(") - text.count("> -1e309"))
 
 
 def _read_after(span, original: list[str], mentions: collections.Counter, one=True) -> list[str]:
@@ -353,8 +367,6 @@ def _read_after(span, original: list[str], mentions: collections.Counter, one=Tr
             or [name for name in names if name not in span.run.tests][-1:] * one)
 
 
-#: A line that holds ` = `: every run line is one (a charge's `+=`, an `if` are none).
-_ASSIGNMENT = re.compile(r"^.* = .*", re.MULTILINE)
 #: `if (not (x < 1e309 and x > -1e309)):`, the compiler's test that a REAL is finite.
 _FINITE_TEST = re.compile(r"( *)if \(not \(([A-Za-z_]\w*) < 1e309 and \2 > -1e309\)\):\Z")
 #: The tokens of a statement that may run after the kernel (`_Span.defer`).

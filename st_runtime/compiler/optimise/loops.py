@@ -58,6 +58,7 @@ _FOR = re.compile(r"( *)for (v_\w+) in (_t\d+):\Z")
 _INDEX = re.compile(r" *(_t\d+) = (v_\w+) - 1\Z")
 _ASSIGN = re.compile(r" *([A-Za-z_]\w*) = (.+)\Z")
 _LIBM = re.compile(r"_m_(?:sin|cos)\(")
+_WORD = re.compile(r"\w+")
 _BINARY = {ast.Add: "fadd", ast.Sub: "fsub", ast.Mult: "fmul"}
 _CALLS = {"_m_sin": "sin", "_m_cos": "cos"}
 _GUARDED = {"_m_sin": "_sf_SIN", "_m_cos": "_sf_COS"}
@@ -393,7 +394,7 @@ def _kernel_loop(body: list[str], n: int, found, register, bind):
     except (_NotPure, AttributeError):
         return None
     outside = "\n".join(body[:n] + body[end:])
-    named = {name for name in set(loop.carried) | loop.private if re.search(rf"\b{re.escape(name)}\b", outside)}
+    named = (set(loop.carried) | loop.private) & set(_WORD.findall(outside))   # (each an identifier: a whole word)
     if named & loop.private:
         return None
     loop.keep_only(named)

@@ -32,6 +32,7 @@ charges and faults as before (it had no charge and no fault inside).
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 import struct
@@ -132,12 +133,15 @@ _TOKEN = re.compile(r"\s*+(?:([()+*-])|([A-Za-z_]\w*)|(\d+(?:\.\d*)?(?:[eE][+-]?
 _WORDS = {"True": True, "False": False}
 
 
+@functools.lru_cache(maxsize=8192)
 def _parse(text: str):
     """The tree of a fully parenthesised `+ - *` of names and number literals, as the
     compiler writes them: ("name", n) | ("const", value) | ("bin", op, left, right);
     None for anything else (a call, a subscript, an attribute, an operator without
     parentheses ...).  A literal's value is Python's (`float(text)` rounds as the
-    compiler of the literal does; `-0.5` is the negated constant, as Python folds it)."""
+    compiler of the literal does; `-0.5` is the negated constant, as Python folds it).
+    Kept by text (a tree is tuples, never changed): the same lines come back in every
+    load of a program and in its fast and exact copies."""
     tokens = []
     pos, end = 0, len(text.rstrip())
     while pos < end:
