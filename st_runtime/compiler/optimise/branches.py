@@ -37,7 +37,7 @@ import re
 from ... import ast
 from ...types import FBType, InterfaceType, RefType, StructType, resolve_alias
 from ..scope import _LEAVES, listed as nodes_under, of_classes, once
-from . import kept, lasting, reuse
+from . import lasting, reuse
 
 # Characters an expression that cannot fault is made of: no quote, `/`, `%`, `:`, `@`.
 _ALLOWED = re.compile(r"[\w\s.()\[\]{},+\-*<>=!&|^~]*")
@@ -92,17 +92,6 @@ def expr_cannot_fault(compiler, node, code: str) -> bool:
     """`node` (compiled to `code`) reads only owned storage and its code cannot raise."""
     if not cannot_fault_judged(code):
         return False
-    # kept by node while the fast path's listed in-outs are the same: an unrolled loop's copies
-    # compile the same nodes again (its FOR variable's value changes the code, not the reads)
-    reads, in_outs = kept(compiler, "_owned_reads", dict), getattr(compiler, "listed_in_outs", ())
-    found = reads.get(id(node))
-    if found is None or found[0] is not node or found[1] is not in_outs:
-        found = reads[id(node)] = (node, in_outs, _reads_owned(compiler, node))
-    return found[2]
-
-
-def _reads_owned(compiler, node) -> bool:
-    """`node` reads only owned storage (module docstring), whatever the FOR variables' values."""
     for n in _read_nodes(compiler, node):
         if isinstance(n, ast.Deref):
             return False
