@@ -15,7 +15,8 @@ import pytest
 
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
-from st_runtime.compiler.optimise.branches import code_cannot_fault
+from st_runtime.compiler.optimise import lasting
+from st_runtime.compiler.optimise.branches import cannot_fault_judged, code_cannot_fault
 from test_optimiser_equivalence import _Context, compiled_lines, run_both, snapshot
 
 ON = Optimisations()
@@ -192,3 +193,23 @@ def test_the_code_check_reads_literals_and_operators_right():
     assert not code_cannot_fault("v_A = 1")
     assert not code_cannot_fault("v_A == 'x'")               # a string: refused, to be safe
     assert not code_cannot_fault("lambda: 1")
+
+
+def test_the_lasting_judge_answers_once_per_text_and_stays_bounded():
+    asked = []
+    judged = lasting(lambda text: asked.append(text) or len(text) > 2, entries=2)
+    assert [judged("abc"), judged("ab"), judged("abc"), judged("ab")] == [True, False, True, False]
+    assert asked == ["abc", "ab"]                   # the second asking of each: its kept answer
+    assert judged("abcd") and asked == ["abc", "ab", "abcd"]   # two kept: emptied, then this one
+    assert judged("abc") and asked == ["abc", "ab", "abcd", "abc"]   # asked again after emptying
+
+
+def test_the_code_check_kept_for_the_process_answers_as_the_check():
+    # asked twice each: a kept answer is the check's own, for texts that can raise and not
+    for _ in range(2):
+        assert cannot_fault_judged("((v_A >= 0) & (self.v_B.v_C <= 8)) | (not v_D[3])")
+        assert not cannot_fault_judged("(v_A / v_B) > 1.0")          # ZeroDivisionError
+        assert not cannot_fault_judged("(v_A ** v_B) > 1.0")         # OverflowError
+        assert not cannot_fault_judged("_cv_LINT_TO_LREAL(v_A) > 0.0")
+        assert not cannot_fault_judged(" * ".join(["v_A"] * 16) + " > 0.5")
+        assert cannot_fault_judged(" * ".join(["v_A"] * 15) + " > 0.5")   # 14 operators: at most 2**1024

@@ -37,7 +37,7 @@ import re
 from ... import ast
 from ...types import FBType, InterfaceType, RefType, StructType, resolve_alias
 from ..scope import _LEAVES, listed as nodes_under, of_classes, once
-from . import kept, remembered, reuse
+from . import lasting, reuse
 
 # Characters an expression that cannot fault is made of: no quote, `/`, `%`, `:`, `@`.
 _ALLOWED = re.compile(r"[\w\s.()\[\]{},+\-*<>=!&|^~]*")
@@ -81,13 +81,16 @@ def code_cannot_fault(code: str) -> bool:
     return code.count("+") + code.count("-") + code.count("*") <= MAX_ARITHMETIC
 
 
+cannot_fault_judged = lasting(code_cannot_fault)     # (a pure function of the code's text)
+
+
 def _owned(t) -> bool:
     return not isinstance(resolve_alias(t), (RefType, InterfaceType))
 
 
 def expr_cannot_fault(compiler, node, code: str) -> bool:
     """`node` (compiled to `code`) reads only owned storage and its code cannot raise."""
-    if not kept(compiler, "_code_judge", lambda: remembered(code_cannot_fault))(code):
+    if not cannot_fault_judged(code):
         return False
     for n in _read_nodes(compiler, node):
         if isinstance(n, ast.Deref):

@@ -47,7 +47,7 @@ import re
 
 from ... import ast
 from ...types import ArrayType, ElementaryType, FBType, resolve_alias
-from . import branches, kept, remembered
+from . import branches, lasting
 
 _ASSIGNMENT = re.compile(r"\s*+[A-Za-z_]\w* = ([\w\s()+\-*.]+)")
 _ATTRIBUTE_OR_CALL = re.compile(r"[A-Za-z_]\w*\s*[.(]")
@@ -67,19 +67,18 @@ def cannot_fault(lines: list[str], compiler=None, node=None) -> bool:
         return bool(lines) and all(map(_local_arithmetic, lines))
     if lines and lines[0].lstrip().startswith("self."):
         return _owned_store(compiler, node, lines)
-    return bool(lines) and all(map(_judge(compiler), lines)) or _owned_store(compiler, node, lines)
-
-
-def _judge(compiler):
-    """`_local_arithmetic` of a line, kept by its text while `compiler` compiles one body
-    (an unrolled loop writes its copies' lines again, the fast path the exact one's)."""
-    return kept(compiler, "_arithmetic_judge", lambda: remembered(_local_arithmetic))
+    return bool(lines) and all(map(_arithmetic_judged, lines)) or _owned_store(compiler, node, lines)
 
 
 def _local_arithmetic(line: str) -> bool:
     match = _ASSIGNMENT.fullmatch(branches.per_iteration_values(line))
     return match is not None and not _ATTRIBUTE_OR_CALL.search(match.group(1)) \
         and branches.code_cannot_fault(match.group(1))   # no `**`, at most 14 `+ - *`
+
+
+# `_local_arithmetic` of a line, kept by its text (a pure function of it): an unrolled loop
+# writes its copies' lines again, the fast path the exact one's, every load the same lines.
+_arithmetic_judged = lasting(_local_arithmetic)
 
 
 def _owned_store(compiler, node, lines: list[str]) -> bool:
