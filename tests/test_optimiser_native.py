@@ -250,3 +250,40 @@ PROGRAM P VAR y : LREAL; END_VAR y := F1(F2(y)); END_PROGRAM
     assert len(asked) == 1
     compile_program(program)
     assert len(asked) == 2
+
+
+# Session 25 (lead): a helper a native kernel replaces makes no NumPy arrays, so a load
+# imports no NumPy (a first load of generated/iec: about 320 million machine instructions).
+
+_NUMPY_AFTER = """
+import sys
+from st_runtime import api
+program = api.load_text(sys.stdin.read())
+loaded = "numpy" in sys.modules
+fb = program.compiled.new("Det5")
+fb.v_M = [float((k * 7) % 5) - 2.0 for k in range(25)]
+class Context:            # what a body needs of the controller (no test module: they import NumPy)
+    budget, faults = 10**12, []
+type(fb).execute(fb, Context())
+print(loaded, "numpy" in sys.modules, repr(fb.v_D))
+"""
+
+
+@pytest.mark.parametrize("switch, numpy_at_load", [("1", False), ("0", True)])
+def test_numpy_is_imported_only_where_its_kernel_runs(switch, numpy_at_load):
+    """With native kernels (ST_RUNTIME_NATIVE=1), neither the load nor the run of the Leibniz
+    5x5 imports NumPy (the kernel takes the helper's place at its first call); with them
+    off, the helper is NumPy's and the load imports it.  The determinant is the Leibniz
+    formula's either way."""
+    import os
+    import subprocess
+    import sys
+
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    env = dict(os.environ, ST_RUNTIME_NATIVE=switch,
+               PYTHONPATH=os.pathsep.join([root, os.environ.get("PYTHONPATH", "")]))
+    out = subprocess.run([sys.executable, "-c", _NUMPY_AFTER], input=LEIBNIZ5, env=env,
+                         capture_output=True, text=True, check=True).stdout.split()
+    assert out[:2] == [str(numpy_at_load), str(numpy_at_load)]
+    m = [float((k * 7) % 5) - 2.0 for k in range(N * N)]
+    assert _bits(float(out[2])) == _bits(_leibniz(m))

@@ -395,9 +395,10 @@ def builtin(helper, address: int):
 def first_call(helper, bind):
     """What the generated code calls before a `Vectorised` helper's kernel is built:
     `on_first_call` of its IR, the kernel's `__self__` the helper, NumPy's kernel
-    (`helper.run`) kept where this interpreter's layout is not CPython's; a method of the
+    (`helper.run`, its arrays made then) kept where this interpreter's layout is not
+    CPython's; a method of the
     helper, as the kernel that takes its place is."""
-    build = on_first_call(lambda: helper_ir(helper), bind, helper, helper.run)
+    build = on_first_call(lambda: helper_ir(helper), bind, helper, helper.numpy_run)
 
     def first(self, whole, inputs):
         return build(whole, inputs)
@@ -411,14 +412,14 @@ class _Kernel:
 def on_first_call(ir, bind, owner=None, fallback=None):
     """What the generated code calls before a kernel is built: the first call writes its IR
     (`ir()`: a load writes none) and builds the kernel (its `__self__` `owner`, or a new
-    `_Kernel`; where this interpreter's layout is not CPython's, `fallback`, by default a
-    function answering None: the lines run in Python), binds it in its own place by
-    `bind(kernel)` and calls it."""
+    `_Kernel`; where this interpreter's layout is not CPython's, what `fallback()` gives
+    (NumPy's kernel, made only then), by default a function answering None: the lines run
+    in Python), binds it in its own place by `bind(kernel)` and calls it."""
     def first(*arguments):
         if layout_is_cpythons():
             built = builtin(_Kernel() if owner is None else owner, compiled(ir()))
         else:
-            built = _python if fallback is None else fallback
+            built = _python if fallback is None else fallback()
         bind(built)
         return built(*arguments)
     return first

@@ -213,10 +213,13 @@ class Vectorised:
     `struct.pack_into` (`=d`: the double's bits unchanged, as NumPy's conversion keeps
     them; cheaper than converting a list and a tuple); what it cannot pack runs `exact`."""
 
-    def __init__(self, graph: _Graph, outputs: list[int], source=None):
+    def __init__(self, graph: _Graph, outputs: list[int], source=None, numpy_now: bool = True):
         """`source`: (size, {input: element}) when inputs are elements of one list, which
-        is then passed whole (`__call__(list, others)`) instead of read element by element."""
-        _import_numpy()
+        is then passed whole (`__call__(list, others)`) instead of read element by element.
+        `numpy_now` False: the plan is made (it decides whether the run qualifies) but NumPy's
+        arrays and the run's code only at the first call of `run`: where a native kernel takes
+        the run's place before any call (`native.first_call`), a load never imports NumPy
+        (about 320 million machine instructions, a sixth of a first load of generated/iec)."""
         n_in = len(graph.inputs)
         self.n_list, self.elements = source if source is not None else (0, {})
         ops = [(op, _index(graph, a), _index(graph, b)) for op, a, b in graph.ops]
@@ -233,6 +236,32 @@ class Vectorised:
         self.live = [k for k in range(len(ops)) if n_in + k in needed]
         self.limit = self._limit()
         self._plan(outputs)
+        if numpy_now:
+            self._materialise()
+        else:
+            self.run = self._run_first
+
+    def _run_first(self, whole, inputs):
+        """`run` before the arrays are made: makes them, then runs."""
+        return self.numpy_run()(whole, inputs)
+
+    def numpy_run(self):
+        """`run`, NumPy's arrays made first if they are not yet."""
+        if self.run == self._run_first:
+            self._materialise()
+        return self.run
+
+    def _materialise(self) -> None:
+        """NumPy's arrays of the plan's positions, the buffer's views and `run` itself."""
+        _import_numpy()
+        self.levels = [(np.array(gathered, dtype=np.intp), n, start, stop)
+                       for gathered, n, start, stop in self.levels]
+        self.chains = [(head, None if terms is None else np.array(terms, dtype=np.intp), np.array(signs), start, stop)
+                       for head, terms, signs, start, stop in self.chains]
+        self.early_positions = np.array(self.early_positions, dtype=np.intp)
+        self.outputs = np.array(self.outputs, dtype=np.intp)
+        self._views(self._size)
+        self._compile_run()
 
     def _limit(self) -> float:
         """A bound on the passed inputs' magnitude under which no value of the run reaches
@@ -316,24 +345,24 @@ class Vectorised:
             rights = [position[ops[v - n_in][2]] for v in values]
             first = _in_place(lefts)
             gathered = lefts + rights if first is None else rights
-            self.levels.append((np.array(gathered, dtype=np.intp), len(values), base, base + len(values)))
+            self.levels.append((gathered, len(values), base, base + len(values)))
             self.firsts.append(first)
             if chain is None:
                 size += len(values)
         self.chains = []            # (head position, term positions or None: in place, signs, start, stop)
+        #                             (positions and signs as lists until `_materialise`)
         for c, chain in enumerate(chains):
             start = chain_start[c]
-            terms = None if c in in_place else np.array([position[t] for t in chain["terms"]], dtype=np.intp)
-            signs = np.array([1.0] + chain["signs"])
+            terms = None if c in in_place else [position[t] for t in chain["terms"]]
+            signs = [1.0] + chain["signs"]
             self.chains.append((position[chain["head"]], terms, signs, start, start + len(signs)))
         for v, (c, step) in chain_of.items():
             position[v] = self.chains[c][3] + 1 + step
         overwritten = {t for c in in_place for t in chains[c]["terms"]}
         self.early = [k for k, o in enumerate(outputs) if o in overwritten]
-        self.early_positions = np.array([position[outputs[k]] for k in self.early], dtype=np.intp)
-        self.outputs = np.array([position[o] for o in outputs], dtype=np.intp)
-        self._views(size)
-        self._compile_run()
+        self.early_positions = [position[outputs[k]] for k in self.early]
+        self.outputs = [position[o] for o in outputs]
+        self._size = size
 
     def _views(self, size: int) -> None:
         v = self.buffer = np.zeros(size)
@@ -458,7 +487,7 @@ def _replace_run(lines, i, j, indent, graph, register, element_of=None, bind=Non
         return None
     whole, source = _whole_list(graph, element_of)
     try:
-        helper = Vectorised(graph, [ref for _, ref in stores], source)
+        helper = Vectorised(graph, [ref for _, ref in stores], source, numpy_now=bind is None)
     except _NotVector:
         return None
     arguments = "".join(f"{graph.inputs[k]}, " for k in helper.variable_inputs)
