@@ -15,7 +15,6 @@ import pytest
 
 from st_runtime import api
 from st_runtime.compiler import Optimisations, compile_program
-from st_runtime.compiler.optimise import lasting
 from st_runtime.compiler.optimise.branches import cannot_fault_judged, code_cannot_fault
 from test_optimiser_equivalence import _Context, compiled_lines, run_both, snapshot
 
@@ -193,15 +192,6 @@ def test_the_code_check_reads_literals_and_operators_right():
     assert not code_cannot_fault("v_A = 1")
     assert not code_cannot_fault("v_A == 'x'")               # a string: refused, to be safe
     assert not code_cannot_fault("lambda: 1")
-
-
-def test_the_lasting_judge_answers_once_per_text_and_stays_bounded():
-    asked = []
-    judged = lasting(lambda text: asked.append(text) or len(text) > 2, entries=2)
-    assert [judged("abc"), judged("ab"), judged("abc"), judged("ab")] == [True, False, True, False]
-    assert asked == ["abc", "ab"]                   # the second asking of each: its kept answer
-    assert judged("abcd") and asked == ["abc", "ab", "abcd"]   # two kept: emptied, then this one
-    assert judged("abc") and asked == ["abc", "ab", "abcd", "abc"]   # asked again after emptying
 
 
 def test_the_code_check_kept_for_the_process_answers_as_the_check():

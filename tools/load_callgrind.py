@@ -50,9 +50,7 @@ def folder_child(folder: str, mode: str) -> None:
             api.load([folder])
     if mode == "fresh":
         getattr(st_runtime.compiler, "_CODE", {}).clear()
-    subprocess.run(["callgrind_control", "-i", "on", str(os.getpid())], check=True, stdout=subprocess.DEVNULL)
-    for _ in starmap(api.load, [([folder],)]):
-        pass
+    measured(api.load, [([folder],)])
 
 
 def child() -> None:
@@ -71,8 +69,14 @@ def child() -> None:
     for _ in range(2):
         for texts in loads:
             load(texts)
+    measured(load, [(texts,) for texts in loads])
+
+
+def measured(function, calls: list[tuple]) -> None:
+    """Each call of `function` with the arguments of `calls`, the only code counted: the
+    instrumentation switched on here, the collection on only inside `starmap`."""
     subprocess.run(["callgrind_control", "-i", "on", str(os.getpid())], check=True, stdout=subprocess.DEVNULL)
-    for _ in starmap(load, [(texts,) for texts in loads]):
+    for _ in starmap(function, calls):
         pass
 
 

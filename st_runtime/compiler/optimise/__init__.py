@@ -248,23 +248,6 @@ def remembered(answer):
     return remembered_answer
 
 
-def lasting(answer, entries: int = 8192):
-    """`answer`, a pure function of one text, with its answers kept by that text for the
-    whole process (bounded: emptied when `entries` are kept, as compiler._CODE): every
-    load of the same sources asks the same lines and expressions again, and an answer
-    that depends on the text alone is the same in every body and every load."""
-    answers: dict = {}
-
-    def lasting_answer(text: str):
-        found = answers.get(text, _UNASKED)
-        if found is _UNASKED:
-            if len(answers) >= entries:
-                answers.clear()
-            found = answers[text] = answer(text)
-        return found
-    return lasting_answer
-
-
 def kept(compiler, name: str, make):
     """What `make()` builds, made once per body's compile: kept on `compiler` (one
     BodyCompiler) under `name` (a pass's memo or its `remembered` judge)."""

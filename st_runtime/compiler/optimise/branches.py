@@ -31,13 +31,14 @@ What cannot fault, judged on the ST expression and on its Python code both:
 
 from __future__ import annotations
 
+import functools
 import keyword
 import re
 
 from ... import ast
 from ...types import FBType, InterfaceType, RefType, StructType, resolve_alias
 from ..scope import _LEAVES, listed as nodes_under, of_classes, once
-from . import lasting, reuse
+from . import reuse
 
 # Characters an expression that cannot fault is made of: no quote, `/`, `%`, `:`, `@`.
 _ALLOWED = re.compile(r"[\w\s.()\[\]{},+\-*<>=!&|^~]*")
@@ -81,7 +82,9 @@ def code_cannot_fault(code: str) -> bool:
     return code.count("+") + code.count("-") + code.count("*") <= MAX_ARITHMETIC
 
 
-cannot_fault_judged = lasting(code_cannot_fault)     # (a pure function of the code's text)
+# `code_cannot_fault` kept by the code's text for the process (a pure function of it: every
+# body and every load asks the same expressions again).
+cannot_fault_judged = functools.lru_cache(maxsize=8192)(code_cannot_fault)
 
 
 def _owned(t) -> bool:

@@ -396,8 +396,7 @@ def first_call(helper, bind):
     """What the generated code calls before a `Vectorised` helper's kernel is built:
     `on_first_call` of its IR, the kernel's `__self__` the helper, NumPy's kernel
     (`helper.run`, its arrays made then) kept where this interpreter's layout is not
-    CPython's; a method of the
-    helper, as the kernel that takes its place is."""
+    CPython's; a method of the helper, as the kernel that takes its place is."""
     build = on_first_call(lambda: helper_ir(helper), bind, helper, helper.numpy_run)
 
     def first(self, whole, inputs):

@@ -43,11 +43,12 @@ referenced or global variables keep their handler.
 
 from __future__ import annotations
 
+import functools
 import re
 
 from ... import ast
 from ...types import ArrayType, ElementaryType, FBType, resolve_alias
-from . import branches, lasting
+from . import branches
 
 _ASSIGNMENT = re.compile(r"\s*+[A-Za-z_]\w* = ([\w\s()+\-*.]+)")
 _ATTRIBUTE_OR_CALL = re.compile(r"[A-Za-z_]\w*\s*[.(]")
@@ -78,7 +79,7 @@ def _local_arithmetic(line: str) -> bool:
 
 # `_local_arithmetic` of a line, kept by its text (a pure function of it): an unrolled loop
 # writes its copies' lines again, the fast path the exact one's, every load the same lines.
-_arithmetic_judged = lasting(_local_arithmetic)
+_arithmetic_judged = functools.lru_cache(maxsize=8192)(_local_arithmetic)
 
 
 def _owned_store(compiler, node, lines: list[str]) -> bool:
