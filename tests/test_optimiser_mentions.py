@@ -32,3 +32,22 @@ def test_a_name_stands_where_it_is_whole(text, name, expected):
 def test_a_refused_spelling_does_not_hide_a_place_after_it():
     """The search goes on at the next character after a place it refused, on after a place."""
     assert places("xv_A v_A.v_A v_A", "v_A") == [5, 13]
+
+
+@pytest.mark.parametrize("text, word, expected", [
+    # a word of a text (`attributes`): after a dot it stands too, never inside another word
+    ("s.stops := stops; xstops stops_", "stops", [2, 11]),
+    ("a.b.c", "b", [2]),
+    # a word not ending in a word character (a keyword with its colon) stands whatever follows
+    ("try:x", "try:", [0]),
+    ("self.try:", "try:", [5]),
+    ("retry: try:", "try:", [7]),
+    ("finally:pass", "finally:", [0]),
+    # one ending in a word character still needs a boundary after it
+    ("returned = x", "return", []),
+    ("x.return 1", "return", [2]),
+])
+def test_a_word_with_attributes_stands_after_a_dot_too(text, word, expected):
+    """Worked by hand against `(?<!\\w)WORD` followed by `(?!\\w)` when WORD ends in a word
+    character (the census's and the barrier words' patterns before this finder)."""
+    assert places(text, word, attributes=True) == expected

@@ -258,28 +258,10 @@ def _holds_barrier_word(line: str) -> bool:
     if "_ctx" in line or "_overrun" in line or ".execute(" in line or "_fn_" in line:
         return True
     return ("try:" in line or "except" in line or "finally:" in line or "return" in line or "break" in line
-            or "continue" in line) and any(_stands(line, word) for word in _KEYWORDS)
+            or "continue" in line) and any(mentions.places(line, word, attributes=True) for word in _KEYWORDS)
 
 
 _KEYWORDS = ("try:", "except", "finally:", "return", "break", "continue")
-
-
-def _stands(line: str, word: str) -> bool:
-    """Whether `word` stands in `line` with no word character before it, nor after it when
-    it ends with one (the word boundaries of a regex around it)."""
-    size, closed = len(word), _word_character(word[-1])
-    at = line.find(word)
-    while at >= 0:
-        after = at + size
-        if (at == 0 or not _word_character(line[at - 1])) \
-                and not (closed and after < len(line) and _word_character(line[after])):
-            return True
-        at = line.find(word, at + 1)
-    return False
-
-
-def _word_character(char: str) -> bool:
-    return char.isalnum() or char == "_"
 
 
 def _lifted(text: list[str]) -> list[str]:

@@ -44,6 +44,7 @@ from ...objects import is_aggregate
 from ...symbols import Symbol
 from ...types import ElementaryType, resolve_alias
 from ..scope import listed, of_classes, walk
+from . import mentions
 
 # The reads a skipped `X AND e` may leave out: variables, members, literals, NOT and logic.
 _PURE = (ast.Name, ast.Member, ast.BoolLiteral, ast.Unary, ast.Binary)
@@ -233,22 +234,9 @@ class _Words:
         """How often `word` stands in the texts (any case), not next to a word character."""
         if not word.isascii():
             return _count_by_pattern(word, self.texts)
-        key, found = word.lower(), 0
-        for text in self.lowered:
-            at, size, end = text.find(key), len(key), len(text)
-            while at >= 0:
-                after = at + size
-                if (at == 0 or not _word_character(text[at - 1])) \
-                        and (after == end or not _word_character(text[after])):
-                    found += 1
-                    at = text.find(key, after)      # (as `findall`: on after a match)
-                else:
-                    at = text.find(key, at + 1)
+        key = word.lower()
+        found = sum(len(mentions.places(text, key, attributes=True)) for text in self.lowered)
         return found + (_count_by_pattern(word, self.others) if self.others else 0)
-
-
-def _word_character(char: str) -> bool:
-    return char.isalnum() or char == "_"
 
 
 def _count_by_pattern(word: str, texts: list[str]) -> int:
