@@ -198,6 +198,36 @@ if (v_X == 0):
     assert _threaded(short)[0] == "if (v_X == 0):"
 
 
+def test_a_long_first_branch_under_a_not_equal_test_is_tested_with_equal():
+    """The other way round from `!=`: the swapped chain tests `==` (by hand: the ELSE path is
+    the one with v_X = 1)."""
+    body = "\n".join(f"    f({k})" for k in range(halves.FAR))
+    text = f"""
+if (v_X != 1):
+    v_X = 0
+else:
+    g()
+if (v_X == 0):
+{body}
+"""
+    assert _threaded(text) == ["if (v_X == 1):", "    g()", "else:", "    v_X = 0", *body.split("\n")]
+
+
+def test_no_threaded_line_is_indented_past_the_deepest_allowed():
+    """By hand: the chain's paths end at `margin` + 4 spaces and the next chain's part holds a
+    line 4 deeper than its own start, so its deepest threaded line is at `margin` + 8."""
+    def chains(margin: int) -> str:
+        pad = " " * margin
+        return "\n".join(pad + line for line in (
+            "if v_A:", "    v_X = 1", "else:", "    v_X = 0", "if (v_X == 1):", "    if v_B:", "        f(0)"))
+
+    at_the_limit = chains(threads.DEEPEST - 8)
+    assert _threaded(at_the_limit) == [" " * (threads.DEEPEST - 8) + line for line in (
+        "if v_A:", "    v_X = 1", "    if v_B:", "        f(0)", "else:", "    v_X = 0")]
+    one_level_past = chains(threads.DEEPEST - 4)
+    assert _threaded(one_level_past) == one_level_past.split("\n")
+
+
 def test_the_wave_state_tests_of_the_axes_jump_near():
     """SP_Controller's first `NewFault` test holds the five other axes' tests: `!= 0` first."""
     from stgen.scenarios.program import controller_sources
