@@ -147,3 +147,25 @@ def test_the_controller_tests_its_twelve_idle_sites_once_a_scan():
         assert f"if _dormant1 and (v_RESETEXECUTE is not False or v_AXISRESET[{k}]._at_rest is not _seal):" in source
     off = compile_program(program, optimise=Optimisations(dormant=False)).python_sources["SP_CONTROLLER"]
     assert "_dormant" not in off and "_group_at_rest" not in off
+
+
+SECOND_GROUP = """
+Stops[2](Axis := Cyl1, Execute := DoStop AND NOT Cyl1.Status.ErrorStop, Deceleration := 50.0);
+E(V := Poke);
+Resets[2](Axis := Cyl1, Execute := DoReset);
+END_PROGRAM"""
+
+
+def test_two_groups_in_one_body_each_have_their_own_flag(monkeypatch):
+    """A store (Seen) parts the two pairs of sites: two groups, each skipped under its own
+    `_dormantN` (one shared flag would let the second group's test stand for the first's).
+    By hand, as above: each reset is Done in scan 5 only."""
+    program = _program("DoReset := Poke;", "E(V := Poke);", "DoReset").replace("END_PROGRAM", SECOND_GROUP)
+    source = _source(program)
+    assert "_dormant1 = True" in source and "_dormant2 = True" in source
+
+    def both_done(instance) -> tuple:
+        return instance.v_RESETS[0].v_DONE, instance.v_RESETS[1].v_DONE
+
+    expected = [(False, False)] * 4 + [(True, True)] + [(False, False)] * 3
+    assert _run(monkeypatch, "all", program, both_done) == _run(monkeypatch, "none", program, both_done) == expected

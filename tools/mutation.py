@@ -153,7 +153,9 @@ MODULES: dict[str, tuple[list[str], list[str]]] = {
                   # session 24: the early store's own tests (aliases.store_early)
                   "tests/test_optimiser_early.py",
                   # session 25: the shared finder of a local in generated code (mentions.py)
-                  "tests/test_optimiser_mentions.py", "tests/test_optimiser_margins.py"]),
+                  "tests/test_optimiser_mentions.py", "tests/test_optimiser_margins.py",
+                  # session 26: the first prologue load read by drop_unread and store_early
+                  "tests/test_optimiser_first_load.py"]),
     "stdlib": (["st_runtime/stdlib/*"],
                ["tests/test_stdlib_functions.py", "tests/test_stdlib_fbs.py", "tests/test_stdlib_st.py",
                 "tests/test_operators_runtime.py", "tests/test_st_unit_files.py",

@@ -98,7 +98,7 @@ def drop_unread(lines: list[str], start: int, deferred: bool = False) -> None:
     except ValueError:
         return
     loads = {}
-    for i in range(start + 1, body):
+    for i in range(start, body):
         match = _ALIAS_LINE.fullmatch(lines[i].strip())
         if match and match.group(1) == match.group(2) and lines[i].startswith("    v_"):
             loads[match.group(1)] = i
@@ -153,7 +153,7 @@ def store_early(lines: list[str], start: int) -> None:
     except ValueError:
         return
     loads = {}
-    for i in range(start + 1, body):
+    for i in range(start, body):
         match = _LOAD_LINE.fullmatch(lines[i])
         if match is not None and lines[i] == f"    {match.group(2)} = self.{match.group(2)}":
             loads[match.group(2)] = i
